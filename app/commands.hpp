@@ -1,0 +1,29 @@
+// Subcommands of the `gpm` command line (DESIGN.md). Each file app/cmd_*.cpp
+// registers one subcommand; the callbacks throw gpm::InputError for bad input
+// (exit 2) and return the exit code through gpm::cli::set_exit().
+#pragma once
+
+#include <string>
+
+#include <CLI/CLI.hpp>
+
+namespace gpm::cli {
+
+// Records the exit code a subcommand wants (0 success, 1 failed expectations).
+void set_exit(int code);
+int exit_code();
+
+// Path of the nominal GPM2002 robot file shipped with the sources.
+std::string default_model_path();
+
+void add_kin(CLI::App& app);
+void add_simulate(CLI::App& app);
+void add_calibrate(CLI::App& app);
+void add_run(CLI::App& app);
+void add_render(CLI::App& app);
+
+// Throws InputError "gpm NAME: not available yet (...)": a subcommand whose
+// issue has not landed.
+[[noreturn]] void not_available(const std::string& name, const std::string& issue);
+
+}  // namespace gpm::cli

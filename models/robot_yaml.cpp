@@ -1,0 +1,187 @@
+#include "models/robot_yaml.hpp"
+
+#include <cstdio>
+#include <unistd.h>
+#include <filesystem>
+#include <fstream>
+
+#include <fmt/format.h>
+
+#include "models/errors.hpp"
+#include "models/kinematics.hpp"
+#include "models/yaml_util.hpp"
+
+namespace gpm {
+namespace {
+
+std::string join(const std::string& a, const std::string& b) { return a.empty() ? b : a + "." + b; }
+
+}  // namespace
+
+Geometry geometry_from_yaml(const YAML::Node& node, const std::string& file,
+                            const std::string& keypath) {
+  if (!node.IsDefined() || node.IsNull()) {
+    throw InputError(fmt::format("{}: missing key '{}' (a map of the 15 parameters xa1 ya1 xa2 ya2 "
+                                 "xa3 ya3 la1 la2 la3 lb1 lb2 lb3 dth1 dth2 dth3)",
+                                 file, keypath));
+  }
+  if (!node.IsMap()) {
+    throw InputError(yaml_where(file, node, keypath) +
+                     "expected a map of the 15 parameters xa1 ... dth3");
+  }
+  Geometry g;
+  std::array<bool, kNumParams> seen{};
+  for (const auto& kv : node) {
+    const std::string key = kv.first.Scalar();
+    const auto idx = param_index(key);
+    if (!idx) {
+      throw InputError(yaml_where(file, kv.first, join(keypath, key)) +
+                       fmt::format("unknown parameter (did you mean {}?)", nearest_param_name(key)));
+    }
+    const std::string path = join(keypath, key);
+    const double v = yaml_number(kv.second, file, path);
+    if (is_length(*idx) && !(v > 0.0)) {
+      throw InputError(yaml_where(file, kv.second, path) +
+                       fmt::format("link length must be positive, got {}", v));
+    }
+    g[*idx] = v;
+    seen[static_cast<size_t>(*idx)] = true;
+  }
+  for (int i = 0; i < kNumParams; ++i) {
+    if (!seen[static_cast<size_t>(i)]) {
+      throw InputError(yaml_where(file, node, keypath) +
+                       fmt::format("missing key '{}' (all 15 parameters are required)", param_name(i)));
+    }
+  }
+  return g;
+}
+
+void validate_robot(const Robot& robot, const std::string& where) {
+  for (int i = 0; i < kNumParams; ++i) {
+    if (is_length(i) && !(robot.geometry[i] > 0.0)) {
+      throw InputError(fmt::format("{}: geometry.{}: link length must be positive, got {}", where,
+                                   param_name(i), robot.geometry[i]));
+    }
+  }
+  try {
+    inverse_kinematics(robot.geometry, robot.home, robot.branch);
+  } catch (const ReachError& e) {
+    throw InputError(fmt::format("{}: home ({}, {}) is not reachable with this geometry: {}", where,
+                                 robot.home.x(), robot.home.y(), e.what()));
+  }
+}
+
+Robot robot_from_yaml(const YAML::Node& root, const std::string& file, const std::string& keypath) {
+  if (!root.IsMap()) {
+    throw InputError(yaml_where(file, root, keypath) +
+                     "expected a map with keys name, geometry (and optionally home, elbow, limits)");
+  }
+  yaml_check_keys(root, file, keypath, {"name", "geometry", "home", "elbow", "limits"});
+  Robot r;
+  if (root["name"]) r.name = yaml_string(root["name"], file, join(keypath, "name"));
+  r.geometry = geometry_from_yaml(root["geometry"], file, join(keypath, "geometry"));
+  if (const YAML::Node home = root["home"]) {
+    if (!home.IsSequence() || home.size() != 2) {
+      throw InputError(yaml_where(file, home, join(keypath, "home")) +
+                       "expected [x, y] in mm, e.g. [216.5, 250]");
+    }
+    r.home = {yaml_number(home[0], file, join(keypath, "home[0]")),
+              yaml_number(home[1], file, join(keypath, "home[1]"))};
+  }
+  if (const YAML::Node elbow = root["elbow"]) {
+    if (!elbow.IsSequence() || elbow.size() != 3) {
+      throw InputError(yaml_where(file, elbow, join(keypath, "elbow")) +
+                       "expected three branches, each ccw or cw, e.g. [ccw, ccw, ccw]");
+    }
+    for (size_t i = 0; i < 3; ++i) {
+      const std::string path = fmt::format("{}[{}]", join(keypath, "elbow"), i);
+      const std::string s = yaml_string(elbow[i], file, path);
+      if (s == "ccw") r.branch[i] = +1;
+      else if (s == "cw") r.branch[i] = -1;
+      else throw InputError(yaml_where(file, elbow[i], path) + fmt::format("'{}' is not ccw or cw", s));
+    }
+  }
+  if (const YAML::Node lim = root["limits"]) {
+    const std::string lp = join(keypath, "limits");
+    yaml_check_keys(lim, file, lp, {"reach_margin", "min_transmission", "min_direct"});
+    if (lim["reach_margin"]) {
+      r.limits.reach_margin = yaml_number(lim["reach_margin"], file, lp + ".reach_margin");
+      if (r.limits.reach_margin < 0.0)
+        throw InputError(yaml_where(file, lim["reach_margin"], lp + ".reach_margin") + "must be >= 0");
+    }
+    for (const char* key : {"min_transmission", "min_direct"}) {
+      if (!lim[key]) continue;
+      const double v = yaml_number(lim[key], file, lp + "." + key);
+      if (v < 0.0 || v >= 1.0)
+        throw InputError(yaml_where(file, lim[key], lp + "." + key) +
+                         fmt::format("must be in [0, 1), got {}", v));
+      (std::string_view(key) == "min_transmission" ? r.limits.min_transmission : r.limits.min_direct) = v;
+    }
+  }
+  validate_robot(r, keypath.empty() ? file : file + ": " + keypath);
+  return r;
+}
+
+Robot parse_robot(const std::string& text, const std::string& file) {
+  return robot_from_yaml(load_yaml_string(text, file), file, "");
+}
+
+Robot load_robot(const std::string& path) {
+  return robot_from_yaml(load_yaml_file(path), path, "");
+}
+
+std::string geometry_to_yaml(const Geometry& g, int indent) {
+  std::string out;
+  const std::string pad(static_cast<size_t>(indent), ' ');
+  for (int i = 0; i < kNumParams; ++i) {
+    out += fmt::format("{}{}: {}\n", pad, param_name(i), format_exact(g[i]));
+  }
+  return out;
+}
+
+std::string robot_to_yaml(const Robot& r) {
+  std::string out;
+  out += fmt::format("name: {}\n", YAML::Dump(YAML::Node(r.name)));
+  out += "geometry:            # mm and rad\n";
+  out += geometry_to_yaml(r.geometry, 2);
+  out += fmt::format("home: [{}, {}]\n", format_exact(r.home.x()), format_exact(r.home.y()));
+  out += fmt::format("elbow: [{}, {}, {}]\n", r.branch[0] > 0 ? "ccw" : "cw",
+                     r.branch[1] > 0 ? "ccw" : "cw", r.branch[2] > 0 ? "ccw" : "cw");
+  out += "limits:\n";
+  out += fmt::format("  reach_margin: {}\n", format_exact(r.limits.reach_margin));
+  out += fmt::format("  min_transmission: {}\n", format_exact(r.limits.min_transmission));
+  out += fmt::format("  min_direct: {}\n", format_exact(r.limits.min_direct));
+  return out;
+}
+
+void write_file_atomic(const std::string& path, const std::string& text) {
+  namespace fs = std::filesystem;
+  const fs::path target(path);
+  fs::path tmp = target;
+  tmp += fmt::format(".tmp{}", static_cast<long>(::getpid()));
+  {
+    std::ofstream out(tmp, std::ios::binary | std::ios::trunc);
+    if (!out) {
+      throw InputError(fmt::format("{}: cannot write file (is the folder there and writable?)", path));
+    }
+    out << text;
+    out.flush();
+    if (!out) {
+      std::error_code ec;
+      fs::remove(tmp, ec);
+      throw InputError(fmt::format("{}: write failed (disk full?)", path));
+    }
+  }
+  std::error_code ec;
+  fs::rename(tmp, target, ec);
+  if (ec) {
+    fs::remove(tmp, ec);
+    throw InputError(fmt::format("{}: cannot write file: {}", path, ec.message()));
+  }
+}
+
+void save_robot(const Robot& robot, const std::string& path) {
+  write_file_atomic(path, robot_to_yaml(robot));
+}
+
+}  // namespace gpm

@@ -1,0 +1,35 @@
+// Encoder samples (DESIGN.md, file contracts): CSV with a header row, columns
+// found by name, others ignored: sample,theta_m1,theta_m2,theta_m3[,x,y] with
+// readings in rad and, where known (simulation), the true end-effector in mm.
+#pragma once
+
+#include <string>
+#include <vector>
+
+#include <Eigen/Core>
+
+namespace gpm {
+
+struct Samples {
+  std::vector<long> id;                    // the `sample` column (or 0..n-1)
+  std::vector<Eigen::Vector3d> theta_m;    // encoder readings (rad)
+  std::vector<Eigen::Vector2d> xy;         // true end-effector (mm), if has_xy
+  bool has_xy = false;
+
+  size_t size() const { return theta_m.size(); }
+};
+
+// Reads a samples CSV; throws InputError naming the file, line and column for
+// missing columns, non-numeric or non-finite values.
+Samples read_samples_csv(const std::string& path);
+
+// Parses samples CSV text; file names the source in errors.
+Samples parse_samples_csv(const std::string& text, const std::string& file);
+
+// CSV text of samples (header and rows), numbers written exactly.
+std::string samples_to_csv(const Samples& s);
+
+// Writes samples atomically.
+void write_samples_csv(const Samples& s, const std::string& path);
+
+}  // namespace gpm

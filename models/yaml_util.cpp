@@ -1,0 +1,128 @@
+#include "models/yaml_util.hpp"
+
+#include <charconv>
+#include <cmath>
+#include <fstream>
+#include <sstream>
+
+#include <fmt/format.h>
+
+#include "models/errors.hpp"
+#include "models/parameters.hpp"
+
+namespace gpm {
+
+std::string yaml_where(const std::string& file, const YAML::Node& node, std::string_view keypath) {
+  const YAML::Mark mark = node.Mark();
+  std::string out = file;
+  if (!mark.is_null()) out += fmt::format(":{}", mark.line + 1);
+  out += ": ";
+  if (!keypath.empty()) out += fmt::format("{}: ", keypath);
+  return out;
+}
+
+YAML::Node load_yaml_string(const std::string& text, const std::string& file) {
+  try {
+    return YAML::Load(text);
+  } catch (const YAML::ParserException& e) {
+    throw InputError(fmt::format("{}:{}:{}: YAML syntax error: {}", file, e.mark.line + 1,
+                                 e.mark.column + 1, e.msg));
+  }
+}
+
+YAML::Node load_yaml_file(const std::string& file) {
+  std::ifstream in(file, std::ios::binary);
+  if (!in) throw InputError(fmt::format("{}: cannot open file (does it exist and is it readable?)", file));
+  std::stringstream ss;
+  ss << in.rdbuf();
+  return load_yaml_string(ss.str(), file);
+}
+
+double yaml_number(const YAML::Node& node, const std::string& file, std::string_view keypath) {
+  if (!node.IsDefined() || node.IsNull()) {
+    throw InputError(yaml_where(file, node, keypath) + "missing value (expected a number)");
+  }
+  if (!node.IsScalar()) {
+    throw InputError(yaml_where(file, node, keypath) + "expected a number, got a list or map");
+  }
+  std::string_view s = node.Scalar();
+  const std::string text(s);
+  if (!s.empty() && s.front() == '+') s.remove_prefix(1);
+  double v = 0.0;
+  const auto [ptr, ec] = std::from_chars(s.data(), s.data() + s.size(), v);
+  const bool yaml_special = text == ".nan" || text == ".NaN" || text == ".inf" || text == "-.inf" ||
+                            text == "+.inf" || text == ".Inf" || text == "-.Inf";
+  if (yaml_special || (ec == std::errc() && ptr == s.data() + s.size() && !std::isfinite(v))) {
+    throw InputError(yaml_where(file, node, keypath) +
+                     fmt::format("value must be a finite number, got '{}'", text));
+  }
+  if (ec != std::errc() || ptr != s.data() + s.size() || s.empty()) {
+    throw InputError(yaml_where(file, node, keypath) +
+                     fmt::format("'{}' is not a number", text));
+  }
+  return v;
+}
+
+double yaml_positive(const YAML::Node& node, const std::string& file, std::string_view keypath) {
+  const double v = yaml_number(node, file, keypath);
+  if (!(v > 0.0)) {
+    throw InputError(yaml_where(file, node, keypath) + fmt::format("must be positive, got {}", v));
+  }
+  return v;
+}
+
+long long yaml_integer(const YAML::Node& node, const std::string& file, std::string_view keypath,
+                       long long lo, long long hi) {
+  const double v = yaml_number(node, file, keypath);
+  if (v != std::floor(v) || v < static_cast<double>(lo) || v > static_cast<double>(hi)) {
+    throw InputError(yaml_where(file, node, keypath) +
+                     fmt::format("must be a whole number from {} to {}, got {}", lo, hi, node.Scalar()));
+  }
+  return static_cast<long long>(v);
+}
+
+bool yaml_bool(const YAML::Node& node, const std::string& file, std::string_view keypath) {
+  if (node.IsScalar()) {
+    const std::string& s = node.Scalar();
+    if (s == "true" || s == "True" || s == "yes" || s == "on") return true;
+    if (s == "false" || s == "False" || s == "no" || s == "off") return false;
+  }
+  throw InputError(yaml_where(file, node, keypath) + "expected true or false");
+}
+
+std::string yaml_string(const YAML::Node& node, const std::string& file, std::string_view keypath) {
+  if (!node.IsDefined() || !node.IsScalar()) {
+    throw InputError(yaml_where(file, node, keypath) + "expected a text value");
+  }
+  return node.Scalar();
+}
+
+void yaml_check_keys(const YAML::Node& node, const std::string& file, std::string_view keypath,
+                     std::initializer_list<std::string_view> allowed) {
+  if (!node.IsMap()) {
+    throw InputError(yaml_where(file, node, keypath) + "expected a map of keys");
+  }
+  for (const auto& kv : node) {
+    const std::string key = kv.first.Scalar();
+    bool ok = false;
+    std::string_view best;
+    int best_d = 1 << 30;
+    std::string valid;
+    for (std::string_view a : allowed) {
+      if (a == key) ok = true;
+      const int d = edit_distance(key, a);
+      if (d < best_d) best_d = d, best = a;
+      if (!valid.empty()) valid += ", ";
+      valid += a;
+    }
+    if (!ok) {
+      const std::string path = keypath.empty() ? key : fmt::format("{}.{}", keypath, key);
+      throw InputError(yaml_where(file, kv.first, path) +
+                       fmt::format("unknown key (did you mean {}?); valid keys: {}", best, valid));
+    }
+  }
+}
+
+std::string format_exact(double x) { return fmt::format("{}", x); }
+
+}  // namespace gpm

@@ -1,0 +1,46 @@
+// Strict reading of YAML scalars and maps, with errors that name the file,
+// the line and the key path (DESIGN.md: one clear line, exit 2).
+#pragma once
+
+#include <initializer_list>
+#include <string>
+#include <string_view>
+
+#include <yaml-cpp/yaml.h>
+
+namespace gpm {
+
+// "FILE:LINE: KEYPATH: " prefix for an error about node.
+std::string yaml_where(const std::string& file, const YAML::Node& node, std::string_view keypath);
+
+// Loads a YAML file; throws InputError for a missing file or a syntax error.
+YAML::Node load_yaml_file(const std::string& file);
+
+// Parses YAML text (file names the source in errors).
+YAML::Node load_yaml_string(const std::string& text, const std::string& file);
+
+// A finite number at node; throws InputError for non-numeric or non-finite.
+double yaml_number(const YAML::Node& node, const std::string& file, std::string_view keypath);
+
+// A number > 0.
+double yaml_positive(const YAML::Node& node, const std::string& file, std::string_view keypath);
+
+// An integer (no fractional part) at node, in [lo, hi].
+long long yaml_integer(const YAML::Node& node, const std::string& file, std::string_view keypath,
+                       long long lo, long long hi);
+
+// A boolean (true/false).
+bool yaml_bool(const YAML::Node& node, const std::string& file, std::string_view keypath);
+
+// A string scalar.
+std::string yaml_string(const YAML::Node& node, const std::string& file, std::string_view keypath);
+
+// Requires node to be a map whose keys are all in allowed; an unknown key is
+// reported with the nearest allowed name.
+void yaml_check_keys(const YAML::Node& node, const std::string& file, std::string_view keypath,
+                     std::initializer_list<std::string_view> allowed);
+
+// Shortest decimal text that reads back to exactly x (lossless round trip).
+std::string format_exact(double x);
+
+}  // namespace gpm

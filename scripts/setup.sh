@@ -1,0 +1,27 @@
+#!/usr/bin/env bash
+# Installs every build and test dependency of the toolkit from Debian 12 packages.
+# Idempotent: packages already present are left alone; safe to run on every build.
+set -euo pipefail
+
+PACKAGES=(
+  build-essential cmake pkg-config ninja-build
+  libeigen3-dev libceres-dev libyaml-cpp-dev
+  libmujoco-dev libqhull-dev libmujoco-samples
+  libosmesa6-dev
+  libgtest-dev libgmock-dev libbenchmark-dev
+  libcli11-dev libfmt-dev libspdlog-dev
+  python3-scipy python3-numpy
+)
+
+missing=()
+for p in "${PACKAGES[@]}"; do
+  dpkg-query -W -f='${Status}' "$p" 2>/dev/null | grep -q "install ok installed" || missing+=("$p")
+done
+
+if ((${#missing[@]})); then
+  SUDO=""
+  [[ $(id -u) -eq 0 ]] || SUDO="sudo"
+  echo "setup: installing ${missing[*]}"
+  $SUDO apt-get update -qq
+  DEBIAN_FRONTEND=noninteractive $SUDO apt-get install -y -qq --no-install-recommends "${missing[@]}"
+fi

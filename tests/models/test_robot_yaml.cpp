@@ -1,0 +1,115 @@
+// Tests of models/robot_yaml.cpp: the nominal file, the lossless round trip,
+// and one test per class of bad input (each gives one clear InputError line).
+#include "models/robot_yaml.hpp"
+
+#include <filesystem>
+#include <random>
+
+#include <gtest/gtest.h>
+
+#include "models/errors.hpp"
+#include "models/yaml_util.hpp"
+
+namespace gpm {
+namespace {
+
+const std::string kNominal = std::string(GPM_MODELS_DIR) + "/gpm2002.yaml";
+
+std::string error_of(const std::string& text) {
+  try {
+    parse_robot(text, "robot.yaml");
+  } catch (const InputError& e) {
+    const std::string m = e.what();
+    EXPECT_EQ(m.find('\n'), std::string::npos) << "one line";
+    return m;
+  }
+  return "";
+}
+
+std::string nominal_text() {
+  return robot_to_yaml(Robot{});
+}
+
+TEST(RobotYaml, NominalFileIsTheGpm2002) {
+  const Robot r = load_robot(kNominal);
+  EXPECT_EQ(r.name, "GPM2002");
+  EXPECT_EQ(r.geometry, Geometry::gpm2002_nominal());
+  EXPECT_EQ(r.home, Eigen::Vector2d(216.5, 250));
+  EXPECT_EQ(r, Robot{});
+}
+
+TEST(RobotYaml, RoundTripIsBitExact) {
+  std::mt19937_64 rng(42);
+  std::normal_distribution<double> n(0.0, 1.0);
+  const auto dir = std::filesystem::temp_directory_path() / "gpm_test_robot_yaml";
+  std::filesystem::create_directories(dir);
+  for (int trial = 0; trial < 200; ++trial) {
+    Robot r;
+    for (int i = 0; i < kNumParams; ++i) r.geometry[i] += (is_offset(i) ? 0.01 : 0.5) * n(rng);
+    r.home += Eigen::Vector2d(n(rng), n(rng));
+    r.limits.reach_margin = std::abs(n(rng));
+    r.name = trial % 2 ? "GPM2002 #" + std::to_string(trial) : "x: y";
+    const std::string path = (dir / "r.yaml").string();
+    save_robot(r, path);
+    const Robot back = load_robot(path);
+    ASSERT_EQ(back, r) << robot_to_yaml(r);
+    for (int i = 0; i < kNumParams; ++i) ASSERT_EQ(back.geometry[i], r.geometry[i]);
+  }
+  std::filesystem::remove_all(dir);
+}
+
+TEST(RobotYaml, UnknownKeySuggestsNearest) {
+  std::string t = nominal_text();
+  t.replace(t.find("xa3:"), 4, "xb3:");
+  EXPECT_EQ(error_of(t), "robot.yaml:7: geometry.xb3: unknown parameter (did you mean xa3?)");
+  EXPECT_NE(error_of("nmae: x\n" + t.substr(t.find("geometry"))).find("did you mean name?"),
+            std::string::npos);
+}
+
+TEST(RobotYaml, MissingKey) {
+  std::string t = nominal_text();
+  t.erase(t.find("  la2:"), t.find('\n', t.find("  la2:")) - t.find("  la2:") + 1);
+  EXPECT_NE(error_of(t).find("missing key 'la2'"), std::string::npos) << error_of(t);
+  EXPECT_NE(error_of("name: x\n").find("missing key 'geometry'"), std::string::npos);
+}
+
+TEST(RobotYaml, NonNumericAndNonFinite) {
+  std::string t = nominal_text();
+  std::string u = t;
+  t.replace(t.find("la2: 244"), 8, "la2: abc");
+  EXPECT_NE(error_of(t).find("geometry.la2: 'abc' is not a number"), std::string::npos) << error_of(t);
+  u.replace(u.find("la2: 244"), 8, "la2: .inf");
+  EXPECT_NE(error_of(u).find("geometry.la2: value must be a finite number"), std::string::npos);
+}
+
+TEST(RobotYaml, NonPositiveLength) {
+  std::string t = nominal_text();
+  t.replace(t.find("lb1: 244"), 8, "lb1: -3");
+  EXPECT_NE(error_of(t).find("geometry.lb1: link length must be positive, got -3"),
+            std::string::npos);
+}
+
+TEST(RobotYaml, HomeNotReachable) {
+  std::string t = nominal_text();
+  t.replace(t.find("la1: 244"), 8, "la1: 10");
+  t.replace(t.find("lb1: 244"), 8, "lb1: 10");
+  const std::string e = error_of(t);
+  EXPECT_NE(e.find("home (216.5, 250) is not reachable"), std::string::npos) << e;
+  EXPECT_NE(e.find("chain 1"), std::string::npos) << e;
+}
+
+TEST(RobotYaml, BadElbowAndLimits) {
+  std::string t = nominal_text();
+  t.replace(t.find("elbow: [ccw"), 11, "elbow: [up");
+  EXPECT_NE(error_of(t).find("elbow[0]: 'up' is not ccw or cw"), std::string::npos) << error_of(t);
+  std::string u = nominal_text();
+  u.replace(u.find("min_direct: 0.15"), 16, "min_direct: 2");
+  EXPECT_NE(error_of(u).find("limits.min_direct: must be in [0, 1)"), std::string::npos);
+}
+
+TEST(RobotYaml, SaveToUnwritablePathLeavesNothing) {
+  EXPECT_THROW(save_robot(Robot{}, "/nonexistent-dir/r.yaml"), InputError);
+}
+
+}  // namespace
+}  // namespace gpm

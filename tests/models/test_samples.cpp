@@ -1,0 +1,60 @@
+// Tests of models/samples.cpp: the CSV contract, exact round trip, bad input.
+#include "models/samples.hpp"
+
+#include <gtest/gtest.h>
+
+#include "models/errors.hpp"
+
+namespace gpm {
+namespace {
+
+std::string error_of(const std::string& text) {
+  try {
+    parse_samples_csv(text, "s.csv");
+  } catch (const InputError& e) {
+    return e.what();
+  }
+  return "";
+}
+
+TEST(Samples, ColumnsFoundByNameOthersIgnored) {
+  const Samples s = parse_samples_csv("note,theta_m3,sample,theta_m1,theta_m2\nx,3,7,1,2\n", "s.csv");
+  ASSERT_EQ(s.size(), 1u);
+  EXPECT_EQ(s.theta_m[0], Eigen::Vector3d(1, 2, 3));
+  EXPECT_EQ(s.id[0], 7);
+  EXPECT_FALSE(s.has_xy);
+}
+
+TEST(Samples, RoundTripExact) {
+  Samples s;
+  s.has_xy = true;
+  for (int j = 0; j < 50; ++j) {
+    s.id.push_back(j);
+    s.theta_m.emplace_back(1.0 / (j + 3), std::sqrt(2.0) * j, -0.1 * j);
+    s.xy.emplace_back(216.5 + 1.0 / 3.0 * j, 250 - j * 0.7);
+  }
+  const Samples b = parse_samples_csv(samples_to_csv(s), "t");
+  ASSERT_EQ(b.size(), s.size());
+  for (size_t j = 0; j < s.size(); ++j) {
+    EXPECT_EQ(b.theta_m[j], s.theta_m[j]);
+    EXPECT_EQ(b.xy[j], s.xy[j]);
+  }
+}
+
+TEST(Samples, BadInputNamesLineAndColumn) {
+  EXPECT_EQ(error_of("sample,theta_m1,theta_m2\n"),
+            "s.csv:1: missing column 'theta_m3' (the header must name theta_m1,theta_m2,theta_m3; "
+            "sample, x, y are optional)");
+  EXPECT_EQ(error_of("sample,theta_m1,theta_m2,theta_m3\n0,1,2,3\n1,1,zz,3\n"),
+            "s.csv:3: column 'theta_m2': 'zz' is not a number");
+  EXPECT_EQ(error_of("sample,theta_m1,theta_m2,theta_m3\n0,1,nan,3\n"),
+            "s.csv:2: column 'theta_m2': value must be finite, got 'nan'");
+  EXPECT_NE(error_of("sample,theta_m1,theta_m2,theta_m3\n0,1,2\n").find("column 'theta_m3' is missing"),
+            std::string::npos);
+  EXPECT_NE(error_of("theta_m1,theta_m2,theta_m3,x\n1,2,3,4\n").find("give both x and y"),
+            std::string::npos);
+  EXPECT_NE(error_of("").find("empty file"), std::string::npos);
+}
+
+}  // namespace
+}  // namespace gpm

@@ -1,0 +1,63 @@
+// Tests of models/yaml_util.cpp: strict numbers, key checks, exact formatting.
+#include "models/yaml_util.hpp"
+
+#include <cmath>
+#include <random>
+
+#include <gtest/gtest.h>
+
+#include "models/errors.hpp"
+
+namespace gpm {
+namespace {
+
+std::string error_of(auto&& f) {
+  try {
+    f();
+  } catch (const InputError& e) {
+    return e.what();
+  }
+  return "";
+}
+
+TEST(YamlUtil, NumbersStrict) {
+  const YAML::Node n = load_yaml_string("a: 1.5\nb: abc\nc: .nan\nd: +2\ne: 1e400\n", "f.yaml");
+  EXPECT_EQ(yaml_number(n["a"], "f.yaml", "a"), 1.5);
+  EXPECT_EQ(yaml_number(n["d"], "f.yaml", "d"), 2.0);
+  EXPECT_EQ(error_of([&] { yaml_number(n["b"], "f.yaml", "b"); }), "f.yaml:2: b: 'abc' is not a number");
+  EXPECT_NE(error_of([&] { yaml_number(n["c"], "f.yaml", "c"); }).find("finite"), std::string::npos);
+  EXPECT_NE(error_of([&] { yaml_number(n["e"], "f.yaml", "e"); }).find("e:"), std::string::npos);
+}
+
+TEST(YamlUtil, UnknownKeySuggestsNearest) {
+  const YAML::Node n = load_yaml_string("nmae: x\n", "r.yaml");
+  EXPECT_EQ(error_of([&] { yaml_check_keys(n, "r.yaml", "", {"name", "geometry"}); }),
+            "r.yaml:1: nmae: unknown key (did you mean name?); valid keys: name, geometry");
+}
+
+TEST(YamlUtil, SyntaxErrorNamesLine) {
+  EXPECT_NE(error_of([] { load_yaml_string("a: [1, 2\nb: 3\n", "s.yaml"); }).find("s.yaml:"),
+            std::string::npos);
+  EXPECT_NE(error_of([] { load_yaml_file("/nonexistent/x.yaml"); }).find("cannot open"),
+            std::string::npos);
+}
+
+TEST(YamlUtil, FormatExactRoundTripsRandomDoubles) {
+  std::mt19937_64 rng(7);
+  std::uniform_real_distribution<double> u(-1e3, 1e3);
+  for (int k = 0; k < 20000; ++k) {
+    const double x = u(rng) * std::pow(10.0, static_cast<int>(rng() % 20) - 10);
+    const YAML::Node n = load_yaml_string("v: " + format_exact(x), "t");
+    EXPECT_EQ(yaml_number(n["v"], "t", "v"), x);
+  }
+}
+
+TEST(YamlUtil, IntegersAndBools) {
+  const YAML::Node n = load_yaml_string("i: 17\nf: 1.5\nb: true\n", "t");
+  EXPECT_EQ(yaml_integer(n["i"], "t", "i", 1, 32), 17);
+  EXPECT_NE(error_of([&] { yaml_integer(n["f"], "t", "f", 1, 32); }).find("whole number"), std::string::npos);
+  EXPECT_TRUE(yaml_bool(n["b"], "t", "b"));
+}
+
+}  // namespace
+}  // namespace gpm
