@@ -21,6 +21,7 @@ void add_simulate(CLI::App& app);
 void add_calibrate(CLI::App& app);
 void add_run(CLI::App& app);
 void add_render(CLI::App& app);
+void add_compare(CLI::App& app);
 
 // Throws InputError "gpm NAME: not available yet (...)": a subcommand whose
 // issue has not landed.

@@ -1,0 +1,60 @@
+// A calibration problem and its result, shared by the local (Ceres LM) and
+// global (GA, PSO, DE) solvers. Millimetres and radians (DESIGN.md).
+#pragma once
+
+#include <array>
+#include <optional>
+#include <string>
+#include <string_view>
+#include <vector>
+
+#include <Eigen/Core>
+
+#include "models/parameters.hpp"
+#include "models/samples.hpp"
+
+namespace gpm::calib {
+
+// Error functions: J1 (eq. 36-37), J2 (eq. 38-39), J3 (eq. 42-43, decoupled
+// l_ac, l_as) and ML, the closure residual divided by the norm of its gradient
+// with respect to the three readings (maximum likelihood under encoder noise).
+enum class Cost { kJ1, kJ2, kJ3, kML };
+
+// "j1", "j2", "j3", "ml" -> Cost; nullopt for anything else.
+std::optional<Cost> parse_cost(std::string_view name);
+std::string_view cost_name(Cost c);
+
+// What to estimate from which readings.
+struct Problem {
+  std::vector<Eigen::Vector3d> theta_m;  // encoder readings per sample (rad)
+  Geometry start;                        // initial values; fixed parameters at their known values
+  FreeMask free;                         // parameters to estimate
+};
+
+// Search box of the global solvers (paper Table 5 by default).
+struct Box {
+  std::array<double, kNumParams> lower{};
+  std::array<double, kNumParams> upper{};
+};
+
+// Outcome of any solver; written as the result YAML (DESIGN.md).
+struct Result {
+  Geometry geometry;                        // all 15 (estimated and fixed)
+  FreeMask free;
+  std::array<double, kNumParams> sigma{};   // 1-sigma of estimated parameters (NaN if unknown)
+  std::string method;                       // "lm", "de", ...
+  Cost cost = Cost::kJ3;
+  double final_cost = 0.0;                  // value of the chosen error function J
+  long iterations = 0;
+  long evaluations = 0;
+  int rank = 0;
+  double condition_number = 0.0;
+  std::optional<double> kmrmse_mm;          // eq. 40, when samples carry x,y
+  double seconds = 0.0;
+  bool rank_deficient = false;              // solved with --allow-rank-deficient
+  bool converged = true;
+  std::vector<std::string> notes;           // warnings and diagnoses, one sentence each
+  std::vector<std::pair<long, double>> history;  // (evaluations, best J) for convergence plots
+};
+
+}  // namespace gpm::calib
