@@ -105,9 +105,10 @@ Samples parse_samples_csv(const std::string& text, const std::string& file) {
     if (s.has_xy) s.xy.emplace_back(number(f, c_x, line_no), number(f, c_y, line_no));
     if (c_id >= 0) {
       const double id = number(f, c_id, line_no);
-      if (id != std::floor(id)) {
-        throw InputError(fmt::format("{}:{}: column 'sample': '{}' is not a whole number", file,
-                                     line_no, f[static_cast<size_t>(c_id)]));
+      if (id != std::floor(id) || std::abs(id) > 9.0e15) {
+        throw InputError(fmt::format("{}:{}: column 'sample': '{}' is not a whole number of at "
+                                     "most 16 digits",
+                                     file, line_no, f[static_cast<size_t>(c_id)]));
       }
       s.id.push_back(static_cast<long>(id));
     } else {

@@ -54,6 +54,10 @@ TEST(Samples, BadInputNamesLineAndColumn) {
   EXPECT_NE(error_of("theta_m1,theta_m2,theta_m3,x\n1,2,3,4\n").find("give both x and y"),
             std::string::npos);
   EXPECT_NE(error_of("").find("empty file"), std::string::npos);
+  // Found by fuzzing: a sample id beyond the range of long.
+  EXPECT_NE(error_of("sample,theta_m1,theta_m2,theta_m3\n2222222222222222222222222,1,2,3\n")
+                .find("column 'sample'"),
+            std::string::npos);
 }
 
 }  // namespace
