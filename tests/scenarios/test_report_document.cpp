@@ -1,0 +1,32 @@
+// Tests of scenarios/report_document.cpp: the same content in Markdown and
+// self-contained HTML.
+#include "scenarios/report_document.hpp"
+
+#include <gtest/gtest.h>
+
+namespace gpm::report {
+namespace {
+
+TEST(ReportDocument, MarkdownAndHtmlCarryTheSameContent) {
+  ReportDocument d;
+  d.heading(1, "Calibration <report>");
+  d.paragraph("Before & after.");
+  d.table({"param", "value"}, {{"la1", "244.1"}, {"dth1", "0.01"}});
+  d.figure("layout", "Sample layout", "<svg><circle/></svg>");
+  d.bullets({"one", "two"});
+  const std::string md = d.markdown();
+  EXPECT_NE(md.find("# Calibration <report>"), std::string::npos);
+  EXPECT_NE(md.find("| param | value |\n| --- | --- |\n| la1 | 244.1 |"), std::string::npos);
+  EXPECT_NE(md.find("![Sample layout](layout.svg)"), std::string::npos);
+  EXPECT_NE(md.find("- two\n"), std::string::npos);
+  const std::string html = d.html("t");
+  EXPECT_NE(html.find("<h1>Calibration &lt;report&gt;</h1>"), std::string::npos);
+  EXPECT_NE(html.find("<td>la1</td><td>244.1</td>"), std::string::npos);
+  EXPECT_NE(html.find("<svg><circle/></svg>"), std::string::npos);  // inline, self-contained
+  EXPECT_EQ(html.find("layout.svg"), std::string::npos);
+  ASSERT_EQ(d.figure_files().size(), 1u);
+  EXPECT_EQ(d.figure_files()[0].first, "layout.svg");
+}
+
+}  // namespace
+}  // namespace gpm::report
