@@ -1,0 +1,134 @@
+#include "hw/safety_limits.hpp"
+
+#include <fmt/format.h>
+
+#include "models/errors.hpp"
+#include "models/yaml_util.hpp"
+
+namespace gpm::hw {
+namespace {
+
+constexpr const char* kKeys =
+    "joint_min, joint_max, max_velocity, max_acceleration, workspace_centre, workspace_radius, "
+    "workspace_margin, reach_margin, min_transmission, min_direct, max_inconsistency, "
+    "watchdog_hold, watchdog_disable, comms_timeout";
+
+YAML::Node required(const YAML::Node& node, const char* key, const std::string& file,
+                    const std::string& kp) {
+  const YAML::Node v = node[key];
+  if (!v) {
+    throw InputError(yaml_where(file, node, kp) +
+                     fmt::format("missing key '{}' (every safety limit is required before "
+                                 "anything moves; keys: {})",
+                                 key, kKeys));
+  }
+  return v;
+}
+
+std::array<double, kNumChains> triple(const YAML::Node& node, const char* key,
+                                      const std::string& file, const std::string& kp,
+                                      bool positive) {
+  const std::string path = kp + "." + key;
+  const YAML::Node v = required(node, key, file, kp);
+  if (!v.IsSequence() || v.size() != 3) {
+    throw InputError(yaml_where(file, v, path) + "expected a list of three numbers, one per joint");
+  }
+  std::array<double, kNumChains> out{};
+  for (size_t i = 0; i < 3; ++i) {
+    const std::string p = fmt::format("{}[{}]", path, i);
+    out[i] = positive ? yaml_positive(v[i], file, p) : yaml_number(v[i], file, p);
+  }
+  return out;
+}
+
+double scalar(const YAML::Node& node, const char* key, const std::string& file,
+              const std::string& kp, double lo, double hi, const char* valid) {
+  const std::string path = kp + "." + key;
+  const YAML::Node v = required(node, key, file, kp);
+  const double x = yaml_number(v, file, path);
+  if (!(x >= lo && x <= hi)) {
+    throw InputError(yaml_where(file, v, path) + fmt::format("must be {}, got {}", valid, x));
+  }
+  return x;
+}
+
+}  // namespace
+
+SafetyLimits safety_limits_from_yaml(const YAML::Node& node, const std::string& file,
+                                     const std::string& keypath) {
+  if (!node || node.IsNull()) {
+    throw InputError(fmt::format("{}: missing section '{}' (a hardware config must give every "
+                                 "safety limit before anything moves; keys: {})",
+                                 file, keypath, kKeys));
+  }
+  yaml_check_keys(node, file, keypath,
+                  {"joint_min", "joint_max", "max_velocity", "max_acceleration",
+                   "workspace_centre", "workspace_radius", "workspace_margin", "reach_margin",
+                   "min_transmission", "min_direct", "max_inconsistency", "watchdog_hold",
+                   "watchdog_disable", "comms_timeout"});
+  const std::string& kp = keypath;
+  SafetyLimits s;
+  s.joint_min = triple(node, "joint_min", file, kp, false);
+  s.joint_max = triple(node, "joint_max", file, kp, false);
+  for (size_t i = 0; i < 3; ++i) {
+    if (!(s.joint_max[i] > s.joint_min[i])) {
+      throw InputError(yaml_where(file, node["joint_max"], kp + ".joint_max") +
+                       fmt::format("joint {}: max {} must be above min {}", i + 1, s.joint_max[i],
+                                   s.joint_min[i]));
+    }
+  }
+  s.max_velocity = triple(node, "max_velocity", file, kp, true);
+  s.max_acceleration = triple(node, "max_acceleration", file, kp, true);
+  const YAML::Node c = required(node, "workspace_centre", file, kp);
+  if (!c.IsSequence() || c.size() != 2) {
+    throw InputError(yaml_where(file, c, kp + ".workspace_centre") +
+                     "expected [x, y] in mm, e.g. [216.5, 250]");
+  }
+  s.workspace_centre = {yaml_number(c[0], file, kp + ".workspace_centre[0]"),
+                        yaml_number(c[1], file, kp + ".workspace_centre[1]")};
+  s.workspace_radius_mm = scalar(node, "workspace_radius", file, kp, 1e-9, 1e6, "a radius > 0 mm");
+  s.workspace_margin_mm = scalar(node, "workspace_margin", file, kp, 0.0, 1e6, ">= 0 mm");
+  if (s.workspace_margin_mm >= s.workspace_radius_mm) {
+    throw InputError(yaml_where(file, node["workspace_margin"], kp + ".workspace_margin") +
+                     fmt::format("must be below workspace_radius ({} mm)", s.workspace_radius_mm));
+  }
+  s.reach_margin_mm = scalar(node, "reach_margin", file, kp, 0.0, 1e6, ">= 0 mm");
+  s.min_transmission = scalar(node, "min_transmission", file, kp, 0.0, 0.999, "in [0, 1)");
+  s.min_direct = scalar(node, "min_direct", file, kp, 0.0, 0.999, "in [0, 1)");
+  s.max_inconsistency_rad =
+      scalar(node, "max_inconsistency", file, kp, 1e-12, 1.0, "in (0, 1] rad");
+  s.watchdog_hold_s = scalar(node, "watchdog_hold", file, kp, 1e-6, 60.0, "in (0, 60] s");
+  s.watchdog_disable_s = scalar(node, "watchdog_disable", file, kp, 1e-6, 600.0, "in (0, 600] s");
+  if (s.watchdog_disable_s <= s.watchdog_hold_s) {
+    throw InputError(yaml_where(file, node["watchdog_disable"], kp + ".watchdog_disable") +
+                     fmt::format("must be longer than watchdog_hold ({} s)", s.watchdog_hold_s));
+  }
+  s.comms_timeout_s = scalar(node, "comms_timeout", file, kp, 1e-4, 10.0, "in [0.0001, 10] s");
+  return s;
+}
+
+std::string safety_limits_to_yaml(const SafetyLimits& s, int indent) {
+  const std::string pad(static_cast<size_t>(indent), ' ');
+  auto t = [](const std::array<double, 3>& a) {
+    return fmt::format("[{}, {}, {}]", format_exact(a[0]), format_exact(a[1]), format_exact(a[2]));
+  };
+  std::string out;
+  out += fmt::format("{}joint_min: {}\n", pad, t(s.joint_min));
+  out += fmt::format("{}joint_max: {}\n", pad, t(s.joint_max));
+  out += fmt::format("{}max_velocity: {}\n", pad, t(s.max_velocity));
+  out += fmt::format("{}max_acceleration: {}\n", pad, t(s.max_acceleration));
+  out += fmt::format("{}workspace_centre: [{}, {}]\n", pad, format_exact(s.workspace_centre.x()),
+                     format_exact(s.workspace_centre.y()));
+  out += fmt::format("{}workspace_radius: {}\n", pad, format_exact(s.workspace_radius_mm));
+  out += fmt::format("{}workspace_margin: {}\n", pad, format_exact(s.workspace_margin_mm));
+  out += fmt::format("{}reach_margin: {}\n", pad, format_exact(s.reach_margin_mm));
+  out += fmt::format("{}min_transmission: {}\n", pad, format_exact(s.min_transmission));
+  out += fmt::format("{}min_direct: {}\n", pad, format_exact(s.min_direct));
+  out += fmt::format("{}max_inconsistency: {}\n", pad, format_exact(s.max_inconsistency_rad));
+  out += fmt::format("{}watchdog_hold: {}\n", pad, format_exact(s.watchdog_hold_s));
+  out += fmt::format("{}watchdog_disable: {}\n", pad, format_exact(s.watchdog_disable_s));
+  out += fmt::format("{}comms_timeout: {}\n", pad, format_exact(s.comms_timeout_s));
+  return out;
+}
+
+}  // namespace gpm::hw

@@ -1,0 +1,54 @@
+// Safety limits (constant model) enforced by the SafetySupervisor, read from
+// the `safety:` section of a hardware file. Every key is required: a config
+// that would command motion without its limits is refused (InputError, exit 2).
+#pragma once
+
+#include <array>
+#include <string>
+
+#include <Eigen/Core>
+#include <yaml-cpp/yaml.h>
+
+#include "models/parameters.hpp"
+
+namespace gpm::hw {
+
+struct SafetyLimits {
+  // Joint limits on the encoder readings theta_m (rad), per joint.
+  std::array<double, kNumChains> joint_min{};
+  std::array<double, kNumChains> joint_max{};
+  // Commanded joint speed and acceleration limits (rad/s, rad/s^2), per joint.
+  std::array<double, kNumChains> max_velocity{};
+  std::array<double, kNumChains> max_acceleration{};
+  // End-effector workspace: a disc (mm) the commanded position stays inside,
+  // shrunk by workspace_margin_mm.
+  Eigen::Vector2d workspace_centre = Eigen::Vector2d::Zero();
+  double workspace_radius_mm = 0.0;
+  double workspace_margin_mm = 0.0;
+  // Chain annulus margin and singularity margins (models/robot.hpp Limits),
+  // applied to the controller model.
+  double reach_margin_mm = 0.0;
+  double min_transmission = 0.0;
+  double min_direct = 0.0;
+  // Position-mode commands must agree with the controller model's IK of the
+  // point they reach within this (rad): no servo fighting by command.
+  double max_inconsistency_rad = 0.0;
+  // Command watchdog: no fresh command for hold_s -> ramp to a stop and hold;
+  // for disable_s -> disable the drives (error state).
+  double watchdog_hold_s = 0.0;
+  double watchdog_disable_s = 0.0;
+  // A backend read or write taking longer than this is a comms failure (s).
+  double comms_timeout_s = 0.0;
+
+  bool operator==(const SafetyLimits&) const = default;
+};
+
+// Reads and validates a `safety:` map; every key is required. Throws
+// InputError naming file, key path, what is wrong and what is valid.
+SafetyLimits safety_limits_from_yaml(const YAML::Node& node, const std::string& file,
+                                     const std::string& keypath);
+
+// YAML text of the limits (a `safety:` body indented by indent).
+std::string safety_limits_to_yaml(const SafetyLimits& limits, int indent);
+
+}  // namespace gpm::hw

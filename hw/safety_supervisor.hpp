@@ -1,0 +1,79 @@
+// The safety supervisor: sits between every caller and every backend and is
+// itself a RobotHardware. No command that breaks a limit reaches the backend:
+// joint limits, workspace disc with a margin, chain reach and singularity
+// margins of the controller model, velocity and acceleration limits (also for
+// the stopping point of every accepted command), command consistency, a
+// command watchdog (hold, then disable), comms timeouts, emergency stop.
+#pragma once
+
+#include <memory>
+#include <string>
+
+#include "hw/robot_hardware.hpp"
+#include "hw/safety_limits.hpp"
+#include "models/robot.hpp"
+
+namespace gpm::hw {
+
+class SafetySupervisor final : public RobotHardware {
+ public:
+  // Supervises backend (owned) with limits; controller is the robot model the
+  // caller commands with (nominal or calibrated), used for FK/IK checks.
+  SafetySupervisor(std::unique_ptr<RobotHardware> backend, const Robot& controller,
+                   const SafetyLimits& limits);
+
+  // Why cmd would be refused now (empty when it is allowed).
+  std::string check(const HardwareCommand& cmd) const;
+  // Why the static position theta_m (encoder space) is not allowed (empty when it is).
+  std::string check_pose(const Eigen::Vector3d& theta_m) const;
+  // Number of commands refused so far.
+  long rejected_count() const { return rejected_; }
+  // True while the robot brakes or holds because no valid command came.
+  bool holding() const { return holding_; }
+  // The supervised backend (for status only: never command it directly).
+  const RobotHardware& backend() const { return *backend_; }
+  // The limits and the controller model in force.
+  const SafetyLimits& limits() const { return limits_; }
+  const Robot& controller() const { return controller_; }
+
+  double period_s() const override { return backend_->period_s(); }
+  bool simulated_time() const override { return backend_->simulated_time(); }
+  std::string describe() const override { return "supervised " + backend_->describe(); }
+
+ protected:
+  void on_configure(HardwareState& initial) override;
+  void on_activate(const HardwareState& current) override;
+  void on_deactivate() override;
+  void on_shutdown() noexcept override;
+  void on_error() noexcept override;
+  void on_reset() override;
+  void on_read(double time_s, HardwareState& state) override;
+  void on_write(const HardwareCommand& command, double time_s) override;
+
+ private:
+  std::string check_joint_positions(const Eigen::Vector3d& q,
+                                    const std::array<JointMode, 3>& mode,
+                                    const char* what) const;
+  std::string check_workspace(const Eigen::Vector3d& q, const std::array<JointMode, 3>& mode,
+                              const char* what) const;
+  HardwareCommand brake_command() const;
+  void forward(const HardwareCommand& cmd, double time_s);
+  template <class F> void timed(const char* what, F&& f);
+
+  std::unique_ptr<RobotHardware> backend_;
+  Robot controller_;
+  SafetyLimits limits_;
+  double dt_ = 0.0;
+  std::array<std::array<int, 3>, 3> pair_mode_{};  // assembly mode of chain pairs at home
+
+  // Last command forwarded to the backend and its velocity (rad, rad/s).
+  HardwareCommand last_;
+  Eigen::Vector3d last_velocity_ = Eigen::Vector3d::Zero();
+  double last_fresh_time_ = 0.0;  // time of the last accepted caller command
+  bool have_reading_ = false;
+  HardwareState previous_reading_;
+  bool holding_ = false;
+  long rejected_ = 0;
+};
+
+}  // namespace gpm::hw

@@ -1,0 +1,61 @@
+// Backend `twin`: the MuJoCo twin (sim/) in process. Time is simulated: read(t)
+// steps the physics up to t, so a session runs as fast as the CPU allows.
+// Drives are disabled (torque off) until activate(); per-joint modes follow
+// the commands.
+#pragma once
+
+#include <map>
+#include <memory>
+
+#include "hw/robot_hardware.hpp"
+#include "models/robot.hpp"
+#include "sim/twin.hpp"
+
+namespace gpm::hw {
+
+// Settings of the twin backend (constant).
+struct TwinBackendConfig {
+  Robot actual;               // the twin's actual parameters (never the controller's)
+  sim::TwinConfig twin;       // servo, encoder, MJCF settings
+  unsigned long long seed = 1;
+  double period_s = 0.004;    // read/write cycle period
+};
+
+class TwinBackend final : public RobotHardware {
+ public:
+  // A twin backend; the MuJoCo model is built in configure().
+  explicit TwinBackend(TwinBackendConfig config);
+  ~TwinBackend() override;
+
+  // The twin's last snapshot (true angles and end-effector; for tests and logs).
+  const sim::TwinSnapshot& snapshot() const;
+
+  double period_s() const override { return config_.period_s; }
+  bool simulated_time() const override { return true; }
+  std::string describe() const override { return "twin (MuJoCo, in process)"; }
+
+ protected:
+  void on_configure(HardwareState& initial) override;
+  void on_activate(const HardwareState& current) override;
+  void on_deactivate() override;
+  void on_shutdown() noexcept override;
+  void on_error() noexcept override;
+  void on_reset() override;
+  void on_read(double time_s, HardwareState& state) override;
+  void on_write(const HardwareCommand& command, double time_s) override;
+
+ private:
+  const sim::TwinModel& model_for(unsigned mask);
+  void fill(HardwareState& state) const;
+
+  TwinBackendConfig config_;
+  // One compiled model per mode combination (bit i set: joint i in position
+  // mode). sim::TwinModel fixes the drive modes at construction; the models
+  // are identical otherwise, so one TwinState steps with any of them.
+  std::map<unsigned, std::unique_ptr<sim::TwinModel>> models_;
+  std::unique_ptr<sim::TwinState> state_;
+  unsigned mask_ = 0;
+  Eigen::Vector3d last_command_ = Eigen::Vector3d::Zero();
+};
+
+}  // namespace gpm::hw
