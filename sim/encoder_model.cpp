@@ -1,0 +1,36 @@
+#include "sim/encoder_model.hpp"
+
+#include <cmath>
+#include <numbers>
+
+namespace gpm::sim {
+namespace {
+constexpr double kTwoPi = 2.0 * std::numbers::pi;
+
+double wrap_2pi(double a) {
+  a = std::fmod(a, kTwoPi);
+  if (a < 0.0) a += kTwoPi;
+  return a;
+}
+}  // namespace
+
+double EncoderModel::count_rad() const {
+  return bits > 0 ? kTwoPi / std::ldexp(1.0, bits) : 0.0;
+}
+
+double quantise_reading(const EncoderModel& model, double angle) {
+  const double a = wrap_2pi(angle);
+  if (model.bits <= 0) return a;
+  const long long counts = 1LL << model.bits;
+  long long c = std::llround(a / model.count_rad());
+  if (c >= counts) c -= counts;
+  return static_cast<double>(c) * model.count_rad();
+}
+
+double encoder_reading(const EncoderModel& model, EncoderNoise& noise, double theta_a, double dth) {
+  double a = theta_a - dth;  // eq. 35
+  if (model.noise_rad > 0.0) a += model.noise_rad * noise.normal(noise.rng);
+  return quantise_reading(model, a);
+}
+
+}  // namespace gpm::sim

@@ -1,0 +1,36 @@
+// Absolute encoder of one active joint, as a drive reports it:
+//   reading = wrap_[0, 2 pi)( quantise( theta_a - dth + noise ) )
+// with dth the actual zero offset (paper eq. 35: theta_a = theta_m + dth),
+// quantisation to 2^bits counts per revolution (bits = 0: ideal, no
+// quantisation) and optional Gaussian noise (std::mt19937_64, explicit seed,
+// so runs are bit-reproducible).
+#pragma once
+
+#include <random>
+
+namespace gpm::sim {
+
+// Constant settings of the encoders (shared by the three joints).
+struct EncoderModel {
+  int bits = 17;           // counts per revolution = 2^bits; 0 = ideal
+  double noise_rad = 0.0;  // standard deviation of additive Gaussian noise
+
+  // One count in radians (0 for an ideal encoder).
+  double count_rad() const;
+};
+
+// Mutable noise source of the encoders.
+struct EncoderNoise {
+  explicit EncoderNoise(unsigned long long seed) : rng(seed) {}
+  std::mt19937_64 rng;
+  std::normal_distribution<double> normal{0.0, 1.0};
+};
+
+// Wraps and quantises an angle to the nearest count in [0, 2 pi).
+double quantise_reading(const EncoderModel& model, double angle);
+
+// One reading of a joint at true angle theta_a whose encoder zero is offset by
+// dth. Draws from noise only when noise_rad > 0.
+double encoder_reading(const EncoderModel& model, EncoderNoise& noise, double theta_a, double dth);
+
+}  // namespace gpm::sim

@@ -1,0 +1,84 @@
+#include "sim/sampling.hpp"
+
+#include <cmath>
+
+#include "models/kinematics.hpp"
+
+namespace gpm::sim {
+namespace {
+
+// Servo ticks in a duration (at least one).
+long ticks_in(const TwinModel& model, double seconds) {
+  const double period = model.timestep_s() * model.steps_per_tick();
+  return std::max(1L, std::lround(seconds / period));
+}
+
+}  // namespace
+
+Session make_session(const TwinModel& model, TwinState& state, const Robot& controller,
+                     TrajectoryLog* log) {
+  return Session{model, state, controller, log, controller.home};
+}
+
+TwinSnapshot advance(Session& s, const PathPoint& desired) {
+  const JointCommand c = command_for(s.controller, desired);
+  twin_command(s.state, c.position, c.velocity);
+  s.desired = desired.p;
+  // Align to the drive loop so the first step below is a tick.
+  while (s.state.steps % s.model.steps_per_tick() != 0) twin_step(s.model, s.state);
+  twin_step(s.model, s.state);
+  const TwinSnapshot snap = s.state.last;
+  for (int k = 1; k < s.model.steps_per_tick(); ++k) twin_step(s.model, s.state);
+  if (s.log) {
+    const long tick = s.state.steps / s.model.steps_per_tick() - 1;
+    if (tick % s.log->every == 0) {
+      s.log->rows.push_back(
+          LogRow{snap.time_s, desired.p, snap.ee_mm, snap.readings, snap.torque, snap.violation_m});
+    }
+  }
+  return snap;
+}
+
+void follow_path(Session& s, const Path& path) {
+  const double period = s.model.timestep_s() * s.model.steps_per_tick();
+  const long n = ticks_in(s.model, path_duration(path));
+  for (long k = 0; k <= n; ++k) advance(s, path_at(path, k * period));
+}
+
+SampleRecord take_sample(Session& s, const Eigen::Vector2d& target, long id,
+                         const SamplingOptions& o) {
+  const double period = s.model.timestep_s() * s.model.steps_per_tick();
+  follow_path(s, make_move(s.desired, target, o.move_speed_mm_s));
+  const PathPoint hold{target, Eigen::Vector2d::Zero()};
+  SampleRecord rec;
+  rec.id = id;
+  rec.target = target;
+  // Settle: every joint slower than the threshold for hold_s.
+  const long need = ticks_in(s.model, o.settle.hold_s);
+  const long limit = ticks_in(s.model, o.settle.timeout_s);
+  long calm = 0, k = 0;
+  for (; k < limit && calm < need; ++k) {
+    const TwinSnapshot snap = advance(s, hold);
+    calm = snap.velocity.cwiseAbs().maxCoeff() < o.settle.velocity_rad_s ? calm + 1 : 0;
+  }
+  rec.settled = calm >= need;
+  rec.settle_time_s = k * period;
+  // Average over the window; readings unwrapped around the first one.
+  const long n = ticks_in(s.model, o.average_s);
+  Eigen::Vector3d first = Eigen::Vector3d::Zero(), sum_m = Eigen::Vector3d::Zero();
+  Eigen::Vector3d sum_a = Eigen::Vector3d::Zero();
+  Eigen::Vector2d sum_xy = Eigen::Vector2d::Zero();
+  for (long j = 0; j < n; ++j) {
+    const TwinSnapshot snap = advance(s, hold);
+    if (j == 0) first = snap.readings;
+    for (int i = 0; i < 3; ++i) sum_m[i] += wrap_pi(snap.readings[i] - first[i]);
+    sum_a += snap.theta_a;
+    sum_xy += snap.ee_mm;
+  }
+  for (int i = 0; i < 3; ++i) rec.theta_m[i] = wrap_2pi(first[i] + sum_m[i] / n);
+  rec.theta_a = sum_a / n;
+  rec.xy_mm = sum_xy / n;
+  return rec;
+}
+
+}  // namespace gpm::sim

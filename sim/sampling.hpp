@@ -1,0 +1,86 @@
+// Motion and sampling sessions on the twin: following paths with the drives
+// updated at their loop rate, point-to-point moves with a settle criterion and
+// encoder averaging (one sample per pose), and a trajectory log at the servo
+// rate.
+#pragma once
+
+#include <vector>
+
+#include <Eigen/Core>
+
+#include "models/robot.hpp"
+#include "sim/controller.hpp"
+#include "sim/trajectory.hpp"
+#include "sim/twin.hpp"
+
+namespace gpm::sim {
+
+// One row of trajectory.csv (at one drive loop instant).
+struct LogRow {
+  double t = 0.0;
+  Eigen::Vector2d desired = Eigen::Vector2d::Zero();  // mm
+  Eigen::Vector2d actual = Eigen::Vector2d::Zero();   // mm, true end-effector
+  Eigen::Vector3d readings = Eigen::Vector3d::Zero(); // rad
+  Eigen::Vector3d torque = Eigen::Vector3d::Zero();   // N m
+  double violation_m = 0.0;
+};
+
+// Log of a run: every `every`-th drive loop period.
+struct TrajectoryLog {
+  int every = 1;
+  std::vector<LogRow> rows;
+};
+
+// When a point-to-point move has come to rest.
+struct SettleCriterion {
+  double velocity_rad_s = 2e-3;  // every active joint slower than this ...
+  double hold_s = 0.02;          // ... for this long, after the move ends
+  double timeout_s = 2.0;        // give up waiting (the sample is marked unsettled)
+};
+
+// How samples are taken.
+struct SamplingOptions {
+  double move_speed_mm_s = 100.0;  // peak Cartesian speed of the moves
+  SettleCriterion settle;
+  double average_s = 0.05;         // encoder averaging window
+};
+
+// One sample: averaged readings and the true state over the window.
+struct SampleRecord {
+  long id = 0;
+  Eigen::Vector2d target = Eigen::Vector2d::Zero();   // mm, commanded pose
+  Eigen::Vector3d theta_m = Eigen::Vector3d::Zero();  // rad, averaged readings in [0, 2 pi)
+  Eigen::Vector3d theta_a = Eigen::Vector3d::Zero();  // rad, averaged true active angles
+  Eigen::Vector2d xy_mm = Eigen::Vector2d::Zero();    // mm, averaged true end-effector
+  bool settled = false;
+  double settle_time_s = 0.0;  // from the end of the move until the criterion held
+};
+
+// A twin driven by a controller model, logging as it goes.
+struct Session {
+  const TwinModel& model;
+  TwinState& state;
+  const Robot& controller;
+  TrajectoryLog* log = nullptr;  // optional
+  Eigen::Vector2d desired;       // the last commanded end-effector position (mm)
+};
+
+// A session starting at the twin's current state, the controller commanding
+// its home (the drives hold their readings until the first command).
+Session make_session(const TwinModel& model, TwinState& state, const Robot& controller,
+                     TrajectoryLog* log);
+
+// Runs one drive loop period with the given desired point; returns the
+// snapshot sensed at its start (encoders, torques and kinematics together).
+TwinSnapshot advance(Session& s, const PathPoint& desired);
+
+// Follows a path from its start to its end (the twin should already be at
+// its start) at the drive loop rate.
+void follow_path(Session& s, const Path& path);
+
+// Moves to target, waits for the settle criterion, then averages the encoder
+// readings and the true state over the window.
+SampleRecord take_sample(Session& s, const Eigen::Vector2d& target, long id,
+                         const SamplingOptions& options);
+
+}  // namespace gpm::sim

@@ -1,0 +1,307 @@
+#include "sim/scenario.hpp"
+
+#include <cmath>
+#include <filesystem>
+#include <random>
+
+#include <fmt/format.h>
+
+#include "models/errors.hpp"
+#include "models/kinematics.hpp"
+#include "models/robot_yaml.hpp"
+#include "models/yaml_util.hpp"
+
+namespace gpm::sim {
+namespace {
+
+// Everything a key needs to report an error.
+struct Ctx {
+  const std::string& file;
+  std::string path;
+  Ctx at(const std::string& key) const { return {file, path.empty() ? key : path + "." + key}; }
+};
+
+[[noreturn]] void fail(const Ctx& c, const YAML::Node& n, const std::string& what) {
+  throw InputError(yaml_where(c.file, n, c.path) + what);
+}
+
+double number(const YAML::Node& n, const Ctx& c) { return yaml_number(n, c.file, c.path); }
+double positive(const YAML::Node& n, const Ctx& c) { return yaml_positive(n, c.file, c.path); }
+
+double non_negative(const YAML::Node& n, const Ctx& c) {
+  const double v = number(n, c);
+  if (v < 0.0) fail(c, n, fmt::format("must be zero or positive, got {}", v));
+  return v;
+}
+
+Eigen::Vector2d point(const YAML::Node& n, const Ctx& c) {
+  if (!n.IsSequence() || n.size() != 2) fail(c, n, "expected [x, y] in mm, e.g. [216.5, 250]");
+  return {number(n[0], c.at("[0]")), number(n[1], c.at("[1]"))};
+}
+
+// Optional positive number; keeps the default when absent.
+void opt_positive(const YAML::Node& map, const char* key, const Ctx& c, double& out) {
+  if (map[key]) out = positive(map[key], c.at(key));
+}
+
+void require(const YAML::Node& map, const char* key, const Ctx& c, const std::string& why) {
+  if (!map[key]) fail(c, map, fmt::format("missing key '{}' ({})", key, why));
+}
+
+ActualSpec parse_actual(const YAML::Node& n, const Ctx& c) {
+  yaml_check_keys(n, c.file, c.path, {"geometry", "perturb"});
+  ActualSpec a;
+  a.keep = FreeMask{}.set(kXa1).set(kYa1).set(kXa2).set(kYa2);
+  if (const YAML::Node g = n["geometry"]) {
+    const Ctx cg = c.at("geometry");
+    if (!g.IsMap()) fail(cg, g, "expected a map of parameters, e.g. {la3: 244.5, dth1: 0.01}");
+    for (const auto& kv : g) {
+      const std::string key = kv.first.Scalar();
+      const auto idx = param_index(key);
+      if (!idx) fail(cg.at(key), kv.first, fmt::format("unknown parameter (did you mean {}?)", nearest_param_name(key)));
+      const double v = number(kv.second, cg.at(key));
+      if (is_length(*idx) && !(v > 0.0)) fail(cg.at(key), kv.second, fmt::format("link length must be positive, got {}", v));
+      a.explicit_values[static_cast<size_t>(*idx)] = v;
+    }
+  }
+  if (const YAML::Node p = n["perturb"]) {
+    const Ctx cp = c.at("perturb");
+    yaml_check_keys(p, c.file, cp.path, {"base_mm", "link_mm", "offset_rad", "keep"});
+    if (p["base_mm"]) a.sigma_base_mm = non_negative(p["base_mm"], cp.at("base_mm"));
+    if (p["link_mm"]) a.sigma_link_mm = non_negative(p["link_mm"], cp.at("link_mm"));
+    if (p["offset_rad"]) a.sigma_offset_rad = non_negative(p["offset_rad"], cp.at("offset_rad"));
+    if (const YAML::Node k = p["keep"]) {
+      const Ctx ck = cp.at("keep");
+      if (!k.IsSequence()) fail(ck, k, "expected a list of parameter names, e.g. [xa1, ya1, xa2, ya2]");
+      a.keep.reset();
+      for (size_t i = 0; i < k.size(); ++i) {
+        const Ctx ci{c.file, fmt::format("{}[{}]", ck.path, i)};
+        const std::string name = yaml_string(k[i], c.file, ci.path);
+        const auto idx = param_index(name);
+        if (!idx) fail(ci, k[i], fmt::format("unknown parameter '{}' (did you mean {}?)", name, nearest_param_name(name)));
+        a.keep.set(static_cast<size_t>(*idx));
+      }
+    }
+  }
+  return a;
+}
+
+void parse_servo(const YAML::Node& n, const Ctx& c, TwinConfig& t) {
+  yaml_check_keys(n, c.file, c.path,
+                  {"rate_hz", "kp", "kv", "ki", "feedforward", "torque_limit", "velocity_limit", "modes"});
+  opt_positive(n, "rate_hz", c, t.servo_rate_hz);
+  ServoDrive d = t.drives[0];
+  opt_positive(n, "kp", c, d.kp);
+  opt_positive(n, "kv", c, d.kv);
+  if (n["ki"]) d.ki = non_negative(n["ki"], c.at("ki"));
+  if (n["feedforward"]) {
+    d.feedforward = number(n["feedforward"], c.at("feedforward"));
+    if (d.feedforward < 0.0 || d.feedforward > 1.0)
+      fail(c.at("feedforward"), n["feedforward"], fmt::format("must be in [0, 1], got {}", d.feedforward));
+  }
+  opt_positive(n, "torque_limit", c, d.torque_limit);
+  opt_positive(n, "velocity_limit", c, d.velocity_limit);
+  for (auto& dr : t.drives) dr = d;
+  if (const YAML::Node m = n["modes"]) {
+    const Ctx cm = c.at("modes");
+    if (!m.IsSequence() || m.size() != 3)
+      fail(cm, m, "expected three modes, each position or torque_off, e.g. [position, position, torque_off]");
+    int active = 0;
+    for (size_t i = 0; i < 3; ++i) {
+      const Ctx ci{c.file, fmt::format("{}[{}]", cm.path, i)};
+      const std::string s = yaml_string(m[i], c.file, ci.path);
+      if (s == "position") t.drives[i].mode = ServoMode::kPosition, ++active;
+      else if (s == "torque_off") t.drives[i].mode = ServoMode::kTorqueOff;
+      else fail(ci, m[i], fmt::format("'{}' is not position or torque_off", s));
+    }
+    if (active < 2) fail(cm, m, "at least two joints must be position-controlled (the mechanism has 2 degrees of freedom)");
+  }
+}
+
+void parse_encoder(const YAML::Node& n, const Ctx& c, EncoderModel& e) {
+  yaml_check_keys(n, c.file, c.path, {"bits", "noise_rad"});
+  if (n["bits"]) e.bits = static_cast<int>(yaml_integer(n["bits"], c.file, c.at("bits").path, 0, 40));
+  if (n["noise_rad"]) e.noise_rad = non_negative(n["noise_rad"], c.at("noise_rad"));
+}
+
+SamplingPlan parse_sampling(const YAML::Node& n, const Ctx& c) {
+  yaml_check_keys(n, c.file, c.path,
+                  {"pattern", "centre", "radius", "count", "from", "to", "poses", "move_speed_mm_s",
+                   "settle", "average_s"});
+  SamplingPlan p;
+  require(n, "pattern", c, "disc, circle, line or list");
+  const std::string pat = yaml_string(n["pattern"], c.file, c.at("pattern").path);
+  const auto count = [&](long long lo) {
+    require(n, "count", c, "how many poses");
+    return static_cast<int>(yaml_integer(n["count"], c.file, c.at("count").path, lo, 100000));
+  };
+  if (pat == "disc" || pat == "circle") {
+    p.pattern = pat == "disc" ? PosePattern::kDisc : PosePattern::kCircle;
+    if (n["centre"]) p.centre = point(n["centre"], c.at("centre"));
+    require(n, "radius", c, "mm");
+    p.radius = positive(n["radius"], c.at("radius"));
+    p.count = count(1);
+  } else if (pat == "line") {
+    p.pattern = PosePattern::kLine;
+    require(n, "from", c, "[x, y] in mm");
+    require(n, "to", c, "[x, y] in mm");
+    p.from = point(n["from"], c.at("from"));
+    p.to = point(n["to"], c.at("to"));
+    p.count = count(2);
+  } else if (pat == "list") {
+    p.pattern = PosePattern::kList;
+    require(n, "poses", c, "a list of [x, y] in mm");
+    const Ctx cp = c.at("poses");
+    if (!n["poses"].IsSequence() || n["poses"].size() == 0) fail(cp, n["poses"], "expected a non-empty list of [x, y] in mm");
+    for (size_t i = 0; i < n["poses"].size(); ++i)
+      p.poses.push_back(point(n["poses"][i], Ctx{c.file, fmt::format("{}[{}]", cp.path, i)}));
+  } else {
+    fail(c.at("pattern"), n["pattern"], fmt::format("'{}' is not disc, circle, line or list", pat));
+  }
+  opt_positive(n, "move_speed_mm_s", c, p.options.move_speed_mm_s);
+  opt_positive(n, "average_s", c, p.options.average_s);
+  if (const YAML::Node s = n["settle"]) {
+    const Ctx cs = c.at("settle");
+    yaml_check_keys(s, c.file, cs.path, {"velocity_rad_s", "hold_s", "timeout_s"});
+    opt_positive(s, "velocity_rad_s", cs, p.options.settle.velocity_rad_s);
+    opt_positive(s, "hold_s", cs, p.options.settle.hold_s);
+    opt_positive(s, "timeout_s", cs, p.options.settle.timeout_s);
+  }
+  return p;
+}
+
+Path parse_path(const YAML::Node& n, const Ctx& c) {
+  yaml_check_keys(n, c.file, c.path,
+                  {"shape", "centre", "radius", "period_s", "revolutions", "from", "to", "duration_s"});
+  require(n, "shape", c, "circle or line");
+  const std::string shape = yaml_string(n["shape"], c.file, c.at("shape").path);
+  if (shape == "circle") {
+    CirclePath p;
+    p.centre = n["centre"] ? point(n["centre"], c.at("centre")) : Eigen::Vector2d(216.5, 250.0);
+    require(n, "radius", c, "mm");
+    p.radius = positive(n["radius"], c.at("radius"));
+    require(n, "period_s", c, "seconds per revolution");
+    p.period_s = positive(n["period_s"], c.at("period_s"));
+    opt_positive(n, "revolutions", c, p.revolutions);
+    return p;
+  }
+  if (shape == "line") {
+    LinePath p;
+    require(n, "from", c, "[x, y] in mm");
+    require(n, "to", c, "[x, y] in mm");
+    require(n, "duration_s", c, "seconds");
+    p.from = point(n["from"], c.at("from"));
+    p.to = point(n["to"], c.at("to"));
+    p.duration_s = positive(n["duration_s"], c.at("duration_s"));
+    return p;
+  }
+  fail(c.at("shape"), n["shape"], fmt::format("'{}' is not circle or line", shape));
+}
+
+}  // namespace
+
+std::uint64_t derive_seed(std::uint64_t seed, int stream) {
+  // splitmix64 of (seed, stream): independent, well-mixed streams.
+  std::uint64_t z = seed + 0x9e3779b97f4a7c15ULL * static_cast<std::uint64_t>(stream + 1);
+  z = (z ^ (z >> 30)) * 0xbf58476d1ce4e5b9ULL;
+  z = (z ^ (z >> 27)) * 0x94d049bb133111ebULL;
+  return z ^ (z >> 31);
+}
+
+Scenario scenario_from_yaml(const YAML::Node& root, const std::string& file, const std::string& base_dir) {
+  const Ctx c{file, ""};
+  if (!root.IsMap()) fail(c, root, "expected a map of sections (see scenarios/SCHEMA.md)");
+  yaml_check_keys(root, file, "",
+                  {"name", "description", "robot", "seed", "actual", "physics", "servo", "encoder",
+                   "sampling", "path", "log", "calibration", "expect", "hardware", "outputs", "render"});
+  Scenario s;
+  s.file = file;
+  s.name = root["name"] ? yaml_string(root["name"], file, "name")
+                        : std::filesystem::path(file).stem().string();
+  if (const YAML::Node r = root["robot"]) {
+    if (r.IsMap()) {
+      s.controller = robot_from_yaml(r, file, "robot");
+    } else {
+      std::filesystem::path p = yaml_string(r, file, "robot");
+      if (p.is_relative()) p = std::filesystem::path(base_dir) / p;
+      s.controller = load_robot(p.lexically_normal().string());
+    }
+  } else {
+    s.controller = load_robot(std::string(GPM_MODELS_DIR) + "/gpm2002.yaml");
+  }
+  if (root["seed"]) s.seed = static_cast<std::uint64_t>(yaml_integer(root["seed"], file, "seed", 0, (1LL << 53)));
+  if (root["actual"]) s.actual = parse_actual(root["actual"], c.at("actual"));
+  else s.actual.keep = FreeMask{}.set(kXa1).set(kYa1).set(kXa2).set(kYa2);
+  if (const YAML::Node p = root["physics"]) {
+    yaml_check_keys(p, file, "physics", {"timestep_s"});
+    opt_positive(p, "timestep_s", c.at("physics"), s.twin.mjcf.timestep_s);
+    s.twin.mjcf.solref_timeconst_s = std::max(s.twin.mjcf.solref_timeconst_s, 2.0 * s.twin.mjcf.timestep_s);
+  }
+  if (root["servo"]) parse_servo(root["servo"], c.at("servo"), s.twin);
+  const double ratio = 1.0 / (s.twin.servo_rate_hz * s.twin.mjcf.timestep_s);
+  if (std::abs(ratio - std::round(ratio)) > 1e-9 * ratio || std::round(ratio) < 1.0) {
+    const YAML::Node at = root["servo"] && root["servo"]["rate_hz"] ? root["servo"]["rate_hz"] : root;
+    fail(c.at("servo.rate_hz"), at,
+         fmt::format("{} Hz must divide the physics rate {} Hz (1 / physics.timestep_s)",
+                     s.twin.servo_rate_hz, 1.0 / s.twin.mjcf.timestep_s));
+  }
+  if (root["encoder"]) parse_encoder(root["encoder"], c.at("encoder"), s.twin.encoder);
+  if (root["sampling"]) s.sampling = parse_sampling(root["sampling"], c.at("sampling"));
+  if (root["path"]) s.path = parse_path(root["path"], c.at("path"));
+  if (const YAML::Node l = root["log"]) {
+    yaml_check_keys(l, file, "log", {"every"});
+    if (l["every"]) s.log_every = static_cast<int>(yaml_integer(l["every"], file, "log.every", 1, 1000000));
+  }
+  if (!s.sampling && !s.path) fail(c, root, "nothing to simulate: give a 'sampling' or a 'path' section");
+  return s;
+}
+
+Scenario parse_scenario(const std::string& text, const std::string& file, const std::string& base_dir) {
+  return scenario_from_yaml(load_yaml_string(text, file), file, base_dir);
+}
+
+Scenario load_scenario(const std::string& path) {
+  const std::string base = std::filesystem::path(path).parent_path().string();
+  return scenario_from_yaml(load_yaml_file(path), path, base.empty() ? "." : base);
+}
+
+Robot make_actual(const Scenario& s) {
+  Robot actual = s.controller;
+  actual.name = s.controller.name + " (actual)";
+  std::mt19937_64 rng(derive_seed(s.seed, 0));
+  std::normal_distribution<double> normal(0.0, 1.0);
+  for (int i = 0; i < kNumParams; ++i) {
+    const double z = normal(rng);  // drawn for every parameter: streams do not shift
+    const auto& ex = s.actual.explicit_values[static_cast<size_t>(i)];
+    if (ex) {
+      actual.geometry[i] = *ex;
+      continue;
+    }
+    if (s.actual.keep.test(static_cast<size_t>(i))) continue;
+    const double sigma = is_offset(i) ? s.actual.sigma_offset_rad
+                         : is_length(i) ? s.actual.sigma_link_mm
+                                        : s.actual.sigma_base_mm;
+    actual.geometry[i] += sigma * z;
+  }
+  try {
+    validate_robot(actual, "actual");
+  } catch (const InputError& e) {
+    throw InputError(fmt::format("{}: actual: the actual parameters cannot assemble: {}", s.file, e.what()));
+  }
+  return actual;
+}
+
+std::vector<Eigen::Vector2d> plan_poses(const SamplingPlan& p, std::uint64_t seed) {
+  switch (p.pattern) {
+    case PosePattern::kDisc: {
+      std::mt19937_64 rng(derive_seed(seed, 1));
+      return disc_poses(p.centre, p.radius, p.count, rng);
+    }
+    case PosePattern::kCircle: return circle_poses(p.centre, p.radius, p.count);
+    case PosePattern::kLine: return line_poses(p.from, p.to, p.count);
+    case PosePattern::kList: return p.poses;
+  }
+  return {};
+}
+
+}  // namespace gpm::sim

@@ -1,0 +1,84 @@
+// Scenario files, simulation part (schema: scenarios/SCHEMA.md): the
+// controller's robot, the actual parameters (explicit and/or a seeded random
+// perturbation), physics, servo and encoder settings, the sampling plan, an
+// optional continuous path, the log rate and the seed. The sections
+// calibration, expect, hardware, outputs, render are accepted unparsed for
+// later layers.
+#pragma once
+
+#include <array>
+#include <cstdint>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include <Eigen/Core>
+#include <yaml-cpp/yaml.h>
+
+#include "models/parameters.hpp"
+#include "models/robot.hpp"
+#include "sim/sampling.hpp"
+#include "sim/trajectory.hpp"
+#include "sim/twin.hpp"
+
+namespace gpm::sim {
+
+// How the actual (true) parameters differ from the controller's robot.
+struct ActualSpec {
+  std::array<std::optional<double>, kNumParams> explicit_values{};  // replace these
+  double sigma_base_mm = 0.0;     // Gaussian perturbation of xa*, ya*
+  double sigma_link_mm = 0.0;     // ... of la*, lb*
+  double sigma_offset_rad = 0.0;  // ... of dth*
+  FreeMask keep;                  // never perturbed (default xa1 ya1 xa2 ya2: the frame)
+};
+
+// Where the samples are taken.
+enum class PosePattern { kDisc, kCircle, kLine, kList };
+
+struct SamplingPlan {
+  PosePattern pattern = PosePattern::kDisc;
+  Eigen::Vector2d centre{216.5, 250.0};
+  double radius = 0.0;
+  int count = 0;
+  Eigen::Vector2d from = Eigen::Vector2d::Zero(), to = Eigen::Vector2d::Zero();
+  std::vector<Eigen::Vector2d> poses;  // kList
+  SamplingOptions options;
+};
+
+struct Scenario {
+  std::string file;       // the scenario file (for messages)
+  std::string name;
+  Robot controller;       // the controller's model (robot file)
+  ActualSpec actual;
+  TwinConfig twin;
+  std::optional<SamplingPlan> sampling;
+  std::optional<Path> path;  // continuous motion after the sampling
+  int log_every = 1;
+  std::uint64_t seed = 1;
+};
+
+// Loads and validates a scenario file; throws InputError naming the file,
+// line and key path. Relative robot paths are taken from the file's folder.
+Scenario load_scenario(const std::string& path);
+
+// Builds a scenario from a parsed YAML root (file names it in errors).
+Scenario scenario_from_yaml(const YAML::Node& root, const std::string& file,
+                            const std::string& base_dir);
+
+// Parses scenario text; base_dir resolves relative robot paths.
+Scenario parse_scenario(const std::string& text, const std::string& file,
+                        const std::string& base_dir);
+
+// Seed of an independent random stream derived from the scenario seed
+// (0: actual parameters, 1: sample poses, 2: encoder noise).
+std::uint64_t derive_seed(std::uint64_t seed, int stream);
+
+// The actual robot: the controller's robot with explicit values applied and
+// the others perturbed (seeded by derive_seed(seed, 0)); throws InputError if
+// it cannot assemble at home.
+Robot make_actual(const Scenario& scenario);
+
+// The sample poses of a plan (disc poses from derive_seed(seed, 1)).
+std::vector<Eigen::Vector2d> plan_poses(const SamplingPlan& plan, std::uint64_t seed);
+
+}  // namespace gpm::sim

@@ -1,0 +1,141 @@
+#include "sim/simulate.hpp"
+
+#include <filesystem>
+#include <fstream>
+#include <unistd.h>
+
+#include <fmt/format.h>
+
+#include "models/errors.hpp"
+#include "models/kinematics.hpp"
+#include "models/robot_yaml.hpp"
+#include "models/yaml_util.hpp"
+
+namespace gpm::sim {
+namespace {
+
+namespace fs = std::filesystem;
+
+std::string x(double v) { return format_exact(v); }
+
+void check_point(const Robot& controller, const Robot& actual, const Eigen::Vector2d& p,
+                 const std::string& what) {
+  const Reach rc = check_reach(controller, p);
+  if (!rc.ok) throw InputError(fmt::format("{}: {}", what, rc.reason));
+  const Reach ra = check_reach(actual, p);
+  if (!ra.ok) throw InputError(fmt::format("{} on the actual mechanism: {}", what, ra.reason));
+}
+
+std::vector<Eigen::Vector2d> path_points(const Path& path) {
+  std::vector<Eigen::Vector2d> out;
+  const int n = 200;
+  for (int k = 0; k <= n; ++k) out.push_back(path_at(path, path_duration(path) * k / n).p);
+  return out;
+}
+
+void write_plain(const fs::path& p, const std::string& text) {
+  std::ofstream out(p, std::ios::binary | std::ios::trunc);
+  out << text;
+  out.flush();
+  if (!out) throw InputError(fmt::format("{}: cannot write file (disk full or not writable?)", p.string()));
+}
+
+}  // namespace
+
+void check_targets(const Scenario& s, const Robot& actual, const std::vector<Eigen::Vector2d>& poses) {
+  for (size_t k = 0; k < poses.size(); ++k) {
+    check_point(s.controller, actual, poses[k],
+                fmt::format("{}: sampling: pose {} ({:.4f}, {:.4f})", s.file, k, poses[k].x(), poses[k].y()));
+  }
+  if (s.path) {
+    const auto pts = path_points(*s.path);
+    for (size_t k = 0; k < pts.size(); ++k) {
+      check_point(s.controller, actual, pts[k],
+                  fmt::format("{}: path: point at t = {:.3f} s ({:.4f}, {:.4f})", s.file,
+                              path_duration(*s.path) * static_cast<double>(k) / (pts.size() - 1),
+                              pts[k].x(), pts[k].y()));
+    }
+  }
+}
+
+SimulationResult run_simulation(const Scenario& s) {
+  SimulationResult r;
+  r.actual = make_actual(s);
+  const std::vector<Eigen::Vector2d> poses =
+      s.sampling ? plan_poses(*s.sampling, s.seed) : std::vector<Eigen::Vector2d>{};
+  check_targets(s, r.actual, poses);
+  const TwinModel model(r.actual, s.twin);
+  r.model_xml = model.xml();
+  TwinState state(model, derive_seed(s.seed, 2));
+  r.log.every = s.log_every;
+  Session session = make_session(model, state, s.controller, &r.log);
+  for (size_t k = 0; k < poses.size(); ++k) {
+    r.samples.push_back(take_sample(session, poses[k], static_cast<long>(k), s.sampling->options));
+  }
+  if (s.path) {
+    const double speed = s.sampling ? s.sampling->options.move_speed_mm_s : 100.0;
+    follow_path(session, make_move(session.desired, path_at(*s.path, 0.0).p, speed));
+    follow_path(session, *s.path);
+  }
+  for (const LogRow& row : r.log.rows) {
+    r.max_violation_m = std::max(r.max_violation_m, row.violation_m);
+    r.max_torque = std::max(r.max_torque, row.torque.cwiseAbs().maxCoeff());
+  }
+  r.simulated_s = state.data->time;
+  return r;
+}
+
+std::string samples_csv(const std::vector<SampleRecord>& samples) {
+  std::string out = "sample,theta_m1,theta_m2,theta_m3,x,y,theta_a1,theta_a2,theta_a3,target_x,target_y,settled\n";
+  for (const SampleRecord& s : samples) {
+    out += fmt::format("{},{},{},{},{},{},{},{},{},{},{},{}\n", s.id, x(s.theta_m[0]), x(s.theta_m[1]),
+                       x(s.theta_m[2]), x(s.xy_mm.x()), x(s.xy_mm.y()), x(s.theta_a[0]),
+                       x(s.theta_a[1]), x(s.theta_a[2]), x(s.target.x()), x(s.target.y()),
+                       s.settled ? 1 : 0);
+  }
+  return out;
+}
+
+std::string trajectory_csv(const TrajectoryLog& log) {
+  std::string out = "t,x_des,y_des,x,y,theta_m1,theta_m2,theta_m3,tau1,tau2,tau3,violation_m\n";
+  for (const LogRow& r : log.rows) {
+    out += fmt::format("{},{},{},{},{},{},{},{},{},{},{},{}\n", x(r.t), x(r.desired.x()),
+                       x(r.desired.y()), x(r.actual.x()), x(r.actual.y()), x(r.readings[0]),
+                       x(r.readings[1]), x(r.readings[2]), x(r.torque[0]), x(r.torque[1]),
+                       x(r.torque[2]), x(r.violation_m));
+  }
+  return out;
+}
+
+void write_simulation(const SimulationResult& r, const std::string& dir) {
+  const fs::path target(dir);
+  std::error_code ec;
+  const bool existed = fs::exists(target, ec);
+  if (existed && !fs::is_directory(target, ec))
+    throw InputError(fmt::format("{}: exists and is not a folder", dir));
+  fs::create_directories(target, ec);
+  if (ec) throw InputError(fmt::format("{}: cannot create the output folder: {}", dir, ec.message()));
+  const fs::path tmp = target / fmt::format(".gpm-simulate.tmp{}", static_cast<long>(::getpid()));
+  const std::vector<std::pair<std::string, std::string>> files = {
+      {"samples.csv", samples_csv(r.samples)},
+      {"trajectory.csv", trajectory_csv(r.log)},
+      {"actual.yaml", robot_to_yaml(r.actual)},
+      {"model.xml", r.model_xml},
+  };
+  try {
+    fs::create_directory(tmp, ec);
+    if (ec) throw InputError(fmt::format("{}: cannot write in the output folder: {}", dir, ec.message()));
+    for (const auto& [name, text] : files) write_plain(tmp / name, text);
+    for (const auto& [name, text] : files) {
+      fs::rename(tmp / name, target / name, ec);
+      if (ec) throw InputError(fmt::format("{}: cannot write {}: {}", dir, name, ec.message()));
+    }
+    fs::remove_all(tmp, ec);
+  } catch (...) {
+    fs::remove_all(tmp, ec);
+    if (!existed) fs::remove(target, ec);  // removes only an empty folder we made
+    throw;
+  }
+}
+
+}  // namespace gpm::sim

@@ -1,0 +1,107 @@
+// The digital twin: the MuJoCo closed chain built from the *actual*
+// parameters, three servo drives and three absolute encoders.
+// MuJoCo-style split: TwinModel is constant (mjModel, actual robot, drive and
+// encoder settings, object ids); TwinState is mutable (mjData, drive states,
+// noise source, joint commands, last sensed values).
+//
+// Use (render/ and hw/ call exactly this):
+//   TwinModel model(actual_robot, config);            // compiles the MJCF
+//   TwinState state(model, seed);                      // at home, holding position
+//   twin_command(state, readings_cmd, readings_rate);  // drive commands (reading frame)
+//   twin_step(model, state);                           // one physics step (servo at its rate)
+//   state.last.readings / .ee_mm / .torque / .violation_m / .theta_a
+#pragma once
+
+#include <array>
+#include <string>
+
+#include <Eigen/Core>
+
+#include "models/mjcf.hpp"
+#include "models/robot.hpp"
+#include "sim/encoder_model.hpp"
+#include "sim/mujoco_util.hpp"
+#include "sim/servo_drive.hpp"
+
+namespace gpm::sim {
+
+// Settings of a twin besides the actual geometry.
+struct TwinConfig {
+  MjcfOptions mjcf;                 // masses, damping, armature, timestep, constraint stiffness
+  double servo_rate_hz = 2000.0;    // drive loop rate; a whole multiple of timesteps
+  std::array<ServoDrive, 3> drives; // per joint; period_s is set from servo_rate_hz
+  EncoderModel encoder;
+};
+
+// Constant part of the twin.
+class TwinModel {
+ public:
+  // Builds and compiles the MJCF of actual (assembled at actual.home). Throws
+  // InputError for parameters that cannot assemble or a servo rate that is not
+  // a whole number of timesteps; SimError if MuJoCo rejects the model.
+  TwinModel(const Robot& actual, const TwinConfig& config);
+
+  const mjModel* mj() const { return model_.get(); }
+  const Robot& actual() const { return actual_; }
+  const TwinConfig& config() const { return config_; }
+  // The MJCF text the model was compiled from (saved as model.xml).
+  const std::string& xml() const { return xml_; }
+  // Physics steps per drive loop period.
+  int steps_per_tick() const { return steps_per_tick_; }
+  double timestep_s() const { return mj()->opt.timestep; }
+
+  std::array<int, 3> qpos_a{}, qpos_b{}, dof_a{}, actuator{}, site_tip{};
+  int site_ee = -1;
+
+ private:
+  Robot actual_;
+  TwinConfig config_;
+  std::string xml_;
+  ModelPtr model_;
+  int steps_per_tick_ = 1;
+};
+
+// What the twin sensed at the start of its last step (all at one instant).
+struct TwinSnapshot {
+  double time_s = 0.0;
+  Eigen::Vector3d theta_a = Eigen::Vector3d::Zero();   // true active angles (rad, unwrapped qpos)
+  Eigen::Vector3d theta_b = Eigen::Vector3d::Zero();   // true passive angles from +X (rad)
+  Eigen::Vector3d velocity = Eigen::Vector3d::Zero();  // active joint speeds (rad/s)
+  Eigen::Vector3d readings = Eigen::Vector3d::Zero();  // encoder readings (rad, [0, 2 pi)), per drive loop
+  Eigen::Vector3d torque = Eigen::Vector3d::Zero();    // drive torques applied (N m)
+  Eigen::Vector2d ee_mm = Eigen::Vector2d::Zero();     // true end-effector (site ee), mm
+  double violation_m = 0.0;  // largest loop-closure gap |tip_b2 - ee|, |tip_b3 - ee| (m)
+};
+
+// Mutable part of the twin.
+struct TwinState {
+  // Data at qpos0 (assembled at home), every drive holding its current reading.
+  TwinState(const TwinModel& model, unsigned long long seed);
+
+  DataPtr data;
+  std::array<ServoState, 3> servo{};
+  EncoderNoise noise;
+  Eigen::Vector3d command_position = Eigen::Vector3d::Zero();  // readings (rad)
+  Eigen::Vector3d command_velocity = Eigen::Vector3d::Zero();  // rad/s
+  long long steps = 0;
+  TwinSnapshot last;
+};
+
+// Sets the drives' position commands (in the reading frame, rad) and velocity
+// feed-forward (rad/s); they take effect at the next drive loop update.
+void twin_command(TwinState& state, const Eigen::Vector3d& position, const Eigen::Vector3d& velocity);
+
+// Advances one physics step: kinematics at the current state, then (on drive
+// loop ticks) encoders and servo torques, then integration. Throws SimError
+// if the simulation diverges.
+void twin_step(const TwinModel& model, TwinState& state);
+
+// Recomputes state.last from the current mjData without stepping (encoders
+// are read, drawing noise).
+void twin_sense(const TwinModel& model, TwinState& state);
+
+// Loop-closure gap (m) of the current mjData kinematics (after mj_forward or
+// mj_step1): the largest distance between tip_b2 / tip_b3 and the ee site.
+double constraint_violation_m(const TwinModel& model, const mjData* d);
+
+}  // namespace gpm::sim
