@@ -1,0 +1,123 @@
+#include "hw/hardware_config.hpp"
+
+#include <filesystem>
+
+#include <fmt/format.h>
+
+#include "hw/drive_backend.hpp"
+#include "hw/modbus_transport.hpp"
+#include "models/errors.hpp"
+#include "models/robot_yaml.hpp"
+#include "models/yaml_util.hpp"
+#include "sim/scenario.hpp"
+
+namespace gpm::hw {
+namespace {
+
+std::string resolve(const std::string& base_dir, const std::string& p) {
+  const std::filesystem::path path(p);
+  return path.is_absolute() ? p : (std::filesystem::path(base_dir) / path).lexically_normal().string();
+}
+
+}  // namespace
+
+TwinBackendConfig twin_config_from_scenario(const std::string& scenario_path, double period_s) {
+  const sim::Scenario sc = sim::load_scenario(scenario_path);
+  TwinBackendConfig t;
+  t.actual = sim::make_actual(sc);
+  t.twin = sc.twin;
+  t.seed = sim::derive_seed(sc.seed, 2);
+  t.period_s = period_s;
+  return t;
+}
+
+HardwareConfig load_hardware_config(const std::string& path) {
+  const YAML::Node root = load_yaml_file(path);
+  const std::string dir = std::filesystem::path(path).parent_path().string();
+  if (!root.IsMap()) throw InputError(path + ": expected a map with keys backend, rate_hz, controller, safety, ...");
+  yaml_check_keys(root, path, "",
+                  {"backend", "rate_hz", "controller", "calibration", "joint_modes", "twin",
+                   "modbus", "safety"});
+  HardwareConfig c;
+  c.file = path;
+  if (!root["backend"]) throw InputError(path + ": missing key 'backend' (twin or modbus)");
+  c.backend = yaml_string(root["backend"], path, "backend");
+  if (c.backend != "twin" && c.backend != "modbus") {
+    throw InputError(yaml_where(path, root["backend"], "backend") +
+                     fmt::format("'{}' is not a backend (valid: twin, modbus)", c.backend));
+  }
+  if (root["rate_hz"]) {
+    c.rate_hz = yaml_positive(root["rate_hz"], path, "rate_hz");
+    if (c.rate_hz > 2000.0) {
+      throw InputError(yaml_where(path, root["rate_hz"], "rate_hz") + "must be at most 2000 Hz");
+    }
+  }
+  if (!root["controller"]) {
+    throw InputError(path + ": missing key 'controller' (the robot file whose model computes IK, "
+                            "e.g. models/gpm2002.yaml)");
+  }
+  c.controller = load_robot(resolve(dir, yaml_string(root["controller"], path, "controller")));
+  if (root["calibration"]) {
+    const std::string cal = resolve(dir, yaml_string(root["calibration"], path, "calibration"));
+    const YAML::Node r = load_yaml_file(cal);
+    c.controller.geometry = geometry_from_yaml(r["geometry"], cal, "geometry");
+    validate_robot(c.controller, cal);
+  }
+  if (const YAML::Node m = root["joint_modes"]) {
+    if (!m.IsSequence() || m.size() != 3) {
+      throw InputError(yaml_where(path, m, "joint_modes") +
+                       "expected three modes, each position or torque_off");
+    }
+    for (size_t i = 0; i < 3; ++i) {
+      const std::string kp = fmt::format("joint_modes[{}]", i);
+      const std::string s = yaml_string(m[i], path, kp);
+      if (s == "position") c.modes[i] = JointMode::kPosition;
+      else if (s == "torque_off") c.modes[i] = JointMode::kTorqueOff;
+      else throw InputError(yaml_where(path, m[i], kp) + fmt::format("'{}' is not position or torque_off", s));
+    }
+    int n = 0;
+    for (JointMode x : c.modes) n += x == JointMode::kPosition;
+    if (n < 2) {
+      throw InputError(yaml_where(path, m, "joint_modes") +
+                       "at least two joints must be in position mode (2 degrees of freedom)");
+    }
+  }
+  c.safety = safety_limits_from_yaml(root["safety"], path, "safety");
+  const double period = 1.0 / c.rate_hz;
+  if (c.backend == "twin") {
+    const YAML::Node t = root["twin"];
+    if (!t) throw InputError(path + ": missing key 'twin' (backend twin needs twin: {scenario: FILE})");
+    yaml_check_keys(t, path, "twin", {"scenario"});
+    if (!t["scenario"]) throw InputError(yaml_where(path, t, "twin") + "missing key 'scenario'");
+    c.twin = twin_config_from_scenario(resolve(dir, yaml_string(t["scenario"], path, "twin.scenario")),
+                                       period);
+  } else {
+    const YAML::Node m = root["modbus"];
+    if (!m) throw InputError(path + ": missing key 'modbus' (backend modbus needs modbus: {register_map: FILE})");
+    yaml_check_keys(m, path, "modbus", {"register_map"});
+    if (!m["register_map"]) throw InputError(yaml_where(path, m, "modbus") + "missing key 'register_map'");
+    c.register_map = load_register_map(
+        resolve(dir, yaml_string(m["register_map"], path, "modbus.register_map")));
+    if (c.register_map->response_timeout_s > c.safety.comms_timeout_s) {
+      throw InputError(yaml_where(path, root["safety"], "safety.comms_timeout") +
+                       fmt::format("{} s is shorter than the register map's response_timeout {} s",
+                                   c.safety.comms_timeout_s, c.register_map->response_timeout_s));
+    }
+  }
+  return c;
+}
+
+std::unique_ptr<SafetySupervisor> make_hardware(const HardwareConfig& c) {
+  const double period = 1.0 / c.rate_hz;
+  std::unique_ptr<RobotHardware> backend;
+  if (c.backend == "twin") {
+    backend = std::make_unique<TwinBackend>(*c.twin);
+  } else {
+    const RegisterMap& m = *c.register_map;
+    backend = std::make_unique<DriveBackend>(
+        m, std::make_unique<ModbusTransport>(m.host, m.port, m.response_timeout_s), period);
+  }
+  return std::make_unique<SafetySupervisor>(std::move(backend), c.controller, c.safety);
+}
+
+}  // namespace gpm::hw

@@ -1,0 +1,52 @@
+// Hardware file (YAML): which backend drives the robot (`twin` or `modbus`),
+// the cycle rate, the controller model that computes IK (a robot file,
+// optionally with the geometry of a calibration result), per-joint modes and
+// the safety limits (all required). Switching backend is a config change only.
+//
+//   backend: twin | modbus
+//   rate_hz: 250
+//   controller: ../models/gpm2002.yaml
+//   calibration: result.yaml          # optional
+//   joint_modes: [position, position, position]   # optional
+//   twin: {scenario: ../scenarios/simulate_disc.yaml}   # backend twin
+//   modbus: {register_map: drives.yaml}                 # backend modbus
+//   safety: {...}                                       # hw/safety_limits.hpp
+#pragma once
+
+#include <memory>
+#include <optional>
+#include <string>
+
+#include "hw/hardware_types.hpp"
+#include "hw/register_map.hpp"
+#include "hw/safety_limits.hpp"
+#include "hw/safety_supervisor.hpp"
+#include "hw/twin_backend.hpp"
+#include "models/robot.hpp"
+
+namespace gpm::hw {
+
+struct HardwareConfig {
+  std::string file;
+  std::string backend;  // "twin" or "modbus"
+  double rate_hz = 250.0;
+  Robot controller;
+  std::array<JointMode, 3> modes{JointMode::kPosition, JointMode::kPosition, JointMode::kPosition};
+  SafetyLimits safety;
+  std::optional<TwinBackendConfig> twin;   // backend twin
+  std::optional<RegisterMap> register_map; // backend modbus
+};
+
+// Loads and validates a hardware file; relative paths are taken from its
+// folder. Throws InputError (file, key path, what is wrong, what is valid);
+// a missing or incomplete safety section is refused.
+HardwareConfig load_hardware_config(const std::string& path);
+
+// The twin backend settings of a scenario file: its actual robot, servo and
+// encoder settings, and the encoder noise seed.
+TwinBackendConfig twin_config_from_scenario(const std::string& scenario_path, double period_s);
+
+// The configured backend behind a safety supervisor (not yet configured).
+std::unique_ptr<SafetySupervisor> make_hardware(const HardwareConfig& config);
+
+}  // namespace gpm::hw
