@@ -1,0 +1,73 @@
+// Tests of sim/servo_drive.cpp against hand-computed loop outputs.
+#include "sim/servo_drive.hpp"
+
+#include <numbers>
+
+#include <gtest/gtest.h>
+
+namespace gpm::sim {
+namespace {
+
+TEST(ServoDrive, AtRestActsAsSpringOfStiffnessKpKv) {
+  ServoDrive d;  // kp 100 1/s, kv 10 N m s/rad
+  ServoState s;
+  const double tau = servo_update(d, s, {1.0 + 0.002, 0.0, 1.0, 0.0});
+  EXPECT_NEAR(tau, 100.0 * 10.0 * 0.002, 1e-12);
+  EXPECT_DOUBLE_EQ(d.stiffness(), 1000.0);
+  EXPECT_DOUBLE_EQ(s.torque, tau);
+}
+
+TEST(ServoDrive, VelocityFeedForwardAndDamping) {
+  ServoDrive d;
+  d.feedforward = 0.5;
+  ServoState s;
+  // w* = 0.5 * 2 = 1 rad/s, measured 0.4 rad/s: tau = 10 * 0.6.
+  EXPECT_NEAR(servo_update(d, s, {1.0, 2.0, 1.0, 0.4}), 6.0, 1e-12);
+}
+
+TEST(ServoDrive, ErrorWrapsAcrossZero) {
+  ServoDrive d;
+  ServoState s;
+  // Command just above 0, reading just below 2 pi: the error is +0.002, not -2 pi.
+  const double tau = servo_update(d, s, {0.001, 0.0, 2.0 * std::numbers::pi - 0.001, 0.0});
+  EXPECT_NEAR(tau, 1000.0 * 0.002, 1e-9);
+}
+
+TEST(ServoDrive, SaturatesTorqueAndVelocityCommand) {
+  ServoDrive d;
+  d.velocity_limit = 1.0;
+  d.torque_limit = 5.0;
+  ServoState s;
+  // kp * e = 100 rad/s -> clamped to 1; tau = 10 * 1 = 10 -> clamped to 5.
+  EXPECT_DOUBLE_EQ(servo_update(d, s, {2.0, 0.0, 1.0, 0.0}), 5.0);
+  d.torque_limit = 50.0;
+  EXPECT_DOUBLE_EQ(servo_update(d, s, {2.0, 0.0, 1.0, 0.0}), 10.0);
+  EXPECT_DOUBLE_EQ(servo_update(d, s, {0.0, 0.0, 1.0, 0.0}), -10.0);
+}
+
+TEST(ServoDrive, IntegralAccumulatesAndIsClamped) {
+  ServoDrive d;
+  d.ki = 1000.0;
+  d.period_s = 0.001;
+  d.torque_limit = 3.0;
+  ServoState s;
+  // e_w = 0.1 rad/s: each update adds 1000 * 0.1 * 0.001 = 0.1 N m.
+  servo_update(d, s, {0.0, 0.1, 0.0, 0.0});
+  EXPECT_NEAR(s.integral, 0.1, 1e-12);
+  EXPECT_NEAR(s.torque, 10.0 * 0.1 + 0.1, 1e-12);
+  for (int k = 0; k < 1000; ++k) servo_update(d, s, {0.0, 0.1, 0.0, 0.0});
+  EXPECT_DOUBLE_EQ(s.integral, 3.0);
+  EXPECT_DOUBLE_EQ(s.torque, 3.0);
+}
+
+TEST(ServoDrive, TorqueOffGivesNoTorqueAndClearsState) {
+  ServoDrive d;
+  d.mode = ServoMode::kTorqueOff;
+  ServoState s{2.0, 4.0};
+  EXPECT_EQ(servo_update(d, s, {3.0, 1.0, 0.0, 0.0}), 0.0);
+  EXPECT_EQ(s.integral, 0.0);
+  EXPECT_EQ(s.torque, 0.0);
+}
+
+}  // namespace
+}  // namespace gpm::sim
