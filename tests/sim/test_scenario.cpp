@@ -1,0 +1,178 @@
+// Tests of sim/scenario.cpp: the example scenarios parse, every setting lands
+// where it belongs, bad input names the key path, reserved sections are
+// accepted, and the actual parameters are seeded and respect `keep`.
+#include "sim/scenario.hpp"
+
+#include <cmath>
+#include <filesystem>
+
+#include <gtest/gtest.h>
+
+#include "models/errors.hpp"
+#include "models/robot_yaml.hpp"
+
+namespace gpm::sim {
+namespace {
+
+const std::string kScenarios = std::string(GPM_MODELS_DIR) + "/../scenarios";
+const std::string kModels = GPM_MODELS_DIR;
+
+Scenario parse(const std::string& text) { return parse_scenario(text, "s.yaml", kModels); }
+
+// The InputError message of parsing text (empty if it parses).
+std::string error_of(const std::string& text) {
+  try {
+    parse(text);
+  } catch (const InputError& e) {
+    return e.what();
+  }
+  return "";
+}
+
+const char* kMinimal = "sampling: {pattern: disc, radius: 10, count: 3}\n";
+
+TEST(Scenario, ExampleScenariosParse) {
+  for (const char* f : {"simulate_disc.yaml", "simulate_circle.yaml"}) {
+    const Scenario s = load_scenario(kScenarios + "/" + f);
+    EXPECT_TRUE(s.sampling.has_value()) << f;
+    EXPECT_EQ(s.controller.geometry, Geometry::gpm2002_nominal()) << f;
+  }
+  const Scenario c = load_scenario(kScenarios + "/simulate_circle.yaml");
+  EXPECT_EQ(c.twin.drives[2].mode, ServoMode::kTorqueOff);
+  EXPECT_EQ(c.twin.drives[0].mode, ServoMode::kPosition);
+  EXPECT_DOUBLE_EQ(c.twin.encoder.noise_rad, 2e-5);
+  ASSERT_TRUE(c.path.has_value());
+  EXPECT_DOUBLE_EQ(std::get<CirclePath>(*c.path).period_s, 2.0);
+  EXPECT_DOUBLE_EQ(*c.actual.explicit_values[kLa3], 244.5);
+}
+
+TEST(Scenario, SettingsLandWhereTheyBelong) {
+  const Scenario s = parse(R"(
+robot: gpm2002.yaml
+seed: 99
+physics: {timestep_s: 0.00025}
+servo: {rate_hz: 4000, kp: 80, kv: 12, ki: 5, feedforward: 0.5, torque_limit: 20, velocity_limit: 3}
+encoder: {bits: 20, noise_rad: 1e-6}
+sampling:
+  pattern: line
+  from: [200, 240]
+  to: [230, 260]
+  count: 4
+  move_speed_mm_s: 50
+  settle: {velocity_rad_s: 0.01, hold_s: 0.1, timeout_s: 3}
+  average_s: 0.2
+log: {every: 10}
+)");
+  EXPECT_EQ(s.seed, 99u);
+  EXPECT_DOUBLE_EQ(s.twin.mjcf.timestep_s, 0.00025);
+  EXPECT_DOUBLE_EQ(s.twin.servo_rate_hz, 4000);
+  for (const auto& d : s.twin.drives) {
+    EXPECT_DOUBLE_EQ(d.kp, 80);
+    EXPECT_DOUBLE_EQ(d.kv, 12);
+    EXPECT_DOUBLE_EQ(d.ki, 5);
+    EXPECT_DOUBLE_EQ(d.feedforward, 0.5);
+    EXPECT_DOUBLE_EQ(d.torque_limit, 20);
+    EXPECT_DOUBLE_EQ(d.velocity_limit, 3);
+  }
+  EXPECT_EQ(s.twin.encoder.bits, 20);
+  EXPECT_EQ(s.sampling->pattern, PosePattern::kLine);
+  EXPECT_EQ(s.sampling->count, 4);
+  EXPECT_DOUBLE_EQ(s.sampling->options.move_speed_mm_s, 50);
+  EXPECT_DOUBLE_EQ(s.sampling->options.settle.hold_s, 0.1);
+  EXPECT_DOUBLE_EQ(s.sampling->options.average_s, 0.2);
+  EXPECT_EQ(s.log_every, 10);
+  const auto poses = plan_poses(*s.sampling, s.seed);
+  ASSERT_EQ(poses.size(), 4u);
+  EXPECT_DOUBLE_EQ(poses[3].x(), 230.0);
+}
+
+TEST(Scenario, ErrorsNameTheKeyPath) {
+  EXPECT_NE(error_of("sampling: {pattern: disc, radius: -5, count: 3}").find("sampling.radius: must be positive"),
+            std::string::npos);
+  EXPECT_NE(error_of("sampling: {pattern: disc, radius: 5, count: 0}").find("sampling.count: must be a whole number"),
+            std::string::npos);
+  EXPECT_NE(error_of("sampling: {pattern: spiral, radius: 5, count: 3}").find("sampling.pattern: 'spiral' is not"),
+            std::string::npos);
+  EXPECT_NE(error_of(std::string(kMinimal) + "servo: {kp: fast}").find("servo.kp: 'fast' is not a number"),
+            std::string::npos);
+  EXPECT_NE(error_of(std::string(kMinimal) + "servo: {modes: [position, off, position]}").find("servo.modes[1]"),
+            std::string::npos);
+  EXPECT_NE(error_of(std::string(kMinimal) + "servo: {modes: [position, torque_off, torque_off]}").find("at least two"),
+            std::string::npos);
+  EXPECT_NE(error_of(std::string(kMinimal) + "servo: {rate_hz: 1500}").find("servo.rate_hz"), std::string::npos);
+  EXPECT_NE(error_of(std::string(kMinimal) + "actual: {geometry: {la9: 1}}").find("actual.geometry.la9: unknown parameter (did you mean la1?)"),
+            std::string::npos);
+  EXPECT_NE(error_of(std::string(kMinimal) + "actual: {perturb: {link_mm: -1}}").find("actual.perturb.link_mm: must be zero or positive"),
+            std::string::npos);
+  EXPECT_NE(error_of(std::string(kMinimal) + "encoder: {bits: 17.5}").find("encoder.bits"), std::string::npos);
+  EXPECT_NE(error_of("seed: 1\n").find("nothing to simulate"), std::string::npos);
+  EXPECT_NE(error_of("sampling: {pattern: list, poses: [[1, 2], [3]]}").find("sampling.poses[1]"), std::string::npos);
+  EXPECT_NE(error_of("path: {shape: circle, radius: 5}").find("missing key 'period_s'"), std::string::npos);
+  EXPECT_NE(error_of(std::string(kMinimal) + "robot: nowhere.yaml").find("nowhere.yaml: cannot open file"),
+            std::string::npos);
+  // File and line come first.
+  EXPECT_EQ(error_of("seed: 1\nsampling: {pattern: disc, radius: -5, count: 3}").rfind("s.yaml:2: ", 0), 0u);
+}
+
+TEST(Scenario, UnknownTopLevelKeyIsAnErrorWithASuggestion) {
+  EXPECT_NE(error_of(std::string(kMinimal) + "sampeling: {}").find("sampeling: unknown key (did you mean sampling?)"),
+            std::string::npos);
+}
+
+TEST(Scenario, ReservedSectionsAreAcceptedUnparsed) {
+  const std::string text = std::string(kMinimal) +
+                           "name: n\ndescription: d\ncalibration: {anything: [1, 2]}\nexpect: {x: 1}\n"
+                           "hardware: {backend: twin}\noutputs: [a]\nrender: {fps: 30}\n";
+  EXPECT_EQ(error_of(text), "");
+  EXPECT_EQ(parse(text).name, "n");
+}
+
+TEST(Scenario, EmbeddedRobotAndRelativeRobotPath) {
+  const Robot r = load_robot(kModels + "/gpm2002.yaml");
+  const Scenario s = parse(std::string(kMinimal) + "robot:\n" + [&] {
+    std::string y = robot_to_yaml(r), out;
+    for (size_t a = 0, b; a < y.size(); a = b + 1) {
+      b = y.find('\n', a);
+      out += "  " + y.substr(a, b - a) + "\n";
+    }
+    return out;
+  }());
+  EXPECT_EQ(s.controller, r);
+}
+
+TEST(Scenario, ActualParametersAreSeededAndKeepTheFrame) {
+  const std::string base = std::string(kMinimal) +
+                           "actual: {geometry: {la3: 244.5}, perturb: {base_mm: 0.5, link_mm: 0.5, offset_rad: 0.01}}\n";
+  const Scenario s1 = parse(base + "seed: 1\n");
+  const Robot a = make_actual(s1);
+  EXPECT_EQ(a.geometry, make_actual(parse(base + "seed: 1\n")).geometry);
+  EXPECT_NE(a.geometry, make_actual(parse(base + "seed: 2\n")).geometry);
+  EXPECT_EQ(a.geometry[kLa3], 244.5);
+  for (int i : {kXa1, kYa1, kXa2, kYa2}) EXPECT_EQ(a.geometry[i], s1.controller.geometry[i]);
+  for (int i : {kXa3, kYa3, kLa1, kLb2, kDth1, kDth3}) EXPECT_NE(a.geometry[i], s1.controller.geometry[i]);
+  for (int i = 0; i < kNumParams; ++i) {
+    const double lim = is_offset(i) ? 0.06 : 3.0;  // 6 sigma
+    EXPECT_LT(std::abs(a.geometry[i] - s1.controller.geometry[i]), lim) << param_name(i);
+  }
+  const Robot all = make_actual(parse(std::string(kMinimal) + "actual: {perturb: {base_mm: 0.5, keep: []}}\n"));
+  EXPECT_NE(all.geometry[kXa1], 0.0);
+}
+
+TEST(Scenario, ActualThatCannotAssembleIsRefused) {
+  const Scenario s = parse(std::string(kMinimal) + "actual: {geometry: {la1: 10}}\n");
+  try {
+    make_actual(s);
+    FAIL();
+  } catch (const InputError& e) {
+    EXPECT_NE(std::string(e.what()).find("cannot assemble"), std::string::npos) << e.what();
+  }
+}
+
+TEST(Scenario, DerivedSeedsDiffer) {
+  EXPECT_NE(derive_seed(1, 0), derive_seed(1, 1));
+  EXPECT_NE(derive_seed(1, 0), derive_seed(2, 0));
+  EXPECT_EQ(derive_seed(1, 2), derive_seed(1, 2));
+}
+
+}  // namespace
+}  // namespace gpm::sim

@@ -1,0 +1,123 @@
+// Tests of sim/simulate.cpp: a run is bit-reproducible from its seed, bad
+// targets are refused with the pose and the reason, the output files follow
+// their contracts and are written all or nothing.
+#include "sim/simulate.hpp"
+
+#include <filesystem>
+#include <fstream>
+#include <sstream>
+#include <unistd.h>
+
+#include <gtest/gtest.h>
+
+#include "models/errors.hpp"
+#include "models/robot_yaml.hpp"
+#include "models/samples.hpp"
+
+namespace gpm::sim {
+namespace fs = std::filesystem;
+namespace {
+
+const std::string kModels = GPM_MODELS_DIR;
+
+Scenario parse(const std::string& text) { return parse_scenario(text, "s.yaml", kModels); }
+
+const char* kSmall = R"(
+seed: 5
+actual: {perturb: {base_mm: 0.3, link_mm: 0.3, offset_rad: 0.01}}
+encoder: {noise_rad: 1e-5}
+sampling: {pattern: disc, radius: 40, count: 4, settle: {hold_s: 0.01}, average_s: 0.02}
+path: {shape: line, from: [200, 250], to: [230, 250], duration_s: 0.2}
+)";
+
+std::string read_text(const fs::path& p) {
+  std::ifstream in(p, std::ios::binary);
+  std::stringstream ss;
+  ss << in.rdbuf();
+  return ss.str();
+}
+
+std::string error_of(const Scenario& s) {
+  try {
+    run_simulation(s);
+  } catch (const InputError& e) {
+    return e.what();
+  }
+  return "";
+}
+
+fs::path temp_dir(const std::string& tag) {
+  return fs::temp_directory_path() / ("gpm_test_simulate_" + tag + std::to_string(::getpid()));
+}
+
+TEST(Simulate, SameSeedGivesIdenticalFilesAndAnotherSeedDoesNot) {
+  const fs::path a = temp_dir("a"), b = temp_dir("b"), c = temp_dir("c");
+  write_simulation(run_simulation(parse(kSmall)), a.string());
+  write_simulation(run_simulation(parse(kSmall)), b.string());
+  std::string other = kSmall;
+  other.replace(other.find("seed: 5"), 7, "seed: 6");
+  write_simulation(run_simulation(parse(other)), c.string());
+  for (const char* f : {"samples.csv", "trajectory.csv", "actual.yaml", "model.xml"}) {
+    const std::string ta = read_text(a / f);
+    EXPECT_GT(ta.size(), 100u) << f;
+    EXPECT_EQ(ta, read_text(b / f)) << f;
+    EXPECT_NE(ta, read_text(c / f)) << f;
+  }
+  for (const auto& d : {a, b, c}) fs::remove_all(d);
+}
+
+TEST(Simulate, OutputsFollowTheirContracts) {
+  const fs::path dir = temp_dir("contract");
+  const SimulationResult r = run_simulation(parse(kSmall));
+  write_simulation(r, dir.string());
+  const Samples s = read_samples_csv((dir / "samples.csv").string());
+  ASSERT_EQ(s.size(), 4u);
+  EXPECT_TRUE(s.has_xy);
+  EXPECT_EQ(s.xy[2], r.samples[2].xy_mm);
+  EXPECT_EQ(load_robot((dir / "actual.yaml").string()), r.actual);
+  EXPECT_EQ(read_text(dir / "model.xml"), r.model_xml);
+  const std::string traj = read_text(dir / "trajectory.csv");
+  EXPECT_EQ(traj.rfind("t,x_des,y_des,x,y,theta_m1,theta_m2,theta_m3,tau1,tau2,tau3,violation_m\n", 0), 0u);
+  EXPECT_EQ(static_cast<size_t>(std::count(traj.begin(), traj.end(), '\n')), r.log.rows.size() + 1);
+  EXPECT_LT(r.max_violation_m, 1e-6);
+  // No temporary folder left behind.
+  for (const auto& e : fs::directory_iterator(dir)) EXPECT_EQ(e.path().filename().string()[0] != '.', true);
+  fs::remove_all(dir);
+}
+
+TEST(Simulate, UnreachablePoseIsNamedWithTheReach) {
+  const std::string e = error_of(parse("sampling: {pattern: list, poses: [[216.5, 250], [216.5, 700]]}"));
+  EXPECT_NE(e.find("sampling: pose 1 (216.5000, 700.0000)"), std::string::npos) << e;
+  EXPECT_NE(e.find("outside its reach"), std::string::npos) << e;
+}
+
+TEST(Simulate, PoseNearASingularityIsRefused) {
+  // (216.5, 250) + 200 mm along x: chain 1 nearly stretched (|A1 O| = 416.5 of 488).
+  const std::string e = error_of(parse(R"(
+robot:
+  geometry: {xa1: 0, ya1: 250, xa2: 433, ya2: 0, xa3: 433, ya3: 500, la1: 244, la2: 244, la3: 244,
+             lb1: 244, lb2: 244, lb3: 244, dth1: 0, dth2: 0, dth3: 0}
+  limits: {min_transmission: 0.9}
+sampling: {pattern: list, poses: [[216.5, 250], [300, 250]]}
+)"));
+  EXPECT_NE(e.find("sampling: pose"), std::string::npos) << e;
+  EXPECT_NE(e.find("singularity"), std::string::npos) << e;
+}
+
+TEST(Simulate, PathOutOfReachIsRefused) {
+  const std::string e = error_of(parse("path: {shape: circle, radius: 400, period_s: 1}"));
+  EXPECT_NE(e.find("path: point at t = 0.000 s"), std::string::npos) << e;
+}
+
+TEST(Simulate, NothingIsWrittenWhenTheFolderCannotBeWritten) {
+  const fs::path file = temp_dir("file");
+  { std::ofstream(file) << "x"; }
+  const SimulationResult r = run_simulation(parse(kSmall));
+  EXPECT_THROW(write_simulation(r, file.string()), InputError);  // a file, not a folder
+  EXPECT_THROW(write_simulation(r, (file / "sub").string()), InputError);
+  EXPECT_EQ(read_text(file), "x");
+  fs::remove(file);
+}
+
+}  // namespace
+}  // namespace gpm::sim
