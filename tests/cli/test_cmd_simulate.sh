@@ -1,0 +1,77 @@
+#!/usr/bin/env bash
+# Tests of app/cmd_simulate.cpp: gpm simulate writes the four files, the same
+# seed gives identical files, bad input exits 2 with one line on stderr and
+# leaves no output behind.
+set -u
+GPM="$1"
+SCEN="$(cd "$(dirname "$0")/../../scenarios" && pwd)"
+fail=0; passed=0
+tmp=$(mktemp -d); trap 'rm -rf "$tmp"' EXIT
+
+check() {  # name, expected exit, command...
+  local name=$1 want=$2; shift 2
+  "$@" >"$tmp/out" 2>"$tmp/err"; local got=$?
+  if [[ $got -ne $want ]]; then
+    echo "FAIL $name: exit $got, want $want"; cat "$tmp/err"; fail=$((fail+1)); return 1
+  fi
+  if [[ $want -eq 2 && $(wc -l <"$tmp/err") -ne 1 ]]; then
+    echo "FAIL $name: stderr is not one line:"; cat "$tmp/err"; fail=$((fail+1)); return 1
+  fi
+  passed=$((passed+1))
+}
+expect_err() {
+  if grep -qE -- "$2" "$tmp/err"; then passed=$((passed+1)); else echo "FAIL $1: no '$2' in:"; cat "$tmp/err"; fail=$((fail+1)); fi
+}
+expect() {  # name, condition...
+  local name=$1; shift
+  if "$@"; then passed=$((passed+1)); else echo "FAIL $name"; fail=$((fail+1)); fi
+}
+
+# A short scenario next to a copy of the robot file (relative robot path).
+cp "$SCEN/../models/gpm2002.yaml" "$tmp/robot.yaml"
+cat >"$tmp/short.yaml" <<'YAML'
+name: short
+robot: robot.yaml
+seed: 11
+actual: {perturb: {base_mm: 0.3, link_mm: 0.3, offset_rad: 0.01}}
+encoder: {noise_rad: 1e-5}
+sampling: {pattern: disc, radius: 50, count: 5, average_s: 0.02}
+path: {shape: circle, radius: 30, period_s: 0.5}
+YAML
+
+check "simulate" 0 "$GPM" simulate "$tmp/short.yaml" -o "$tmp/a"
+for f in samples.csv trajectory.csv actual.yaml model.xml; do expect "writes $f" test -s "$tmp/a/$f"; done
+expect "samples header" grep -q '^sample,theta_m1,theta_m2,theta_m3,x,y' "$tmp/a/samples.csv"
+expect "5 samples" test "$(wc -l <"$tmp/a/samples.csv")" -eq 6
+expect "trajectory header" grep -q '^t,x_des,y_des,x,y,theta_m1,theta_m2,theta_m3,tau1,tau2,tau3,violation_m$' "$tmp/a/trajectory.csv"
+expect "no temporary files" test -z "$(ls -A "$tmp/a" | grep '^\.')"
+check "simulate again" 0 "$GPM" simulate "$tmp/short.yaml" -o "$tmp/b"
+for f in samples.csv trajectory.csv actual.yaml model.xml; do expect "same seed, same $f" cmp -s "$tmp/a/$f" "$tmp/b/$f"; done
+# The actual robot file and samples feed the other commands.
+check "actual.yaml loads" 0 "$GPM" kin home --model "$tmp/a/actual.yaml"
+check "example disc scenario" 0 "$GPM" simulate "$SCEN/simulate_disc.yaml" -o "$tmp/disc"
+
+# Bad input: exit 2, one line, nothing written.
+sed 's/radius: 50/radius: -50/' "$tmp/short.yaml" >"$tmp/neg.yaml"
+check "negative radius" 2 "$GPM" simulate "$tmp/neg.yaml" -o "$tmp/neg"
+expect_err "key path" "neg.yaml:6: sampling.radius: must be positive"
+expect "nothing written" test ! -e "$tmp/neg"
+printf 'sampeling: {}\n' >"$tmp/typo.yaml"
+check "unknown key" 2 "$GPM" simulate "$tmp/typo.yaml" -o "$tmp/typo"
+expect_err "suggestion" "did you mean sampling\?"
+sed 's/sampling: .*/sampling: {pattern: list, poses: [[216.5, 250], [216.5, 720]]}/' "$tmp/short.yaml" >"$tmp/far.yaml"
+check "unreachable pose" 2 "$GPM" simulate "$tmp/far.yaml" -o "$tmp/far"
+expect_err "pose and reach" "sampling: pose 1 \(216.5000, 720.0000\): chain [0-9]: .* outside its reach"
+expect "nothing written" test ! -e "$tmp/far"
+sed 's/actual: .*/actual: {geometry: {lb2: 30}}/' "$tmp/short.yaml" >"$tmp/asm.yaml"
+check "cannot assemble" 2 "$GPM" simulate "$tmp/asm.yaml" -o "$tmp/asm"
+expect_err "assembly" "actual parameters cannot assemble"
+check "missing scenario" 2 "$GPM" simulate "$tmp/none.yaml" -o "$tmp/none"
+expect_err "missing file" "none.yaml: cannot open file"
+check "missing -o" 2 "$GPM" simulate "$tmp/short.yaml"
+mkdir -p "$tmp/keep" && echo old >"$tmp/keep/samples.csv"
+check "bad run keeps old output" 2 "$GPM" simulate "$tmp/far.yaml" -o "$tmp/keep"
+expect "old file untouched" grep -qx old "$tmp/keep/samples.csv"
+
+echo "$passed passed, $fail failed"
+[[ $fail -eq 0 ]]
