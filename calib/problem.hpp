@@ -55,6 +55,9 @@ struct Result {
   bool converged = true;
   std::vector<std::string> notes;           // warnings and diagnoses, one sentence each
   std::vector<std::pair<long, double>> history;  // (evaluations, best J) for convergence plots
+  // Covariance of all 15 parameters (zero rows/columns for fixed ones), when
+  // the solver computed one (calib/lm.hpp); sigma holds its diagonal's roots.
+  std::optional<Eigen::Matrix<double, kNumParams, kNumParams>> covariance;
 };
 
 }  // namespace gpm::calib

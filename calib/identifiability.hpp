@@ -1,0 +1,58 @@
+// Identifiability of a choice of free parameters from given readings, checked
+// before solving: SVD of the column-scaled Jacobian of the ML residual (one
+// row per sample, calib/residuals.hpp) at the start point.
+//
+// Why the ML residual for every cost: it is invariant under the similarity
+// gauge (translation, rotation, scale of the whole mechanism, ERRATA) at every
+// point, so an unobservable direction shows as an exact zero singular value
+// even far from the solution; the J1/J2/J3 residuals are invariant only where
+// they vanish. J3's l_ac, l_as are a local reparameterisation of l_a, dth and
+// have the same rank.
+#pragma once
+
+#include <string>
+#include <vector>
+
+#include <Eigen/Core>
+
+#include "calib/problem.hpp"
+
+namespace gpm::calib {
+
+// A singular value below kRankTolerance * (largest) counts as zero. Exact gauge
+// directions sit at ~1e-15 in double precision; samples on a straight line
+// (practically but not exactly unidentifiable, ERRATA) at ~1e-9 to 1e-7.
+inline constexpr double kRankTolerance = 1e-11;
+
+// Condition numbers (largest / smallest singular value of the column-scaled
+// Jacobian) above this get a "poorly exciting samples" warning. Samples spread
+// over a disc of radius 80 mm around home give about 1e3 to 1e4 with the default
+// gauge; samples on a line give 1e7 and more.
+inline constexpr double kPoorConditioning = 1e6;
+
+struct Identifiability {
+  std::vector<int> free_index;       // parameter index of each column
+  Eigen::VectorXd singular_values;   // of the column-scaled Jacobian, descending
+  int rank = 0;
+  double condition_number = 0.0;     // sigma_max / sigma_min (inf when rank-deficient)
+  // Null directions in parameter units (one column each, rows as free_index),
+  // unit length in the scaled metric.
+  Eigen::MatrixXd null_vectors;
+  std::string description;  // the unobservable direction(s) in words; empty when full rank
+  std::string advice;       // which coordinate(s) to fix; empty when full rank
+};
+
+// The four generators of the similarity gauge at geometry g as columns of a
+// 15x4 matrix: translation along x, along y, rotation about A1 (bases turn,
+// all offsets shift by the same angle), scale about A1 (bases and all
+// lengths grow in proportion). Each leaves every ML residual unchanged.
+Eigen::Matrix<double, kNumParams, 4> gauge_generators(const Geometry& g);
+
+// Jacobian (n x 15) of the ML residuals of readings theta_m at geometry g.
+Eigen::MatrixXd ml_jacobian(const std::vector<Eigen::Vector3d>& theta_m, const Geometry& g);
+
+// Rank, conditioning and null directions of the free set at geometry g.
+Identifiability analyse_identifiability(const std::vector<Eigen::Vector3d>& theta_m,
+                                        const Geometry& g, const FreeMask& free);
+
+}  // namespace gpm::calib

@@ -1,0 +1,258 @@
+#include "calib/lm.hpp"
+
+#include <chrono>
+#include <cmath>
+#include <limits>
+#include <memory>
+
+#include <ceres/ceres.h>
+#include <Eigen/Dense>
+#include <fmt/format.h>
+
+#include "calib/identifiability.hpp"
+#include "calib/kmrmse.hpp"
+#include "calib/parameterization.hpp"
+#include "calib/residuals.hpp"
+#include "calib/sample_check.hpp"
+#include "models/errors.hpp"
+
+namespace gpm::calib {
+namespace {
+
+using Mat15 = Eigen::Matrix<double, kNumParams, kNumParams>;
+constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
+
+// Residuals (stacked) and their Jacobian w.r.t. all 15 solver slots at x.
+struct Evaluation {
+  Eigen::VectorXd r;
+  Eigen::MatrixXd J;
+  bool ok = true;
+};
+
+Evaluation evaluate(const std::vector<std::unique_ptr<ceres::CostFunction>>& f, const ParamVector& x,
+                    int rows, bool with_jacobian) {
+  Evaluation e;
+  const auto m = static_cast<Eigen::Index>(f.size()) * rows;
+  e.r.resize(m);
+  if (with_jacobian) e.J.resize(m, kNumParams);
+  Eigen::Matrix<double, Eigen::Dynamic, kNumParams, Eigen::RowMajor> Jj(rows, kNumParams);
+  const double* params[] = {x.data()};
+  for (size_t j = 0; j < f.size(); ++j) {
+    double* jac[] = {Jj.data()};
+    double* r = e.r.data() + static_cast<Eigen::Index>(j) * rows;
+    if (!f[j]->Evaluate(params, r, with_jacobian ? jac : nullptr)) {
+      e.ok = false;
+      return e;
+    }
+    if (with_jacobian) e.J.middleRows(static_cast<Eigen::Index>(j) * rows, rows) = Jj;
+  }
+  return e;
+}
+
+// Minimum-norm Levenberg-Marquardt for a rank-deficient free set: each step
+// is the damped pseudo-inverse step restricted to the `rank` largest singular
+// directions of the column-scaled Jacobian, so it never moves along the
+// unobservable family and ends at the member nearest the start (first order).
+void truncated_svd_lm(const std::vector<std::unique_ptr<ceres::CostFunction>>& f, int rows,
+                      const FreeMask& free, int rank, int max_iterations, ParamVector& x,
+                      Result& res) {
+  std::vector<int> idx;
+  for (int i = 0; i < kNumParams; ++i)
+    if (free.test(static_cast<size_t>(i))) idx.push_back(i);
+  const auto p = static_cast<Eigen::Index>(idx.size());
+  Evaluation e = evaluate(f, x, rows, true);
+  res.evaluations = 1;
+  if (!e.ok) throw InputError("start geometry: a sample has collinear elbows (no forward kinematics)");
+  Eigen::VectorXd D(p);  // column scales, frozen at the start
+  for (Eigen::Index k = 0; k < p; ++k) D[k] = std::max(e.J.col(idx[static_cast<size_t>(k)]).norm(), 1e-300);
+  double cost = e.r.squaredNorm();
+  double lambda = -1.0;
+  res.converged = false;
+  long it = 0;
+  for (; it < max_iterations; ++it) {
+    Eigen::MatrixXd Js(e.J.rows(), p);
+    for (Eigen::Index k = 0; k < p; ++k) Js.col(k) = e.J.col(idx[static_cast<size_t>(k)]) / D[k];
+    const Eigen::JacobiSVD<Eigen::MatrixXd> svd(Js, Eigen::ComputeThinU | Eigen::ComputeThinV);
+    const Eigen::VectorXd s = svd.singularValues();
+    if (lambda < 0.0) lambda = 1e-6 * s[0] * s[0];
+    const Eigen::VectorXd Utr = svd.matrixU().transpose() * e.r;
+    bool accepted = false;
+    for (int attempt = 0; attempt < 30 && !accepted; ++attempt) {
+      Eigen::VectorXd step_s = Eigen::VectorXd::Zero(p);
+      for (int k = 0; k < rank; ++k) step_s -= svd.matrixV().col(k) * (s[k] / (s[k] * s[k] + lambda) * Utr[k]);
+      ParamVector xt = x;
+      for (Eigen::Index k = 0; k < p; ++k) xt[static_cast<size_t>(idx[static_cast<size_t>(k)])] += step_s[k] / D[k];
+      const Evaluation et = evaluate(f, xt, rows, false);
+      ++res.evaluations;
+      const double cost_t = et.ok ? et.r.squaredNorm() : std::numeric_limits<double>::infinity();
+      if (cost_t < cost) {
+        const double drop = (cost - cost_t) / std::max(cost, 1e-300);
+        double xs = 0.0;
+        for (Eigen::Index k = 0; k < p; ++k) xs += std::pow(x[static_cast<size_t>(idx[static_cast<size_t>(k)])] * D[k], 2);
+        x = xt;
+        cost = cost_t;
+        lambda = std::max(lambda / 3.0, 1e-20 * s[0] * s[0]);
+        accepted = true;
+        if (drop < 1e-14 || step_s.norm() < 1e-13 * (std::sqrt(xs) + 1e-13) || cost == 0.0) {
+          res.converged = true;
+        }
+      } else {
+        lambda *= 4.0;
+      }
+    }
+    if (!accepted) {  // no decrease possible along the observable directions: at the floor
+      res.converged = true;
+      break;
+    }
+    if (res.converged) break;
+    e = evaluate(f, x, rows, true);
+    ++res.evaluations;
+  }
+  res.iterations = it + 1;
+}
+
+}  // namespace
+
+Result calibrate_lm(const Problem& problem, const LmOptions& opt) {
+  const auto t0 = std::chrono::steady_clock::now();
+  check_samples(problem);
+  check_free_set(problem.free, opt.cost);
+  if (opt.max_iterations < 1) throw InputError("--budget: LM needs at least one iteration");
+  if (opt.encoder_sigma && !(*opt.encoder_sigma > 0.0 && std::isfinite(*opt.encoder_sigma)))
+    throw InputError(fmt::format("--sigma: encoder noise must be a positive number of radians, got {}",
+                                 *opt.encoder_sigma));
+
+  Result res;
+  res.method = "lm";
+  res.cost = opt.cost;
+  res.free = problem.free;
+  res.sigma.fill(kNaN);
+  const size_t n = problem.theta_m.size();
+  const int p = static_cast<int>(problem.free.count());
+
+  // Identifiability first.
+  const Identifiability id = analyse_identifiability(problem.theta_m, problem.start, problem.free);
+  res.rank = id.rank;
+  res.condition_number = id.condition_number;
+  if (id.rank < p) {
+    if (!opt.allow_rank_deficient) {
+      throw InputError(fmt::format(
+          "--fix: the {} free parameters ({}) are not identifiable from encoder angles (rank {} of "
+          "{}): {}; {}, or pass --allow-rank-deficient for a minimum-norm solution",
+          p, format_param_list(problem.free), id.rank, p, id.description, id.advice));
+    }
+    res.rank_deficient = true;
+    res.notes.push_back(fmt::format(
+        "rank-deficient free set (rank {} of {}): {}; solved anyway with a minimum-norm "
+        "(truncated-SVD) Levenberg-Marquardt step, so the estimate is the member of that family "
+        "nearest the start, not necessarily the true geometry; {}",
+        id.rank, p, id.description, id.advice));
+  } else if (id.condition_number > kPoorConditioning) {
+    res.notes.push_back(fmt::format(
+        "poorly exciting samples: condition number {:.3g} of the scaled Jacobian exceeds {:.0e}; "
+        "the estimates are very sensitive to noise (spread the samples over the workspace)",
+        id.condition_number, kPoorConditioning));
+  }
+
+  const int rows = residual_rows(opt.cost);
+  ParamVector x = to_solver(problem.start, opt.cost);
+  std::vector<std::unique_ptr<ceres::CostFunction>> functions;
+  functions.reserve(n);
+  for (const auto& t : problem.theta_m) functions.emplace_back(make_residual(opt.cost, t));
+
+  ceres::Problem::Options po;
+  po.cost_function_ownership = ceres::DO_NOT_TAKE_OWNERSHIP;
+  ceres::Problem cp(po);
+  for (const auto& f : functions) cp.AddResidualBlock(f.get(), nullptr, x.data());
+  std::vector<int> constant;
+  for (int i = 0; i < kNumParams; ++i)
+    if (!problem.free.test(static_cast<size_t>(i))) constant.push_back(i);
+  if (!constant.empty()) cp.SetManifold(x.data(), new ceres::SubsetManifold(kNumParams, constant));
+
+  if (res.rank_deficient) {
+    truncated_svd_lm(functions, rows, problem.free, id.rank, opt.max_iterations, x, res);
+  } else {
+    ceres::Solver::Options so;
+    so.trust_region_strategy_type = ceres::LEVENBERG_MARQUARDT;
+    so.linear_solver_type = ceres::DENSE_QR;
+    so.max_num_iterations = opt.max_iterations;
+    so.function_tolerance = 1e-15;
+    so.gradient_tolerance = 1e-16;
+    so.parameter_tolerance = 1e-14;
+    so.num_threads = 1;
+    so.logging_type = ceres::SILENT;
+    ceres::Solver::Summary summary;
+    ceres::Solve(so, &cp, &summary);
+    res.iterations = static_cast<long>(summary.num_successful_steps + summary.num_unsuccessful_steps);
+    // Each Jacobian evaluation also evaluates the residuals: count both kinds.
+    res.evaluations = summary.num_residual_evaluations + summary.num_jacobian_evaluations;
+    res.converged = summary.termination_type == ceres::CONVERGENCE;
+    if (!res.converged) {
+      res.notes.push_back(fmt::format("Levenberg-Marquardt did not converge: {}", summary.message));
+    }
+  }
+
+  res.geometry = from_solver(x, opt.cost);
+  const Evaluation fin = evaluate(functions, x, rows, true);
+  const double ssq = fin.ok ? fin.r.squaredNorm() : kNaN;
+  res.final_cost = paper_cost(opt.cost, ssq);
+
+  // 1-sigma from ceres::Covariance: C0 = (J'J)^-1 on the free parameters.
+  if (opt.compute_covariance && !res.rank_deficient && fin.ok) {
+    ceres::Covariance::Options co;
+    co.algorithm_type = ceres::DENSE_SVD;
+    co.num_threads = 1;
+    ceres::Covariance cov(co);
+    const std::vector<std::pair<const double*, const double*>> blocks = {{x.data(), x.data()}};
+    Mat15 C0 = Mat15::Zero();
+    if (cov.Compute(blocks, &cp) && cov.GetCovarianceBlock(x.data(), x.data(), C0.data())) {
+      C0 = C0.transpose().eval();  // row-major from Ceres; symmetric anyway
+      Mat15 C;
+      if (opt.encoder_sigma) {
+        // Sandwich with the residuals' covariance under reading noise:
+        // cov(r_j) = sigma^2 R_j R_j', R_j = d r_j / d theta_m (central differences).
+        const double s2 = *opt.encoder_sigma * *opt.encoder_sigma;
+        Mat15 M = Mat15::Zero();
+        const double h = 1e-6;
+        for (size_t j = 0; j < n; ++j) {
+          Eigen::MatrixXd R(rows, 3);
+          for (int k = 0; k < 3; ++k) {
+            Eigen::Vector3d tp = problem.theta_m[j], tm = problem.theta_m[j];
+            tp[k] += h;
+            tm[k] -= h;
+            std::unique_ptr<ceres::CostFunction> fp(make_residual(opt.cost, tp)), fm(make_residual(opt.cost, tm));
+            Eigen::VectorXd rp(rows), rm(rows);
+            const double* params[] = {x.data()};
+            fp->Evaluate(params, rp.data(), nullptr);
+            fm->Evaluate(params, rm.data(), nullptr);
+            R.col(k) = (rp - rm) / (2.0 * h);
+          }
+          const auto Jj = fin.J.middleRows(static_cast<Eigen::Index>(j) * rows, rows);
+          const Eigen::MatrixXd JR = Jj.transpose() * R;
+          M += s2 * JR * JR.transpose();
+        }
+        C = C0 * M * C0;
+      } else if (static_cast<int>(n) > p) {
+        C = (ssq / static_cast<double>(static_cast<int>(n) - p)) * C0;
+      } else {
+        C.setConstant(kNaN);
+        res.notes.push_back("no 1-sigma: as many samples as free parameters leave no residual to "
+                            "estimate the noise from (give --sigma or more samples)");
+      }
+      const Mat15 T = geometry_jacobian(x, opt.cost);
+      const Mat15 Cg = T * C * T.transpose();
+      res.covariance = Cg;
+      for (int i = 0; i < kNumParams; ++i)
+        if (problem.free.test(static_cast<size_t>(i))) res.sigma[static_cast<size_t>(i)] = std::sqrt(std::max(Cg(i, i), 0.0));
+    } else {
+      res.notes.push_back("no 1-sigma: the Jacobian at the solution is numerically singular");
+    }
+  }
+
+  if (opt.true_xy && opt.true_xy->size() == n) res.kmrmse_mm = kmrmse(res.geometry, problem.theta_m, *opt.true_xy);
+  res.history.emplace_back(res.evaluations, res.final_cost);
+  res.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+  return res;
+}
+
+}  // namespace gpm::calib

@@ -1,0 +1,42 @@
+// Levenberg-Marquardt calibration (Ceres) of the free parameters of a Problem
+// with one of the error functions J1, J2, J3, ML (calib/residuals.hpp):
+// identifiability first (calib/identifiability.hpp), then the solve, then the
+// 1-sigma of every estimated parameter (ceres::Covariance) and diagnostics.
+#pragma once
+
+#include <optional>
+#include <vector>
+
+#include <Eigen/Core>
+
+#include "calib/problem.hpp"
+
+namespace gpm::calib {
+
+struct LmOptions {
+  Cost cost = Cost::kML;
+  // Encoder noise (rad, 1-sigma, iid). Given: the covariance is the sandwich
+  // (J'J)^-1 J' S J (J'J)^-1 with S the residuals' covariance under that noise
+  // (for ML exactly sigma^2 (J'J)^-1, the Cramer-Rao bound at the solution).
+  // Not given: sigma^2 is estimated from the residuals (sum r^2 / (n - p)).
+  std::optional<double> encoder_sigma;
+  // Solve a rank-deficient free set anyway with a minimum-norm (truncated-SVD)
+  // Levenberg-Marquardt step, instead of refusing it.
+  bool allow_rank_deficient = false;
+  int max_iterations = 200;
+  // True end-effector positions of the samples, for kmrmse (eq. 40); optional.
+  const std::vector<Eigen::Vector2d>* true_xy = nullptr;
+  // Compute the covariance (a few ms); off for speed in benchmarks.
+  bool compute_covariance = true;
+};
+
+// Estimates problem.free from problem.theta_m starting at problem.start.
+// Throws InputError for bad input: fewer samples than free parameters, a
+// sample whose circles do not meet, J3 with only one of la_i/dth_i free, or a
+// rank-deficient free set (one line naming the unobservable direction and
+// what to fix) unless allow_rank_deficient. Result.converged is false when LM
+// stops without meeting its tolerances. Result.notes carries warnings (poor
+// conditioning, rank deficiency) for the caller to print.
+Result calibrate_lm(const Problem& problem, const LmOptions& options);
+
+}  // namespace gpm::calib

@@ -1,0 +1,19 @@
+// Parameter values of the paper's simulation experiments (reference/paper.md
+// sections 3.3 and 4.4), with the ERRATA applied, for tests, studies and
+// benchmarks. Millimetres and radians.
+#pragma once
+
+#include "models/parameters.hpp"
+
+namespace gpm::calib {
+
+// Section 3.3 "actual" values (Tables 2-4): offsets 1.0 rad; la = 244.1,
+// 244.2, 244.5 (ERRATA: 243.5 is a misprint in section 3), lb = 243.8, 244.2,
+// 244.2; A2 = (433.04, 0), A3 = (433.05, 499.96); A1 nominal.
+Geometry section3_actual();
+
+// Table 5 "actual" values (section 4.4): A2 = (433, 0.3), A3 = (433.5, 499.4),
+// la = 244.1, 244.2, 243.5, lb = 243.8, 244.2, 244.6, offsets 0.01, -0.01, 0.01.
+Geometry table5_actual();
+
+}  // namespace gpm::calib

@@ -1,0 +1,57 @@
+#include "calib/sample_check.hpp"
+
+#include <cmath>
+
+#include <fmt/format.h>
+
+#include "models/errors.hpp"
+#include "models/kinematics.hpp"
+
+namespace gpm::calib {
+
+void check_samples(const Problem& problem, const std::vector<std::string>& labels) {
+  const size_t n = problem.theta_m.size();
+  const size_t p = problem.free.count();
+  if (p == 0) {
+    throw InputError("--fix: every parameter is fixed; nothing to estimate (free at least one of "
+                     "xa1 ... dth3)");
+  }
+  if (n < p) {
+    throw InputError(fmt::format("samples: {} sample{} for {} free parameters; need at least {} "
+                                 "(fix more parameters or record more samples)",
+                                 n, n == 1 ? "" : "s", p, p));
+  }
+  const Geometry& g = problem.start;
+  auto name = [&](size_t j) {
+    return j < labels.size() ? labels[j] : fmt::format("sample {}", j);
+  };
+  for (size_t j = 0; j < n; ++j) {
+    const Eigen::Vector3d& t = problem.theta_m[j];
+    if (!t.allFinite()) throw InputError(fmt::format("{}: readings must be finite", name(j)));
+    const auto B = elbows(g, active_from_readings(g, t));
+    for (int a = 0; a < kNumChains; ++a) {
+      for (int b = a + 1; b < kNumChains; ++b) {
+        const double d = (B[static_cast<size_t>(a)] - B[static_cast<size_t>(b)]).norm();
+        const double hi = g.lb_(a) + g.lb_(b), lo = std::abs(g.lb_(a) - g.lb_(b));
+        // The start geometry is only approximate, so a gap of a few mm is
+        // normal; a gap beyond kCircleGapTolerance of the link reach means the
+        // readings cannot belong to this robot.
+        const double tol = kCircleGapTolerance * hi;
+        if (d > hi + tol || d < lo - tol) {
+          throw InputError(fmt::format(
+              "{}: the passive circles of chains {} and {} do not meet at the start geometry "
+              "(elbows {:.3f} mm apart, the links reach {:.3f} to {:.3f} mm, tolerance {:.1f} mm): "
+              "the readings do not fit this robot (wrong sample, or a start far off: check --model "
+              "and the offsets)",
+              name(j), a + 1, b + 1, d, lo, hi, tol));
+        }
+      }
+    }
+    if (!forward_kinematics(g, active_from_readings(g, t))) {
+      throw InputError(fmt::format("{}: the three elbows are collinear at the start geometry (no "
+                                   "unique end-effector); drop this sample", name(j)));
+    }
+  }
+}
+
+}  // namespace gpm::calib
