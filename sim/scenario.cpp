@@ -213,7 +213,7 @@ Scenario scenario_from_yaml(const YAML::Node& root, const std::string& file, con
   if (!root.IsMap()) fail(c, root, "expected a map of sections (see scenarios/SCHEMA.md)");
   yaml_check_keys(root, file, "",
                   {"name", "description", "robot", "seed", "actual", "physics", "servo", "encoder",
-                   "sampling", "path", "log", "calibration", "expect", "hardware", "outputs", "render"});
+                   "sampling", "path", "log", "calibration", "compensation", "expect", "hardware", "outputs", "render"});
   Scenario s;
   s.file = file;
   s.name = root["name"] ? yaml_string(root["name"], file, "name")
