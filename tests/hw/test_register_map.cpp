@@ -1,0 +1,70 @@
+// Tests of hw/register_map.cpp: parsing, clear errors, count conversions.
+#include <gtest/gtest.h>
+
+#include "hw/register_map.hpp"
+#include "hw_test_util.hpp"
+#include "models/errors.hpp"
+
+namespace gpm::hw {
+namespace {
+
+const std::string kSrc = GPM_SOURCE_DIR;
+
+std::string error_of(const std::string& text) {
+  try {
+    parse_register_map(text, "map.yaml");
+  } catch (const InputError& e) {
+    return e.what();
+  }
+  return "";
+}
+
+TEST(RegisterMap, ExamplesLoadAndRoundTrip) {
+  const RegisterMap m = load_register_map(kSrc + "/hw/examples/register_map_emulator.yaml");
+  EXPECT_EQ(m.host, "127.0.0.1");
+  EXPECT_EQ(m.axes[2].unit_id, 3);
+  EXPECT_EQ(m.axes[0].actual_position, 12);
+  EXPECT_EQ(m.axes[1].fault.bit, 3);
+  EXPECT_EQ(parse_register_map(register_map_to_yaml(m), "x"), m);
+  EXPECT_NO_THROW(load_register_map(kSrc + "/hw/examples/register_map_example_drive.yaml"));
+}
+
+TEST(RegisterMap, RefusesHostNamesAndBadKeys) {
+  std::string t = test::read_text(kSrc + "/hw/examples/register_map_emulator.yaml");
+  std::string bad = t;
+  bad.replace(bad.find("127.0.0.1"), 9, "drives.local");
+  EXPECT_NE(error_of(bad).find("connection.host: 'drives.local' is not an IPv4 address"),
+            std::string::npos)
+      << error_of(bad);
+  bad = t;
+  bad.replace(bad.find("sign: 1"), 7, "sign: 0");
+  EXPECT_NE(error_of(bad).find("axes[0].sign"), std::string::npos) << error_of(bad);
+  bad = t;
+  bad.replace(bad.find("position_command: 2 "), 20, "position_command: 11");
+  EXPECT_NE(error_of(bad).find("overlap"), std::string::npos) << error_of(bad);
+  bad = t;
+  bad.replace(bad.find("    counts_per_rev: 131072\n"), 27, "");
+  EXPECT_NE(error_of(bad).find("missing key 'counts_per_rev'"), std::string::npos) << error_of(bad);
+}
+
+TEST(RegisterMap, CountsConversions) {
+  AxisRegisters a;
+  a.counts_per_rev = 131072;
+  a.sign = -1;
+  a.offset_counts = 1000;
+  for (double th : {0.0, 1.0, 3.0, 4.8, 6.2}) {
+    const std::int32_t c = theta_to_counts(a, th);
+    EXPECT_NEAR(counts_to_theta(a, c), th, 2 * M_PI / 131072 / 2 + 1e-12);
+  }
+  for (WordOrder o : {WordOrder::kHighFirst, WordOrder::kLowFirst}) {
+    for (std::int32_t v : {0, 1, -1, 123456789, -2147483647 - 1}) {
+      const auto r = split32(v, o);
+      EXPECT_EQ(join32(r.data(), o), v);
+    }
+  }
+  EXPECT_EQ(split32(0x12345678, WordOrder::kHighFirst)[0], 0x1234);
+  EXPECT_EQ(split32(0x12345678, WordOrder::kLowFirst)[0], 0x5678);
+}
+
+}  // namespace
+}  // namespace gpm::hw

@@ -1,0 +1,186 @@
+// Tests of hw/sampling_session.cpp (with the drive emulator, the Modbus
+// transport and the drive backend underneath): the same session on `twin` and
+// on `modbus` gives samples within one encoder count; injected emulator faults
+// end in one clear error, drives disabled, samples so far intact on disk;
+// a resumed session skips what is recorded.
+#include <gtest/gtest.h>
+
+#include "hw/drive_emulator.hpp"
+#include "hw/hardware_config.hpp"
+#include "hw/hw_errors.hpp"
+#include "hw/sampling_session.hpp"
+#include "hw_test_util.hpp"
+#include "models/errors.hpp"
+#include "models/samples.hpp"
+
+namespace gpm::hw {
+namespace {
+
+namespace fs = std::filesystem;
+const std::string kSrc = GPM_SOURCE_DIR;
+const std::string kScenario = kSrc + "/scenarios/simulate_disc.yaml";
+const double kCount = 2 * M_PI / 131072;
+
+SessionPlan plan() {
+  SessionPlan p;
+  p.poses = {{236.5, 260}, {196.5, 240}, {230, 225}, {205, 270}};
+  p.options.move_speed_mm_s = 150;
+  p.options.settle = {0.002, 0.02, 2.0};
+  p.options.average_s = 0.02;
+  return p;
+}
+
+std::string hw_yaml(const std::string& backend, const std::string& extra) {
+  return "backend: " + backend + "\nrate_hz: 250\ncontroller: " + kSrc +
+         "/models/gpm2002.yaml\n" + extra + test::kSafetyYaml;
+}
+
+// Writes the emulator's register map with the given port; returns its path.
+fs::path map_file(const fs::path& dir, int port) {
+  std::string text = test::read_text(kSrc + "/hw/examples/register_map_emulator.yaml");
+  text.replace(text.find("port: 1502"), 10, "port: " + std::to_string(port));
+  const fs::path p = dir / "map.yaml";
+  test::write_text(p, text);
+  return p;
+}
+
+struct ModbusRig {
+  fs::path dir;
+  std::unique_ptr<DriveEmulator> emu;
+  HardwareConfig config;
+  explicit ModbusRig(const std::string& name, const EmulatorFaults& faults = {}) : dir(test::temp_dir(name)) {
+    EmulatorOptions o;
+    o.faults = faults;
+    const RegisterMap map0 = load_register_map(kSrc + "/hw/examples/register_map_emulator.yaml");
+    emu = std::make_unique<DriveEmulator>(map0, twin_config_from_scenario(kScenario, 0.004), o);
+    const int port = emu->start();
+    map_file(dir, port);
+    test::write_text(dir / "hw.yaml", hw_yaml("modbus", "modbus: {register_map: map.yaml}\n"));
+    config = load_hardware_config((dir / "hw.yaml").string());
+  }
+};
+
+Samples run_twin(const fs::path& dir) {
+  test::write_text(dir / "twin.yaml", hw_yaml("twin", "twin: {scenario: " + kScenario + "}\n"));
+  const HardwareConfig c = load_hardware_config((dir / "twin.yaml").string());
+  auto hw = make_hardware(c);
+  SampleLog log((dir / "twin.csv").string(), false);
+  const SessionResult r = run_sampling_session(*hw, plan(), log);
+  EXPECT_EQ(r.taken, 4);
+  return read_samples_csv((dir / "twin.csv").string());
+}
+
+TEST(SamplingSession, TwinAndModbusAgreeWithinOneCount) {
+  ModbusRig rig("parity");
+  const Samples twin = run_twin(rig.dir);
+  auto hw = make_hardware(rig.config);
+  SampleLog log((rig.dir / "modbus.csv").string(), false);
+  const SessionResult r = run_sampling_session(*hw, plan(), log);
+  EXPECT_EQ(r.taken, 4);
+  const Samples mb = read_samples_csv((rig.dir / "modbus.csv").string());
+  ASSERT_EQ(mb.size(), 4u);
+  ASSERT_EQ(twin.size(), 4u);
+  double worst = 0.0;
+  for (size_t k = 0; k < 4; ++k)
+    for (int i = 0; i < 3; ++i) worst = std::max(worst, std::abs(mb.theta_m[k][i] - twin.theta_m[k][i]));
+  EXPECT_LE(worst, kCount * 1.0001) << "worst difference " << worst / kCount << " counts";
+  std::printf("twin vs modbus: worst difference %.3f encoder counts\n", worst / kCount);
+  EXPECT_EQ(hw->state(), LifecycleState::kFinalized);
+  EXPECT_EQ(rig.emu->power_on(), (std::array<bool, 3>{false, false, false}));
+}
+
+// Runs the session against an emulator with faults; expects one HardwareError,
+// the drives off, and the samples before the fault on disk.
+void expect_fault_handled(const std::string& name, const EmulatorFaults& f, const std::string& words) {
+  ModbusRig rig(name, f);
+  auto hw = make_hardware(rig.config);
+  const fs::path csv = rig.dir / "s.csv";
+  std::string message;
+  {
+    SampleLog log(csv.string(), false);
+    try {
+      run_sampling_session(*hw, plan(), log);
+    } catch (const HardwareError& e) {
+      message = e.what();
+    }
+  }
+  EXPECT_NE(message, "") << name << ": no error";
+  EXPECT_NE(message.find(words), std::string::npos) << message;
+  EXPECT_NE(message.find("samples kept"), std::string::npos) << message;
+  EXPECT_EQ(message.find('\n'), std::string::npos);
+  // Drives disabled: by the client, or by the drives' own comms watchdog.
+  for (int k = 0; k < 300 && rig.emu->power_on() != std::array<bool, 3>{}; ++k)
+    std::this_thread::sleep_for(std::chrono::milliseconds(10));
+  EXPECT_EQ(rig.emu->power_on(), (std::array<bool, 3>{false, false, false})) << name;
+  const Samples s = read_samples_csv(csv.string());
+  EXPECT_GE(s.size(), 1u) << name;
+  EXPECT_LT(s.size(), 4u) << name;
+  std::printf("%s: %zu samples kept; error: %s\n", name.c_str(), s.size(), message.c_str());
+}
+
+// About 300 cycles (2 writes each) reach the first sample.
+constexpr long kAfterFirstSample = 900;
+
+TEST(SamplingSession, FaultConnectionDropped) {
+  EmulatorFaults f;
+  f.drop_after_writes = kAfterFirstSample;
+  expect_fault_handled("drop", f, "modbus-tcp 127.0.0.1");
+}
+
+TEST(SamplingSession, FaultDelayedReplies) {
+  EmulatorFaults f;
+  f.delay_after_writes = kAfterFirstSample;
+  f.delay_s = 0.2;
+  expect_fault_handled("delay", f, "127.0.0.1");
+}
+
+TEST(SamplingSession, FaultBitSet) {
+  EmulatorFaults f;
+  f.fault_after_writes = kAfterFirstSample;
+  f.fault_axis = 1;
+  expect_fault_handled("fault", f, "drive 2 reports a fault (fault code 0x2310");
+}
+
+TEST(SamplingSession, FaultGarbageRegisters) {
+  EmulatorFaults f;
+  f.garbage_after_writes = kAfterFirstSample;
+  f.garbage_axis = 2;
+  expect_fault_handled("garbage", f, "drive 3: implausible encoder reading");
+}
+
+TEST(SamplingSession, ResumeSkipsRecordedPoses) {
+  const fs::path dir = test::temp_dir("resume");
+  test::write_text(dir / "twin.yaml", hw_yaml("twin", "twin: {scenario: " + kScenario + "}\n"));
+  const HardwareConfig c = load_hardware_config((dir / "twin.yaml").string());
+  SessionPlan p = plan();
+  p.poses.resize(2);
+  {
+    auto hw = make_hardware(c);
+    SampleLog log((dir / "s.csv").string(), false);
+    EXPECT_EQ(run_sampling_session(*hw, p, log).taken, 2);
+  }
+  const std::string first = test::read_text(dir / "s.csv");
+  p = plan();
+  auto hw = make_hardware(c);
+  SampleLog log((dir / "s.csv").string(), true);
+  const SessionResult r = run_sampling_session(*hw, p, log);
+  EXPECT_EQ(r.skipped, 2);
+  EXPECT_EQ(r.taken, 2);
+  const std::string all = test::read_text(dir / "s.csv");
+  EXPECT_EQ(all.substr(0, first.size()), first);
+  EXPECT_EQ(read_samples_csv((dir / "s.csv").string()).size(), 4u);
+}
+
+TEST(SamplingSession, PoseOutsideTheLimitsIsRefusedBeforeMoving) {
+  const fs::path dir = test::temp_dir("outside");
+  test::write_text(dir / "twin.yaml", hw_yaml("twin", "twin: {scenario: " + kScenario + "}\n"));
+  auto hw = make_hardware(load_hardware_config((dir / "twin.yaml").string()));
+  SessionPlan p = plan();
+  p.poses.push_back({216.5 + 100, 250});
+  SampleLog log((dir / "s.csv").string(), false);
+  EXPECT_THROW(run_sampling_session(*hw, p, log), InputError);
+  EXPECT_EQ(hw->state(), LifecycleState::kUnconfigured);
+}
+
+}  // namespace
+}  // namespace gpm::hw
