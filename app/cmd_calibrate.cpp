@@ -1,13 +1,188 @@
-// gpm calibrate: Identify kinematic parameters from encoder samples.
-// Placeholder until Calibration from encoder data (issue 4) lands.
+// gpm calibrate: identify kinematic parameters from encoder samples (paper
+// section 3; DESIGN.md command line). Parses, calls calib/, prints, writes the
+// result YAML atomically. Bad input: exit 2 with one line; LM not converged:
+// the result is written (diagnostics.converged: false) and the exit code is 1.
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+#include <fstream>
+#include <sstream>
+#include <string>
+#include <vector>
+
+#include <fmt/format.h>
+
 #include "app/commands.hpp"
+#include "calib/initial.hpp"
+#include "calib/lm.hpp"
+#include "calib/result_yaml.hpp"
+#include "calib/sample_check.hpp"
+#include "models/errors.hpp"
+#include "models/robot_yaml.hpp"
+#include "models/samples.hpp"
 
 namespace gpm::cli {
+namespace {
+
+struct CalibrateOptions {
+  std::string data, model, out;
+  std::string fix = "xa1,ya1,xa2,ya2";
+  std::string cost = "ml";
+  std::string method = "lm";
+  std::string init = "model";
+  std::string reference_reading, reference_point;
+  long seed = 1;
+  long budget = 200;
+  double sigma = 0.0;
+  bool sigma_given = false;
+  bool allow_rank_deficient = false;
+};
+
+// "FILE:LINE (sample ID)" for each data row, counting lines as the CSV reader
+// does (first non-blank line is the header, blank lines are skipped).
+std::vector<std::string> row_labels(const std::string& path, const Samples& s) {
+  std::ifstream in(path, std::ios::binary);
+  std::string line;
+  std::vector<std::string> out;
+  int line_no = 0;
+  bool header = false;
+  while (std::getline(in, line)) {
+    ++line_no;
+    if (line.find_first_not_of(" \t\r") == std::string::npos) continue;
+    if (!header) {
+      header = true;
+      continue;
+    }
+    const size_t j = out.size();
+    out.push_back(fmt::format("{}:{} (sample {})", path, line_no, j < s.id.size() ? s.id[j] : static_cast<long>(j)));
+  }
+  return out;
+}
+
+// Parses "a,b[,c]" into exactly n finite numbers; flag names the option.
+std::vector<double> parse_numbers(const std::string& text, size_t n, const std::string& flag,
+                                  const std::string& example) {
+  std::vector<double> v;
+  std::stringstream ss(text);
+  std::string item;
+  while (std::getline(ss, item, ',')) {
+    size_t used = 0;
+    double x = 0.0;
+    try {
+      x = std::stod(item, &used);
+    } catch (const std::exception&) {
+      used = 0;
+    }
+    while (used < item.size() && item[used] == ' ') ++used;
+    if (used == 0 || used != item.size() || !std::isfinite(x)) {
+      throw InputError(fmt::format("{}: '{}' is not a finite number (expected {} comma-separated numbers, e.g. {})",
+                                   flag, item, n, example));
+    }
+    v.push_back(x);
+  }
+  if (v.size() != n) {
+    throw InputError(fmt::format("{}: expected {} comma-separated numbers, e.g. {}; got {}", flag, n, example, v.size()));
+  }
+  return v;
+}
+
+void run(const CalibrateOptions& o) {
+  const auto cost = calib::parse_cost(o.cost);
+  if (!cost) throw InputError(fmt::format("--cost: '{}' is not one of j1, j2, j3, ml", o.cost));
+  if (o.method != "lm") {
+    if (o.method == "ga" || o.method == "pso" || o.method == "de" || o.method == "de+lm") {
+      throw InputError(fmt::format("--method {}: not available yet (the global optimisers of "
+                                   "calib/global are not wired in; use --method lm)", o.method));
+    }
+    throw InputError(fmt::format("--method: '{}' is unknown (valid: lm; ga, pso, de, de+lm to come)", o.method));
+  }
+  if (o.budget < 1) throw InputError(fmt::format("--budget: must be at least 1, got {}", o.budget));
+  const std::string model_path = o.model.empty() ? default_model_path() : o.model;
+  const Robot robot = load_robot(model_path);
+  const Samples samples = read_samples_csv(o.data);
+  const FreeMask fixed = parse_param_list(o.fix, "--fix");
+
+  calib::Problem problem;
+  problem.theta_m = samples.theta_m;
+  problem.free = ~fixed;
+  problem.start = robot.geometry;
+  const bool reference = o.init == "reference" || !o.reference_reading.empty();
+  if (o.init != "model" && o.init != "reference") {
+    throw InputError(fmt::format("--init: '{}' is not model or reference", o.init));
+  }
+  if (reference) {
+    if (o.reference_reading.empty()) {
+      throw InputError("--init reference: give the encoder readings at the reference point with "
+                       "--reference-reading T1,T2,T3 (rad)");
+    }
+    const auto t = parse_numbers(o.reference_reading, 3, "--reference-reading", "1.02,3.05,4.80");
+    Eigen::Vector2d ref = robot.home;
+    if (!o.reference_point.empty()) {
+      const auto p = parse_numbers(o.reference_point, 2, "--reference-point", "216.5,250");
+      ref = {p[0], p[1]};
+    }
+    problem.start = calib::offsets_from_reference(robot, {t[0], t[1], t[2]}, ref);
+  } else if (!o.reference_point.empty()) {
+    throw InputError("--reference-point: only meaningful with --reference-reading T1,T2,T3");
+  }
+
+  calib::check_samples(problem, row_labels(o.data, samples));
+  calib::LmOptions lm;
+  lm.cost = *cost;
+  lm.allow_rank_deficient = o.allow_rank_deficient;
+  lm.max_iterations = static_cast<int>(std::min<long>(o.budget, 1000000));
+  if (o.sigma_given) {
+    if (!(o.sigma > 0.0) || !std::isfinite(o.sigma))
+      throw InputError(fmt::format("--sigma: encoder noise must be a positive number of radians, got {}", o.sigma));
+    lm.encoder_sigma = o.sigma;
+  }
+  if (samples.has_xy) lm.true_xy = &samples.xy;
+  const calib::Result r = calib::calibrate_lm(problem, lm);
+
+  for (const auto& note : r.notes) std::fprintf(stderr, "gpm: warning: %s\n", note.c_str());
+  calib::save_result(r, robot.name, o.out);
+
+  fmt::print("calibrated {} from {} samples with {} ({}), {} free parameters\n", robot.name,
+             samples.size(), r.method, calib::cost_name(r.cost), r.free.count());
+  fmt::print("{:<6} {:>16} {:>16} {:>12}\n", "param", "start", "estimate", "1-sigma");
+  for (int i = 0; i < kNumParams; ++i) {
+    if (!r.free.test(static_cast<size_t>(i))) continue;
+    fmt::print("{:<6} {:>16.9f} {:>16.9f} {:>12.3g}\n", param_name(i), problem.start[i], r.geometry[i],
+               r.sigma[static_cast<size_t>(i)]);
+  }
+  fmt::print("J = {:.6g}, iterations {}, evaluations {}, rank {} of {}, condition number {:.4g}",
+             r.final_cost, r.iterations, r.evaluations, r.rank, r.free.count(), r.condition_number);
+  if (r.kmrmse_mm) fmt::print(", kmrmse {:.6g} mm", *r.kmrmse_mm);
+  fmt::print(", {:.3f} s\n", r.seconds);
+  fmt::print("{} -> {}\n", r.converged ? "converged" : "NOT converged", o.out);
+  if (!r.converged) set_exit(1);
+}
+
+}  // namespace
 
 void add_calibrate(CLI::App& app) {
-  auto* cmd = app.add_subcommand("calibrate", "Identify kinematic parameters from encoder samples [not available yet]");
-  cmd->allow_extras();
-  cmd->callback([] { not_available("calibrate", "Calibration from encoder data (issue 4)"); });
+  auto o = std::make_shared<CalibrateOptions>();
+  auto* cmd = app.add_subcommand("calibrate", "Identify kinematic parameters from encoder samples");
+  cmd->add_option("--data", o->data, "Samples CSV: sample,theta_m1,theta_m2,theta_m3[,x,y]")->required();
+  cmd->add_option("--model", o->model, "Robot file (YAML) with the start geometry and known values; default: the nominal GPM2002");
+  cmd->add_option("-o,--output", o->out, "Result file (YAML)")->required();
+  cmd->add_option("--fix", o->fix, "Parameters known and held fixed (comma-separated); at least 4 base coordinates for full rank")
+      ->capture_default_str();
+  cmd->add_option("--cost", o->cost, "Error function: j1 (eq. 37), j2 (eq. 39), j3 (eq. 43), ml (maximum likelihood)")
+      ->capture_default_str();
+  cmd->add_option("--method", o->method, "Solver: lm (ga, pso, de, de+lm to come)")->capture_default_str();
+  cmd->add_option("--seed", o->seed, "Random seed (LM is deterministic and ignores it)");
+  cmd->add_option("--budget", o->budget, "Maximum LM iterations")->capture_default_str();
+  cmd->add_option("--sigma", o->sigma, "Encoder noise 1-sigma (rad) for the uncertainty; default: estimated from the residuals")
+      ->each([o](const std::string&) { o->sigma_given = true; });
+  cmd->add_flag("--allow-rank-deficient", o->allow_rank_deficient,
+                "Solve a rank-deficient free set anyway (minimum-norm step; the result says so)");
+  cmd->add_option("--init", o->init, "Start offsets: model (the robot file) or reference (section 3.2 step 3)")
+      ->capture_default_str();
+  cmd->add_option("--reference-reading", o->reference_reading,
+                  "Encoder readings T1,T2,T3 (rad) at the reference point; implies --init reference");
+  cmd->add_option("--reference-point", o->reference_point, "Reference point X,Y (mm); default: the robot's home");
+  cmd->callback([o] { run(*o); });
 }
 
 }  // namespace gpm::cli

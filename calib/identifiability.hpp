@@ -20,14 +20,15 @@
 namespace gpm::calib {
 
 // A singular value below kRankTolerance * (largest) counts as zero. Exact gauge
-// directions sit at ~1e-15 in double precision; samples on a straight line
-// (practically but not exactly unidentifiable, ERRATA) at ~1e-9 to 1e-7.
-inline constexpr double kRankTolerance = 1e-11;
+// directions measure ~2e-16 in double precision (tests/calib/test_identifiability);
+// 30 samples on a straight line (practically but not exactly unidentifiable,
+// ERRATA) ~7e-12, which is full rank with a poor-conditioning warning.
+inline constexpr double kRankTolerance = 1e-13;
 
 // Condition numbers (largest / smallest singular value of the column-scaled
 // Jacobian) above this get a "poorly exciting samples" warning. Samples spread
-// over a disc of radius 80 mm around home give about 1e3 to 1e4 with the default
-// gauge; samples on a line give 1e7 and more.
+// over a disc of radius 80 mm around home give about 6e3 with the default
+// gauge; 30 samples on a line about 1.5e11.
 inline constexpr double kPoorConditioning = 1e6;
 
 struct Identifiability {
