@@ -1,0 +1,208 @@
+#include "calib/excitation/excitation.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+
+#include <Eigen/Cholesky>
+#include <fmt/format.h>
+
+#include "models/errors.hpp"
+
+namespace gpm::calib::excitation {
+namespace {
+
+// Information matrix sum_{j in chosen} g_j g_j' (unit noise).
+Eigen::MatrixXd information_of(const Eigen::MatrixXd& rows, const std::vector<int>& chosen) {
+  Eigen::MatrixXd M = Eigen::MatrixXd::Zero(rows.cols(), rows.cols());
+  for (int j : chosen) M.selfadjointView<Eigen::Lower>().rankUpdate(rows.row(j).transpose());
+  return M.selfadjointView<Eigen::Lower>();
+}
+
+// M^-1 by Cholesky; nullopt when M is not positive definite.
+std::optional<Eigen::MatrixXd> inverse_spd(const Eigen::MatrixXd& M) {
+  const Eigen::LLT<Eigen::MatrixXd> llt(M);
+  if (llt.info() != Eigen::Success) return std::nullopt;
+  const Eigen::MatrixXd C = llt.solve(Eigen::MatrixXd::Identity(M.rows(), M.cols()));
+  if (!C.allFinite() || (C.diagonal().array() <= 0.0).any()) return std::nullopt;
+  return C;
+}
+
+std::vector<char> membership(Eigen::Index n, const std::vector<int>& chosen) {
+  std::vector<char> in(static_cast<size_t>(n), 0);
+  for (int j : chosen) in[static_cast<size_t>(j)] = 1;
+  return in;
+}
+
+// Objective of scaled variances v: max (q = 0) or sum (v / ref)^q.
+double variance_objective(const Eigen::ArrayXd& v, int q, double ref) {
+  if (q == 0) return v.maxCoeff();
+  double sum = 0.0;
+  for (Eigen::Index k = 0; k < v.size(); ++k) sum += std::pow(v[k] / ref, q);
+  return sum;
+}
+
+}  // namespace
+
+std::optional<Criterion> parse_criterion(std::string_view name) {
+  if (name == "d") return Criterion::kDOptimal;
+  if (name == "worst") return Criterion::kWorst;
+  return std::nullopt;
+}
+
+std::string_view criterion_name(Criterion c) { return c == Criterion::kDOptimal ? "d" : "worst"; }
+
+double criterion_value(Criterion c, const Bounds& b) {
+  return c == Criterion::kDOptimal ? -b.log_det : b.worst_mm;
+}
+
+std::vector<int> greedy_d_optimal(const Eigen::MatrixXd& rows, int count, double delta) {
+  const Eigen::Index n = rows.rows(), p = rows.cols();
+  if (count > n) throw InputError(fmt::format("cannot choose {} poses from {} candidates", count, n));
+  const double mean_sq = rows.squaredNorm() / static_cast<double>(std::max<Eigen::Index>(n, 1));
+  Eigen::MatrixXd Minv = Eigen::MatrixXd::Identity(p, p) / (delta * mean_sq);
+  std::vector<char> used(static_cast<size_t>(n), 0);
+  std::vector<int> chosen;
+  for (int t = 0; t < count; ++t) {
+    // Gain of each candidate: det(M + g g') / det(M) = 1 + g' M^-1 g.
+    const Eigen::VectorXd d = (rows * Minv).cwiseProduct(rows).rowwise().sum();
+    int best = -1;
+    for (Eigen::Index j = 0; j < n; ++j)
+      if (!used[static_cast<size_t>(j)] && (best < 0 || d[j] > d[best])) best = static_cast<int>(j);
+    used[static_cast<size_t>(best)] = 1;
+    chosen.push_back(best);
+    // Sherman-Morrison: (M + g g')^-1 = M^-1 - M^-1 g g' M^-1 / (1 + g' M^-1 g).
+    const Eigen::VectorXd u = Minv * rows.row(best).transpose();
+    Minv -= u * u.transpose() / (1.0 + d[best]);
+  }
+  return chosen;
+}
+
+int exchange_d_optimal(const Eigen::MatrixXd& rows, std::vector<int>& chosen, int max_swaps) {
+  const Eigen::Index n = rows.rows();
+  int swaps = 0;
+  while (swaps < max_swaps) {
+    const auto Minv = inverse_spd(information_of(rows, chosen));
+    if (!Minv) break;
+    const Eigen::MatrixXd U = rows * *Minv;                          // row j: (M^-1 g_j)'
+    const Eigen::VectorXd d = U.cwiseProduct(rows).rowwise().sum();  // d_j = g_j' M^-1 g_j
+    const std::vector<char> in = membership(n, chosen);
+    double best_ratio = 1.0 + 1e-10;
+    int best_slot = -1, best_j = -1;
+    for (size_t a = 0; a < chosen.size(); ++a) {
+      const int i = chosen[a];
+      const Eigen::VectorXd dij = rows * U.row(i).transpose();  // g_j' M^-1 g_i
+      for (Eigen::Index j = 0; j < n; ++j) {
+        if (in[static_cast<size_t>(j)]) continue;
+        // det ratio of swapping i out and j in.
+        const double ratio = (1.0 + d[j]) * (1.0 - d[i]) + dij[j] * dij[j];
+        if (ratio > best_ratio) best_ratio = ratio, best_slot = static_cast<int>(a), best_j = static_cast<int>(j);
+      }
+    }
+    if (best_slot < 0) break;
+    chosen[static_cast<size_t>(best_slot)] = best_j;
+    ++swaps;
+  }
+  return swaps;
+}
+
+int exchange_variances(const Eigen::MatrixXd& rows, std::vector<int>& chosen, int q, int max_swaps) {
+  const Eigen::Index n = rows.rows();
+  int swaps = 0;
+  while (swaps < max_swaps) {
+    const auto C = inverse_spd(information_of(rows, chosen));
+    if (!C) break;
+    const Eigen::ArrayXd c_diag = C->diagonal().array();
+    const double ref = c_diag.maxCoeff();
+    const double current = variance_objective(c_diag, q, ref);
+    const Eigen::MatrixXd U = rows * *C;                             // row j: u_j' = (C g_j)'
+    const Eigen::ArrayXd d = U.cwiseProduct(rows).rowwise().sum().array();
+    const Eigen::ArrayXd a = 1.0 + d;
+    // Adding j alone: diag(C1) = diag(C) - u_j.^2 / (1 + d_j).
+    const Eigen::ArrayXXd after_add =
+        (-(U.array().square().colwise() / a)).rowwise() + c_diag.transpose();
+    const std::vector<char> in = membership(n, chosen);
+    double best = current * (1.0 - 1e-10);
+    int best_slot = -1, best_j = -1;
+    for (size_t s = 0; s < chosen.size(); ++s) {
+      const int i = chosen[s];
+      const Eigen::ArrayXd dij = (rows * U.row(i).transpose()).array();  // g_j' C g_i
+      const Eigen::ArrayXd e = d[i] - dij.square() / a;                   // g_i' C1 g_i
+      // v = C1 g_i = u_i - u_j d_ij / (1 + d_j); diag(C2) = diag(C1) + v.^2 / (1 - e).
+      const Eigen::ArrayXXd v =
+          (-(U.array().colwise() * (dij / a))).rowwise() + U.row(i).array();
+      const Eigen::ArrayXXd after = after_add + v.square().colwise() / (1.0 - e);
+      for (Eigen::Index j = 0; j < n; ++j) {
+        if (in[static_cast<size_t>(j)] || !(1.0 - e[j] > 1e-9)) continue;
+        const Eigen::ArrayXd vj = after.row(j).transpose();
+        if ((vj <= 0.0).any()) continue;
+        const double obj = variance_objective(vj, q, ref);
+        if (obj < best) best = obj, best_slot = static_cast<int>(s), best_j = static_cast<int>(j);
+      }
+    }
+    if (best_slot < 0) break;
+    chosen[static_cast<size_t>(best_slot)] = best_j;
+    ++swaps;
+  }
+  return swaps;
+}
+
+Design design_poses(const Robot& nominal, const DesignOptions& o) {
+  if (!(o.sigma > 0.0) || !std::isfinite(o.sigma))
+    throw InputError(fmt::format("noise sigma must be a positive number of rad, got {}", o.sigma));
+  const int p = static_cast<int>(o.free.count());
+  if (p == 0) throw InputError("no free parameters: nothing to design for");
+  if (o.count < p)
+    throw InputError(fmt::format("{} poses cannot identify {} free parameters (need at least {})",
+                                 o.count, p, p));
+  Design out;
+  const std::vector<Eigen::Vector2d> cand = reachable_grid(nominal, o.grid_step_mm, o.guard);
+  out.candidates = static_cast<int>(cand.size());
+  if (o.count > out.candidates)
+    throw InputError(fmt::format("{} poses requested but the grid of step {} mm has only {} reachable "
+                                 "candidates (use a finer step)", o.count, o.grid_step_mm, out.candidates));
+  const Eigen::MatrixXd rows = information_rows(nominal, o.free, cand);
+  if (!std::isfinite(bounds_from_rows(rows, nominal.geometry, o.free, o.sigma).log_det))
+    throw InputError(fmt::format("free parameters {} cannot be identified from any poses: encoder angles "
+                                 "cannot see a 2-D similarity, fix 4 base coordinates (e.g. --fix xa1,ya1,xa2,ya2)",
+                                 format_param_list(o.free)));
+  // Work in scaled units (all mm) so that C_kk of the scaled rows are the
+  // scaled variances of the worst criterion (fisher.hpp).
+  const Eigen::VectorXd s = parameter_scale(nominal.geometry, o.free);
+  Eigen::MatrixXd rows_s = rows;
+  for (Eigen::Index k = 0; k < rows_s.cols(); ++k) rows_s.col(k) /= s[k];
+
+  auto poses_of = [&](const std::vector<int>& idx) {
+    std::vector<Eigen::Vector2d> ps;
+    for (int j : idx) ps.push_back(cand[static_cast<size_t>(j)]);
+    return ps;
+  };
+  auto bounds_of = [&](const std::vector<int>& idx) {
+    Eigen::MatrixXd r(static_cast<Eigen::Index>(idx.size()), rows.cols());
+    for (size_t k = 0; k < idx.size(); ++k) r.row(static_cast<Eigen::Index>(k)) = rows.row(idx[k]);
+    return bounds_from_rows(r, nominal.geometry, o.free, o.sigma);
+  };
+
+  std::vector<int> chosen = greedy_d_optimal(rows_s, o.count);
+  out.start = poses_of(chosen);
+  out.start_bounds = bounds_of(chosen);
+  std::vector<int> best = chosen;
+  double best_value = criterion_value(o.criterion, out.start_bounds);
+  auto keep_if_better = [&] {
+    const double v = criterion_value(o.criterion, bounds_of(chosen));
+    if (v < best_value) best_value = v, best = chosen;
+  };
+  out.exchanges += exchange_d_optimal(rows_s, chosen, o.max_exchanges);
+  keep_if_better();
+  if (o.criterion == Criterion::kWorst) {
+    for (int q : {1, 4, 16, 0}) {
+      out.exchanges += exchange_variances(rows_s, chosen, q, o.max_exchanges);
+      keep_if_better();
+    }
+  }
+  out.poses = poses_of(best);
+  out.bounds = bounds_of(best);
+  return out;
+}
+
+}  // namespace gpm::calib::excitation

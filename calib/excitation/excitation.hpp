@@ -1,0 +1,103 @@
+// Excitation design: which n calibration poses make the free parameters most
+// accurate (issue 10). Pure calibration mathematics (models/ and calib/, no
+// MuJoCo).
+//
+// The design is made at the NOMINAL geometry (what is known before
+// calibration): the Fisher information of calib/excitation/fisher.hpp,
+//   F(X) = (1/sigma^2) sum_{j in X} g_j g_j',
+// of the ML residual's gradients g_j at the noiseless readings of each pose.
+// Both criteria below are invariant to sigma (it scales F), so the chosen
+// poses do not depend on the noise level; sigma only scales the bounds.
+//
+// Criteria (over designs X of n distinct candidate poses):
+//   D-optimal:  maximise log det F(X)  (the volume of the confidence
+//               ellipsoid shrinks; invariant to parameter units);
+//   worst:      minimise max_k s_k sqrt(C_kk),  C = F(X)^-1, s_k = 1 for mm
+//               parameters and la_i for dth_i (the elbow displacement an
+//               offset error causes), i.e. the worst parameter's Cramer-Rao
+//               bound in mm.
+//
+// Algorithm:
+//  1. candidates: the reachable grid with margins (candidates.hpp);
+//  2. greedy start (Wynn / sequential D-optimal): starting from a small ridge
+//     M = delta I, add the candidate maximising g' M^-1 g, since
+//     det(M + g g') = det(M) (1 + g' M^-1 g);
+//  3. exchange (Fedorov): swap a chosen pose i for a candidate j while the
+//     criterion improves. For D the determinant ratio of a swap is
+//       det(M - g_i g_i' + g_j g_j') / det M = (1 + d_j)(1 - d_i) + d_ij^2,
+//     d_i = g_i' M^-1 g_i, d_ij = g_i' M^-1 g_j; the best pair is swapped
+//     until no ratio exceeds 1. For worst, the new variances of every swap
+//     follow from two Sherman-Morrison rank-one updates in O(p):
+//       add j:    C1 = C - u_j u_j' / (1 + d_j),             u_j = C g_j
+//       remove i: C2 = C1 + v v' / (1 - g_i' C1 g_i),        v = C1 g_i
+//     so diag(C2) = diag(C) - u_j.^2 / (1 + d_j) + v.^2 / (1 - d_i + d_ij^2 / (1 + d_j)),
+//     v = u_i - u_j d_ij / (1 + d_j). The max is not smooth (ties stall a
+//     steepest exchange), so the exchange first minimises the smooth
+//     surrogates sum_k (s_k^2 C_kk)^q for q = 1 (A-optimal), 4, 16, then the
+//     exact max.
+//  The result is the best design seen on the chosen criterion, so it is never
+//  worse than the greedy start.
+#pragma once
+
+#include <optional>
+#include <string>
+#include <string_view>
+#include <vector>
+
+#include <Eigen/Core>
+
+#include "calib/excitation/candidates.hpp"
+#include "calib/excitation/fisher.hpp"
+#include "models/parameters.hpp"
+#include "models/robot.hpp"
+
+namespace gpm::calib::excitation {
+
+enum class Criterion { kDOptimal, kWorst };
+
+// "d" / "worst" -> Criterion; nullopt otherwise.
+std::optional<Criterion> parse_criterion(std::string_view name);
+std::string_view criterion_name(Criterion c);
+
+struct DesignOptions {
+  int count = 50;                       // number of poses (>= number of free parameters)
+  double sigma = 1e-4;                  // encoder noise, rad (scales the bounds only)
+  FreeMask free = default_free_mask();  // parameters to calibrate
+  Criterion criterion = Criterion::kWorst;
+  double grid_step_mm = 5.0;            // candidate grid spacing
+  Guard guard;                          // candidates stricter than the robot's limits
+  int max_exchanges = 2000;             // per exchange stage
+};
+
+struct Design {
+  std::vector<Eigen::Vector2d> poses;  // the chosen poses (mm)
+  std::vector<Eigen::Vector2d> start;  // the greedy start
+  Bounds bounds;                       // of poses, at the nominal geometry
+  Bounds start_bounds;                 // of the greedy start
+  int candidates = 0;                  // size of the candidate grid
+  int exchanges = 0;                   // swaps made in all exchange stages
+};
+
+// The value of a criterion for bounds b (smaller is better: -log det F for D,
+// worst_mm for worst).
+double criterion_value(Criterion c, const Bounds& b);
+
+// Greedy D-optimal choice of count distinct rows (indices into rows), from
+// the ridge delta * I (delta relative to the mean squared row norm).
+std::vector<int> greedy_d_optimal(const Eigen::MatrixXd& rows, int count, double delta = 1e-6);
+
+// Fedorov exchange maximising log det of the chosen rows' information;
+// returns the number of swaps. chosen must be nonsingular.
+int exchange_d_optimal(const Eigen::MatrixXd& rows, std::vector<int>& chosen, int max_swaps);
+
+// Exchange minimising sum_k C_kk^q (q >= 1), or max_k C_kk when q = 0, of the
+// chosen rows (already scaled so that C_kk are the scaled variances); returns
+// the number of swaps. chosen must be nonsingular.
+int exchange_variances(const Eigen::MatrixXd& rows, std::vector<int>& chosen, int q, int max_swaps);
+
+// Optimal poses for the robot at its (nominal) geometry. Throws InputError for
+// bad options (count below the number of free parameters or above the
+// number of candidates, sigma <= 0) or a free set that no poses identify.
+Design design_poses(const Robot& nominal, const DesignOptions& options);
+
+}  // namespace gpm::calib::excitation
