@@ -1,0 +1,116 @@
+#!/usr/bin/env bash
+# Tests of app/cmd_calibrate.cpp (and gpm study samples for the data): exit
+# codes 0/1/2, one-line errors naming file, line or key, no result file left
+# behind on failure, warnings on stderr, the rank-deficient gauge refused and
+# solved on request, the reference-point start.
+set -u
+GPM="$1"
+fail=0; passed=0
+tmp=$(mktemp -d); trap 'rm -rf "$tmp"' EXIT
+
+check() {  # name, expected exit, command...
+  local name=$1 want=$2; shift 2
+  rm -f "$tmp/r.yaml"
+  "$@" >"$tmp/out" 2>"$tmp/err"; local got=$?
+  if [[ $got -ne $want ]]; then
+    echo "FAIL $name: exit $got, want $want"; cat "$tmp/err"; fail=$((fail+1)); return 1
+  fi
+  if [[ $want -eq 2 && $(wc -l <"$tmp/err") -ne 1 ]]; then
+    echo "FAIL $name: stderr is not one line:"; cat "$tmp/err"; fail=$((fail+1)); return 1
+  fi
+  if [[ $want -eq 2 && -e "$tmp/r.yaml" ]]; then
+    echo "FAIL $name: result file left behind"; fail=$((fail+1)); return 1
+  fi
+  passed=$((passed+1))
+}
+expect() {  # name, file, pattern
+  if grep -qE -- "$3" "$2"; then passed=$((passed+1)); else echo "FAIL $1: no '$3' in:"; cat "$2"; fail=$((fail+1)); fi
+}
+no_tmp_files() {
+  if ls "$tmp" | grep -q '\.tmp'; then echo "FAIL $1: temporary file left"; fail=$((fail+1)); else passed=$((passed+1)); fi
+}
+
+# The robot of paper Table 5 with its true fixed coordinates (ya2 = 0.3) and
+# nominal values for the rest: the start of the calibration.
+cat >"$tmp/start.yaml" <<'YAML'
+name: GPM2002
+geometry: {xa1: 0, ya1: 250, xa2: 433, ya2: 0.3, xa3: 433, ya3: 500, la1: 244, la2: 244, la3: 244,
+           lb1: 244, lb2: 244, lb3: 244, dth1: 0, dth2: 0, dth3: 0}
+YAML
+check "study samples" 0 "$GPM" study samples --actual table5 --n 50 --radius 80 --seed 3 -o "$tmp/s.csv"
+
+check "calibrate ok" 0 "$GPM" calibrate --data "$tmp/s.csv" --model "$tmp/start.yaml" -o "$tmp/r.yaml"
+for key in "^geometry:" "^  dth3: " "^std:" "^  xa3: " "^fixed: \[xa1, ya1, xa2, ya2\]" "^diagnostics:" \
+           "^  cost: " "^  iterations: [0-9]+" "^  evaluations: [0-9]+" "^  rank: 11" "^  condition_number: " \
+           "^  kmrmse_mm: [0-9.e-]+" "^  seconds: " "^  cost_function: ml" "^  converged: true"; do
+  expect "result has $key" "$tmp/r.yaml" "$key"
+done
+expect "la3 recovered" "$tmp/r.yaml" "^  la3: 243\.(5000|4999)"
+expect "kmrmse tiny" "$tmp/r.yaml" "^  kmrmse_mm: [0-9.]+e-(0[7-9]|1[0-9])"
+no_tmp_files "calibrate ok"
+
+for c in j1 j2 j3; do
+  check "cost $c" 0 "$GPM" calibrate --data "$tmp/s.csv" --model "$tmp/start.yaml" --cost $c -o "$tmp/r.yaml"
+  expect "cost $c la3" "$tmp/r.yaml" "^  la3: 243\.(5000|4999)"
+done
+
+# Reference-point start (section 3.2 step 3): readings at home of the actual robot.
+check "reference start" 0 "$GPM" calibrate --data "$tmp/s.csv" --model "$tmp/start.yaml" \
+  --reference-reading 1.10,3.12,4.81 -o "$tmp/r.yaml"
+expect "reference start dth1" "$tmp/r.yaml" "^  dth1: 0\.0(0999|1000)"
+check "bad reference reading" 2 "$GPM" calibrate --data "$tmp/s.csv" --reference-reading 1.1,x,3 -o "$tmp/r.yaml"
+expect "bad reference message" "$tmp/err" "--reference-reading: 'x' is not a finite number"
+
+# Rank-deficient gauge (paper section 3: xa1, ya1, ya2 fixed).
+check "rank deficient refused" 2 "$GPM" calibrate --data "$tmp/s.csv" --model "$tmp/start.yaml" --fix xa1,ya1,ya2 -o "$tmp/r.yaml"
+expect "rank message" "$tmp/err" "rank 11 of 12.*scale and rotation about A1: all lengths grow together, all offsets shift together.*fix xa2"
+check "rank deficient allowed" 0 "$GPM" calibrate --data "$tmp/s.csv" --model "$tmp/start.yaml" --fix xa1,ya1,ya2 \
+  --allow-rank-deficient -o "$tmp/r.yaml"
+expect "allowed says so" "$tmp/r.yaml" "^  rank_deficient: true"
+expect "allowed note" "$tmp/r.yaml" "minimum-norm"
+expect "allowed warns" "$tmp/err" "^gpm: warning: rank-deficient"
+
+# Poorly exciting samples: all on a line -> a warning with the number, exit 0.
+{ echo "sample,theta_m1,theta_m2,theta_m3"; } >"$tmp/line.csv"
+for j in $(seq 0 29); do
+  x=$(awk -v j=$j 'BEGIN{printf "%.3f", 160 + 4*j}')
+  "$GPM" kin ik "$x" 250 --model "$tmp/start.yaml" | awk -v j=$j '/^theta_m/ {print j "," $3 "," $4 "," $5}' >>"$tmp/line.csv"
+done
+check "line samples" 0 "$GPM" calibrate --data "$tmp/line.csv" --model "$tmp/start.yaml" --cost ml -o "$tmp/r.yaml"
+expect "line warning" "$tmp/err" "^gpm: warning: poorly exciting samples: condition number [0-9.e+]+"
+
+# Not converged within the budget -> exit 1 (the result says so).
+check "budget 1" 1 "$GPM" calibrate --data "$tmp/s.csv" --model "$tmp/start.yaml" --budget 1 -o "$tmp/r.yaml"
+expect "not converged" "$tmp/r.yaml" "^  converged: false"
+
+# Bad input: exit 2, one line, no result file.
+check "method de" 2 "$GPM" calibrate --data "$tmp/s.csv" --method de -o "$tmp/r.yaml"
+expect "method message" "$tmp/err" "--method de: not available yet"
+check "method bogus" 2 "$GPM" calibrate --data "$tmp/s.csv" --method simplex -o "$tmp/r.yaml"
+check "cost bogus" 2 "$GPM" calibrate --data "$tmp/s.csv" --cost j4 -o "$tmp/r.yaml"
+expect "cost message" "$tmp/err" "--cost: 'j4' is not one of j1, j2, j3, ml"
+check "unknown fix" 2 "$GPM" calibrate --data "$tmp/s.csv" --fix xa1,ya1,xb2 -o "$tmp/r.yaml"
+expect "fix message" "$tmp/err" "--fix\[2\]: unknown parameter 'xb2'"
+check "missing data" 2 "$GPM" calibrate --data "$tmp/none.csv" -o "$tmp/r.yaml"
+check "missing -o" 2 "$GPM" calibrate --data "$tmp/s.csv"
+head -8 "$tmp/s.csv" >"$tmp/few.csv"
+check "too few samples" 2 "$GPM" calibrate --data "$tmp/few.csv" -o "$tmp/r.yaml"
+expect "too few message" "$tmp/err" "7 samples for 11 free parameters"
+sed 's/^3,\([^,]*\),/3,\1x,/' "$tmp/s.csv" >"$tmp/nan.csv"
+check "non-numeric" 2 "$GPM" calibrate --data "$tmp/nan.csv" -o "$tmp/r.yaml"
+expect "non-numeric message" "$tmp/err" "nan.csv:5: column 'theta_m1'"
+sed 's/^3,\([^,]*\),[^,]*,/3,\1,inf,/' "$tmp/s.csv" >"$tmp/inf.csv"
+check "non-finite" 2 "$GPM" calibrate --data "$tmp/inf.csv" -o "$tmp/r.yaml"
+cut -d, -f1,2,3 "$tmp/s.csv" >"$tmp/cols.csv"
+check "missing column" 2 "$GPM" calibrate --data "$tmp/cols.csv" -o "$tmp/r.yaml"
+expect "missing column message" "$tmp/err" "missing column 'theta_m3'"
+awk -F, 'BEGIN{OFS=","} NR==6 {$3 = $3 + 2.0} {print}' "$tmp/s.csv" >"$tmp/wild.csv"
+check "circles do not meet" 2 "$GPM" calibrate --data "$tmp/wild.csv" --model "$tmp/start.yaml" -o "$tmp/r.yaml"
+expect "circles message names the line" "$tmp/err" "wild.csv:6 \(sample 4\): the passive circles"
+check "sigma negative" 2 "$GPM" calibrate --data "$tmp/s.csv" --sigma -1 -o "$tmp/r.yaml"
+check "unwritable output" 2 "$GPM" calibrate --data "$tmp/s.csv" --model "$tmp/start.yaml" -o "$tmp/nodir/r.yaml"
+expect "unwritable message" "$tmp/err" "nodir/r.yaml: cannot write"
+no_tmp_files "failures"
+
+echo "$passed passed, $fail failed"
+[[ $fail -eq 0 ]]
