@@ -9,17 +9,25 @@
 
 namespace gpm::calib {
 
-Eigen::MatrixXd cramer_rao_bound(const Geometry& truth, const FreeMask& free,
-                                 const std::vector<Eigen::Vector3d>& theta_m, double sigma) {
+Eigen::MatrixXd fisher_information(const Geometry& truth, const FreeMask& free,
+                                   const std::vector<Eigen::Vector3d>& theta_m, double sigma) {
   const Eigen::MatrixXd J_all = ml_jacobian(theta_m, truth);
   std::vector<Eigen::Index> idx;
   for (int i = 0; i < kNumParams; ++i)
     if (free.test(static_cast<size_t>(i))) idx.push_back(i);
   Eigen::MatrixXd J(J_all.rows(), static_cast<Eigen::Index>(idx.size()));
   for (size_t k = 0; k < idx.size(); ++k) J.col(static_cast<Eigen::Index>(k)) = J_all.col(idx[k]);
-  const Eigen::MatrixXd F = J.transpose() * J;
+  return J.transpose() * J / (sigma * sigma);
+}
+
+Eigen::MatrixXd cramer_rao_bound(const Geometry& truth, const FreeMask& free,
+                                 const std::vector<Eigen::Vector3d>& theta_m, double sigma) {
+  const Eigen::MatrixXd F = fisher_information(truth, free, theta_m, sigma);
+  // Invert in the column-scaled metric for accuracy (F spans mm and rad).
+  const Eigen::VectorXd d = F.diagonal().cwiseSqrt().cwiseInverse();
+  const Eigen::MatrixXd Fs = d.asDiagonal() * F * d.asDiagonal();
   const Eigen::MatrixXd I = Eigen::MatrixXd::Identity(F.rows(), F.cols());
-  return sigma * sigma * F.ldlt().solve(I);
+  return d.asDiagonal() * Fs.ldlt().solve(I) * d.asDiagonal();
 }
 
 std::array<double, kNumParams> crb_sigma(const Geometry& truth, const FreeMask& free,

@@ -15,6 +15,11 @@
 
 namespace gpm::calib {
 
+// The Fisher information J_ml' J_ml / sigma^2 on the free parameters (ordered
+// by index); use it directly rather than inverting the bound (ill-conditioned).
+Eigen::MatrixXd fisher_information(const Geometry& truth, const FreeMask& free,
+                                   const std::vector<Eigen::Vector3d>& theta_m, double sigma);
+
 // The bound sigma^2 (J_ml' J_ml)^-1 on the free parameters (ordered by index),
 // from the noiseless readings theta_m of the true geometry.
 Eigen::MatrixXd cramer_rao_bound(const Geometry& truth, const FreeMask& free,

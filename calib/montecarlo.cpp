@@ -27,8 +27,7 @@ std::vector<MonteCarloRow> run_montecarlo(const MonteCarloOptions& o) {
   actual.geometry = o.actual;
   const auto poses = disc_poses(actual, o.samples, actual.home, o.radius_mm, o.seed);
   const std::vector<Eigen::Vector3d> clean = samples_at(actual, poses).theta_m;
-  const Eigen::MatrixXd crb = cramer_rao_bound(o.actual, o.free, clean, o.sigma);
-  const Eigen::MatrixXd crb_inv = crb.inverse();
+  const Eigen::MatrixXd fisher = fisher_information(o.actual, o.free, clean, o.sigma);
   const auto bound = crb_sigma(o.actual, o.free, clean, o.sigma);
   std::vector<int> idx;
   for (int i = 0; i < kNumParams; ++i)
@@ -62,7 +61,7 @@ std::vector<MonteCarloRow> run_montecarlo(const MonteCarloOptions& o) {
         sum_sq[i] += e[k] * e[k];
         sum_sigma[i] += r.sigma[i];
       }
-      sum_mahalanobis += e.dot(crb_inv * e) / static_cast<double>(p);
+      sum_mahalanobis += e.dot(fisher * e) / static_cast<double>(p);
     }
     for (int i = 0; i < kNumParams; ++i) {
       const auto u = static_cast<size_t>(i);
@@ -74,7 +73,9 @@ std::vector<MonteCarloRow> run_montecarlo(const MonteCarloOptions& o) {
       row.ratio[u] = row.rms_error[u] / bound[u];
       row.mean_reported_sigma[u] = sum_sigma[u] / ok;
       row.max_ratio = std::max(row.max_ratio, row.ratio[u]);
+      row.rms_ratio += row.ratio[u] * row.ratio[u] / static_cast<double>(p);
     }
+    row.rms_ratio = std::sqrt(row.rms_ratio);
     row.normalised_ratio = ok ? std::sqrt(sum_mahalanobis / ok) : std::numeric_limits<double>::quiet_NaN();
     rows.push_back(row);
   }

@@ -36,6 +36,9 @@ struct MonteCarloRow {
   std::array<double, kNumParams> ratio{};      // rms_error / bound
   std::array<double, kNumParams> mean_reported_sigma{};  // average 1-sigma the solver reported
   double max_ratio = 0.0;
+  // sqrt(mean over parameters of ratio^2): the per-parameter goal with the
+  // sampling noise of 50 trials (about 10% per parameter) averaged down.
+  double rms_ratio = 0.0;
   // sqrt(mean over trials of e' CRB^-1 e / p): 1 for an efficient estimator,
   // the whole-vector counterpart of the per-parameter ratio (less noisy).
   double normalised_ratio = 0.0;
