@@ -2,7 +2,7 @@
 // controller's robot, the actual parameters (explicit and/or a seeded random
 // perturbation), physics, servo and encoder settings, the sampling plan, an
 // optional continuous path, the log rate and the seed. The sections
-// calibration, expect, hardware, outputs, render are accepted unparsed for
+// calibration, compensation, expect, hardware, outputs, render are accepted unparsed for
 // later layers.
 #pragma once
 
