@@ -39,6 +39,8 @@ struct DriveEmulator::Impl {
   std::array<bool, 3> power{}, armed{true, true, true}, fault{}, garbage{};
   Eigen::Vector3d command_theta = Eigen::Vector3d::Zero();
   std::array<JointMode, 3> command_mode{};
+  double command_time = 0.0;
+  bool feedforward_live = false;
   Clock::time_point start, last_request;
   bool seen_request = false;
   long writes = 0;
@@ -155,6 +157,13 @@ void DriveEmulator::tick(double t) {
     twin_.write(cmd, t);
     s.command_theta = cmd.theta_m;
     s.command_mode = cmd.mode;
+    s.command_time = t;
+    s.feedforward_live = true;
+  } else if (s.feedforward_live && t - s.command_time > 1.5 * twin_.period_s()) {
+    // No new setpoint for a command period: the target stands still, so the
+    // velocity feed-forward drops to zero (as a drive's setpoint interpolator does).
+    twin_.write(cmd, t);
+    s.feedforward_live = false;
   }
   const HardwareState& st = twin_.read(t);
   for (int i = 0; i < 3; ++i) {

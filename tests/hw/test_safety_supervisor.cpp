@@ -101,12 +101,12 @@ TEST(SafetySupervisor, RandomisedCommandsNeverBreakALimit) {
       continue;  // a missed cycle (the watchdog brakes after 0.1 s)
     } else {
       // A Cartesian random walk, often pushing beyond the workspace edge.
-      pv += Eigen::Vector2d(u(rng), u(rng)) * 8.0;
+      pv += Eigen::Vector2d(u(rng), u(rng)) * (r > 0.98 ? 20.0 : 1.5);
       pv = pv.cwiseMax(-150).cwiseMin(150);
       p += pv * rig.dt;
       if ((p - rig.robot.home).norm() > 110) p = rig.robot.home + (p - rig.robot.home) * 0.9, pv = -pv;
       try {
-        c.theta_m = ik_m(rig.robot, p) + Eigen::Vector3d(u(rng), u(rng), u(rng)) * 1e-3;
+        c.theta_m = ik_m(rig.robot, p) + Eigen::Vector3d(u(rng), u(rng), u(rng)) * 2e-5;
       } catch (const InputError&) {
         continue;
       }
@@ -116,6 +116,12 @@ TEST(SafetySupervisor, RandomisedCommandsNeverBreakALimit) {
       ++accepted;
     } catch (const CommandRejected&) {
       ++rejected;
+      // Start the walk again from where the robot is (the supervisor brakes it).
+      const auto fk = forward_kinematics(
+          rig.robot.geometry, active_from_readings(rig.robot.geometry, rig.sup->last_state().theta_m));
+      if (fk) p = fk->p;
+      pv.setZero();
+      mode = {JointMode::kPosition, JointMode::kPosition, JointMode::kPosition};
     }
   }
   // Replay what reached the backend against the limits, independently.
