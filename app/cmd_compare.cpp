@@ -1,13 +1,136 @@
-// gpm compare: equal-budget comparison of GA, PSO and DE on J1, J2, J3.
-// Placeholder until Global calibration (issue 5) lands.
+// gpm compare: equal-budget comparison of GA, PSO and DE on J1, J2, J3 with
+// simulated Table 5 data (paper section 4.4): writes a Table 6 in markdown,
+// CSVs of every run and history, and log10(J) figures (SVG) into a directory.
+#include <unistd.h>
+
+#include <cstdio>
+#include <filesystem>
+#include <memory>
+
+#include <fmt/format.h>
+
 #include "app/commands.hpp"
+#include "calib/global/comparison.hpp"
+#include "calib/global/synthetic.hpp"
+#include "models/errors.hpp"
+#include "models/robot_yaml.hpp"
 
 namespace gpm::cli {
 
+namespace {
+
+struct CompareArgs {
+  std::string out_dir;
+  long budget = 1'000'000;
+  std::string seeds = "1,2,3";
+  int gauge = 12;
+  int samples = 50;
+  uint64_t data_seed = 42;
+  std::string methods = "ga,pso,de";
+  std::string costs = "j1,j2,j3";
+  int jobs = 0;
+};
+
+std::vector<std::string> split(const std::string& s) {
+  std::vector<std::string> out;
+  size_t start = 0;
+  while (start <= s.size()) {
+    const size_t comma = s.find(',', start);
+    const size_t end = comma == std::string::npos ? s.size() : comma;
+    out.push_back(s.substr(start, end - start));
+    start = end + 1;
+  }
+  return out;
+}
+
+void run_compare(const CompareArgs& a) {
+  calib::global::ComparisonSettings st;
+  if (a.budget < 1) throw InputError("--budget: must be at least 1 evaluation");
+  st.budget = a.budget;
+  st.samples = a.samples;
+  st.data_seed = a.data_seed;
+  st.parallel_runs = a.jobs;
+  if (a.gauge == 12) st.free = calib::global::paper_free_mask();
+  else if (a.gauge == 11) st.free = default_free_mask();
+  else throw InputError(fmt::format("--gauge: {} is not 11 or 12", a.gauge));
+  st.seeds.clear();
+  for (const auto& s : split(a.seeds)) {
+    try {
+      size_t used = 0;
+      const long long v = std::stoll(s, &used);
+      if (used != s.size() || v < 0) throw std::invalid_argument(s);
+      st.seeds.push_back(static_cast<uint64_t>(v));
+    } catch (const std::exception&) {
+      throw InputError(fmt::format("--seeds: '{}' is not a non-negative integer", s));
+    }
+  }
+  st.methods.clear();
+  for (const auto& s : split(a.methods)) {
+    const auto m = calib::global::parse_method(s);
+    if (!m || *m == calib::global::Method::kDeLm)
+      throw InputError(fmt::format("--methods: '{}' is not ga, pso or de", s));
+    st.methods.push_back(*m);
+  }
+  st.costs.clear();
+  for (const auto& s : split(a.costs)) {
+    const auto c = calib::parse_cost(s);
+    if (!c || *c == calib::Cost::kML) throw InputError(fmt::format("--costs: '{}' is not j1, j2 or j3", s));
+    st.costs.push_back(*c);
+  }
+  std::error_code ec;
+  std::filesystem::create_directories(a.out_dir, ec);
+  if (ec || !std::filesystem::is_directory(a.out_dir))
+    throw InputError(fmt::format("-o {}: cannot create the directory ({})", a.out_dir, ec.message()));
+
+  calib::global::ComparisonProgress progress;
+  if (isatty(STDERR_FILENO)) {
+    progress = [](long done, long total, int runs_done, int runs) {
+      std::fprintf(stderr, "\rgpm compare: %5.1f%% of %.3g evaluations, %d of %d runs done ",
+                   100.0 * static_cast<double>(done) / static_cast<double>(total),
+                   static_cast<double>(total), runs_done, runs);
+      std::fflush(stderr);
+    };
+  }
+  const auto c = calib::global::run_comparison(st, progress);
+  if (progress) std::fprintf(stderr, "\n");
+
+  namespace fs = std::filesystem;
+  const fs::path dir(a.out_dir);
+  write_file_atomic((dir / "table6.md").string(), calib::global::comparison_markdown(c));
+  write_file_atomic((dir / "runs.csv").string(), calib::global::comparison_runs_csv(c));
+  write_file_atomic((dir / "history.csv").string(), calib::global::comparison_history_csv(c));
+  for (calib::Cost cost : st.costs)
+    write_file_atomic((dir / fmt::format("convergence_{}.svg", calib::cost_name(cost))).string(),
+                      calib::global::comparison_svg(c, cost));
+  std::printf("%s", fmt::format("gpm compare: {} runs in {:.1f} s -> {}/table6.md, runs.csv, "
+                                "history.csv, convergence_*.svg\n{}\n",
+                                c.runs.size(), c.seconds, a.out_dir, c.at_actual.diagnosis)
+                        .c_str());
+}
+
+}  // namespace
+
 void add_compare(CLI::App& app) {
-  auto* cmd = app.add_subcommand("compare", "Compare GA, PSO and DE on J1, J2, J3 at equal budget [not available yet]");
-  cmd->allow_extras();
-  cmd->callback([] { not_available("compare", "Global calibration (issue 5)"); });
+  auto args = std::make_shared<CompareArgs>();
+  auto* cmd = app.add_subcommand(
+      "compare", "Compare GA, PSO and DE on J1, J2, J3 at equal budget (paper section 4.4)");
+  cmd->add_option("-o,--out", args->out_dir, "Output directory")->required();
+  cmd->add_option("--budget", args->budget,
+                  "Evaluations of the error function per run (the paper used 5e7)")
+      ->capture_default_str();
+  cmd->add_option("--seeds", args->seeds, "Comma-separated seeds; each method and cost runs once per seed")
+      ->capture_default_str();
+  cmd->add_option("--gauge", args->gauge,
+                  "12: the paper's free set (xa1, ya1, xa2 fixed; rank-deficient), "
+                  "11: xa1, ya1, xa2, ya2 fixed (identifiable)")
+      ->capture_default_str();
+  cmd->add_option("--samples", args->samples, "Random workspace samples")->capture_default_str();
+  cmd->add_option("--data-seed", args->data_seed, "Seed of the sample points")->capture_default_str();
+  cmd->add_option("--methods", args->methods, "Subset of ga,pso,de")->capture_default_str();
+  cmd->add_option("--costs", args->costs, "Subset of j1,j2,j3")->capture_default_str();
+  cmd->add_option("-j,--jobs", args->jobs, "Runs at once (0 = all cores); results do not depend on it")
+      ->capture_default_str();
+  cmd->callback([args] { run_compare(*args); });
 }
 
 }  // namespace gpm::cli

@@ -6,6 +6,7 @@
 #include <fmt/format.h>
 
 #include "calib/global/identifiability.hpp"
+#include "calib/lm.hpp"
 #include "calib/global/population_cost.hpp"
 #include "models/errors.hpp"
 
@@ -15,6 +16,7 @@ std::optional<Method> parse_method(std::string_view name) {
   if (name == "ga") return Method::kGa;
   if (name == "pso") return Method::kPso;
   if (name == "de") return Method::kDe;
+  if (name == "de+lm") return Method::kDeLm;
   return std::nullopt;
 }
 
@@ -23,6 +25,7 @@ std::string_view method_name(Method m) {
     case Method::kGa: return "ga";
     case Method::kPso: return "pso";
     case Method::kDe: return "de";
+    case Method::kDeLm: return "de+lm";
   }
   return "?";
 }
@@ -38,7 +41,8 @@ Result solve_global(const Problem& problem, Cost cost, Method method, const Box&
   switch (method) {
     case Method::kGa: run = minimise_ga(obj, opt.ga, stop, opt.seed, progress); break;
     case Method::kPso: run = minimise_pso(obj, opt.pso, stop, opt.seed, progress); break;
-    case Method::kDe: run = minimise_de(obj, opt.de, stop, opt.seed, progress); break;
+    case Method::kDe:
+    case Method::kDeLm: run = minimise_de(obj, opt.de, stop, opt.seed, progress); break;
   }
 
   Result r;
@@ -53,11 +57,29 @@ Result solve_global(const Problem& problem, Cost cost, Method method, const Box&
   r.history = std::move(run.history);
   r.converged = std::isfinite(run.best_f);
 
+  if (method == Method::kDeLm && !run.best_x.empty()) {
+    Problem refine = problem;
+    refine.start = r.geometry;
+    LmOptions lm;
+    lm.cost = cost;
+    lm.max_iterations = opt.lm_max_iterations;
+    lm.allow_rank_deficient = opt.allow_rank_deficient;
+    const Result local = calibrate_lm(refine, lm);
+    r.geometry = local.geometry;
+    r.sigma = local.sigma;
+    r.evaluations += local.evaluations;
+    r.iterations += local.iterations;
+    r.converged = local.converged;
+    for (const auto& note : local.notes) r.notes.push_back("lm: " + note);
+    r.final_cost = pc.evaluate_one(pc.space().from_geometry(r.geometry));
+    r.history.emplace_back(r.evaluations, std::min(r.final_cost, run.best_f));
+  }
+
   const Identifiability id = closure_identifiability(problem.theta_m, r.geometry, problem.free);
   r.rank = id.rank;
   r.condition_number = id.condition_number;
   r.rank_deficient = id.rank < id.free_count;
-  r.notes.push_back(id.diagnosis);
+  r.notes.insert(r.notes.begin(), id.diagnosis);
   if (r.rank_deficient)
     r.notes.push_back(fmt::format(
         "{} reached J = {:.4g}, but with rank {} of {} a different seed lands on a different, "

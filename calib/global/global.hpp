@@ -15,6 +15,7 @@
 #include <string_view>
 
 #include "calib/global/de.hpp"
+#include "calib/global/decision_space.hpp"
 #include "calib/global/ga.hpp"
 #include "calib/global/objective.hpp"
 #include "calib/global/pso.hpp"
@@ -22,24 +23,35 @@
 
 namespace gpm::calib::global {
 
-enum class Method { kGa, kPso, kDe };
+// kDeLm: DE, then Levenberg-Marquardt (calib/lm.hpp) from DE's best point.
+enum class Method { kGa, kPso, kDe, kDeLm };
 
-// "ga", "pso", "de" -> Method; nullopt for anything else.
+// "ga", "pso", "de", "de+lm" -> Method; nullopt for anything else.
 std::optional<Method> parse_method(std::string_view name);
 std::string_view method_name(Method m);
 
 struct GlobalOptions {
   long budget = 1'500'000;  // error-function evaluations, never exceeded
   uint64_t seed = 1;
-  int threads = 0;          // 0 = all cores; results do not depend on it
+  // Threads evaluating each population: 0 = all cores. Results do not depend
+  // on it. Default 1: a generation of 100-150 candidates takes ~10 us, so
+  // fork/join only pays on an otherwise idle machine (see bench_global).
+  int threads = 1;
   double target = -std::numeric_limits<double>::infinity();  // stop once best J <= target
   GaSettings ga;            // paper section 4.4 defaults
   PsoSettings pso;
   DeSettings de;
+  // de+lm only: LM's iteration limit and whether it may solve a rank-deficient
+  // free set (otherwise calibrate_lm refuses it with an InputError).
+  int lm_max_iterations = 200;
+  bool allow_rank_deficient = false;
 };
 
 // Minimises J (cost: kJ1, kJ2 or kJ3) over the free parameters of problem
 // within box with the given method; fixed parameters keep problem.start.
+// For de+lm the budget bounds DE; LM's evaluations are added to
+// Result.evaluations and its end point to the history, and final_cost is J
+// (this library's definition, eq. 37/39/43) at LM's estimate; sigma comes from LM.
 // Throws InputError for an unsupported cost, an empty box or a budget < 1.
 Result solve_global(const Problem& problem, Cost cost, Method method, const Box& box,
                     const GlobalOptions& options, const ProgressFn& progress = {});
