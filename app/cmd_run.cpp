@@ -1,13 +1,81 @@
-// gpm run: Simulate, calibrate, compensate and report a scenario.
-// Placeholder until Scenario-driven runs (issue 8) lands.
+// gpm run SCENARIO.yaml -o DIR: simulate, calibrate, compensate, evaluate and
+// report (scenarios/runner.hpp). Exit 1 when an expectation fails.
+#include <cstdio>
+#include <memory>
+#include <string>
+
+#include <fmt/format.h>
+#include <unistd.h>
+
 #include "app/commands.hpp"
+#include "scenarios/run_spec.hpp"
+#include "scenarios/runner.hpp"
 
 namespace gpm::cli {
+namespace {
+
+struct RunOptions {
+  std::string scenario;
+  std::string out;
+  bool quiet = false;
+};
+
+void print_summary(const scenario::RunOutcome& o, const std::string& dir) {
+  fmt::print("scenario   {} ({})\n", o.spec.sim.name, o.scenario_file);
+  fmt::print("samples    {} from the twin\n", o.sim.samples.size());
+  if (o.calibration) {
+    const auto& r = *o.calibration;
+    fmt::print("calibrate  {} on {}: J = {:.4g}, {} iterations, rank {}, cond {:.3g}{}\n", r.method,
+               calib::cost_name(r.cost), r.final_cost, r.iterations, r.rank, r.condition_number,
+               r.kmrmse_mm ? fmt::format(", kmrmse {:.3g} mm", *r.kmrmse_mm) : "");
+    double worst = 0.0;
+    std::string worst_name;
+    for (int i = 0; i < kNumParams; ++i) {
+      if (!r.free.test(static_cast<size_t>(i))) continue;
+      const double e = std::abs(r.geometry[i] - o.sim.actual.geometry[i]) * (is_offset(i) ? 244.0 : 1.0);
+      if (e >= worst) worst = e, worst_name = std::string(param_name(i));
+    }
+    fmt::print("errors     largest {} (offsets counted as mm at the 244 mm link)\n", worst_name);
+  }
+  if (o.refused) fmt::print("refused    {}\n", *o.refused);
+  if (o.before) {
+    fmt::print("accuracy   nominal model:    static RMS {:9.2f} um, max {:9.2f} um; path RMS {:9.2f} um\n",
+               o.before->static_rms_um, o.before->static_max_um, o.before->path_rms_um);
+  }
+  if (o.after) {
+    fmt::print("           calibrated model: static RMS {:9.2f} um, max {:9.2f} um; path RMS {:9.2f} um\n",
+               o.after->static_rms_um, o.after->static_max_um, o.after->path_rms_um);
+  }
+  size_t failed = 0;
+  for (const auto& c : o.checks) {
+    if (!c.passed) {
+      ++failed;
+      fmt::print("FAILED     {}: {}\n", c.name, c.detail);
+    }
+  }
+  fmt::print("verdict    {} ({} checks, {} failed) in {:.1f} s\n", failed ? "FAILED" : "PASSED", o.checks.size(),
+             failed, o.seconds);
+  if (o.spec.outputs.report) fmt::print("report     {}/report.html (and report.md)\n", dir);
+}
+
+}  // namespace
 
 void add_run(CLI::App& app) {
-  auto* cmd = app.add_subcommand("run", "Simulate, calibrate, compensate and report a scenario [not available yet]");
-  cmd->allow_extras();
-  cmd->callback([] { not_available("run", "Scenario-driven runs (issue 8)"); });
+  auto opt = std::make_shared<RunOptions>();
+  auto* cmd = app.add_subcommand("run", "Simulate, calibrate, compensate and report a scenario (exit 1 if an expectation fails)");
+  cmd->add_option("scenario", opt->scenario, "Scenario file (YAML; see scenarios/SCHEMA.md)")->required();
+  cmd->add_option("-o,--out", opt->out, "Output folder")->required();
+  cmd->add_flag("-q,--quiet", opt->quiet, "No progress lines");
+  cmd->callback([opt] {
+    const scenario::RunSpec spec = scenario::load_run_spec(opt->scenario);
+    const bool show = !opt->quiet && ::isatty(STDERR_FILENO);
+    const auto outcome = scenario::run_scenario(spec, opt->scenario, [show](const std::string& stage) {
+      if (show) std::fprintf(stderr, "gpm run: %s ...\n", stage.c_str());
+    });
+    scenario::write_run(outcome, opt->out);
+    print_summary(outcome, opt->out);
+    set_exit(outcome.passed() ? 0 : 1);
+  });
 }
 
 }  // namespace gpm::cli
