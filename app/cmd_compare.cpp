@@ -21,7 +21,7 @@ namespace {
 
 struct CompareArgs {
   std::string out_dir;
-  long budget = 1'000'000;
+  long budget = 1'500'000;
   std::string seeds = "1,2,3";
   int gauge = 12;
   int samples = 50;

@@ -15,7 +15,7 @@
 namespace gpm::calib::global {
 
 struct ComparisonSettings {
-  long budget = 1'000'000;             // per run, evaluations of the error function
+  long budget = 1'500'000;             // per run, evaluations of the error function
   std::vector<uint64_t> seeds{1, 2, 3};
   int samples = 50;                    // random workspace points (section 4.4)
   uint64_t data_seed = 42;
