@@ -1,0 +1,67 @@
+// gpm sample: a calibration sampling session on the hardware named by a
+// hardware file (the twin or real drives: only the config differs). Samples
+// are appended and flushed as they are taken; --resume continues a file.
+// Exit 0 done; 1 the session failed (drives disabled, samples kept); 2 bad input.
+#include <atomic>
+#include <csignal>
+#include <cstdio>
+
+#include <fmt/format.h>
+
+#include "app/commands.hpp"
+#include "hw/hardware_config.hpp"
+#include "hw/hw_errors.hpp"
+#include "hw/sampling_session.hpp"
+#include "hw/session_plan.hpp"
+#include "models/errors.hpp"
+
+namespace gpm::cli {
+namespace {
+
+std::atomic<bool> g_stop{false};
+void on_signal(int) { g_stop = true; }
+
+struct SampleArgs {
+  std::string hardware, poses, scenario, out;
+  bool resume = false;
+};
+
+void run_sample(const SampleArgs& a) {
+  if (a.poses.empty() == a.scenario.empty()) {
+    throw InputError("gpm sample: give exactly one of --poses POSES.yaml or --scenario S.yaml");
+  }
+  const hw::HardwareConfig config = hw::load_hardware_config(a.hardware);
+  hw::SessionPlan plan = a.poses.empty() ? hw::plan_from_scenario(a.scenario) : hw::load_poses_plan(a.poses);
+  plan.modes = config.modes;
+  auto robot = hw::make_hardware(config);
+  hw::SampleLog log(a.out, a.resume);
+  std::signal(SIGINT, on_signal);
+  std::signal(SIGTERM, on_signal);
+  try {
+    const hw::SessionResult r = hw::run_sampling_session(*robot, plan, log, &g_stop);
+    std::printf("%s: %ld samples taken, %ld already in %s, %zu in all (%.2f s session time)\n",
+                robot->describe().c_str(), r.taken, r.skipped, a.out.c_str(), log.size(), r.duration_s);
+  } catch (const InputError&) {
+    log.close_and_discard_if_empty();
+    throw;
+  } catch (const hw::HardwareError& e) {
+    log.close_and_discard_if_empty();
+    std::fprintf(stderr, "gpm: error: %s\n", e.what());
+    set_exit(1);
+  }
+}
+
+}  // namespace
+
+void add_sample(CLI::App& app) {
+  auto args = std::make_shared<SampleArgs>();
+  auto* cmd = app.add_subcommand("sample", "Run a calibration sampling session on the twin or real drives (hardware file)");
+  cmd->add_option("--hardware", args->hardware, "hardware file (backend twin or modbus, safety limits)")->required();
+  cmd->add_option("--poses", args->poses, "poses file: poses: [[x, y], ...] (mm)");
+  cmd->add_option("--scenario", args->scenario, "scenario whose sampling plan gives the poses");
+  cmd->add_option("-o,--output", args->out, "samples CSV, appended as samples are taken")->required();
+  cmd->add_flag("--resume", args->resume, "continue an existing samples file, skipping recorded poses");
+  cmd->callback([args] { run_sample(*args); });
+}
+
+}  // namespace gpm::cli

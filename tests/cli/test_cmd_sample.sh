@@ -1,0 +1,81 @@
+#!/usr/bin/env bash
+# Tests of app/cmd_sample.cpp: gpm sample on the twin and, through
+# gpm-drive-emulator on a loopback ephemeral port, on the modbus backend;
+# refusals exit 2 with one line; a failed session exits 1 and leaves no empty file.
+set -u
+GPM="$1"; EMU="$2"; SRC="$3"
+fail=0; passed=0
+tmp=$(mktemp -d); emu_pid=""
+cleanup() { [[ -n "$emu_pid" ]] && kill "$emu_pid" 2>/dev/null; rm -rf "$tmp"; }
+trap cleanup EXIT
+
+check() {  # name, expected exit, command...
+  local name=$1 want=$2; shift 2
+  "$@" >"$tmp/out" 2>"$tmp/err"; local got=$?
+  if [[ $got -ne $want ]]; then
+    echo "FAIL $name: exit $got, want $want"; cat "$tmp/err"; fail=$((fail+1)); return 1
+  fi
+  if [[ $want -ne 0 && $(wc -l <"$tmp/err") -ne 1 ]]; then
+    echo "FAIL $name: stderr is not one line:"; cat "$tmp/err"; fail=$((fail+1)); return 1
+  fi
+  passed=$((passed+1))
+}
+expect() {  # name, file, pattern
+  if grep -qE -- "$3" "$2"; then passed=$((passed+1)); else echo "FAIL $1: no '$3' in:"; cat "$2"; fail=$((fail+1)); fi
+}
+rows() { tail -n +2 "$1" | wc -l; }
+
+safety=$(sed -n '/^safety:/,$p' "$SRC/hw/examples/twin.yaml")
+cat >"$tmp/twin.yaml" <<YAML
+backend: twin
+controller: $SRC/models/gpm2002.yaml
+twin: {scenario: $SRC/scenarios/simulate_disc.yaml}
+$safety
+YAML
+printf 'poses: [[236.5, 260], [196.5, 240]]\n' >"$tmp/poses2.yaml"
+printf 'poses: [[236.5, 260], [196.5, 240], [230, 225]]\n' >"$tmp/poses3.yaml"
+
+check help 0 "$GPM" --help
+expect "help lists sample" "$tmp/out" "^  sample"
+
+check "twin session" 0 "$GPM" sample --hardware "$tmp/twin.yaml" --poses "$tmp/poses2.yaml" -o "$tmp/s.csv"
+[[ $(rows "$tmp/s.csv") -eq 2 ]] && passed=$((passed+1)) || { echo "FAIL twin rows"; fail=$((fail+1)); }
+cp "$tmp/s.csv" "$tmp/before.csv"
+check "existing file refused" 2 "$GPM" sample --hardware "$tmp/twin.yaml" --poses "$tmp/poses3.yaml" -o "$tmp/s.csv"
+expect "refusal says --resume" "$tmp/err" "pass --resume"
+cmp -s "$tmp/s.csv" "$tmp/before.csv" && passed=$((passed+1)) || { echo "FAIL file changed"; fail=$((fail+1)); }
+check "resume" 0 "$GPM" sample --hardware "$tmp/twin.yaml" --poses "$tmp/poses3.yaml" -o "$tmp/s.csv" --resume
+expect "resume counts" "$tmp/out" "1 samples taken, 2 already"
+
+grep -v '^  watchdog_disable' "$tmp/twin.yaml" >"$tmp/nosafety.yaml"
+check "missing safety limit" 2 "$GPM" sample --hardware "$tmp/nosafety.yaml" --poses "$tmp/poses2.yaml" -o "$tmp/n.csv"
+expect "names the key" "$tmp/err" "missing key 'watchdog_disable'"
+[[ ! -e "$tmp/n.csv" ]] && passed=$((passed+1)) || { echo "FAIL output left behind"; fail=$((fail+1)); }
+printf 'poses: [[336.5, 250]]\n' >"$tmp/far.yaml"
+check "pose outside limits" 2 "$GPM" sample --hardware "$tmp/twin.yaml" --poses "$tmp/far.yaml" -o "$tmp/f.csv"
+[[ ! -e "$tmp/f.csv" ]] && passed=$((passed+1)) || { echo "FAIL output left behind (far)"; fail=$((fail+1)); }
+check "both pose sources" 2 "$GPM" sample --hardware "$tmp/twin.yaml" --poses "$tmp/poses2.yaml" --scenario x.yaml -o "$tmp/b.csv"
+
+# modbus through the emulator on an ephemeral loopback port
+"$EMU" --map "$SRC/hw/examples/register_map_emulator.yaml" --scenario "$SRC/scenarios/simulate_disc.yaml" \
+  --port 0 >"$tmp/emu.out" 2>&1 &
+emu_pid=$!
+for _ in $(seq 100); do grep -q listening "$tmp/emu.out" && break; sleep 0.05; done
+port=$(sed -n 's/.*listening on 127\.0\.0\.1:\([0-9]*\).*/\1/p' "$tmp/emu.out")
+sed "s/port: 1502/port: $port/" "$SRC/hw/examples/register_map_emulator.yaml" >"$tmp/map.yaml"
+cat >"$tmp/modbus.yaml" <<YAML
+backend: modbus
+controller: $SRC/models/gpm2002.yaml
+modbus: {register_map: $tmp/map.yaml}
+$safety
+YAML
+check "modbus session" 0 "$GPM" sample --hardware "$tmp/modbus.yaml" --poses "$tmp/poses2.yaml" -o "$tmp/m.csv"
+expect "modbus describes itself" "$tmp/out" "modbus-tcp 127.0.0.1:$port"
+[[ $(rows "$tmp/m.csv") -eq 2 ]] && passed=$((passed+1)) || { echo "FAIL modbus rows"; fail=$((fail+1)); }
+kill "$emu_pid"; wait "$emu_pid" 2>/dev/null; emu_pid=""
+check "drives unreachable" 1 "$GPM" sample --hardware "$tmp/modbus.yaml" --poses "$tmp/poses2.yaml" -o "$tmp/u.csv"
+expect "connect error" "$tmp/err" "127.0.0.1:$port: cannot connect"
+[[ ! -e "$tmp/u.csv" ]] && passed=$((passed+1)) || { echo "FAIL empty output left behind"; fail=$((fail+1)); }
+
+echo "$passed passed, $fail failed"
+[[ $fail -eq 0 ]]
