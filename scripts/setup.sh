@@ -10,6 +10,7 @@ PACKAGES=(
   libosmesa6-dev
   libgtest-dev libgmock-dev libbenchmark-dev
   libcli11-dev libfmt-dev libspdlog-dev
+  libmodbus-dev
   libpagmo-dev
   python3-scipy python3-numpy
 )
