@@ -1,0 +1,67 @@
+// Tests of hw/twin_backend.cpp: drives off until activated, position hold,
+// commanded motion, torque-off joints follow the others, time advances by read().
+#include <gtest/gtest.h>
+
+#include "hw/hardware_config.hpp"
+#include "hw/hw_errors.hpp"
+#include "hw/twin_backend.hpp"
+#include "models/kinematics.hpp"
+
+namespace gpm::hw {
+namespace {
+
+const std::string kSrc = GPM_SOURCE_DIR;
+
+TEST(TwinBackend, HoldsThenFollowsCommands) {
+  TwinBackend twin(twin_config_from_scenario(kSrc + "/scenarios/simulate_disc.yaml", 0.004));
+  EXPECT_THROW(twin.read(0.0), LifecycleError);
+  twin.configure();
+  const HardwareState s0 = twin.last_state();
+  EXPECT_FALSE(s0.drive[0].enabled);
+  twin.activate();
+  double t = 0.0;
+  for (int k = 0; k < 50; ++k) {
+    twin.write(hold_command(s0.theta_m), t);
+    t += 0.004;
+    twin.read(t);
+  }
+  EXPECT_NEAR(twin.last_state().time_s, 0.2, 1e-3);
+  EXPECT_LT((twin.last_state().theta_m - s0.theta_m).cwiseAbs().maxCoeff(), 2e-4);
+  EXPECT_TRUE(twin.last_state().drive[2].enabled);
+  // Move along consistent targets of the twin's own actual robot: it follows.
+  const Robot& actual = twin_config_from_scenario(kSrc + "/scenarios/simulate_disc.yaml", 0.004).actual;
+  Eigen::Vector3d target = s0.theta_m;
+  for (int k = 1; k <= 250; ++k) {
+    const Eigen::Vector2d p = actual.home + Eigen::Vector2d(20.0 * k / 250, 0);
+    target = readings_from_active(actual.geometry, inverse_kinematics(actual.geometry, p, actual.branch).theta_a);
+    for (int i = 0; i < 3; ++i) target[i] = wrap_2pi(target[i]);
+    twin.write(hold_command(target), t);
+    t += 0.004;
+    twin.read(t);
+  }
+  for (int k = 0; k < 100; ++k) {
+    twin.write(hold_command(target), t);
+    t += 0.004;
+    twin.read(t);
+  }
+  EXPECT_LT((twin.last_state().theta_m - target).cwiseAbs().maxCoeff(), 3e-4);
+  EXPECT_NEAR(twin.snapshot().ee_mm.x(), actual.home.x() + 20.0, 0.1);
+}
+
+TEST(TwinBackend, TorqueOffJointReportsDisabledAndStillReads) {
+  TwinBackend twin(twin_config_from_scenario(kSrc + "/scenarios/simulate_disc.yaml", 0.004));
+  twin.configure();
+  twin.activate();
+  HardwareCommand c = hold_command(twin.last_state().theta_m);
+  c.mode[2] = JointMode::kTorqueOff;
+  twin.write(c, 0.0);
+  const HardwareState& s = twin.read(0.04);
+  EXPECT_TRUE(s.drive[0].enabled);
+  EXPECT_FALSE(s.drive[2].enabled);
+  EXPECT_EQ(s.torque[2], 0.0);
+  twin.deactivate();
+  EXPECT_FALSE(twin.read(0.08).drive[0].enabled);
+}
+
+}  // namespace
+}  // namespace gpm::hw
