@@ -1,6 +1,9 @@
 // Excitation design: which n calibration poses make the free parameters most
 // accurate (issue 10). Pure calibration mathematics (models/ and calib/, no
-// MuJoCo).
+// MuJoCo). Paper section 4.5 found that 50 poses on a line could not be
+// calibrated while a circle about the workspace centre could; ERRATA: the
+// layout changes the achievable accuracy by orders of magnitude. Here the
+// layout is chosen by optimal experiment design on the Cramer-Rao bound.
 //
 // The design is made at the NOMINAL geometry (what is known before
 // calibration): the Fisher information of calib/excitation/fisher.hpp,

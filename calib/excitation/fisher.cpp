@@ -74,7 +74,11 @@ Bounds bounds_from_rows(const Eigen::MatrixXd& rows, const Geometry& g, const Fr
   if (!(sigma > 0.0)) throw InputError(fmt::format("noise sigma must be positive, got {}", sigma));
   // Rank test as calib/identifiability.hpp (exact gauge directions sit at ~1e-15).
   if (p == 0 || rows_s.rows() < p || !(sv[p - 1] > kRankTolerance * sv[0])) return b;
-  b.log_det = 2.0 * (sv.array().log().sum() + s.array().log().sum()) - 2.0 * static_cast<double>(p) * std::log(sigma);
+  // log det F = 2 sum log sv + 2 sum log s - 2 p log sigma. Scalar logs: GCC 12
+  // warns falsely inside Eigen's AVX-512 vectorised log (GCC PR 105593).
+  double log_sum = 0.0;
+  for (Eigen::Index k = 0; k < p; ++k) log_sum += std::log(sv[k]) + std::log(s[k]);
+  b.log_det = 2.0 * log_sum - 2.0 * static_cast<double>(p) * std::log(sigma);
   const Eigen::MatrixXd W = svd.matrixV() * sv.cwiseInverse().asDiagonal();
   b.scaled = sigma * W.rowwise().norm();
   b.sigma = b.scaled.cwiseQuotient(s);
