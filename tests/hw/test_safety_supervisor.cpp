@@ -133,6 +133,8 @@ TEST(SafetySupervisor, RandomisedCommandsNeverBreakALimit) {
     prev = rig.rec[k];
     v_prev = v;
   }
+  std::printf("randomised: %ld commands accepted, %ld refused, %zu forwarded (incl. brakes)\n", accepted,
+              rejected, rig.rec.size());
   EXPECT_GT(accepted, 5000);
   EXPECT_GT(rejected, 500);
   EXPECT_EQ(rig.sup->rejected_count(), rejected);
