@@ -6,6 +6,8 @@
 #include <fstream>
 #include <string>
 #include <vector>
+#include <chrono>
+#include <thread>
 
 #include <unistd.h>
 
@@ -46,9 +48,11 @@ class RecordingBackend final : public RobotHardware {
       : position_(start), period_(period) {}
   std::vector<HardwareCommand>* record = nullptr;  // where commands go (outlives this)
   bool fail_reads = false;
+  bool wall_clock = false;  // report real (not simulated) time
+  double read_delay_s = 0.0;
 
   double period_s() const override { return period_; }
-  bool simulated_time() const override { return true; }
+  bool simulated_time() const override { return !wall_clock; }
   std::string describe() const override { return "recording"; }
 
  protected:
@@ -59,6 +63,7 @@ class RecordingBackend final : public RobotHardware {
   void on_error() noexcept override { enabled_ = false; }
   void on_read(double t, HardwareState& s) override {
     if (fail_reads) throw HardwareError("recording: read failed");
+    if (read_delay_s > 0) std::this_thread::sleep_for(std::chrono::duration<double>(read_delay_s));
     s.time_s = t;
     s.theta_m = position_;
     for (auto& d : s.drive) d.enabled = enabled_;

@@ -201,6 +201,27 @@ TEST(SafetySupervisor, WatchdogHoldsThenDisables) {
   (void)home;
 }
 
+TEST(SafetySupervisor, SlowBackendIsACommsTimeout) {
+  Robot robot;
+  auto backend = std::make_unique<test::RecordingBackend>(ik_m(robot, robot.home));
+  test::RecordingBackend* raw = backend.get();
+  raw->wall_clock = true;
+  SafetySupervisor sup(std::move(backend), robot, test::example_limits());
+  sup.configure();
+  sup.read(0.0);
+  sup.activate();
+  raw->read_delay_s = 0.15;  // comms_timeout is 0.1 s
+  try {
+    sup.read(0.004);
+    FAIL() << "no comms timeout";
+  } catch (const SafetyError& e) {
+    EXPECT_NE(std::string(e.what()).find("comms timeout: read of recording took"), std::string::npos)
+        << e.what();
+  }
+  EXPECT_EQ(sup.state(), LifecycleState::kError);
+  EXPECT_EQ(sup.backend().state(), LifecycleState::kError);
+}
+
 TEST(SafetySupervisor, EmergencyStopDisablesTheBackend) {
   Rig rig;
   rig.sup->emergency_stop("test");
