@@ -2,9 +2,7 @@
 
 #include <algorithm>
 
-#ifdef _OPENMP
-#include <omp.h>
-#endif
+#include <thread>
 
 #include "models/errors.hpp"
 
@@ -14,6 +12,8 @@ PopulationCost::PopulationCost(const Problem& problem, Cost cost, const Box& box
     : space_(problem, cost, box), table_(make_sample_table(problem.theta_m)), threads_(threads) {
   if (problem.theta_m.empty()) throw InputError("global solvers: no samples");
   if (threads < 0) throw InputError("global solvers: the thread count must be >= 0");
+  const int nt = threads > 0 ? threads : static_cast<int>(std::max(1u, std::thread::hardware_concurrency()));
+  if (nt > 1) pool_ = std::make_shared<BlockPool>(nt - 1);
 }
 
 void PopulationCost::evaluate(const double* x, long stride, long count, double* f) const {
@@ -28,15 +28,10 @@ void PopulationCost::evaluate(const double* x, long stride, long count, double* 
     closure_cost_block(space_.cost(), table_, kv, J);
     std::copy_n(J, m, f + c0);
   };
-#ifdef _OPENMP
-  // A parallel region costs a few microseconds: only worth it for 4+ blocks.
-  const int nt = threads_ > 0 ? threads_ : omp_get_max_threads();
-  if (nt > 1 && blocks >= 4) {
-#pragma omp parallel for num_threads(nt) schedule(static)
-    for (long b = 0; b < blocks; ++b) run_block(b);
+  if (pool_ && blocks > 1) {
+    pool_->run(blocks, run_block);
     return;
   }
-#endif
   for (long b = 0; b < blocks; ++b) run_block(b);
 }
 

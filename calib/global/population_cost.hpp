@@ -3,6 +3,9 @@
 // thread in a fixed order, so results do not depend on the thread count.
 #pragma once
 
+#include <memory>
+
+#include "calib/global/block_pool.hpp"
 #include "calib/global/closure_kernel.hpp"
 #include "calib/global/decision_space.hpp"
 #include "calib/global/objective.hpp"
@@ -11,7 +14,8 @@ namespace gpm::calib::global {
 
 class PopulationCost {
  public:
-  // threads: 0 = all hardware threads (OpenMP's default), 1 = serial.
+  // threads: 0 = all hardware threads, 1 = serial (threads - 1 helpers are
+  // started here and share each population with the calling thread).
   PopulationCost(const Problem& problem, Cost cost, const Box& box, int threads = 0);
 
   const DecisionSpace& space() const { return space_; }
@@ -30,6 +34,7 @@ class PopulationCost {
   DecisionSpace space_;
   SampleTable table_;
   int threads_;
+  std::shared_ptr<BlockPool> pool_;  // null when serial
 };
 
 }  // namespace gpm::calib::global
