@@ -22,8 +22,6 @@ void add_calibrate(CLI::App& app);
 void add_run(CLI::App& app);
 void add_render(CLI::App& app);
 void add_compare(CLI::App& app);
-void add_design(CLI::App& app);
-void add_sample(CLI::App& app);
 void add_study(CLI::App& app);
 
 // Throws InputError "gpm NAME: not available yet (...)": a subcommand whose

@@ -40,8 +40,6 @@ int main(int argc, char** argv) {
   gpm::cli::add_run(app);
   gpm::cli::add_render(app);
   gpm::cli::add_compare(app);
-  gpm::cli::add_design(app);
-  gpm::cli::add_sample(app);
   gpm::cli::add_study(app);
   try {
     app.parse(argc, argv);

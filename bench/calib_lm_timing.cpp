@@ -1,7 +1,8 @@
 // Times one whole LM calibration (calib/lm.hpp: identifiability, Ceres LM;
 // covariance off, as scipy computes none) of a samples CSV, many repetitions,
 // and prints the median time and the largest error against the true geometry.
-//   bench_calib_lm SAMPLES.csv REPETITIONS COST
+//   bench_calib_lm SAMPLES.csv REPETITIONS COST [cov]
+// ("cov" also computes the 1-sigma, as gpm calibrate does).
 // The true geometry is paper Table 5; the start is nominal with the fixed
 // coordinates xa1, ya1, xa2, ya2 at their true values (11 free).
 #include <algorithm>
@@ -35,7 +36,7 @@ int main(int argc, char** argv) {
     if (!pb.free.test(static_cast<size_t>(i))) pb.start[i] = truth[i];
   calib::LmOptions opt;
   opt.cost = *cost;
-  opt.compute_covariance = false;
+  opt.compute_covariance = argc > 4 && std::string(argv[4]) == "cov";
   std::vector<double> t;
   calib::Result r;
   for (int k = 0; k < reps; ++k) {

@@ -193,7 +193,7 @@ Result calibrate_lm(const Problem& problem, const LmOptions& opt) {
   }
 
   res.geometry = from_solver(x, opt.cost);
-  const Evaluation fin = evaluate(functions, x, rows, true);
+  const Evaluation fin = evaluate(functions, x, rows, opt.compute_covariance && !res.rank_deficient);
   const double ssq = fin.ok ? fin.r.squaredNorm() : kNaN;
   res.final_cost = paper_cost(opt.cost, ssq);
 
