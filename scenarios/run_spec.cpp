@@ -125,7 +125,7 @@ CompensationPlan parse_compensation(const YAML::Node& n, const std::string& file
 
 template <typename T>
 void opt_number(const YAML::Node& n, const char* key, const std::string& file, std::optional<T>& out) {
-  if (n[key]) out = yaml_number(n[key], file, std::string("expect.") + key);
+  if (n[key]) out = yaml_positive(n[key], file, std::string("expect.") + key);
 }
 
 Expectations parse_expect(const YAML::Node& n, const std::string& file) {

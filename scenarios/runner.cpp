@@ -77,7 +77,9 @@ RunOutcome run_scenario(const RunSpec& spec, const std::string& scenario_file, c
   out.crb_sigma_rad = spec.calibration.sigma.value_or(effective_sigma(spec.sim));
   if (problem.free.count() <= noiseless.size()) {
     try {
-      out.crb = calib::crb_sigma(actual.geometry, problem.free, noiseless, out.crb_sigma_rad);
+      // The bound scales with sigma: computed at 1 rad and scaled (0 for ideal encoders).
+      out.crb = calib::crb_sigma(actual.geometry, problem.free, noiseless, 1.0);
+      for (double& v : out.crb) v *= out.crb_sigma_rad;
     } catch (const std::exception&) {
       out.crb.fill(NAN);  // singular information: reported as unidentifiable below
     }
