@@ -23,6 +23,8 @@ void add_run(CLI::App& app);
 void add_render(CLI::App& app);
 void add_compare(CLI::App& app);
 void add_study(CLI::App& app);
+void add_design(CLI::App& app);
+void add_sample(CLI::App& app);
 
 // Throws InputError "gpm NAME: not available yet (...)": a subcommand whose
 // issue has not landed.

@@ -6,6 +6,7 @@
 #include <filesystem>
 
 #include <fmt/format.h>
+#include <glog/logging.h>
 
 #include "app/commands.hpp"
 #include "models/errors.hpp"
@@ -31,6 +32,11 @@ void not_available(const std::string& name, const std::string& issue) {
 }  // namespace gpm::cli
 
 int main(int argc, char** argv) {
+  // Ceres logs through glog; gpm reports solver problems itself (result notes),
+  // so only fatal glog messages reach the terminal.
+  FLAGS_minloglevel = google::GLOG_FATAL;
+  FLAGS_logtostderr = true;
+  google::InitGoogleLogging(argv[0]);
   CLI::App app{"gpm: digital twin and auto-calibration toolkit for the GPM2002 planar 3-RRR manipulator"};
   app.require_subcommand(1);
   app.set_version_flag("--version", "gpm 0.1.0");
@@ -41,6 +47,8 @@ int main(int argc, char** argv) {
   gpm::cli::add_render(app);
   gpm::cli::add_compare(app);
   gpm::cli::add_study(app);
+  gpm::cli::add_design(app);
+  gpm::cli::add_sample(app);
   try {
     app.parse(argc, argv);
   } catch (const CLI::CallForHelp& e) {

@@ -7,7 +7,7 @@ PACKAGES=(
   build-essential cmake pkg-config ninja-build
   libeigen3-dev libceres-dev libyaml-cpp-dev
   libmujoco-dev libqhull-dev libmujoco-samples
-  libosmesa6-dev
+  libosmesa6-dev libavcodec-dev libavformat-dev libswscale-dev libavutil-dev libpng-dev ffmpeg
   libgtest-dev libgmock-dev libbenchmark-dev
   libcli11-dev libfmt-dev libspdlog-dev
   libmodbus-dev
