@@ -15,6 +15,7 @@
 #include "app/commands.hpp"
 #include "calib/initial.hpp"
 #include "calib/lm.hpp"
+#include "scenarios/calibration_method.hpp"
 #include "calib/result_yaml.hpp"
 #include "calib/sample_check.hpp"
 #include "models/errors.hpp"
@@ -32,7 +33,8 @@ struct CalibrateOptions {
   std::string init = "model";
   std::string reference_reading, reference_point;
   long seed = 1;
-  long budget = 200;
+  long budget = 0;  // lm: iterations (default 200); global: evaluations (default 1.5e6)
+  bool budget_given = false;
   double sigma = 0.0;
   bool sigma_given = false;
   bool allow_rank_deficient = false;
@@ -89,14 +91,10 @@ std::vector<double> parse_numbers(const std::string& text, size_t n, const std::
 void run(const CalibrateOptions& o) {
   const auto cost = calib::parse_cost(o.cost);
   if (!cost) throw InputError(fmt::format("--cost: '{}' is not one of j1, j2, j3, ml", o.cost));
-  if (o.method != "lm") {
-    if (o.method == "ga" || o.method == "pso" || o.method == "de" || o.method == "de+lm") {
-      throw InputError(fmt::format("--method {}: not available yet (the global optimisers of "
-                                   "calib/global are not wired in; use --method lm)", o.method));
-    }
-    throw InputError(fmt::format("--method: '{}' is unknown (valid: lm; ga, pso, de, de+lm to come)", o.method));
+  if (o.method != "lm" && o.method != "ga" && o.method != "pso" && o.method != "de" && o.method != "de+lm") {
+    throw InputError(fmt::format("--method: '{}' is unknown (valid: {})", o.method, scenario::kMethodNames));
   }
-  if (o.budget < 1) throw InputError(fmt::format("--budget: must be at least 1, got {}", o.budget));
+  if (o.budget_given && o.budget < 1) throw InputError(fmt::format("--budget: must be at least 1, got {}", o.budget));
   const std::string model_path = o.model.empty() ? default_model_path() : o.model;
   const Robot robot = load_robot(model_path);
   const Samples samples = read_samples_csv(o.data);
@@ -127,17 +125,22 @@ void run(const CalibrateOptions& o) {
   }
 
   calib::check_samples(problem, row_labels(o.data, samples));
-  calib::LmOptions lm;
-  lm.cost = *cost;
-  lm.allow_rank_deficient = o.allow_rank_deficient;
-  lm.max_iterations = static_cast<int>(std::min<long>(o.budget, 1000000));
+  scenario::MethodOptions mo;
+  mo.method = o.method;
+  mo.cost = *cost;
+  mo.seed = static_cast<std::uint64_t>(o.seed);
+  mo.allow_rank_deficient = o.allow_rank_deficient;
+  if (o.budget_given) {
+    if (o.method == "lm") mo.lm_max_iterations = static_cast<int>(std::min<long>(o.budget, 1000000));
+    else mo.budget = o.budget;
+  }
   if (o.sigma_given) {
     if (!(o.sigma > 0.0) || !std::isfinite(o.sigma))
       throw InputError(fmt::format("--sigma: encoder noise must be a positive number of radians, got {}", o.sigma));
-    lm.encoder_sigma = o.sigma;
+    mo.encoder_sigma = o.sigma;
   }
-  if (samples.has_xy) lm.true_xy = &samples.xy;
-  const calib::Result r = calib::calibrate_lm(problem, lm);
+  if (samples.has_xy) mo.true_xy = &samples.xy;
+  const calib::Result r = scenario::calibrate_with_method(problem, mo);
 
   for (const auto& note : r.notes) std::fprintf(stderr, "gpm: warning: %s\n", note.c_str());
   calib::save_result(r, robot.name, o.out);
@@ -170,9 +173,14 @@ void add_calibrate(CLI::App& app) {
       ->capture_default_str();
   cmd->add_option("--cost", o->cost, "Error function: j1 (eq. 37), j2 (eq. 39), j3 (eq. 43), ml (maximum likelihood)")
       ->capture_default_str();
-  cmd->add_option("--method", o->method, "Solver: lm (ga, pso, de, de+lm to come)")->capture_default_str();
-  cmd->add_option("--seed", o->seed, "Random seed (LM is deterministic and ignores it)");
-  cmd->add_option("--budget", o->budget, "Maximum LM iterations")->capture_default_str();
+  cmd->add_option("--method", o->method,
+                  "Solver: lm (Ceres Levenberg-Marquardt), ga, pso, de (paper section 4, box of Table 5), "
+                  "de+lm (DE then LM; with --cost ml, DE runs on j3)")
+      ->capture_default_str();
+  cmd->add_option("--seed", o->seed, "Random seed of the global methods (LM is deterministic)");
+  cmd->add_option("--budget", o->budget, "lm: maximum iterations (default 200); ga, pso, de, de+lm: error-function "
+                                         "evaluations of the global stage (default 1500000)")
+      ->each([o](const std::string&) { o->budget_given = true; });
   cmd->add_option("--sigma", o->sigma, "Encoder noise 1-sigma (rad) for the uncertainty; default: estimated from the residuals")
       ->each([o](const std::string&) { o->sigma_given = true; });
   cmd->add_flag("--allow-rank-deficient", o->allow_rank_deficient,

@@ -16,6 +16,7 @@ calib::Result calibrate_with_method(const calib::Problem& problem, const MethodO
   lm.encoder_sigma = o.encoder_sigma;
   lm.allow_rank_deficient = o.allow_rank_deficient;
   lm.true_xy = o.true_xy;
+  lm.max_iterations = o.lm_max_iterations;
   if (o.method == "lm") return calib::calibrate_lm(problem, lm);
 
   const auto method = calib::global::parse_method(o.method);
@@ -30,6 +31,7 @@ calib::Result calibrate_with_method(const calib::Problem& problem, const MethodO
   go.budget = o.budget;
   go.seed = o.seed;
   go.allow_rank_deficient = o.allow_rank_deficient;
+  go.lm_max_iterations = o.lm_max_iterations;
   const calib::Box box = calib::global::default_box(problem.start, problem.free);
   // ML is a least-squares residual, not a population cost: DE searches J3
   // (same minimiser, ERRATA), then LM refines on ML.

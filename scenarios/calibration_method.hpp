@@ -16,7 +16,8 @@ namespace gpm::scenario {
 struct MethodOptions {
   std::string method = "lm";  // lm | ga | pso | de | de+lm
   calib::Cost cost = calib::Cost::kML;
-  long budget = 200000;       // error-function evaluations of the global stage
+  long budget = 1500000;      // error-function evaluations of the global stage
+  int lm_max_iterations = 200;
   std::uint64_t seed = 1;
   std::optional<double> encoder_sigma;
   bool allow_rank_deficient = false;

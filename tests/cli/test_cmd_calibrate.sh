@@ -54,6 +54,18 @@ for c in j1 j2 j3; do
   expect "cost $c la3" "$tmp/r.yaml" "^  la3: 243\.(5000|4999)"
 done
 
+# Global methods (paper section 4): DE on J3 inside the Table 5 box, and DE then LM.
+check "method de j3" 0 "$GPM" calibrate --data "$tmp/s.csv" --model "$tmp/start.yaml" --method de --cost j3 \
+  --budget 900000 --seed 4 -o "$tmp/r.yaml"
+expect "de la3" "$tmp/r.yaml" "^  la3: 243\.(5000|4999)"
+expect "de method" "$tmp/r.yaml" "^  method: \"?de\"?$"
+check "method de+lm ml" 0 "$GPM" calibrate --data "$tmp/s.csv" --model "$tmp/start.yaml" --method de+lm \
+  --budget 30000 --seed 4 -o "$tmp/r.yaml"
+expect "de+lm la3" "$tmp/r.yaml" "^  la3: 243\.(5000|4999)"
+check "method pso j2" 0 "$GPM" calibrate --data "$tmp/s.csv" --model "$tmp/start.yaml" --method pso --cost j2 \
+  --budget 20000 --seed 4 -o "$tmp/r.yaml"
+expect "pso evaluations within budget" "$tmp/r.yaml" "^  evaluations: (1?[0-9]{1,4}|20000)$"
+
 # Reference-point start (section 3.2 step 3): readings at home of the actual robot.
 check "reference start" 0 "$GPM" calibrate --data "$tmp/s.csv" --model "$tmp/start.yaml" \
   --reference-reading 1.10,3.12,4.81 -o "$tmp/r.yaml"
@@ -84,8 +96,8 @@ check "budget 1" 1 "$GPM" calibrate --data "$tmp/s.csv" --model "$tmp/start.yaml
 expect "not converged" "$tmp/r.yaml" "^  converged: false"
 
 # Bad input: exit 2, one line, no result file.
-check "method de" 2 "$GPM" calibrate --data "$tmp/s.csv" --method de -o "$tmp/r.yaml"
-expect "method message" "$tmp/err" "--method de: not available yet"
+check "method de with ml" 2 "$GPM" calibrate --data "$tmp/s.csv" --method de -o "$tmp/r.yaml"
+expect "method message" "$tmp/err" "--cost ml works with lm or de\+lm only"
 check "method bogus" 2 "$GPM" calibrate --data "$tmp/s.csv" --method simplex -o "$tmp/r.yaml"
 check "cost bogus" 2 "$GPM" calibrate --data "$tmp/s.csv" --cost j4 -o "$tmp/r.yaml"
 expect "cost message" "$tmp/err" "--cost: 'j4' is not one of j1, j2, j3, ml"
