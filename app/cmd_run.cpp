@@ -1,6 +1,7 @@
 // gpm run SCENARIO.yaml -o DIR: simulate, calibrate, compensate, evaluate and
 // report (scenarios/runner.hpp). Exit 1 when an expectation fails.
 #include <cstdio>
+#include <filesystem>
 #include <memory>
 #include <string>
 
@@ -17,12 +18,14 @@ namespace {
 struct RunOptions {
   std::string scenario;
   std::string out;
+  std::string hardware;
   bool quiet = false;
 };
 
 void print_summary(const scenario::RunOutcome& o, const std::string& dir) {
   fmt::print("scenario   {} ({})\n", o.spec.sim.name, o.scenario_file);
-  fmt::print("samples    {} from the twin\n", o.sim.samples.size());
+  fmt::print("samples    {} {}\n", o.sim.samples.size(),
+             o.hardware_description.empty() ? "from the twin" : "through " + o.hardware_description);
   if (o.calibration) {
     const auto& r = *o.calibration;
     fmt::print("calibrate  {} on {}: J = {:.4g}, {} iterations, rank {}, cond {:.3g}{}\n", r.method,
@@ -65,13 +68,22 @@ void add_run(CLI::App& app) {
   auto* cmd = app.add_subcommand("run", "Simulate, calibrate, compensate and report a scenario (exit 1 if an expectation fails)");
   cmd->add_option("scenario", opt->scenario, "Scenario file (YAML; see scenarios/SCHEMA.md)")->required();
   cmd->add_option("-o,--out", opt->out, "Output folder")->required();
+  cmd->add_option("--hardware", opt->hardware,
+                  "Hardware file (hw/examples): take the samples through the robot interface (twin or modbus)");
   cmd->add_flag("-q,--quiet", opt->quiet, "No progress lines");
   cmd->callback([opt] {
-    const scenario::RunSpec spec = scenario::load_run_spec(opt->scenario);
+    scenario::RunSpec spec = scenario::load_run_spec(opt->scenario);
+    if (!opt->hardware.empty()) spec.hardware = opt->hardware;
+    std::string samples_path;
+    if (spec.hardware) {
+      // Samples are appended to DIR/samples.csv as they are taken (nothing measured is lost).
+      std::filesystem::create_directories(opt->out);
+      samples_path = (std::filesystem::path(opt->out) / "samples.csv").string();
+    }
     const bool show = !opt->quiet && ::isatty(STDERR_FILENO);
     const auto outcome = scenario::run_scenario(spec, opt->scenario, [show](const std::string& stage) {
       if (show) std::fprintf(stderr, "gpm run: %s ...\n", stage.c_str());
-    });
+    }, samples_path);
     scenario::write_run(outcome, opt->out);
     print_summary(outcome, opt->out);
     set_exit(outcome.passed() ? 0 : 1);

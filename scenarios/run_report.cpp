@@ -144,6 +144,11 @@ report::ReportDocument build_report(const RunOutcome& o) {
                           o.scenario_file, failed.empty() ? "PASSED" : "FAILED", o.checks.size(),
                           failed.size(), o.seconds));
   if (!failed.empty()) d.bullets(failed);
+  if (!o.hardware_description.empty()) {
+    d.paragraph(fmt::format("Samples taken through the hardware interface ({}). Errors are against the scenario's "
+                            "actual robot, the truth when that hardware simulates this scenario.",
+                            o.hardware_description));
+  }
 
   if (o.before) {
     d.heading(2, "Accuracy before and after calibration");

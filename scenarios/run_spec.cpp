@@ -167,6 +167,11 @@ RunSpec from_root(const YAML::Node& root, const std::string& file, const std::st
   RunSpec spec;
   spec.sim = sim::scenario_from_yaml(root, file, base_dir);
   spec.calibration = parse_calibration(root["calibration"], file);
+  if (const YAML::Node hw = root["hardware"]) {
+    const std::string h = yaml_string(hw, file, "hardware");
+    spec.hardware = (std::filesystem::path(h).is_absolute() ? std::filesystem::path(h)
+                                                            : std::filesystem::path(base_dir) / h).string();
+  }
   if (const YAML::Node out = root["outputs"]) {
     yaml_check_keys(out, file, "outputs", {"report", "compensation"});
     if (out["report"]) spec.outputs.report = yaml_bool(out["report"], file, "outputs.report");

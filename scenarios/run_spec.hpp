@@ -50,6 +50,10 @@ struct Outputs {
 // A whole scenario: the simulation part (sim/scenario.hpp) and the run part.
 struct RunSpec {
   sim::Scenario sim;
+  // Hardware file (hw/hardware_config.hpp): the samples are taken through the
+  // robot interface (twin or modbus backend) instead of the in-process
+  // simulation. Relative to the scenario file; `gpm run --hardware` overrides.
+  std::optional<std::string> hardware;
   CalibrationSpec calibration;
   std::optional<CompensationPlan> compensation;  // set when outputs.compensation
   Expectations expect;

@@ -13,7 +13,11 @@
 #include "calib/result_yaml.hpp"
 #include "models/errors.hpp"
 #include "models/kinematics.hpp"
+#include "hw/hardware_config.hpp"
+#include "hw/sample_log.hpp"
+#include "hw/sampling_session.hpp"
 #include "models/robot_yaml.hpp"
+#include "models/samples.hpp"
 #include "scenarios/calibration_method.hpp"
 #include "scenarios/expectations.hpp"
 #include "scenarios/run_report.hpp"
@@ -41,7 +45,46 @@ double effective_sigma(const sim::Scenario& s) {
 
 }  // namespace
 
-RunOutcome run_scenario(const RunSpec& spec, const std::string& scenario_file, const Progress& progress) {
+namespace {
+
+// Samples through the hardware interface (hw/): the scenario's poses, the
+// sampling session of hw/sampling_session.hpp, every sample on disk as taken.
+sim::SimulationResult sample_on_hardware(const RunSpec& spec, const std::string& samples_path,
+                                         std::string& description) {
+  if (samples_path.empty()) throw InputError("gpm run --hardware: no output folder for the samples");
+  const hw::HardwareConfig cfg = hw::load_hardware_config(*spec.hardware);
+  hw::SessionPlan plan;
+  plan.poses = sim::plan_poses(*spec.sim.sampling, spec.sim.seed);
+  plan.options = spec.sim.sampling->options;
+  plan.modes = cfg.modes;
+  sim::SimulationResult r;
+  r.actual = sim::make_actual(spec.sim);
+  {
+    hw::SampleLog log(samples_path, false);
+    auto robot = hw::make_hardware(cfg);
+    description = fmt::format("{} backend from {}", cfg.backend, *spec.hardware);
+    hw::run_sampling_session(*robot, plan, log);
+  }
+  const Samples s = read_samples_csv(samples_path);
+  for (size_t j = 0; j < s.size(); ++j) {
+    sim::SampleRecord rec;
+    rec.id = s.id[j];
+    rec.theta_m = s.theta_m[j];
+    rec.target = plan.poses[static_cast<size_t>(s.id[j])];
+    // Through the interface only the readings are known; the pose is the
+    // target, and the true angles those of the scenario's actual robot there.
+    rec.xy_mm = rec.target;
+    rec.theta_a = inverse_kinematics(r.actual.geometry, rec.target, r.actual.branch).theta_a;
+    rec.settled = true;
+    r.samples.push_back(rec);
+  }
+  return r;
+}
+
+}  // namespace
+
+RunOutcome run_scenario(const RunSpec& spec, const std::string& scenario_file, const Progress& progress,
+                        const std::string& samples_path) {
   const auto t0 = std::chrono::steady_clock::now();
   auto stage = [&](const std::string& s) { if (progress) progress(s); };
   RunOutcome out;
@@ -50,8 +93,13 @@ RunOutcome run_scenario(const RunSpec& spec, const std::string& scenario_file, c
   out.nominal = spec.sim.controller;
   out.calibrated = spec.sim.controller;
 
-  stage("simulating the twin");
-  out.sim = sim::run_simulation(spec.sim);
+  if (spec.hardware) {
+    stage("sampling through the hardware interface");
+    out.sim = sample_on_hardware(spec, samples_path, out.hardware_description);
+  } else {
+    stage("simulating the twin");
+    out.sim = sim::run_simulation(spec.sim);
+  }
   const Robot& actual = out.sim.actual;
 
   // Calibration problem from the encoder samples alone.
@@ -60,7 +108,7 @@ RunOutcome run_scenario(const RunSpec& spec, const std::string& scenario_file, c
   std::vector<Eigen::Vector3d> noiseless;
   for (const sim::SampleRecord& r : out.sim.samples) {
     problem.theta_m.push_back(r.theta_m);
-    true_xy.push_back(r.xy_mm);
+    true_xy.push_back(r.xy_mm);  // the true pose in simulation (kmrmse only then)
     noiseless.push_back(readings_from_active(actual.geometry, r.theta_a));
   }
   problem.start = spec.sim.controller.geometry;
@@ -96,7 +144,7 @@ RunOutcome run_scenario(const RunSpec& spec, const std::string& scenario_file, c
   mo.encoder_sigma = spec.calibration.sigma;
   if (!mo.encoder_sigma && spec.sim.twin.encoder.noise_rad > 0) mo.encoder_sigma = out.crb_sigma_rad;
   mo.allow_rank_deficient = spec.calibration.allow_rank_deficient;
-  mo.true_xy = &true_xy;
+  mo.true_xy = spec.hardware ? nullptr : &true_xy;
   try {
     out.calibration = calibrate_with_method(problem, mo);
     out.calibrated.geometry = out.calibration->geometry;
@@ -131,10 +179,12 @@ RunOutcome run_scenario(const RunSpec& spec, const std::string& scenario_file, c
 
 void write_run(const RunOutcome& o, const std::string& dir) {
   std::vector<std::pair<std::string, std::string>> files;
-  files.emplace_back("samples.csv", sim::samples_csv(o.sim.samples));
-  files.emplace_back("trajectory.csv", sim::trajectory_csv(o.sim.log));
+  if (o.hardware_description.empty()) {  // with hardware the session already wrote samples.csv
+    files.emplace_back("samples.csv", sim::samples_csv(o.sim.samples));
+    files.emplace_back("trajectory.csv", sim::trajectory_csv(o.sim.log));
+    files.emplace_back("model.xml", o.sim.model_xml);
+  }
   files.emplace_back("actual.yaml", robot_to_yaml(o.sim.actual));
-  files.emplace_back("model.xml", o.sim.model_xml);
   if (o.calibration) files.emplace_back("calibration.yaml", calib::result_to_yaml(*o.calibration, o.nominal.name));
   if (o.spec.outputs.report) {
     const report::ReportDocument doc = build_report(o);

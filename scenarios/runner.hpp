@@ -26,6 +26,7 @@ struct Check {
 struct RunOutcome {
   std::string scenario_file;
   RunSpec spec;
+  std::string hardware_description;  // empty: in-process simulation
   sim::SimulationResult sim;
   Robot nominal;     // the controller's model before calibration
   Robot calibrated;  // nominal with the estimated geometry (= nominal if refused)
@@ -44,10 +45,14 @@ struct RunOutcome {
 
 using Progress = std::function<void(const std::string& stage)>;
 
-// Runs the scenario in memory. Throws InputError for bad input (including a
+// Runs the scenario. Throws InputError for bad input (including a
 // calibration refused as rank-deficient unless the scenario expects it).
+// With spec.hardware, the samples are taken through the robot interface and
+// appended, flushed, to samples_path as they are taken (which must not exist);
+// the errors are then reported against the scenario's actual robot, which is
+// the truth only when that hardware simulates this scenario (twin, emulator).
 RunOutcome run_scenario(const RunSpec& spec, const std::string& scenario_file,
-                        const Progress& progress = {});
+                        const Progress& progress = {}, const std::string& samples_path = "");
 
 // Writes DIR/samples.csv, trajectory.csv, actual.yaml, model.xml,
 // calibration.yaml, report.md, report.html and the figures, all or nothing.
