@@ -2,6 +2,7 @@
 // hand, and the twin's accuracy with the true model against a wrong one.
 #include "scenarios/compensation.hpp"
 
+#include <Eigen/Geometry>
 #include <gtest/gtest.h>
 
 #include "models/kinematics.hpp"
