@@ -4,25 +4,9 @@
 # with gpm kin ik), the comparison files, one-line errors, no partial output.
 set -u
 GPM="$1"
-fail=0; passed=0
-tmp=$(mktemp -d); trap 'rm -rf "$tmp"' EXIT
-
-check() {  # name, expected exit, command...
-  local name=$1 want=$2; shift 2
-  "$@" >"$tmp/out" 2>"$tmp/err"; local got=$?
-  if [[ $got -ne $want ]]; then
-    echo "FAIL $name: exit $got, want $want"; cat "$tmp/err"; fail=$((fail+1)); return 1
-  fi
-  if [[ $want -eq 2 && $(wc -l <"$tmp/err") -ne 1 ]]; then
-    echo "FAIL $name: stderr is not one line:"; cat "$tmp/err"; fail=$((fail+1)); return 1
-  fi
-  passed=$((passed+1))
-}
+source "$(dirname "$0")/cli_lib.sh"
 expect() {  # name, condition (shell test)
   if eval "$2"; then passed=$((passed+1)); else echo "FAIL $1: $2"; fail=$((fail+1)); fi
-}
-expect_err() {
-  if grep -qE -- "$2" "$tmp/err"; then passed=$((passed+1)); else echo "FAIL $1: no '$2' in:"; cat "$tmp/err"; fail=$((fail+1)); fi
 }
 
 check help 0 "$GPM" --help
@@ -74,5 +58,4 @@ expect_err "model message" "/nonexistent.yaml: cannot open file"
 check "unwritable output" 2 "$GPM" design --count 12 --grid-step 10 -o /nonexistent/dir/poses.yaml
 expect "no partial output" "[[ ! -e '$tmp/bad.yaml' ]]"
 
-echo "$passed passed, $fail failed"
-[[ $fail -eq 0 ]]
+finish

@@ -3,26 +3,7 @@
 # bad input exits 2 with exactly one line on stderr.
 set -u
 GPM="$1"
-fail=0; passed=0
-tmp=$(mktemp -d); trap 'rm -rf "$tmp"' EXIT
-
-check() {  # name, expected exit, command...
-  local name=$1 want=$2; shift 2
-  "$@" >"$tmp/out" 2>"$tmp/err"; local got=$?
-  if [[ $got -ne $want ]]; then
-    echo "FAIL $name: exit $got, want $want"; cat "$tmp/err"; fail=$((fail+1)); return 1
-  fi
-  if [[ $want -eq 2 && $(wc -l <"$tmp/err") -ne 1 ]]; then
-    echo "FAIL $name: stderr is not one line:"; cat "$tmp/err"; fail=$((fail+1)); return 1
-  fi
-  passed=$((passed+1))
-}
-expect_out() {  # name, pattern (in stdout)
-  if grep -qE -- "$2" "$tmp/out"; then passed=$((passed+1)); else echo "FAIL $1: no '$2' in:"; cat "$tmp/out"; fail=$((fail+1)); fi
-}
-expect_err() {
-  if grep -qE -- "$2" "$tmp/err"; then passed=$((passed+1)); else echo "FAIL $1: no '$2' in:"; cat "$tmp/err"; fail=$((fail+1)); fi
-}
+source "$(dirname "$0")/cli_lib.sh"
 
 check help 0 "$GPM" --help
 for sub in kin simulate calibrate run render; do expect_out "help lists $sub" "^  $sub"; done
@@ -49,5 +30,4 @@ printf 'name: x\ngeometry: {xa1: 0}\n' >"$tmp/bad.yaml"
 check "bad model" 2 "$GPM" kin home --model "$tmp/bad.yaml"
 expect_err "bad model key" "missing key 'ya1'"
 
-echo "$passed passed, $fail failed"
-[[ $fail -eq 0 ]]
+finish

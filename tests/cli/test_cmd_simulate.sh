@@ -5,23 +5,7 @@
 set -u
 GPM="$1"
 SCEN="$(cd "$(dirname "$0")/../../scenarios" && pwd)"
-fail=0; passed=0
-tmp=$(mktemp -d); trap 'rm -rf "$tmp"' EXIT
-
-check() {  # name, expected exit, command...
-  local name=$1 want=$2; shift 2
-  "$@" >"$tmp/out" 2>"$tmp/err"; local got=$?
-  if [[ $got -ne $want ]]; then
-    echo "FAIL $name: exit $got, want $want"; cat "$tmp/err"; fail=$((fail+1)); return 1
-  fi
-  if [[ $want -eq 2 && $(wc -l <"$tmp/err") -ne 1 ]]; then
-    echo "FAIL $name: stderr is not one line:"; cat "$tmp/err"; fail=$((fail+1)); return 1
-  fi
-  passed=$((passed+1))
-}
-expect_err() {
-  if grep -qE -- "$2" "$tmp/err"; then passed=$((passed+1)); else echo "FAIL $1: no '$2' in:"; cat "$tmp/err"; fail=$((fail+1)); fi
-}
+source "$(dirname "$0")/cli_lib.sh"
 expect() {  # name, condition...
   local name=$1; shift
   if "$@"; then passed=$((passed+1)); else echo "FAIL $name"; fail=$((fail+1)); fi
@@ -77,5 +61,4 @@ mkdir -p "$tmp/keep" && echo old >"$tmp/keep/samples.csv"
 check "bad run keeps old output" 2 "$GPM" simulate "$tmp/far.yaml" -o "$tmp/keep"
 expect "old file untouched" grep -qx old "$tmp/keep/samples.csv"
 
-echo "$passed passed, $fail failed"
-[[ $fail -eq 0 ]]
+finish
