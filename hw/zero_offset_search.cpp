@@ -1,0 +1,452 @@
+#include "hw/zero_offset_search.hpp"
+
+#include <chrono>
+#include <cmath>
+#include <map>
+#include <numbers>
+#include <utility>
+
+#include <fmt/format.h>
+
+#include "calib/projected_error.hpp"
+#include "hw/cycle_clock.hpp"
+#include "hw/hw_errors.hpp"
+#include "models/errors.hpp"
+#include "models/kinematics.hpp"
+
+namespace gpm::hw {
+namespace {
+
+constexpr double kPi = std::numbers::pi;
+
+// A point refused by the procedure's own check before anything moved there.
+class PointRefused : public std::runtime_error {
+ public:
+  explicit PointRefused(const std::string& what) : std::runtime_error(what) {}
+};
+
+// Smooth 0..1 time law s(u), u = t / T: peak ds/du = pi / 2, peak d2s/du2 = pi^2 / 2.
+double profile(double u) { return 0.5 * (1.0 - std::cos(kPi * u)); }
+
+std::string fmt_v3(const Eigen::Vector3d& v) {
+  return fmt::format("({:.6f}, {:.6f}, {:.6f})", v[0], v[1], v[2]);
+}
+
+void validate(const ZeroSearchOptions& o) {
+  auto bad = [](const std::string& s) { throw InputError("zero-offset search: " + s); };
+  if (!(o.circle_radius_mm > 0)) bad("circle radius must be > 0 mm");
+  if (o.circle_points < 6) bad("at least 6 interpolation points per circle are needed");
+  if (!(o.circle_speed_mm_s > 0) || !(o.move_speed_mm_s > 0)) bad("speeds must be > 0 mm/s");
+  if (!(o.d_min_mm > 0) || !(o.d_initial_mm >= o.d_min_mm)) bad("need 0 < d_min <= d_initial (mm)");
+  const double levels = std::log2(o.d_initial_mm / o.d_min_mm);
+  if (std::abs(levels - std::round(levels)) > 1e-9) bad("d_initial / d_min must be a power of 2");
+  if (o.sensor_joint < 0 || o.sensor_joint > 2) bad("sensor joint must be 1, 2 or 3");
+  if (!(o.profile_headroom > 0 && o.profile_headroom <= 1)) bad("profile headroom must be in (0, 1]");
+  if (o.max_rounds < 1 || o.direct_iterations < 1) bad("round and iteration limits must be >= 1");
+}
+
+class Runner {
+ public:
+  Runner(SafetySupervisor& hw, const ZeroSearchOptions& o, const ZeroTraceSink& sink,
+         ZeroSearchResult& r)
+      : hw_(hw), o_(o), sink_(sink), r_(r), c_(hw.controller()),
+        clock_(hw.period_s(), hw.simulated_time()) {
+    for (int k = 0; k < 3; ++k) modes_[k] = k == o.sensor_joint ? JointMode::kTorqueOff : JointMode::kPosition;
+    for (int k = 0; k < 3; ++k)
+      if (k != o.sensor_joint) (pi_ < 0 ? pi_ : pj_) = k;
+    const JointAngles home = inverse_kinematics(c_.geometry, c_.home, c_.branch);
+    pair_mode_ = assembly_mode(c_.geometry, home.theta_a, c_.home, pi_, pj_);
+    ref_angles_ = inverse_kinematics(c_.geometry, o.reference, c_.branch).theta_a;
+  }
+
+  std::string where() const { return where_; }
+  double now() const { return clock_.now(); }
+
+  // Step 1 (and the start): activate, optionally jog, take R as the first estimate.
+  void start() {
+    if (hw_.state() == LifecycleState::kUnconfigured) hw_.configure();
+    state_ = hw_.read(clock_.now());
+    hw_.activate();
+    command_ = state_.theta_m;
+    if (o_.jog_to_start) {
+      where_ = fmt::format("jog to the start ({:.3f}, {:.3f}) mm", o_.start.x(), o_.start.y());
+      const Eigen::Vector3d q = readings_from_active(
+          c_.geometry, inverse_kinematics(c_.geometry, o_.start, c_.branch).theta_a);
+      require_safe(wrap_near(q), "start point");
+      move_joints(wrap_near(q));
+      settle();
+    }
+  }
+
+  // Steps 2-4 at the point reached by commanding O + shift with the start's offsets.
+  ZeroCandidate evaluate(const Eigen::Vector2d& shift, int round, double d) {
+    ZeroCandidate z;
+    z.index = static_cast<int>(r_.trace.size());
+    z.round = round;
+    z.d_mm = d;
+    z.shift = shift;
+    where_ = fmt::format("estimate {} (round {}, d {} mm) at search point ({:+.4f}, {:+.4f}) mm",
+                         z.index, round, d, shift.x(), shift.y());
+    if (z.index > 0) {
+      const Eigen::Vector3d q = command_for(o_.reference + shift, r_.initial_offsets);
+      require_safe(q, "estimate");
+      // The circle with the offsets the point will give (predicted: readings = command).
+      const Eigen::Vector3d predicted = wrap3(ref_angles_ - q);
+      check_circle(predicted);
+      move_joints(q);
+    }
+    settle();
+    z.readings = average();
+    z.offsets = wrap3(ref_angles_ - z.readings);  // step 2: IK(O) - readings(R)
+    if (z.index == 0) r_.initial_offsets = z.offsets;
+    check_circle(z.offsets);
+    track_circle(z.offsets, z);  // step 3
+    z.E = calib::projected_error(c_, z.offsets, z.desired, z.circle);  // step 4, eq. 17-19
+    finish(z);
+    return z;
+  }
+
+  // Direct method: track with the given offsets from the point that reads as O.
+  ZeroCandidate evaluate_at(const Eigen::Vector3d& dth, int round) {
+    ZeroCandidate z;
+    z.index = static_cast<int>(r_.trace.size());
+    z.round = round;
+    const Eigen::Vector3d q = command_for(o_.reference, dth);
+    z.shift = frame0_point(q) - o_.reference;
+    where_ = fmt::format("direct iteration {} at search point ({:+.4f}, {:+.4f}) mm with offsets {}",
+                         round, z.shift.x(), z.shift.y(), fmt_v3(dth));
+    require_safe(q, "reference point");
+    check_circle(dth);
+    move_joints(q);
+    settle();
+    z.readings = average();
+    z.offsets = dth;
+    track_circle(dth, z);
+    z.E = calib::projected_error(c_, dth, z.desired, z.circle);
+    finish(z);
+    return z;
+  }
+
+  void stop_normally() {
+    if (hw_.state() == LifecycleState::kActive) hw_.deactivate();
+  }
+
+ private:
+  void finish(const ZeroCandidate& z) {
+    r_.trace.push_back(z);
+    if (sink_) sink_(z);
+  }
+
+  Eigen::Vector3d wrap_near(const Eigen::Vector3d& q) const {
+    Eigen::Vector3d m = q;
+    for (int i = 0; i < 3; ++i) m[i] = command_[i] + wrap_pi(q[i] - command_[i]);
+    return m;
+  }
+  static Eigen::Vector3d wrap3(const Eigen::Vector3d& v) {
+    return Eigen::Vector3d(wrap_pi(v[0]), wrap_pi(v[1]), wrap_pi(v[2]));
+  }
+
+  // Encoder-space command of point p with offsets dth: IK(p) - dth (eq. 1).
+  Eigen::Vector3d command_for(const Eigen::Vector2d& p, const Eigen::Vector3d& dth) const {
+    const JointAngles q = inverse_kinematics(c_.geometry, p, c_.branch);
+    return wrap_near(q.theta_a - dth);
+  }
+
+  // The point the two commanded joints reach, in the frame of the start's offsets.
+  Eigen::Vector2d frame0_point(const Eigen::Vector3d& q) const {
+    Geometry g = c_.geometry;
+    for (int i = 0; i < 3; ++i) g[dth(i)] = r_.initial_offsets[i];
+    const auto p = forward_kinematics_two(g, active_from_readings(g, q), pi_, pj_, pair_mode_);
+    return p ? *p : Eigen::Vector2d(NAN, NAN);
+  }
+
+  // Why the two commanded joints at q are not allowed as a static pose by the
+  // supervisor's limits (its controller model and margins); empty when they are.
+  std::string why_unsafe(const Eigen::Vector3d& q) const {
+    const SafetyLimits& L = hw_.limits();
+    for (int k : {pi_, pj_}) {
+      if (q[k] < L.joint_min[k] || q[k] > L.joint_max[k]) {
+        return fmt::format("joint {} command {:.6f} rad is outside the joint limits [{}, {}]", k + 1,
+                           q[k], L.joint_min[k], L.joint_max[k]);
+      }
+    }
+    const auto p = forward_kinematics_two(c_.geometry, active_from_readings(c_.geometry, q), pi_,
+                                          pj_, pair_mode_);
+    if (!p) return fmt::format("passive links {} and {} cannot meet", pi_ + 1, pj_ + 1);
+    const double rmax = L.workspace_radius_mm - L.workspace_margin_mm;
+    const double r = (*p - L.workspace_centre).norm();
+    if (r > rmax) {
+      return fmt::format("({:.3f}, {:.3f}) mm (supervisor frame) is {:.3f} mm from the workspace "
+                         "centre, beyond {:.3f} mm (radius minus margin)",
+                         p->x(), p->y(), r, rmax);
+    }
+    const Reach reach = check_reach(c_, *p);
+    if (!reach.ok) return fmt::format("({:.3f}, {:.3f}) mm: {}", p->x(), p->y(), reach.reason);
+    return {};
+  }
+
+  void require_safe(const Eigen::Vector3d& q, const char* what) const {
+    const std::string why = why_unsafe(q);
+    if (!why.empty()) throw PointRefused(fmt::format("{} outside the safe workspace: {}", what, why));
+  }
+
+  std::vector<Eigen::Vector2d> circle_points(int n) const {
+    std::vector<Eigen::Vector2d> out;
+    for (int k = 0; k < n; ++k) {
+      const double a = 2 * kPi * k / n;
+      out.push_back(o_.reference + o_.circle_radius_mm * Eigen::Vector2d(std::cos(a), std::sin(a)));
+    }
+    return out;
+  }
+
+  void check_circle(const Eigen::Vector3d& dth) const {
+    for (const Eigen::Vector2d& p : circle_points(72)) {
+      const Reach reach = check_reach(c_, p);
+      if (!reach.ok) {
+        throw PointRefused(fmt::format("circle point ({:.3f}, {:.3f}) mm is out of reach: {}",
+                                       p.x(), p.y(), reach.reason));
+      }
+      const std::string why = why_unsafe(wrap_near(reach.q.theta_a - dth));
+      if (!why.empty()) {
+        throw PointRefused(fmt::format("circle point ({:.3f}, {:.3f}) mm with offsets {} is outside "
+                                       "the safe workspace: {}",
+                                       p.x(), p.y(), fmt_v3(dth), why));
+      }
+    }
+  }
+
+  void cycle(const Eigen::Vector3d& q) {
+    state_ = hw_.read(clock_.now());
+    HardwareCommand cmd;
+    cmd.theta_m = q;
+    cmd.mode = modes_;
+    hw_.write(cmd, clock_.now());
+    command_ = q;
+    clock_.wait_next();
+  }
+
+  // Duration of a path q(s), s in [0, 1] sampled at n + 1 points, run with the
+  // cosine time law within headroom of the velocity and acceleration limits.
+  double path_time(const std::vector<Eigen::Vector3d>& q, double min_T) const {
+    const int n = static_cast<int>(q.size()) - 1;
+    const SafetyLimits& L = hw_.limits();
+    const double h = o_.profile_headroom;
+    double T = min_T;
+    for (int i : {pi_, pj_}) {
+      double d1 = 0.0, d2 = 0.0;
+      for (int k = 0; k <= n; ++k) {
+        const int a = std::max(k - 1, 0), b = std::min(k + 1, n);
+        d1 = std::max(d1, std::abs(q[b][i] - q[a][i]) * n / (b - a));
+        if (k > 0 && k < n) d2 = std::max(d2, std::abs(q[k + 1][i] - 2 * q[k][i] + q[k - 1][i]) * n * n);
+      }
+      T = std::max(T, kPi / 2 * d1 / (h * L.max_velocity[i]));
+      const double acc = d2 * kPi * kPi / 4 + d1 * kPi * kPi / 2;
+      T = std::max(T, std::sqrt(acc / (h * L.max_acceleration[i])));
+    }
+    return std::max(T, 4 * hw_.period_s());
+  }
+
+  // Straight move in joint space of the commanded joints (a few mm here).
+  void move_joints(const Eigen::Vector3d& q1) {
+    const Eigen::Vector3d q0 = command_;
+    std::vector<Eigen::Vector3d> path;
+    for (int k = 0; k <= 8; ++k) path.push_back(q0 + (q1 - q0) * (k / 8.0));
+    // About 1 mm per 4 mrad of joint motion (links 244 mm).
+    const double dist_mm = (q1 - q0).cwiseAbs().maxCoeff() * 244.0;
+    const double T = path_time(path, kPi / 2 * dist_mm / o_.move_speed_mm_s);
+    const long steps = static_cast<long>(std::ceil(T / hw_.period_s()));
+    for (long k = 1; k <= steps; ++k) cycle(q0 + (q1 - q0) * profile(static_cast<double>(k) / steps));
+    ++r_.motions;
+  }
+
+  void settle() {
+    const double t0 = clock_.now();
+    double still_since = -1.0;
+    const Eigen::Vector3d q = command_;
+    for (;;) {
+      cycle(q);
+      const bool still = state_.velocity.cwiseAbs().maxCoeff() < o_.settle_velocity_rad_s;
+      if (!still) still_since = -1.0;
+      else if (still_since < 0) still_since = clock_.now();
+      if (still_since >= 0 && clock_.now() - still_since >= o_.settle_hold_s) return;
+      if (clock_.now() - t0 > o_.settle_timeout_s) {
+        throw HardwareError(fmt::format("the joints did not settle within {} s (speeds {:.4f} {:.4f} "
+                                        "{:.4f} rad/s)",
+                                        o_.settle_timeout_s, state_.velocity[0], state_.velocity[1],
+                                        state_.velocity[2]));
+      }
+    }
+  }
+
+  Eigen::Vector3d average() {
+    const long n = std::max(1L, std::lround(o_.average_s / hw_.period_s()));
+    const Eigen::Vector3d q = command_;
+    Eigen::Vector3d first = Eigen::Vector3d::Zero(), sum = Eigen::Vector3d::Zero();
+    for (long k = 0; k < n; ++k) {
+      cycle(q);
+      if (k == 0) first = state_.theta_m;
+      for (int i = 0; i < 3; ++i) sum[i] += first[i] + wrap_pi(state_.theta_m[i] - first[i]);
+    }
+    Eigen::Vector3d mean = sum / static_cast<double>(n);
+    for (int i = 0; i < 3; ++i) mean[i] = wrap_2pi(mean[i]);
+    return mean;
+  }
+
+  // Step 3: out to the circle, once round it (cosine time law on the angle),
+  // recording the reading one cycle after each interpolation point is commanded.
+  void track_circle(const Eigen::Vector3d& dth, ZeroCandidate& z) {
+    const double rad = o_.circle_radius_mm;
+    auto point = [&](double s) {
+      const double a = 2 * kPi * s;
+      return Eigen::Vector2d(o_.reference + rad * Eigen::Vector2d(std::cos(a), std::sin(a)));
+    };
+    move_joints(command_for(point(0.0), dth));
+    std::vector<Eigen::Vector3d> path;
+    for (int k = 0; k <= 96; ++k) path.push_back(command_for(point(k / 96.0), dth));
+    // Peak tangential speed of the cosine law: 2 pi r * pi / (2 T).
+    const double T = path_time(path, kPi * kPi * rad / o_.circle_speed_mm_s);
+    const long steps = static_cast<long>(std::ceil(T / hw_.period_s()));
+    const int n = o_.circle_points;
+    std::vector<long> at(n);
+    for (int j = 0; j < n; ++j) at[j] = std::lround(steps * std::acos(1.0 - 2.0 * j / n) / kPi);
+    int next = 0;
+    bool pending = false;
+    for (long k = 0; k <= steps + 1; ++k) {
+      const double s = profile(static_cast<double>(std::min(k, steps)) / steps);
+      const Eigen::Vector2d p = point(s);
+      const Eigen::Vector3d q = k == 0 ? command_ : command_for(p, dth);
+      cycle(q);
+      if (pending) {  // the reading after the interpolation point's command
+        z.circle.push_back(state_.theta_m);
+        pending = false;
+      }
+      if (next < n && k == at[next]) {
+        z.desired.push_back(p);
+        pending = true;
+        ++next;
+      }
+    }
+    ++r_.motions;
+    ++r_.circles;
+  }
+
+  SafetySupervisor& hw_;
+  const ZeroSearchOptions& o_;
+  const ZeroTraceSink& sink_;
+  ZeroSearchResult& r_;
+  const Robot& c_;
+  CycleClock clock_;
+  HardwareState state_;
+  Eigen::Vector3d command_ = Eigen::Vector3d::Zero();
+  std::array<JointMode, 3> modes_{};
+  int pi_ = -1, pj_ = -1, pair_mode_ = 1;
+  Eigen::Vector3d ref_angles_ = Eigen::Vector3d::Zero();
+  std::string where_ = "start";
+};
+
+// Steps 5-7: the 9-point pattern, recentring on the smallest E, halving d.
+void run_grid(Runner& run, const ZeroSearchOptions& o, ZeroSearchResult& r) {
+  const double quantum = o.d_min_mm;
+  std::map<std::pair<long, long>, ZeroCandidate> seen;  // each point evaluated once
+  auto key = [&](const Eigen::Vector2d& s) {
+    return std::make_pair(std::lround(s.x() / quantum), std::lround(s.y() / quantum));
+  };
+  double d = o.d_initial_mm;
+  ZeroCandidate centre = run.evaluate(Eigen::Vector2d::Zero(), 0, d);
+  seen.emplace(key(centre.shift), centre);
+  // Step 5 order: +x, +x+y, +y, -x+y, -x, -x-y, -y, +x-y.
+  const int dirs[8][2] = {{1, 0}, {1, 1}, {0, 1}, {-1, 1}, {-1, 0}, {-1, -1}, {0, -1}, {1, -1}};
+  for (int round = 1;; ++round) {
+    if (round > o.max_rounds) {
+      throw HardwareError(fmt::format("the pattern search did not finish within {} rounds",
+                                      o.max_rounds));
+    }
+    ZeroCandidate best = centre;
+    for (const auto& dd : dirs) {
+      const Eigen::Vector2d s = centre.shift + d * Eigen::Vector2d(dd[0], dd[1]);
+      auto it = seen.find(key(s));
+      if (it == seen.end()) it = seen.emplace(key(s), run.evaluate(s, round, d)).first;
+      if (it->second.E < best.E) best = it->second;
+    }
+    if (best.index != centre.index) {  // step 6: recentre, same d
+      centre = best;
+      continue;
+    }
+    if (d <= o.d_min_mm * (1 + 1e-9)) break;  // step 7
+    d /= 2;
+  }
+  r.offsets = centre.offsets;
+  r.shift = centre.shift;
+  r.E = centre.E;
+  r.d_final_mm = d;
+}
+
+// Fit the offsets from each circle (E quadratic in dth), track again with them.
+void run_direct(Runner& run, const ZeroSearchOptions& o, const Robot& c, ZeroSearchResult& r) {
+  ZeroCandidate z = run.evaluate(Eigen::Vector2d::Zero(), 0, 0.0);
+  Eigen::Vector3d dth = calib::minimise_projected_error(c, z.desired, z.circle);
+  for (int it = 1; it < o.direct_iterations; ++it) {
+    z = run.evaluate_at(dth, it);
+    const Eigen::Vector3d next = calib::minimise_projected_error(c, z.desired, z.circle);
+    const double change = (next - dth).cwiseAbs().maxCoeff();
+    dth = next;
+    if (change < o.direct_tolerance_rad) break;
+  }
+  r.offsets = dth;
+  r.shift = z.shift;
+  r.E = calib::projected_error(c, dth, z.desired, z.circle);
+}
+
+}  // namespace
+
+const char* zero_method_name(ZeroMethod m) { return m == ZeroMethod::kGrid ? "grid" : "direct"; }
+
+ZeroSearchResult run_zero_offset_search(SafetySupervisor& hw, const ZeroSearchOptions& options,
+                                        const ZeroTraceSink& sink) {
+  validate(options);
+  {
+    const Reach reach = check_reach(hw.controller(), options.reference);
+    if (!reach.ok) throw InputError("zero-offset search: the reference point is out of reach: " + reach.reason);
+  }
+  ZeroSearchResult r;
+  r.method = options.method;
+  const auto wall0 = std::chrono::steady_clock::now();
+  Runner run(hw, options, sink, r);
+  auto fail = [&](const std::string& what, bool moving) {
+    r.ok = false;
+    r.error = fmt::format("{}: {}", run.where(), what);
+    if (moving) {
+      hw.emergency_stop(r.error);
+    } else {
+      try {
+        run.stop_normally();
+      } catch (...) {
+        hw.emergency_stop(r.error);
+      }
+    }
+    hw.shutdown();
+  };
+  try {
+    run.start();
+    if (options.method == ZeroMethod::kGrid) run_grid(run, options, r);
+    else run_direct(run, options, hw.controller(), r);
+    run.stop_normally();
+    hw.shutdown();
+    r.ok = true;
+  } catch (const PointRefused& e) {
+    fail(std::string(e.what()) + "; stopped before moving there, drives disabled", false);
+  } catch (const CommandRejected& e) {
+    fail(std::string(e.what()) + "; drives disabled", true);
+  } catch (const HardwareError& e) {
+    fail(std::string(e.what()) + "; drives disabled", true);
+  } catch (const LifecycleError& e) {
+    fail(std::string(e.what()) + "; drives disabled", true);
+  } catch (const ReachError& e) {
+    fail(std::string(e.what()) + "; drives disabled", true);
+  }
+  r.robot_time_s = run.now();
+  r.wall_time_s = std::chrono::duration<double>(std::chrono::steady_clock::now() - wall0).count();
+  return r;
+}
+
+}  // namespace gpm::hw
