@@ -49,6 +49,7 @@ int main(int argc, char** argv) {
   gpm::cli::add_study(app);
   gpm::cli::add_design(app);
   gpm::cli::add_sample(app);
+  gpm::cli::add_zero(app);
   try {
     app.parse(argc, argv);
   } catch (const CLI::CallForHelp& e) {

@@ -97,6 +97,7 @@ class Runner {
     }
     settle();
     z.readings = average();
+    if (z.index > 0) check_sensor(o_.reference + shift, r_.initial_offsets, z.readings);
     z.offsets = wrap3(ref_angles_ - z.readings);  // step 2: IK(O) - readings(R)
     if (z.index == 0) r_.initial_offsets = z.offsets;
     check_circle(z.offsets);
@@ -182,7 +183,29 @@ class Runner {
     }
     const Reach reach = check_reach(c_, *p);
     if (!reach.ok) return fmt::format("({:.3f}, {:.3f}) mm: {}", p->x(), p->y(), reach.reason);
+    // Only two chains are driven: their passive links must cross well (the
+    // mechanism is held by them alone; the free chain follows).
+    const double s = std::abs(std::sin(reach.q.theta_b[pi_] - reach.q.theta_b[pj_]));
+    if (s < o_.min_pair_sine) {
+      return fmt::format("({:.3f}, {:.3f}) mm: the driven chains {} and {} are near their pair "
+                         "singularity (|sin| of the passive-link angle {:.3f} < {})",
+                         p->x(), p->y(), pi_ + 1, pj_ + 1, s, o_.min_pair_sine);
+    }
     return {};
+  }
+
+  // The read-only joint must read near where the driven joints put it (its
+  // offset error is small): a large gap means its free chain changed branch.
+  void check_sensor(const Eigen::Vector2d& p, const Eigen::Vector3d& dth, const Eigen::Vector3d& reading) const {
+    const int k = o_.sensor_joint;
+    const double expected = inverse_kinematics(c_.geometry, p, c_.branch).theta_a[k] - dth[k];
+    const double gap = std::abs(wrap_pi(reading[k] - expected));
+    if (gap > o_.max_sensor_gap_rad) {
+      throw HardwareError(fmt::format("joint {} (read only) reads {:.4f} rad away from where the "
+                                      "driven joints put it (max {} rad): its chain may have "
+                                      "changed assembly branch",
+                                      k + 1, gap, o_.max_sensor_gap_rad));
+    }
   }
 
   void require_safe(const Eigen::Vector3d& q, const char* what) const {
@@ -317,6 +340,7 @@ class Runner {
       const Eigen::Vector3d q = k == 0 ? command_ : command_for(p, dth);
       cycle(q);
       if (pending) {  // the reading after the interpolation point's command
+        check_sensor(z.desired.back(), dth, state_.theta_m);
         z.circle.push_back(state_.theta_m);
         pending = false;
       }

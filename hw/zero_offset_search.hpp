@@ -42,13 +42,15 @@ const char* zero_method_name(ZeroMethod m);
 struct ZeroSearchOptions {
   ZeroMethod method = ZeroMethod::kGrid;
   Eigen::Vector2d reference{216.5, 250.0};  // O (mm): its active angles are IK of the controller
-  double circle_radius_mm = 40.0;           // step 3 circle about O
+  double circle_radius_mm = 30.0;           // step 3 circle about O
   int circle_points = 24;                   // interpolation points recorded per circle
   double circle_speed_mm_s = 80.0;          // peak tangential speed
   double move_speed_mm_s = 40.0;            // point-to-point moves
   double d_initial_mm = 4.0;                // step 5 pattern scope
   double d_min_mm = 0.125;                  // step 7 lower limit
-  int sensor_joint = 2;                     // 0-based joint read only (torque off)
+  int sensor_joint = 0;                     // 0-based joint read only: chains 2 and 3 cross best near home
+  double min_pair_sine = 0.5;               // driven chains' passive links cross at >= 30 deg
+  double max_sensor_gap_rad = 0.1;          // read-only joint vs where the driven joints put it
   double settle_velocity_rad_s = 0.002;     // standing still: every joint slower than this ...
   double settle_hold_s = 0.02;              // ... for this long
   double settle_timeout_s = 2.0;

@@ -47,7 +47,7 @@ inline std::filesystem::path write_twin_hardware(const std::filesystem::path& di
 inline ZeroSearchOptions fast_options(const Eigen::Vector2d& start) {
   ZeroSearchOptions o;
   o.circle_radius_mm = 30.0;
-  o.circle_points = 16;
+  o.circle_points = 24;
   o.circle_speed_mm_s = 100.0;
   o.move_speed_mm_s = 50.0;
   o.jog_to_start = true;
