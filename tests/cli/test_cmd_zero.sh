@@ -1,0 +1,75 @@
+#!/usr/bin/env bash
+# Tests of app/cmd_zero.cpp: gpm zero on a twin whose actual offsets the test
+# chooses (scenario with explicit dth): Table-1 rows from two starts and the
+# comparison rows, report.md / offsets.yaml / trace.csv; bad input exits 2 with
+# one line and creates nothing; a search that leaves the safe workspace exits 1
+# with one line, the trace of what was done kept.
+set -u
+GPM="$1"; SRC="$2"
+fail=0; passed=0
+tmp=$(mktemp -d)
+trap 'rm -rf "$tmp"' EXIT
+
+check() {  # name, expected exit, command...
+  local name=$1 want=$2; shift 2
+  "$@" >"$tmp/out" 2>"$tmp/err"; local got=$?
+  if [[ $got -ne $want ]]; then
+    echo "FAIL $name: exit $got, want $want"; cat "$tmp/err"; fail=$((fail+1)); return 1
+  fi
+  if [[ $want -ne 0 && $(wc -l <"$tmp/err") -ne 1 ]]; then
+    echo "FAIL $name: stderr is not one line:"; cat "$tmp/err"; fail=$((fail+1)); return 1
+  fi
+  passed=$((passed+1))
+}
+expect() {  # name, file, pattern
+  if grep -qE -- "$3" "$2"; then passed=$((passed+1)); else echo "FAIL $1: no '$3' in:"; cat "$2"; fail=$((fail+1)); fi
+}
+
+cat >"$tmp/scenario.yaml" <<YAML
+name: zero_cli
+seed: 5
+robot: $SRC/models/gpm2002.yaml
+actual:
+  geometry: {dth1: 0.012, dth2: -0.008, dth3: 0.006}
+encoder: {bits: 17, noise_rad: 0}
+sampling: {pattern: circle, centre: [216.5, 250], radius: 10, count: 4}
+YAML
+safety=$(sed -n '/^safety:/,$p' "$SRC/hw/examples/twin.yaml")
+cat >"$tmp/twin.yaml" <<YAML
+backend: twin
+controller: $SRC/models/gpm2002.yaml
+twin: {scenario: scenario.yaml}
+$safety
+YAML
+sed 's/workspace_radius: 90 /workspace_radius: 45 /' "$tmp/twin.yaml" >"$tmp/small.yaml"
+
+check help 0 "$GPM" zero --help
+expect "help names --start" "$tmp/out" "--start"
+
+check table 0 "$GPM" zero --hardware "$tmp/twin.yaml" --start 219.5,252.5 --start 213,247.5 --compare -o "$tmp/rep"
+expect "table header" "$tmp/rep/report.md" "\| run \| method \| start"
+expect "actual offsets known" "$tmp/rep/report.md" "Actual offsets of the twin: 0.01200, -0.00800, 0.00600"
+expect "grid rows" "$tmp/rep/report.md" "^\| start 2 \| grid \| 213.00, 247.50"
+expect "direct row" "$tmp/rep/report.md" "^\| other method \| direct"
+expect "section 3 row" "$tmp/rep/report.md" "^\| section 3 \| lm ml"
+expect "spread" "$tmp/rep/report.md" "Spread of the 2 grid runs"
+expect "offsets yaml" "$tmp/rep/offsets.yaml" "^  dth1: 0\.01[12]"
+expect "trace rows" "$tmp/rep/trace.csv" "^start 2,grid,"
+# Every error in the table is below 1.2e-3 rad (independent: the twin's offsets are in the scenario).
+if awk -F'|' '/^\| (start|other|section)/ { if ($7+0 > 1.2e-3) bad=1 } END { exit bad }' "$tmp/rep/report.md"; then
+  passed=$((passed+1)); else echo "FAIL errors above 1.2e-3 rad:"; cat "$tmp/rep/report.md"; fail=$((fail+1)); fi
+
+check bad-start 2 "$GPM" zero --hardware "$tmp/twin.yaml" --start 219.5 -o "$tmp/bad"
+expect "bad start named" "$tmp/err" "--start: '219.5' is not X,Y"
+[[ ! -e "$tmp/bad" ]] && passed=$((passed+1)) || { echo "FAIL bad input created $tmp/bad"; fail=$((fail+1)); }
+check bad-method 2 "$GPM" zero --hardware "$tmp/twin.yaml" --method simplex
+expect "bad method named" "$tmp/err" "--method: 'simplex' is not grid or direct"
+check bad-hardware 2 "$GPM" zero --hardware "$tmp/missing.yaml"
+
+check leaves 1 "$GPM" zero --hardware "$tmp/small.yaml" --start 217.5,245 -o "$tmp/leave"
+expect "leave says where and why" "$tmp/err" "search point .* outside the safe workspace"
+expect "leave keeps the trace" "$tmp/leave/trace.csv" "^start 1,grid,1,"
+expect "leave row in the report" "$tmp/leave/report.md" "stopped: "
+
+echo "passed $passed, failed $fail"
+[[ $fail -eq 0 ]]
