@@ -33,6 +33,7 @@ struct ZeroArgs {
   bool compare = false;
   double radius = 30.0;
   int points = 24;
+  double dwell = 0.0;
   int sensor_joint = 1;
 };
 
@@ -129,6 +130,7 @@ void run_zero(const ZeroArgs& a) {
   base.reference = config.controller.home;
   base.circle_radius_mm = a.radius;
   base.circle_points = a.points;
+  base.circle_dwell_s = a.dwell;
   base.sensor_joint = a.sensor_joint - 1;
 
   std::ofstream trace;
@@ -221,6 +223,7 @@ void add_zero(CLI::App& app) {
   cmd->add_flag("--compare", args->compare, "also run the other method and the section-3 calibration (ML, offsets only)");
   cmd->add_option("--radius", args->radius, "circle radius (mm)");
   cmd->add_option("--points", args->points, "interpolation points recorded per circle");
+  cmd->add_option("--dwell", args->dwell, "s: stop at each interpolation point and average this long (0: record on the fly)");
   cmd->add_option("--sensor-joint", args->sensor_joint, "joint read only, torque off (1..3)");
   cmd->add_option("-o,--output", args->out, "report folder: report.md, offsets.yaml, trace.csv");
   cmd->callback([args] { run_zero(*args); });

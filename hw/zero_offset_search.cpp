@@ -324,6 +324,10 @@ class Runner {
       return Eigen::Vector2d(o_.reference + rad * Eigen::Vector2d(std::cos(a), std::sin(a)));
     };
     move_joints(command_for(point(0.0), dth));
+    if (o_.circle_dwell_s > 0) {
+      track_circle_stopping(dth, z, point);
+      return;
+    }
     std::vector<Eigen::Vector3d> path;
     for (int k = 0; k <= 96; ++k) path.push_back(command_for(point(k / 96.0), dth));
     // Peak tangential speed of the cosine law: 2 pi r * pi / (2 T).
@@ -349,6 +353,42 @@ class Runner {
         pending = true;
         ++next;
       }
+    }
+    ++r_.motions;
+    ++r_.circles;
+  }
+
+  // Step 3 stop and go: arc to each interpolation point, settle, average the
+  // readings over circle_dwell_s (less noise and no lag, more time).
+  template <class Point>
+  void track_circle_stopping(const Eigen::Vector3d& dth, ZeroCandidate& z, const Point& point) {
+    const int n = o_.circle_points;
+    for (int j = 0; j <= n; ++j) {
+      if (j > 0) {
+        const double s0 = static_cast<double>(j - 1) / n, s1 = static_cast<double>(j) / n;
+        std::vector<Eigen::Vector3d> path;
+        for (int k = 0; k <= 8; ++k) path.push_back(command_for(point(s0 + (s1 - s0) * k / 8.0), dth));
+        const double arc = 2 * kPi * o_.circle_radius_mm / n;
+        const double T = path_time(path, kPi / 2 * arc / o_.circle_speed_mm_s);
+        const long steps = static_cast<long>(std::ceil(T / hw_.period_s()));
+        for (long k = 1; k <= steps; ++k)
+          cycle(command_for(point(s0 + (s1 - s0) * profile(static_cast<double>(k) / steps)), dth));
+      }
+      if (j == n) break;  // back at the start: already recorded
+      settle();
+      const long m = std::max(1L, std::lround(o_.circle_dwell_s / hw_.period_s()));
+      const Eigen::Vector3d keep = command_;
+      Eigen::Vector3d first = Eigen::Vector3d::Zero(), sum = Eigen::Vector3d::Zero();
+      for (long k = 0; k < m; ++k) {
+        cycle(keep);
+        if (k == 0) first = state_.theta_m;
+        for (int i = 0; i < 3; ++i) sum[i] += first[i] + wrap_pi(state_.theta_m[i] - first[i]);
+      }
+      Eigen::Vector3d mean = sum / static_cast<double>(m);
+      for (int i = 0; i < 3; ++i) mean[i] = wrap_2pi(mean[i]);
+      check_sensor(point(static_cast<double>(j) / n), dth, mean);
+      z.desired.push_back(point(static_cast<double>(j) / n));
+      z.circle.push_back(mean);
     }
     ++r_.motions;
     ++r_.circles;

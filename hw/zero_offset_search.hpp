@@ -45,6 +45,7 @@ struct ZeroSearchOptions {
   double circle_radius_mm = 30.0;           // step 3 circle about O
   int circle_points = 24;                   // interpolation points recorded per circle
   double circle_speed_mm_s = 80.0;          // peak tangential speed
+  double circle_dwell_s = 0.0;              // > 0: stop at each interpolation point and average this long
   double move_speed_mm_s = 40.0;            // point-to-point moves
   double d_initial_mm = 4.0;                // step 5 pattern scope
   double d_min_mm = 0.125;                  // step 7 lower limit

@@ -87,6 +87,14 @@ TEST(ZeroOffsetSearch, RobustToEncoderNoise) {
   print("direct noise", d);
   ASSERT_TRUE(d.ok) << d.error;
   EXPECT_LT(err(d), 1.5 * kGridTol);
+  // Stop and go: readings averaged at each interpolation point.
+  o.circle_dwell_s = 0.1;
+  const ZeroSearchResult s = test::run_on_twin(hw, o);
+  print("direct noise dwell", s);
+  ASSERT_TRUE(s.ok) << s.error;
+  EXPECT_LT(err(s), 1.5 * kGridTol);
+  EXPECT_EQ(s.trace.back().circle.size(), static_cast<size_t>(o.circle_points));
+  EXPECT_GT(s.robot_time_s, d.robot_time_s);
 }
 
 TEST(ZeroOffsetSearch, StopsAndReportsWhenTheSearchLeavesTheSafeWorkspace) {
