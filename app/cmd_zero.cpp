@@ -132,6 +132,7 @@ void run_zero(const ZeroArgs& a) {
   base.circle_points = a.points;
   base.circle_dwell_s = a.dwell;
   base.sensor_joint = a.sensor_joint - 1;
+  hw::validate_zero_search_options(base);
 
   std::ofstream trace;
   if (!a.out.empty()) {

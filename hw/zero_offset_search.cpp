@@ -32,7 +32,7 @@ std::string fmt_v3(const Eigen::Vector3d& v) {
   return fmt::format("({:.6f}, {:.6f}, {:.6f})", v[0], v[1], v[2]);
 }
 
-void validate(const ZeroSearchOptions& o) {
+void validate(const ZeroSearchOptions& o) {  // see validate_zero_search_options
   auto bad = [](const std::string& s) { throw InputError("zero-offset search: " + s); };
   if (!(o.circle_radius_mm > 0)) bad("circle radius must be > 0 mm");
   if (o.circle_points < 6) bad("at least 6 interpolation points per circle are needed");
@@ -463,6 +463,8 @@ void run_direct(Runner& run, const ZeroSearchOptions& o, const Robot& c, ZeroSea
 }
 
 }  // namespace
+
+void validate_zero_search_options(const ZeroSearchOptions& options) { validate(options); }
 
 const char* zero_method_name(ZeroMethod m) { return m == ZeroMethod::kGrid ? "grid" : "direct"; }
 

@@ -96,6 +96,9 @@ struct ZeroSearchResult {
   std::vector<ZeroCandidate> trace;         // every evaluation, in order
 };
 
+// Throws InputError (one line) for invalid options; nothing moves.
+void validate_zero_search_options(const ZeroSearchOptions& options);
+
 // Called after each evaluation (e.g. to append it to a file at once).
 using ZeroTraceSink = std::function<void(const ZeroCandidate&)>;
 

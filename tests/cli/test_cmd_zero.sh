@@ -64,6 +64,8 @@ expect "bad start named" "$tmp/err" "--start: '219.5' is not X,Y"
 [[ ! -e "$tmp/bad" ]] && passed=$((passed+1)) || { echo "FAIL bad input created $tmp/bad"; fail=$((fail+1)); }
 check bad-method 2 "$GPM" zero --hardware "$tmp/twin.yaml" --method simplex
 expect "bad method named" "$tmp/err" "--method: 'simplex' is not grid or direct"
+check bad-radius 2 "$GPM" zero --hardware "$tmp/twin.yaml" --radius -5 -o "$tmp/bad2"
+[[ ! -e "$tmp/bad2" ]] && passed=$((passed+1)) || { echo "FAIL bad radius created $tmp/bad2"; fail=$((fail+1)); }
 check bad-hardware 2 "$GPM" zero --hardware "$tmp/missing.yaml"
 
 check leaves 1 "$GPM" zero --hardware "$tmp/small.yaml" --start 217.5,245 -o "$tmp/leave"
