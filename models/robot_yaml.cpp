@@ -78,7 +78,7 @@ Robot robot_from_yaml(const YAML::Node& root, const std::string& file, const std
   }
   yaml_check_keys(root, file, keypath, {"name", "geometry", "home", "elbow", "limits"});
   Robot r;
-  if (root["name"]) r.name = yaml_string(root["name"], file, join(keypath, "name"));
+  if (root["name"]) r.name = yaml_text(root["name"], file, join(keypath, "name"));
   r.geometry = geometry_from_yaml(root["geometry"], file, join(keypath, "geometry"));
   if (const YAML::Node home = root["home"]) {
     if (!home.IsSequence() || home.size() != 2) {
@@ -141,7 +141,13 @@ std::string geometry_to_yaml(const Geometry& g, int indent) {
 
 std::string robot_to_yaml(const Robot& r) {
   std::string out;
-  out += fmt::format("name: {}\n", YAML::Dump(YAML::Node(r.name)));
+  // Always double-quoted: names like "null", "~" or "1e3" stay text.
+  std::string quoted;
+  for (char c : r.name) {
+    if (c == '"' || c == '\\') quoted += '\\';
+    quoted += c;
+  }
+  out += fmt::format("name: \"{}\"\n", quoted);
   out += "geometry:            # mm and rad\n";
   out += geometry_to_yaml(r.geometry, 2);
   out += fmt::format("home: [{}, {}]\n", format_exact(r.home.x()), format_exact(r.home.y()));

@@ -97,6 +97,44 @@ std::string yaml_string(const YAML::Node& node, const std::string& file, std::st
   return node.Scalar();
 }
 
+bool is_printable_utf8(std::string_view s) {
+  size_t i = 0;
+  while (i < s.size()) {
+    const auto c = static_cast<unsigned char>(s[i]);
+    if (c < 0x80) {
+      if (c < 0x20 || c == 0x7f) return false;
+      ++i;
+      continue;
+    }
+    int extra = 0;
+    unsigned int cp = 0;
+    if ((c & 0xe0) == 0xc0) extra = 1, cp = c & 0x1f;
+    else if ((c & 0xf0) == 0xe0) extra = 2, cp = c & 0x0f;
+    else if ((c & 0xf8) == 0xf0) extra = 3, cp = c & 0x07;
+    else return false;
+    if (i + static_cast<size_t>(extra) >= s.size()) return false;
+    for (int k = 1; k <= extra; ++k) {
+      const auto d = static_cast<unsigned char>(s[i + static_cast<size_t>(k)]);
+      if ((d & 0xc0) != 0x80) return false;
+      cp = (cp << 6) | (d & 0x3f);
+    }
+    // Overlong forms, surrogates, beyond U+10FFFF and C1 controls are not text.
+    const unsigned int min_cp[] = {0, 0x80, 0x800, 0x10000};
+    if (cp < min_cp[extra] || (cp >= 0xd800 && cp <= 0xdfff) || cp > 0x10ffff || (cp >= 0x80 && cp < 0xa0)) return false;
+    i += static_cast<size_t>(extra) + 1;
+  }
+  return true;
+}
+
+std::string yaml_text(const YAML::Node& node, const std::string& file, std::string_view keypath) {
+  const std::string s = yaml_string(node, file, keypath);
+  if (!is_printable_utf8(s)) {
+    throw InputError(yaml_where(file, node, keypath) +
+                     "must be printable single-line UTF-8 text (no control characters)");
+  }
+  return s;
+}
+
 void yaml_check_keys(const YAML::Node& node, const std::string& file, std::string_view keypath,
                      std::initializer_list<std::string_view> allowed) {
   if (!node.IsMap()) {

@@ -35,6 +35,12 @@ bool yaml_bool(const YAML::Node& node, const std::string& file, std::string_view
 // A string scalar.
 std::string yaml_string(const YAML::Node& node, const std::string& file, std::string_view keypath);
 
+// True when s is valid UTF-8 without control characters (printable text).
+bool is_printable_utf8(std::string_view s);
+
+// A printable single-line text scalar (valid UTF-8, no control characters).
+std::string yaml_text(const YAML::Node& node, const std::string& file, std::string_view keypath);
+
 // Requires node to be a map whose keys are all in allowed; an unknown key is
 // reported with the nearest allowed name.
 void yaml_check_keys(const YAML::Node& node, const std::string& file, std::string_view keypath,

@@ -48,7 +48,8 @@ TEST(RobotYaml, RoundTripIsBitExact) {
     for (int i = 0; i < kNumParams; ++i) r.geometry[i] += (is_offset(i) ? 0.01 : 0.5) * n(rng);
     r.home += Eigen::Vector2d(n(rng), n(rng));
     r.limits.reach_margin = std::abs(n(rng));
-    r.name = trial % 2 ? "GPM2002 #" + std::to_string(trial) : "x: y";
+    const char* names[] = {"x: y", "null", "~", "1e3", "a \\ \"b\"", "caf\xc3\xa9"};
+    r.name = trial % 2 ? "GPM2002 #" + std::to_string(trial) : names[(trial / 2) % 6];
     const std::string path = (dir / "r.yaml").string();
     save_robot(r, path);
     const Robot back = load_robot(path);

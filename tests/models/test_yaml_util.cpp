@@ -52,6 +52,17 @@ TEST(YamlUtil, FormatExactRoundTripsRandomDoubles) {
   }
 }
 
+TEST(YamlUtil, PrintableUtf8) {
+  EXPECT_TRUE(is_printable_utf8("GPM2002 #3: caf\xc3\xa9 \xe2\x82\xac"));
+  EXPECT_FALSE(is_printable_utf8("a\x10b"));          // control character (found by fuzzing)
+  EXPECT_FALSE(is_printable_utf8("\xff\xff"));        // not UTF-8
+  EXPECT_FALSE(is_printable_utf8("\xc0\xaf"));        // overlong
+  EXPECT_FALSE(is_printable_utf8("\xe2\x82"));        // truncated
+  EXPECT_FALSE(is_printable_utf8("\xed\xa0\x80"));   // surrogate
+  const YAML::Node n = load_yaml_string("name: \"x\\ty\"\n", "t");
+  EXPECT_NE(error_of([&] { yaml_text(n["name"], "t", "name"); }).find("printable"), std::string::npos);
+}
+
 TEST(YamlUtil, IntegersAndBools) {
   const YAML::Node n = load_yaml_string("i: 17\nf: 1.5\nb: true\n", "t");
   EXPECT_EQ(yaml_integer(n["i"], "t", "i", 1, 32), 17);
