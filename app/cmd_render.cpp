@@ -1,13 +1,106 @@
-// gpm render: Render an off-screen MP4 video of a scenario's motion.
-// Placeholder until Off-screen rendering (issue 6) lands.
+// gpm render SCENARIO.yaml -o VIDEO.mp4: simulates the scenario on the twin
+// and renders its motion off-screen (render/): H.264 MP4 and PNG frames.
+// Options override the scenario's `render` section. Bad input (size, camera,
+// frame, output path) exits 2 with one line before anything is simulated
+// where possible; no partial file is left behind.
+#include <memory>
+#include <string>
+#include <vector>
+
+#include <fmt/format.h>
+#include <fmt/ranges.h>
+
 #include "app/commands.hpp"
+#include "models/errors.hpp"
+#include "models/mjcf.hpp"
+#include "render/output_file.hpp"
+#include "render/render_options.hpp"
+#include "render/scene_renderer.hpp"
+#include "render/video_job.hpp"
+#include "sim/simulate.hpp"
 
 namespace gpm::cli {
+namespace {
+
+struct RenderCliOptions {
+  std::string scenario;
+  std::string beside;
+  std::string out;
+  double fps = 0.0;
+  double speed = 0.0;
+  std::string size;
+  std::string camera;
+  std::string quality;
+  std::vector<std::string> frame_png;
+};
+
+sim::SimulationResult run(const sim::Scenario& s, const std::string& file) {
+  try {
+    return sim::run_simulation(s);
+  } catch (const sim::SimError& e) {
+    throw InputError(fmt::format("{}: {}", file, e.what()));
+  }
+}
+
+}  // namespace
 
 void add_render(CLI::App& app) {
-  auto* cmd = app.add_subcommand("render", "Render an off-screen MP4 video of a scenario's motion [not available yet]");
-  cmd->allow_extras();
-  cmd->callback([] { not_available("render", "Off-screen rendering (issue 6)"); });
+  auto opt = std::make_shared<RenderCliOptions>();
+  auto* cmd = app.add_subcommand("render", "Render an off-screen MP4 video (and PNG frames) of a scenario's motion");
+  cmd->add_option("scenario", opt->scenario, "Scenario file (YAML, see scenarios/SCHEMA.md and render/README.md)")
+      ->required();
+  cmd->add_option("-o,--out", opt->out, "Output video (H.264 MP4)");
+  cmd->add_option("--fps", opt->fps, "Video frames per second (default 30)");
+  cmd->add_option("--size", opt->size, "Frame size WxH in pixels, even (default 640x480)");
+  cmd->add_option("--camera", opt->camera, "Camera: top (default), oblique, or a camera of the model");
+  cmd->add_option("--quality", opt->quality, "fast (default: no multisampling, no shadows) or high (4x MSAA, shadows)");
+  cmd->add_option("--speed", opt->speed, "Simulated seconds per video second (default 1)");
+  cmd->add_option("--frame-png", opt->frame_png, "Save frame N (0-based) as a PNG: N:FILE (repeatable)");
+  cmd->add_option("--beside", opt->beside, "A second scenario shown side by side (e.g. the calibrated controller)");
+  cmd->callback([opt] {
+    if (opt->out.empty() && opt->frame_png.empty())
+      throw InputError("gpm render: give -o VIDEO.mp4 and/or --frame-png N:FILE");
+    render::RenderOptions o = render::render_options_from_file(opt->scenario);
+    if (!opt->size.empty()) render::parse_size(opt->size, "--size", o.width, o.height);
+    if (opt->fps != 0.0) {
+      if (!(opt->fps > 0 && opt->fps <= 240))
+        throw InputError(fmt::format("--fps: must be in (0, 240], got {}", opt->fps));
+      o.fps = opt->fps;
+    }
+    if (opt->speed != 0.0) {
+      if (!(opt->speed > 0)) throw InputError(fmt::format("--speed: must be positive, got {}", opt->speed));
+      o.speed = opt->speed;
+    }
+    if (!opt->camera.empty()) o.camera = opt->camera;
+    if (!opt->quality.empty()) o.quality = render::parse_quality(opt->quality, "--quality");
+    std::vector<render::FrameRequest> pngs;
+    for (const std::string& f : opt->frame_png) pngs.push_back(render::parse_frame_request(f, "--frame-png"));
+
+    std::vector<std::string> files = {opt->scenario};
+    if (!opt->beside.empty()) files.push_back(opt->beside);
+    std::vector<sim::Scenario> scenarios;
+    for (const std::string& f : files) {
+      scenarios.push_back(sim::load_scenario(f));
+      const Robot actual = sim::make_actual(scenarios.back());
+      render::check_render_setup(mjcf_from_robot(actual, scenarios.back().twin.mjcf), o,
+                                 opt->camera.empty() ? f + ": render.camera" : "--camera");
+    }
+    if (!opt->out.empty()) render::check_output_file(opt->out);
+    for (const render::FrameRequest& p : pngs) render::check_output_file(p.path);
+
+    std::vector<sim::SimulationResult> results;
+    for (size_t i = 0; i < scenarios.size(); ++i) results.push_back(run(scenarios[i], files[i]));
+    std::vector<render::RunView> views;
+    for (size_t i = 0; i < results.size(); ++i) views.push_back(render::run_view(results[i], scenarios[i].name));
+    const render::VideoSummary v = render::render_video(views, o, opt->out, pngs);
+
+    fmt::print("scenario         {}\n", fmt::join(files, " | "));
+    fmt::print("frames           {} at {} fps, {}x{}, camera {}, quality {}\n", v.frames, o.fps, v.width,
+               v.height, o.camera, render::quality_name(o.quality));
+    fmt::print("rendered         {:.1f} frames/s ({:.2f} s wall, {})\n", v.frames_per_s, v.wall_s, v.gl_renderer);
+    if (!opt->out.empty()) fmt::print("wrote            {} ({})\n", opt->out, v.codec);
+    for (const render::FrameRequest& p : pngs) fmt::print("wrote            {} (frame {})\n", p.path, p.frame);
+  });
 }
 
 }  // namespace gpm::cli

@@ -1,0 +1,209 @@
+#include "render/scene_renderer.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <cstring>
+
+#include <fmt/format.h>
+
+#include "models/errors.hpp"
+#include "models/kinematics.hpp"
+#include "models/mjcf.hpp"
+#include "render/mechanism_pose.hpp"
+#include "render/offscreen_context.hpp"
+#include "render/overlay_painter.hpp"
+#include "sim/mujoco_util.hpp"
+
+namespace gpm::render {
+namespace {
+
+constexpr double kPi = 3.14159265358979323846;
+constexpr int kFramingRows = 400;        // log rows sampled to find the region to show
+constexpr double kFramingMarginMm = 25.0;  // link radius and base markers
+constexpr double kFramingMarginFrac = 0.04;
+constexpr double kMarkerRadiusPx = 5.0;
+constexpr int kHighQualitySamples = 4;
+
+// Region covering the bases, the elbows and the end-effector over each run.
+Framing framing_of(const std::vector<RunView>& runs) {
+  Framing f;
+  for (const RunView& r : runs) {
+    const Geometry& g = r.actual.geometry;
+    for (int i = 0; i < 3; ++i) f.include(g.A(i));
+    const auto visit = [&](const sim::LogRow& row) {
+      const JointAngles q = pose_of(r.actual, row);
+      for (const Eigen::Vector2d& b : elbows(g, q.theta_a)) f.include(b);
+      f.include(row.actual);
+      f.include(row.desired);
+    };
+    const size_t n = r.log->rows.size();
+    const size_t step = std::max<size_t>(1, n / kFramingRows);
+    for (size_t k = 0; k < n; k += step) visit(r.log->rows[k]);
+    visit(r.log->rows.back());
+  }
+  const double side = std::max(f.hi.x() - f.lo.x(), f.hi.y() - f.lo.y());
+  const Eigen::Vector2d margin = Eigen::Vector2d::Constant(kFramingMarginMm + kFramingMarginFrac * side);
+  f.lo -= margin;
+  f.hi += margin;
+  return f;
+}
+
+int font_scale_for(int height) {
+  if (height < 360) return mjFONTSCALE_50;
+  if (height <= 720) return mjFONTSCALE_100;
+  if (height <= 1080) return mjFONTSCALE_150;
+  return mjFONTSCALE_200;
+}
+
+struct RunSlot {
+  RunView view;
+  sim::ModelPtr model;
+  sim::DataPtr data;
+  JointAddresses adr;
+  mjvScene scene;
+  bool scene_made = false;
+  mjvOption option;
+  mjvCamera camera;
+  std::unique_ptr<OverlayPainter> painter;
+  std::array<int, 4> viewport{};
+};
+
+}  // namespace
+
+RunView run_view(const sim::SimulationResult& r, const std::string& label) {
+  return RunView{label, r.actual, r.model_xml, &r.log};
+}
+
+void check_render_setup(const std::string& model_xml, const RenderOptions& options,
+                        const std::string& camera_what) {
+  check_size(options.width, options.height, "size");
+  const sim::ModelPtr m = sim::load_model_from_xml(model_xml);
+  check_camera(m.get(), options.camera, camera_what);
+}
+
+struct SceneRenderer::Impl {
+  OffscreenContext context;
+  std::vector<std::unique_ptr<RunSlot>> slots;
+  mjrContext con;
+  bool con_made = false;
+  int font = mjFONTSCALE_100;
+  std::vector<unsigned char> bottom_up;
+  FrameImage frame;
+
+  ~Impl() {
+    context.make_current();
+    if (con_made) mjr_freeContext(&con);
+    for (auto& s : slots)
+      if (s->scene_made) mjv_freeScene(&s->scene);
+  }
+};
+
+SceneRenderer::SceneRenderer(const std::vector<RunView>& runs, const RenderOptions& options) {
+  if (runs.empty() || runs.size() > 2)
+    throw InputError(fmt::format("render: one or two runs can be shown, got {}", runs.size()));
+  check_size(options.width, options.height, "size");
+  for (const RunView& r : runs) {
+    if (!r.log || r.log->rows.empty())
+      throw InputError(fmt::format("render: run '{}' has an empty trajectory log (nothing to show)", r.label));
+  }
+  sim::install_mujoco_handlers();
+  impl_ = std::make_unique<Impl>();
+  Impl& im = *impl_;
+  if (im.context.max_renderbuffer_size() < std::max(options.width, options.height))
+    throw InputError(fmt::format("size: {}x{} is beyond the off-screen buffer (maximum {}x{})", options.width,
+                                 options.height, im.context.max_renderbuffer_size(),
+                                 im.context.max_renderbuffer_size()));
+
+  const Framing region = framing_of(runs);
+  const int n = static_cast<int>(runs.size());
+  const int panel_w = options.width / n;
+  const double aspect = static_cast<double>(panel_w) / options.height;
+  t0_ = 1e300;
+  t1_ = -1e300;
+  for (int i = 0; i < n; ++i) {
+    auto s = std::make_unique<RunSlot>();
+    s->view = runs[static_cast<size_t>(i)];
+    t0_ = std::min(t0_, s->view.log->rows.front().t);
+    t1_ = std::max(t1_, s->view.log->rows.back().t);
+    s->model = sim::load_model_from_xml(s->view.model_xml);
+    mjModel* m = s->model.get();
+    m->vis.global.offwidth = options.width;
+    m->vis.global.offheight = options.height;
+    m->vis.quality.offsamples = options.quality == Quality::kHigh ? kHighQualitySamples : 0;
+    OverlayPainter::paint_model(m);
+    check_camera(m, options.camera, "camera");
+    s->data.reset(mj_makeData(m));
+    s->adr = joint_addresses(m);
+    s->camera = make_camera(m, options.camera, region, aspect);
+    // Scale of the plane in the image: pixels per mm at the framing distance.
+    const double fovy = m->vis.global.fovy;
+    const double px_per_m = 0.5 * options.height / std::tan(0.5 * fovy * kPi / 180.0) /
+                            std::max(s->camera.distance, 1e-3);
+    const double mm_per_px = 1.0 / (px_per_m * kMetresPerMm);
+    const double line_px = std::max(1.5, options.height / 320.0);
+    s->painter = std::make_unique<OverlayPainter>(s->view.actual, *s->view.log, std::max(0.2, 1.5 * mm_per_px),
+                                                  std::max(2.0, kMarkerRadiusPx * mm_per_px), line_px);
+    mjv_defaultOption(&s->option);
+    for (int g = 0; g < mjNGROUP; ++g) s->option.sitegroup[g] = 0;
+    mjv_defaultScene(&s->scene);
+    mjv_makeScene(m, &s->scene, m->ngeom + s->painter->max_geoms() + 16);
+    s->scene_made = true;
+    s->scene.flags[mjRND_SHADOW] = options.quality == Quality::kHigh;
+    s->scene.flags[mjRND_REFLECTION] = 0;
+    s->scene.flags[mjRND_SKYBOX] = 0;
+    s->viewport = {i * panel_w, 0, panel_w, options.height};
+    im.slots.push_back(std::move(s));
+  }
+  im.font = font_scale_for(options.height);
+  mjr_defaultContext(&im.con);
+  mjr_makeContext(im.slots.front()->model.get(), &im.con, im.font);
+  im.con_made = true;
+  mjr_setBuffer(mjFB_OFFSCREEN, &im.con);
+  if (im.con.currentBuffer != mjFB_OFFSCREEN || im.con.offWidth < options.width ||
+      im.con.offHeight < options.height)
+    throw RenderError(fmt::format("MuJoCo could not make a {}x{} off-screen buffer", options.width, options.height));
+  im.frame.width = options.width;
+  im.frame.height = options.height;
+  im.frame.rgb.assign(static_cast<size_t>(options.width) * options.height * 3, 0);
+  im.bottom_up.assign(im.frame.rgb.size(), 0);
+}
+
+SceneRenderer::~SceneRenderer() = default;
+
+const FrameImage& SceneRenderer::render(double t) {
+  Impl& im = *impl_;
+  im.context.make_current();
+  mjr_setBuffer(mjFB_OFFSCREEN, &im.con);
+  for (auto& s : im.slots) {
+    const mjModel* m = s->model.get();
+    mjData* d = s->data.get();
+    const sim::LogRow& row = row_at(*s->view.log, t);
+    apply_pose(m, d, s->adr, pose_of(s->view.actual, row));
+    mjv_updateScene(m, d, &s->option, nullptr, &s->camera, mjCAT_ALL, &s->scene);
+    s->painter->add_geoms(&s->scene, t, row);
+    const mjrRect vp = {s->viewport[0], s->viewport[1], s->viewport[2], s->viewport[3]};
+    mjr_render(vp, &s->scene, &im.con);
+    const auto text = OverlayPainter::text(row);
+    mjr_overlay(mjFONT_NORMAL, mjGRID_TOPLEFT, vp, text[0].c_str(), text[1].c_str(), &im.con);
+    if (!s->view.label.empty())
+      mjr_overlay(mjFONT_NORMAL, mjGRID_TOPRIGHT, vp, s->view.label.c_str(), nullptr, &im.con);
+  }
+  const mjrRect full = {0, 0, im.frame.width, im.frame.height};
+  mjr_readPixels(im.bottom_up.data(), nullptr, full, &im.con);
+  const size_t row_bytes = static_cast<size_t>(im.frame.width) * 3;
+  for (int y = 0; y < im.frame.height; ++y) {
+    std::memcpy(im.frame.rgb.data() + static_cast<size_t>(y) * row_bytes,
+                im.bottom_up.data() + static_cast<size_t>(im.frame.height - 1 - y) * row_bytes, row_bytes);
+  }
+  return im.frame;
+}
+
+const mjvCamera& SceneRenderer::camera(size_t i) const { return impl_->slots.at(i)->camera; }
+
+std::array<int, 4> SceneRenderer::viewport(size_t i) const { return impl_->slots.at(i)->viewport; }
+
+double SceneRenderer::fovy_deg(size_t i) const { return impl_->slots.at(i)->model->vis.global.fovy; }
+
+const std::string& SceneRenderer::gl_renderer() const { return impl_->context.renderer(); }
+
+}  // namespace gpm::render

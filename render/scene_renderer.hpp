@@ -1,0 +1,71 @@
+// Renders one run, or two side by side, at any instant of their logs: the
+// mechanism re-posed from the log row (mechanism_pose.hpp), the overlays
+// (overlay_painter.hpp) and the text, into an RGB frame, off-screen.
+#pragma once
+
+#include <memory>
+#include <string>
+#include <vector>
+
+#include "models/robot.hpp"
+#include "render/camera_set.hpp"
+#include "render/frame_image.hpp"
+#include "render/render_options.hpp"
+#include "sim/sampling.hpp"
+#include "sim/simulate.hpp"
+
+namespace gpm::render {
+
+// One run to show: the actual robot the twin was built from, the MJCF it ran
+// and its trajectory log (not owned: it must outlive the renderer).
+struct RunView {
+  std::string label;
+  Robot actual;
+  std::string model_xml;
+  const sim::TrajectoryLog* log = nullptr;
+};
+
+// A view of a simulation result (r must outlive the view).
+RunView run_view(const sim::SimulationResult& r, const std::string& label);
+
+// Checks what can be checked before a simulation runs: the size (positive,
+// even, within the off-screen buffer) and the camera name against the model
+// compiled from model_xml. Throws InputError; camera errors start with
+// camera_what (e.g. "--camera").
+void check_render_setup(const std::string& model_xml, const RenderOptions& options,
+                        const std::string& camera_what = "camera");
+
+class SceneRenderer {
+ public:
+  // One or two runs (side by side, each in half the width). Throws
+  // InputError for a bad size or camera, or an empty log; RenderError if
+  // OpenGL fails.
+  SceneRenderer(const std::vector<RunView>& runs, const RenderOptions& options);
+  ~SceneRenderer();
+  SceneRenderer(const SceneRenderer&) = delete;
+  SceneRenderer& operator=(const SceneRenderer&) = delete;
+
+  // The frame at simulated time t (each run shows its log row at t).
+  const FrameImage& render(double t);
+
+  // The camera of run i (as built by make_camera) and the viewport it draws in
+  // (left, bottom, width, height in OpenGL pixels, bottom-up).
+  const mjvCamera& camera(size_t i) const;
+  std::array<int, 4> viewport(size_t i) const;
+  // Vertical field of view (degrees) of free cameras in run i's model.
+  double fovy_deg(size_t i) const;
+
+  // First and last logged times over all runs.
+  double start_time() const { return t0_; }
+  double end_time() const { return t1_; }
+
+  // The GL renderer string (llvmpipe ...).
+  const std::string& gl_renderer() const;
+
+ private:
+  struct Impl;
+  std::unique_ptr<Impl> impl_;
+  double t0_ = 0.0, t1_ = 0.0;
+};
+
+}  // namespace gpm::render

@@ -1,0 +1,52 @@
+// A whole video of one run or two side by side: the frame timeline, the
+// renderer, the MP4 encoder and PNG snapshots, all or nothing.
+//
+// Use (gpm render, the scenario runner):
+//   sim::SimulationResult r = sim::run_simulation(scenario);
+//   RenderOptions o = render_options_from_file(scenario_file);  // + overrides
+//   render_video({run_view(r, scenario.name)}, o, "out.mp4", {{12, "frame12.png"}});
+//   // nominal vs calibrated controller, side by side:
+//   render_video({run_view(nominal, "nominal"), run_view(calibrated, "calibrated")}, o, "cmp.mp4", {});
+#pragma once
+
+#include <string>
+#include <vector>
+
+#include "render/render_options.hpp"
+#include "render/scene_renderer.hpp"
+
+namespace gpm::render {
+
+// Number of frames covering simulated times t0..t1 at fps video frames per
+// second and speed simulated seconds per video second: floor((t1 - t0) * fps
+// / speed) + 1 (frame k shows t0 + k * speed / fps).
+int frame_count(double t0, double t1, double fps, double speed);
+
+// Simulated time of frame k.
+double frame_time(double t0, int k, double fps, double speed);
+
+// A frame to save as PNG: its index (0-based) and file.
+struct FrameRequest {
+  int frame = 0;
+  std::string path;
+};
+
+// Parses "N:FILE" (e.g. "12:frame.png"); throws InputError naming `what`.
+FrameRequest parse_frame_request(const std::string& text, const std::string& what);
+
+struct VideoSummary {
+  int frames = 0;
+  int width = 0, height = 0;
+  double wall_s = 0.0;         // rendering and encoding
+  double frames_per_s = 0.0;   // frames / wall_s
+  std::string gl_renderer;
+  std::string codec;
+};
+
+// Renders runs over their whole logs into mp4_path (none if empty) and the
+// requested PNG frames. Throws InputError for a bad size, camera, frame index
+// or output path; on any failure no output file is left behind.
+VideoSummary render_video(const std::vector<RunView>& runs, const RenderOptions& options,
+                          const std::string& mp4_path, const std::vector<FrameRequest>& pngs);
+
+}  // namespace gpm::render
