@@ -27,8 +27,8 @@ struct OverlayStyle {
   static constexpr std::array<float, 4> kTraceRgba = {1.0f, 0.85f, 0.05f, 1.0f};     // yellow
   // The end-effector marker: a flat magenta disc, above everything else.
   static constexpr std::array<float, 4> kMarkerRgba = {1.0f, 0.0f, 1.0f, 1.0f};
-  static constexpr double kMarkerTopZ_m = 0.052;  // height of the disc's top face
-  static constexpr double kPathZ_m = 0.045;       // desired path (trace 1 mm above)
+  static constexpr double kMarkerTopZ_m = 0.092;  // height of the disc's top face (above the hub, whose top is at 0.07)
+  static constexpr double kPathZ_m = 0.085;       // desired path (trace 1 mm above), over the links
   static constexpr double kFloorTopZ_m = -0.02;
 };
 

@@ -51,9 +51,7 @@ TEST(OverlayPainter, PathIsThinnedToTheSpacingWithBothEndsKept) {
   EXPECT_NEAR(static_cast<double>(p.trace_points()), 51.0, 1.0);
 }
 
-// KNOWN FAILING (issue 6 open): the magenta end-effector marker renders white
-// (overexposed), so find_marker sees no pixels. Re-enable once fixed.
-TEST(OverlayPainter, DISABLED_TraceGrowsWithTimeAndMarkerSitsAtTheTruePosition) {
+TEST(OverlayPainter, TraceGrowsWithTimeAndMarkerSitsAtTheTruePosition) {
   const sim::TrajectoryLog log = straight_log(1001, 100.0);
   const OverlayPainter p(Robot{}, log, 1.95, 3.0, 2.0);
   const sim::ModelPtr m = sim::load_model_from_xml(mjcf_from_robot(Robot{}));
