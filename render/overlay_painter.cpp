@@ -136,8 +136,11 @@ void OverlayPainter::add_geoms(mjvScene* scn, double t, const sim::LogRow& row) 
   const mjtNum size[3] = {marker_radius_m_, marker_radius_m_, kMarkerHalfHeight_m};
   const mjtNum pos[3] = {row.actual.x() * kMetresPerMm, row.actual.y() * kMetresPerMm,
                          OverlayStyle::kMarkerTopZ_m - kMarkerHalfHeight_m};
-  if (mjvGeom* mk = next_geom(scn))
+  if (mjvGeom* mk = next_geom(scn)) {
     init_decor(mk, mjGEOM_CYLINDER, size, pos, OverlayStyle::kMarkerRgba.data(), 1.0f);
+    // Put the top face at kMarkerTopZ_m with the half-height the geom really has.
+    mk->pos[2] = static_cast<float>(OverlayStyle::kMarkerTopZ_m - mk->size[2]);
+  }
 }
 
 std::array<std::string, 2> OverlayPainter::text(const sim::LogRow& row) {
