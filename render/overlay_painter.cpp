@@ -44,6 +44,9 @@ mjvGeom* next_geom(mjvScene* scn) {
 void init_decor(mjvGeom* g, int type, const mjtNum size[3], const mjtNum pos[3], const float rgba[4],
                 float emission) {
   mjv_initGeom(g, type, size, pos, nullptr, rgba);
+  // mjv_initGeom makes some shapes round in every axis: keep the given size.
+  if (size)
+    for (int i = 0; i < 3; ++i) g->size[i] = static_cast<float>(size[i]);
   g->category = mjCAT_DECOR;
   g->emission = emission;
   g->specular = 0.0f;
@@ -91,7 +94,7 @@ void OverlayPainter::paint_model(mjModel* m) {
     if (gb >= 0) std::copy(passive.begin(), passive.end(), m->geom_rgba + 4 * gb);
   }
   const int ge = mj_name2id(m, mjOBJ_GEOM, "geom_ee");
-  const std::array<float, 4> hub = {0.55f, 0.55f, 0.58f, 1.0f};
+  const std::array<float, 4> hub = {0.30f, 0.30f, 0.33f, 1.0f};
   if (ge >= 0) std::copy(hub.begin(), hub.end(), m->geom_rgba + 4 * ge);
 }
 
@@ -121,7 +124,7 @@ void OverlayPainter::add_geoms(mjvScene* scn, double t, const sim::LogRow& row) 
     const std::array<float, 4> rgba = {0.6f * c[0], 0.6f * c[1], 0.6f * c[2], 1.0f};
     const mjtNum size[3] = {kBaseRadius_m, kBaseRadius_m, kBaseHalfHeight_m};
     const mjtNum pos[3] = {g.A(i).x() * kMetresPerMm, g.A(i).y() * kMetresPerMm, -kBaseHalfHeight_m};
-    if (mjvGeom* b = next_geom(scn)) init_decor(b, mjGEOM_CYLINDER, size, pos, rgba.data(), 0.2f);
+    if (mjvGeom* b = next_geom(scn)) init_decor(b, mjGEOM_CYLINDER, size, pos, rgba.data(), 0.0f);
   }
   // Desired path (the whole run) and the trace travelled so far.
   for (size_t k = 1; k < desired_.size(); ++k)
@@ -137,7 +140,7 @@ void OverlayPainter::add_geoms(mjvScene* scn, double t, const sim::LogRow& row) 
   const mjtNum pos[3] = {row.actual.x() * kMetresPerMm, row.actual.y() * kMetresPerMm,
                          OverlayStyle::kMarkerTopZ_m - kMarkerHalfHeight_m};
   if (mjvGeom* mk = next_geom(scn)) {
-    init_decor(mk, mjGEOM_CYLINDER, size, pos, OverlayStyle::kMarkerRgba.data(), 1.0f);
+    init_decor(mk, mjGEOM_CYLINDER, size, pos, OverlayStyle::kMarkerRgba.data(), 0.0f);
     // Put the top face at kMarkerTopZ_m with the half-height the geom really has.
     mk->pos[2] = static_cast<float>(OverlayStyle::kMarkerTopZ_m - mk->size[2]);
   }

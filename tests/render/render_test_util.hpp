@@ -72,7 +72,9 @@ inline Blob find_marker(const FrameImage& img, int x0 = 0, int x1 = -1) {
   for (int y = 0; y < img.height; ++y) {
     for (int x = x0; x < x1; ++x) {
       const std::uint8_t* p = img.at(x, y);
-      if (p[0] > 180 && p[2] > 180 && p[1] < 90) {
+      // Magenta at any brightness the lighting gives it: red and blue alike,
+      // both well above green (no chain, path, text or floor colour is so).
+      if (p[0] > 2 * p[1] + 40 && p[2] > 2 * p[1] + 40 && std::abs(p[0] - p[2]) < 40) {
         b.centre += Eigen::Vector2d(x + 0.5, y + 0.5);
         ++b.pixels;
       }
