@@ -1,0 +1,60 @@
+// bench_render: frames per second of off-screen rendering alone and of
+// rendering plus H.264 encoding, at a given size and quality, on one
+// scenario's run (default scenarios/simulate_circle.yaml, 640x480, fast).
+//   bench_render [SCENARIO.yaml] [--size WxH] [--quality fast|high] [--frames N]
+// Prints "name frames_per_second" lines.
+#include <chrono>
+#include <cstdio>
+#include <cstring>
+#include <filesystem>
+#include <string>
+
+#include "render/render_options.hpp"
+#include "render/scene_renderer.hpp"
+#include "render/video_encoder.hpp"
+#include "render/video_job.hpp"
+#include "sim/scenario.hpp"
+#include "sim/simulate.hpp"
+
+int main(int argc, char** argv) {
+  using namespace gpm;
+  std::string scenario = std::string(GPM_SCENARIOS_DIR) + "/simulate_circle.yaml";
+  render::RenderOptions o;
+  int frames = 240;
+  try {
+    for (int i = 1; i < argc; ++i) {
+      if (!std::strcmp(argv[i], "--size") && i + 1 < argc) render::parse_size(argv[++i], "--size", o.width, o.height);
+      else if (!std::strcmp(argv[i], "--quality") && i + 1 < argc) o.quality = render::parse_quality(argv[++i], "--quality");
+      else if (!std::strcmp(argv[i], "--frames") && i + 1 < argc) frames = std::stoi(argv[++i]);
+      else if (argv[i][0] != '-') scenario = argv[i];
+      else {
+        std::fprintf(stderr, "usage: bench_render [SCENARIO] [--size WxH] [--quality fast|high] [--frames N]\n");
+        return 2;
+      }
+    }
+    const sim::Scenario s = sim::load_scenario(scenario);
+    const sim::SimulationResult r = sim::run_simulation(s);
+    render::SceneRenderer sr({render::run_view(r, s.name)}, o);
+    const double t0 = sr.start_time(), span = sr.end_time() - t0;
+    using Clock = std::chrono::steady_clock;
+    auto t = Clock::now();
+    for (int k = 0; k < frames; ++k) sr.render(t0 + span * k / frames);
+    const double render_fps = frames / std::chrono::duration<double>(Clock::now() - t).count();
+    const std::string out = (std::filesystem::temp_directory_path() / "gpm_bench_render.mp4").string();
+    t = Clock::now();
+    {
+      render::VideoEncoder enc(out, o.width, o.height, o.fps);
+      for (int k = 0; k < frames; ++k) enc.add_frame(sr.render(t0 + span * k / frames));
+      enc.finish();
+    }
+    const double both_fps = frames / std::chrono::duration<double>(Clock::now() - t).count();
+    std::filesystem::remove(out);
+    std::printf("renderer %s\n", sr.gl_renderer().c_str());
+    std::printf("render_%dx%d_%s %.1f\n", o.width, o.height, render::quality_name(o.quality).c_str(), render_fps);
+    std::printf("render_encode_%dx%d_%s %.1f\n", o.width, o.height, render::quality_name(o.quality).c_str(), both_fps);
+  } catch (const std::exception& e) {
+    std::fprintf(stderr, "bench_render: %s\n", e.what());
+    return 2;
+  }
+  return 0;
+}
