@@ -9,6 +9,7 @@
 #include <glog/logging.h>
 
 #include "app/commands.hpp"
+#include "models/data_dir.hpp"
 #include "models/errors.hpp"
 
 namespace gpm::cli {
@@ -22,7 +23,7 @@ int exit_code() { return g_exit; }
 std::string default_model_path() {
   const char* env = std::getenv("GPM_MODEL");
   if (env && *env) return env;
-  return std::string(GPM_MODELS_DIR) + "/gpm2002.yaml";
+  return gpm::models_dir() + "/gpm2002.yaml";
 }
 
 void not_available(const std::string& name, const std::string& issue) {

@@ -1,4 +1,5 @@
 #include "sim/scenario.hpp"
+#include "models/data_dir.hpp"
 
 #include <cmath>
 #include <filesystem>
@@ -227,7 +228,7 @@ Scenario scenario_from_yaml(const YAML::Node& root, const std::string& file, con
       s.controller = load_robot(p.lexically_normal().string());
     }
   } else {
-    s.controller = load_robot(std::string(GPM_MODELS_DIR) + "/gpm2002.yaml");
+    s.controller = load_robot(gpm::models_dir() + "/gpm2002.yaml");
   }
   if (root["seed"]) s.seed = static_cast<std::uint64_t>(yaml_integer(root["seed"], file, "seed", 0, (1LL << 53)));
   if (root["actual"]) s.actual = parse_actual(root["actual"], c.at("actual"));

@@ -3,6 +3,7 @@
 // equals the generator output, bodies sit at the IK of the actual parameters,
 // millimetres become metres, and parameters that cannot assemble are refused.
 #include "models/mjcf.hpp"
+#include "models/data_dir.hpp"
 
 #include <fstream>
 #include <regex>
@@ -18,7 +19,7 @@
 namespace gpm {
 namespace {
 
-const std::string kXmlPath = std::string(GPM_MODELS_DIR) + "/gpm2002.xml";
+const std::string kXmlPath = gpm::models_dir() + "/gpm2002.xml";
 
 std::string read_text(const std::string& path) {
   std::ifstream in(path, std::ios::binary);
@@ -36,7 +37,7 @@ std::string attribute(const std::string& xml, const std::string& name, const std
 }
 
 TEST(Mjcf, CommittedNominalModelEqualsGeneratorOutput) {
-  const std::string generated = mjcf_from_robot(load_robot(std::string(GPM_MODELS_DIR) + "/gpm2002.yaml"));
+  const std::string generated = mjcf_from_robot(load_robot(gpm::models_dir() + "/gpm2002.yaml"));
   EXPECT_EQ(read_text(kXmlPath), generated)
       << "models/gpm2002.xml is stale; regenerate it with: test_models_mjcf "
          "--gtest_also_run_disabled_tests --gtest_filter=Mjcf.DISABLED_RegenerateNominalModel";
@@ -44,7 +45,7 @@ TEST(Mjcf, CommittedNominalModelEqualsGeneratorOutput) {
 
 // Writes models/gpm2002.xml (run by hand after changing the generator).
 TEST(Mjcf, DISABLED_RegenerateNominalModel) {
-  write_file_atomic(kXmlPath, mjcf_from_robot(load_robot(std::string(GPM_MODELS_DIR) + "/gpm2002.yaml")));
+  write_file_atomic(kXmlPath, mjcf_from_robot(load_robot(gpm::models_dir() + "/gpm2002.yaml")));
 }
 
 TEST(Mjcf, BodiesAndJointsSitAtTheActualInverseKinematics) {

@@ -1,6 +1,7 @@
 // Tests of models/robot_yaml.cpp: the nominal file, the lossless round trip,
 // and one test per class of bad input (each gives one clear InputError line).
 #include "models/robot_yaml.hpp"
+#include "models/data_dir.hpp"
 
 #include <filesystem>
 #include <random>
@@ -13,7 +14,7 @@
 namespace gpm {
 namespace {
 
-const std::string kNominal = std::string(GPM_MODELS_DIR) + "/gpm2002.yaml";
+const std::string kNominal = gpm::models_dir() + "/gpm2002.yaml";
 
 std::string error_of(const std::string& text) {
   try {

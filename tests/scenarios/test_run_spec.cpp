@@ -1,6 +1,7 @@
 // Tests of scenarios/run_spec.cpp: defaults, and schema errors that name the
 // key path (gpm run exits 2 with that one line).
 #include "scenarios/run_spec.hpp"
+#include "models/data_dir.hpp"
 
 #include <gtest/gtest.h>
 
@@ -9,7 +10,7 @@
 namespace gpm::scenario {
 namespace {
 
-const std::string kBase = std::string(GPM_MODELS_DIR) + "/..";
+const std::string kBase = (gpm::models_dir() + "/..");
 const std::string kHead =
     "robot: models/gpm2002.yaml\n"
     "sampling: {pattern: disc, radius: 50, count: 12}\n";

@@ -2,6 +2,7 @@
 // a small run end to end in-process, failing and refused expectations, and
 // outputs written all or nothing.
 #include "scenarios/runner.hpp"
+#include "models/data_dir.hpp"
 
 #include <filesystem>
 
@@ -13,7 +14,7 @@ namespace gpm::scenario {
 namespace {
 
 namespace fs = std::filesystem;
-const std::string kBase = std::string(GPM_MODELS_DIR) + "/../scenarios";
+const std::string kBase = gpm::scenarios_dir();
 
 std::string scenario(const std::string& calibration, const std::string& expect) {
   return "robot: robots/table5_frame.yaml\nseed: 3\n"

@@ -2,6 +2,7 @@
 // where it belongs, bad input names the key path, reserved sections are
 // accepted, and the actual parameters are seeded and respect `keep`.
 #include "sim/scenario.hpp"
+#include "models/data_dir.hpp"
 
 #include <cmath>
 #include <filesystem>
@@ -14,8 +15,8 @@
 namespace gpm::sim {
 namespace {
 
-const std::string kScenarios = std::string(GPM_MODELS_DIR) + "/../scenarios";
-const std::string kModels = GPM_MODELS_DIR;
+const std::string kScenarios = gpm::scenarios_dir();
+const std::string kModels = gpm::models_dir();
 
 Scenario parse(const std::string& text) { return parse_scenario(text, "s.yaml", kModels); }
 

@@ -2,6 +2,7 @@
 // targets are refused with the pose and the reason, the output files follow
 // their contracts and are written all or nothing.
 #include "sim/simulate.hpp"
+#include "models/data_dir.hpp"
 
 #include <filesystem>
 #include <fstream>
@@ -18,7 +19,7 @@ namespace gpm::sim {
 namespace fs = std::filesystem;
 namespace {
 
-const std::string kModels = GPM_MODELS_DIR;
+const std::string kModels = gpm::models_dir();
 
 Scenario parse(const std::string& text) { return parse_scenario(text, "s.yaml", kModels); }
 
