@@ -1,6 +1,6 @@
 // Residuals of the error functions J1, J2, J3 and ML for one sample (paper
 // section 3.1; ERRATA), as Ceres autodiff functors over the 15-slot parameter
-// vector of calib/closure.hpp.
+// vector of models/closure.hpp.
 //
 // Honest accounting (ERRATA): with the radical centre of eq. 32-33 as forward
 // kinematics, the three rows of E2 (and of E3) are the same number g = P for
@@ -12,7 +12,7 @@
 #include <ceres/ceres.h>
 #include <Eigen/Core>
 
-#include "calib/closure.hpp"
+#include "models/closure.hpp"
 #include "calib/problem.hpp"
 
 namespace gpm::calib {
@@ -78,7 +78,7 @@ struct E3Residual {
 // ML (ours): the closure residual divided by the norm of its gradient with
 // respect to the three readings,
 //   r = P / |dP / d theta_m|          (radians),
-// with dP/d theta_m by implicit differentiation (calib/closure.hpp). To first
+// with dP/d theta_m by implicit differentiation (models/closure.hpp). To first
 // order a reading error eps changes P by grad . eps, so r is the smallest
 // reading correction that closes the loops (a Sampson distance): with iid
 // encoder noise of sigma, r ~ N(0, sigma^2) and sum r^2 is the negative

@@ -71,9 +71,9 @@ struct ForwardResult {
 };
 
 // Forward kinematics from three active angles: the radical centre of the three
-// passive circles (eq. 32-33 with squares restored and solved relative to B1,
-// ERRATA) and the passive angles by atan2 (eq. 34). nullopt when the elbows
-// are collinear (no unique radical centre).
+// passive circles (eq. 32-33 with squares restored and solved relative to B1;
+// gpm::radical_centre of models/closure.hpp) and the passive angles by atan2
+// (eq. 34). nullopt when the elbows are collinear (no unique radical centre).
 std::optional<ForwardResult> forward_kinematics(const Geometry& g, const Eigen::Vector3d& theta_a);
 
 // The two intersections of circles (c1, r1) and (c2, r2); nullopt if they do

@@ -42,5 +42,17 @@ TEST(PaperValues, Table5DiffersFromNominalByThePrintedAmounts) {
   for (int i : {kXa1, kYa1, kXa2}) EXPECT_EQ(a[i], n[i]);
 }
 
+TEST(PaperValues, Table5ProblemFixesTheTrueValuesAndStartsFreeOnesAtNominal) {
+  Samples s;
+  s.theta_m.assign(5, Eigen::Vector3d(1.1, 3.1, 4.8));
+  const Problem p = table5_problem(s, default_free_mask());
+  EXPECT_EQ(p.start[kYa2], 0.3);    // fixed: actual
+  EXPECT_EQ(p.start[kLa1], 244.0);  // free: nominal
+  EXPECT_EQ(p.free.count(), 11u);
+  EXPECT_EQ(p.theta_m.size(), 5u);
+  EXPECT_EQ(paper_free_mask().count(), 12u);
+  for (int i : {kXa1, kYa1, kXa2}) EXPECT_FALSE(paper_free_mask()[static_cast<size_t>(i)]);
+}
+
 }  // namespace
 }  // namespace gpm::calib

@@ -1,4 +1,4 @@
-// Tests of calib/residuals.cpp and calib/closure.hpp: autodiff Jacobians
+// Tests of calib/residuals.cpp and models/closure.hpp: autodiff Jacobians
 // against central differences, closure gradient against differences in the
 // readings, E2 rows equal (ERRATA), residuals zero at the truth, J3 equal to
 // J2 in its own variables, the ML residual equal to the reading correction
