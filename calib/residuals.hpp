@@ -1,6 +1,7 @@
 // Residuals of the error functions J1, J2, J3 and ML for one sample (paper
 // section 3.1; ERRATA), as Ceres autodiff functors over the 15-slot parameter
-// vector of models/closure.hpp.
+// vector of models/closure.hpp. These functors are the reference; the solver
+// uses the same residuals with analytic Jacobians (calib/analytic_residuals.hpp).
 //
 // Honest accounting (ERRATA): with the radical centre of eq. 32-33 as forward
 // kinematics, the three rows of E2 (and of E3) are the same number g = P for
@@ -106,9 +107,14 @@ int residual_rows(Cost c);
 // True when cost c works in the decoupled layout l_ac, l_as (J3).
 bool is_decoupled(Cost c);
 
-// A new autodiff cost function for one sample (the caller or a
-// ceres::Problem owns it).
+// A new cost function for one sample with the analytic Jacobian of
+// calib/analytic_residuals.hpp (what LM and identifiability use; the caller
+// or a ceres::Problem owns it).
 ceres::CostFunction* make_residual(Cost c, const Eigen::Vector3d& theta_m);
+
+// The same with Ceres automatic differentiation of the functors above: the
+// reference the analytic Jacobians are tested against.
+ceres::CostFunction* make_autodiff_residual(Cost c, const Eigen::Vector3d& theta_m);
 
 // The paper's J (eq. 37, 39, 43; sum of squares for ML) from the sum of
 // squares of the solver's rows: J2 = J3 = 3 sum g^2 (ERRATA), J1 and ML as is.

@@ -24,7 +24,7 @@ Vector3d readings_at(const Geometry& g, double x, double y) {
 }
 
 Eigen::VectorXd eval(Cost c, const Vector3d& t, const ParamVector& x, Eigen::MatrixXd* J = nullptr) {
-  std::unique_ptr<ceres::CostFunction> f(make_residual(c, t));
+  std::unique_ptr<ceres::CostFunction> f(make_autodiff_residual(c, t));
   const int m = residual_rows(c);
   Eigen::VectorXd r(m);
   Eigen::Matrix<double, Eigen::Dynamic, kNumParams, Eigen::RowMajor> Jr(m, kNumParams);
