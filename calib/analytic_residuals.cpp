@@ -111,7 +111,7 @@ bool E1Analytic::Evaluate(double const* const* params, double* res, double** jac
   double w[3][2], n[3], f[3];
   for (int i = 0; i < 3; ++i) {
     w[i][0] = S.rc.Ox - c.Bx[i], w[i][1] = S.rc.Oy - c.By[i];
-    n[i] = std::hypot(w[i][0], w[i][1]);
+    n[i] = std::sqrt(w[i][0] * w[i][0] + w[i][1] * w[i][1]);
     if (!(n[i] > 0.0)) return false;
     f[i] = (n[i] - x[lb(i)]) / n[i];
     res[2 * i] = f[i] * w[i][0];
