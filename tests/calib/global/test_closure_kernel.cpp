@@ -50,13 +50,19 @@ TEST(ReferenceFk, MatchesTheModelsForwardKinematics) {
   }
 }
 
-// Batch values over many random all-free geometries equal the references.
-TEST(ClosureKernel, BatchEqualsScalarReferencesTo1e12) {
-  const Samples s = table5_samples();
+// All 15 parameters free, starting at nominal.
+Problem all_free_problem(const Samples& s) {
   Problem p;
   p.theta_m = s.theta_m;
   p.start = Geometry::gpm2002_nominal();
   p.free.set();
+  return p;
+}
+
+// Batch values over many random all-free geometries equal the references.
+TEST(ClosureKernel, BatchEqualsScalarReferencesTo1e12) {
+  const Samples s = table5_samples();
+  const Problem p = all_free_problem(s);
   const Box box = default_box(Geometry::gpm2002_nominal(), p.free);
   Rng rng(5);
   const long count = 37;  // not a multiple of the kernel block
@@ -154,10 +160,7 @@ TEST(ClosureKernel, BlockEqualsTheTemplatedClosureOnRandomParametersAndReadingsT
 // squares of make_residual's rows, paper_cost) at the same parameters.
 TEST(ClosureKernel, BatchCostsEqualTheCeresResidualCosts) {
   const Samples s = table5_samples();
-  Problem p;
-  p.theta_m = s.theta_m;
-  p.start = Geometry::gpm2002_nominal();
-  p.free.set();
+  const Problem p = all_free_problem(s);
   const Box box = default_box(Geometry::gpm2002_nominal(), p.free);
   Rng rng(77);
   for (Cost cost : {Cost::kJ1, Cost::kJ2, Cost::kJ3}) {
