@@ -31,7 +31,7 @@ Result calibrate(const Problem& problem, const MethodOptions& o) {
   go.lm_max_iterations = o.lm_max_iterations;
   const Box box = global::default_box(problem.start, problem.free);
   // ML is a least-squares residual, not a population cost: DE searches J3
-  // (same minimiser, ERRATA), then LM refines on ML.
+  // (same minimiser, docs/EQUATIONS.md), then LM refines on ML.
   Result g = global::solve_global(problem, ml ? Cost::kJ3 : o.cost, ml ? Method::kDE : o.method, box, go);
   if (o.true_xy) g.kmrmse_mm = kmrmse(g.geometry, problem.theta_m, *o.true_xy);
   if (!ml) return g;

@@ -4,7 +4,7 @@
 // global solvers at the point they found, `gpm compare` at the true values.
 //
 // Why the ML residual for every cost: it is invariant under the similarity
-// gauge (translation, rotation, scale of the whole mechanism, ERRATA) at every
+// gauge (translation, rotation, scale of the whole mechanism, docs/EQUATIONS.md) at every
 // point, so an unobservable direction shows as an exact zero singular value
 // even far from the solution; the J1/J2/J3 residuals are invariant only where
 // they vanish. J3's l_ac, l_as are a local reparameterisation of l_a, dth and

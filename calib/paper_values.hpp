@@ -1,5 +1,5 @@
 // Parameter values of the paper's simulation experiments (reference/paper.md
-// sections 3.3 and 4.4), with the ERRATA applied, for tests, studies and
+// sections 3.3 and 4.4), with the corrections of docs/EQUATIONS.md applied, for tests, studies and
 // benchmarks. Millimetres and radians.
 #pragma once
 
@@ -10,7 +10,7 @@
 namespace gpm::calib {
 
 // Section 3.3 "actual" values (Tables 2-4): offsets 1.0 rad; la = 244.1,
-// 244.2, 244.5 (ERRATA: 243.5 is a misprint in section 3), lb = 243.8, 244.2,
+// 244.2, 244.5 (docs/EQUATIONS.md: 243.5 is a misprint in section 3), lb = 243.8, 244.2,
 // 244.2; A2 = (433.04, 0), A3 = (433.05, 499.96); A1 nominal.
 Geometry section3_actual();
 

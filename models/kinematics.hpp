@@ -1,4 +1,4 @@
-// Kinematics of the 3-RRR planar manipulator (paper eq. 5-11, 29-35; ERRATA).
+// Kinematics of the 3-RRR planar manipulator (paper eq. 5-11, 29-35; docs/EQUATIONS.md).
 // Free functions of a constant model: f(geometry, ...). Millimetres, radians.
 //
 // Chain i: base joint A_i, active link la_i at angle theta_a_i to the elbow
@@ -65,7 +65,7 @@ struct ForwardResult {
   Eigen::Vector2d p = Eigen::Vector2d::Zero();  // end-effector O (mm)
   Eigen::Vector3d theta_b = Eigen::Vector3d::Zero();
   // Power of O with respect to each passive circle, |O - B_i|^2 - lb_i^2
-  // (mm^2): equal for all three chains at the radical centre (ERRATA), zero
+  // (mm^2): equal for all three chains at the radical centre (docs/EQUATIONS.md), zero
   // when the readings close the loops exactly.
   double power = 0.0;
 };

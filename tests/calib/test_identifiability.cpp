@@ -2,7 +2,7 @@
 // rank 11, the paper's 3-coordinate gauge rank 11 of 12 with the null
 // direction a scale-and-rotation about A1 (checked against the generators),
 // all 15 free has 4 null directions, samples on a line are ill-conditioned
-// (ERRATA: ~1e10) and a disc of samples is well conditioned; the paper's
+// (docs/EQUATIONS.md: ~1e10) and a disc of samples is well conditioned; the paper's
 // section-4.4 setting (xa1, ya1, xa2 fixed, 50 workspace samples) is rank 11
 // of 12 at the true values and its one-sentence diagnosis says so; the ML
 // Jacobian equals central differences of the ML residual.

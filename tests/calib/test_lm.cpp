@@ -1,6 +1,6 @@
 // Tests of calib/lm.cpp: the paper's stepwise experiments (section 3.3,
 // Tables 2-4) on generated noiseless data with the section-3 actual values
-// (ERRATA: la3 = 244.5) from the paper's initial estimates; every error
+// (docs/EQUATIONS.md: la3 = 244.5) from the paper's initial estimates; every error
 // function must recover the actual values to 1e-6 mm / rad. Also the
 // 12-parameter gauge refused as rank-deficient, the minimum-norm solve, bad
 // input, and the 1-sigma against the Cramer-Rao bound.
@@ -140,7 +140,7 @@ TEST(PaperTable4, TwelveParametersWithAllowRankDeficientLandOnTheFamily) {
   EXPECT_NE(r.notes[0].find("minimum-norm"), std::string::npos);
   EXPECT_LT(r.final_cost, 1e-20);  // a perfect fit ...
   // ... of a similar mechanism: all lengths in the same ratio to the actual ones,
-  // all offsets shifted by the same angle (ERRATA).
+  // all offsets shifted by the same angle (docs/EQUATIONS.md).
   const double scale = r.geometry[kLa1] / actual[kLa1];
   const double turn = r.geometry[kDth1] - actual[kDth1];
   for (int i = 0; i < 3; ++i) {

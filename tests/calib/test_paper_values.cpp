@@ -1,7 +1,7 @@
 // Tests of calib/paper_values.cpp against the paper's own numbers: the
 // reference-point procedure at (210, 245) with the section-3 values gives the
 // initial estimates printed in Tables 3 and 4 only with the misprinted
-// la3 = 243.5 for dth3, while every estimator returns 244.5 (ERRATA): the data
+// la3 = 243.5 for dth3, while every estimator returns 244.5 (docs/EQUATIONS.md): the data
 // used la3 = 244.5. Table 5 differs from nominal by its printed amounts.
 #include "calib/paper_values.hpp"
 

@@ -1,6 +1,6 @@
 // Tests of calib/residuals.cpp and models/closure.hpp: autodiff Jacobians
 // against central differences, closure gradient against differences in the
-// readings, E2 rows equal (ERRATA), residuals zero at the truth, J3 equal to
+// readings, E2 rows equal (docs/EQUATIONS.md), residuals zero at the truth, J3 equal to
 // J2 in its own variables, the ML residual equal to the reading correction
 // that closes the loops, and its invariance under the similarity gauge.
 #include "calib/residuals.hpp"

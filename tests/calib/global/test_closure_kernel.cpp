@@ -189,7 +189,7 @@ TEST(ClosureKernel, BatchCostsEqualTheCeresResidualCosts) {
 }
 
 TEST(ClosureKernel, J2EqualsJ3AtTheSameMechanism) {
-  // Same mechanism, coupled vs decoupled variables: same closure (ERRATA).
+  // Same mechanism, coupled vs decoupled variables: same closure (docs/EQUATIONS.md).
   const Samples s = table5_samples();
   Problem p = table5_problem(s, default_free_mask());
   const Box box = default_box(Geometry::gpm2002_nominal(), p.free);
@@ -206,7 +206,7 @@ TEST(ClosureKernel, J3AtTheActualParametersIsAtTheFloatingPointFloor) {
   const Problem p = table5_problem(s, default_free_mask());
   const PopulationCost pc(p, Cost::kJ3, default_box(Geometry::gpm2002_nominal(), p.free), 1);
   const double at_actual = pc.evaluate_one(pc.space().from_geometry(table5_actual()));
-  EXPECT_LT(at_actual, 1e-17);  // ERRATA: about 1e-19 for 50 samples
+  EXPECT_LT(at_actual, 1e-17);  // docs/EQUATIONS.md: about 1e-19 for 50 samples
   // 1 micrometre off in one length is visible far above the floor.
   Geometry off = table5_actual();
   off[kLb2] += 1e-3;
