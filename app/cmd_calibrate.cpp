@@ -13,9 +13,9 @@
 #include <fmt/format.h>
 
 #include "app/commands.hpp"
+#include "calib/calibrate.hpp"
 #include "calib/initial.hpp"
 #include "calib/lm.hpp"
-#include "scenarios/calibration_method.hpp"
 #include "calib/result_yaml.hpp"
 #include "calib/sample_check.hpp"
 #include "models/errors.hpp"
@@ -91,9 +91,7 @@ std::vector<double> parse_numbers(const std::string& text, size_t n, const std::
 void run(const CalibrateOptions& o) {
   const auto cost = calib::parse_cost(o.cost);
   if (!cost) throw InputError(fmt::format("--cost: '{}' is not one of j1, j2, j3, ml", o.cost));
-  if (o.method != "lm" && o.method != "ga" && o.method != "pso" && o.method != "de" && o.method != "de+lm") {
-    throw InputError(fmt::format("--method: '{}' is unknown (valid: {})", o.method, scenario::kMethodNames));
-  }
+  const calib::Method method = calib::parse_method(o.method, "--method");
   if (o.budget_given && o.budget < 1) throw InputError(fmt::format("--budget: must be at least 1, got {}", o.budget));
   const std::string model_path = o.model.empty() ? default_model_path() : o.model;
   const Robot robot = load_robot(model_path);
@@ -125,13 +123,13 @@ void run(const CalibrateOptions& o) {
   }
 
   calib::check_samples(problem, row_labels(o.data, samples));
-  scenario::MethodOptions mo;
-  mo.method = o.method;
+  calib::MethodOptions mo;
+  mo.method = method;
   mo.cost = *cost;
   mo.seed = static_cast<std::uint64_t>(o.seed);
   mo.allow_rank_deficient = o.allow_rank_deficient;
   if (o.budget_given) {
-    if (o.method == "lm") mo.lm_max_iterations = static_cast<int>(std::min<long>(o.budget, 1000000));
+    if (method == calib::Method::kLM) mo.lm_max_iterations = static_cast<int>(std::min<long>(o.budget, 1000000));
     else mo.budget = o.budget;
   }
   if (o.sigma_given) {
@@ -140,7 +138,7 @@ void run(const CalibrateOptions& o) {
     mo.encoder_sigma = o.sigma;
   }
   if (samples.has_xy) mo.true_xy = &samples.xy;
-  const calib::Result r = scenario::calibrate_with_method(problem, mo);
+  const calib::Result r = calib::calibrate(problem, mo);
 
   for (const auto& note : r.notes) std::fprintf(stderr, "gpm: warning: %s\n", note.c_str());
   calib::save_result(r, robot.name, o.out);

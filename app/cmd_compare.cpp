@@ -11,7 +11,7 @@
 
 #include "app/commands.hpp"
 #include "calib/global/comparison.hpp"
-#include "calib/global/synthetic.hpp"
+#include "calib/paper_values.hpp"
 #include "models/errors.hpp"
 #include "models/robot_yaml.hpp"
 
@@ -50,7 +50,7 @@ void run_compare(const CompareArgs& a) {
   st.samples = a.samples;
   st.data_seed = a.data_seed;
   st.parallel_runs = a.jobs;
-  if (a.gauge == 12) st.free = calib::global::paper_free_mask();
+  if (a.gauge == 12) st.free = calib::paper_free_mask();
   else if (a.gauge == 11) st.free = default_free_mask();
   else throw InputError(fmt::format("--gauge: {} is not 11 or 12", a.gauge));
   st.seeds.clear();
@@ -66,10 +66,10 @@ void run_compare(const CompareArgs& a) {
   }
   st.methods.clear();
   for (const auto& s : split(a.methods)) {
-    const auto m = calib::global::parse_method(s);
-    if (!m || *m == calib::global::Method::kDeLm)
+    const calib::Method m = calib::parse_method(s, "--methods");
+    if (m == calib::Method::kLM || m == calib::Method::kDELM)
       throw InputError(fmt::format("--methods: '{}' is not ga, pso or de", s));
-    st.methods.push_back(*m);
+    st.methods.push_back(m);
   }
   st.costs.clear();
   for (const auto& s : split(a.costs)) {

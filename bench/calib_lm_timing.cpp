@@ -1,8 +1,9 @@
 // Times one whole LM calibration (calib/lm.hpp: identifiability, Ceres LM;
 // covariance off, as scipy computes none) of a samples CSV, many repetitions,
 // and prints the median time and the largest error against the true geometry.
-//   bench_calib_lm SAMPLES.csv REPETITIONS COST [cov]
-// ("cov" also computes the 1-sigma, as gpm calibrate does).
+//   bench_calib_lm SAMPLES.csv REPETITIONS COST [cov] [autodiff]
+// ("cov" also computes the 1-sigma, as gpm calibrate does; "autodiff" uses
+// Ceres automatic differentiation instead of the analytic Jacobians).
 // The true geometry is paper Table 5; the start is nominal with the fixed
 // coordinates xa1, ya1, xa2, ya2 at their true values (11 free).
 #include <algorithm>
@@ -36,7 +37,16 @@ int main(int argc, char** argv) {
     if (!pb.free.test(static_cast<size_t>(i))) pb.start[i] = truth[i];
   calib::LmOptions opt;
   opt.cost = *cost;
-  opt.compute_covariance = argc > 4 && std::string(argv[4]) == "cov";
+  opt.compute_covariance = false;
+  for (int a = 4; a < argc; ++a) {
+    const std::string flag = argv[a];
+    if (flag == "cov") opt.compute_covariance = true;
+    else if (flag == "autodiff") opt.autodiff = true;
+    else if (flag != "nocov") {
+      std::fprintf(stderr, "bench_calib_lm: unknown option '%s' (valid: cov, autodiff)\n", argv[a]);
+      return 2;
+    }
+  }
   std::vector<double> t;
   calib::Result r;
   for (int k = 0; k < reps; ++k) {

@@ -1,10 +1,13 @@
 #!/usr/bin/env python3
 """The same calibration as bench_calib_lm with scipy.optimize.least_squares.
 
-usage: calib_scipy.py SAMPLES.csv REPETITIONS COST(j2|ml)
-Residual per sample (one row, as calib/residuals.hpp): the power P of the
-radical centre of the three passive circles (J2, eq. 38 with ERRATA), or for
-ml P / |dP/dtheta_m| with the gradient by central differences in the readings.
+usage: calib_scipy.py SAMPLES.csv REPETITIONS COST(j1|j2|j3|ml)
+Residuals per sample as calib/residuals.hpp: for j2 one row, the power P of
+the radical centre of the three passive circles (eq. 38 with the squares of
+eq. 32 restored); for j3 the same in the decoupled variables l_ac = l_a cos
+dth, l_as = l_a sin dth (eq. 41-43, mapped back by eq. 44 with atan2); for j1
+six rows (|O - B_i| - l_b^i) (O - B_i) / |O - B_i| (eq. 36); for ml
+P / |dP/dtheta_m| with the gradient by central differences in the readings.
 Start: nominal with xa1, ya1, xa2, ya2 at the true (Table 5) values; 11 free.
 Prints the median solve time and the largest error against Table 5.
 """
@@ -20,13 +23,24 @@ NAMES = list(TRUE)
 FREE = [n for n in NAMES if n not in ("xa1", "ya1", "xa2", "ya2")]
 
 
-def power(g, th):
-    """P for every sample (th: n x 3 readings), eq. 30-33 relative to B1."""
+def elbows(g, th, decoupled=False):
+    """B_i for every sample (th: n x 3 readings), eq. 30 (or eq. 41 when decoupled:
+    the la and dth entries hold l_ac and l_as)."""
     B = []
     for i in range(3):
-        ta = th[:, i] + g[f"dth{i+1}"]
-        B.append(np.stack([g[f"xa{i+1}"] + g[f"la{i+1}"] * np.cos(ta),
-                           g[f"ya{i+1}"] + g[f"la{i+1}"] * np.sin(ta)], axis=1))
+        if decoupled:
+            c, s = np.cos(th[:, i]), np.sin(th[:, i])
+            lac, las = g[f"la{i+1}"], g[f"dth{i+1}"]
+            B.append(np.stack([g[f"xa{i+1}"] + lac * c - las * s, g[f"ya{i+1}"] + lac * s + las * c], axis=1))
+        else:
+            ta = th[:, i] + g[f"dth{i+1}"]
+            B.append(np.stack([g[f"xa{i+1}"] + g[f"la{i+1}"] * np.cos(ta),
+                               g[f"ya{i+1}"] + g[f"la{i+1}"] * np.sin(ta)], axis=1))
+    return B
+
+
+def centre(g, B):
+    """Radical centre O (n x 2) relative to B1 (eq. 32-33) and its power P."""
     d2, d3 = B[1] - B[0], B[2] - B[0]
     lb1 = g["lb1"] ** 2
     r2 = 0.5 * ((d2 ** 2).sum(1) + lb1 - g["lb2"] ** 2)
@@ -34,7 +48,24 @@ def power(g, th):
     det = d2[:, 0] * d3[:, 1] - d2[:, 1] * d3[:, 0]
     ux = (r2 * d3[:, 1] - r3 * d2[:, 1]) / det
     uy = (d2[:, 0] * r3 - d3[:, 0] * r2) / det
-    return ux * ux + uy * uy - lb1
+    return B[0] + np.stack([ux, uy], axis=1), ux * ux + uy * uy - lb1
+
+
+def power(g, th, decoupled=False):
+    """P for every sample."""
+    return centre(g, elbows(g, th, decoupled))[1]
+
+
+def e1(g, th):
+    """The six E1 rows of every sample, flattened (eq. 36 with atan2, eq. 34)."""
+    B = elbows(g, th)
+    O, _ = centre(g, B)
+    rows = []
+    for i in range(3):
+        w = O - B[i]
+        n = np.sqrt((w ** 2).sum(1))
+        rows.append(((n - g[f"lb{i+1}"]) / n)[:, None] * w)
+    return np.concatenate(rows, axis=1).ravel()
 
 
 def main():
@@ -44,12 +75,18 @@ def main():
     start = dict(TRUE)
     for n in FREE:
         start[n] = 0.0 if n.startswith("dth") else (244.0 if n[0] == "l" else {"xa3": 433.0, "ya3": 500.0}[n])
+    if cost == "j3":  # l_ac = l_a cos dth, l_as = l_a sin dth in the la, dth entries
+        for i in range(1, 4):
+            la, dth = start[f"la{i}"], start[f"dth{i}"]
+            start[f"la{i}"], start[f"dth{i}"] = la * np.cos(dth), la * np.sin(dth)
 
     def residual(x):
         g = dict(start)
         g.update(zip(FREE, x))
-        P = power(g, th)
-        if cost == "j2":
+        if cost == "j1":
+            return e1(g, th)
+        P = power(g, th, cost == "j3")
+        if cost in ("j2", "j3"):
             return P
         h = 1e-6
         grad2 = np.zeros_like(P)
@@ -69,6 +106,10 @@ def main():
     times.sort()
     est = dict(start)
     est.update(zip(FREE, sol.x))
+    if cost == "j3":  # eq. 44: l_a = hypot(l_ac, l_as), dth = atan2(l_as, l_ac)
+        for i in range(1, 4):
+            lac, las = est[f"la{i}"], est[f"dth{i}"]
+            est[f"la{i}"], est[f"dth{i}"] = np.hypot(lac, las), np.arctan2(las, lac)
     err_mm = max(abs(est[n] - TRUE[n]) for n in FREE if not n.startswith("dth"))
     err_rad = max(abs(est[n] - TRUE[n]) for n in FREE if n.startswith("dth"))
     print(f"median_s {times[len(times)//2]:.9g} min_s {times[0]:.9g} max_err_mm {err_mm:.3g} "

@@ -5,8 +5,9 @@
 #include <benchmark/benchmark.h>
 
 #include "calib/global/population_cost.hpp"
-#include "calib/global/rng.hpp"
-#include "calib/global/synthetic.hpp"
+#include "models/rng.hpp"
+#include "calib/paper_values.hpp"
+#include "calib/synthetic.hpp"
 
 namespace {
 

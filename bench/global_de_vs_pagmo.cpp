@@ -15,7 +15,8 @@
 
 #include "calib/global/de.hpp"
 #include "calib/global/population_cost.hpp"
-#include "calib/global/synthetic.hpp"
+#include "calib/paper_values.hpp"
+#include "calib/synthetic.hpp"
 
 namespace {
 

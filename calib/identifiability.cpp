@@ -76,7 +76,11 @@ Identifiability analyse_identifiability(const std::vector<Eigen::Vector3d>& thet
   for (int i = 0; i < kNumParams; ++i)
     if (free.test(static_cast<size_t>(i))) out.free_index.push_back(i);
   const auto p = static_cast<Eigen::Index>(out.free_index.size());
-  if (p == 0) return out;
+  out.free_count = static_cast<int>(p);
+  if (p == 0) {
+    out.diagnosis = "rank 0 of 0: no free parameters";
+    return out;
+  }
   const Eigen::MatrixXd J_all = ml_jacobian(theta_m, g);
   Eigen::MatrixXd J(J_all.rows(), p);
   Eigen::VectorXd col_norm(p);
@@ -100,7 +104,11 @@ Identifiability analyse_identifiability(const std::vector<Eigen::Vector3d>& thet
     if (std::isfinite(out.singular_values[k]) && out.singular_values[k] > kRankTolerance * smax) ++out.rank;
   const double smin = out.singular_values[p - 1];
   out.condition_number = smin > 0.0 ? smax / smin : std::numeric_limits<double>::infinity();
-  if (out.rank == p) return out;
+  if (out.rank == p) {
+    out.diagnosis = fmt::format("rank {} of {}: all free parameters identifiable (condition number {:.3g})",
+                                out.rank, p, out.condition_number);
+    return out;
+  }
 
   // Null directions back in parameter units.
   const Eigen::Index k_null = p - out.rank;
@@ -156,6 +164,7 @@ Identifiability analyse_identifiability(const std::vector<Eigen::Vector3d>& thet
                                   k_null > 1 ? "s" : "", comb);
     out.advice = "add samples spread over the workspace, or fix one of these parameters";
   }
+  out.diagnosis = fmt::format("rank {} of {}: {}; {}", out.rank, p, out.description, out.advice);
   return out;
 }
 

@@ -1,9 +1,10 @@
-// Identifiability of a choice of free parameters from given readings, checked
-// before solving: SVD of the column-scaled Jacobian of the ML residual (one
-// row per sample, calib/residuals.hpp) at the start point.
+// Identifiability of a choice of free parameters from given readings: SVD of
+// the column-scaled Jacobian of the ML residual (one row per sample,
+// calib/residuals.hpp). LM checks it at the start point before solving, the
+// global solvers at the point they found, `gpm compare` at the true values.
 //
 // Why the ML residual for every cost: it is invariant under the similarity
-// gauge (translation, rotation, scale of the whole mechanism, ERRATA) at every
+// gauge (translation, rotation, scale of the whole mechanism, docs/EQUATIONS.md) at every
 // point, so an unobservable direction shows as an exact zero singular value
 // even far from the solution; the J1/J2/J3 residuals are invariant only where
 // they vanish. J3's l_ac, l_as are a local reparameterisation of l_a, dth and
@@ -19,10 +20,13 @@
 
 namespace gpm::calib {
 
-// A singular value below kRankTolerance * (largest) counts as zero. Exact gauge
+// The one rank tolerance of the project: a singular value of the column-scaled
+// Jacobian below kRankTolerance * (largest) counts as zero. Exact gauge
 // directions measure ~2e-16 in double precision (tests/calib/test_identifiability);
 // 30 samples on a straight line (practically but not exactly unidentifiable,
-// ERRATA) ~7e-12, which is full rank with a poor-conditioning warning.
+// docs/EQUATIONS.md) ~7e-12, which is full rank with a poor-conditioning
+// warning. Because the ML residual is gauge invariant at every point, the
+// tolerance holds away from the solution too (a global solver's end point).
 inline constexpr double kRankTolerance = 1e-13;
 
 // Condition numbers (largest / smallest singular value of the column-scaled
@@ -33,6 +37,7 @@ inline constexpr double kPoorConditioning = 1e6;
 
 struct Identifiability {
   std::vector<int> free_index;       // parameter index of each column
+  int free_count = 0;                // free_index.size()
   Eigen::VectorXd singular_values;   // of the column-scaled Jacobian, descending
   int rank = 0;
   double condition_number = 0.0;     // sigma_max / sigma_min (inf when rank-deficient)
@@ -41,6 +46,9 @@ struct Identifiability {
   Eigen::MatrixXd null_vectors;
   std::string description;  // the unobservable direction(s) in words; empty when full rank
   std::string advice;       // which coordinate(s) to fix; empty when full rank
+  // One sentence: "rank r of p: " and either "all free parameters identifiable
+  // (condition number c)" or the description and the advice.
+  std::string diagnosis;
 };
 
 // The four generators of the similarity gauge at geometry g as columns of a

@@ -12,7 +12,7 @@
 namespace gpm::calib {
 
 // sqrt(1/n sum_j |xy_j - FK(g, theta_m_j + dth)|^2) (eq. 40), FK by the radical
-// centre (eq. 32-33, ERRATA). Infinity if some sample has no forward kinematics.
+// centre (eq. 32-33, docs/EQUATIONS.md). Infinity if some sample has no forward kinematics.
 double kmrmse(const Geometry& g, const std::vector<Eigen::Vector3d>& theta_m,
               const std::vector<Eigen::Vector2d>& xy);
 

@@ -49,6 +49,45 @@ Evaluation evaluate(const std::vector<std::unique_ptr<ceres::CostFunction>>& f, 
   return e;
 }
 
+// All samples' residuals as one Ceres residual block over the free
+// parameters only (rows stacked in sample order, fixed slots taken from
+// *full): the same residuals and Jacobian columns as one block per sample on
+// all 15 slots with the fixed ones held constant, without Ceres' per-block
+// and manifold bookkeeping (most of an LM solve otherwise).
+class FreeStackedResidual final : public ceres::CostFunction {
+ public:
+  FreeStackedResidual(const std::vector<std::unique_ptr<ceres::CostFunction>>& f, int rows,
+                      const std::vector<int>& free_index, const ParamVector& full)
+      : f_(f), rows_(rows), idx_(free_index), full_(full) {
+    set_num_residuals(static_cast<int>(f.size()) * rows);
+    mutable_parameter_block_sizes()->push_back(static_cast<int>(free_index.size()));
+  }
+  bool Evaluate(double const* const* xf, double* r, double** jac) const override {
+    ParamVector x = full_;
+    const size_t p = idx_.size();
+    for (size_t k = 0; k < p; ++k) x[static_cast<size_t>(idx_[k])] = xf[0][k];
+    const double* params[] = {x.data()};
+    double Jj[6 * kNumParams];
+    double* jj[] = {Jj};
+    const bool with_jacobian = jac && jac[0];
+    for (size_t j = 0; j < f_.size(); ++j) {
+      const size_t row = j * static_cast<size_t>(rows_);
+      if (!f_[j]->Evaluate(params, r + row, with_jacobian ? jj : nullptr)) return false;
+      if (!with_jacobian) continue;
+      for (int q = 0; q < rows_; ++q)
+        for (size_t k = 0; k < p; ++k)
+          jac[0][(row + static_cast<size_t>(q)) * p + k] = Jj[q * kNumParams + idx_[k]];
+    }
+    return true;
+  }
+
+ private:
+  const std::vector<std::unique_ptr<ceres::CostFunction>>& f_;
+  int rows_;
+  std::vector<int> idx_;
+  const ParamVector& full_;
+};
+
 // Minimum-norm Levenberg-Marquardt for a rank-deficient free set: each step
 // is the damped pseudo-inverse step restricted to the `rank` largest singular
 // directions of the column-scaled Jacobian, so it never moves along the
@@ -158,23 +197,26 @@ Result calibrate_lm(const Problem& problem, const LmOptions& opt) {
   ParamVector x = to_solver(problem.start, opt.cost);
   std::vector<std::unique_ptr<ceres::CostFunction>> functions;
   functions.reserve(n);
-  for (const auto& t : problem.theta_m) functions.emplace_back(make_residual(opt.cost, t));
+  for (const auto& t : problem.theta_m)
+    functions.emplace_back(opt.autodiff ? make_autodiff_residual(opt.cost, t) : make_residual(opt.cost, t));
 
+  std::vector<int> free_index;
+  for (int i = 0; i < kNumParams; ++i)
+    if (problem.free.test(static_cast<size_t>(i))) free_index.push_back(i);
+  std::vector<double> xf;
+  for (int i : free_index) xf.push_back(x[static_cast<size_t>(i)]);
+  FreeStackedResidual stacked(functions, rows, free_index, x);
   ceres::Problem::Options po;
   po.cost_function_ownership = ceres::DO_NOT_TAKE_OWNERSHIP;
   ceres::Problem cp(po);
-  for (const auto& f : functions) cp.AddResidualBlock(f.get(), nullptr, x.data());
-  std::vector<int> constant;
-  for (int i = 0; i < kNumParams; ++i)
-    if (!problem.free.test(static_cast<size_t>(i))) constant.push_back(i);
-  if (!constant.empty()) cp.SetManifold(x.data(), new ceres::SubsetManifold(kNumParams, constant));
+  cp.AddResidualBlock(&stacked, nullptr, xf.data());
 
   if (res.rank_deficient) {
     truncated_svd_lm(functions, rows, problem.free, id.rank, opt.max_iterations, x, res);
   } else {
     ceres::Solver::Options so;
     so.trust_region_strategy_type = ceres::LEVENBERG_MARQUARDT;
-    so.linear_solver_type = ceres::DENSE_QR;
+    so.linear_solver_type = ceres::DENSE_NORMAL_CHOLESKY;
     so.max_num_iterations = opt.max_iterations;
     so.function_tolerance = 1e-15;
     so.gradient_tolerance = 1e-16;
@@ -183,6 +225,7 @@ Result calibrate_lm(const Problem& problem, const LmOptions& opt) {
     so.logging_type = ceres::SILENT;
     ceres::Solver::Summary summary;
     ceres::Solve(so, &cp, &summary);
+    for (size_t k = 0; k < free_index.size(); ++k) x[static_cast<size_t>(free_index[k])] = xf[k];
     res.iterations = static_cast<long>(summary.num_successful_steps + summary.num_unsuccessful_steps);
     // Each Jacobian evaluation also evaluates the residuals: count both kinds.
     res.evaluations = summary.num_residual_evaluations + summary.num_jacobian_evaluations;
@@ -203,10 +246,14 @@ Result calibrate_lm(const Problem& problem, const LmOptions& opt) {
     co.algorithm_type = ceres::DENSE_SVD;
     co.num_threads = 1;
     ceres::Covariance cov(co);
-    const std::vector<std::pair<const double*, const double*>> blocks = {{x.data(), x.data()}};
+    for (size_t k = 0; k < free_index.size(); ++k) xf[k] = x[static_cast<size_t>(free_index[k])];
+    const std::vector<std::pair<const double*, const double*>> blocks = {{xf.data(), xf.data()}};
+    const auto nf = static_cast<Eigen::Index>(free_index.size());
+    Eigen::Matrix<double, Eigen::Dynamic, Eigen::Dynamic, Eigen::RowMajor> Cf(nf, nf);
     Mat15 C0 = Mat15::Zero();
-    if (cov.Compute(blocks, &cp) && cov.GetCovarianceBlock(x.data(), x.data(), C0.data())) {
-      C0 = C0.transpose().eval();  // row-major from Ceres; symmetric anyway
+    if (cov.Compute(blocks, &cp) && cov.GetCovarianceBlock(xf.data(), xf.data(), Cf.data())) {
+      for (Eigen::Index a = 0; a < nf; ++a)  // embed: zero rows and columns for fixed parameters
+        for (Eigen::Index b = 0; b < nf; ++b) C0(free_index[static_cast<size_t>(a)], free_index[static_cast<size_t>(b)]) = Cf(a, b);
       Mat15 C;
       if (opt.encoder_sigma) {
         // Sandwich with the residuals' covariance under reading noise:

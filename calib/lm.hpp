@@ -28,6 +28,10 @@ struct LmOptions {
   const std::vector<Eigen::Vector2d>* true_xy = nullptr;
   // Compute the covariance (a few ms); off for speed in benchmarks.
   bool compute_covariance = true;
+  // Differentiate the residuals with Ceres autodiff (the reference) instead
+  // of the analytic Jacobians of calib/analytic_residuals.hpp; same result,
+  // slower (for benchmarks and cross-checks).
+  bool autodiff = false;
 };
 
 // Estimates problem.free from problem.theta_m starting at problem.start.

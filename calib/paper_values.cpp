@@ -24,4 +24,24 @@ Geometry table5_actual() {
   return g;
 }
 
+FreeMask paper_free_mask() {
+  FreeMask m;
+  m.set();
+  m.reset(kXa1);
+  m.reset(kYa1);
+  m.reset(kXa2);
+  return m;
+}
+
+Problem table5_problem(const Samples& s, const FreeMask& free) {
+  Problem p;
+  p.theta_m = s.theta_m;
+  p.free = free;
+  p.start = Geometry::gpm2002_nominal();
+  const Geometry actual = table5_actual();
+  for (int i = 0; i < kNumParams; ++i)
+    if (!free[static_cast<size_t>(i)]) p.start[i] = actual[i];
+  return p;
+}
+
 }  // namespace gpm::calib

@@ -25,8 +25,8 @@ Geometry from_solver(const ParamVector& x, Cost c) {
   if ((c == Cost::kJ3)) {
     for (int i = 0; i < kNumChains; ++i) {
       const double lac = x[static_cast<size_t>(la(i))], las = x[static_cast<size_t>(dth(i))];
-      g[la(i)] = std::hypot(lac, las);   // eq. 44 (ERRATA)
-      g[dth(i)] = std::atan2(las, lac);  // eq. 44 (ERRATA): two-argument atan2
+      g[la(i)] = std::hypot(lac, las);   // eq. 44 (docs/EQUATIONS.md)
+      g[dth(i)] = std::atan2(las, lac);  // eq. 44 (docs/EQUATIONS.md): two-argument atan2
     }
   }
   return g;

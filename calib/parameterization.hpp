@@ -1,7 +1,7 @@
 // The solver's parameter vector for each error function: the 15 geometry
 // values, except that J3 holds l_ac^i = l_a^i cos dth^i in slot la(i) and
 // l_as^i = l_a^i sin dth^i in slot dth(i) (eq. 41-42), mapped back by eq. 44
-// as corrected in ERRATA: l_a = hypot(l_ac, l_as), dth = atan2(l_as, l_ac).
+// as corrected in docs/EQUATIONS.md: l_a = hypot(l_ac, l_as), dth = atan2(l_as, l_ac).
 #pragma once
 
 #include <array>
@@ -17,7 +17,7 @@ using ParamVector = std::array<double, kNumParams>;
 // Solver vector of geometry g for cost c.
 ParamVector to_solver(const Geometry& g, Cost c);
 
-// Geometry of solver vector x for cost c (eq. 44 per ERRATA for J3).
+// Geometry of solver vector x for cost c (eq. 44 per docs/EQUATIONS.md for J3).
 Geometry from_solver(const ParamVector& x, Cost c);
 
 // d(geometry) / d(solver vector) at x (identity except the J3 pairs), to carry

@@ -1,5 +1,9 @@
 #include "calib/problem.hpp"
 
+#include <fmt/format.h>
+
+#include "models/errors.hpp"
+
 namespace gpm::calib {
 
 std::optional<Cost> parse_cost(std::string_view name) {
@@ -16,6 +20,26 @@ std::string_view cost_name(Cost c) {
     case Cost::kJ2: return "j2";
     case Cost::kJ3: return "j3";
     case Cost::kML: return "ml";
+  }
+  return "?";
+}
+
+Method parse_method(std::string_view name, std::string_view where) {
+  if (name == "lm") return Method::kLM;
+  if (name == "ga") return Method::kGA;
+  if (name == "pso") return Method::kPSO;
+  if (name == "de") return Method::kDE;
+  if (name == "de+lm") return Method::kDELM;
+  throw InputError(fmt::format("{}: unknown method '{}' (valid: {})", where, name, kMethodNames));
+}
+
+std::string_view method_name(Method m) {
+  switch (m) {
+    case Method::kLM: return "lm";
+    case Method::kGA: return "ga";
+    case Method::kPSO: return "pso";
+    case Method::kDE: return "de";
+    case Method::kDELM: return "de+lm";
   }
   return "?";
 }

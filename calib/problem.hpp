@@ -24,6 +24,19 @@ enum class Cost { kJ1, kJ2, kJ3, kML };
 std::optional<Cost> parse_cost(std::string_view name);
 std::string_view cost_name(Cost c);
 
+// Calibration methods (calib/calibrate.hpp): Ceres Levenberg-Marquardt, the
+// population optimisers GA, PSO, DE of calib/global (paper section 4), and DE
+// followed by LM.
+enum class Method { kLM, kGA, kPSO, kDE, kDELM };
+
+// The names parse_method accepts, for messages.
+inline constexpr const char* kMethodNames = "lm, ga, pso, de, de+lm";
+
+// "lm", "ga", "pso", "de", "de+lm" -> Method. Throws InputError with one line
+// "<where>: unknown method '<name>' (valid: lm, ga, pso, de, de+lm)" otherwise.
+Method parse_method(std::string_view name, std::string_view where = "--method");
+std::string_view method_name(Method m);
+
 // What to estimate from which readings.
 struct Problem {
   std::vector<Eigen::Vector3d> theta_m;  // encoder readings per sample (rad)

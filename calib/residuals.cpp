@@ -1,5 +1,7 @@
 #include "calib/residuals.hpp"
 
+#include "calib/analytic_residuals.hpp"
+
 namespace gpm::calib {
 
 int residual_rows(Cost c) { return c == Cost::kJ1 ? 6 : 1; }
@@ -7,6 +9,10 @@ int residual_rows(Cost c) { return c == Cost::kJ1 ? 6 : 1; }
 bool is_decoupled(Cost c) { return c == Cost::kJ3; }
 
 ceres::CostFunction* make_residual(Cost c, const Eigen::Vector3d& theta_m) {
+  return make_analytic_residual(c, theta_m);
+}
+
+ceres::CostFunction* make_autodiff_residual(Cost c, const Eigen::Vector3d& theta_m) {
   switch (c) {
     case Cost::kJ1:
       return new ceres::AutoDiffCostFunction<E1Residual, 6, kNumParams>(new E1Residual(theta_m));

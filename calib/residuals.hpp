@@ -1,8 +1,9 @@
 // Residuals of the error functions J1, J2, J3 and ML for one sample (paper
-// section 3.1; ERRATA), as Ceres autodiff functors over the 15-slot parameter
-// vector of calib/closure.hpp.
+// section 3.1; docs/EQUATIONS.md), as Ceres autodiff functors over the 15-slot parameter
+// vector of models/closure.hpp. These functors are the reference; the solver
+// uses the same residuals with analytic Jacobians (calib/analytic_residuals.hpp).
 //
-// Honest accounting (ERRATA): with the radical centre of eq. 32-33 as forward
+// Honest accounting (docs/EQUATIONS.md): with the radical centre of eq. 32-33 as forward
 // kinematics, the three rows of E2 (and of E3) are the same number g = P for
 // every sample, so J2 = J3 = 3 * sum_j g_j^2. The solver uses ONE row g per
 // sample (same minimiser, a Jacobian whose rank and covariance are not
@@ -12,7 +13,7 @@
 #include <ceres/ceres.h>
 #include <Eigen/Core>
 
-#include "calib/closure.hpp"
+#include "models/closure.hpp"
 #include "calib/problem.hpp"
 
 namespace gpm::calib {
@@ -41,7 +42,7 @@ struct E1Residual {
   double theta_m_[3];
 };
 
-// E2 (eq. 38, row 1 with y_a^1 per ERRATA): for each chain i,
+// E2 (eq. 38, row 1 with y_a^1 per docs/EQUATIONS.md): for each chain i,
 //   E2_i = (x - x_a^i - l_a^i cos(theta_m^i + dth^i))^2
 //        + (y - y_a^i - l_a^i sin(theta_m^i + dth^i))^2 - (l_b^i)^2 = |O - B_i|^2 - (l_b^i)^2,
 // which equals the power P of the radical centre for all three i. One row g = P
@@ -62,7 +63,7 @@ struct E2Residual {
 //   B_i = A_i + (l_ac^i cos theta_m^i - l_as^i sin theta_m^i,
 //                l_ac^i sin theta_m^i + l_as^i cos theta_m^i),
 // and E3_i = |O - B_i|^2 - (l_b^i)^2 = P for all i. One row g = P per sample;
-// J3 = 3 sum_j g_j^2. l_a, dth are recovered by eq. 44 per ERRATA:
+// J3 = 3 sum_j g_j^2. l_a, dth are recovered by eq. 44 per docs/EQUATIONS.md:
 // l_a = hypot(l_ac, l_as), dth = atan2(l_as, l_ac).
 struct E3Residual {
   explicit E3Residual(const Eigen::Vector3d& theta_m) : theta_m_{theta_m[0], theta_m[1], theta_m[2]} {}
@@ -78,7 +79,7 @@ struct E3Residual {
 // ML (ours): the closure residual divided by the norm of its gradient with
 // respect to the three readings,
 //   r = P / |dP / d theta_m|          (radians),
-// with dP/d theta_m by implicit differentiation (calib/closure.hpp). To first
+// with dP/d theta_m by implicit differentiation (models/closure.hpp). To first
 // order a reading error eps changes P by grad . eps, so r is the smallest
 // reading correction that closes the loops (a Sampson distance): with iid
 // encoder noise of sigma, r ~ N(0, sigma^2) and sum r^2 is the negative
@@ -106,12 +107,17 @@ int residual_rows(Cost c);
 // True when cost c works in the decoupled layout l_ac, l_as (J3).
 bool is_decoupled(Cost c);
 
-// A new autodiff cost function for one sample (the caller or a
-// ceres::Problem owns it).
+// A new cost function for one sample with the analytic Jacobian of
+// calib/analytic_residuals.hpp (what LM and identifiability use; the caller
+// or a ceres::Problem owns it).
 ceres::CostFunction* make_residual(Cost c, const Eigen::Vector3d& theta_m);
 
+// The same with Ceres automatic differentiation of the functors above: the
+// reference the analytic Jacobians are tested against.
+ceres::CostFunction* make_autodiff_residual(Cost c, const Eigen::Vector3d& theta_m);
+
 // The paper's J (eq. 37, 39, 43; sum of squares for ML) from the sum of
-// squares of the solver's rows: J2 = J3 = 3 sum g^2 (ERRATA), J1 and ML as is.
+// squares of the solver's rows: J2 = J3 = 3 sum g^2 (docs/EQUATIONS.md), J1 and ML as is.
 double paper_cost(Cost c, double sum_of_squares);
 
 }  // namespace gpm::calib

@@ -1,9 +1,7 @@
 #include "calib/result_yaml.hpp"
 
 #include <cmath>
-#include <fstream>
 #include <limits>
-#include <sstream>
 
 #include <fmt/format.h>
 #include <yaml-cpp/yaml.h>
@@ -85,8 +83,20 @@ void save_result(const Result& r, const std::string& robot_name, const std::stri
   write_file_atomic(path, result_to_yaml(r, robot_name));
 }
 
+namespace {
+
+// The result held by the YAML document root of file.
+Result result_from_yaml(const YAML::Node& root, const std::string& file);
+
+}  // namespace
+
 Result parse_result(const std::string& text, const std::string& file) {
-  const YAML::Node root = load_yaml_string(text, file);
+  return result_from_yaml(load_yaml_string(text, file), file);
+}
+
+namespace {
+
+Result result_from_yaml(const YAML::Node& root, const std::string& file) {
   if (!root.IsMap()) throw InputError(fmt::format("{}: expected a calibration result map (geometry, std, fixed, diagnostics)", file));
   yaml_check_keys(root, file, "", {"name", "geometry", "std", "fixed", "diagnostics"});
   Result r;
@@ -138,13 +148,9 @@ Result parse_result(const std::string& text, const std::string& file) {
   return r;
 }
 
-Result load_result(const std::string& path) {
-  std::ifstream in(path, std::ios::binary);
-  if (!in) throw InputError(fmt::format("{}: cannot open file (does it exist and is it readable?)", path));
-  std::stringstream ss;
-  ss << in.rdbuf();
-  return parse_result(ss.str(), path);
-}
+}  // namespace
+
+Result load_result(const std::string& path) { return result_from_yaml(load_yaml_file(path), path); }
 
 Robot robot_from_result(const std::string& path, const Robot& base) {
   Robot r = base;

@@ -7,6 +7,8 @@
 #include <Eigen/SVD>
 #include <fmt/format.h>
 
+#include "models/closure.hpp"
+
 namespace gpm {
 
 using Eigen::Vector2d;
@@ -76,24 +78,15 @@ std::array<Vector2d, 3> elbows(const Geometry& g, const Vector3d& theta_a) {
 
 std::optional<ForwardResult> forward_kinematics(const Geometry& g, const Vector3d& theta_a) {
   const auto B = elbows(g, theta_a);
-  // eq. 32 relative to B1 (u = O - B1): 2 (B_i - B1) . u = |B_i - B1|^2 + lb1^2 - lb_i^2.
-  const Vector2d d2 = B[1] - B[0];
-  const Vector2d d3 = B[2] - B[0];
-  const double lb1_sq = g.lb_(0) * g.lb_(0);
-  const double r2 = 0.5 * (d2.squaredNorm() + lb1_sq - g.lb_(1) * g.lb_(1));
-  const double r3 = 0.5 * (d3.squaredNorm() + lb1_sq - g.lb_(2) * g.lb_(2));
-  // eq. 33: Cramer's rule (ERRATA restores the division in y).
-  const double det = d2.x() * d3.y() - d2.y() * d3.x();
-  const double scale = d2.squaredNorm() + d3.squaredNorm();
-  if (!(std::abs(det) > 1e-12 * scale)) return std::nullopt;
-  const Vector2d u((r2 * d3.y() - r3 * d2.y()) / det, (d2.x() * r3 - d3.x() * r2) / det);
+  const double Bx[3] = {B[0].x(), B[1].x(), B[2].x()};
+  const double By[3] = {B[0].y(), B[1].y(), B[2].y()};
+  const double lb[3] = {g.lb_(0), g.lb_(1), g.lb_(2)};
+  const RadicalCentre<double> rc = radical_centre(Bx, By, lb);  // eq. 32-33
+  if (!rc.ok) return std::nullopt;
   ForwardResult out;
-  out.p = B[0] + u;
-  for (int i = 0; i < kNumChains; ++i) {
-    const Vector2d B_p = out.p - B[static_cast<size_t>(i)];
-    out.theta_b[i] = std::atan2(B_p.y(), B_p.x());  // eq. 34 (atan2, ERRATA)
-  }
-  out.power = u.squaredNorm() - lb1_sq;
+  out.p = Vector2d(rc.Ox, rc.Oy);
+  for (int i = 0; i < kNumChains; ++i) out.theta_b[i] = passive_angle(rc.Ox, rc.Oy, Bx[i], By[i]);  // eq. 34
+  out.power = rc.P;
   return out;
 }
 

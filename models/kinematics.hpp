@@ -1,4 +1,4 @@
-// Kinematics of the 3-RRR planar manipulator (paper eq. 5-11, 29-35; ERRATA).
+// Kinematics of the 3-RRR planar manipulator (paper eq. 5-11, 29-35; docs/EQUATIONS.md).
 // Free functions of a constant model: f(geometry, ...). Millimetres, radians.
 //
 // Chain i: base joint A_i, active link la_i at angle theta_a_i to the elbow
@@ -65,15 +65,15 @@ struct ForwardResult {
   Eigen::Vector2d p = Eigen::Vector2d::Zero();  // end-effector O (mm)
   Eigen::Vector3d theta_b = Eigen::Vector3d::Zero();
   // Power of O with respect to each passive circle, |O - B_i|^2 - lb_i^2
-  // (mm^2): equal for all three chains at the radical centre (ERRATA), zero
+  // (mm^2): equal for all three chains at the radical centre (docs/EQUATIONS.md), zero
   // when the readings close the loops exactly.
   double power = 0.0;
 };
 
 // Forward kinematics from three active angles: the radical centre of the three
-// passive circles (eq. 32-33 with squares restored and solved relative to B1,
-// ERRATA) and the passive angles by atan2 (eq. 34). nullopt when the elbows
-// are collinear (no unique radical centre).
+// passive circles (eq. 32-33 with squares restored and solved relative to B1;
+// gpm::radical_centre of models/closure.hpp) and the passive angles by atan2
+// (eq. 34). nullopt when the elbows are collinear (no unique radical centre).
 std::optional<ForwardResult> forward_kinematics(const Geometry& g, const Eigen::Vector3d& theta_a);
 
 // The two intersections of circles (c1, r1) and (c2, r2); nullopt if they do

@@ -8,6 +8,7 @@
 #include <fmt/format.h>
 #include <unistd.h>
 
+#include "calib/calibrate.hpp"
 #include "calib/crb.hpp"
 #include "calib/residuals.hpp"
 #include "calib/result_yaml.hpp"
@@ -18,7 +19,6 @@
 #include "hw/sampling_session.hpp"
 #include "models/robot_yaml.hpp"
 #include "models/samples.hpp"
-#include "scenarios/calibration_method.hpp"
 #include "scenarios/expectations.hpp"
 #include "scenarios/run_report.hpp"
 
@@ -136,8 +136,8 @@ RunOutcome run_scenario(const RunSpec& spec, const std::string& scenario_file, c
   }
 
   stage("calibrating");
-  MethodOptions mo;
-  mo.method = spec.calibration.method;
+  calib::MethodOptions mo;
+  mo.method = calib::parse_method(spec.calibration.method, "calibration.method");
   mo.cost = spec.calibration.cost;
   mo.budget = spec.calibration.budget;
   mo.seed = spec.calibration.seed;
@@ -146,7 +146,7 @@ RunOutcome run_scenario(const RunSpec& spec, const std::string& scenario_file, c
   mo.allow_rank_deficient = spec.calibration.allow_rank_deficient;
   mo.true_xy = spec.hardware ? nullptr : &true_xy;
   try {
-    out.calibration = calibrate_with_method(problem, mo);
+    out.calibration = calib::calibrate(problem, mo);
     out.calibrated.geometry = out.calibration->geometry;
   } catch (const InputError& e) {
     if (!spec.expect.refused_contains) throw;

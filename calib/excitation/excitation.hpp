@@ -1,7 +1,7 @@
 // Excitation design: which n calibration poses make the free parameters most
 // accurate (issue 10). Pure calibration mathematics (models/ and calib/, no
 // MuJoCo). Paper section 4.5 found that 50 poses on a line could not be
-// calibrated while a circle about the workspace centre could; ERRATA: the
+// calibrated while a circle about the workspace centre could; docs/EQUATIONS.md: the
 // layout changes the achievable accuracy by orders of magnitude. Here the
 // layout is chosen by optimal experiment design on the Cramer-Rao bound.
 //

@@ -61,7 +61,7 @@ Bounds bounds_from_rows(const Eigen::MatrixXd& rows, const Geometry& g, const Fr
   for (Eigen::Index k = 0; k < p; ++k) rows_s.col(k) /= s[k];
   // Through the SVD of the scaled rows rather than F itself: singular values
   // are accurate to eps * largest, so a layout as poor as a line (condition
-  // number ~1e10, ERRATA) still gets finite bounds. With rows_s = U S V',
+  // number ~1e10, docs/EQUATIONS.md) still gets finite bounds. With rows_s = U S V',
   // F_s = V S^2 V' / sigma^2 and C_s = sigma^2 V S^-2 V'.
   const Eigen::JacobiSVD<Eigen::MatrixXd> svd(rows_s, Eigen::ComputeThinV);
   const Eigen::VectorXd sv = svd.singularValues();  // descending

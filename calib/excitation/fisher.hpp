@@ -3,7 +3,7 @@
 // if the robot were exactly that geometry. This is what is known before
 // calibration, so excitation design is done at the nominal geometry.
 //
-// Model (paper section 3.1, ERRATA; calib/crb.hpp): each pose j gives one
+// Model (paper section 3.1, docs/EQUATIONS.md; calib/crb.hpp): each pose j gives one
 // scalar ML residual r_j = P_j / |dP_j/d theta_m| (calib/residuals.hpp) that is
 // N(0, sigma^2) under iid encoder noise sigma. With g_j = d r_j / d params (the
 // free columns of its gradient at the noiseless readings of pose j), the

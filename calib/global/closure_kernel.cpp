@@ -51,7 +51,7 @@ void block(const SampleTable& t, const double* __restrict kv, double* __restrict
       const double b2y = ya2[c] + (las2[c] * c2 + lac2[c] * s2);
       const double b3x = xa3[c] + (lac3[c] * c3 - las3[c] * s3);
       const double b3y = ya3[c] + (las3[c] * c3 + lac3[c] * s3);
-      // Radical centre relative to B1 (eq. 32-33, ERRATA).
+      // Radical centre relative to B1 (eq. 32-33, docs/EQUATIONS.md).
       const double d2x = b2x - b1x, d2y = b2y - b1y;
       const double d3x = b3x - b1x, d3y = b3y - b1y;
       const double q1 = lb1[c] * lb1[c], q2 = lb2[c] * lb2[c], q3 = lb3[c] * lb3[c];

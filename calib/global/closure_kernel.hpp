@@ -42,16 +42,16 @@ inline constexpr int kKernelBlock = 16;
 //   B_i = A_i + (l_ac c_i - l_as s_i, l_as c_i + l_ac s_i),
 //   c_i = cos(theta_m_i), s_i = sin(theta_m_i).
 // The end-effector O is the radical centre of the three passive circles
-// (eq. 32-33 with the squares of ERRATA restored), solved relative to B1:
+// (eq. 32-33 with the squares restored, docs/EQUATIONS.md), solved relative to B1:
 //   2 (B_i - B1) . u = |B_i - B1|^2 + lb1^2 - lb_i^2, i = 2, 3;  O = B1 + u.
-// Rows e_i = |O - B_i|^2 - lb_i^2 are E2 (eq. 38, y_a^1 in row 1 per ERRATA)
+// Rows e_i = |O - B_i|^2 - lb_i^2 are E2 (eq. 38, y_a^1 in row 1 per docs/EQUATIONS.md)
 // or, in the decoupled variables, E3 (eq. 42):
 //   J2 = J3 = sum_j sum_i e_i^2  (eq. 39, 43).
 // E1 (eq. 36) with theta_b_i = atan2 of O - B_i (eq. 34) has row i equal to
 // (O - B_i)(1 - lb_i / r_i), r_i = |O - B_i|, so |E1 row i| = |r_i - lb_i| =
 // |e_i| / (r_i + lb_i), the last form free of cancellation:
 //   J1 = sum_j sum_i (e_i / (r_i + lb_i))^2  (eq. 37).
-// (ERRATA: at the radical centre the three e_i are equal per sample; the sum
+// (docs/EQUATIONS.md: at the radical centre the three e_i are equal per sample; the sum
 // over the three rows is kept so values compare with paper Table 6.)
 // Collinear elbows (no radical centre) give J = +inf. cost must be kJ1, kJ2
 // or kJ3 (kJ2 and kJ3 share the formula; they differ in the variables).

@@ -9,7 +9,8 @@
 #include <fmt/format.h>
 
 #include "calib/global/convergence_svg.hpp"
-#include "calib/global/synthetic.hpp"
+#include "calib/paper_values.hpp"
+#include "calib/synthetic.hpp"
 #include "models/errors.hpp"
 #include "models/kinematics.hpp"
 #include "models/yaml_util.hpp"
@@ -34,7 +35,7 @@ double paper_table6(Method m, Cost c) {
                                  {8.9451e2, 1.0079e2, 5.5626e-14},
                                  {1.0344e2, 8.9561e0, 3.5946e-20}};
   const int ci = c == Cost::kJ1 ? 0 : c == Cost::kJ2 ? 1 : c == Cost::kJ3 ? 2 : -1;
-  const int mi = m == Method::kGa ? 0 : m == Method::kPso ? 1 : 2;
+  const int mi = m == Method::kGA ? 0 : m == Method::kPSO ? 1 : 2;
   return ci < 0 ? NAN : v[ci][mi];
 }
 
@@ -46,10 +47,11 @@ std::string upper(std::string_view s) {
 
 const char* colour(Method m) {
   switch (m) {
-    case Method::kGa: return "#d62728";
-    case Method::kPso: return "#2ca02c";
-    case Method::kDe: return "#1f77b4";
-    case Method::kDeLm: return "#9467bd";
+    case Method::kGA: return "#d62728";
+    case Method::kPSO: return "#2ca02c";
+    case Method::kDE: return "#1f77b4";
+    case Method::kDELM: return "#9467bd";
+    case Method::kLM: break;
   }
   return "black";
 }
@@ -67,7 +69,7 @@ Comparison run_comparison(const ComparisonSettings& st, const ComparisonProgress
   Robot robot;
   robot.geometry = c.actual;
   c.samples = workspace_samples(robot, st.samples, st.data_seed);
-  c.at_actual = closure_identifiability(c.samples.theta_m, c.actual, st.free);
+  c.at_actual = analyse_identifiability(c.samples.theta_m, c.actual, st.free);
   const Problem problem = table5_problem(c.samples, st.free);
   const Box box = default_box(Geometry::gpm2002_nominal(), st.free);
 

@@ -9,7 +9,7 @@
 #include <vector>
 
 #include "calib/global/global.hpp"
-#include "calib/global/identifiability.hpp"
+#include "calib/identifiability.hpp"
 #include "models/samples.hpp"
 
 namespace gpm::calib::global {
@@ -20,7 +20,7 @@ struct ComparisonSettings {
   int samples = 50;                    // random workspace points (section 4.4)
   uint64_t data_seed = 42;
   FreeMask free;                       // 12 free (paper) or 11 (xa1, ya1, xa2, ya2 fixed)
-  std::vector<Method> methods{Method::kGa, Method::kPso, Method::kDe};
+  std::vector<Method> methods{Method::kGA, Method::kPSO, Method::kDE};
   std::vector<Cost> costs{Cost::kJ1, Cost::kJ2, Cost::kJ3};
   int parallel_runs = 0;               // runs executed at once (0 = all cores); each run is serial
 };

@@ -2,7 +2,7 @@
 
 #include <vector>
 
-#include "calib/global/rng.hpp"
+#include "models/rng.hpp"
 #include "calib/global/run_log.hpp"
 #include "models/errors.hpp"
 

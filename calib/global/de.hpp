@@ -16,7 +16,7 @@ struct DeSettings {
 
 // Minimises obj with DE/rand/1/bin: V = X_r1 + F (X_r2 - X_r3) with r1, r2, r3
 // distinct and != i (eq. 46); binomial crossover taking V_j when randb(j) <= CR
-// or j = rnbr(i), else X_j (eq. 47, "and" per ERRATA); components outside the
+// or j = rnbr(i), else X_j (eq. 47, "and" per docs/EQUATIONS.md); components outside the
 // box redrawn uniformly in it; U replaces X when f(U) <= f(X) (eq. 48, ties go
 // to the trial as in Storn and Price). Generations are synchronous (all trials
 // from generation G), so the whole population is evaluated at once. Never

@@ -9,7 +9,7 @@
 // Their box is the smallest box holding the image of [la_min, la_max] x
 // [dth_min, dth_max] (a polar sector), so every (la, dth) of the paper's box
 // can be reached; a point of the corner regions outside the sector maps back
-// (eq. 44 per ERRATA: la = hypot(l_ac, l_as), dth = atan2(l_as, l_ac)) to
+// (eq. 44 per docs/EQUATIONS.md: la = hypot(l_ac, l_as), dth = atan2(l_as, l_ac)) to
 // values slightly outside the paper's box. A chain with only one of la_i,
 // dth_i free keeps the coupled variable (J3 then equals J2 for that chain).
 #pragma once
@@ -50,7 +50,7 @@ class DecisionSpace {
   // Kernel variables kv[v] of the single decision vector d.
   void to_kernel_one(const double* d, double* kv) const;
 
-  // The 15 parameters of decision vector d (eq. 44 per ERRATA for decoupled chains).
+  // The 15 parameters of decision vector d (eq. 44 per docs/EQUATIONS.md for decoupled chains).
   Geometry to_geometry(const std::vector<double>& d) const;
 
   // The decision vector of geometry g (inverse of to_geometry on free parameters).

@@ -6,7 +6,7 @@
 #include <numeric>
 #include <vector>
 
-#include "calib/global/rng.hpp"
+#include "models/rng.hpp"
 #include "calib/global/run_log.hpp"
 #include "models/errors.hpp"
 

@@ -5,33 +5,16 @@
 
 #include <fmt/format.h>
 
-#include "calib/global/identifiability.hpp"
-#include "calib/lm.hpp"
 #include "calib/global/population_cost.hpp"
+#include "calib/identifiability.hpp"
+#include "calib/lm.hpp"
 #include "models/errors.hpp"
 
 namespace gpm::calib::global {
 
-std::optional<Method> parse_method(std::string_view name) {
-  if (name == "ga") return Method::kGa;
-  if (name == "pso") return Method::kPso;
-  if (name == "de") return Method::kDe;
-  if (name == "de+lm") return Method::kDeLm;
-  return std::nullopt;
-}
-
-std::string_view method_name(Method m) {
-  switch (m) {
-    case Method::kGa: return "ga";
-    case Method::kPso: return "pso";
-    case Method::kDe: return "de";
-    case Method::kDeLm: return "de+lm";
-  }
-  return "?";
-}
-
 Result solve_global(const Problem& problem, Cost cost, Method method, const Box& box,
                     const GlobalOptions& opt, const ProgressFn& progress) {
+  if (method == Method::kLM) throw InputError("global solvers: lm is not a global method (use calib::calibrate)");
   if (opt.budget < 1) throw InputError("global solvers: the budget must be at least 1 evaluation");
   const auto t0 = std::chrono::steady_clock::now();
   const PopulationCost pc(problem, cost, box, opt.threads);
@@ -39,10 +22,11 @@ Result solve_global(const Problem& problem, Cost cost, Method method, const Box&
   const StopRule stop{opt.budget, opt.target};
   RunRecord run;
   switch (method) {
-    case Method::kGa: run = minimise_ga(obj, opt.ga, stop, opt.seed, progress); break;
-    case Method::kPso: run = minimise_pso(obj, opt.pso, stop, opt.seed, progress); break;
-    case Method::kDe:
-    case Method::kDeLm: run = minimise_de(obj, opt.de, stop, opt.seed, progress); break;
+    case Method::kLM: break;
+    case Method::kGA: run = minimise_ga(obj, opt.ga, stop, opt.seed, progress); break;
+    case Method::kPSO: run = minimise_pso(obj, opt.pso, stop, opt.seed, progress); break;
+    case Method::kDE:
+    case Method::kDELM: run = minimise_de(obj, opt.de, stop, opt.seed, progress); break;
   }
 
   Result r;
@@ -57,7 +41,7 @@ Result solve_global(const Problem& problem, Cost cost, Method method, const Box&
   r.history = std::move(run.history);
   r.converged = std::isfinite(run.best_f);
 
-  if (method == Method::kDeLm && !run.best_x.empty()) {
+  if (method == Method::kDELM && !run.best_x.empty()) {
     Problem refine = problem;
     refine.start = r.geometry;
     LmOptions lm;
@@ -75,7 +59,7 @@ Result solve_global(const Problem& problem, Cost cost, Method method, const Box&
     r.history.emplace_back(r.evaluations, std::min(r.final_cost, run.best_f));
   }
 
-  const Identifiability id = closure_identifiability(problem.theta_m, r.geometry, problem.free);
+  const Identifiability id = analyse_identifiability(problem.theta_m, r.geometry, problem.free);
   r.rank = id.rank;
   r.condition_number = id.condition_number;
   r.rank_deficient = id.rank < id.free_count;

@@ -3,7 +3,7 @@
 //
 //   Problem p{readings, start, free};            // start: fixed values known
 //   Box box = default_box(Geometry::gpm2002_nominal(), p.free);   // Table 5
-//   Result r = solve_global(p, Cost::kJ3, Method::kDe, box, {.budget = 1'500'000, .seed = 7});
+//   Result r = solve_global(p, Cost::kJ3, Method::kDE, box, {.budget = 1'500'000, .seed = 7});
 //
 // r.geometry holds all 15 parameters, r.history (evaluations, best J), and
 // r.rank / r.notes the identifiability diagnosis at the found point.
@@ -11,8 +11,6 @@
 
 #include <cstdint>
 #include <limits>
-#include <optional>
-#include <string_view>
 
 #include "calib/global/de.hpp"
 #include "calib/global/decision_space.hpp"
@@ -22,13 +20,6 @@
 #include "calib/problem.hpp"
 
 namespace gpm::calib::global {
-
-// kDeLm: DE, then Levenberg-Marquardt (calib/lm.hpp) from DE's best point.
-enum class Method { kGa, kPso, kDe, kDeLm };
-
-// "ga", "pso", "de", "de+lm" -> Method; nullopt for anything else.
-std::optional<Method> parse_method(std::string_view name);
-std::string_view method_name(Method m);
 
 struct GlobalOptions {
   long budget = 1'500'000;  // error-function evaluations, never exceeded
@@ -48,11 +39,13 @@ struct GlobalOptions {
 };
 
 // Minimises J (cost: kJ1, kJ2 or kJ3) over the free parameters of problem
-// within box with the given method; fixed parameters keep problem.start.
+// within box with the given method (kGA, kPSO, kDE, or kDELM: DE, then
+// Levenberg-Marquardt, calib/lm.hpp, from DE's best point); fixed parameters
+// keep problem.start.
 // For de+lm the budget bounds DE; LM's evaluations are added to
 // Result.evaluations and its end point to the history, and final_cost is J
 // (this library's definition, eq. 37/39/43) at LM's estimate; sigma comes from LM.
-// Throws InputError for an unsupported cost, an empty box or a budget < 1.
+// Throws InputError for kLM, an unsupported cost, an empty box or a budget < 1.
 Result solve_global(const Problem& problem, Cost cost, Method method, const Box& box,
                     const GlobalOptions& options, const ProgressFn& progress = {});
 

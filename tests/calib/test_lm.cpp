@@ -1,9 +1,10 @@
 // Tests of calib/lm.cpp: the paper's stepwise experiments (section 3.3,
 // Tables 2-4) on generated noiseless data with the section-3 actual values
-// (ERRATA: la3 = 244.5) from the paper's initial estimates; every error
+// (docs/EQUATIONS.md: la3 = 244.5) from the paper's initial estimates; every error
 // function must recover the actual values to 1e-6 mm / rad. Also the
 // 12-parameter gauge refused as rank-deficient, the minimum-norm solve, bad
-// input, and the 1-sigma against the Cramer-Rao bound.
+// input, the 1-sigma against the Cramer-Rao bound, and the analytic Jacobians
+// giving the autodiff reference's estimate and 1-sigma on noisy data.
 #include "calib/lm.hpp"
 
 #include <cmath>
@@ -140,7 +141,7 @@ TEST(PaperTable4, TwelveParametersWithAllowRankDeficientLandOnTheFamily) {
   EXPECT_NE(r.notes[0].find("minimum-norm"), std::string::npos);
   EXPECT_LT(r.final_cost, 1e-20);  // a perfect fit ...
   // ... of a similar mechanism: all lengths in the same ratio to the actual ones,
-  // all offsets shifted by the same angle (ERRATA).
+  // all offsets shifted by the same angle (docs/EQUATIONS.md).
   const double scale = r.geometry[kLa1] / actual[kLa1];
   const double turn = r.geometry[kDth1] - actual[kDth1];
   for (int i = 0; i < 3; ++i) {
@@ -217,6 +218,33 @@ TEST(CalibrateLm, ResidualScaledSigmaMatchesBoundOnNoisyData) {
   for (int i = 0; i < kNumParams; ++i) {
     if (!default_free_mask().test(static_cast<size_t>(i))) continue;
     EXPECT_NEAR(res.sigma[static_cast<size_t>(i)] / bound[static_cast<size_t>(i)], 1.0, 0.3) << param_name(i);
+  }
+}
+
+TEST(CalibrateLm, AnalyticAndAutodiffJacobiansGiveTheSameEstimateOnNoisyData) {
+  const Geometry actual = table5_actual();
+  const Robot r = robot_of(actual);
+  const Samples s = samples_at(r, disc_poses(r, 40, r.home, 80.0, 4), 1e-4, 77);
+  Geometry start = Geometry::gpm2002_nominal();
+  for (int i : {kXa1, kYa1, kXa2, kYa2}) start[i] = actual[i];
+  for (Cost c : {Cost::kJ1, Cost::kJ2, Cost::kJ3, Cost::kML}) {
+    LmOptions a, d;
+    a.cost = d.cost = c;
+    d.autodiff = true;
+    const Problem p{s.theta_m, start, default_free_mask()};
+    const Result ra = calibrate_lm(p, a), rd = calibrate_lm(p, d);
+    ASSERT_TRUE(ra.converged && rd.converged) << cost_name(c);
+    EXPECT_NEAR(ra.final_cost, rd.final_cost, 1e-9 * rd.final_cost) << cost_name(c);
+    for (int i = 0; i < kNumParams; ++i) {
+      const auto k = static_cast<size_t>(i);
+      if (!default_free_mask().test(k)) {
+        EXPECT_EQ(ra.geometry[i], rd.geometry[i]) << param_name(i);  // fixed
+        continue;
+      }
+      // The noisy optimum is one point: both reach it to far below its 1-sigma.
+      EXPECT_NEAR(ra.geometry[i], rd.geometry[i], 1e-6 * rd.sigma[k]) << cost_name(c) << " " << param_name(i);
+      EXPECT_NEAR(ra.sigma[k], rd.sigma[k], 1e-6 * rd.sigma[k]) << cost_name(c) << " " << param_name(i);
+    }
   }
 }
 

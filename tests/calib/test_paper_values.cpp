@@ -1,7 +1,7 @@
 // Tests of calib/paper_values.cpp against the paper's own numbers: the
 // reference-point procedure at (210, 245) with the section-3 values gives the
 // initial estimates printed in Tables 3 and 4 only with the misprinted
-// la3 = 243.5 for dth3, while every estimator returns 244.5 (ERRATA): the data
+// la3 = 243.5 for dth3, while every estimator returns 244.5 (docs/EQUATIONS.md): the data
 // used la3 = 244.5. Table 5 differs from nominal by its printed amounts.
 #include "calib/paper_values.hpp"
 
@@ -40,6 +40,18 @@ TEST(PaperValues, Table5DiffersFromNominalByThePrintedAmounts) {
   EXPECT_DOUBLE_EQ(a[kLb3], 244.6);
   EXPECT_DOUBLE_EQ(a[kDth2], -0.01);
   for (int i : {kXa1, kYa1, kXa2}) EXPECT_EQ(a[i], n[i]);
+}
+
+TEST(PaperValues, Table5ProblemFixesTheTrueValuesAndStartsFreeOnesAtNominal) {
+  Samples s;
+  s.theta_m.assign(5, Eigen::Vector3d(1.1, 3.1, 4.8));
+  const Problem p = table5_problem(s, default_free_mask());
+  EXPECT_EQ(p.start[kYa2], 0.3);    // fixed: actual
+  EXPECT_EQ(p.start[kLa1], 244.0);  // free: nominal
+  EXPECT_EQ(p.free.count(), 11u);
+  EXPECT_EQ(p.theta_m.size(), 5u);
+  EXPECT_EQ(paper_free_mask().count(), 12u);
+  for (int i : {kXa1, kYa1, kXa2}) EXPECT_FALSE(paper_free_mask()[static_cast<size_t>(i)]);
 }
 
 }  // namespace

@@ -1,5 +1,5 @@
 // Tests of calib/parameterization.cpp: J3's l_ac, l_as round trip through
-// eq. 44 (ERRATA: atan2, hypot) for offsets in every quadrant, the Jacobian
+// eq. 44 (docs/EQUATIONS.md: atan2, hypot) for offsets in every quadrant, the Jacobian
 // against central differences, and the free-set rule of J3.
 #include "calib/parameterization.hpp"
 

@@ -1,6 +1,6 @@
-// Tests of calib/residuals.cpp and calib/closure.hpp: autodiff Jacobians
+// Tests of calib/residuals.cpp and models/closure.hpp: autodiff Jacobians
 // against central differences, closure gradient against differences in the
-// readings, E2 rows equal (ERRATA), residuals zero at the truth, J3 equal to
+// readings, E2 rows equal (docs/EQUATIONS.md), residuals zero at the truth, J3 equal to
 // J2 in its own variables, the ML residual equal to the reading correction
 // that closes the loops, and its invariance under the similarity gauge.
 #include "calib/residuals.hpp"
@@ -24,7 +24,7 @@ Vector3d readings_at(const Geometry& g, double x, double y) {
 }
 
 Eigen::VectorXd eval(Cost c, const Vector3d& t, const ParamVector& x, Eigen::MatrixXd* J = nullptr) {
-  std::unique_ptr<ceres::CostFunction> f(make_residual(c, t));
+  std::unique_ptr<ceres::CostFunction> f(make_autodiff_residual(c, t));
   const int m = residual_rows(c);
   Eigen::VectorXd r(m);
   Eigen::Matrix<double, Eigen::Dynamic, kNumParams, Eigen::RowMajor> Jr(m, kNumParams);

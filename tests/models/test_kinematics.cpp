@@ -171,7 +171,7 @@ TEST(Kinematics, ReadingsAndActiveAnglesInvert) {
 }
 
 TEST(Kinematics, InconsistentReadingsGiveEqualPowers) {
-  // ERRATA: at the radical centre the power w.r.t. all three circles is equal.
+  // docs/EQUATIONS.md: at the radical centre the power w.r.t. all three circles is equal.
   const Geometry g = Geometry::gpm2002_nominal();
   const JointAngles q = inverse_kinematics(g, {220, 240});
   const Vector3d perturbed = q.theta_a + Vector3d(1e-3, -2e-3, 5e-4);

@@ -39,7 +39,7 @@ TEST(Fisher, AgreesWithCramerRaoBoundOfCalib) {
 }
 
 TEST(Fisher, SimilarityGaugeIsItsNullSpaceWhenAllFree) {
-  // ERRATA: encoder angles cannot see translation, rotation and scale.
+  // docs/EQUATIONS.md: encoder angles cannot see translation, rotation and scale.
   const Robot nominal;
   FreeMask all;
   all.set();

@@ -32,7 +32,7 @@ TEST(Layouts, OptimisedIsAtLeastThreeTimesBetterOnTheWorstBound) {
                r.bounds.worst_param >= 0 ? param_name(r.bounds.worst_param) : "-", r.bounds.mean_mm,
                r.bounds.log_det);
   }
-  // Independent facts (ERRATA, issue 10): a line is practically unidentifiable,
+  // Independent facts (docs/EQUATIONS.md, issue 10): a line is practically unidentifiable,
   // a wide disc beats a circle of radius 80 by orders of magnitude.
   EXPECT_GT(rows[0].bounds.worst_mm, 100.0 * rows[1].bounds.worst_mm);
   EXPECT_LT(rows[3].bounds.worst_mm, rows[1].bounds.worst_mm / 10.0);

@@ -39,7 +39,7 @@ Robot truth_robot() {
 }
 
 // Start of every calibration: nominal, with the fixed coordinates at their
-// true values (ERRATA: a wrongly fixed coordinate biases everything).
+// true values (docs/EQUATIONS.md: a wrongly fixed coordinate biases everything).
 Geometry start_geometry(const Geometry& truth, const FreeMask& free) {
   Geometry g = Geometry::gpm2002_nominal();
   for (int i = 0; i < kNumParams; ++i)

@@ -1,5 +1,5 @@
 // Straightforward scalar J1, J2, J3 written from the paper's equations (with
-// ERRATA), independent of the vectorised kernel, for the tests.
+// docs/EQUATIONS.md), independent of the vectorised kernel, for the tests.
 #pragma once
 
 #include <cmath>
@@ -13,13 +13,13 @@ namespace gpm::calib::global::testing {
 
 // End-effector from the elbows by eq. 32-33 as printed (squares restored in
 // d_i, the division restored in y), evaluated with B1 moved to the origin
-// (ERRATA's advice for precision), then moved back.
+// (docs/EQUATIONS.md's advice for precision), then moved back.
 inline Eigen::Vector2d reference_fk(const double xb[3], const double yb[3], const double lb[3]) {
   double X[3], Y[3], d[3];
   for (int i = 0; i < 3; ++i) {
     X[i] = xb[i] - xb[0];
     Y[i] = yb[i] - yb[0];
-    d[i] = X[i] * X[i] + Y[i] * Y[i] - lb[i] * lb[i];  // eq. 32 (ERRATA)
+    d[i] = X[i] * X[i] + Y[i] * Y[i] - lb[i] * lb[i];  // eq. 32 (docs/EQUATIONS.md)
   }
   const double den = 2.0 * (X[0] * (Y[1] - Y[2]) + X[1] * (Y[2] - Y[0]) + X[2] * (Y[0] - Y[1]));
   const double x = (d[0] * (Y[1] - Y[2]) + d[1] * (Y[2] - Y[0]) + d[2] * (Y[0] - Y[1])) / den;
@@ -49,7 +49,7 @@ inline double reference_j1(const std::vector<Eigen::Vector3d>& tm, const Geometr
   return J;
 }
 
-// J2 (eq. 38-39, y_a^1 in row 1 per ERRATA).
+// J2 (eq. 38-39, y_a^1 in row 1 per docs/EQUATIONS.md).
 inline double reference_j2(const std::vector<Eigen::Vector3d>& tm, const Geometry& g) {
   double J = 0;
   for (const auto& t : tm) {

@@ -4,7 +4,8 @@
 
 #include <gtest/gtest.h>
 
-#include "calib/global/synthetic.hpp"
+#include "calib/paper_values.hpp"
+#include "calib/synthetic.hpp"
 #include "models/errors.hpp"
 
 namespace gpm::calib::global {
@@ -46,7 +47,7 @@ TEST(Comparison, EveryRunPresentAndIndependentOfParallelism) {
 
 TEST(Comparison, PaperFreeSetIsReportedAsNotAnIdentification) {
   ComparisonSettings s = small(paper_free_mask());
-  s.methods = {Method::kDe};
+  s.methods = {Method::kDE};
   s.costs = {Cost::kJ3};
   s.budget = 1'500'000;
   const Comparison c = run_comparison(s);

@@ -7,7 +7,8 @@
 
 #include "models/errors.hpp"
 
-#include "calib/global/synthetic.hpp"
+#include "calib/paper_values.hpp"
+#include "calib/synthetic.hpp"
 
 namespace gpm::calib::global {
 namespace {

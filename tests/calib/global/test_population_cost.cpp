@@ -6,8 +6,9 @@
 
 #include "models/errors.hpp"
 
-#include "calib/global/rng.hpp"
-#include "calib/global/synthetic.hpp"
+#include "models/rng.hpp"
+#include "calib/paper_values.hpp"
+#include "calib/synthetic.hpp"
 
 namespace gpm::calib::global {
 namespace {

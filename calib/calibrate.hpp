@@ -1,0 +1,36 @@
+// The calibration entry point of `gpm calibrate` and `gpm run`: one call for
+// every method, Ceres LM (calib/lm.hpp), GA, PSO, DE (calib/global) and DE
+// followed by LM.
+//
+//   MethodOptions o;  o.method = parse_method("de+lm");  o.cost = Cost::kML;
+//   Result r = calibrate(problem, o);
+#pragma once
+
+#include <cstdint>
+#include <optional>
+#include <vector>
+
+#include <Eigen/Core>
+
+#include "calib/problem.hpp"
+
+namespace gpm::calib {
+
+struct MethodOptions {
+  Method method = Method::kLM;
+  Cost cost = Cost::kML;
+  long budget = 1500000;      // error-function evaluations of the global stage
+  int lm_max_iterations = 200;
+  std::uint64_t seed = 1;
+  std::optional<double> encoder_sigma;
+  bool allow_rank_deficient = false;
+  const std::vector<Eigen::Vector2d>* true_xy = nullptr;
+};
+
+// Solves problem with the chosen method. Global stages use J1/J2/J3 (ML is
+// LM only: for `de+lm` with cost ml, DE runs on J3 and LM refines on ML).
+// Throws InputError for a cost the method cannot use (and whatever the
+// solver throws for bad input).
+Result calibrate(const Problem& problem, const MethodOptions& options);
+
+}  // namespace gpm::calib
