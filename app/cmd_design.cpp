@@ -21,7 +21,7 @@
 #include "calib/excitation/pose_list.hpp"
 #include "models/errors.hpp"
 #include "models/robot_yaml.hpp"
-#include "scenarios/svg_plot.hpp"
+#include "report/svg_plot.hpp"
 
 namespace gpm::cli {
 namespace {

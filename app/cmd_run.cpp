@@ -1,5 +1,5 @@
 // gpm run SCENARIO.yaml -o DIR: simulate, calibrate, compensate, evaluate and
-// report (scenarios/runner.hpp). Exit 1 when an expectation fails.
+// report (run/runner.hpp). Exit 1 when an expectation fails.
 #include <cstdio>
 #include <filesystem>
 #include <memory>
@@ -9,8 +9,8 @@
 #include <unistd.h>
 
 #include "app/commands.hpp"
-#include "scenarios/run_spec.hpp"
-#include "scenarios/runner.hpp"
+#include "run/run_spec.hpp"
+#include "run/runner.hpp"
 
 namespace gpm::cli {
 namespace {

@@ -11,8 +11,8 @@
 
 #include "calib/problem.hpp"
 #include "models/robot.hpp"
-#include "scenarios/compensation.hpp"
-#include "scenarios/run_spec.hpp"
+#include "run/compensation.hpp"
+#include "run/run_spec.hpp"
 #include "sim/simulate.hpp"
 
 namespace gpm::scenario {

@@ -1,19 +1,14 @@
-#include "scenarios/run_report.hpp"
+#include "report/run_report.hpp"
 
 #include <cmath>
 
 #include <fmt/format.h>
 
-#include "calib/problem.hpp"
 #include "models/kinematics.hpp"
-#include "scenarios/runner.hpp"
-#include "scenarios/svg_plot.hpp"
+#include "report/svg_plot.hpp"
 
-namespace gpm::scenario {
+namespace gpm::report {
 namespace {
-
-using report::PlotOptions;
-using report::Series;
 
 std::string num(double v, int digits = 6) {
   if (std::isnan(v)) return "-";
@@ -22,7 +17,7 @@ std::string num(double v, int digits = 6) {
 
 std::string unit(int i) { return is_offset(i) ? "rad" : "mm"; }
 
-std::string layout_figure(const RunOutcome& o) {
+std::string layout_figure(const RunReport& o) {
   Series reach;
   reach.label = "reachable with margins";
   reach.style = Series::Style::kMarkers;
@@ -33,19 +28,19 @@ std::string layout_figure(const RunOutcome& o) {
   Series samples;
   samples.label = "calibration samples";
   samples.style = Series::Style::kMarkers;
-  for (const auto& s : o.sim.samples) samples.x.push_back(s.xy_mm.x()), samples.y.push_back(s.xy_mm.y());
+  for (const auto& p : o.sample_xy) samples.x.push_back(p.x()), samples.y.push_back(p.y());
   Series bases;
   bases.label = "base joints A1..A3";
   bases.style = Series::Style::kMarkers;
   bases.color = "#000000";
   for (int i = 0; i < 3; ++i) bases.x.push_back(o.nominal.geometry.A(i).x()), bases.y.push_back(o.nominal.geometry.A(i).y());
   std::vector<Series> all{reach, samples, bases};
-  if (o.spec.compensation) {
+  if (!o.test_poses.empty()) {
     Series test;
     test.label = "accuracy test poses";
     test.style = Series::Style::kMarkers;
     test.color = "#2ca02c";
-    for (const auto& p : o.spec.compensation->poses) test.x.push_back(p.x()), test.y.push_back(p.y());
+    for (const auto& p : o.test_poses) test.x.push_back(p.x()), test.y.push_back(p.y());
     all.push_back(test);
   }
   PlotOptions po;
@@ -54,10 +49,10 @@ std::string layout_figure(const RunOutcome& o) {
   po.y_label = "y (mm)";
   po.equal_aspect = true;
   po.height = 520;
-  return report::svg_plot(all, po);
+  return svg_plot(all, po);
 }
 
-std::string residual_figure(const RunOutcome& o) {
+std::string residual_figure(const RunReport& o) {
   Series r;
   r.label = "ML residual after calibration (urad)";
   r.style = Series::Style::kMarkers;
@@ -66,12 +61,12 @@ std::string residual_figure(const RunOutcome& o) {
   po.title = "Closure residual per sample (reading-space, maximum-likelihood scaling)";
   po.x_label = "sample";
   po.y_label = "urad";
-  return report::svg_plot({r}, po);
+  return svg_plot({r}, po);
 }
 
-std::string convergence_figure(const calib::Result& r) {
+std::string convergence_figure(const RunCalibration& r) {
   Series s;
-  s.label = fmt::format("{} on {}", r.method, calib::cost_name(r.cost));
+  s.label = fmt::format("{} on {}", r.method, r.cost);
   s.style = Series::Style::kLineMarkers;
   for (const auto& [e, j] : r.history) s.x.push_back(static_cast<double>(e)), s.y.push_back(j);
   PlotOptions po;
@@ -79,11 +74,11 @@ std::string convergence_figure(const calib::Result& r) {
   po.x_label = "error-function evaluations";
   po.y_label = "cost J";
   po.log_y = true;
-  return report::svg_plot({s}, po);
+  return svg_plot({s}, po);
 }
 
-std::string error_figure(const RunOutcome& o, bool offsets) {
-  const calib::Result& r = *o.calibration;
+std::string error_figure(const RunReport& o, bool offsets) {
+  const RunCalibration& r = *o.calibration;
   Series err;
   err.label = offsets ? "estimate - actual (mrad), bars: 1-sigma" : "estimate - actual (mm), bars: 1-sigma";
   err.style = Series::Style::kMarkers;
@@ -100,28 +95,24 @@ std::string error_figure(const RunOutcome& o, bool offsets) {
     const double x = static_cast<double>(po.x_categories.size());
     po.x_categories.emplace_back(param_name(i));
     err.x.push_back(x);
-    err.y.push_back(k * (r.geometry[i] - o.sim.actual.geometry[i]));
+    err.y.push_back(k * (r.geometry[i] - o.actual[i]));
     err.y_err.push_back(std::isnan(r.sigma[static_cast<size_t>(i)]) ? 0.0 : k * r.sigma[static_cast<size_t>(i)]);
     if (std::isfinite(o.crb[static_cast<size_t>(i)])) {
       bound.x.push_back(x);
       bound.y.push_back(k * o.crb[static_cast<size_t>(i)]);
     }
   }
-  return report::svg_plot({err, bound}, po);
+  return svg_plot({err, bound}, po);
 }
 
-std::string tracking_figure(const RunOutcome& o) {
+std::string tracking_figure(const RunReport& o) {
   std::vector<Series> all;
-  for (const Accuracy* a : {o.before ? &*o.before : nullptr, o.after ? &*o.after : nullptr}) {
+  for (const RunAccuracy* a : {o.before ? &*o.before : nullptr, o.after ? &*o.after : nullptr}) {
     if (!a) continue;
     Series s;
     s.label = fmt::format("{} model", a->label);
-    const double t0 = a->path_log.rows.empty() ? 0.0 : a->path_log.rows.front().t;
-    for (size_t k = 0; k < a->path_log.rows.size(); k += 10) {
-      const auto& row = a->path_log.rows[k];
-      s.x.push_back(row.t - t0);
-      s.y.push_back((row.actual - row.desired).norm() * 1e3);
-    }
+    s.x = a->path_t_s;
+    s.y = a->path_error_um;
     all.push_back(s);
   }
   PlotOptions po;
@@ -129,16 +120,16 @@ std::string tracking_figure(const RunOutcome& o) {
   po.x_label = "t (s)";
   po.y_label = "|actual - desired| (um)";
   po.log_y = true;
-  return report::svg_plot(all, po);
+  return svg_plot(all, po);
 }
 
 }  // namespace
 
-report::ReportDocument build_report(const RunOutcome& o) {
-  report::ReportDocument d;
-  d.heading(1, fmt::format("gpm run: {}", o.spec.sim.name));
+ReportDocument build_run_report(const RunReport& o) {
+  ReportDocument d;
+  d.heading(1, fmt::format("gpm run: {}", o.name));
   std::vector<std::string> failed;
-  for (const Check& c : o.checks)
+  for (const RunCheck& c : o.checks)
     if (!c.passed) failed.push_back(fmt::format("{}: {}", c.name, c.detail));
   d.paragraph(fmt::format("Scenario {}. Verdict: {} ({} expectations checked, {} failed). Run time {:.1f} s.",
                           o.scenario_file, failed.empty() ? "PASSED" : "FAILED", o.checks.size(),
@@ -156,7 +147,7 @@ report::ReportDocument build_report(const RunOutcome& o) {
                 "test poses, tracking error along the test path, and the servos' internal preload |P tau| (torques "
                 "that do no work on the end-effector, eq. 15).");
     std::vector<std::vector<std::string>> rows;
-    for (const Accuracy* a : {&*o.before, o.after ? &*o.after : nullptr}) {
+    for (const RunAccuracy* a : {&*o.before, o.after ? &*o.after : nullptr}) {
       if (!a) continue;
       rows.push_back({a->label, fmt::format("{:.2f}", a->static_rms_um), fmt::format("{:.2f}", a->static_max_um),
                       fmt::format("{:.2f}", a->path_rms_um), fmt::format("{:.2f}", a->path_max_um),
@@ -179,17 +170,17 @@ report::ReportDocument build_report(const RunOutcome& o) {
     d.preformatted(*o.refused);
   }
   if (o.calibration) {
-    const calib::Result& r = *o.calibration;
+    const RunCalibration& r = *o.calibration;
     d.paragraph(fmt::format("{} on {} from {} encoder samples, {} free parameters (fixed: {}). Bound at encoder "
                             "sigma {:.3g} rad per sample.",
-                            r.method, calib::cost_name(r.cost), o.sim.samples.size(), r.free.count(),
+                            r.method, r.cost, o.sample_xy.size(), r.free.count(),
                             format_param_list(~r.free), o.crb_sigma_rad));
     std::vector<std::vector<std::string>> rows;
     for (int i = 0; i < kNumParams; ++i) {
       const bool free = r.free.test(static_cast<size_t>(i));
-      const double err = r.geometry[i] - o.sim.actual.geometry[i];
+      const double err = r.geometry[i] - o.actual[i];
       rows.push_back({std::string(param_name(i)) + " (" + unit(i) + ")", num(o.nominal.geometry[i], 8),
-                      num(o.sim.actual.geometry[i], 10), num(r.geometry[i], 10),
+                      num(o.actual[i], 10), num(r.geometry[i], 10),
                       free ? num(r.sigma[static_cast<size_t>(i)], 3) : "fixed", free ? num(err, 3) : "-",
                       free ? num(o.crb[static_cast<size_t>(i)], 3) : "-",
                       free ? num(std::abs(err) / o.crb[static_cast<size_t>(i)], 3) : "-"});
@@ -206,7 +197,7 @@ report::ReportDocument build_report(const RunOutcome& o) {
   if (!o.checks.empty()) {
     d.heading(2, "Expectations");
     std::vector<std::vector<std::string>> rows;
-    for (const Check& c : o.checks) rows.push_back({c.name, c.passed ? "pass" : "FAIL", c.detail});
+    for (const RunCheck& c : o.checks) rows.push_back({c.name, c.passed ? "pass" : "FAIL", c.detail});
     d.table({"check", "result", "measured"}, rows);
   }
 
@@ -222,4 +213,4 @@ report::ReportDocument build_report(const RunOutcome& o) {
   return d;
 }
 
-}  // namespace gpm::scenario
+}  // namespace gpm::report

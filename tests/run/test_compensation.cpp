@@ -1,6 +1,6 @@
-// Tests of scenarios/compensation.cpp: the internal-preload projection by
+// Tests of run/compensation.cpp: the internal-preload projection by
 // hand, and the twin's accuracy with the true model against a wrong one.
-#include "scenarios/compensation.hpp"
+#include "run/compensation.hpp"
 
 #include <Eigen/Geometry>
 #include <gtest/gtest.h>

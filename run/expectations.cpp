@@ -1,10 +1,10 @@
-#include "scenarios/expectations.hpp"
+#include "run/expectations.hpp"
 
 #include <cmath>
 
 #include <fmt/format.h>
 
-#include "scenarios/runner.hpp"
+#include "run/runner.hpp"
 
 namespace gpm::scenario {
 namespace {

@@ -1,6 +1,6 @@
-// Tests of scenarios/run_spec.cpp: defaults, and schema errors that name the
+// Tests of run/run_spec.cpp: defaults, and schema errors that name the
 // key path (gpm run exits 2 with that one line).
-#include "scenarios/run_spec.hpp"
+#include "run/run_spec.hpp"
 #include "models/data_dir.hpp"
 
 #include <gtest/gtest.h>

@@ -1,8 +1,8 @@
-#include "scenarios/report_document.hpp"
+#include "report/report_document.hpp"
 
 #include <fmt/format.h>
 
-#include "scenarios/svg_plot.hpp"
+#include "report/svg_plot.hpp"
 
 namespace gpm::report {
 

@@ -11,7 +11,7 @@
 #include <Eigen/Core>
 
 #include "calib/problem.hpp"
-#include "scenarios/compensation.hpp"
+#include "run/compensation.hpp"
 #include "sim/scenario.hpp"
 
 namespace gpm::scenario {

@@ -1,6 +1,6 @@
-// Tests of scenarios/report_document.cpp: the same content in Markdown and
+// Tests of report/report_document.cpp: the same content in Markdown and
 // self-contained HTML.
-#include "scenarios/report_document.hpp"
+#include "report/report_document.hpp"
 
 #include <gtest/gtest.h>
 

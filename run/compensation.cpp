@@ -1,4 +1,4 @@
-#include "scenarios/compensation.hpp"
+#include "run/compensation.hpp"
 
 #include <cmath>
 

@@ -1,4 +1,4 @@
-#include "scenarios/runner.hpp"
+#include "run/runner.hpp"
 
 #include <chrono>
 #include <cmath>
@@ -19,8 +19,8 @@
 #include "models/robot_yaml.hpp"
 #include "models/samples.hpp"
 #include "scenarios/calibration_method.hpp"
-#include "scenarios/expectations.hpp"
-#include "scenarios/run_report.hpp"
+#include "run/expectations.hpp"
+#include "run/run_report_data.hpp"
 
 namespace gpm::scenario {
 namespace fs = std::filesystem;
@@ -187,7 +187,7 @@ void write_run(const RunOutcome& o, const std::string& dir) {
   files.emplace_back("actual.yaml", robot_to_yaml(o.sim.actual));
   if (o.calibration) files.emplace_back("calibration.yaml", calib::result_to_yaml(*o.calibration, o.nominal.name));
   if (o.spec.outputs.report) {
-    const report::ReportDocument doc = build_report(o);
+    const report::ReportDocument doc = report::build_run_report(run_report_data(o));
     files.emplace_back("report.md", doc.markdown());
     files.emplace_back("report.html", doc.html(fmt::format("gpm run: {}", o.spec.sim.name)));
     for (auto& f : doc.figure_files()) files.push_back(std::move(f));

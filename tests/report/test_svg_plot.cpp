@@ -1,6 +1,6 @@
-// Tests of scenarios/svg_plot.cpp: ticks, escaping, and that points land
+// Tests of report/svg_plot.cpp: ticks, escaping, and that points land
 // where the axis mapping says.
-#include "scenarios/svg_plot.hpp"
+#include "report/svg_plot.hpp"
 
 #include <regex>
 

@@ -1,7 +1,7 @@
-// Tests of scenarios/runner.cpp (with expectations.cpp and run_report.cpp):
+// Tests of run/runner.cpp (with expectations.cpp and run_report.cpp):
 // a small run end to end in-process, failing and refused expectations, and
 // outputs written all or nothing.
-#include "scenarios/runner.hpp"
+#include "run/runner.hpp"
 #include "models/data_dir.hpp"
 
 #include <filesystem>

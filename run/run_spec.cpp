@@ -1,4 +1,4 @@
-#include "scenarios/run_spec.hpp"
+#include "run/run_spec.hpp"
 
 #include <filesystem>
 #include <random>
