@@ -13,7 +13,7 @@
 #include "app/commands.hpp"
 #include "models/errors.hpp"
 #include "models/mjcf.hpp"
-#include "render/output_file.hpp"
+#include "models/output_file.hpp"
 #include "render/render_options.hpp"
 #include "render/scene_renderer.hpp"
 #include "render/video_job.hpp"
@@ -46,7 +46,7 @@ sim::SimulationResult run(const sim::Scenario& s, const std::string& file) {
 
 void add_render(CLI::App& app) {
   auto opt = std::make_shared<RenderCliOptions>();
-  auto* cmd = app.add_subcommand("render", "Render an off-screen MP4 video (and PNG frames) of a scenario's motion");
+  auto* cmd = app.add_subcommand("render", kRenderDescription);
   cmd->add_option("scenario", opt->scenario, "Scenario file (YAML, see scenarios/SCHEMA.md and render/README.md)")
       ->required();
   cmd->add_option("-o,--out", opt->out, "Output video (H.264 MP4)");
@@ -85,8 +85,9 @@ void add_render(CLI::App& app) {
       render::check_render_setup(mjcf_from_robot(actual, scenarios.back().twin.mjcf), o,
                                  opt->camera.empty() ? f + ": render.camera" : "--camera");
     }
-    if (!opt->out.empty()) render::check_output_file(opt->out);
-    for (const render::FrameRequest& p : pngs) render::check_output_file(p.path);
+    // Output policy (models/output_file.hpp): an output that is an input is refused.
+    if (!opt->out.empty()) check_output_file(opt->out, files);
+    for (const render::FrameRequest& p : pngs) check_output_file(p.path, files);
 
     std::vector<sim::SimulationResult> results;
     for (size_t i = 0; i < scenarios.size(); ++i) results.push_back(run(scenarios[i], files[i]));

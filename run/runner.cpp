@@ -2,17 +2,15 @@
 
 #include <chrono>
 #include <cmath>
-#include <filesystem>
-#include <fstream>
 
 #include <fmt/format.h>
-#include <unistd.h>
 
 #include "calib/crb.hpp"
 #include "calib/residuals.hpp"
 #include "calib/result_yaml.hpp"
 #include "models/errors.hpp"
 #include "models/kinematics.hpp"
+#include "models/output_file.hpp"
 #include "hw/hardware_config.hpp"
 #include "hw/sample_log.hpp"
 #include "hw/sampling_session.hpp"
@@ -23,7 +21,6 @@
 #include "run/run_report_data.hpp"
 
 namespace gpm::scenario {
-namespace fs = std::filesystem;
 
 bool RunOutcome::passed() const {
   for (const Check& c : checks)
@@ -193,29 +190,10 @@ void write_run(const RunOutcome& o, const std::string& dir) {
     for (auto& f : doc.figure_files()) files.push_back(std::move(f));
   }
 
-  // All or nothing: write into a temporary sibling folder, then move each file
-  // into place (the folder may already hold other files, which are kept).
-  const fs::path target(dir);
-  std::error_code ec;
-  fs::create_directories(target, ec);
-  if (ec || !fs::is_directory(target)) {
-    throw InputError(fmt::format("{}: cannot create the output folder ({})", dir,
-                                 ec ? ec.message() : "not a folder"));
-  }
-  const fs::path tmp = target / fmt::format(".gpm-run.tmp{}", static_cast<long>(::getpid()));
-  fs::create_directories(tmp, ec);
-  try {
-    for (const auto& [name, text] : files) {
-      std::ofstream f(tmp / name, std::ios::binary);
-      f << text;
-      if (!f) throw InputError(fmt::format("{}: cannot write {} (disk full or not writable?)", dir, name));
-    }
-    for (const auto& [name, text] : files) fs::rename(tmp / name, target / name);
-    fs::remove_all(tmp);
-  } catch (...) {
-    fs::remove_all(tmp, ec);
-    throw;
-  }
+  // All or nothing (models/output_file.hpp); other files of the folder are kept.
+  OutputFolder out(dir, {o.scenario_file});
+  for (const auto& [name, text] : files) out.add(name, text);
+  out.commit();
 }
 
 }  // namespace gpm::scenario
