@@ -6,12 +6,9 @@
 // the optimised set at equal poses and noise. Bad input exits 2 with one line.
 #include <chrono>
 #include <cmath>
-#include <filesystem>
 #include <memory>
 #include <string>
-#include <system_error>
 
-#include <unistd.h>
 
 #include <fmt/format.h>
 
@@ -20,6 +17,7 @@
 #include "calib/excitation/layouts.hpp"
 #include "calib/excitation/pose_list.hpp"
 #include "models/errors.hpp"
+#include "models/output_file.hpp"
 #include "models/robot_yaml.hpp"
 #include "report/svg_plot.hpp"
 
@@ -81,7 +79,7 @@ void run_design(const DesignCliOptions& o) {
       "use: gpm simulate THIS_FILE -o DIR, or paste the sampling block into a scenario",
       d.count, ex::criterion_name(d.criterion), d.sigma, format_param_list(d.free), o.model, design.candidates,
       d.grid_step_mm, d.guard.reach_mm, bound_note(design.bounds), design.bounds.mean_mm);
-  write_file_atomic(o.out, ex::pose_list_yaml(design.poses, comment));
+  write_output_file(o.out, ex::pose_list_yaml(design.poses, comment), {o.model});
   const double wall = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
   fmt::print("criterion        {}\n", ex::criterion_name(d.criterion));
   fmt::print("candidates       {} (grid {} mm)\n", design.candidates, d.grid_step_mm);
@@ -174,24 +172,12 @@ std::string layouts_figure(const std::vector<ex::LayoutBounds>& rows) {
   return report::svg_plot(series, po);
 }
 
-// Writes name -> text into dir all or nothing: into a temporary folder first,
-// then each file renamed into place.
-void write_folder(const std::string& dir, const std::vector<std::pair<std::string, std::string>>& files) {
-  namespace fs = std::filesystem;
-  std::error_code ec;
-  fs::create_directories(dir, ec);
-  if (ec) throw InputError(fmt::format("-o {}: cannot create the folder ({})", dir, ec.message()));
-  const fs::path tmp = fs::path(dir) / fmt::format(".design-tmp-{}", ::getpid());
-  fs::remove_all(tmp, ec);
-  try {
-    fs::create_directories(tmp);
-    for (const auto& [name, text] : files) write_file_atomic((tmp / name).string(), text);
-    for (const auto& [name, text] : files) fs::rename(tmp / name, fs::path(dir) / name);
-  } catch (const std::exception& e) {
-    fs::remove_all(tmp, ec);
-    throw InputError(fmt::format("-o {}: cannot write the comparison ({})", dir, e.what()));
-  }
-  fs::remove_all(tmp, ec);
+// Writes name -> text into dir all or nothing (models/output_file.hpp).
+void write_folder(const std::string& dir, const std::vector<std::pair<std::string, std::string>>& files,
+                  const std::vector<std::string>& inputs) {
+  OutputFolder out(dir, inputs);
+  for (const auto& [name, text] : files) out.add(name, text);
+  out.commit();
 }
 
 void run_compare(const DesignCliOptions& o) {
@@ -210,7 +196,8 @@ void run_compare(const DesignCliOptions& o) {
                        {"design_comparison.csv", comparison_csv(rows)},
                        {"design_comparison.svg", bounds_figure(rows, c.design)},
                        {"design_layouts.svg", layouts_figure(rows)},
-                       {"optimised_poses.yaml", ex::pose_list_yaml(rows.back().poses, "gpm design --compare: the optimised set")}});
+                       {"optimised_poses.yaml", ex::pose_list_yaml(rows.back().poses, "gpm design --compare: the optimised set")}},
+               {o.model});
   fmt::print("{:10} {:>14} {:>8} {:>14}\n", "layout", "worst (mm)", "param", "mean (mm)");
   for (const auto& r : rows)
     fmt::print("{:10} {:>14} {:>8} {:>14}\n", r.name, fmt_bound(r.bounds.worst_mm),

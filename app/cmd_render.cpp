@@ -50,24 +50,24 @@ void add_render(CLI::App& app) {
   cmd->add_option("scenario", opt->scenario, "Scenario file (YAML, see scenarios/SCHEMA.md and render/README.md)")
       ->required();
   cmd->add_option("-o,--out", opt->out, "Output video (H.264 MP4)");
-  cmd->add_option("--fps", opt->fps, "Video frames per second (default 30)");
+  CLI::Option* fps = cmd->add_option("--fps", opt->fps, "Video frames per second (default 30)");
   cmd->add_option("--size", opt->size, "Frame size WxH in pixels, even (default 640x480)");
   cmd->add_option("--camera", opt->camera, "Camera: top (default), oblique, or a camera of the model");
   cmd->add_option("--quality", opt->quality, "fast (default: no multisampling, no shadows) or high (4x MSAA, shadows)");
-  cmd->add_option("--speed", opt->speed, "Simulated seconds per video second (default 1)");
+  CLI::Option* speed = cmd->add_option("--speed", opt->speed, "Simulated seconds per video second (default 1)");
   cmd->add_option("--frame-png", opt->frame_png, "Save frame N (0-based) as a PNG: N:FILE (repeatable)");
   cmd->add_option("--beside", opt->beside, "A second scenario shown side by side (e.g. the calibrated controller)");
-  cmd->callback([opt] {
+  cmd->callback([opt, fps, speed] {
     if (opt->out.empty() && opt->frame_png.empty())
       throw InputError("gpm render: give -o VIDEO.mp4 and/or --frame-png N:FILE");
     render::RenderOptions o = render::render_options_from_file(opt->scenario);
     if (!opt->size.empty()) render::parse_size(opt->size, "--size", o.width, o.height);
-    if (opt->fps != 0.0) {
+    if (fps->count() > 0) {  // given: 0 is refused like any other impossible rate
       if (!(opt->fps > 0 && opt->fps <= 240))
         throw InputError(fmt::format("--fps: must be in (0, 240], got {}", opt->fps));
       o.fps = opt->fps;
     }
-    if (opt->speed != 0.0) {
+    if (speed->count() > 0) {
       if (!(opt->speed > 0)) throw InputError(fmt::format("--speed: must be positive, got {}", opt->speed));
       o.speed = opt->speed;
     }

@@ -9,6 +9,7 @@
 #include <unistd.h>
 
 #include "app/commands.hpp"
+#include "models/errors.hpp"
 #include "run/run_spec.hpp"
 #include "run/runner.hpp"
 
@@ -77,7 +78,11 @@ void add_run(CLI::App& app) {
     std::string samples_path;
     if (spec.hardware) {
       // Samples are appended to DIR/samples.csv as they are taken (nothing measured is lost).
-      std::filesystem::create_directories(opt->out);
+      std::error_code ec;
+      std::filesystem::create_directories(opt->out, ec);
+      if (ec || !std::filesystem::is_directory(opt->out))
+        throw InputError(fmt::format("{}: cannot create the output folder ({})", opt->out,
+                                     ec ? ec.message() : "exists and is not a folder"));
       samples_path = (std::filesystem::path(opt->out) / "samples.csv").string();
     }
     const bool show = !opt->quiet && ::isatty(STDERR_FILENO);
