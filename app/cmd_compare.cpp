@@ -10,6 +10,7 @@
 #include <fmt/format.h>
 
 #include "app/commands.hpp"
+#include "app/compare_report.hpp"
 #include "calib/global/comparison.hpp"
 #include "calib/global/synthetic.hpp"
 #include "models/errors.hpp"
@@ -93,11 +94,11 @@ void run_compare(const CompareArgs& a) {
   const auto c = calib::global::run_comparison(st, progress);
   if (progress) std::fprintf(stderr, "\n");
 
-  out.add("table6.md", calib::global::comparison_markdown(c));
+  out.add("table6.md", compare_markdown(c));
   out.add("runs.csv", calib::global::comparison_runs_csv(c));
   out.add("history.csv", calib::global::comparison_history_csv(c));
   for (calib::Cost cost : st.costs)
-    out.add(fmt::format("convergence_{}.svg", calib::cost_name(cost)), calib::global::comparison_svg(c, cost));
+    out.add(fmt::format("convergence_{}.svg", calib::cost_name(cost)), compare_svg(c, cost));
   out.commit();
   std::printf("%s", fmt::format("gpm compare: {} runs in {:.1f} s -> {}/table6.md, runs.csv, "
                                 "history.csv, convergence_*.svg\n{}\n",

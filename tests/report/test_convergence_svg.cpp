@@ -1,9 +1,9 @@
-// The convergence figure: a well-formed SVG with one polyline per line.
-#include "calib/global/convergence_svg.hpp"
+// Tests of report/convergence_svg.cpp: a well-formed SVG with one polyline per line.
+#include "report/convergence_svg.hpp"
 
 #include <gtest/gtest.h>
 
-namespace gpm::calib::global {
+namespace gpm::report {
 namespace {
 
 size_t count(const std::string& s, const std::string& what) {
@@ -29,4 +29,4 @@ TEST(ConvergenceSvg, OnePolylinePerLineWithLegendAndAxes) {
 }
 
 }  // namespace
-}  // namespace gpm::calib::global
+}  // namespace gpm::report

@@ -1,24 +1,15 @@
-#include "calib/global/convergence_svg.hpp"
+#include "report/convergence_svg.hpp"
 
 #include <algorithm>
 #include <cmath>
 
 #include <fmt/format.h>
 
-namespace gpm::calib::global {
+#include "report/svg_plot.hpp"
+
+namespace gpm::report {
 
 namespace {
-
-std::string escape(const std::string& s) {
-  std::string out;
-  for (char c : s) {
-    if (c == '<') out += "&lt;";
-    else if (c == '>') out += "&gt;";
-    else if (c == '&') out += "&amp;";
-    else out += c;
-  }
-  return out;
-}
 
 double log_j(double j) { return std::log10(std::max(j, 1e-30)); }
 
@@ -50,7 +41,7 @@ std::string convergence_svg(const std::string& title, long x_max,
       "font-family=\"sans-serif\" font-size=\"12\">\n"
       "<rect width=\"100%\" height=\"100%\" fill=\"white\"/>\n"
       "<text x=\"{2}\" y=\"22\" font-size=\"15\" text-anchor=\"middle\">{3}</text>\n",
-      W, H, left + pw / 2, escape(title));
+      W, H, left + pw / 2, xml_escape(title));
   // Axes and ticks.
   s += fmt::format("<rect x=\"{}\" y=\"{}\" width=\"{}\" height=\"{}\" fill=\"none\" stroke=\"black\"/>\n",
                    left, top, pw, ph);
@@ -89,11 +80,11 @@ std::string convergence_svg(const std::string& title, long x_max,
       s += fmt::format("<line x1=\"{0}\" y1=\"{1}\" x2=\"{2}\" y2=\"{1}\" stroke=\"{3}\" stroke-width=\"2\"{4}/>\n"
                        "<text x=\"{5}\" y=\"{6}\">{7}</text>\n",
                        left + pw + 10, ly, left + pw + 34, l.colour,
-                       l.dashed ? " stroke-dasharray=\"5,3\"" : "", left + pw + 40, ly + 4, escape(l.label));
+                       l.dashed ? " stroke-dasharray=\"5,3\"" : "", left + pw + 40, ly + 4, xml_escape(l.label));
     }
   }
   s += "</svg>\n";
   return s;
 }
 
-}  // namespace gpm::calib::global
+}  // namespace gpm::report

@@ -5,7 +5,7 @@
 #include <utility>
 #include <vector>
 
-namespace gpm::calib::global {
+namespace gpm::report {
 
 // One line of the chart: (evaluations, best J) points, a label and a colour.
 struct ConvergenceLine {
@@ -20,4 +20,4 @@ struct ConvergenceLine {
 std::string convergence_svg(const std::string& title, long x_max,
                             const std::vector<ConvergenceLine>& lines);
 
-}  // namespace gpm::calib::global
+}  // namespace gpm::report
