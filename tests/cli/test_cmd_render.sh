@@ -73,5 +73,13 @@ if [[ $got -eq 130 ]]; then passed=$((passed+1)); else echo "FAIL interrupted re
 if [[ ! -e long.mp4 && -z "$(ls -A | grep '^\.')" ]]; then passed=$((passed+1)); else echo "FAIL interrupted render left:"; ls -la; fail=$((fail+1)); fi
 rm -f long.yaml
 
+# The renderer is a separate executable: gpm links neither OSMesa nor libav,
+# and without gpm-render next to it, gpm render says so in one line (exit 2).
+if ldd "$GPM" | grep -qE 'OSMesa|avcodec'; then echo "FAIL gpm links the renderer"; fail=$((fail+1)); else passed=$((passed+1)); fi
+mkdir alone && cp "$GPM" alone/gpm
+check "renderer missing" 2 ./alone/gpm render s.yaml -o c.mp4
+expect_err "renderer message" "cannot run the renderer .*/alone/gpm-render"
+rm -rf alone
+
 if [[ ! -e MUJOCO_LOG.TXT ]]; then passed=$((passed+1)); else echo "FAIL MUJOCO_LOG.TXT written"; fail=$((fail+1)); fi
 finish
