@@ -3,6 +3,7 @@
 #include <fmt/format.h>
 
 #include "report/svg_plot.hpp"
+#include "models/output_file.hpp"
 
 namespace gpm::report {
 
@@ -103,6 +104,12 @@ std::vector<std::pair<std::string, std::string>> ReportDocument::figure_files() 
     if (b.kind == Block::Kind::kFigure) out.emplace_back(b.name + ".svg", b.svg);
   }
   return out;
+}
+
+void ReportDocument::stage(OutputFolder& out, const std::string& stem, const std::string& title) const {
+  out.add(stem + ".md", markdown());
+  out.add(stem + ".html", html(title));
+  for (const auto& [name, svg] : figure_files()) out.add(name, svg);
 }
 
 }  // namespace gpm::report

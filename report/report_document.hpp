@@ -1,10 +1,15 @@
 // A report built once and written twice: Markdown (figures as SVG files
-// beside it) and a self-contained HTML page (figures inline).
+// beside it) and a self-contained HTML page (figures inline), staged in an
+// output folder that commits all files or none.
 #pragma once
 
 #include <string>
 #include <utility>
 #include <vector>
+
+namespace gpm {
+class OutputFolder;
+}
 
 namespace gpm::report {
 
@@ -29,6 +34,9 @@ class ReportDocument {
   std::string html(const std::string& title) const;
   // The figures as (file name, SVG text) pairs.
   std::vector<std::pair<std::string, std::string>> figure_files() const;
+  // Stages STEM.md, STEM.html (titled title) and the figures in out (the
+  // staged folder of models/output_file.hpp: all files or none at commit).
+  void stage(OutputFolder& out, const std::string& stem, const std::string& title) const;
 
  private:
   struct Block {

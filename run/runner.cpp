@@ -175,24 +175,18 @@ RunOutcome run_scenario(const RunSpec& spec, const std::string& scenario_file, c
 }
 
 void write_run(const RunOutcome& o, const std::string& dir) {
-  std::vector<std::pair<std::string, std::string>> files;
-  if (o.hardware_description.empty()) {  // with hardware the session already wrote samples.csv
-    files.emplace_back("samples.csv", sim::samples_csv(o.sim.samples));
-    files.emplace_back("trajectory.csv", sim::trajectory_csv(o.sim.log));
-    files.emplace_back("model.xml", o.sim.model_xml);
-  }
-  files.emplace_back("actual.yaml", robot_to_yaml(o.sim.actual));
-  if (o.calibration) files.emplace_back("calibration.yaml", calib::result_to_yaml(*o.calibration, o.nominal.name));
-  if (o.spec.outputs.report) {
-    const report::ReportDocument doc = report::build_run_report(run_report_data(o));
-    files.emplace_back("report.md", doc.markdown());
-    files.emplace_back("report.html", doc.html(fmt::format("gpm run: {}", o.spec.sim.name)));
-    for (auto& f : doc.figure_files()) files.push_back(std::move(f));
-  }
-
   // All or nothing (models/output_file.hpp); other files of the folder are kept.
   OutputFolder out(dir, {o.scenario_file});
-  for (const auto& [name, text] : files) out.add(name, text);
+  if (o.hardware_description.empty()) {  // with hardware the session already wrote samples.csv
+    out.add("samples.csv", sim::samples_csv(o.sim.samples));
+    out.add("trajectory.csv", sim::trajectory_csv(o.sim.log));
+    out.add("model.xml", o.sim.model_xml);
+  }
+  out.add("actual.yaml", robot_to_yaml(o.sim.actual));
+  if (o.calibration) out.add("calibration.yaml", calib::result_to_yaml(*o.calibration, o.nominal.name));
+  if (o.spec.outputs.report) {
+    report::build_run_report(run_report_data(o)).stage(out, "report", fmt::format("gpm run: {}", o.spec.sim.name));
+  }
   out.commit();
 }
 
