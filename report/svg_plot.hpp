@@ -5,6 +5,8 @@
 #include <string>
 #include <vector>
 
+#include "models/xml_escape.hpp"
+
 namespace gpm::report {
 
 struct Series {
@@ -35,7 +37,7 @@ std::string svg_plot(const std::vector<Series>& series, const PlotOptions& optio
 // "Nice" tick positions covering [lo, hi], about `target` of them.
 std::vector<double> nice_ticks(double lo, double hi, int target);
 
-// Escapes &, <, >, " for XML text and attributes.
-std::string xml_escape(const std::string& s);
+// Escapes &, <, >, " for XML text and attributes (models/xml_escape.hpp).
+using gpm::xml_escape;
 
 }  // namespace gpm::report
