@@ -133,6 +133,11 @@ if cmp -s "$tmp/s.csv" "$tmp/s_before.csv"; then passed=$((passed+1)); else echo
 check "output is the model" 2 "$GPM" calibrate --data "$tmp/s.csv" --model "$tmp/start.yaml" -o "$tmp/start.yaml"
 check "output to /dev/null" 0 "$GPM" calibrate --data "$tmp/s.csv" --model "$tmp/start.yaml" -o /dev/null
 if [[ -c /dev/null ]]; then passed=$((passed+1)); else echo "FAIL /dev/null is no longer a device"; fail=$((fail+1)); fi
+if [[ -c /dev/full ]]; then  # a full disk: the reason, never "Success"
+  check "output to a full device" 2 "$GPM" calibrate --data "$tmp/s.csv" --model "$tmp/start.yaml" -o /dev/full
+  expect "full device message" "$tmp/err" "/dev/full: write failed \(disk full\?\)"
+  if grep -q Success "$tmp/err"; then echo "FAIL 'Success' in an error"; fail=$((fail+1)); else passed=$((passed+1)); fi
+fi
 mkdir -p "$tmp/real"
 ln -s real/r_target.yaml "$tmp/link.yaml"
 check "output through a symlink" 0 "$GPM" calibrate --data "$tmp/s.csv" --model "$tmp/start.yaml" -o "$tmp/link.yaml"
