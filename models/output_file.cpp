@@ -227,6 +227,7 @@ OutputFolder::OutputFolder(const std::string& dir, const std::vector<std::string
     : dir_(dir), inputs_(inputs) {
   if (dir.empty()) throw InputError("output folder name is empty");
   const fs::path target = resolve_links(fs::path(dir), dir);
+  target_ = target.string();
   std::error_code ec;
   if (fs::exists(target, ec) && !fs::is_directory(target, ec))
     throw InputError(fmt::format("{}: exists and is not a folder", dir));
@@ -260,9 +261,8 @@ OutputFolder::~OutputFolder() {
   fs::remove_all(stage_, ec);
   unregister_temporary(stage_);
   if (created_) {
-    const fs::path target = resolve_links(fs::path(dir_), dir_);
-    if (!committed_) ::rmdir(target.c_str());  // only when empty
-    unregister_temporary(target.string());
+    if (!committed_) ::rmdir(target_.c_str());  // only when empty
+    unregister_temporary(target_);
   }
 }
 
@@ -295,8 +295,8 @@ void OutputFolder::commit() {
       write_text(t.write_path(), text, t.path());
       t.commit();
     } else {
+      const std::string target = t.target();
       t.discard();
-      const std::string target = resolve_links(fs::path(t.path()), t.path()).string();
       commit_output_file(staged, target);
     }
   }

@@ -36,6 +36,8 @@ class OutputFile {
   const std::string& write_path() const { return write_path_; }
   // The path as given (for messages).
   const std::string& path() const { return path_; }
+  // The file that is replaced or written (symbolic links resolved).
+  const std::string& target() const { return target_; }
   // True when the target is written in place (device, FIFO).
   bool in_place() const { return in_place_; }
   // Renames the temporary over the target (nothing to do in place); throws
@@ -86,7 +88,7 @@ class OutputFolder {
   const std::string& dir() const { return dir_; }
 
  private:
-  std::string dir_, stage_;
+  std::string dir_, target_, stage_;  // as given, links resolved, the staging folder
   std::vector<std::string> inputs_, names_;
   bool created_ = false, committed_ = false;
 };
