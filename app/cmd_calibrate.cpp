@@ -19,6 +19,7 @@
 #include "calib/result_yaml.hpp"
 #include "calib/sample_check.hpp"
 #include "models/errors.hpp"
+#include "models/output_file.hpp"
 #include "models/robot_yaml.hpp"
 #include "models/samples.hpp"
 
@@ -123,6 +124,9 @@ void run(const CalibrateOptions& o) {
   }
 
   calib::check_samples(problem, row_labels(o.data, samples));
+  // Output policy (models/output_file.hpp): refused before the work when the
+  // result would overwrite an input or cannot be written.
+  check_output_file(o.out, {o.data, model_path});
   calib::MethodOptions mo;
   mo.method = method;
   mo.cost = *cost;

@@ -8,6 +8,7 @@
 
 #include "models/errors.hpp"
 #include "models/kinematics.hpp"
+#include "models/output_file.hpp"
 #include "models/robot_yaml.hpp"
 #include "models/yaml_util.hpp"
 
@@ -31,13 +32,6 @@ std::vector<Eigen::Vector2d> path_points(const Path& path) {
   const int n = 200;
   for (int k = 0; k <= n; ++k) out.push_back(path_at(path, path_duration(path) * k / n).p);
   return out;
-}
-
-void write_plain(const fs::path& p, const std::string& text) {
-  std::ofstream out(p, std::ios::binary | std::ios::trunc);
-  out << text;
-  out.flush();
-  if (!out) throw InputError(fmt::format("{}: cannot write file (disk full or not writable?)", p.string()));
 }
 
 }  // namespace
@@ -108,34 +102,12 @@ std::string trajectory_csv(const TrajectoryLog& log) {
 }
 
 void write_simulation(const SimulationResult& r, const std::string& dir) {
-  const fs::path target(dir);
-  std::error_code ec;
-  const bool existed = fs::exists(target, ec);
-  if (existed && !fs::is_directory(target, ec))
-    throw InputError(fmt::format("{}: exists and is not a folder", dir));
-  fs::create_directories(target, ec);
-  if (ec) throw InputError(fmt::format("{}: cannot create the output folder: {}", dir, ec.message()));
-  const fs::path tmp = target / fmt::format(".gpm-simulate.tmp{}", static_cast<long>(::getpid()));
-  const std::vector<std::pair<std::string, std::string>> files = {
-      {"samples.csv", samples_csv(r.samples)},
-      {"trajectory.csv", trajectory_csv(r.log)},
-      {"actual.yaml", robot_to_yaml(r.actual)},
-      {"model.xml", r.model_xml},
-  };
-  try {
-    fs::create_directory(tmp, ec);
-    if (ec) throw InputError(fmt::format("{}: cannot write in the output folder: {}", dir, ec.message()));
-    for (const auto& [name, text] : files) write_plain(tmp / name, text);
-    for (const auto& [name, text] : files) {
-      fs::rename(tmp / name, target / name, ec);
-      if (ec) throw InputError(fmt::format("{}: cannot write {}: {}", dir, name, ec.message()));
-    }
-    fs::remove_all(tmp, ec);
-  } catch (...) {
-    fs::remove_all(tmp, ec);
-    if (!existed) fs::remove(target, ec);  // removes only an empty folder we made
-    throw;
-  }
+  OutputFolder out(dir);  // models/output_file.hpp: all files or none
+  out.add("samples.csv", samples_csv(r.samples));
+  out.add("trajectory.csv", trajectory_csv(r.log));
+  out.add("actual.yaml", robot_to_yaml(r.actual));
+  out.add("model.xml", r.model_xml);
+  out.commit();
 }
 
 }  // namespace gpm::sim
