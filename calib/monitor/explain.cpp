@@ -1,5 +1,6 @@
 #include "calib/monitor/explain.hpp"
 
+#include <algorithm>
 #include <cmath>
 #include <limits>
 
@@ -36,6 +37,24 @@ void explain_window(const MonitorModel& model, const MonitorData& data, Alarm& a
       }
     }
   }
+}
+
+double step_statistic(const MonitorModel& model, const MonitorData& data) {
+  std::array<double, kNumParams> s_zh{}, s_hh{};
+  double best = 0.0;
+  for (int j = data.count - 1; j >= 0; --j) {
+    const int slot = (data.head - data.count + j + 2 * kMaxWindow) % kMaxWindow;
+    const double z = data.z[static_cast<size_t>(slot)];
+    const ParamRow& dz = data.dz[static_cast<size_t>(slot)];
+    for (int k = 0; k < model.n_free; ++k) {
+      const auto ks = static_cast<size_t>(k);
+      const int i = model.free_index[ks];
+      s_zh[ks] += dz[i] * z;
+      s_hh[ks] += dz[i] * dz[i];
+      if (s_hh[ks] > 0.0) best = std::max(best, s_zh[ks] * s_zh[ks] / s_hh[ks]);
+    }
+  }
+  return best;
 }
 
 }  // namespace gpm::calib::monitor

@@ -21,4 +21,11 @@ namespace gpm::calib::monitor {
 // onset_s, explained and score of `alarm`. Allocation-free.
 void explain_window(const MonitorModel& model, const MonitorData& data, Alarm& alarm);
 
+// The step test's statistic: the generalised likelihood ratio of a step in
+// one estimated parameter from some onset in the window against no change,
+//   max over (i, k) of S_zh^2 / S_hh     (sums as above, no prior),
+// which for a fixed (i, k) is chi-square with 1 degree of freedom under no
+// change. Allocation-free, O(window * n_free).
+double step_statistic(const MonitorModel& model, const MonitorData& data);
+
 }  // namespace gpm::calib::monitor

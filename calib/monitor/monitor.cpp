@@ -8,6 +8,7 @@
 #include <fmt/format.h>
 
 #include "calib/monitor/chi_square.hpp"
+#include "calib/monitor/drift_filter.hpp"
 #include "calib/monitor/explain.hpp"
 #include "models/errors.hpp"
 
@@ -23,64 +24,6 @@ void require(bool ok, const std::string& what) {
 
 int slot_of(const MonitorData& d, int j) {  // j-th oldest sample of the window
   return (d.head - d.count + j + 2 * kMaxWindow) % kMaxWindow;
-}
-
-// Prediction: adds the random walk of dt seconds, keeping each variance below
-// its ceiling by scaling its row and column (D P D stays positive semi-definite).
-void add_process_noise(const MonitorModel& m, MonitorData& d, double dt) {
-  const int n = m.n_free;
-  for (int k = 0; k < n; ++k)
-    for (int l = 0; l < n; ++l) d.P(k, l) += m.process_rate(k, l) * dt;
-  for (int k = 0; k < n; ++k) {
-    const auto ks = static_cast<size_t>(k);
-    if (d.P(k, k) > m.variance_cap[ks]) {
-      const double f = std::sqrt(m.variance_cap[ks] / d.P(k, k));
-      for (int l = 0; l < n; ++l) d.P(k, l) *= f, d.P(l, k) *= f;
-    }
-  }
-}
-
-// h = dr/du in filter coordinates from dr/dparams, P h' and s = sigma^2 + h P h'.
-double innovation_variance(const MonitorModel& m, const MonitorData& d, const ParamRow& g,
-                           std::array<double, kNumParams>& Ph) {
-  const int n = m.n_free;
-  std::array<double, kNumParams> h{};
-  for (int k = 0; k < n; ++k) h[static_cast<size_t>(k)] = g[m.free_index[static_cast<size_t>(k)]] / m.scale[static_cast<size_t>(k)];
-  double hPh = 0.0;
-  for (int k = 0; k < n; ++k) {
-    double acc = 0.0;
-    for (int l = 0; l < n; ++l) acc += d.P(k, l) * h[static_cast<size_t>(l)];
-    Ph[static_cast<size_t>(k)] = acc;
-    hPh += h[static_cast<size_t>(k)] * acc;
-  }
-  return m.sigma_rad * m.sigma_rad + hPh;
-}
-
-// Extended Kalman update with the readings of one sample taken at t_s: the
-// measurement is r(x) = 0 with variance sigma^2, so with h = dr/du at the
-// current estimate, s = sigma^2 + h P h', K = P h' / s:
-//   x += K (0 - r),   P -= K h P.
-// A direction h does not see gets no gain: its estimate stays.
-void filter_update(const MonitorModel& m, MonitorData& d, double t_s, const Eigen::Vector3d& theta_m) {
-  double r = 0.0;
-  ParamRow g;
-  if (!ml_residual_and_gradient(d.estimate, theta_m, r, g)) return;
-  if (d.filtered > 0) add_process_noise(m, d, std::max(t_s - d.t_last_update, 0.0));
-  d.t_last_update = t_s;
-  std::array<double, kNumParams> Ph{};
-  const double s = innovation_variance(m, d, g, Ph);
-  const int n = m.n_free;
-  for (int k = 0; k < n; ++k) {
-    const auto ks = static_cast<size_t>(k);
-    d.estimate[m.free_index[ks]] -= Ph[ks] / s * r / m.scale[ks];
-  }
-  for (int k = 0; k < n; ++k)
-    for (int l = 0; l <= k; ++l) {
-      const double v = d.P(k, l) - Ph[static_cast<size_t>(k)] * Ph[static_cast<size_t>(l)] / s;
-      d.P(k, l) = v;
-      d.P(l, k) = v;
-    }
-  ++d.filtered;
 }
 
 // Window sum of z^2.
@@ -138,12 +81,12 @@ MonitorModel make_monitor_model(const MonitorSettings& s) {
   m.tests_per_hour = 3600.0 * s.cycle_hz / s.decimation;
   m.p_window = s.false_alarms_per_hour / m.tests_per_hour;
   require(m.p_window < 0.5, "false_alarms_per_hour is larger than the number of tests per hour");
-  m.threshold = chi2_upper_quantile(s.window, m.p_window);
+  m.threshold = chi2_upper_quantile(s.window, 0.5 * m.p_window);
 
   const double mean_la = (s.geometry.la_(0) + s.geometry.la_(1) + s.geometry.la_(2)) / 3.0;
   const double mean_l = (mean_la + (s.geometry.lb_(0) + s.geometry.lb_(1) + s.geometry.lb_(2)) / 3.0) / 2.0;
   const double per_tau = std::isfinite(s.thermal_tau_s) ? 1.0 / s.thermal_tau_s : 0.0;
-  std::array<double, kNumParams> growth{};  // common thermal growth direction (scaled coordinates)
+  bool any_length = false;
   for (int i = 0; i < kNumParams; ++i) {
     if (!s.estimate.test(static_cast<size_t>(i))) continue;
     const auto k = static_cast<size_t>(m.n_free++);
@@ -154,15 +97,24 @@ MonitorModel make_monitor_model(const MonitorSettings& s) {
                              : s.prior_sigma[static_cast<size_t>(i)];
     require(prior > 0.0 && std::isfinite(prior), fmt::format("prior_sigma of {} must be > 0", param_name(i)));
     const double drift = m.scale[k] * (is_offset(i) ? s.offset_drift_rad : s.length_drift_mm);
-    growth[k] = is_length(i) ? s.thermal_growth_mm * s.geometry[i] / mean_l : 0.0;
-    // Random walks whose spread over one time constant is the drift scale.
-    m.process_rate(static_cast<Eigen::Index>(k), static_cast<Eigen::Index>(k)) = drift * drift * per_tau;
+    m.growth[k] = is_length(i) ? s.geometry[i] / mean_l : 0.0;
+    any_length = any_length || is_length(i);
+    // Independent random walks whose spread over one time constant is the drift scale.
+    m.drift_rate[k] = drift * drift * per_tau;
     m.prior_variance[k] = std::pow(m.scale[k] * prior, 2);
-    m.variance_cap[k] = m.prior_variance[k] + drift * drift + growth[k] * growth[k];
+    m.variance_cap[k] = m.prior_variance[k] + drift * drift + std::pow(m.growth[k] * s.thermal_growth_mm, 2);
   }
-  for (int k = 0; k < m.n_free; ++k)
-    for (int l = 0; l < m.n_free; ++l)
-      m.process_rate(k, l) += growth[static_cast<size_t>(k)] * growth[static_cast<size_t>(l)] * per_tau;
+  m.n_state = m.n_free;
+  if (any_length && s.thermal_growth_mm > 0.0 && per_tau > 0.0) {
+    // Growth rate of order A / tau, changing by A / tau over tau: a random
+    // walk of variance (A / tau)^2 per tau.
+    m.rate_index = m.n_state++;
+    const double rate = s.thermal_growth_mm * per_tau;
+    m.rate_noise = rate * rate * per_tau;
+    m.prior_variance[static_cast<size_t>(m.rate_index)] = rate * rate;
+    m.variance_cap[static_cast<size_t>(m.rate_index)] = 4.0 * rate * rate;
+  }
+  m.glr_threshold = chi2_upper_quantile(1, 0.5 * m.p_window / (m.n_free * s.window));
   return m;
 }
 
@@ -170,7 +122,7 @@ MonitorData make_monitor_data(const MonitorModel& m) {
   MonitorData d;
   d.estimate = m.settings.geometry;
   d.P.setZero();
-  for (int k = 0; k < m.n_free; ++k) d.P(k, k) = m.prior_variance[static_cast<size_t>(k)];
+  for (int k = 0; k < m.n_state; ++k) d.P(k, k) = m.prior_variance[static_cast<size_t>(k)];
   return d;
 }
 
@@ -181,6 +133,7 @@ void monitor_flush(const MonitorModel& m, MonitorData& d) {
   }
   d.count = 0;
   d.statistic = 0.0;
+  d.step_statistic = 0.0;
 }
 
 StepResult monitor_step(const MonitorModel& m, MonitorData& d, double t_s, const Eigen::Vector3d& theta_m) {
@@ -201,9 +154,11 @@ StepResult monitor_step(const MonitorModel& m, MonitorData& d, double t_s, const
     --d.count;
   }
 
-  double r = 0.0;
-  ParamRow g;
-  if (!ml_residual_and_gradient(d.estimate, theta_m, r, g)) {
+  // Innovation against the filter (which has seen no sample of the window)
+  // predicted to t_s.
+  double z = 0.0;
+  ParamRow dz;
+  if (!filter_innovation(m, d, t_s, theta_m, z, dz)) {
     ++d.skipped;
     return out;
   }
@@ -212,33 +167,20 @@ StepResult monitor_step(const MonitorModel& m, MonitorData& d, double t_s, const
   d.cycles_since_accepted = 0;
   ++d.accepted;
 
-  // Innovation against the filter, which has seen no sample of the window;
-  // its variance grows by the random walk since the filter's last update.
-  std::array<double, kNumParams> Ph{};
-  double s = innovation_variance(m, d, g, Ph);
-  if (d.filtered > 0) {
-    double hQh = 0.0;
-    for (int k = 0; k < m.n_free; ++k)
-      for (int l = 0; l < m.n_free; ++l)
-        hQh += g[m.free_index[static_cast<size_t>(k)]] / m.scale[static_cast<size_t>(k)] * m.process_rate(k, l) *
-               g[m.free_index[static_cast<size_t>(l)]] / m.scale[static_cast<size_t>(l)];
-    s += hQh * std::max(t_s - d.t_last_update, 0.0);
-  }
-  const double sqrt_s = std::sqrt(s);
-  const double z = r / sqrt_s;
-
   const auto slot = static_cast<size_t>(d.head);
   d.z[slot] = z;
   d.t[slot] = t_s;
-  d.dz[slot] = g / sqrt_s;
+  d.dz[slot] = dz;
   d.theta[slot] = theta_m;
   d.head = (d.head + 1) % kMaxWindow;
   ++d.count;
   d.statistic = d.count == W ? window_statistic(d) : 0.0;
+  d.step_statistic = d.count == W ? step_statistic(m, d) : 0.0;
   d.last_z = z;
   out.accepted = true;
   out.z = z;
   out.statistic = d.statistic;
+  out.step_statistic = d.step_statistic;
   if (d.pending > 0 && --d.pending == 0) {
     // Explain with explain_samples of motion after the crossing (over a short
     // arc the sensitivity columns are nearly collinear), then re-baseline:
@@ -258,12 +200,15 @@ StepResult monitor_step(const MonitorModel& m, MonitorData& d, double t_s, const
     while (d.count > 0 && d.t[static_cast<size_t>(slot_of(d, 0))] < a.onset_s) --d.count;
     monitor_flush(m, d);
     d.pending = -1;
-  } else if (d.pending < 0 && d.statistic > m.threshold) {
+  } else if (d.pending < 0 && (d.statistic > m.threshold || d.step_statistic > m.glr_threshold)) {
     Alarm& a = d.alarms[static_cast<size_t>(d.alarm_count % kMaxAlarms)];
     a = Alarm{};
     a.t_s = t_s;
-    a.statistic = d.statistic;
-    a.threshold = m.threshold;
+    // Report the test that is further past its threshold.
+    const bool step = d.step_statistic / m.glr_threshold > d.statistic / m.threshold;
+    a.kind = step ? AlarmKind::kStep : AlarmKind::kChiSquare;
+    a.statistic = step ? d.step_statistic : d.statistic;
+    a.threshold = step ? m.glr_threshold : m.threshold;
     ++d.alarm_count;
     out.alarm = true;
     d.pending = std::max(m.settings.explain_samples, 1);
@@ -278,8 +223,14 @@ Estimate monitor_estimate(const MonitorModel& m, const MonitorData& d) {
   for (int k = 0; k < m.n_free; ++k)
     e.sigma[static_cast<size_t>(m.free_index[static_cast<size_t>(k)])] =
         std::sqrt(d.P(k, k)) / m.scale[static_cast<size_t>(k)];
+  if (m.rate_index >= 0) {
+    e.growth_rate_mm_s = d.growth_rate;
+    e.growth_rate_sigma = std::sqrt(d.P(m.rate_index, m.rate_index));
+  }
   return e;
 }
+
+const char* alarm_kind_name(AlarmKind kind) { return kind == AlarmKind::kStep ? "step" : "chi_square"; }
 
 const Alarm& last_alarm(const MonitorData& d) {
   return d.alarms[static_cast<size_t>((d.alarm_count - 1) % kMaxAlarms)];

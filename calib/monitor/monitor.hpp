@@ -1,20 +1,25 @@
 // Drift monitoring during normal operation (issue 17): a controller calls
 // monitor_step() every servo cycle with the three encoder readings. The
 // monitor
-//   - tests for a change: a sliding-window chi-square on the normalised ML
-//     innovations z = r / sqrt(sigma^2 + h P h'), with r the ML residual
-//     (calib/residuals.hpp) of the readings at the current estimate, h its
-//     gradient with respect to the estimated parameters, P their covariance;
-//     threshold from a stated false-alarm rate (README.md derives it). The
+//   - tests for a change with two statistics on the normalised ML
+//     innovations z = r / sqrt(sigma^2 + h P h') (r the ML residual of
+//     calib/residuals.hpp at the current estimate, h its gradient with
+//     respect to the estimated parameters, P their covariance): a
+//     sliding-window chi-square (any change) and a generalised likelihood
+//     ratio for a step in one estimated parameter from any onset in the
+//     window (matched to that parameter's signature, so far more sensitive
+//     where the step shows weakly); thresholds from a stated false-alarm
+//     rate, shared by the two tests (README.md derives them). The
 //     filter below runs one window behind the test (a sample updates it when
 //     it leaves the window), so a change inside the window is tested against
 //     an estimate that has not absorbed it;
 //   - explains an alarm by the single parameter (and onset) whose sensitivity
 //     column best fits the window's innovations;
 //   - tracks slow drift with an extended Kalman filter over the estimated
-//     parameters (random-walk process noise from the thermal time constant:
-//     a common growth of all links plus small independent drifts), which
-//     updates only the directions the motion observes.
+//     parameters and a common thermal growth rate of the links (a smooth
+//     drift: the rate is a random walk set from the thermal time constant;
+//     each parameter also has a small random walk of its own), which updates
+//     only the directions the motion observes.
 // MuJoCo-style split: MonitorModel is constant, MonitorData mutable;
 // monitor_step() allocates nothing.
 #pragma once
@@ -32,6 +37,9 @@ namespace gpm::calib::monitor {
 // Longest change-test window (accepted samples) and the number of alarms kept.
 inline constexpr int kMaxWindow = 256;
 inline constexpr int kMaxAlarms = 64;
+// Filter coordinates: the estimated parameters plus the common thermal growth rate.
+inline constexpr int kMaxState = kNumParams + 1;
+using StateMatrix = Eigen::Matrix<double, kMaxState, kMaxState>;
 
 // What the user states; make_monitor_model() checks it and derives the rest.
 struct MonitorSettings {
@@ -44,16 +52,18 @@ struct MonitorSettings {
   int encoder_bits = 17;        // counts per revolution 2^bits; 0 = ideal (no quantisation)
   double noise_rad = 0.0;       // additive Gaussian reading noise (1-sigma)
   double cycle_hz = 1000.0;     // servo rate at which monitor_step() is called
-  int decimation = 10;          // at most one accepted sample per this many cycles
+  int decimation = 5;           // at most one accepted sample per this many cycles
   double min_motion_counts = 2.0;  // every joint must move this many counts between accepted samples
-  int window = 100;             // change-test window W (accepted samples), <= kMaxWindow
-  int explain_samples = 90;     // accepted samples after the crossing before the alarm is explained
+  int window = 200;             // change-test window W (accepted samples), <= kMaxWindow
+  int explain_samples = 180;    // accepted samples after the crossing before the alarm is explained
   double false_alarms_per_hour = 0.01;  // stated false-alarm rate of the change test
   double thermal_tau_s = 60.0;  // time constant of thermal drift; alarms are for faster changes
   // Common thermal growth of the links over one time constant (mm, for a
-  // link of the mean length; each link grows in proportion to its length).
-  double thermal_growth_mm = 0.01;
-  double length_drift_mm = 0.0005;  // independent drift of a length / base coordinate per time constant
+  // link of the mean length; each link grows in proportion to its length):
+  // the growth rate is of order thermal_growth_mm / thermal_tau_s and changes
+  // by that much over one time constant. 0: no growth-rate state.
+  double thermal_growth_mm = 0.05;
+  double length_drift_mm = 0.0;     // independent drift of a length / base coordinate per time constant
   double offset_drift_rad = 2e-6;   // independent drift of an encoder offset per time constant
   // Typical size of a sudden change, the prior of the alarm's explanation
   // (calib/monitor/explain.hpp): an encoder slip, a knock on a link or base.
@@ -69,26 +79,37 @@ struct MonitorModel {
   double sigma_rad = 0.0;        // reading noise: sqrt(q^2 / 12 + noise_rad^2), q = 2 pi / 2^bits
   double motion_gate_rad = 0.0;  // min_motion_counts * count (or * noise_rad when ideal)
   double tests_per_hour = 0.0;   // 3600 * cycle_hz / decimation: the most window tests per hour
-  double p_window = 0.0;         // false-alarm probability per test: rate / tests_per_hour
-  double threshold = 0.0;        // chi2_W upper quantile at p_window
+  double p_window = 0.0;         // false-alarm probability per test sample: rate / tests_per_hour
+  double threshold = 0.0;        // chi-square test: chi2_W upper quantile at p_window / 2
+  double glr_threshold = 0.0;    // step test: chi2_1 upper quantile at p_window / (2 n_free W)
   int n_free = 0;                        // number of estimated parameters
+  int n_state = 0;                       // filter coordinates: n_free, plus 1 with a growth-rate state
+  int rate_index = -1;                   // index of the growth-rate coordinate, -1 without
   std::array<int, kNumParams> free_index{};  // parameter of each filter coordinate (first n_free)
   // Filter coordinates u = scale * value: 1 for mm, the mean active length
-  // (mm) for offsets, so that P is well scaled.
-  std::array<double, kNumParams> scale{};
-  // Random-walk covariance per second of the filter coordinates (n_free x n_free used).
-  Eigen::Matrix<double, kNumParams, kNumParams> process_rate = Eigen::Matrix<double, kNumParams, kNumParams>::Zero();
-  std::array<double, kNumParams> variance_cap{};  // ceiling of each variance (scaled)
-  std::array<double, kNumParams> prior_variance{};  // initial variance (scaled)
+  // (mm) for offsets, so that P is well scaled; the rate is in mm/s.
+  std::array<double, kMaxState> scale{};
+  std::array<double, kMaxState> growth{};        // d u_k / d (common growth, mm): L_i / mean L for links, else 0
+  std::array<double, kMaxState> drift_rate{};    // independent random-walk variance per second of u_k
+  double rate_noise = 0.0;                       // random-walk variance per second of the growth rate
+  std::array<double, kMaxState> variance_cap{};  // ceiling of each variance
+  std::array<double, kMaxState> prior_variance{};  // initial variance
 };
 
 // Builds the model; throws gpm::InputError naming the setting that is wrong.
 MonitorModel make_monitor_model(const MonitorSettings& settings);
 
+// Which test raised an alarm.
+enum class AlarmKind { kChiSquare, kStep };
+
+// "chi_square" or "step".
+const char* alarm_kind_name(AlarmKind kind);
+
 // One alarm of the change test.
 struct Alarm {
+  AlarmKind kind = AlarmKind::kChiSquare;
   double t_s = 0.0;        // time of the sample that crossed the threshold
-  double statistic = 0.0;  // window sum of z^2
+  double statistic = 0.0;  // window sum of z^2, or the step test's max S_zh^2 / S_hh
   double threshold = 0.0;
   int param = -1;          // parameter whose single change best explains the window
   double delta = 0.0;      // its estimated change (mm or rad)
@@ -101,7 +122,8 @@ struct Alarm {
 // Mutable state of the monitor.
 struct MonitorData {
   Geometry estimate;  // current parameter estimate (fixed ones at the model's values)
-  Eigen::Matrix<double, kNumParams, kNumParams> P;  // covariance of filter coordinates (n_free x n_free used)
+  double growth_rate = 0.0;  // estimated common growth rate (mm/s for a link of the mean length)
+  StateMatrix P;             // covariance of the filter coordinates (n_state x n_state used)
   Eigen::Vector3d last_accepted = Eigen::Vector3d::Zero();
   bool has_accepted = false;
   double t_last_update = 0.0;
@@ -115,6 +137,7 @@ struct MonitorData {
   int head = 0;   // next slot to write
   int count = 0;  // samples in the window
   double statistic = 0.0;  // latest window sum of z^2 (0 until the window is full)
+  double step_statistic = 0.0;  // latest step statistic (0 until the window is full)
   double last_z = 0.0;     // latest innovation
   std::array<Alarm, kMaxAlarms> alarms{};  // alarm k is at alarms[k % kMaxAlarms]
   long alarm_count = 0;
@@ -133,6 +156,7 @@ struct StepResult {
   bool explained = false; // the latest alarm's explanation was filled in (explain_samples later)
   double z = 0.0;         // normalised innovation of an accepted sample
   double statistic = 0.0; // window statistic after this sample (0 while the window fills)
+  double step_statistic = 0.0;  // step statistic after this sample (0 while the window fills)
 };
 
 // One servo cycle at time t_s (s, increasing) with readings theta_m (rad).
@@ -148,6 +172,8 @@ void monitor_flush(const MonitorModel& model, MonitorData& data);
 struct Estimate {
   std::array<double, kNumParams> value{};
   std::array<double, kNumParams> sigma{};
+  double growth_rate_mm_s = 0.0;  // common link growth rate (0 without a rate state)
+  double growth_rate_sigma = 0.0;
 };
 Estimate monitor_estimate(const MonitorModel& model, const MonitorData& data);
 
