@@ -27,6 +27,7 @@ void explain_window(const MonitorModel& model, const MonitorData& data, Alarm& a
       s_hh[ks] += dz[i] * dz[i];
       const double denom = s_hh[ks] + inv_d0_sq[ks];
       const double fit = s_zh[ks] * s_zh[ks] / denom;
+      if (fit <= alarm.score) continue;  // the log term is >= 0: cannot win
       const double score = fit - std::log(denom / inv_d0_sq[ks]);
       if (score > alarm.score) {
         alarm.score = score;

@@ -184,8 +184,8 @@ StepResult monitor_step(const MonitorModel& m, MonitorData& d, double t_s, const
   if (d.pending > 0 && --d.pending == 0) {
     // Explain with explain_samples of motion after the crossing (over a short
     // arc the sensitivity columns are nearly collinear), then re-baseline:
-    // apply the explained change, open its variance to its size, let the filter
-    // absorb the window from the onset on, and start a fresh one.
+    // apply the explained change and open its variance to its size, so the
+    // filter absorbs any remainder from the next samples.
     Alarm& a = d.alarms[static_cast<size_t>((d.alarm_count - 1) % kMaxAlarms)];
     explain_window(m, d, a);
     a.explained_s = t_s;
@@ -196,9 +196,12 @@ StepResult monitor_step(const MonitorModel& m, MonitorData& d, double t_s, const
         const double v = std::pow(a.delta * m.scale[static_cast<size_t>(k)], 2);
         if (v > d.P(k, k)) d.P(k, k) = v;
       }
-    // Samples before the onset belong to the old robot: drop them.
-    while (d.count > 0 && d.t[static_cast<size_t>(slot_of(d, 0))] < a.onset_s) --d.count;
-    monitor_flush(m, d);
+    // The window's innovations were computed against the old estimate: drop
+    // them (feeding them to the filter would cost a filter update each, a
+    // few hundred microseconds in one cycle) and refill the window.
+    d.count = 0;
+    d.statistic = 0.0;
+    d.step_statistic = 0.0;
     d.pending = -1;
   } else if (d.pending < 0 && (d.statistic > m.threshold || d.step_statistic > m.glr_threshold)) {
     Alarm& a = d.alarms[static_cast<size_t>(d.alarm_count % kMaxAlarms)];
