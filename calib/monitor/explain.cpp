@@ -41,7 +41,11 @@ void explain_window(const MonitorModel& model, const MonitorData& data, Alarm& a
 }
 
 double step_statistic(const MonitorModel& model, const MonitorData& data) {
-  std::array<double, kNumParams> s_zh{}, s_hh{};
+  std::array<double, kNumParams> s_zh{}, s_hh{}, var{};
+  for (int k = 0; k < model.n_free; ++k) {
+    const double sd = 1.0 / model.scale[static_cast<size_t>(k)];
+    var[static_cast<size_t>(k)] = data.P(k, k) * sd * sd;
+  }
   double best = 0.0;
   for (int j = data.count - 1; j >= 0; --j) {
     const int slot = (data.head - data.count + j + 2 * kMaxWindow) % kMaxWindow;
@@ -52,7 +56,7 @@ double step_statistic(const MonitorModel& model, const MonitorData& data) {
       const int i = model.free_index[ks];
       s_zh[ks] += dz[i] * z;
       s_hh[ks] += dz[i] * dz[i];
-      if (s_hh[ks] > 0.0) best = std::max(best, s_zh[ks] * s_zh[ks] / s_hh[ks]);
+      if (s_hh[ks] > 0.0) best = std::max(best, s_zh[ks] * s_zh[ks] / (s_hh[ks] * (1.0 + s_hh[ks] * var[ks])));
     }
   }
   return best;

@@ -23,9 +23,11 @@ void explain_window(const MonitorModel& model, const MonitorData& data, Alarm& a
 
 // The step test's statistic: the generalised likelihood ratio of a step in
 // one estimated parameter from some onset in the window against no change,
-//   max over (i, k) of S_zh^2 / S_hh     (sums as above, no prior),
-// which for a fixed (i, k) is chi-square with 1 degree of freedom under no
-// change. Allocation-free, O(window * n_free).
+//   max over (i, k) of S_zh^2 / (S_hh (1 + S_hh P_ii))   (sums as above, no prior),
+// with P_ii the filter's variance of parameter i: the window's innovations
+// share the filter's error, so under no change S_zh has variance
+// S_hh + S_hh^2 P_ii along column i, and each term is chi-square with 1
+// degree of freedom. Allocation-free, O(window * n_free).
 double step_statistic(const MonitorModel& model, const MonitorData& data);
 
 }  // namespace gpm::calib::monitor

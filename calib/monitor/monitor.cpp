@@ -60,10 +60,11 @@ MonitorModel make_monitor_model(const MonitorSettings& s) {
           "an ideal encoder (bits 0) without noise_rad gives zero noise: give bits or noise_rad");
   require(s.cycle_hz > 0.0 && std::isfinite(s.cycle_hz), "cycle_hz must be > 0");
   require(s.decimation >= 1, "decimation must be >= 1");
-  require(s.window >= 2 && s.window <= kMaxWindow,
-          fmt::format("window {} must be in 2..{}", s.window, kMaxWindow));
-  require(s.explain_samples >= 1 && s.explain_samples < s.window,
-          fmt::format("explain_samples {} must be in 1..window-1", s.explain_samples));
+  require(s.window >= 2 && s.window <= kMaxWindow / 2,
+          fmt::format("window {} must be in 2..{}", s.window, kMaxWindow / 2));
+  require(s.explain_samples >= 1 && s.explain_samples <= kMaxWindow - s.window,
+          fmt::format("explain_samples {} must be in 1..{} (kMaxWindow - window)", s.explain_samples,
+                      kMaxWindow - s.window));
   require(s.false_alarms_per_hour > 0.0 && std::isfinite(s.false_alarms_per_hour),
           "false_alarms_per_hour must be > 0");
   require(s.thermal_tau_s > 0.0, "thermal_tau_s must be > 0 (inf: no drift)");
@@ -146,9 +147,11 @@ StepResult monitor_step(const MonitorModel& m, MonitorData& d, double t_s, const
   if (d.has_accepted && d.cycles_since_accepted < m.settings.decimation) return out;
   if (!moved_enough(m, d, theta_m)) return out;
 
-  // The oldest sample leaves a full window and updates the filter.
+  // The oldest sample leaves a full window and updates the filter; while an
+  // alarm waits for its explanation the filter waits too (it must not absorb
+  // the change before it is explained).
   const int W = m.settings.window;
-  if (d.count == W) {
+  if (d.count >= W && d.pending < 0) {
     const auto oldest = static_cast<size_t>(slot_of(d, 0));
     filter_update(m, d, d.t[oldest], d.theta[oldest]);
     --d.count;
@@ -174,8 +177,9 @@ StepResult monitor_step(const MonitorModel& m, MonitorData& d, double t_s, const
   d.theta[slot] = theta_m;
   d.head = (d.head + 1) % kMaxWindow;
   ++d.count;
-  d.statistic = d.count == W ? window_statistic(d) : 0.0;
-  d.step_statistic = d.count == W ? step_statistic(m, d) : 0.0;
+  const bool full = d.count == W && d.pending < 0;
+  d.statistic = full ? window_statistic(d) : 0.0;
+  d.step_statistic = full ? step_statistic(m, d) : 0.0;
   d.last_z = z;
   out.accepted = true;
   out.z = z;

@@ -34,8 +34,9 @@
 
 namespace gpm::calib::monitor {
 
-// Longest change-test window (accepted samples) and the number of alarms kept.
-inline constexpr int kMaxWindow = 256;
+// Most samples held (the change-test window plus the samples gathered for an
+// alarm's explanation) and the number of alarms kept.
+inline constexpr int kMaxWindow = 512;
 inline constexpr int kMaxAlarms = 64;
 // Filter coordinates: the estimated parameters plus the common thermal growth rate.
 inline constexpr int kMaxState = kNumParams + 1;
@@ -54,8 +55,10 @@ struct MonitorSettings {
   double cycle_hz = 1000.0;     // servo rate at which monitor_step() is called
   int decimation = 5;           // at most one accepted sample per this many cycles
   double min_motion_counts = 2.0;  // every joint must move this many counts between accepted samples
-  int window = 200;             // change-test window W (accepted samples), <= kMaxWindow
-  int explain_samples = 180;    // accepted samples after the crossing before the alarm is explained
+  int window = 250;             // change-test window W (accepted samples)
+  // Accepted samples after the crossing before the alarm is explained (the
+  // filter waits meanwhile); window + explain_samples <= kMaxWindow.
+  int explain_samples = 240;
   double false_alarms_per_hour = 0.01;  // stated false-alarm rate of the change test
   double thermal_tau_s = 60.0;  // time constant of thermal drift; alarms are for faster changes
   // Common thermal growth of the links over one time constant (mm, for a
@@ -70,6 +73,7 @@ struct MonitorSettings {
   double jump_offset_rad = 1e-3;
   double jump_length_mm = 0.005;
 
+  // An array of NaN (the "use the default" marker of prior_sigma).
   static std::array<double, kNumParams> nan_array();
 };
 
@@ -128,14 +132,16 @@ struct MonitorData {
   bool has_accepted = false;
   double t_last_update = 0.0;
   long cycles_since_accepted = 0;
-  // Change-test window (ring buffer): innovations z, their sensitivities
-  // dz/dparams, times and readings (for the filter update when a sample leaves).
+  // Samples not yet in the filter (ring buffer): the change-test window, plus
+  // while an alarm is pending the samples since; innovations z, their
+  // sensitivities dz/dparams, times and readings (for the filter update when
+  // a sample leaves).
   std::array<double, kMaxWindow> z{};
   std::array<double, kMaxWindow> t{};
   std::array<ParamRow, kMaxWindow> dz{};
   std::array<Eigen::Vector3d, kMaxWindow> theta{};
   int head = 0;   // next slot to write
-  int count = 0;  // samples in the window
+  int count = 0;  // samples held
   double statistic = 0.0;  // latest window sum of z^2 (0 until the window is full)
   double step_statistic = 0.0;  // latest step statistic (0 until the window is full)
   double last_z = 0.0;     // latest innovation
@@ -175,6 +181,8 @@ struct Estimate {
   double growth_rate_mm_s = 0.0;  // common link growth rate (0 without a rate state)
   double growth_rate_sigma = 0.0;
 };
+
+// The filter's current estimate and 1-sigma of every parameter.
 Estimate monitor_estimate(const MonitorModel& model, const MonitorData& data);
 
 // The most recent alarm (data.alarm_count must be > 0).
