@@ -129,6 +129,34 @@ TEST(Monitor, NoFalseAlarmInFiveMinutesAndInnovationsAreWhite) {
   EXPECT_LT(std::abs(lag / s2), 0.1);  // lag-1 autocorrelation
 }
 
+// Gaussian reading noise on top of the quantisation enters sigma; the
+// innovations stay normalised, no false alarm, and a jump is still named.
+TEST(Monitor, AdditiveReadingNoiseIsPartOfSigma) {
+  MonitorSettings s;
+  s.noise_rad = 2e-5;
+  const MonitorModel m = make_monitor_model(s);
+  MonitorData d = make_monitor_data(m);
+  testing::CircleStream cs;
+  cs.noise_rad = 2e-5;
+  const Geometry base = s.geometry;
+  const auto run = run_circle(
+      m, d, 150.0,
+      [&](double t) {
+        Geometry g = base;
+        if (t >= 120.0) g[kDth2] += 1e-4;
+        return g;
+      },
+      cs);
+  double s2 = 0.0;
+  for (double z : run.z) s2 += z * z;
+  EXPECT_NEAR(s2 / static_cast<double>(run.z.size()), 1.0, 0.15);
+  ASSERT_EQ(run.alarm_times.size(), 1u);
+  EXPECT_GE(run.alarm_times[0], 120.0);
+  EXPECT_LT(run.alarm_times[0], 121.0);
+  ASSERT_EQ(run.alarms.size(), 1u);
+  EXPECT_EQ(run.alarms[0].param, kDth2) << describe_alarm(run.alarms[0]);
+}
+
 // (c) Thermal growth of 20 um per link, first order with tau = 60 s.
 // One circle observes the common growth of the links but hardly any link on
 // its own: how the filter splits what it sees between the growth and the
