@@ -13,7 +13,7 @@ PACKAGES=(
   libmodbus-dev
   libpagmo-dev
   python3-scipy python3-numpy
-  pybind11-dev python3-pybind11 python3-pytest
+  python3-dev pybind11-dev python3-pybind11 python3-pytest
 )
 
 missing=()
