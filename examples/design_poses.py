@@ -33,7 +33,7 @@ for name, poses in (("circle 80 mm", circle), ("disc 80 mm", disc), ("designed",
 # %% Monte Carlo check: calibrate noisy readings of the designed poses.
 truth = gpm.Robot(geometry=dict(xa3=433.5, ya3=499.4, la1=244.1, la2=244.2, la3=243.5, lb1=243.8,
                                 lb2=244.2, lb3=244.6, dth1=0.01, dth2=-0.01, dth3=0.01, ya2=0.3))
-clean = np.array([truth.ik(x, y) for x, y in design.poses])
+clean = truth.ik(design.poses)  # noiseless readings, (30, 3)
 bound = gpm.crb(truth, readings=clean, sigma=sigma)
 estimates = []
 for trial in range(40):

@@ -98,6 +98,22 @@ Use gpm.load_robot(path) for a robot file.
           "Inverse kinematics (paper eq. 31, 35): the encoder readings theta_m (3,) in rad at end-effector (x, y) "
           "mm on the robot's branches. Raises gpm.InputError naming the chain and the shortfall when out of reach.")
       .def(
+          "ik",
+          [](const Robot& r, const py::array_t<double, py::array::c_style | py::array::forcecast>& points) {
+            const auto p = points_from_array(points, "ik(points)");
+            py::array_t<double> out({static_cast<py::ssize_t>(p.size()), py::ssize_t{3}});
+            auto o = out.mutable_unchecked<2>();
+            for (size_t j = 0; j < p.size(); ++j) {
+              const JointAngles q = inverse_kinematics(r.geometry, p[j], r.branch);
+              const Eigen::Vector3d t = readings_from_active(r.geometry, q.theta_a);
+              for (int k = 0; k < 3; ++k) o(j, k) = t[k];
+            }
+            return out;
+          },
+          py::arg("points"),
+          "Inverse kinematics of (n, 2) end-effector positions (mm): the (n, 3) encoder readings (rad), e.g. the "
+          "noiseless readings of calibration poses. Raises gpm.InputError for the first point out of reach.")
+      .def(
           "ik_angles",
           [](const Robot& r, double x, double y) {
             const JointAngles q = pose_angles(r, x, y);

@@ -1,4 +1,6 @@
 # Tests python/bind_design.cpp: gpm.design, gpm.pose_bounds, gpm.crb.
+import re
+
 import numpy as np
 import pytest
 
@@ -30,7 +32,7 @@ def test_design_poses_are_a_view_without_copy(design):
 
 def test_crb_from_poses_and_from_their_readings_agree_with_pose_bounds(design):
     robot = gpm.load_robot()
-    readings = np.array([robot.ik(x, y) for x, y in design.poses])
+    readings = robot.ik(design.poses)
     a = gpm.crb(robot, poses=design.poses, sigma=2e-4)
     b = gpm.crb(robot, readings=readings, sigma=2e-4)
     assert a["std"] == pytest.approx(b["std"], rel=1e-12)
@@ -46,6 +48,15 @@ def test_sigma_only_scales_the_bounds(design):
     b = gpm.crb(robot, poses=design.poses, sigma=3e-4)
     for n in a["free"]:
         assert b["std"][n] == pytest.approx(3 * a["std"][n], rel=1e-9)
+
+
+def test_same_poses_as_the_command_line(design, scratch):
+    code, _, err = run_gpm("design", "--count", 15, "--grid-step", 15, "-o", scratch / "p.yaml")
+    assert code == 0, err
+    text = (scratch / "p.yaml").read_text()
+    poses = [[float(x), float(y)] for x, y in re.findall(r"^    - \[(\S+), (\S+)\]$", text, re.M)]
+    np.testing.assert_array_equal(design.poses, poses)
+    assert design.to_yaml().split("sampling:")[1] == text.split("sampling:")[1]
 
 
 def test_design_errors_match_the_command_line(scratch):

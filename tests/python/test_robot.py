@@ -25,7 +25,9 @@ def test_ik_then_fk_returns_the_point():
         readings = robot.ik(x, y)
         assert readings.shape == (3,)
         np.testing.assert_allclose(robot.fk(readings), [x, y], atol=1e-9)
-    batch = np.array([robot.ik(x, y) for x, y in POINTS])
+    batch = robot.ik(np.array(POINTS))
+    assert batch.shape == (len(POINTS), 3)
+    np.testing.assert_array_equal(batch[1], robot.ik(*POINTS[1]))
     np.testing.assert_allclose(robot.fk(batch), POINTS, atol=1e-9)
 
 
