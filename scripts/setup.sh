@@ -13,6 +13,7 @@ PACKAGES=(
   libmodbus-dev
   libpagmo-dev
   python3-scipy python3-numpy
+  python3-dev pybind11-dev python3-pybind11 python3-pytest
 )
 
 missing=()

@@ -1,0 +1,196 @@
+// gpm.design, gpm.pose_bounds and gpm.crb: excitation design
+// (calib/excitation/excitation.hpp, fisher.hpp, pose_list.hpp) and the
+// Cramer-Rao bound (calib/crb.hpp) in Python, with the checks of `gpm design`.
+#include <cmath>
+#include <memory>
+#include <string>
+
+#include <fmt/format.h>
+#include <pybind11/stl.h>
+
+#include "calib/crb.hpp"
+#include "calib/excitation/excitation.hpp"
+#include "calib/excitation/pose_list.hpp"
+#include "models/errors.hpp"
+#include "models/kinematics.hpp"
+#include "models/robot_yaml.hpp"
+#include "python/bindings.hpp"
+#include "python/convert.hpp"
+
+namespace gpm::python {
+namespace {
+
+namespace ex = calib::excitation;
+
+py::array_t<double> vec(const Eigen::VectorXd& v) {
+  py::array_t<double> a(v.size());
+  for (Eigen::Index k = 0; k < v.size(); ++k) a.mutable_at(k) = v[k];
+  return a;
+}
+
+py::dict bounds_dict(const ex::Bounds& b) {
+  py::list names;
+  for (int i : b.free_index) names.append(std::string(param_name(i)));
+  py::dict d;
+  d["free"] = names;
+  d["sigma"] = vec(b.sigma);
+  d["scaled"] = vec(b.scaled);
+  d["worst_mm"] = b.worst_mm;
+  d["worst_param"] = b.worst_param >= 0 ? py::object(py::str(std::string(param_name(b.worst_param)))) : py::none();
+  d["mean_mm"] = b.mean_mm;
+  d["log_det"] = b.log_det;
+  return d;
+}
+
+double positive(double v, const char* what, const char* unit) {
+  if (!(v > 0.0) || !std::isfinite(v))
+    throw InputError(fmt::format("{}: must be a positive {}, got {}", what, unit, v));
+  return v;
+}
+
+struct PyDesign {
+  ex::Design design;
+  ex::DesignOptions options;
+};
+
+}  // namespace
+
+void bind_design(py::module_& m) {
+  py::class_<PyDesign, std::shared_ptr<PyDesign>>(m, "Design", R"doc(
+Calibration poses chosen by gpm.design, with their Cramer-Rao bounds at the
+nominal geometry (calib/excitation/excitation.hpp).
+)doc")
+      .def_property_readonly(
+          "poses",
+          [](py::object self) {
+            const auto& p = self.cast<const PyDesign&>().design.poses;
+            return view_rows(p.empty() ? nullptr : p.front().data(), p.size(), 2, sizeof(Eigen::Vector2d), self);
+          },
+          "(n, 2) chosen poses in mm (a read-only view into the design, no copy).")
+      .def_property_readonly(
+          "start",
+          [](py::object self) {
+            const auto& p = self.cast<const PyDesign&>().design.start;
+            return view_rows(p.empty() ? nullptr : p.front().data(), p.size(), 2, sizeof(Eigen::Vector2d), self);
+          },
+          "(n, 2) greedy D-optimal start of the exchange, mm.")
+      .def_property_readonly(
+          "bounds", [](const PyDesign& d) { return bounds_dict(d.design.bounds); },
+          "Bounds of the poses: dict free (names), sigma (own units), scaled (mm; offsets as rad x la_i), "
+          "worst_mm, worst_param, mean_mm, log_det.")
+      .def_property_readonly(
+          "start_bounds", [](const PyDesign& d) { return bounds_dict(d.design.start_bounds); },
+          "Bounds of the greedy start (same keys as bounds).")
+      .def_property_readonly(
+          "candidates", [](const PyDesign& d) { return d.design.candidates; }, "Size of the candidate grid.")
+      .def_property_readonly(
+          "exchanges", [](const PyDesign& d) { return d.design.exchanges; }, "Swaps made by the exchange stages.")
+      .def(
+          "to_yaml",
+          [](const PyDesign& d, const std::string& comment) { return ex::pose_list_yaml(d.design.poses, comment); },
+          py::arg("comment") = "gpm.design",
+          "The pose list as scenario YAML (sampling.pattern: list), as `gpm design -o` writes it.")
+      .def(
+          "save",
+          [](const PyDesign& d, const py::object& path, const std::string& comment) {
+            write_file_atomic(py::str(path).cast<std::string>(), ex::pose_list_yaml(d.design.poses, comment));
+          },
+          py::arg("path"), py::arg("comment") = "gpm.design",
+          "Writes the pose list atomically; the file is a scenario: gpm.simulate(path) samples the poses.");
+
+  m.def(
+      "design",
+      [](const py::object& robot, int count, double sigma, const py::object& fix, const std::string& criterion,
+         double grid_step, double guard) {
+        auto out = std::make_shared<PyDesign>();
+        ex::DesignOptions& d = out->options;
+        if (count < 1) throw InputError(fmt::format("count: must be a positive number of poses, got {}", count));
+        d.count = count;
+        d.sigma = positive(sigma, "sigma", "encoder noise in rad");
+        d.free = ~param_set(fix, "fix");
+        const auto c = ex::parse_criterion(criterion);
+        if (!c) throw InputError(fmt::format("criterion: '{}' is not d or worst", criterion));
+        d.criterion = *c;
+        d.grid_step_mm = positive(grid_step, "grid_step", "number of mm");
+        if (!(guard >= 0.0) || !std::isfinite(guard))
+          throw InputError(fmt::format("guard: must be zero or a positive number of mm, got {}", guard));
+        d.guard.reach_mm = guard;
+        const Robot r = robot.is_none() ? Robot{} : robot.cast<Robot>();
+        py::gil_scoped_release unlocked;
+        out->design = ex::design_poses(r, d);
+        return out;
+      },
+      py::arg("robot") = py::none(), py::arg("count") = 50, py::arg("sigma") = 1e-4,
+      py::arg("fix") = std::vector<std::string>{"xa1", "ya1", "xa2", "ya2"}, py::arg("criterion") = "worst",
+      py::arg("grid_step") = 5.0, py::arg("guard") = ex::Guard{}.reach_mm,
+      R"doc(
+Chooses `count` calibration poses that make the free parameters most
+accurate (excitation design, as `gpm design`), at the geometry of `robot`
+(default: the nominal GPM2002, what is known before calibration).
+
+criterion  "worst" (minimise the largest Cramer-Rao bound, offsets as
+           rad x la_i) or "d" (maximise log det of the Fisher information);
+sigma      encoder noise (rad); scales the bounds, not the poses;
+fix        parameters held fixed (default xa1, ya1, xa2, ya2);
+grid_step  candidate grid spacing (mm); guard  extra reach margin (mm).
+Returns a gpm.Design. Raises gpm.InputError for bad options.
+)doc");
+
+  m.def(
+      "pose_bounds",
+      [](const Robot& robot, const py::handle& poses, double sigma, const py::object& fix) {
+        const auto p = points_from_array(poses, "poses");
+        const FreeMask free = ~param_set(fix, "fix");
+        return bounds_dict(ex::pose_bounds(robot, free, p, positive(sigma, "sigma", "encoder noise in rad")));
+      },
+      py::arg("robot"), py::arg("poses"), py::arg("sigma") = 1e-4,
+      py::arg("fix") = std::vector<std::string>{"xa1", "ya1", "xa2", "ya2"},
+      "Cramer-Rao bounds of an (n, 2) set of poses (mm) at the robot's geometry, as a dict (see Design.bounds). "
+      "Raises gpm.InputError for a pose the robot cannot reach.");
+
+  m.def(
+      "crb",
+      [](const Robot& robot, const py::object& readings, double sigma, const py::object& fix,
+         const py::object& poses) {
+        if (readings.is_none() == poses.is_none())
+          throw InputError("crb: give exactly one of readings= (n, 3) rad or poses= (n, 2) mm");
+        positive(sigma, "sigma", "encoder noise in rad");
+        const FreeMask free = ~param_set(fix, "fix");
+        std::vector<Eigen::Vector3d> theta;
+        if (!readings.is_none()) {
+          theta = readings_from_array(readings, "readings");
+        } else {
+          for (const auto& p : points_from_array(poses, "poses")) {
+            const JointAngles q = inverse_kinematics(robot.geometry, p, robot.branch);
+            theta.push_back(readings_from_active(robot.geometry, q.theta_a));
+          }
+        }
+        if (theta.size() < free.count())
+          throw InputError(fmt::format("crb: {} samples cannot bound {} free parameters (need at least {})",
+                                       theta.size(), free.count(), free.count()));
+        const Eigen::MatrixXd fisher = calib::fisher_information(robot.geometry, free, theta, sigma);
+        const Eigen::MatrixXd bound = calib::cramer_rao_bound(robot.geometry, free, theta, sigma);
+        const auto sd = calib::crb_sigma(robot.geometry, free, theta, sigma);
+        py::dict std_dict;
+        for (int i = 0; i < kNumParams; ++i)
+          if (free.test(static_cast<size_t>(i))) std_dict[py::str(std::string(param_name(i)))] = sd[static_cast<size_t>(i)];
+        py::dict d;
+        d["free"] = param_names(free);
+        d["std"] = std_dict;
+        d["covariance"] = matrix_array(bound);
+        d["fisher"] = matrix_array(fisher);
+        return d;
+      },
+      py::arg("robot"), py::arg("readings") = py::none(), py::arg("sigma") = 1e-4,
+      py::arg("fix") = std::vector<std::string>{"xa1", "ya1", "xa2", "ya2"}, py::arg("poses") = py::none(),
+      R"doc(
+Cramer-Rao bound of the free parameters (calib/crb.hpp) at the robot's
+geometry taken as the truth, for iid encoder noise sigma (rad): from the
+noiseless readings (n, 3) of the samples, or from poses (n, 2) mm (their
+readings by inverse kinematics). Returns a dict: free (names), std (name ->
+bound, mm or rad), covariance (k, k) = sigma^2 (J' J)^-1 and fisher (k, k)
+= J' J / sigma^2, with J the Jacobian of the ML residual.
+)doc");
+}
+
+}  // namespace gpm::python

@@ -1,0 +1,20 @@
+// The parts of the gpm Python module, one per layer it exposes.
+#pragma once
+
+#include <pybind11/pybind11.h>
+
+namespace gpm::python {
+
+// gpm.Robot, load_robot, read_samples, models_dir, scenarios_dir.
+void bind_robot(pybind11::module_& m);
+
+// gpm.calibrate, CalibrationResult, load_result.
+void bind_calibrate(pybind11::module_& m);
+
+// gpm.design, Design, pose_bounds, crb.
+void bind_design(pybind11::module_& m);
+
+// gpm.simulate, Simulation.
+void bind_simulate(pybind11::module_& m);
+
+}  // namespace gpm::python

@@ -1,0 +1,115 @@
+# Tests python/bind_calibrate.cpp: gpm.calibrate, gpm.CalibrationResult, gpm.load_result.
+import warnings
+
+import numpy as np
+import pytest
+
+import gpm
+from conftest import TABLE5, cli_error, run_gpm
+
+FREE = [n for n in gpm.PARAM_NAMES if n not in ("xa1", "ya1", "xa2", "ya2")]
+
+
+def test_same_geometry_as_the_command_line(table5_samples, scratch):
+    out = scratch / "cli.yaml"
+    code, _, err = run_gpm("calibrate", "--data", table5_samples, "-o", out)
+    assert code == 0, err
+    cli = gpm.load_result(out)
+    py = gpm.calibrate(gpm.read_samples(table5_samples), gpm.load_robot())
+    for name in gpm.PARAM_NAMES:
+        assert py.geometry[name] == pytest.approx(cli.geometry[name], abs=1e-12), name
+    for name in FREE:
+        assert py.std[name] == pytest.approx(cli.std[name], rel=1e-9), name
+    assert py.fixed == cli.fixed == ["xa1", "ya1", "xa2", "ya2"]
+    assert py.diagnostics["iterations"] == cli.diagnostics["iterations"]
+    assert py.diagnostics["converged"] and py.converged
+
+
+def test_noiseless_samples_give_the_true_robot(table5_samples):
+    readings, xy = gpm.read_samples(table5_samples, with_xy=True)
+    start = gpm.Robot(geometry=dict(ya2=TABLE5["ya2"]))  # nominal, the fixed frame at its true values
+    r = gpm.calibrate(readings, start, true_xy=xy)
+    assert r.geometry == pytest.approx(TABLE5, abs=1e-7)
+    assert r.diagnostics["kmrmse_mm"] < 1e-6
+    assert r.diagnostics["rank"] == 11 and r.diagnostics["cost_function"] == "ml"
+    # the calibrated robot closes every loop: fk of the readings is the true point
+    np.testing.assert_allclose(r.robot.fk(readings), xy, atol=1e-6)
+
+
+def test_given_sigma_gives_the_cramer_rao_bound(table5_samples):
+    # At noiseless readings the ML solution is the truth and its covariance
+    # sigma^2 (J'J)^-1 is the Cramer-Rao bound of calib/crb.hpp there.
+    readings = gpm.read_samples(table5_samples)
+    r = gpm.calibrate(readings, gpm.Robot(geometry=dict(ya2=TABLE5["ya2"])), sigma=1e-4)
+    bound = gpm.crb(gpm.Robot(geometry=TABLE5), readings=readings, sigma=1e-4)
+    assert bound["free"] == r.free == FREE
+    for name in FREE:
+        assert r.std[name] == pytest.approx(bound["std"][name], rel=1e-4), name
+    cov = r.covariance
+    idx = [gpm.PARAM_NAMES.index(n) for n in FREE]
+    np.testing.assert_allclose(cov[np.ix_(idx, idx)], bound["covariance"], rtol=1e-3,
+                               atol=1e-6 * np.abs(bound["covariance"]).max())
+
+
+def test_result_file_round_trip_and_use_as_robot(table5_samples, scratch):
+    r = gpm.calibrate(gpm.read_samples(table5_samples), gpm.load_robot(), cost="j3")
+    r.save(scratch / "r.yaml")
+    back = gpm.load_result(scratch / "r.yaml")
+    assert back.geometry == r.geometry
+    assert back.std == r.std and back.diagnostics["cost_function"] == "j3"
+    assert r.to_yaml() == (scratch / "r.yaml").read_text()
+    assert r.robot.geometry == r.geometry
+
+
+@pytest.mark.filterwarnings("ignore::RuntimeWarning")  # the global path reports its rank as a note
+def test_global_method_through_the_dispatch(table5_samples):
+    r = gpm.calibrate(gpm.read_samples(table5_samples), gpm.load_robot(), cost="j3", method="de", budget=20000)
+    assert r.diagnostics["method"] == "de"
+    assert r.diagnostics["evaluations"] <= 20000 + 1000
+
+
+def test_too_few_samples_same_message_as_the_command_line(table5_samples, scratch):
+    lines = table5_samples.read_text().splitlines()
+    few = scratch / "few.csv"
+    few.write_text("\n".join(lines[:6]) + "\n")
+    code, _, err = run_gpm("calibrate", "--data", few, "-o", scratch / "r.yaml")
+    assert code == 2
+    with pytest.raises(gpm.InputError) as e:
+        gpm.calibrate(gpm.read_samples(few), gpm.load_robot())
+    assert str(e.value) == cli_error(err)
+    assert not (scratch / "r.yaml").exists()
+
+
+def test_rank_deficient_free_set_same_message_as_the_command_line(table5_samples, scratch):
+    code, _, err = run_gpm("calibrate", "--data", table5_samples, "--fix", "xa1,ya1", "-o", scratch / "r.yaml")
+    assert code == 2
+    with pytest.raises(gpm.InputError) as e:
+        gpm.calibrate(gpm.read_samples(table5_samples), gpm.load_robot(), fix=["xa1", "ya1"])
+    assert str(e.value) == cli_error(err)
+
+
+def test_argument_errors_name_the_argument_as_the_command_line_names_its_flag(table5_samples, scratch):
+    readings = gpm.read_samples(table5_samples)
+    robot = gpm.load_robot()
+    # (arguments, flags, whether the message starts with the flag's name)
+    cases = [(dict(fix=["xa1", "xb1"]), ["--fix", "xa1,xb1"], True), (dict(cost="j4"), ["--cost", "j4"], True),
+             (dict(method="newton"), ["--method", "newton"], True), (dict(sigma=-1.0), ["--sigma", "-1"], True),
+             (dict(cost="ml", method="de"), ["--cost", "ml", "--method", "de"], False)]
+    for kwargs, flags, named in cases:
+        code, _, err = run_gpm("calibrate", "--data", table5_samples, "-o", scratch / "r.yaml", *flags)
+        assert code == 2, flags
+        with pytest.raises(gpm.InputError) as e:
+            gpm.calibrate(readings, robot, **kwargs)
+        expected = cli_error(err)
+        if named:
+            assert expected.startswith(flags[0])
+            expected = flags[0][2:] + expected[len(flags[0]):]
+        assert str(e.value) == expected
+    with pytest.raises(gpm.InputError, match=r"readings: expected shape \(n, 3\), got \(50, 2\)"):
+        gpm.calibrate(readings[:, :2], robot)
+
+
+def test_no_warnings_on_a_well_posed_problem(table5_samples):
+    with warnings.catch_warnings():
+        warnings.simplefilter("error")
+        gpm.calibrate(gpm.read_samples(table5_samples), gpm.load_robot())

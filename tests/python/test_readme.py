@@ -1,0 +1,17 @@
+# Tests python/README.md: its Python example runs as written.
+import contextlib
+import io
+import re
+
+from conftest import ROOT
+
+
+def test_readme_example_runs_as_written():
+    text = (ROOT / "python" / "README.md").read_text()
+    blocks = re.findall(r"```python\n(.*?)```", text, re.S)
+    assert len(blocks) == 1
+    assert len(blocks[0].strip().splitlines()) <= 10
+    out = io.StringIO()
+    with contextlib.redirect_stdout(out):
+        exec(compile(blocks[0], "python/README.md", "exec"), {})
+    assert "converged: True" in out.getvalue()
