@@ -15,7 +15,7 @@
 #include "models/errors.hpp"
 #include "python/bindings.hpp"
 #include "python/convert.hpp"
-#include "scenarios/calibration_method.hpp"
+#include "calib/calibrate.hpp"
 
 namespace gpm::python {
 namespace {
@@ -26,22 +26,6 @@ struct CalibrationResult {
   calib::Result result;
   Robot base;
 };
-
-// The one place that chooses the solver: Ceres LM directly for "lm", the
-// method dispatch for the global methods (lm, ga, pso, de, de+lm; it lives in
-// scenarios/calibration_method.hpp, to move to calib/calibrate.hpp).
-calib::Result calibrate_method(const calib::Problem& problem, const scenario::MethodOptions& o) {
-  if (o.method == "lm") {
-    calib::LmOptions lm;
-    lm.cost = o.cost;
-    lm.encoder_sigma = o.encoder_sigma;
-    lm.allow_rank_deficient = o.allow_rank_deficient;
-    lm.true_xy = o.true_xy;
-    lm.max_iterations = o.lm_max_iterations;
-    return calib::calibrate_lm(problem, lm);
-  }
-  return scenario::calibrate_with_method(problem, o);
-}
 
 py::dict diagnostics(const calib::Result& r) {
   py::dict d;
@@ -69,9 +53,7 @@ CalibrationResult calibrate(const py::handle& readings, const Robot& robot, cons
   // argument is named as in Python (cost=, method=, ...).
   const auto cost = calib::parse_cost(cost_text);
   if (!cost) throw InputError(fmt::format("cost: '{}' is not one of j1, j2, j3, ml", cost_text));
-  if (method != "lm" && method != "ga" && method != "pso" && method != "de" && method != "de+lm") {
-    throw InputError(fmt::format("method: '{}' is unknown (valid: {})", method, scenario::kMethodNames));
-  }
+  const calib::Method method_value = calib::parse_method(method, "method");
   std::optional<long> budget_value;
   if (!budget.is_none()) {
     budget_value = budget.cast<long>();
@@ -88,13 +70,13 @@ CalibrationResult calibrate(const py::handle& readings, const Robot& robot, cons
       throw InputError(fmt::format("true_xy: {} rows for {} rows of readings", xy.size(), problem.theta_m.size()));
     }
   }
-  scenario::MethodOptions mo;
-  mo.method = method;
+  calib::MethodOptions mo;
+  mo.method = method_value;
   mo.cost = *cost;
   mo.seed = static_cast<std::uint64_t>(seed);
   mo.allow_rank_deficient = allow_rank_deficient;
   if (budget_value) {
-    if (method == "lm") mo.lm_max_iterations = static_cast<int>(std::min<long>(*budget_value, 1000000));
+    if (method_value == calib::Method::kLM) mo.lm_max_iterations = static_cast<int>(std::min<long>(*budget_value, 1000000));
     else mo.budget = *budget_value;
   }
   if (!sigma.is_none()) {
@@ -109,7 +91,7 @@ CalibrationResult calibrate(const py::handle& readings, const Robot& robot, cons
   {
     py::gil_scoped_release unlocked;
     calib::check_samples(problem);
-    out.result = calibrate_method(problem, mo);
+    out.result = calib::calibrate(problem, mo);
   }
   for (const auto& note : out.result.notes) {
     if (PyErr_WarnEx(PyExc_RuntimeWarning, note.c_str(), 1) != 0) throw py::error_already_set();
