@@ -1,0 +1,97 @@
+// bench_monitor: per-cycle cost of calib/monitor's monitor_step() at the
+// servo rate (goal < 20 us, 50x headroom at 1 kHz), on the circle of the
+// monitor tests (radius 60 mm around (216.5, 250), period 4 s, 17-bit
+// readings). Three cases:
+//   BM_MonitorStepAverage   every cycle of the stream, as a controller calls it
+//                           (one cycle in `decimation` does the work);
+//   BM_MonitorStepAccepted  only cycles whose sample is accepted (window
+//                           test, step test and a filter update): the worst
+//                           regular cycle;
+//   BM_MonitorStepAlarm     the cycle that explains an alarm and re-baselines
+//                           (the rare worst case).
+//   bench_monitor [--benchmark_filter=...]
+#include <benchmark/benchmark.h>
+
+#include <cmath>
+#include <memory>
+#include <numbers>
+#include <vector>
+
+#include "calib/monitor/monitor.hpp"
+#include "models/kinematics.hpp"
+
+namespace {
+
+using namespace gpm;
+using namespace gpm::calib::monitor;
+
+// Readings of the nominal robot on the circle, 17-bit quantised.
+std::vector<Eigen::Vector3d> circle_readings(int n, double dth2_jump_at = 1e300) {
+  const double q = 2.0 * std::numbers::pi / 131072.0;
+  std::vector<Eigen::Vector3d> out(static_cast<size_t>(n));
+  for (int c = 0; c < n; ++c) {
+    const double t = c / 1000.0, w = 2.0 * std::numbers::pi * t / 4.0;
+    Geometry g = Geometry::gpm2002_nominal();
+    if (t >= dth2_jump_at) g[kDth2] += 1e-4;
+    const JointAngles ja = inverse_kinematics(g, Eigen::Vector2d(216.5 + 60 * std::cos(w), 250 + 60 * std::sin(w)));
+    for (int i = 0; i < 3; ++i) out[static_cast<size_t>(c)][i] = std::round((ja.theta_a[i] - g.dth_(i)) / q) * q;
+  }
+  return out;
+}
+
+void BM_MonitorStepAverage(benchmark::State& state) {
+  const MonitorModel m = make_monitor_model(MonitorSettings{});
+  static const std::vector<Eigen::Vector3d> readings = circle_readings(8000);
+  auto d = std::make_unique<MonitorData>(make_monitor_data(m));
+  long c = 0;
+  for (auto _ : state) {
+    const auto k = static_cast<size_t>(c % 8000);
+    benchmark::DoNotOptimize(monitor_step(m, *d, c / 1000.0, readings[k]));
+    ++c;
+  }
+  state.counters["accepted_per_cycle"] = static_cast<double>(d->accepted) / static_cast<double>(d->cycles);
+  state.counters["alarms"] = static_cast<double>(d->alarm_count);
+}
+BENCHMARK(BM_MonitorStepAverage)->Unit(benchmark::kMicrosecond);
+
+void BM_MonitorStepAccepted(benchmark::State& state) {
+  MonitorSettings s;
+  s.decimation = 1;         // every cycle is a candidate ...
+  s.min_motion_counts = 0;  // ... and accepted
+  const MonitorModel m = make_monitor_model(s);
+  static const std::vector<Eigen::Vector3d> readings = circle_readings(8000);
+  auto d = std::make_unique<MonitorData>(make_monitor_data(m));
+  long c = 0;
+  for (auto _ : state) {
+    // 5 ms apart on the path, as accepted samples are with the defaults
+    const auto k = static_cast<size_t>((5 * c) % 8000);
+    benchmark::DoNotOptimize(monitor_step(m, *d, 0.005 * c, readings[k]));
+    ++c;
+  }
+  state.counters["accepted_per_cycle"] = static_cast<double>(d->accepted) / static_cast<double>(d->cycles);
+}
+BENCHMARK(BM_MonitorStepAccepted)->Unit(benchmark::kMicrosecond);
+
+void BM_MonitorStepAlarm(benchmark::State& state) {
+  // Run up to the cycle before an alarm's explanation, then time that cycle.
+  const MonitorModel m = make_monitor_model(MonitorSettings{});
+  static const std::vector<Eigen::Vector3d> readings = circle_readings(6000, 3.0);
+  MonitorData start = make_monitor_data(m);
+  long c = 0;
+  for (; c < 6000; ++c) {
+    if (start.pending == 1 && start.cycles_since_accepted + 1 >= m.settings.decimation) break;
+    monitor_step(m, start, c / 1000.0, readings[static_cast<size_t>(c)]);
+  }
+  auto d = std::make_unique<MonitorData>();
+  for (auto _ : state) {
+    state.PauseTiming();
+    *d = start;
+    state.ResumeTiming();
+    const StepResult r = monitor_step(m, *d, c / 1000.0, readings[static_cast<size_t>(c)]);
+    benchmark::DoNotOptimize(r);
+    if (!r.explained) state.SkipWithError("the timed cycle did not explain an alarm");
+  }
+}
+BENCHMARK(BM_MonitorStepAlarm)->Unit(benchmark::kMicrosecond);
+
+}  // namespace

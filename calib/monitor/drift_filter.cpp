@@ -1,0 +1,102 @@
+#include "calib/monitor/drift_filter.hpp"
+
+#include <algorithm>
+#include <cmath>
+
+namespace gpm::calib::monitor {
+namespace {
+
+// h = dr/du (zero for the rate), P h' and s = sigma^2 + h P h'.
+double innovation_variance(const MonitorModel& m, const StateMatrix& P, const ParamRow& g,
+                           std::array<double, kMaxState>& Ph) {
+  std::array<double, kMaxState> h{};
+  for (int k = 0; k < m.n_free; ++k) h[static_cast<size_t>(k)] = g[m.free_index[static_cast<size_t>(k)]] / m.scale[static_cast<size_t>(k)];
+  double hPh = 0.0;
+  for (int k = 0; k < m.n_state; ++k) {
+    double acc = 0.0;
+    for (int l = 0; l < m.n_free; ++l) acc += P(k, l) * h[static_cast<size_t>(l)];
+    Ph[static_cast<size_t>(k)] = acc;
+    if (k < m.n_free) hPh += h[static_cast<size_t>(k)] * acc;
+  }
+  return m.sigma_rad * m.sigma_rad + hPh;
+}
+
+}  // namespace
+
+void filter_predict(const MonitorModel& m, Geometry& x, double& rate, StateMatrix& P, double dt) {
+  if (!(dt > 0.0)) return;
+  const int n = m.n_state, rho = m.rate_index;
+  if (rho >= 0) {
+    for (int k = 0; k < m.n_free; ++k)
+      x[m.free_index[static_cast<size_t>(k)]] += m.growth[static_cast<size_t>(k)] * rate * dt / m.scale[static_cast<size_t>(k)];
+    // P <- F P F' with F = I + dt v e_rho'.
+    std::array<double, kMaxState> c{};
+    for (int k = 0; k < n; ++k) c[static_cast<size_t>(k)] = P(k, rho);
+    const double c_rr = P(rho, rho);
+    for (int k = 0; k < n; ++k)
+      for (int l = 0; l < n; ++l) {
+        const double vk = m.growth[static_cast<size_t>(k)], vl = m.growth[static_cast<size_t>(l)];
+        P(k, l) += dt * (vk * c[static_cast<size_t>(l)] + c[static_cast<size_t>(k)] * vl) + dt * dt * c_rr * vk * vl;
+      }
+    // Process noise of the rate, integrated into the parameters.
+    const double q = m.rate_noise;
+    for (int k = 0; k < n; ++k) {
+      const double vk = k == rho ? 0.0 : m.growth[static_cast<size_t>(k)];
+      for (int l = 0; l < n; ++l) {
+        const double vl = l == rho ? 0.0 : m.growth[static_cast<size_t>(l)];
+        double add = q * dt * dt * dt / 3.0 * vk * vl;
+        if (k == rho && l == rho) add = q * dt;
+        else if (k == rho) add = q * dt * dt / 2.0 * vl;
+        else if (l == rho) add = q * dt * dt / 2.0 * vk;
+        P(k, l) += add;
+      }
+    }
+  }
+  for (int k = 0; k < n; ++k) P(k, k) += m.drift_rate[static_cast<size_t>(k)] * dt;
+  // Keep each variance below its ceiling (D P D stays positive semi-definite).
+  for (int k = 0; k < n; ++k)
+    if (P(k, k) > m.variance_cap[static_cast<size_t>(k)]) {
+      const double f = std::sqrt(m.variance_cap[static_cast<size_t>(k)] / P(k, k));
+      for (int l = 0; l < n; ++l) P(k, l) *= f, P(l, k) *= f;
+    }
+}
+
+bool filter_innovation(const MonitorModel& m, const MonitorData& d, double t_s, const Eigen::Vector3d& theta_m,
+                       double& z, ParamRow& dz) {
+  Geometry x = d.estimate;
+  double rate = d.growth_rate;
+  StateMatrix P = d.P;
+  if (d.filtered > 0) filter_predict(m, x, rate, P, t_s - d.t_last_update);
+  double r = 0.0;
+  ParamRow g;
+  if (!ml_residual_and_gradient(x, theta_m, r, g)) return false;
+  std::array<double, kMaxState> Ph{};
+  const double sqrt_s = std::sqrt(innovation_variance(m, P, g, Ph));
+  z = r / sqrt_s;
+  dz = g / sqrt_s;
+  return true;
+}
+
+void filter_update(const MonitorModel& m, MonitorData& d, double t_s, const Eigen::Vector3d& theta_m) {
+  if (d.filtered > 0) filter_predict(m, d.estimate, d.growth_rate, d.P, std::max(t_s - d.t_last_update, 0.0));
+  d.t_last_update = std::max(t_s, d.t_last_update);
+  double r = 0.0;
+  ParamRow g;
+  if (!ml_residual_and_gradient(d.estimate, theta_m, r, g)) return;
+  std::array<double, kMaxState> Ph{};
+  const double s = innovation_variance(m, d.P, g, Ph);
+  for (int k = 0; k < m.n_state; ++k) {
+    const double du = -Ph[static_cast<size_t>(k)] / s * r;
+    if (k == m.rate_index) d.growth_rate += du;
+    else d.estimate[m.free_index[static_cast<size_t>(k)]] += du / m.scale[static_cast<size_t>(k)];
+  }
+  for (int k = 0; k < m.n_state; ++k)
+    for (int l = 0; l <= k; ++l) {
+      const double v = d.P(k, l) - Ph[static_cast<size_t>(k)] * Ph[static_cast<size_t>(l)] / s;
+      d.P(k, l) = v;
+      d.P(l, k) = v;
+    }
+  ++d.filtered;
+}
+
+}  // namespace gpm::calib::monitor

@@ -1,0 +1,65 @@
+#include "calib/monitor/explain.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+
+namespace gpm::calib::monitor {
+
+void explain_window(const MonitorModel& model, const MonitorData& data, Alarm& alarm) {
+  std::array<double, kNumParams> s_zh{}, s_hh{}, inv_d0_sq{};
+  for (int k = 0; k < model.n_free; ++k) {
+    const int i = model.free_index[static_cast<size_t>(k)];
+    const double d0 = is_offset(i) ? model.settings.jump_offset_rad : model.settings.jump_length_mm;
+    inv_d0_sq[static_cast<size_t>(k)] = 1.0 / (d0 * d0);
+  }
+  double s_zz = 0.0;
+  alarm.score = -std::numeric_limits<double>::infinity();
+  for (int j = data.count - 1; j >= 0; --j) {  // onset at window sample j: samples j..end
+    const int slot = (data.head - data.count + j + 2 * kMaxWindow) % kMaxWindow;
+    const double z = data.z[static_cast<size_t>(slot)];
+    const ParamRow& dz = data.dz[static_cast<size_t>(slot)];
+    s_zz += z * z;
+    for (int k = 0; k < model.n_free; ++k) {
+      const auto ks = static_cast<size_t>(k);
+      const int i = model.free_index[ks];
+      s_zh[ks] += dz[i] * z;
+      s_hh[ks] += dz[i] * dz[i];
+      const double denom = s_hh[ks] + inv_d0_sq[ks];
+      const double fit = s_zh[ks] * s_zh[ks] / denom;
+      if (fit <= alarm.score) continue;  // the log term is >= 0: cannot win
+      const double score = fit - std::log(denom / inv_d0_sq[ks]);
+      if (score > alarm.score) {
+        alarm.score = score;
+        alarm.param = i;
+        alarm.delta = -s_zh[ks] / denom;
+        alarm.onset_s = data.t[static_cast<size_t>(slot)];
+        alarm.explained = s_zz > 0.0 ? fit / s_zz : 0.0;
+      }
+    }
+  }
+}
+
+double step_statistic(const MonitorModel& model, const MonitorData& data) {
+  std::array<double, kNumParams> s_zh{}, s_hh{}, var{};
+  for (int k = 0; k < model.n_free; ++k) {
+    const double sd = 1.0 / model.scale[static_cast<size_t>(k)];
+    var[static_cast<size_t>(k)] = data.P(k, k) * sd * sd;
+  }
+  double best = 0.0;
+  for (int j = data.count - 1; j >= 0; --j) {
+    const int slot = (data.head - data.count + j + 2 * kMaxWindow) % kMaxWindow;
+    const double z = data.z[static_cast<size_t>(slot)];
+    const ParamRow& dz = data.dz[static_cast<size_t>(slot)];
+    for (int k = 0; k < model.n_free; ++k) {
+      const auto ks = static_cast<size_t>(k);
+      const int i = model.free_index[ks];
+      s_zh[ks] += dz[i] * z;
+      s_hh[ks] += dz[i] * dz[i];
+      if (s_hh[ks] > 0.0) best = std::max(best, s_zh[ks] * s_zh[ks] / (s_hh[ks] * (1.0 + s_hh[ks] * var[ks])));
+    }
+  }
+  return best;
+}
+
+}  // namespace gpm::calib::monitor

@@ -1,0 +1,259 @@
+#include "calib/monitor/monitor.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+#include <numbers>
+
+#include <fmt/format.h>
+
+#include "calib/monitor/chi_square.hpp"
+#include "calib/monitor/drift_filter.hpp"
+#include "calib/monitor/explain.hpp"
+#include "models/errors.hpp"
+
+namespace gpm::calib::monitor {
+namespace {
+
+constexpr double kDefaultLengthSigmaMm = 0.002;
+constexpr double kDefaultOffsetSigmaRad = 2e-5;
+
+void require(bool ok, const std::string& what) {
+  if (!ok) throw InputError("monitor settings: " + what);
+}
+
+int slot_of(const MonitorData& d, int j) {  // j-th oldest sample of the window
+  return (d.head - d.count + j + 2 * kMaxWindow) % kMaxWindow;
+}
+
+// Window sum of z^2.
+double window_statistic(const MonitorData& d) {
+  double s = 0.0;
+  for (int j = 0; j < d.count; ++j) s += d.z[static_cast<size_t>(slot_of(d, j))] * d.z[static_cast<size_t>(slot_of(d, j))];
+  return s;
+}
+
+// True when every joint moved at least the gate since the last accepted sample.
+bool moved_enough(const MonitorModel& m, const MonitorData& d, const Eigen::Vector3d& theta_m) {
+  if (!d.has_accepted) return true;
+  for (int i = 0; i < 3; ++i) {
+    // readings wrap at 2 pi: compare on the circle
+    const double a = std::remainder(theta_m[i] - d.last_accepted[i], 2.0 * std::numbers::pi);
+    if (std::abs(a) < m.motion_gate_rad) return false;
+  }
+  return true;
+}
+
+}  // namespace
+
+std::array<double, kNumParams> MonitorSettings::nan_array() {
+  std::array<double, kNumParams> a;
+  a.fill(std::numeric_limits<double>::quiet_NaN());
+  return a;
+}
+
+MonitorModel make_monitor_model(const MonitorSettings& s) {
+  require(s.encoder_bits >= 0 && s.encoder_bits <= 40,
+          fmt::format("encoder_bits {} is out of range (0 for an ideal encoder, else 1..40)", s.encoder_bits));
+  require(s.noise_rad >= 0.0 && std::isfinite(s.noise_rad), "noise_rad must be finite and >= 0");
+  require(s.encoder_bits > 0 || s.noise_rad > 0.0,
+          "an ideal encoder (bits 0) without noise_rad gives zero noise: give bits or noise_rad");
+  require(s.cycle_hz > 0.0 && std::isfinite(s.cycle_hz), "cycle_hz must be > 0");
+  require(s.decimation >= 1, "decimation must be >= 1");
+  require(s.window >= 2 && s.window <= kMaxWindow / 2,
+          fmt::format("window {} must be in 2..{}", s.window, kMaxWindow / 2));
+  require(s.explain_samples >= 1 && s.explain_samples <= kMaxWindow - s.window,
+          fmt::format("explain_samples {} must be in 1..{} (kMaxWindow - window)", s.explain_samples,
+                      kMaxWindow - s.window));
+  require(s.false_alarms_per_hour > 0.0 && std::isfinite(s.false_alarms_per_hour),
+          "false_alarms_per_hour must be > 0");
+  require(s.thermal_tau_s > 0.0, "thermal_tau_s must be > 0 (inf: no drift)");
+  require(s.thermal_growth_mm >= 0.0 && s.length_drift_mm >= 0.0 && s.offset_drift_rad >= 0.0,
+          "drift scales must be >= 0");
+  require(s.jump_offset_rad > 0.0 && s.jump_length_mm > 0.0, "jump scales must be > 0");
+  require(s.min_motion_counts >= 0.0, "min_motion_counts must be >= 0");
+  require(s.estimate.any(), "no parameter to estimate");
+
+  MonitorModel m;
+  m.settings = s;
+  const double count = s.encoder_bits > 0 ? 2.0 * std::numbers::pi / std::ldexp(1.0, s.encoder_bits) : 0.0;
+  m.sigma_rad = std::sqrt(count * count / 12.0 + s.noise_rad * s.noise_rad);
+  m.motion_gate_rad = s.min_motion_counts * (count > 0.0 ? count : s.noise_rad);
+  m.tests_per_hour = 3600.0 * s.cycle_hz / s.decimation;
+  m.p_window = s.false_alarms_per_hour / m.tests_per_hour;
+  require(m.p_window < 0.5, "false_alarms_per_hour is larger than the number of tests per hour");
+  m.threshold = chi2_upper_quantile(s.window, 0.5 * m.p_window);
+
+  const double mean_la = (s.geometry.la_(0) + s.geometry.la_(1) + s.geometry.la_(2)) / 3.0;
+  const double mean_l = (mean_la + (s.geometry.lb_(0) + s.geometry.lb_(1) + s.geometry.lb_(2)) / 3.0) / 2.0;
+  const double per_tau = std::isfinite(s.thermal_tau_s) ? 1.0 / s.thermal_tau_s : 0.0;
+  bool any_length = false;
+  for (int i = 0; i < kNumParams; ++i) {
+    if (!s.estimate.test(static_cast<size_t>(i))) continue;
+    const auto k = static_cast<size_t>(m.n_free++);
+    m.free_index[k] = i;
+    m.scale[k] = is_offset(i) ? mean_la : 1.0;
+    const double prior = std::isnan(s.prior_sigma[static_cast<size_t>(i)])
+                             ? (is_offset(i) ? kDefaultOffsetSigmaRad : kDefaultLengthSigmaMm)
+                             : s.prior_sigma[static_cast<size_t>(i)];
+    require(prior > 0.0 && std::isfinite(prior), fmt::format("prior_sigma of {} must be > 0", param_name(i)));
+    const double drift = m.scale[k] * (is_offset(i) ? s.offset_drift_rad : s.length_drift_mm);
+    m.growth[k] = is_length(i) ? s.geometry[i] / mean_l : 0.0;
+    any_length = any_length || is_length(i);
+    // Independent random walks whose spread over one time constant is the drift scale.
+    m.drift_rate[k] = drift * drift * per_tau;
+    m.prior_variance[k] = std::pow(m.scale[k] * prior, 2);
+    m.variance_cap[k] = m.prior_variance[k] + drift * drift + std::pow(m.growth[k] * s.thermal_growth_mm, 2);
+  }
+  m.n_state = m.n_free;
+  if (any_length && s.thermal_growth_mm > 0.0 && per_tau > 0.0) {
+    // Growth rate of order A / tau, changing by A / tau over tau: a random
+    // walk of variance (A / tau)^2 per tau.
+    m.rate_index = m.n_state++;
+    const double rate = s.thermal_growth_mm * per_tau;
+    m.rate_noise = rate * rate * per_tau;
+    m.prior_variance[static_cast<size_t>(m.rate_index)] = rate * rate;
+    m.variance_cap[static_cast<size_t>(m.rate_index)] = 4.0 * rate * rate;
+  }
+  m.glr_threshold = chi2_upper_quantile(1, 0.5 * m.p_window / (m.n_free * s.window));
+  return m;
+}
+
+MonitorData make_monitor_data(const MonitorModel& m) {
+  MonitorData d;
+  d.estimate = m.settings.geometry;
+  d.P.setZero();
+  for (int k = 0; k < m.n_state; ++k) d.P(k, k) = m.prior_variance[static_cast<size_t>(k)];
+  return d;
+}
+
+void monitor_flush(const MonitorModel& m, MonitorData& d) {
+  for (int j = 0; j < d.count; ++j) {
+    const auto slot = static_cast<size_t>(slot_of(d, j));
+    filter_update(m, d, d.t[slot], d.theta[slot]);
+  }
+  d.count = 0;
+  d.statistic = 0.0;
+  d.step_statistic = 0.0;
+}
+
+StepResult monitor_step(const MonitorModel& m, MonitorData& d, double t_s, const Eigen::Vector3d& theta_m) {
+  StepResult out;
+  ++d.cycles;
+  ++d.cycles_since_accepted;
+  // Independence gate (README.md): at most one sample per `decimation`
+  // cycles, and only when every joint has moved, so that the quantisation
+  // errors of accepted samples are not copies of each other.
+  if (d.has_accepted && d.cycles_since_accepted < m.settings.decimation) return out;
+  if (!moved_enough(m, d, theta_m)) return out;
+
+  // The oldest sample leaves a full window and updates the filter; while an
+  // alarm waits for its explanation the filter waits too (it must not absorb
+  // the change before it is explained).
+  const int W = m.settings.window;
+  if (d.count >= W && d.pending < 0) {
+    const auto oldest = static_cast<size_t>(slot_of(d, 0));
+    filter_update(m, d, d.t[oldest], d.theta[oldest]);
+    --d.count;
+  }
+
+  // Innovation against the filter (which has seen no sample of the window)
+  // predicted to t_s.
+  double z = 0.0;
+  ParamRow dz;
+  if (!filter_innovation(m, d, t_s, theta_m, z, dz)) {
+    ++d.skipped;
+    return out;
+  }
+  d.has_accepted = true;
+  d.last_accepted = theta_m;
+  d.cycles_since_accepted = 0;
+  ++d.accepted;
+
+  const auto slot = static_cast<size_t>(d.head);
+  d.z[slot] = z;
+  d.t[slot] = t_s;
+  d.dz[slot] = dz;
+  d.theta[slot] = theta_m;
+  d.head = (d.head + 1) % kMaxWindow;
+  ++d.count;
+  const bool full = d.count == W && d.pending < 0;
+  d.statistic = full ? window_statistic(d) : 0.0;
+  d.step_statistic = full ? step_statistic(m, d) : 0.0;
+  d.last_z = z;
+  out.accepted = true;
+  out.z = z;
+  out.statistic = d.statistic;
+  out.step_statistic = d.step_statistic;
+  if (d.pending > 0 && --d.pending == 0) {
+    // Explain with explain_samples of motion after the crossing (over a short
+    // arc the sensitivity columns are nearly collinear), then re-baseline:
+    // apply the explained change and open its variance to its size, so the
+    // filter absorbs any remainder from the next samples.
+    Alarm& a = d.alarms[static_cast<size_t>((d.alarm_count - 1) % kMaxAlarms)];
+    explain_window(m, d, a);
+    a.explained_s = t_s;
+    out.explained = true;
+    d.estimate[a.param] += a.delta;
+    for (int k = 0; k < m.n_free; ++k)
+      if (m.free_index[static_cast<size_t>(k)] == a.param) {
+        const double v = std::pow(a.delta * m.scale[static_cast<size_t>(k)], 2);
+        if (v > d.P(k, k)) d.P(k, k) = v;
+      }
+    // The window's innovations were computed against the old estimate: drop
+    // them (feeding them to the filter would cost a filter update each, a
+    // few hundred microseconds in one cycle) and refill the window.
+    d.count = 0;
+    d.statistic = 0.0;
+    d.step_statistic = 0.0;
+    d.pending = -1;
+  } else if (d.pending < 0 && (d.statistic > m.threshold || d.step_statistic > m.glr_threshold)) {
+    Alarm& a = d.alarms[static_cast<size_t>(d.alarm_count % kMaxAlarms)];
+    a = Alarm{};
+    a.t_s = t_s;
+    // Report the test that is further past its threshold.
+    const bool step = d.step_statistic / m.glr_threshold > d.statistic / m.threshold;
+    a.kind = step ? AlarmKind::kStep : AlarmKind::kChiSquare;
+    a.statistic = step ? d.step_statistic : d.statistic;
+    a.threshold = step ? m.glr_threshold : m.threshold;
+    ++d.alarm_count;
+    out.alarm = true;
+    d.pending = std::max(m.settings.explain_samples, 1);
+  }
+  return out;
+}
+
+Estimate monitor_estimate(const MonitorModel& m, const MonitorData& d) {
+  Estimate e;
+  e.value = d.estimate.values;
+  e.sigma.fill(std::numeric_limits<double>::quiet_NaN());
+  for (int k = 0; k < m.n_free; ++k)
+    e.sigma[static_cast<size_t>(m.free_index[static_cast<size_t>(k)])] =
+        std::sqrt(d.P(k, k)) / m.scale[static_cast<size_t>(k)];
+  if (m.rate_index >= 0) {
+    e.growth_rate_mm_s = d.growth_rate;
+    e.growth_rate_sigma = std::sqrt(d.P(m.rate_index, m.rate_index));
+  }
+  return e;
+}
+
+const char* alarm_kind_name(AlarmKind kind) { return kind == AlarmKind::kStep ? "step" : "chi_square"; }
+
+const Alarm& last_alarm(const MonitorData& d) {
+  return d.alarms[static_cast<size_t>((d.alarm_count - 1) % kMaxAlarms)];
+}
+
+std::string describe_alarm(const Alarm& a) {
+  std::string what;
+  const auto name = param_name(a.param);
+  if (is_offset(a.param)) {
+    what = fmt::format("offset jump on joint {} ({} {:+.1e} rad)", a.param - kDth1 + 1, name, a.delta);
+  } else if (is_length(a.param)) {
+    what = fmt::format("link {} ({} {:+.1e} mm)", a.delta >= 0.0 ? "growth" : "shrinkage", name, a.delta);
+  } else {
+    what = fmt::format("base joint shift ({} {:+.1e} mm)", name, a.delta);
+  }
+  return fmt::format("{} from {:.3f} s, explains {:.0f}% of the window", what, a.onset_s, 100.0 * a.explained);
+}
+
+}  // namespace gpm::calib::monitor

@@ -1,0 +1,195 @@
+// Drift monitoring during normal operation (issue 17): a controller calls
+// monitor_step() every servo cycle with the three encoder readings. The
+// monitor
+//   - tests for a change with two statistics on the normalised ML
+//     innovations z = r / sqrt(sigma^2 + h P h') (r the ML residual of
+//     calib/residuals.hpp at the current estimate, h its gradient with
+//     respect to the estimated parameters, P their covariance): a
+//     sliding-window chi-square (any change) and a generalised likelihood
+//     ratio for a step in one estimated parameter from any onset in the
+//     window (matched to that parameter's signature, so far more sensitive
+//     where the step shows weakly); thresholds from a stated false-alarm
+//     rate, shared by the two tests (README.md derives them). The
+//     filter below runs one window behind the test (a sample updates it when
+//     it leaves the window), so a change inside the window is tested against
+//     an estimate that has not absorbed it;
+//   - explains an alarm by the single parameter (and onset) whose sensitivity
+//     column best fits the window's innovations;
+//   - tracks slow drift with an extended Kalman filter over the estimated
+//     parameters and a common thermal growth rate of the links (a smooth
+//     drift: the rate is a random walk set from the thermal time constant;
+//     each parameter also has a small random walk of its own), which updates
+//     only the directions the motion observes.
+// MuJoCo-style split: MonitorModel is constant, MonitorData mutable;
+// monitor_step() allocates nothing.
+#pragma once
+
+#include <array>
+#include <string>
+
+#include <Eigen/Core>
+
+#include "calib/monitor/ml_sensitivity.hpp"
+#include "models/parameters.hpp"
+
+namespace gpm::calib::monitor {
+
+// Most samples held (the change-test window plus the samples gathered for an
+// alarm's explanation) and the number of alarms kept.
+inline constexpr int kMaxWindow = 512;
+inline constexpr int kMaxAlarms = 64;
+// Filter coordinates: the estimated parameters plus the common thermal growth rate.
+inline constexpr int kMaxState = kNumParams + 1;
+using StateMatrix = Eigen::Matrix<double, kMaxState, kMaxState>;
+
+// What the user states; make_monitor_model() checks it and derives the rest.
+struct MonitorSettings {
+  Geometry geometry = Geometry::gpm2002_nominal();  // the calibrated robot (controller's model)
+  FreeMask estimate = default_free_mask();          // parameters tracked and used to explain
+  // Prior 1-sigma of each estimated parameter around `geometry` (mm or rad);
+  // NaN: 0.002 mm for lengths and base coordinates, 2e-5 rad for offsets
+  // (pass the calibration's 1-sigma when known).
+  std::array<double, kNumParams> prior_sigma = nan_array();
+  int encoder_bits = 17;        // counts per revolution 2^bits; 0 = ideal (no quantisation)
+  double noise_rad = 0.0;       // additive Gaussian reading noise (1-sigma)
+  double cycle_hz = 1000.0;     // servo rate at which monitor_step() is called
+  int decimation = 5;           // at most one accepted sample per this many cycles
+  double min_motion_counts = 2.0;  // every joint must move this many counts between accepted samples
+  int window = 250;             // change-test window W (accepted samples)
+  // Accepted samples after the crossing before the alarm is explained (the
+  // filter waits meanwhile); window + explain_samples <= kMaxWindow.
+  int explain_samples = 240;
+  double false_alarms_per_hour = 0.01;  // stated false-alarm rate of the change test
+  double thermal_tau_s = 60.0;  // time constant of thermal drift; alarms are for faster changes
+  // Common thermal growth of the links over one time constant (mm, for a
+  // link of the mean length; each link grows in proportion to its length):
+  // the growth rate is of order thermal_growth_mm / thermal_tau_s and changes
+  // by that much over one time constant. 0: no growth-rate state.
+  double thermal_growth_mm = 0.05;
+  double length_drift_mm = 0.0;     // independent drift of a length / base coordinate per time constant
+  double offset_drift_rad = 2e-6;   // independent drift of an encoder offset per time constant
+  // Typical size of a sudden change, the prior of the alarm's explanation
+  // (calib/monitor/explain.hpp): an encoder slip, a knock on a link or base.
+  double jump_offset_rad = 1e-3;
+  double jump_length_mm = 0.005;
+
+  // An array of NaN (the "use the default" marker of prior_sigma).
+  static std::array<double, kNumParams> nan_array();
+};
+
+// Constant model of the monitor (derived once from the settings).
+struct MonitorModel {
+  MonitorSettings settings;
+  double sigma_rad = 0.0;        // reading noise: sqrt(q^2 / 12 + noise_rad^2), q = 2 pi / 2^bits
+  double motion_gate_rad = 0.0;  // min_motion_counts * count (or * noise_rad when ideal)
+  double tests_per_hour = 0.0;   // 3600 * cycle_hz / decimation: the most window tests per hour
+  double p_window = 0.0;         // false-alarm probability per test sample: rate / tests_per_hour
+  double threshold = 0.0;        // chi-square test: chi2_W upper quantile at p_window / 2
+  double glr_threshold = 0.0;    // step test: chi2_1 upper quantile at p_window / (2 n_free W)
+  int n_free = 0;                        // number of estimated parameters
+  int n_state = 0;                       // filter coordinates: n_free, plus 1 with a growth-rate state
+  int rate_index = -1;                   // index of the growth-rate coordinate, -1 without
+  std::array<int, kNumParams> free_index{};  // parameter of each filter coordinate (first n_free)
+  // Filter coordinates u = scale * value: 1 for mm, the mean active length
+  // (mm) for offsets, so that P is well scaled; the rate is in mm/s.
+  std::array<double, kMaxState> scale{};
+  std::array<double, kMaxState> growth{};        // d u_k / d (common growth, mm): L_i / mean L for links, else 0
+  std::array<double, kMaxState> drift_rate{};    // independent random-walk variance per second of u_k
+  double rate_noise = 0.0;                       // random-walk variance per second of the growth rate
+  std::array<double, kMaxState> variance_cap{};  // ceiling of each variance
+  std::array<double, kMaxState> prior_variance{};  // initial variance
+};
+
+// Builds the model; throws gpm::InputError naming the setting that is wrong.
+MonitorModel make_monitor_model(const MonitorSettings& settings);
+
+// Which test raised an alarm.
+enum class AlarmKind { kChiSquare, kStep };
+
+// "chi_square" or "step".
+const char* alarm_kind_name(AlarmKind kind);
+
+// One alarm of the change test.
+struct Alarm {
+  AlarmKind kind = AlarmKind::kChiSquare;
+  double t_s = 0.0;        // time of the sample that crossed the threshold
+  double statistic = 0.0;  // window sum of z^2, or the step test's max S_zh^2 / S_hh
+  double threshold = 0.0;
+  int param = -1;          // parameter whose single change best explains the window
+  double delta = 0.0;      // its estimated change (mm or rad)
+  double onset_s = 0.0;    // estimated time the change began (first sample it explains)
+  double explained = 0.0;  // fraction of the post-onset sum of z^2 that the change explains
+  double score = 0.0;      // log evidence of the explanation against no change (explain.hpp)
+  double explained_s = 0.0;  // time the explanation was made (explain_samples after t_s)
+};
+
+// Mutable state of the monitor.
+struct MonitorData {
+  Geometry estimate;  // current parameter estimate (fixed ones at the model's values)
+  double growth_rate = 0.0;  // estimated common growth rate (mm/s for a link of the mean length)
+  StateMatrix P;             // covariance of the filter coordinates (n_state x n_state used)
+  Eigen::Vector3d last_accepted = Eigen::Vector3d::Zero();
+  bool has_accepted = false;
+  double t_last_update = 0.0;
+  long cycles_since_accepted = 0;
+  // Samples not yet in the filter (ring buffer): the change-test window, plus
+  // while an alarm is pending the samples since; innovations z, their
+  // sensitivities dz/dparams, times and readings (for the filter update when
+  // a sample leaves).
+  std::array<double, kMaxWindow> z{};
+  std::array<double, kMaxWindow> t{};
+  std::array<ParamRow, kMaxWindow> dz{};
+  std::array<Eigen::Vector3d, kMaxWindow> theta{};
+  int head = 0;   // next slot to write
+  int count = 0;  // samples held
+  double statistic = 0.0;  // latest window sum of z^2 (0 until the window is full)
+  double step_statistic = 0.0;  // latest step statistic (0 until the window is full)
+  double last_z = 0.0;     // latest innovation
+  std::array<Alarm, kMaxAlarms> alarms{};  // alarm k is at alarms[k % kMaxAlarms]
+  long alarm_count = 0;
+  int pending = -1;  // accepted samples until the latest alarm is explained; -1: none pending
+  long cycles = 0, accepted = 0, skipped = 0;  // skipped: readings with no ML residual
+  long filtered = 0;  // samples the filter has absorbed
+};
+
+// Fresh state: estimate = model geometry, covariance = prior.
+MonitorData make_monitor_data(const MonitorModel& model);
+
+// What one cycle did.
+struct StepResult {
+  bool accepted = false;  // the sample entered the test and the filter
+  bool alarm = false;     // an alarm was raised (data.alarms[(data.alarm_count - 1) % kMaxAlarms])
+  bool explained = false; // the latest alarm's explanation was filled in (explain_samples later)
+  double z = 0.0;         // normalised innovation of an accepted sample
+  double statistic = 0.0; // window statistic after this sample (0 while the window fills)
+  double step_statistic = 0.0;  // step statistic after this sample (0 while the window fills)
+};
+
+// One servo cycle at time t_s (s, increasing) with readings theta_m (rad).
+// Allocation-free.
+StepResult monitor_step(const MonitorModel& model, MonitorData& data, double t_s,
+                        const Eigen::Vector3d& theta_m);
+
+// Feeds every sample still in the window to the filter (e.g. at the end of a
+// run) and empties the window. Allocation-free.
+void monitor_flush(const MonitorModel& model, MonitorData& data);
+
+// Current estimate and 1-sigma (NaN for parameters not estimated).
+struct Estimate {
+  std::array<double, kNumParams> value{};
+  std::array<double, kNumParams> sigma{};
+  double growth_rate_mm_s = 0.0;  // common link growth rate (0 without a rate state)
+  double growth_rate_sigma = 0.0;
+};
+
+// The filter's current estimate and 1-sigma of every parameter.
+Estimate monitor_estimate(const MonitorModel& model, const MonitorData& data);
+
+// The most recent alarm (data.alarm_count must be > 0).
+const Alarm& last_alarm(const MonitorData& data);
+
+// An alarm in words (once explained), e.g. "offset jump on joint 2 (dth2 +1.0e-04 rad) from
+// 30.002 s, explains 97% of the window". Allocates: call outside the loop.
+std::string describe_alarm(const Alarm& alarm);
+
+}  // namespace gpm::calib::monitor

@@ -1,0 +1,44 @@
+// Tests of calib/monitor/explain.cpp on a hand-built window: innovations made
+// exactly of one parameter's column times a change from a known onset are
+// explained by that parameter, onset and (prior-shrunk) change; a window of
+// zeros before the onset does not move the onset.
+#include "calib/monitor/explain.hpp"
+
+#include <gtest/gtest.h>
+
+#include "models/rng.hpp"
+
+namespace gpm::calib::monitor {
+namespace {
+
+TEST(Explain, FindsTheParameterOnsetAndChangeOfAHandBuiltWindow) {
+  const MonitorModel m = make_monitor_model(MonitorSettings{});
+  for (int truth : {kLa2, kDth3, kXa3}) {
+    MonitorData d = make_monitor_data(m);
+    Rng rng(7 + static_cast<unsigned>(truth));
+    const int n = 60, onset = 25;
+    const double delta = is_offset(truth) ? 1e-4 : 0.02;
+    double s_hh = 0.0;
+    for (int j = 0; j < n; ++j) {
+      ParamRow dz;
+      for (int i = 0; i < kNumParams; ++i) dz[i] = rng.normal() * (is_offset(i) ? 5e3 : 30.0);
+      d.dz[static_cast<size_t>(j)] = dz;
+      d.t[static_cast<size_t>(j)] = 0.01 * j;
+      d.z[static_cast<size_t>(j)] = j >= onset ? -dz[truth] * delta : 0.0;
+      if (j >= onset) s_hh += dz[truth] * dz[truth];
+    }
+    d.head = n;
+    d.count = n;
+    Alarm a;
+    explain_window(m, d, a);
+    EXPECT_EQ(a.param, truth);
+    EXPECT_DOUBLE_EQ(a.onset_s, 0.01 * onset);
+    const double d0 = is_offset(truth) ? m.settings.jump_offset_rad : m.settings.jump_length_mm;
+    EXPECT_NEAR(a.delta, delta * s_hh / (s_hh + 1.0 / (d0 * d0)), 1e-9 * std::abs(delta));
+    // the prior shrinks the fit: S_zh^2 / (S_hh + d0^-2) of S_zz = delta^2 S_hh
+    EXPECT_NEAR(a.explained, s_hh / (s_hh + 1.0 / (d0 * d0)), 1e-9);
+  }
+}
+
+}  // namespace
+}  // namespace gpm::calib::monitor
