@@ -6,9 +6,9 @@
 #include <numbers>
 #include <numeric>
 
-#include <boost/math/special_functions/gamma.hpp>
 #include <fmt/format.h>
 
+#include "calib/chi_square.hpp"
 #include "calib/parameterization.hpp"
 #include "calib/residuals.hpp"
 #include "models/errors.hpp"
@@ -44,7 +44,7 @@ ModelTest model_test(const Geometry& g, const FreeMask& free,
   t.dof = static_cast<double>(n - p);
   t.chi2 = std::accumulate(z2.begin(), z2.end(), 0.0);
   t.rms_ratio = std::sqrt(t.chi2 / t.dof);
-  t.p_value = std::isfinite(t.chi2) ? boost::math::gamma_q(0.5 * t.dof, 0.5 * t.chi2) : 0.0;
+  t.p_value = chi2_survival(t.dof, t.chi2);
   t.passed = t.p_value >= alpha;
 
   std::vector<long> order(n);
