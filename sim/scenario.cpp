@@ -11,6 +11,7 @@
 #include "models/kinematics.hpp"
 #include "models/robot_yaml.hpp"
 #include "models/yaml_util.hpp"
+#include "sim/effects_yaml.hpp"
 
 namespace gpm::sim {
 namespace {
@@ -214,7 +215,7 @@ Scenario scenario_from_yaml(const YAML::Node& root, const std::string& file, con
   if (!root.IsMap()) fail(c, root, "expected a map of sections (see scenarios/SCHEMA.md)");
   yaml_check_keys(root, file, "",
                   {"name", "description", "robot", "seed", "actual", "physics", "servo", "encoder",
-                   "sampling", "path", "log", "calibration", "compensation", "expect", "hardware", "outputs", "render"});
+                   "sampling", "path", "log", "effects", "calibration", "compensation", "expect", "hardware", "outputs", "render"});
   Scenario s;
   s.file = file;
   s.name = root["name"] ? yaml_string(root["name"], file, "name")
@@ -247,6 +248,14 @@ Scenario scenario_from_yaml(const YAML::Node& root, const std::string& file, con
                      s.twin.servo_rate_hz, 1.0 / s.twin.mjcf.timestep_s));
   }
   if (root["encoder"]) parse_encoder(root["encoder"], c.at("encoder"), s.twin.encoder);
+  if (const YAML::Node fx = root["effects"]) {
+    s.twin.effects = parse_effects(fx, file, s.seed);
+    try {
+      check_transmission(s.controller, s.twin);
+    } catch (const InputError& e) {
+      throw InputError(yaml_where(file, fx, "") + e.what());
+    }
+  }
   if (root["sampling"]) s.sampling = parse_sampling(root["sampling"], c.at("sampling"));
   if (root["path"]) s.path = parse_path(root["path"], c.at("path"));
   if (const YAML::Node l = root["log"]) {

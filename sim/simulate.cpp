@@ -2,6 +2,7 @@
 
 #include <filesystem>
 #include <fstream>
+#include <optional>
 #include <unistd.h>
 
 #include <fmt/format.h>
@@ -10,6 +11,7 @@
 #include "models/kinematics.hpp"
 #include "models/robot_yaml.hpp"
 #include "models/yaml_util.hpp"
+#include "sim/effects.hpp"
 
 namespace gpm::sim {
 namespace {
@@ -58,9 +60,14 @@ void check_targets(const Scenario& s, const Robot& actual, const std::vector<Eig
   }
 }
 
-SimulationResult run_simulation(const Scenario& s) {
+SimulationResult run_simulation(const Scenario& s, std::function<void(const LogRow&)> sink) {
   SimulationResult r;
   r.actual = make_actual(s);
+  if (s.twin.effects.thermal.on()) r.log.thermal_reference = r.actual.geometry;
+  if (sink) {
+    r.log.sink = std::move(sink);
+    r.log.keep_rows = false;
+  }
   const std::vector<Eigen::Vector2d> poses =
       s.sampling ? plan_poses(*s.sampling, s.seed) : std::vector<Eigen::Vector2d>{};
   check_targets(s, r.actual, poses);
@@ -77,65 +84,133 @@ SimulationResult run_simulation(const Scenario& s) {
     follow_path(session, make_move(session.desired, path_at(*s.path, 0.0).p, speed));
     follow_path(session, *s.path);
   }
-  for (const LogRow& row : r.log.rows) {
-    r.max_violation_m = std::max(r.max_violation_m, row.violation_m);
-    r.max_torque = std::max(r.max_torque, row.torque.cwiseAbs().maxCoeff());
-  }
+  r.max_violation_m = r.log.max_violation_m;
+  r.max_torque = r.log.max_torque;
+  r.log.sink = nullptr;
   r.simulated_s = state.data->time;
   return r;
 }
 
 std::string samples_csv(const std::vector<SampleRecord>& samples) {
-  std::string out = "sample,theta_m1,theta_m2,theta_m3,x,y,theta_a1,theta_a2,theta_a3,target_x,target_y,settled\n";
+  std::string out =
+      "sample,theta_m1,theta_m2,theta_m3,x,y,theta_a1,theta_a2,theta_a3,target_x,target_y,settled,tau1,tau2,tau3\n";
   for (const SampleRecord& s : samples) {
-    out += fmt::format("{},{},{},{},{},{},{},{},{},{},{},{}\n", s.id, x(s.theta_m[0]), x(s.theta_m[1]),
+    out += fmt::format("{},{},{},{},{},{},{},{},{},{},{},{},{},{},{}\n", s.id, x(s.theta_m[0]), x(s.theta_m[1]),
                        x(s.theta_m[2]), x(s.xy_mm.x()), x(s.xy_mm.y()), x(s.theta_a[0]),
                        x(s.theta_a[1]), x(s.theta_a[2]), x(s.target.x()), x(s.target.y()),
-                       s.settled ? 1 : 0);
+                       s.settled ? 1 : 0, x(s.tau[0]), x(s.tau[1]), x(s.tau[2]));
   }
   return out;
+}
+
+std::string trajectory_header(bool thermal) {
+  std::string h = "t,x_des,y_des,x,y,theta_m1,theta_m2,theta_m3,tau1,tau2,tau3,violation_m";
+  if (thermal) {
+    h += ",growth";
+    for (int i = 0; i < kNumParams; ++i)
+      if (!is_offset(i)) h += fmt::format(",{}", param_name(i));
+  }
+  return h + "\n";
+}
+
+std::string trajectory_line(const LogRow& r, const Geometry* thermal_reference) {
+  std::string out = fmt::format("{},{},{},{},{},{},{},{},{},{},{},{}", x(r.t), x(r.desired.x()),
+                                x(r.desired.y()), x(r.actual.x()), x(r.actual.y()), x(r.readings[0]),
+                                x(r.readings[1]), x(r.readings[2]), x(r.torque[0]), x(r.torque[1]),
+                                x(r.torque[2]), x(r.violation_m));
+  if (thermal_reference) {
+    const Geometry g = thermal_geometry(*thermal_reference, r.growth);
+    out += "," + x(r.growth);
+    for (int i = 0; i < kNumParams; ++i)
+      if (!is_offset(i)) out += "," + x(g[i]);
+  }
+  return out + "\n";
 }
 
 std::string trajectory_csv(const TrajectoryLog& log) {
-  std::string out = "t,x_des,y_des,x,y,theta_m1,theta_m2,theta_m3,tau1,tau2,tau3,violation_m\n";
-  for (const LogRow& r : log.rows) {
-    out += fmt::format("{},{},{},{},{},{},{},{},{},{},{},{}\n", x(r.t), x(r.desired.x()),
-                       x(r.desired.y()), x(r.actual.x()), x(r.actual.y()), x(r.readings[0]),
-                       x(r.readings[1]), x(r.readings[2]), x(r.torque[0]), x(r.torque[1]),
-                       x(r.torque[2]), x(r.violation_m));
-  }
+  const Geometry* ref = log.thermal_reference ? &*log.thermal_reference : nullptr;
+  std::string out = trajectory_header(ref != nullptr);
+  for (const LogRow& r : log.rows) out += trajectory_line(r, ref);
   return out;
 }
 
+namespace {
+
+// A staging folder inside the output folder; files move into place at commit,
+// and everything staged (and a folder we created) is removed otherwise.
+class Staging {
+ public:
+  explicit Staging(const std::string& dir) : dir_(dir), target_(dir) {
+    std::error_code ec;
+    existed_ = fs::exists(target_, ec);
+    if (existed_ && !fs::is_directory(target_, ec))
+      throw InputError(fmt::format("{}: exists and is not a folder", dir));
+    fs::create_directories(target_, ec);
+    if (ec) throw InputError(fmt::format("{}: cannot create the output folder: {}", dir, ec.message()));
+    tmp_ = target_ / fmt::format(".gpm-simulate.tmp{}", static_cast<long>(::getpid()));
+    fs::create_directory(tmp_, ec);
+    if (ec) {
+      abandon();
+      throw InputError(fmt::format("{}: cannot write in the output folder: {}", dir, ec.message()));
+    }
+  }
+  ~Staging() {
+    if (!committed_) abandon();
+  }
+  fs::path path(const std::string& name) const { return tmp_ / name; }
+  void commit(const std::vector<std::string>& names) {
+    std::error_code ec;
+    for (const auto& name : names) {
+      fs::rename(tmp_ / name, target_ / name, ec);
+      if (ec) throw InputError(fmt::format("{}: cannot write {}: {}", dir_, name, ec.message()));
+    }
+    fs::remove_all(tmp_, ec);
+    committed_ = true;
+  }
+
+ private:
+  void abandon() {
+    std::error_code ec;
+    fs::remove_all(tmp_, ec);
+    if (!existed_) fs::remove(target_, ec);  // removes only an empty folder we made
+  }
+  std::string dir_;
+  fs::path target_, tmp_;
+  bool existed_ = false, committed_ = false;
+};
+
+}  // namespace
+
 void write_simulation(const SimulationResult& r, const std::string& dir) {
-  const fs::path target(dir);
-  std::error_code ec;
-  const bool existed = fs::exists(target, ec);
-  if (existed && !fs::is_directory(target, ec))
-    throw InputError(fmt::format("{}: exists and is not a folder", dir));
-  fs::create_directories(target, ec);
-  if (ec) throw InputError(fmt::format("{}: cannot create the output folder: {}", dir, ec.message()));
-  const fs::path tmp = target / fmt::format(".gpm-simulate.tmp{}", static_cast<long>(::getpid()));
+  Staging stage(dir);
   const std::vector<std::pair<std::string, std::string>> files = {
       {"samples.csv", samples_csv(r.samples)},
       {"trajectory.csv", trajectory_csv(r.log)},
       {"actual.yaml", robot_to_yaml(r.actual)},
       {"model.xml", r.model_xml},
   };
-  try {
-    fs::create_directory(tmp, ec);
-    if (ec) throw InputError(fmt::format("{}: cannot write in the output folder: {}", dir, ec.message()));
-    for (const auto& [name, text] : files) write_plain(tmp / name, text);
-    for (const auto& [name, text] : files) {
-      fs::rename(tmp / name, target / name, ec);
-      if (ec) throw InputError(fmt::format("{}: cannot write {}: {}", dir, name, ec.message()));
-    }
-    fs::remove_all(tmp, ec);
-  } catch (...) {
-    fs::remove_all(tmp, ec);
-    if (!existed) fs::remove(target, ec);  // removes only an empty folder we made
-    throw;
-  }
+  std::vector<std::string> names;
+  for (const auto& [name, text] : files) write_plain(stage.path(name), text), names.push_back(name);
+  stage.commit(names);
+}
+
+SimulationResult simulate_to_folder(const Scenario& s, const std::string& dir) {
+  Staging stage(dir);
+  const fs::path traj = stage.path("trajectory.csv");
+  std::ofstream out(traj, std::ios::binary | std::ios::trunc);
+  const bool thermal = s.twin.effects.thermal.on();
+  std::optional<Geometry> ref;
+  if (thermal) ref = make_actual(s).geometry;
+  out << trajectory_header(thermal);
+  SimulationResult r = run_simulation(s, [&](const LogRow& row) { out << trajectory_line(row, ref ? &*ref : nullptr); });
+  out.flush();
+  if (!out) throw InputError(fmt::format("{}: cannot write file (disk full or not writable?)", traj.string()));
+  out.close();
+  write_plain(stage.path("samples.csv"), samples_csv(r.samples));
+  write_plain(stage.path("actual.yaml"), robot_to_yaml(r.actual));
+  write_plain(stage.path("model.xml"), r.model_xml);
+  stage.commit({"samples.csv", "trajectory.csv", "actual.yaml", "model.xml"});
+  return r;
 }
 
 }  // namespace gpm::sim
