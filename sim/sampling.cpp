@@ -75,6 +75,7 @@ SampleRecord take_sample(Session& s, const Eigen::Vector2d& target, long id,
   const long n = ticks_in(s.model, o.average_s);
   Eigen::Vector3d first = Eigen::Vector3d::Zero(), sum_m = Eigen::Vector3d::Zero();
   Eigen::Vector3d sum_a = Eigen::Vector3d::Zero(), sum_tau = Eigen::Vector3d::Zero();
+  Eigen::Vector3d sum_w = Eigen::Vector3d::Zero();
   Eigen::Vector2d sum_xy = Eigen::Vector2d::Zero();
   for (long j = 0; j < n; ++j) {
     const TwinSnapshot snap = advance(s, hold);
@@ -82,11 +83,13 @@ SampleRecord take_sample(Session& s, const Eigen::Vector2d& target, long id,
     for (int i = 0; i < 3; ++i) sum_m[i] += wrap_pi(snap.readings[i] - first[i]);
     sum_a += snap.theta_a;
     sum_tau += snap.torque;
+    sum_w += snap.velocity;
     sum_xy += snap.ee_mm;
   }
   for (int i = 0; i < 3; ++i) rec.theta_m[i] = wrap_2pi(first[i] + sum_m[i] / n);
   rec.theta_a = sum_a / n;
   rec.tau = sum_tau / n;
+  rec.omega = sum_w / n;
   rec.xy_mm = sum_xy / n;
   return rec;
 }
