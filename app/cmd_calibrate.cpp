@@ -19,6 +19,7 @@
 #include "calib/result_yaml.hpp"
 #include "calib/sample_check.hpp"
 #include "models/errors.hpp"
+#include "models/output_file.hpp"
 #include "models/robot_yaml.hpp"
 #include "models/samples.hpp"
 
@@ -125,6 +126,9 @@ void run(const CalibrateOptions& o) {
   }
 
   calib::check_samples(problem, row_labels(o.data, samples));
+  // Output policy (models/output_file.hpp): refused before the work when the
+  // result would overwrite an input or cannot be written.
+  check_output_file(o.out, {o.data, model_path});
   scenario::MethodOptions mo;
   mo.method = o.method;
   mo.cost = *cost;

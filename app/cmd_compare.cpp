@@ -10,9 +10,11 @@
 #include <fmt/format.h>
 
 #include "app/commands.hpp"
+#include "app/compare_report.hpp"
 #include "calib/global/comparison.hpp"
 #include "calib/global/synthetic.hpp"
 #include "models/errors.hpp"
+#include "models/output_file.hpp"
 #include "models/robot_yaml.hpp"
 
 namespace gpm::cli {
@@ -77,10 +79,8 @@ void run_compare(const CompareArgs& a) {
     if (!c || *c == calib::Cost::kML) throw InputError(fmt::format("--costs: '{}' is not j1, j2 or j3", s));
     st.costs.push_back(*c);
   }
-  std::error_code ec;
-  std::filesystem::create_directories(a.out_dir, ec);
-  if (ec || !std::filesystem::is_directory(a.out_dir))
-    throw InputError(fmt::format("-o {}: cannot create the directory ({})", a.out_dir, ec.message()));
+  // All files or none (models/output_file.hpp); a bad folder fails before the runs.
+  OutputFolder out(a.out_dir);
 
   calib::global::ComparisonProgress progress;
   if (isatty(STDERR_FILENO)) {
@@ -94,14 +94,12 @@ void run_compare(const CompareArgs& a) {
   const auto c = calib::global::run_comparison(st, progress);
   if (progress) std::fprintf(stderr, "\n");
 
-  namespace fs = std::filesystem;
-  const fs::path dir(a.out_dir);
-  write_file_atomic((dir / "table6.md").string(), calib::global::comparison_markdown(c));
-  write_file_atomic((dir / "runs.csv").string(), calib::global::comparison_runs_csv(c));
-  write_file_atomic((dir / "history.csv").string(), calib::global::comparison_history_csv(c));
+  out.add("table6.md", compare_markdown(c));
+  out.add("runs.csv", calib::global::comparison_runs_csv(c));
+  out.add("history.csv", calib::global::comparison_history_csv(c));
   for (calib::Cost cost : st.costs)
-    write_file_atomic((dir / fmt::format("convergence_{}.svg", calib::cost_name(cost))).string(),
-                      calib::global::comparison_svg(c, cost));
+    out.add(fmt::format("convergence_{}.svg", calib::cost_name(cost)), compare_svg(c, cost));
+  out.commit();
   std::printf("%s", fmt::format("gpm compare: {} runs in {:.1f} s -> {}/table6.md, runs.csv, "
                                 "history.csv, convergence_*.svg\n{}\n",
                                 c.runs.size(), c.seconds, a.out_dir, c.at_actual.diagnosis)

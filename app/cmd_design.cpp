@@ -6,12 +6,9 @@
 // the optimised set at equal poses and noise. Bad input exits 2 with one line.
 #include <chrono>
 #include <cmath>
-#include <filesystem>
 #include <memory>
 #include <string>
-#include <system_error>
 
-#include <unistd.h>
 
 #include <fmt/format.h>
 
@@ -20,8 +17,10 @@
 #include "calib/excitation/layouts.hpp"
 #include "calib/excitation/pose_list.hpp"
 #include "models/errors.hpp"
+#include "models/output_file.hpp"
 #include "models/robot_yaml.hpp"
-#include "scenarios/svg_plot.hpp"
+#include "report/report_document.hpp"
+#include "report/svg_plot.hpp"
 
 namespace gpm::cli {
 namespace {
@@ -81,7 +80,7 @@ void run_design(const DesignCliOptions& o) {
       "use: gpm simulate THIS_FILE -o DIR, or paste the sampling block into a scenario",
       d.count, ex::criterion_name(d.criterion), d.sigma, format_param_list(d.free), o.model, design.candidates,
       d.grid_step_mm, d.guard.reach_mm, bound_note(design.bounds), design.bounds.mean_mm);
-  write_file_atomic(o.out, ex::pose_list_yaml(design.poses, comment));
+  write_output_file(o.out, ex::pose_list_yaml(design.poses, comment), {o.model});
   const double wall = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
   fmt::print("criterion        {}\n", ex::criterion_name(d.criterion));
   fmt::print("candidates       {} (grid {} mm)\n", design.candidates, d.grid_step_mm);
@@ -95,30 +94,35 @@ void run_design(const DesignCliOptions& o) {
 
 std::string fmt_bound(double v) { return std::isfinite(v) ? fmt::format("{:.4g}", v) : "inf"; }
 
-std::string comparison_markdown(const std::vector<ex::LayoutBounds>& rows, const ex::DesignOptions& d,
-                                const std::string& model) {
+// The comparison report (figures added by the caller).
+report::ReportDocument comparison_report(const std::vector<ex::LayoutBounds>& rows, const ex::DesignOptions& d,
+                                         const std::string& model) {
   const double ratio = ex::improvement_over_best_other(rows);
-  std::string md = fmt::format(
-      "# Excitation design: layouts at equal poses and noise\n\n"
-      "{} poses each, encoder noise {} rad (1-sigma, iid), free parameters {} (the rest fixed).\n"
-      "Bounds are Cramer-Rao bounds (calib/crb.hpp) at the geometry of `{}` (the nominal one, known before\n"
-      "calibration). mm parameters in mm; encoder offsets dth_i as rad x la_i (the elbow displacement an\n"
-      "offset error causes), so that all compare in mm. worst = largest bound, mean = mean over the free\n"
-      "parameters.\n\n"
-      "| layout | worst bound (mm) | worst parameter | mean bound (mm) | worst / optimised | log det F |\n"
-      "| --- | ---: | --- | ---: | ---: | ---: |\n",
-      d.count, d.sigma, format_param_list(d.free), model);
+  report::ReportDocument doc;
+  doc.heading(1, "Excitation design: layouts at equal poses and noise");
+  doc.paragraph(fmt::format(
+      "{} poses each, encoder noise {} rad (1-sigma, iid), free parameters {} (the rest fixed). "
+      "Bounds are Cramer-Rao bounds (calib/crb.hpp) at the geometry of `{}` (the nominal one, known before "
+      "calibration). mm parameters in mm; encoder offsets dth_i as rad x la_i (the elbow displacement an "
+      "offset error causes), so that all compare in mm. worst = largest bound, mean = mean over the free "
+      "parameters.",
+      d.count, d.sigma, format_param_list(d.free), model));
   const double best_worst = rows.back().bounds.worst_mm;
+  std::vector<std::vector<std::string>> table;
   for (const auto& r : rows)
-    md += fmt::format("| {} | {} | {} | {} | {} | {:.2f} |\n", r.name, fmt_bound(r.bounds.worst_mm),
-                      r.bounds.worst_param >= 0 ? param_name(r.bounds.worst_param) : "-", fmt_bound(r.bounds.mean_mm),
-                      fmt_bound(r.bounds.worst_mm / best_worst), r.bounds.log_det);
-  md += "\nLayouts:\n\n";
-  for (const auto& r : rows) md += fmt::format("- `{}`: {}\n", r.name, r.description);
-  md += fmt::format("\nThe optimised set is {:.1f}x better on the worst-parameter bound than the best of the others "
-                    "(goal: at least 3x).\n\nFigures: `design_comparison.svg` (bound of every parameter), "
-                    "`design_layouts.svg` (the poses).\n", ratio);
-  return md;
+    table.push_back({r.name, fmt_bound(r.bounds.worst_mm),
+                     r.bounds.worst_param >= 0 ? std::string(param_name(r.bounds.worst_param)) : "-",
+                     fmt_bound(r.bounds.mean_mm), fmt_bound(r.bounds.worst_mm / best_worst),
+                     fmt::format("{:.2f}", r.bounds.log_det)});
+  doc.table({"layout", "worst bound (mm)", "worst parameter", "mean bound (mm)", "worst / optimised", "log det F"},
+            table);
+  doc.paragraph("Layouts:");
+  std::vector<std::string> layouts;
+  for (const auto& r : rows) layouts.push_back(fmt::format("`{}`: {}", r.name, r.description));
+  doc.bullets(layouts);
+  doc.paragraph(fmt::format("The optimised set is {:.1f}x better on the worst-parameter bound than the best of "
+                            "the others (goal: at least 3x).", ratio));
+  return doc;
 }
 
 std::string comparison_csv(const std::vector<ex::LayoutBounds>& rows) {
@@ -174,26 +178,6 @@ std::string layouts_figure(const std::vector<ex::LayoutBounds>& rows) {
   return report::svg_plot(series, po);
 }
 
-// Writes name -> text into dir all or nothing: into a temporary folder first,
-// then each file renamed into place.
-void write_folder(const std::string& dir, const std::vector<std::pair<std::string, std::string>>& files) {
-  namespace fs = std::filesystem;
-  std::error_code ec;
-  fs::create_directories(dir, ec);
-  if (ec) throw InputError(fmt::format("-o {}: cannot create the folder ({})", dir, ec.message()));
-  const fs::path tmp = fs::path(dir) / fmt::format(".design-tmp-{}", ::getpid());
-  fs::remove_all(tmp, ec);
-  try {
-    fs::create_directories(tmp);
-    for (const auto& [name, text] : files) write_file_atomic((tmp / name).string(), text);
-    for (const auto& [name, text] : files) fs::rename(tmp / name, fs::path(dir) / name);
-  } catch (const std::exception& e) {
-    fs::remove_all(tmp, ec);
-    throw InputError(fmt::format("-o {}: cannot write the comparison ({})", dir, e.what()));
-  }
-  fs::remove_all(tmp, ec);
-}
-
 void run_compare(const DesignCliOptions& o) {
   ex::ComparisonOptions c;
   c.design = design_options(o);
@@ -205,19 +189,23 @@ void run_compare(const DesignCliOptions& o) {
   c.seed = o.seed;
   const Robot robot = load_robot(o.model);
   const auto rows = ex::compare_layouts(robot, c);
-  const std::string md = comparison_markdown(rows, c.design, o.model);
-  write_folder(o.out, {{"design_comparison.md", md},
-                       {"design_comparison.csv", comparison_csv(rows)},
-                       {"design_comparison.svg", bounds_figure(rows, c.design)},
-                       {"design_layouts.svg", layouts_figure(rows)},
-                       {"optimised_poses.yaml", ex::pose_list_yaml(rows.back().poses, "gpm design --compare: the optimised set")}});
+  report::ReportDocument doc = comparison_report(rows, c.design, o.model);
+  doc.heading(2, "Figures");
+  doc.figure("design_comparison", "Cramer-Rao bound of every free parameter, per layout", bounds_figure(rows, c.design));
+  doc.figure("design_layouts", "The poses of every layout", layouts_figure(rows));
+  // All files or none (models/output_file.hpp), never over the model file.
+  OutputFolder out(o.out, {o.model});
+  doc.stage(out, "design_comparison", "Excitation design: layouts at equal poses and noise");
+  out.add("design_comparison.csv", comparison_csv(rows));
+  out.add("optimised_poses.yaml", ex::pose_list_yaml(rows.back().poses, "gpm design --compare: the optimised set"));
+  out.commit();
   fmt::print("{:10} {:>14} {:>8} {:>14}\n", "layout", "worst (mm)", "param", "mean (mm)");
   for (const auto& r : rows)
     fmt::print("{:10} {:>14} {:>8} {:>14}\n", r.name, fmt_bound(r.bounds.worst_mm),
                r.bounds.worst_param >= 0 ? param_name(r.bounds.worst_param) : "-", fmt_bound(r.bounds.mean_mm));
   fmt::print("optimised is {:.1f}x better on the worst bound than the best other layout\n",
              ex::improvement_over_best_other(rows));
-  fmt::print("wrote {}/design_comparison.md, .csv, .svg, design_layouts.svg, optimised_poses.yaml\n", o.out);
+  fmt::print("wrote {}/design_comparison.md, .html, .csv, .svg, design_layouts.svg, optimised_poses.yaml\n", o.out);
 }
 
 }  // namespace

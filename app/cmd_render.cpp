@@ -13,7 +13,7 @@
 #include "app/commands.hpp"
 #include "models/errors.hpp"
 #include "models/mjcf.hpp"
-#include "render/output_file.hpp"
+#include "models/output_file.hpp"
 #include "render/render_options.hpp"
 #include "render/scene_renderer.hpp"
 #include "render/video_job.hpp"
@@ -46,28 +46,28 @@ sim::SimulationResult run(const sim::Scenario& s, const std::string& file) {
 
 void add_render(CLI::App& app) {
   auto opt = std::make_shared<RenderCliOptions>();
-  auto* cmd = app.add_subcommand("render", "Render an off-screen MP4 video (and PNG frames) of a scenario's motion");
+  auto* cmd = app.add_subcommand("render", kRenderDescription);
   cmd->add_option("scenario", opt->scenario, "Scenario file (YAML, see scenarios/SCHEMA.md and render/README.md)")
       ->required();
   cmd->add_option("-o,--out", opt->out, "Output video (H.264 MP4)");
-  cmd->add_option("--fps", opt->fps, "Video frames per second (default 30)");
+  CLI::Option* fps = cmd->add_option("--fps", opt->fps, "Video frames per second (default 30)");
   cmd->add_option("--size", opt->size, "Frame size WxH in pixels, even (default 640x480)");
   cmd->add_option("--camera", opt->camera, "Camera: top (default), oblique, or a camera of the model");
   cmd->add_option("--quality", opt->quality, "fast (default: no multisampling, no shadows) or high (4x MSAA, shadows)");
-  cmd->add_option("--speed", opt->speed, "Simulated seconds per video second (default 1)");
+  CLI::Option* speed = cmd->add_option("--speed", opt->speed, "Simulated seconds per video second (default 1)");
   cmd->add_option("--frame-png", opt->frame_png, "Save frame N (0-based) as a PNG: N:FILE (repeatable)");
   cmd->add_option("--beside", opt->beside, "A second scenario shown side by side (e.g. the calibrated controller)");
-  cmd->callback([opt] {
+  cmd->callback([opt, fps, speed] {
     if (opt->out.empty() && opt->frame_png.empty())
       throw InputError("gpm render: give -o VIDEO.mp4 and/or --frame-png N:FILE");
     render::RenderOptions o = render::render_options_from_file(opt->scenario);
     if (!opt->size.empty()) render::parse_size(opt->size, "--size", o.width, o.height);
-    if (opt->fps != 0.0) {
+    if (fps->count() > 0) {  // given: 0 is refused like any other impossible rate
       if (!(opt->fps > 0 && opt->fps <= 240))
         throw InputError(fmt::format("--fps: must be in (0, 240], got {}", opt->fps));
       o.fps = opt->fps;
     }
-    if (opt->speed != 0.0) {
+    if (speed->count() > 0) {
       if (!(opt->speed > 0)) throw InputError(fmt::format("--speed: must be positive, got {}", opt->speed));
       o.speed = opt->speed;
     }
@@ -85,8 +85,9 @@ void add_render(CLI::App& app) {
       render::check_render_setup(mjcf_from_robot(actual, scenarios.back().twin.mjcf), o,
                                  opt->camera.empty() ? f + ": render.camera" : "--camera");
     }
-    if (!opt->out.empty()) render::check_output_file(opt->out);
-    for (const render::FrameRequest& p : pngs) render::check_output_file(p.path);
+    // Output policy (models/output_file.hpp): an output that is an input is refused.
+    if (!opt->out.empty()) check_output_file(opt->out, files);
+    for (const render::FrameRequest& p : pngs) check_output_file(p.path, files);
 
     std::vector<sim::SimulationResult> results;
     for (size_t i = 0; i < scenarios.size(); ++i) results.push_back(run(scenarios[i], files[i]));

@@ -1,5 +1,5 @@
 // gpm run SCENARIO.yaml -o DIR: simulate, calibrate, compensate, evaluate and
-// report (scenarios/runner.hpp). Exit 1 when an expectation fails.
+// report (run/runner.hpp). Exit 1 when an expectation fails.
 #include <cstdio>
 #include <filesystem>
 #include <memory>
@@ -9,8 +9,9 @@
 #include <unistd.h>
 
 #include "app/commands.hpp"
-#include "scenarios/run_spec.hpp"
-#include "scenarios/runner.hpp"
+#include "models/errors.hpp"
+#include "run/run_spec.hpp"
+#include "run/runner.hpp"
 
 namespace gpm::cli {
 namespace {
@@ -77,7 +78,11 @@ void add_run(CLI::App& app) {
     std::string samples_path;
     if (spec.hardware) {
       // Samples are appended to DIR/samples.csv as they are taken (nothing measured is lost).
-      std::filesystem::create_directories(opt->out);
+      std::error_code ec;
+      std::filesystem::create_directories(opt->out, ec);
+      if (ec || !std::filesystem::is_directory(opt->out))
+        throw InputError(fmt::format("{}: cannot create the output folder ({})", opt->out,
+                                     ec ? ec.message() : "exists and is not a folder"));
       samples_path = (std::filesystem::path(opt->out) / "samples.csv").string();
     }
     const bool show = !opt->quiet && ::isatty(STDERR_FILENO);

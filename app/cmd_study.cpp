@@ -15,6 +15,7 @@
 #include "calib/paper_values.hpp"
 #include "calib/synthetic.hpp"
 #include "models/errors.hpp"
+#include "models/output_file.hpp"
 #include "models/robot_yaml.hpp"
 #include "models/samples.hpp"
 
@@ -49,6 +50,7 @@ void run_samples(const StudyOptions& o) {
   if (o.n < 1) throw InputError(fmt::format("--n: must be at least 1, got {}", o.n));
   if (o.sigma < 0.0 || !std::isfinite(o.sigma)) throw InputError(fmt::format("--sigma: must be >= 0, got {}", o.sigma));
   const Robot r = actual_robot(o.actual);
+  check_output_file(o.out, {o.actual});  // models/output_file.hpp: never over an input
   const auto poses = calib::disc_poses(r, o.n, r.home, o.radius, static_cast<std::uint64_t>(o.seed));
   write_samples_csv(calib::samples_at(r, poses, o.sigma, static_cast<std::uint64_t>(o.seed) + 7777), o.out);
   fmt::print("{} samples of {} in a disc of {} mm around home (seed {}, noise {} rad) -> {}\n", o.n, o.actual,

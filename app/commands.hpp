@@ -9,7 +9,8 @@
 
 namespace gpm::cli {
 
-// Records the exit code a subcommand wants (0 success, 1 failed expectations).
+// Records the exit code a subcommand wants (0 success, 1 failed expectations);
+// app/cli_main.cpp.
 void set_exit(int code);
 int exit_code();
 
@@ -20,7 +21,9 @@ void add_kin(CLI::App& app);
 void add_simulate(CLI::App& app);
 void add_calibrate(CLI::App& app);
 void add_run(CLI::App& app);
-void add_render(CLI::App& app);
+void add_render(CLI::App& app);  // in gpm-render (app/render_main.cpp) only
+inline constexpr const char* kRenderDescription =
+    "Render an off-screen MP4 video (and PNG frames) of a scenario's motion";
 void add_compare(CLI::App& app);
 void add_study(CLI::App& app);
 void add_design(CLI::App& app);

@@ -1,38 +1,46 @@
 // gpm: the command line of the GPM2002 digital twin and calibration toolkit.
-// Thin: parses, calls the libraries, prints. Exit codes (DESIGN.md): 0 success,
-// 1 the run worked but failed its expectations, 2 bad input (one line on stderr).
+// Thin: parses, calls the libraries, prints. Exit codes (README): 0 success,
+// 1 the run worked but failed its expectations, 2 bad input (one line on
+// stderr), 3 a bug, 130 interrupted. `gpm render` runs the renderer, a
+// separate executable (gpm-render, next to gpm), so that gpm itself loads
+// neither OSMesa nor libav.
+#include <cerrno>
 #include <cstdio>
-#include <exception>
+#include <cstring>
 #include <filesystem>
+#include <string>
 
 #include <fmt/format.h>
 #include <glog/logging.h>
+#include <unistd.h>
 
+#include "app/cli_main.hpp"
 #include "app/commands.hpp"
-#include "models/data_dir.hpp"
-#include "models/errors.hpp"
 
-namespace gpm::cli {
 namespace {
-int g_exit = 0;
+
+// Replaces this process by gpm-render with the same arguments; returns only
+// on failure (exit 2, the renderer is not installed beside gpm).
+int exec_renderer(char** argv) {
+  std::error_code ec;
+  const std::filesystem::path self = std::filesystem::read_symlink("/proc/self/exe", ec);
+  const std::filesystem::path renderer = (ec ? std::filesystem::path(argv[0]) : self).parent_path() / "gpm-render";
+  ::execv(renderer.c_str(), argv);
+  const int err = errno;
+  std::fprintf(stderr, "gpm: error: gpm render: cannot run the renderer %s: %s (install gpm-render next to gpm)\n",
+               renderer.c_str(), std::strerror(err));
+  return 2;
 }
 
-void set_exit(int code) { g_exit = code; }
-int exit_code() { return g_exit; }
-
-std::string default_model_path() {
-  const char* env = std::getenv("GPM_MODEL");
-  if (env && *env) return env;
-  return gpm::models_dir() + "/gpm2002.yaml";
+// Lists `render` in gpm's help; never runs (main execs gpm-render first).
+void add_render_entry(CLI::App& app) {
+  app.add_subcommand("render", gpm::cli::kRenderDescription)->allow_extras()->prefix_command();
 }
 
-void not_available(const std::string& name, const std::string& issue) {
-  throw InputError(fmt::format("gpm {}: not available yet ({} has not landed)", name, issue));
-}
-
-}  // namespace gpm::cli
+}  // namespace
 
 int main(int argc, char** argv) {
+  if (argc >= 2 && std::strcmp(argv[1], "render") == 0) return exec_renderer(argv);
   // Ceres logs through glog; gpm reports solver problems itself (result notes),
   // so only fatal glog messages reach the terminal.
   FLAGS_minloglevel = google::GLOG_FATAL;
@@ -45,29 +53,11 @@ int main(int argc, char** argv) {
   gpm::cli::add_simulate(app);
   gpm::cli::add_calibrate(app);
   gpm::cli::add_run(app);
-  gpm::cli::add_render(app);
+  add_render_entry(app);
   gpm::cli::add_compare(app);
   gpm::cli::add_study(app);
   gpm::cli::add_design(app);
   gpm::cli::add_sample(app);
   gpm::cli::add_zero(app);
-  try {
-    app.parse(argc, argv);
-  } catch (const CLI::CallForHelp& e) {
-    return app.exit(e);
-  } catch (const CLI::CallForAllHelp& e) {
-    return app.exit(e);
-  } catch (const CLI::CallForVersion& e) {
-    return app.exit(e);
-  } catch (const CLI::ParseError& e) {
-    std::fprintf(stderr, "gpm: error: %s (see gpm --help)\n", e.what());
-    return 2;
-  } catch (const gpm::InputError& e) {
-    std::fprintf(stderr, "gpm: error: %s\n", e.what());
-    return 2;
-  } catch (const std::exception& e) {
-    std::fprintf(stderr, "gpm: internal error: %s\n", e.what());
-    return 3;
-  }
-  return gpm::cli::exit_code();
+  return gpm::cli::run_app(app, argc, argv);
 }

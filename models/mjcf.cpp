@@ -22,6 +22,7 @@
 
 #include "models/errors.hpp"
 #include "models/kinematics.hpp"
+#include "models/xml_escape.hpp"
 #include "models/yaml_util.hpp"
 
 namespace gpm {
@@ -29,21 +30,6 @@ namespace {
 
 // Exact decimal text of a number (MJCF reads it back to the same double).
 std::string num(double x) { return format_exact(x); }
-
-// Text safe inside an XML attribute.
-std::string xml_escape(const std::string& s) {
-  std::string out;
-  for (char c : s) {
-    switch (c) {
-      case '&': out += "&amp;"; break;
-      case '<': out += "&lt;"; break;
-      case '>': out += "&gt;"; break;
-      case '"': out += "&quot;"; break;
-      default: out += c;
-    }
-  }
-  return out;
-}
 
 // Inertial element of a slender rod of length L (m) along +x from the body origin.
 std::string rod_inertial(double mass, double length, double radius) {

@@ -9,6 +9,7 @@
 
 #include "models/errors.hpp"
 #include "models/kinematics.hpp"
+#include "models/output_file.hpp"
 #include "models/yaml_util.hpp"
 
 namespace gpm {
@@ -161,29 +162,7 @@ std::string robot_to_yaml(const Robot& r) {
 }
 
 void write_file_atomic(const std::string& path, const std::string& text) {
-  namespace fs = std::filesystem;
-  const fs::path target(path);
-  fs::path tmp = target;
-  tmp += fmt::format(".tmp{}", static_cast<long>(::getpid()));
-  {
-    std::ofstream out(tmp, std::ios::binary | std::ios::trunc);
-    if (!out) {
-      throw InputError(fmt::format("{}: cannot write file (is the folder there and writable?)", path));
-    }
-    out << text;
-    out.flush();
-    if (!out) {
-      std::error_code ec;
-      fs::remove(tmp, ec);
-      throw InputError(fmt::format("{}: write failed (disk full?)", path));
-    }
-  }
-  std::error_code ec;
-  fs::rename(tmp, target, ec);
-  if (ec) {
-    fs::remove(tmp, ec);
-    throw InputError(fmt::format("{}: cannot write file: {}", path, ec.message()));
-  }
+  write_output_file(path, text);  // models/output_file.hpp: the output policy
 }
 
 void save_robot(const Robot& robot, const std::string& path) {

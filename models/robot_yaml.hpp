@@ -39,7 +39,8 @@ std::string geometry_to_yaml(const Geometry& g, int indent);
 // InputError if the path is not writable.
 void save_robot(const Robot& robot, const std::string& path);
 
-// Writes text to path atomically: nothing half-written is left on failure.
+// Writes text to path by the output policy (models/output_file.hpp): staged
+// and renamed, devices written in place, links followed.
 void write_file_atomic(const std::string& path, const std::string& text);
 
 }  // namespace gpm

@@ -7,27 +7,28 @@
 #include <png.h>
 
 #include "models/errors.hpp"
-#include "render/output_file.hpp"
+#include "models/output_file.hpp"
 
 namespace gpm::render {
 
-void write_png(const std::string& path, const FrameImage& img) {
-  check_output_file(path);
-  const std::string tmp = temporary_name_for(path);
+void write_png_to(const OutputFile& out, const FrameImage& img) {
   png_image image;
   std::memset(&image, 0, sizeof(image));
   image.version = PNG_IMAGE_VERSION;
   image.width = static_cast<png_uint_32>(img.width);
   image.height = static_cast<png_uint_32>(img.height);
   image.format = PNG_FORMAT_RGB;
-  const int ok = png_image_write_to_file(&image, tmp.c_str(), 0, img.rgb.data(), img.width * 3, nullptr);
+  const int ok =
+      png_image_write_to_file(&image, out.write_path().c_str(), 0, img.rgb.data(), img.width * 3, nullptr);
   const std::string message = image.message;
   png_image_free(&image);
-  if (!ok) {
-    std::remove(tmp.c_str());
-    throw InputError(fmt::format("{}: cannot write the PNG: {}", path, message));
-  }
-  commit_output_file(tmp, path);
+  if (!ok) throw InputError(fmt::format("{}: cannot write the PNG: {}", out.path(), message));
+}
+
+void write_png(const std::string& path, const FrameImage& img) {
+  OutputFile out(path);  // models/output_file.hpp: staged, or in place for a device
+  write_png_to(out, img);
+  out.commit();
 }
 
 FrameImage read_png(const std::string& path) {

@@ -1,6 +1,7 @@
 #include "render/video_encoder.hpp"
 
 #include <cstdio>
+#include <optional>
 
 #include <fmt/format.h>
 
@@ -14,8 +15,8 @@ extern "C" {
 }
 
 #include "models/errors.hpp"
+#include "models/output_file.hpp"
 #include "render/offscreen_context.hpp"
-#include "render/output_file.hpp"
 
 namespace gpm::render {
 namespace {
@@ -29,7 +30,8 @@ std::string av_error(int code) {
 }  // namespace
 
 struct VideoEncoder::Impl {
-  std::string path, tmp;
+  std::string path, tmp;  // tmp: where libav writes (the staged file, or a device in place)
+  std::optional<gpm::OutputFile> out;  // discarded unless finished
   int width = 0, height = 0;
   AVFormatContext* fmt = nullptr;
   AVCodecContext* codec = nullptr;
@@ -49,7 +51,6 @@ struct VideoEncoder::Impl {
       if (file_open) avio_closep(&fmt->pb);
       avformat_free_context(fmt);
     }
-    if (!finished && !tmp.empty()) std::remove(tmp.c_str());
   }
 
   // Sends frame f (nullptr: flush) and writes every packet the encoder returns.
@@ -79,8 +80,8 @@ VideoEncoder::VideoEncoder(const std::string& path, int width, int height, doubl
   if (width <= 0 || height <= 0 || width % 2 || height % 2)
     throw InputError(fmt::format("{}: video size {}x{} must be positive and even", path, width, height));
   if (!(fps > 0)) throw InputError(fmt::format("{}: frame rate must be positive, got {}", path, fps));
-  check_output_file(path);
-  im.tmp = temporary_name_for(path);
+  im.out.emplace(path);  // models/output_file.hpp: staged, or in place for a device
+  im.tmp = im.out->write_path();
 
   const AVCodec* codec = avcodec_find_encoder_by_name("libx264");
   if (!codec) codec = avcodec_find_encoder(AV_CODEC_ID_H264);
@@ -154,7 +155,7 @@ void VideoEncoder::finish() {
   rc = avio_closep(&im.fmt->pb);
   im.file_open = false;
   if (rc < 0) throw InputError(fmt::format("{}: cannot write: {}", im.path, av_error(rc)));
-  commit_output_file(im.tmp, im.path);
+  im.out->commit();
   im.finished = true;
 }
 

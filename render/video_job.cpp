@@ -8,7 +8,7 @@
 #include <fmt/format.h>
 
 #include "models/errors.hpp"
-#include "render/output_file.hpp"
+#include "models/output_file.hpp"
 #include "render/png_writer.hpp"
 #include "render/video_encoder.hpp"
 
@@ -44,14 +44,6 @@ FrameRequest parse_frame_request(const std::string& text, const std::string& wha
 namespace {
 
 // Temporary PNG files, renamed together at the end or removed.
-struct PendingPngs {
-  std::vector<std::pair<std::string, std::string>> files;  // (tmp, final)
-  bool committed = false;
-  ~PendingPngs() {
-    if (!committed)
-      for (const auto& f : files) std::remove(f.first.c_str());
-  }
-};
 
 }  // namespace
 
@@ -65,11 +57,13 @@ VideoSummary render_video(const std::vector<RunView>& runs, const RenderOptions&
   for (const FrameRequest& p : pngs) {
     if (p.frame >= n)
       throw InputError(fmt::format("--frame-png {}: the video has {} frames (0..{})", p.frame, n, n - 1));
-    check_output_file(p.path);
   }
+  // Every PNG staged (or a device opened in place) before any frame is rendered.
+  std::vector<OutputFile> png_out;
+  png_out.reserve(pngs.size());
+  for (const FrameRequest& p : pngs) png_out.emplace_back(p.path);
   std::optional<VideoEncoder> encoder;
   if (!mp4_path.empty()) encoder.emplace(mp4_path, options.width, options.height, options.fps);
-  PendingPngs pending;
   int last = n - 1;
   if (!encoder) {
     last = -1;
@@ -82,16 +76,11 @@ VideoSummary render_video(const std::vector<RunView>& runs, const RenderOptions&
     if (!wanted) continue;
     const FrameImage& img = renderer.render(frame_time(t0, k, options.fps, options.speed));
     if (encoder) encoder->add_frame(img);
-    for (const FrameRequest& p : pngs) {
-      if (p.frame != k) continue;
-      const std::string tmp = temporary_name_for(p.path) + ".png";
-      pending.files.emplace_back(tmp, p.path);
-      write_png(tmp, img);
-    }
+    for (size_t i = 0; i < pngs.size(); ++i)
+      if (pngs[i].frame == k) write_png_to(png_out[i], img);
   }
   if (encoder) encoder->finish();
-  for (const auto& [tmp, path] : pending.files) commit_output_file(tmp, path);
-  pending.committed = true;
+  for (OutputFile& f : png_out) f.commit();
   const double wall = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   VideoSummary s;
   s.frames = encoder ? encoder->frames() : static_cast<int>(pngs.size());

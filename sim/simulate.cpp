@@ -9,6 +9,7 @@
 
 #include "models/errors.hpp"
 #include "models/kinematics.hpp"
+#include "models/output_file.hpp"
 #include "models/robot_yaml.hpp"
 #include "models/yaml_util.hpp"
 #include "sim/effects.hpp"
@@ -33,13 +34,6 @@ std::vector<Eigen::Vector2d> path_points(const Path& path) {
   const int n = 200;
   for (int k = 0; k <= n; ++k) out.push_back(path_at(path, path_duration(path) * k / n).p);
   return out;
-}
-
-void write_plain(const fs::path& p, const std::string& text) {
-  std::ofstream out(p, std::ios::binary | std::ios::trunc);
-  out << text;
-  out.flush();
-  if (!out) throw InputError(fmt::format("{}: cannot write file (disk full or not writable?)", p.string()));
 }
 
 }  // namespace
@@ -134,69 +128,18 @@ std::string trajectory_csv(const TrajectoryLog& log) {
   return out;
 }
 
-namespace {
-
-// A staging folder inside the output folder; files move into place at commit,
-// and everything staged (and a folder we created) is removed otherwise.
-class Staging {
- public:
-  explicit Staging(const std::string& dir) : dir_(dir), target_(dir) {
-    std::error_code ec;
-    existed_ = fs::exists(target_, ec);
-    if (existed_ && !fs::is_directory(target_, ec))
-      throw InputError(fmt::format("{}: exists and is not a folder", dir));
-    fs::create_directories(target_, ec);
-    if (ec) throw InputError(fmt::format("{}: cannot create the output folder: {}", dir, ec.message()));
-    tmp_ = target_ / fmt::format(".gpm-simulate.tmp{}", static_cast<long>(::getpid()));
-    fs::create_directory(tmp_, ec);
-    if (ec) {
-      abandon();
-      throw InputError(fmt::format("{}: cannot write in the output folder: {}", dir, ec.message()));
-    }
-  }
-  ~Staging() {
-    if (!committed_) abandon();
-  }
-  fs::path path(const std::string& name) const { return tmp_ / name; }
-  void commit(const std::vector<std::string>& names) {
-    std::error_code ec;
-    for (const auto& name : names) {
-      fs::rename(tmp_ / name, target_ / name, ec);
-      if (ec) throw InputError(fmt::format("{}: cannot write {}: {}", dir_, name, ec.message()));
-    }
-    fs::remove_all(tmp_, ec);
-    committed_ = true;
-  }
-
- private:
-  void abandon() {
-    std::error_code ec;
-    fs::remove_all(tmp_, ec);
-    if (!existed_) fs::remove(target_, ec);  // removes only an empty folder we made
-  }
-  std::string dir_;
-  fs::path target_, tmp_;
-  bool existed_ = false, committed_ = false;
-};
-
-}  // namespace
-
 void write_simulation(const SimulationResult& r, const std::string& dir) {
-  Staging stage(dir);
-  const std::vector<std::pair<std::string, std::string>> files = {
-      {"samples.csv", samples_csv(r.samples)},
-      {"trajectory.csv", trajectory_csv(r.log)},
-      {"actual.yaml", robot_to_yaml(r.actual)},
-      {"model.xml", r.model_xml},
-  };
-  std::vector<std::string> names;
-  for (const auto& [name, text] : files) write_plain(stage.path(name), text), names.push_back(name);
-  stage.commit(names);
+  OutputFolder out(dir);  // models/output_file.hpp: all files or none
+  out.add("samples.csv", samples_csv(r.samples));
+  out.add("trajectory.csv", trajectory_csv(r.log));
+  out.add("actual.yaml", robot_to_yaml(r.actual));
+  out.add("model.xml", r.model_xml);
+  out.commit();
 }
 
 SimulationResult simulate_to_folder(const Scenario& s, const std::string& dir) {
-  Staging stage(dir);
-  const fs::path traj = stage.path("trajectory.csv");
+  OutputFolder folder(dir);  // models/output_file.hpp: all files or none
+  const std::string traj = folder.staged_path("trajectory.csv");
   std::ofstream out(traj, std::ios::binary | std::ios::trunc);
   const bool thermal = s.twin.effects.thermal.on();
   std::optional<Geometry> ref;
@@ -204,12 +147,12 @@ SimulationResult simulate_to_folder(const Scenario& s, const std::string& dir) {
   out << trajectory_header(thermal);
   SimulationResult r = run_simulation(s, [&](const LogRow& row) { out << trajectory_line(row, ref ? &*ref : nullptr); });
   out.flush();
-  if (!out) throw InputError(fmt::format("{}: cannot write file (disk full or not writable?)", traj.string()));
+  if (!out) throw InputError(fmt::format("{}/trajectory.csv: cannot write file (disk full or not writable?)", dir));
   out.close();
-  write_plain(stage.path("samples.csv"), samples_csv(r.samples));
-  write_plain(stage.path("actual.yaml"), robot_to_yaml(r.actual));
-  write_plain(stage.path("model.xml"), r.model_xml);
-  stage.commit({"samples.csv", "trajectory.csv", "actual.yaml", "model.xml"});
+  folder.add("samples.csv", samples_csv(r.samples));
+  folder.add("actual.yaml", robot_to_yaml(r.actual));
+  folder.add("model.xml", r.model_xml);
+  folder.commit();
   return r;
 }
 

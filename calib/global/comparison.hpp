@@ -1,6 +1,7 @@
 // The equal-budget comparison of paper section 4.4: GA, PSO and DE on J1, J2
 // and J3 with simulated Table 5 data, several seeds, and what the results
-// mean for identifiability (Table 6, Figs. 3-5, Table 7 told truthfully).
+// mean for identifiability: the numbers (the report and figures are written
+// by app/compare_report.hpp).
 #pragma once
 
 #include <cstdint>
@@ -54,11 +55,6 @@ using ComparisonProgress = std::function<void(long done, long total, int runs_do
 Comparison run_comparison(const ComparisonSettings& settings,
                           const ComparisonProgress& progress = {});
 
-// Markdown report: settings, a Table 6 (best J per algorithm and cost, paper
-// values beside), the identifiability diagnosis, parameter errors of every
-// run against Table 5, the spread across seeds and a verdict.
-std::string comparison_markdown(const Comparison& c);
-
 // CSV, one row per run: method, cost, seed, J, evaluations, seconds, rank,
 // errors, kmrmse and the 15 estimated parameters.
 std::string comparison_runs_csv(const Comparison& c);
@@ -66,7 +62,8 @@ std::string comparison_runs_csv(const Comparison& c);
 // CSV of all convergence histories: method, cost, seed, evaluations, best J.
 std::string comparison_history_csv(const Comparison& c);
 
-// SVG figure of log10(J) against evaluations for one cost (Figs. 3-5).
-std::string comparison_svg(const Comparison& c, Cost cost);
+// Paper Table 6: best J after 5e7 evaluations with 12 free parameters, for
+// GA, PSO, DE on J1, J2, J3 (NaN for another cost).
+double paper_table6(Method m, Cost c);
 
 }  // namespace gpm::calib::global

@@ -122,6 +122,26 @@ expect "circles message names the line" "$tmp/err" "wild.csv:6 \(sample 4\): the
 check "sigma negative" 2 "$GPM" calibrate --data "$tmp/s.csv" --sigma -1 -o "$tmp/r.yaml"
 check "unwritable output" 2 "$GPM" calibrate --data "$tmp/s.csv" --model "$tmp/start.yaml" -o "$tmp/nodir/r.yaml"
 expect "unwritable message" "$tmp/err" "nodir/r.yaml: cannot write"
+
+# Output policy (models/output_file.hpp): an input is never overwritten, a
+# device is written in place (never replaced by a regular file), a symlink is
+# followed.
+cp "$tmp/s.csv" "$tmp/s_before.csv"
+check "output is the data" 2 "$GPM" calibrate --data "$tmp/s.csv" --model "$tmp/start.yaml" -o "$tmp/s.csv"
+expect "input message" "$tmp/err" "s.csv: is also an input of this command"
+if cmp -s "$tmp/s.csv" "$tmp/s_before.csv"; then passed=$((passed+1)); else echo "FAIL data overwritten"; fail=$((fail+1)); fi
+check "output is the model" 2 "$GPM" calibrate --data "$tmp/s.csv" --model "$tmp/start.yaml" -o "$tmp/start.yaml"
+check "output to /dev/null" 0 "$GPM" calibrate --data "$tmp/s.csv" --model "$tmp/start.yaml" -o /dev/null
+if [[ -c /dev/null ]]; then passed=$((passed+1)); else echo "FAIL /dev/null is no longer a device"; fail=$((fail+1)); fi
+if [[ -c /dev/full ]]; then  # a full disk: the reason, never "Success"
+  check "output to a full device" 2 "$GPM" calibrate --data "$tmp/s.csv" --model "$tmp/start.yaml" -o /dev/full
+  expect "full device message" "$tmp/err" "/dev/full: write failed \(disk full\?\)"
+  if grep -q Success "$tmp/err"; then echo "FAIL 'Success' in an error"; fail=$((fail+1)); else passed=$((passed+1)); fi
+fi
+mkdir -p "$tmp/real"
+ln -s real/r_target.yaml "$tmp/link.yaml"
+check "output through a symlink" 0 "$GPM" calibrate --data "$tmp/s.csv" --model "$tmp/start.yaml" -o "$tmp/link.yaml"
+if [[ -L "$tmp/link.yaml" && -s "$tmp/real/r_target.yaml" ]]; then passed=$((passed+1)); else echo "FAIL symlink not followed"; fail=$((fail+1)); fi
 no_tmp_files "failures"
 
 echo "$passed passed, $fail failed"

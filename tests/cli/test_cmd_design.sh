@@ -38,7 +38,7 @@ done
 expect "csv rows" "[[ \$(wc -l <'$tmp/cmp/design_comparison.csv') -eq 6 ]]"
 expect "csv header" "head -1 '$tmp/cmp/design_comparison.csv' | grep -q '^layout,poses,worst_mm,worst_param,mean_mm,log_det,xa3_mm'"
 expect "md table" "grep -q '^| optimised |' '$tmp/cmp/design_comparison.md'"
-expect "no temporary left" "[[ -z \$(ls -A '$tmp/cmp' | grep design-tmp) ]]"
+expect "no temporary left" "[[ -z \$(ls -A '$tmp/cmp' | grep -E 'tmp') ]]"
 
 # Bad input: exit 2, one line naming the flag, no output file.
 check "too few poses" 2 "$GPM" design --count 5 --grid-step 10 -o "$tmp/bad.yaml"

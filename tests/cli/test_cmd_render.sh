@@ -33,5 +33,53 @@ check "size not positive" 2 "$GPM" render s.yaml -o c.mp4 --size 0x480
 check "unwritable output" 2 "$GPM" render s.yaml -o /nonexistent-gpm-folder/c.mp4
 check "frame beyond the video" 2 "$GPM" render s.yaml -o c.mp4 --frame-png 100000:c.png
 if [[ ! -e c.mp4 && ! -e c.png && -z "$(ls -A | grep '^\.')" ]]; then passed=$((passed+1)); else echo "FAIL partial files:"; ls -la; fail=$((fail+1)); fi
+check "fps 0" 2 "$GPM" render s.yaml -o c.mp4 --fps 0
+expect_err "fps message" "--fps: must be in \(0, 240\], got 0"
+check "speed 0" 2 "$GPM" render s.yaml -o c.mp4 --speed 0
+expect_err "speed message" "--speed: must be positive, got 0"
+
+# Output policy (models/output_file.hpp): the scenario is never overwritten, a
+# device is written in place, a symlink is followed.
+cp s.yaml s_before.yaml
+check "output is the scenario" 2 "$GPM" render s.yaml -o s.yaml
+expect_err "input message" "s.yaml: is also an input of this command"
+if cmp -s s.yaml s_before.yaml; then passed=$((passed+1)); else echo "FAIL scenario overwritten"; fail=$((fail+1)); fi
+rm -f s_before.yaml
+check "frame to /dev/null" 0 "$GPM" render s.yaml --frame-png 1:/dev/null
+if [[ -c /dev/null ]]; then passed=$((passed+1)); else echo "FAIL /dev/null is no longer a device"; fail=$((fail+1)); fi
+mkdir -p sub && ln -s sub/real.png link.png
+check "frame through a symlink" 0 "$GPM" render s.yaml --frame-png 1:link.png
+if [[ -L link.png && -s sub/real.png ]]; then passed=$((passed+1)); else echo "FAIL symlink not followed"; fail=$((fail+1)); fi
+rm -rf sub link.png
+
+# Interrupted (SIGINT) while encoding: exit 130, no video and no temporary.
+cat >long.yaml <<'YAML'
+name: render_cli_long
+seed: 4
+path: {shape: circle, centre: [216.5, 250], radius: 15, period_s: 0.4, revolutions: 100}
+render: {size: 160x120, fps: 20}
+YAML
+"$GPM" render long.yaml -o long.mp4 >/dev/null 2>"$tmp/int.err" &
+pid=$!
+# Waits (bounded) for the encoder's temporary, then interrupts.
+for _ in $(seq 2000); do
+  compgen -G '.long.mp4.tmp*' >/dev/null && break
+  kill -0 "$pid" 2>/dev/null || break
+  sleep 0.01
+done
+kill -INT "$pid" 2>/dev/null
+wait "$pid"; got=$?
+if [[ $got -eq 130 ]]; then passed=$((passed+1)); else echo "FAIL interrupted render: exit $got, want 130"; cat "$tmp/int.err"; fail=$((fail+1)); fi
+if [[ ! -e long.mp4 && -z "$(ls -A | grep '^\.')" ]]; then passed=$((passed+1)); else echo "FAIL interrupted render left:"; ls -la; fail=$((fail+1)); fi
+rm -f long.yaml
+
+# The renderer is a separate executable: gpm links neither OSMesa nor libav,
+# and without gpm-render next to it, gpm render says so in one line (exit 2).
+if ldd "$GPM" | grep -qE 'OSMesa|avcodec'; then echo "FAIL gpm links the renderer"; fail=$((fail+1)); else passed=$((passed+1)); fi
+mkdir alone && cp "$GPM" alone/gpm
+check "renderer missing" 2 ./alone/gpm render s.yaml -o c.mp4
+expect_err "renderer message" "cannot run the renderer .*/alone/gpm-render"
+rm -rf alone
+
 if [[ ! -e MUJOCO_LOG.TXT ]]; then passed=$((passed+1)); else echo "FAIL MUJOCO_LOG.TXT written"; fail=$((fail+1)); fi
 finish

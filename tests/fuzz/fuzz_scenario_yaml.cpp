@@ -1,5 +1,5 @@
 // Fuzz target for the scenario loaders (sim/scenario.cpp and
-// scenarios/run_spec.cpp): any text either loads as a scenario or raises
+// run/run_spec.cpp): any text either loads as a scenario or raises
 // InputError; anything else (another exception, a crash, a sanitizer report,
 // a hang) is a bug. Relative paths resolve against the source tree.
 #include <cstddef>
@@ -7,7 +7,7 @@
 #include <string>
 
 #include "models/errors.hpp"
-#include "scenarios/run_spec.hpp"
+#include "run/run_spec.hpp"
 
 extern "C" int LLVMFuzzerTestOneInput(const uint8_t* data, size_t size) {
   const std::string text(reinterpret_cast<const char*>(data), size);

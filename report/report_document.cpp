@@ -1,0 +1,115 @@
+#include "report/report_document.hpp"
+
+#include <fmt/format.h>
+
+#include "report/svg_plot.hpp"
+#include "models/output_file.hpp"
+
+namespace gpm::report {
+
+void ReportDocument::heading(int level, const std::string& text) {
+  blocks_.push_back({Block::Kind::kHeading, level, text, {}, {}, {}, {}});
+}
+void ReportDocument::paragraph(const std::string& text) {
+  blocks_.push_back({Block::Kind::kParagraph, 0, text, {}, {}, {}, {}});
+}
+void ReportDocument::bullets(const std::vector<std::string>& items) {
+  blocks_.push_back({Block::Kind::kBullets, 0, {}, {}, {}, items, {}});
+}
+void ReportDocument::table(const std::vector<std::string>& header,
+                           const std::vector<std::vector<std::string>>& rows) {
+  blocks_.push_back({Block::Kind::kTable, 0, {}, {}, {}, header, rows});
+}
+void ReportDocument::figure(const std::string& name, const std::string& caption, const std::string& svg) {
+  blocks_.push_back({Block::Kind::kFigure, 0, caption, name, svg, {}, {}});
+}
+void ReportDocument::preformatted(const std::string& text) {
+  blocks_.push_back({Block::Kind::kPre, 0, text, {}, {}, {}, {}});
+}
+
+std::string ReportDocument::markdown() const {
+  std::string md;
+  for (const Block& b : blocks_) {
+    switch (b.kind) {
+      case Block::Kind::kHeading: md += std::string(static_cast<size_t>(b.level), '#') + " " + b.text + "\n\n"; break;
+      case Block::Kind::kParagraph: md += b.text + "\n\n"; break;
+      case Block::Kind::kBullets:
+        for (const auto& item : b.header) md += "- " + item + "\n";
+        md += "\n";
+        break;
+      case Block::Kind::kTable: {
+        md += "|";
+        for (const auto& h : b.header) md += " " + h + " |";
+        md += "\n|";
+        for (size_t i = 0; i < b.header.size(); ++i) md += " --- |";
+        md += "\n";
+        for (const auto& row : b.rows) {
+          md += "|";
+          for (const auto& c : row) md += " " + c + " |";
+          md += "\n";
+        }
+        md += "\n";
+        break;
+      }
+      case Block::Kind::kFigure: md += fmt::format("![{}]({}.svg)\n\n*{}*\n\n", b.text, b.name, b.text); break;
+      case Block::Kind::kPre: md += "```\n" + b.text + (b.text.ends_with('\n') ? "" : "\n") + "```\n\n"; break;
+    }
+  }
+  return md;
+}
+
+std::string ReportDocument::html(const std::string& title) const {
+  std::string h = fmt::format(
+      "<!DOCTYPE html>\n<html lang=\"en\"><head><meta charset=\"utf-8\"><title>{}</title>\n"
+      "<style>body{{font-family:sans-serif;max-width:980px;margin:2em auto;padding:0 1em;color:#222}}"
+      "table{{border-collapse:collapse;margin:1em 0}}td,th{{border:1px solid #ccc;padding:3px 8px;"
+      "text-align:right;font-variant-numeric:tabular-nums}}th{{background:#f3f3f3}}"
+      "td:first-child,th:first-child{{text-align:left}}figure{{margin:1em 0}}"
+      "figcaption{{font-style:italic;color:#555}}pre{{background:#f6f6f6;padding:.6em;overflow-x:auto}}"
+      "</style></head><body>\n",
+      xml_escape(title));
+  for (const Block& b : blocks_) {
+    switch (b.kind) {
+      case Block::Kind::kHeading: h += fmt::format("<h{0}>{1}</h{0}>\n", b.level, xml_escape(b.text)); break;
+      case Block::Kind::kParagraph: h += "<p>" + xml_escape(b.text) + "</p>\n"; break;
+      case Block::Kind::kBullets:
+        h += "<ul>";
+        for (const auto& item : b.header) h += "<li>" + xml_escape(item) + "</li>";
+        h += "</ul>\n";
+        break;
+      case Block::Kind::kTable:
+        h += "<table><tr>";
+        for (const auto& c : b.header) h += "<th>" + xml_escape(c) + "</th>";
+        h += "</tr>\n";
+        for (const auto& row : b.rows) {
+          h += "<tr>";
+          for (const auto& c : row) h += "<td>" + xml_escape(c) + "</td>";
+          h += "</tr>\n";
+        }
+        h += "</table>\n";
+        break;
+      case Block::Kind::kFigure:
+        h += "<figure>" + b.svg + "<figcaption>" + xml_escape(b.text) + "</figcaption></figure>\n";
+        break;
+      case Block::Kind::kPre: h += "<pre>" + xml_escape(b.text) + "</pre>\n"; break;
+    }
+  }
+  h += "</body></html>\n";
+  return h;
+}
+
+std::vector<std::pair<std::string, std::string>> ReportDocument::figure_files() const {
+  std::vector<std::pair<std::string, std::string>> out;
+  for (const Block& b : blocks_) {
+    if (b.kind == Block::Kind::kFigure) out.emplace_back(b.name + ".svg", b.svg);
+  }
+  return out;
+}
+
+void ReportDocument::stage(OutputFolder& out, const std::string& stem, const std::string& title) const {
+  out.add(stem + ".md", markdown());
+  out.add(stem + ".html", html(title));
+  for (const auto& [name, svg] : figure_files()) out.add(name, svg);
+}
+
+}  // namespace gpm::report

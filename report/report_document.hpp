@@ -1,0 +1,53 @@
+// A report built once and written twice: Markdown (figures as SVG files
+// beside it) and a self-contained HTML page (figures inline), staged in an
+// output folder that commits all files or none.
+#pragma once
+
+#include <string>
+#include <utility>
+#include <vector>
+
+namespace gpm {
+class OutputFolder;
+}
+
+namespace gpm::report {
+
+class ReportDocument {
+ public:
+  // Adds a heading of level 1..3.
+  void heading(int level, const std::string& text);
+  // Adds a paragraph of plain text.
+  void paragraph(const std::string& text);
+  // Adds a bulleted list.
+  void bullets(const std::vector<std::string>& items);
+  // Adds a table; every row has header.size() cells.
+  void table(const std::vector<std::string>& header, const std::vector<std::vector<std::string>>& rows);
+  // Adds a figure: name is its file stem (name.svg), svg its text.
+  void figure(const std::string& name, const std::string& caption, const std::string& svg);
+  // Adds preformatted text.
+  void preformatted(const std::string& text);
+
+  // Markdown text; figures referenced as "<name>.svg" in the same folder.
+  std::string markdown() const;
+  // Self-contained HTML page with inline SVG figures and a small stylesheet.
+  std::string html(const std::string& title) const;
+  // The figures as (file name, SVG text) pairs.
+  std::vector<std::pair<std::string, std::string>> figure_files() const;
+  // Stages STEM.md, STEM.html (titled title) and the figures in out (the
+  // staged folder of models/output_file.hpp: all files or none at commit).
+  void stage(OutputFolder& out, const std::string& stem, const std::string& title) const;
+
+ private:
+  struct Block {
+    enum class Kind { kHeading, kParagraph, kBullets, kTable, kFigure, kPre } kind;
+    int level = 0;
+    std::string text;                            // heading, paragraph, caption, pre
+    std::string name, svg;                       // figure
+    std::vector<std::string> header;             // table header or bullet items
+    std::vector<std::vector<std::string>> rows;  // table rows
+  };
+  std::vector<Block> blocks_;
+};
+
+}  // namespace gpm::report

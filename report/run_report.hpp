@@ -1,0 +1,77 @@
+// The report of a `gpm run`: before/after accuracy first, then the
+// parameter table (actual, nominal, estimated, 1-sigma, error, bound), the
+// diagnostics, the expectations, and figures. The report library uses only
+// models/: the run library (run/) passes everything in as plain data.
+#pragma once
+
+#include <array>
+#include <optional>
+#include <string>
+#include <utility>
+#include <vector>
+
+#include <Eigen/Core>
+
+#include "models/parameters.hpp"
+#include "models/robot.hpp"
+#include "report/report_document.hpp"
+
+namespace gpm::report {
+
+// Accuracy of one controller model on the twin (run/compensation.hpp).
+struct RunAccuracy {
+  std::string label;  // "nominal", "calibrated"
+  double static_rms_um = 0.0, static_max_um = 0.0;
+  double path_rms_um = 0.0, path_max_um = 0.0;
+  double static_preload_rms_nm = 0.0, path_preload_rms_nm = 0.0;
+  std::vector<double> path_t_s;         // time from the path's start (s)
+  std::vector<double> path_error_um;    // |actual - desired| at path_t_s (um)
+};
+
+// The calibration's result, as the report shows it.
+struct RunCalibration {
+  std::string method;  // "lm", "de", ...
+  std::string cost;    // "j1", ..., "ml"
+  Geometry geometry;
+  FreeMask free;
+  std::array<double, kNumParams> sigma{};  // NaN: unknown
+  double final_cost = 0.0;
+  long iterations = 0, evaluations = 0;
+  int rank = 0;
+  double condition_number = 0.0;
+  std::optional<double> kmrmse_mm;
+  double seconds = 0.0;
+  bool converged = true;
+  std::vector<std::string> notes;
+  std::vector<std::pair<long, double>> history;  // (evaluations, best J)
+};
+
+// One expectation and its outcome.
+struct RunCheck {
+  std::string name, detail;
+  bool passed = true;
+};
+
+// Everything the run report shows.
+struct RunReport {
+  std::string name;                  // the scenario's name
+  std::string scenario_file;
+  std::string hardware_description;  // empty: in-process simulation
+  double seconds = 0.0;
+  Robot nominal;                     // the controller's model before calibration
+  Geometry actual;                   // the truth
+  std::vector<Eigen::Vector2d> sample_xy;   // calibration samples (mm)
+  std::vector<Eigen::Vector2d> test_poses;  // accuracy test poses (mm)
+  std::optional<std::string> refused;       // calibration refused: the diagnosis
+  std::optional<RunCalibration> calibration;
+  double crb_sigma_rad = 0.0;
+  std::array<double, kNumParams> crb{};     // CRB 1-sigma at the truth (NaN: fixed)
+  std::vector<double> residual_urad;        // ML residual per sample after calibration
+  std::optional<RunAccuracy> before, after;
+  std::vector<RunCheck> checks;
+};
+
+// Builds the report of a finished run.
+ReportDocument build_run_report(const RunReport& run);
+
+}  // namespace gpm::report

@@ -1,0 +1,81 @@
+#include "run/compensation.hpp"
+
+#include <cmath>
+
+#include <Eigen/Cholesky>
+
+#include "models/kinematics.hpp"
+
+namespace gpm::scenario {
+namespace {
+
+double rms(const std::vector<double>& v) {
+  if (v.empty()) return 0.0;
+  double s = 0.0;
+  for (double x : v) s += x * x;
+  return std::sqrt(s / static_cast<double>(v.size()));
+}
+
+double max_of(const std::vector<double>& v) {
+  double m = 0.0;
+  for (double x : v) m = std::max(m, x);
+  return m;
+}
+
+}  // namespace
+
+double internal_preload(const Geometry& g, const Eigen::Vector2d& p, const Eigen::Vector3d& tau,
+                        const Branches& branch) {
+  JointAngles angles;
+  for (int i = 0; i < 3; ++i) {
+    const auto c = try_chain_ik(g, i, p, branch[static_cast<size_t>(i)]);
+    if (!c) return NAN;
+    angles.theta_a[i] = c->theta_a;
+    angles.theta_b[i] = c->theta_b;
+  }
+  const Matrix32d J = active_jacobian(g, angles);
+  // P = I - J (J'J)^-1 J' (eq. 15): torques in the null space of J' do no
+  // work on the end-effector (virtual work: f = J' tau).
+  const Eigen::Matrix3d P =
+      Eigen::Matrix3d::Identity() - J * (J.transpose() * J).ldlt().solve(J.transpose());
+  return (P * tau).norm();
+}
+
+Accuracy measure_accuracy(const Robot& actual, const sim::TwinConfig& twin,
+                          const Robot& controller, const CompensationPlan& plan,
+                          unsigned long long seed, const std::string& label) {
+  Accuracy acc;
+  acc.label = label;
+  const sim::TwinModel model(actual, twin);
+  sim::TwinState state(model, seed);
+  sim::Session session = sim::make_session(model, state, controller, nullptr);
+
+  std::vector<double> preload;
+  long id = 0;
+  for (const Eigen::Vector2d& target : plan.poses) {
+    const sim::SampleRecord r = sim::take_sample(session, target, id++, plan.sampling);
+    acc.static_error_um.push_back((r.xy_mm - target).norm() * 1e3);
+    const sim::TwinSnapshot snap = sim::advance(session, sim::PathPoint{target, Eigen::Vector2d::Zero()});
+    preload.push_back(internal_preload(actual.geometry, snap.ee_mm, snap.torque, actual.branch));
+  }
+  acc.static_rms_um = rms(acc.static_error_um);
+  acc.static_max_um = max_of(acc.static_error_um);
+  acc.static_preload_rms_nm = rms(preload);
+
+  // Approach the path start, then log only the path itself.
+  sim::follow_path(session, sim::make_move(session.desired, sim::path_at(plan.path, 0.0).p,
+                                           plan.move_speed_mm_s));
+  session.log = &acc.path_log;
+  sim::follow_path(session, plan.path);
+  std::vector<double> err, path_preload;
+  for (const sim::LogRow& row : acc.path_log.rows) {
+    err.push_back((row.actual - row.desired).norm() * 1e3);
+    path_preload.push_back(internal_preload(actual.geometry, row.actual, row.torque, actual.branch));
+  }
+  acc.path_rms_um = rms(err);
+  acc.path_max_um = max_of(err);
+  acc.path_preload_rms_nm = rms(path_preload);
+  return acc;
+}
+
+}  // namespace gpm::scenario

@@ -1,0 +1,95 @@
+#include "run/expectations.hpp"
+
+#include <cmath>
+
+#include <fmt/format.h>
+
+#include "run/runner.hpp"
+
+namespace gpm::scenario {
+namespace {
+
+void check(std::vector<Check>& out, const std::string& name, bool ok, const std::string& detail) {
+  out.push_back({name, ok, detail});
+}
+
+}  // namespace
+
+std::vector<Check> evaluate_expectations(const RunOutcome& o) {
+  std::vector<Check> out;
+  const Expectations& e = o.spec.expect;
+  if (e.refused_contains) {
+    const bool ok = o.refused && o.refused->find(*e.refused_contains) != std::string::npos;
+    check(out, "refused_contains", ok,
+          o.refused ? fmt::format("refused: {}", *o.refused) : "the calibration was not refused");
+  }
+  if (!o.calibration) {
+    // Nothing else can be checked; any other expectation fails honestly.
+    const bool others = e.converged || e.base_mm || e.link_mm || e.offset_rad || e.cost_max ||
+                        e.kmrmse_mm_max || e.crb_ratio_max || e.static_rms_um_max ||
+                        e.path_rms_um_max || e.improvement_min;
+    if (others) check(out, "calibration", false, "no calibration result to check");
+    return out;
+  }
+  const calib::Result& r = *o.calibration;
+  const Geometry& truth = o.sim.actual.geometry;
+  // A run whose solver did not converge fails unless the scenario expects that.
+  const bool want_converged = e.converged.value_or(true);
+  if (e.converged || !r.converged) {
+    check(out, "converged", r.converged == want_converged, fmt::format("converged = {}", r.converged));
+  }
+  for (int i = 0; i < kNumParams; ++i) {
+    if (!r.free.test(static_cast<size_t>(i))) continue;
+    const double err = std::abs(r.geometry[i] - truth[i]);
+    std::optional<double> tol = e.param[static_cast<size_t>(i)];
+    if (!tol) tol = is_offset(i) ? e.offset_rad : is_length(i) ? e.link_mm : e.base_mm;
+    if (tol) {
+      check(out, fmt::format("error.{}", param_name(i)), err <= *tol,
+            fmt::format("|{:.6g} - {:.6g}| = {:.3g} (limit {:.3g})", r.geometry[i], truth[i], err, *tol));
+    }
+    if (e.crb_ratio_max) {
+      const double bound = o.crb[static_cast<size_t>(i)];
+      const double ratio = err / bound;
+      check(out, fmt::format("crb_ratio.{}", param_name(i)), std::isfinite(ratio) && ratio <= *e.crb_ratio_max,
+            fmt::format("|error| / CRB = {:.3g} / {:.3g} = {:.3g} (limit {:.3g})", err, bound, ratio,
+                        *e.crb_ratio_max));
+    }
+  }
+  if (e.cost_max) {
+    check(out, "cost", r.final_cost <= *e.cost_max, fmt::format("J = {:.4g} (limit {:.3g})", r.final_cost, *e.cost_max));
+  }
+  if (e.kmrmse_mm_max) {
+    const bool ok = r.kmrmse_mm && *r.kmrmse_mm <= *e.kmrmse_mm_max;
+    check(out, "kmrmse", ok,
+          r.kmrmse_mm ? fmt::format("kmrmse = {:.4g} mm (limit {:.3g})", *r.kmrmse_mm, *e.kmrmse_mm_max)
+                      : "no kmrmse (samples without x,y)");
+  }
+  if (e.note_contains) {
+    bool ok = false;
+    for (const auto& n : r.notes) ok = ok || n.find(*e.note_contains) != std::string::npos;
+    check(out, "note_contains", ok, ok ? "found" : fmt::format("no note contains '{}'", *e.note_contains));
+  }
+  if (e.static_rms_um_max || e.path_rms_um_max || e.improvement_min) {
+    if (!o.after || !o.before) {
+      check(out, "compensation", false, "no compensation run (outputs.compensation is off)");
+      return out;
+    }
+    if (e.static_rms_um_max) {
+      check(out, "static_rms_um", o.after->static_rms_um <= *e.static_rms_um_max,
+            fmt::format("{:.3f} um after calibration (limit {:.3g})", o.after->static_rms_um, *e.static_rms_um_max));
+    }
+    if (e.path_rms_um_max) {
+      check(out, "path_rms_um", o.after->path_rms_um <= *e.path_rms_um_max,
+            fmt::format("{:.3f} um after calibration (limit {:.3g})", o.after->path_rms_um, *e.path_rms_um_max));
+    }
+    if (e.improvement_min) {
+      const double ratio = o.before->static_rms_um / o.after->static_rms_um;
+      check(out, "improvement", ratio >= *e.improvement_min,
+            fmt::format("static RMS {:.3f} -> {:.3f} um, x{:.3g} (at least x{:.3g})", o.before->static_rms_um,
+                        o.after->static_rms_um, ratio, *e.improvement_min));
+    }
+  }
+  return out;
+}
+
+}  // namespace gpm::scenario

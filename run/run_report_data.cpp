@@ -1,0 +1,70 @@
+#include "run/run_report_data.hpp"
+
+#include "calib/problem.hpp"
+#include "run/runner.hpp"
+
+namespace gpm::scenario {
+namespace {
+
+report::RunAccuracy accuracy_data(const Accuracy& a) {
+  report::RunAccuracy r;
+  r.label = a.label;
+  r.static_rms_um = a.static_rms_um;
+  r.static_max_um = a.static_max_um;
+  r.path_rms_um = a.path_rms_um;
+  r.path_max_um = a.path_max_um;
+  r.static_preload_rms_nm = a.static_preload_rms_nm;
+  r.path_preload_rms_nm = a.path_preload_rms_nm;
+  const double t0 = a.path_log.rows.empty() ? 0.0 : a.path_log.rows.front().t;
+  for (size_t k = 0; k < a.path_log.rows.size(); k += 10) {
+    const auto& row = a.path_log.rows[k];
+    r.path_t_s.push_back(row.t - t0);
+    r.path_error_um.push_back((row.actual - row.desired).norm() * 1e3);
+  }
+  return r;
+}
+
+report::RunCalibration calibration_data(const calib::Result& c) {
+  report::RunCalibration r;
+  r.method = c.method;
+  r.cost = std::string(calib::cost_name(c.cost));
+  r.geometry = c.geometry;
+  r.free = c.free;
+  r.sigma = c.sigma;
+  r.final_cost = c.final_cost;
+  r.iterations = c.iterations;
+  r.evaluations = c.evaluations;
+  r.rank = c.rank;
+  r.condition_number = c.condition_number;
+  r.kmrmse_mm = c.kmrmse_mm;
+  r.seconds = c.seconds;
+  r.converged = c.converged;
+  r.notes = c.notes;
+  r.history = c.history;
+  return r;
+}
+
+}  // namespace
+
+report::RunReport run_report_data(const RunOutcome& o) {
+  report::RunReport r;
+  r.name = o.spec.sim.name;
+  r.scenario_file = o.scenario_file;
+  r.hardware_description = o.hardware_description;
+  r.seconds = o.seconds;
+  r.nominal = o.nominal;
+  r.actual = o.sim.actual.geometry;
+  for (const auto& s : o.sim.samples) r.sample_xy.push_back(s.xy_mm);
+  if (o.spec.compensation) r.test_poses = o.spec.compensation->poses;
+  r.refused = o.refused;
+  if (o.calibration) r.calibration = calibration_data(*o.calibration);
+  r.crb_sigma_rad = o.crb_sigma_rad;
+  r.crb = o.crb;
+  r.residual_urad = o.residual_urad;
+  if (o.before) r.before = accuracy_data(*o.before);
+  if (o.after) r.after = accuracy_data(*o.after);
+  for (const Check& c : o.checks) r.checks.push_back({c.name, c.detail, c.passed});
+  return r;
+}
+
+}  // namespace gpm::scenario

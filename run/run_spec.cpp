@@ -1,0 +1,199 @@
+#include "run/run_spec.hpp"
+
+#include <filesystem>
+#include <random>
+
+#include <fmt/format.h>
+
+#include "models/errors.hpp"
+#include "models/yaml_util.hpp"
+
+namespace gpm::scenario {
+namespace {
+
+Eigen::Vector2d point(const YAML::Node& n, const std::string& file, const std::string& key) {
+  if (!n.IsSequence() || n.size() != 2) {
+    throw InputError(yaml_where(file, n, key) + "expected [x, y] in mm");
+  }
+  return {yaml_number(n[0], file, key + "[0]"), yaml_number(n[1], file, key + "[1]")};
+}
+
+CalibrationSpec parse_calibration(const YAML::Node& n, const std::string& file) {
+  CalibrationSpec c;
+  for (int i : {kXa1, kYa1, kXa2, kYa2}) c.fixed.set(static_cast<size_t>(i));
+  if (!n) return c;
+  yaml_check_keys(n, file, "calibration",
+                  {"cost", "method", "fix", "budget", "seed", "sigma", "allow_rank_deficient", "start"});
+  if (n["cost"]) {
+    const std::string s = yaml_string(n["cost"], file, "calibration.cost");
+    const auto cost = calib::parse_cost(s);
+    if (!cost) throw InputError(yaml_where(file, n["cost"], "calibration.cost") +
+                                fmt::format("unknown cost '{}' (valid: j1, j2, j3, ml)", s));
+    c.cost = *cost;
+  }
+  if (n["method"]) {
+    c.method = yaml_string(n["method"], file, "calibration.method");
+    if (c.method != "lm" && c.method != "de" && c.method != "pso" && c.method != "ga" && c.method != "de+lm") {
+      throw InputError(yaml_where(file, n["method"], "calibration.method") +
+                       fmt::format("unknown method '{}' (valid: lm, de, pso, ga, de+lm)", c.method));
+    }
+  }
+  if (const YAML::Node fix = n["fix"]) {
+    if (!fix.IsSequence()) {
+      throw InputError(yaml_where(file, fix, "calibration.fix") + "expected a list of parameter names, e.g. [xa1, ya1, xa2, ya2]");
+    }
+    c.fixed.reset();
+    for (size_t k = 0; k < fix.size(); ++k) {
+      const std::string key = fmt::format("calibration.fix[{}]", k);
+      const std::string name = yaml_string(fix[k], file, key);
+      const auto idx = param_index(name);
+      if (!idx) {
+        throw InputError(yaml_where(file, fix[k], key) +
+                         fmt::format("unknown parameter '{}' (did you mean {}?)", name, nearest_param_name(name)));
+      }
+      c.fixed.set(static_cast<size_t>(*idx));
+    }
+  }
+  if (n["budget"]) c.budget = yaml_integer(n["budget"], file, "calibration.budget", 1, 1000000000000LL);
+  if (n["seed"]) c.seed = static_cast<std::uint64_t>(yaml_integer(n["seed"], file, "calibration.seed", 0, (1LL << 53)));
+  if (n["sigma"]) c.sigma = yaml_positive(n["sigma"], file, "calibration.sigma");
+  if (n["allow_rank_deficient"]) c.allow_rank_deficient = yaml_bool(n["allow_rank_deficient"], file, "calibration.allow_rank_deficient");
+  if (n["start"]) {
+    const std::string s = yaml_string(n["start"], file, "calibration.start");
+    if (s != "nominal" && s != "reference") {
+      throw InputError(yaml_where(file, n["start"], "calibration.start") +
+                       fmt::format("'{}' is not nominal or reference", s));
+    }
+    c.start_reference = s == "reference";
+  }
+  return c;
+}
+
+sim::Path parse_path(const YAML::Node& n, const std::string& file, const std::string& key, const Eigen::Vector2d& home) {
+  yaml_check_keys(n, file, key, {"shape", "centre", "radius", "period_s", "revolutions", "from", "to", "duration_s"});
+  const std::string shape = n["shape"] ? yaml_string(n["shape"], file, key + ".shape") : "circle";
+  if (shape == "circle") {
+    sim::CirclePath c;
+    c.centre = n["centre"] ? point(n["centre"], file, key + ".centre") : home;
+    c.radius = n["radius"] ? yaml_positive(n["radius"], file, key + ".radius") : 60.0;
+    c.period_s = n["period_s"] ? yaml_positive(n["period_s"], file, key + ".period_s") : 4.0;
+    c.revolutions = n["revolutions"] ? yaml_positive(n["revolutions"], file, key + ".revolutions") : 1.0;
+    return c;
+  }
+  if (shape == "line") {
+    sim::LinePath l;
+    if (!n["from"] || !n["to"]) throw InputError(yaml_where(file, n, key) + "a line needs from and to");
+    l.from = point(n["from"], file, key + ".from");
+    l.to = point(n["to"], file, key + ".to");
+    l.duration_s = n["duration_s"] ? yaml_positive(n["duration_s"], file, key + ".duration_s") : 2.0;
+    return l;
+  }
+  throw InputError(yaml_where(file, n["shape"], key + ".shape") + fmt::format("'{}' is not circle or line", shape));
+}
+
+CompensationPlan parse_compensation(const YAML::Node& n, const std::string& file, const sim::Scenario& s) {
+  CompensationPlan plan;
+  const Eigen::Vector2d home = s.controller.home;
+  plan.path = sim::CirclePath{home, 60.0, 4.0, 1.0};
+  int count = 12;
+  double radius = 80.0;
+  Eigen::Vector2d centre = home;
+  if (n) {
+    yaml_check_keys(n, file, "compensation", {"path", "poses", "count", "radius", "centre", "move_speed_mm_s"});
+    if (n["path"]) plan.path = parse_path(n["path"], file, "compensation.path", home);
+    if (n["count"]) count = static_cast<int>(yaml_integer(n["count"], file, "compensation.count", 1, 10000));
+    if (n["radius"]) radius = yaml_positive(n["radius"], file, "compensation.radius");
+    if (n["centre"]) centre = point(n["centre"], file, "compensation.centre");
+    if (n["move_speed_mm_s"]) plan.move_speed_mm_s = yaml_positive(n["move_speed_mm_s"], file, "compensation.move_speed_mm_s");
+    if (const YAML::Node poses = n["poses"]) {
+      if (!poses.IsSequence() || poses.size() == 0) {
+        throw InputError(yaml_where(file, poses, "compensation.poses") + "expected a list of [x, y] poses");
+      }
+      for (size_t k = 0; k < poses.size(); ++k) {
+        plan.poses.push_back(point(poses[k], file, fmt::format("compensation.poses[{}]", k)));
+      }
+    }
+  }
+  if (plan.poses.empty()) {
+    // Test poses independent of the calibration samples (their own stream).
+    std::mt19937_64 rng(sim::derive_seed(s.seed, 3));
+    plan.poses = sim::disc_poses(centre, radius, count, rng);
+  }
+  if (s.sampling) plan.sampling = s.sampling->options;
+  return plan;
+}
+
+template <typename T>
+void opt_number(const YAML::Node& n, const char* key, const std::string& file, std::optional<T>& out) {
+  if (n[key]) out = yaml_positive(n[key], file, std::string("expect.") + key);
+}
+
+Expectations parse_expect(const YAML::Node& n, const std::string& file) {
+  Expectations e;
+  if (!n) return e;
+  yaml_check_keys(n, file, "expect",
+                  {"converged", "error", "cost_max", "kmrmse_mm_max", "crb_ratio_max", "static_rms_um_max",
+                   "path_rms_um_max", "improvement_min", "refused_contains", "note_contains"});
+  if (n["converged"]) e.converged = yaml_bool(n["converged"], file, "expect.converged");
+  if (const YAML::Node err = n["error"]) {
+    if (!err.IsMap()) throw InputError(yaml_where(file, err, "expect.error") + "expected a map of tolerances");
+    for (const auto& kv : err) {
+      const std::string key = kv.first.Scalar();
+      const std::string path = "expect.error." + key;
+      const double v = yaml_positive(kv.second, file, path);
+      if (key == "base_mm") e.base_mm = v;
+      else if (key == "link_mm") e.link_mm = v;
+      else if (key == "offset_rad") e.offset_rad = v;
+      else if (const auto idx = param_index(key)) e.param[static_cast<size_t>(*idx)] = v;
+      else {
+        throw InputError(yaml_where(file, kv.first, path) +
+                         fmt::format("unknown tolerance (did you mean {}?); valid: base_mm, link_mm, offset_rad, or a parameter name",
+                                     edit_distance(key, "base_mm") < 3 ? "base_mm" : nearest_param_name(key)));
+      }
+    }
+  }
+  opt_number(n, "cost_max", file, e.cost_max);
+  opt_number(n, "kmrmse_mm_max", file, e.kmrmse_mm_max);
+  opt_number(n, "crb_ratio_max", file, e.crb_ratio_max);
+  opt_number(n, "static_rms_um_max", file, e.static_rms_um_max);
+  opt_number(n, "path_rms_um_max", file, e.path_rms_um_max);
+  opt_number(n, "improvement_min", file, e.improvement_min);
+  if (n["refused_contains"]) e.refused_contains = yaml_string(n["refused_contains"], file, "expect.refused_contains");
+  if (n["note_contains"]) e.note_contains = yaml_string(n["note_contains"], file, "expect.note_contains");
+  return e;
+}
+
+RunSpec from_root(const YAML::Node& root, const std::string& file, const std::string& base_dir) {
+  RunSpec spec;
+  spec.sim = sim::scenario_from_yaml(root, file, base_dir);
+  spec.calibration = parse_calibration(root["calibration"], file);
+  if (const YAML::Node hw = root["hardware"]) {
+    const std::string h = yaml_string(hw, file, "hardware");
+    spec.hardware = (std::filesystem::path(h).is_absolute() ? std::filesystem::path(h)
+                                                            : std::filesystem::path(base_dir) / h).string();
+  }
+  if (const YAML::Node out = root["outputs"]) {
+    yaml_check_keys(out, file, "outputs", {"report", "compensation"});
+    if (out["report"]) spec.outputs.report = yaml_bool(out["report"], file, "outputs.report");
+    if (out["compensation"]) spec.outputs.compensation = yaml_bool(out["compensation"], file, "outputs.compensation");
+  }
+  if (!spec.sim.sampling) {
+    throw InputError(fmt::format("{}: sampling: gpm run needs a sampling plan (the calibration samples)", file));
+  }
+  if (spec.outputs.compensation) spec.compensation = parse_compensation(root["compensation"], file, spec.sim);
+  spec.expect = parse_expect(root["expect"], file);
+  return spec;
+}
+
+}  // namespace
+
+RunSpec parse_run_spec(const std::string& text, const std::string& file, const std::string& base_dir) {
+  return from_root(load_yaml_string(text, file), file, base_dir);
+}
+
+RunSpec load_run_spec(const std::string& path) {
+  const std::string base = std::filesystem::path(path).parent_path().string();
+  return from_root(load_yaml_file(path), path, base.empty() ? "." : base);
+}
+
+}  // namespace gpm::scenario

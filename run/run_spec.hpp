@@ -1,0 +1,70 @@
+// The run part of a scenario file (scenarios/SCHEMA.md, sections
+// `calibration`, `compensation`, `expect`, `outputs`): what `gpm run` does
+// after simulating, and what counts as success.
+#pragma once
+
+#include <array>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include <Eigen/Core>
+
+#include "calib/problem.hpp"
+#include "run/compensation.hpp"
+#include "sim/scenario.hpp"
+
+namespace gpm::scenario {
+
+struct CalibrationSpec {
+  calib::Cost cost = calib::Cost::kML;
+  std::string method = "lm";            // lm | de | pso | ga | de+lm
+  FreeMask fixed;                       // default xa1 ya1 xa2 ya2
+  long budget = 200000;                 // evaluations (global methods)
+  std::uint64_t seed = 1;
+  std::optional<double> sigma;          // encoder sigma for the covariance; default: encoder noise if > 0
+  bool allow_rank_deficient = false;
+  bool start_reference = false;         // initial offsets from the reference-point procedure (sec. 3.2)
+};
+
+// Expectations; an unset one is not checked.
+struct Expectations {
+  std::optional<bool> converged;
+  std::optional<double> base_mm, link_mm, offset_rad;     // |error| per parameter kind
+  std::array<std::optional<double>, kNumParams> param;    // |error| per named parameter
+  std::optional<double> cost_max;
+  std::optional<double> kmrmse_mm_max;
+  std::optional<double> crb_ratio_max;                    // |error| / CRB sigma, every free parameter
+  std::optional<double> static_rms_um_max;                // after compensation
+  std::optional<double> path_rms_um_max;
+  std::optional<double> improvement_min;                  // static RMS nominal / calibrated
+  std::optional<std::string> refused_contains;            // calibration refused with this diagnosis
+  std::optional<std::string> note_contains;               // a warning/diagnosis note
+};
+
+struct Outputs {
+  bool report = true;
+  bool compensation = true;  // run the before/after twin evaluation
+};
+
+// A whole scenario: the simulation part (sim/scenario.hpp) and the run part.
+struct RunSpec {
+  sim::Scenario sim;
+  // Hardware file (hw/hardware_config.hpp): the samples are taken through the
+  // robot interface (twin or modbus backend) instead of the in-process
+  // simulation. Relative to the scenario file; `gpm run --hardware` overrides.
+  std::optional<std::string> hardware;
+  CalibrationSpec calibration;
+  std::optional<CompensationPlan> compensation;  // set when outputs.compensation
+  Expectations expect;
+  Outputs outputs;
+};
+
+// Loads and validates a scenario for `gpm run`; throws InputError naming the
+// file, the line and the key path (e.g. calibration.fix[2]).
+RunSpec load_run_spec(const std::string& path);
+
+// Parses scenario text (base_dir resolves relative paths).
+RunSpec parse_run_spec(const std::string& text, const std::string& file, const std::string& base_dir);
+
+}  // namespace gpm::scenario

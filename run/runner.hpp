@@ -1,0 +1,61 @@
+// `gpm run`: simulate a scenario on the twin, calibrate from its encoder
+// samples, compensate (the controller takes the calibrated model), evaluate
+// before and after on the twin, check the expectations, write the outputs.
+#pragma once
+
+#include <array>
+#include <functional>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "calib/problem.hpp"
+#include "models/robot.hpp"
+#include "run/compensation.hpp"
+#include "run/run_spec.hpp"
+#include "sim/simulate.hpp"
+
+namespace gpm::scenario {
+
+struct Check {
+  std::string name;    // e.g. "error.la1"
+  bool passed = true;
+  std::string detail;  // measured against limit
+};
+
+struct RunOutcome {
+  std::string scenario_file;
+  RunSpec spec;
+  std::string hardware_description;  // empty: in-process simulation
+  sim::SimulationResult sim;
+  Robot nominal;     // the controller's model before calibration
+  Robot calibrated;  // nominal with the estimated geometry (= nominal if refused)
+  std::optional<calib::Result> calibration;
+  std::optional<std::string> refused;          // calibration refused: the diagnosis
+  double crb_sigma_rad = 0.0;                  // encoder sigma assumed for the bound
+  std::array<double, kNumParams> crb{};        // CRB 1-sigma at the truth (NaN: fixed)
+  std::vector<double> residual_urad;           // ML residual per sample after calibration
+  std::optional<Accuracy> before, after;
+  std::vector<Check> checks;
+  double seconds = 0.0;
+
+  // True when every expectation holds.
+  bool passed() const;
+};
+
+using Progress = std::function<void(const std::string& stage)>;
+
+// Runs the scenario. Throws InputError for bad input (including a
+// calibration refused as rank-deficient unless the scenario expects it).
+// With spec.hardware, the samples are taken through the robot interface and
+// appended, flushed, to samples_path as they are taken (which must not exist);
+// the errors are then reported against the scenario's actual robot, which is
+// the truth only when that hardware simulates this scenario (twin, emulator).
+RunOutcome run_scenario(const RunSpec& spec, const std::string& scenario_file,
+                        const Progress& progress = {}, const std::string& samples_path = "");
+
+// Writes DIR/samples.csv, trajectory.csv, actual.yaml, model.xml,
+// calibration.yaml, report.md, report.html and the figures, all or nothing.
+void write_run(const RunOutcome& outcome, const std::string& dir);
+
+}  // namespace gpm::scenario

@@ -1,0 +1,63 @@
+// Tests of run/run_spec.cpp: defaults, and schema errors that name the
+// key path (gpm run exits 2 with that one line).
+#include "run/run_spec.hpp"
+#include "models/data_dir.hpp"
+
+#include <gtest/gtest.h>
+
+#include "models/errors.hpp"
+
+namespace gpm::scenario {
+namespace {
+
+const std::string kBase = (gpm::models_dir() + "/..");
+const std::string kHead =
+    "robot: models/gpm2002.yaml\n"
+    "sampling: {pattern: disc, radius: 50, count: 12}\n";
+
+std::string error_of(const std::string& text) {
+  try {
+    parse_run_spec(text, "s.yaml", kBase);
+  } catch (const InputError& e) {
+    const std::string m = e.what();
+    EXPECT_EQ(m.find('\n'), std::string::npos);
+    return m;
+  }
+  return "";
+}
+
+TEST(RunSpec, Defaults) {
+  const RunSpec s = parse_run_spec(kHead, "s.yaml", kBase);
+  EXPECT_EQ(s.calibration.cost, calib::Cost::kML);
+  EXPECT_EQ(s.calibration.method, "lm");
+  EXPECT_EQ(s.calibration.fixed, ~default_free_mask());
+  ASSERT_TRUE(s.compensation);
+  EXPECT_EQ(s.compensation->poses.size(), 12u);
+  for (const auto& p : s.compensation->poses) EXPECT_LE((p - s.sim.controller.home).norm(), 80.0 + 1e-9);
+  EXPECT_TRUE(s.outputs.report);
+  EXPECT_FALSE(s.expect.crb_ratio_max);
+}
+
+TEST(RunSpec, FixListUnknownNameNamesKeyPathAndSuggestion) {
+  EXPECT_EQ(error_of(kHead + "calibration:\n  fix: [xa1, ya1, xb1]\n"),
+            "s.yaml:4: calibration.fix[2]: unknown parameter 'xb1' (did you mean xa1?)");
+}
+
+TEST(RunSpec, OtherSchemaErrors) {
+  EXPECT_NE(error_of(kHead + "calibration: {cost: j4}\n").find("calibration.cost: unknown cost 'j4' (valid: j1, j2, j3, ml)"),
+            std::string::npos);
+  EXPECT_NE(error_of(kHead + "calibration: {method: cmaes}\n").find("calibration.method: unknown method"),
+            std::string::npos);
+  EXPECT_NE(error_of(kHead + "expect: {error: {la9: 1}}\n").find("expect.error.la9: unknown tolerance"),
+            std::string::npos);
+  EXPECT_NE(error_of(kHead + "expect: {crb_ratio_max: -1}\n").find("expect.crb_ratio_max"), std::string::npos);
+  EXPECT_NE(error_of(kHead + "expect: {improvment_min: 3}\n").find("did you mean improvement_min?"),
+            std::string::npos);
+  EXPECT_NE(error_of(kHead + "compensation: {path: {shape: spiral}}\n").find("compensation.path.shape: 'spiral'"),
+            std::string::npos);
+  EXPECT_NE(error_of("robot: models/gpm2002.yaml\npath: {shape: circle, radius: 20, period_s: 2}\n").find("needs a sampling plan"),
+            std::string::npos);
+}
+
+}  // namespace
+}  // namespace gpm::scenario
