@@ -9,6 +9,8 @@
 
 #include "app/commands.hpp"
 #include "models/errors.hpp"
+#include "calib/model_test.hpp"
+#include "run/sampling_design.hpp"
 #include "sim/simulate.hpp"
 
 namespace gpm::cli {
@@ -29,7 +31,10 @@ void add_simulate(CLI::App& app) {
   cmd->add_option("-o,--out", opt->out, "Output folder")->required();
   cmd->callback([opt] {
     const auto t0 = std::chrono::steady_clock::now();
-    const sim::Scenario s = sim::load_scenario(opt->scenario);
+    sim::Scenario s = sim::load_scenario(opt->scenario);
+    // `designed` and `trajectory` plans: poses designed for the default gauge.
+    scenario::design_sampling(s, default_free_mask(),
+                              calib::encoder_sigma(s.twin.encoder.bits, s.twin.encoder.noise_rad));
     sim::SimulationResult r;
     try {
       r = sim::simulate_to_folder(s, opt->out);  // trajectory.csv streamed, all files or none

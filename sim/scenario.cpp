@@ -159,9 +159,9 @@ void parse_encoder(const YAML::Node& n, const Ctx& c, EncoderModel& e) {
 SamplingPlan parse_sampling(const YAML::Node& n, const Ctx& c) {
   yaml_check_keys(n, c.file, c.path,
                   {"pattern", "centre", "radius", "count", "from", "to", "poses", "move_speed_mm_s",
-                   "settle", "average_s"});
+                   "settle", "average_s", "max_speed_mm_s", "max_accel_mm_s2", "sample_every"});
   SamplingPlan p;
-  require(n, "pattern", c, "disc, circle, line or list");
+  require(n, "pattern", c, "disc, circle, line, list, designed or trajectory");
   const std::string pat = yaml_string(n["pattern"], c.file, c.at("pattern").path);
   const auto count = [&](long long lo) {
     require(n, "count", c, "how many poses");
@@ -187,9 +187,30 @@ SamplingPlan parse_sampling(const YAML::Node& n, const Ctx& c) {
     if (!n["poses"].IsSequence() || n["poses"].size() == 0) fail(cp, n["poses"], "expected a non-empty list of [x, y] in mm");
     for (size_t i = 0; i < n["poses"].size(); ++i)
       p.poses.push_back(point(n["poses"][i], Ctx{c.file, fmt::format("{}[{}]", cp.path, i)}));
+  } else if (pat == "designed" || pat == "trajectory") {
+    p.pattern = pat == "designed" ? PosePattern::kDesigned : PosePattern::kTrajectory;
+    // At least 11 (the parameters of the default gauge); the run layer checks
+    // the count against the calibration's free set.
+    p.count = count(11);
+    if (n["poses"]) {  // already designed (e.g. pasted from gpm design)
+      const Ctx cp = c.at("poses");
+      if (!n["poses"].IsSequence() || n["poses"].size() < 2) fail(cp, n["poses"], "expected a list of at least two [x, y] in mm");
+      for (size_t i = 0; i < n["poses"].size(); ++i)
+        p.poses.push_back(point(n["poses"][i], Ctx{c.file, fmt::format("{}[{}]", cp.path, i)}));
+    }
+    if (p.pattern == PosePattern::kTrajectory) {
+      opt_bounded(n, "max_speed_mm_s", c, 1.0, 1000.0, "mm/s", p.path_limits.max_speed_mm_s);
+      opt_bounded(n, "max_accel_mm_s2", c, 10.0, 20000.0, "mm/s^2", p.path_limits.max_accel_mm_s2);
+      p.path_limits.max_normal_mm_s2 = p.path_limits.max_accel_mm_s2;
+      if (n["sample_every"])
+        p.sample_every = static_cast<int>(yaml_integer(n["sample_every"], c.file, c.at("sample_every").path, 1, 1000));
+    }
   } else {
-    fail(c.at("pattern"), n["pattern"], fmt::format("'{}' is not disc, circle, line or list", pat));
+    fail(c.at("pattern"), n["pattern"], fmt::format("'{}' is not disc, circle, line, list, designed or trajectory", pat));
   }
+  if (p.pattern != PosePattern::kTrajectory)
+    for (const char* key : {"max_speed_mm_s", "max_accel_mm_s2", "sample_every"})
+      if (n[key]) fail(c.at(key), n[key], "only for pattern: trajectory");
   if (p.pattern == PosePattern::kList && p.poses.size() > static_cast<size_t>(kMaxPoses)) {
     fail(c.at("poses"), n["poses"], fmt::format("at most {} poses, got {}", kMaxPoses, p.poses.size()));
   }
@@ -382,6 +403,11 @@ std::vector<Eigen::Vector2d> plan_poses(const SamplingPlan& p, std::uint64_t see
     case PosePattern::kCircle: return circle_poses(p.centre, p.radius, p.count);
     case PosePattern::kLine: return line_poses(p.from, p.to, p.count);
     case PosePattern::kList: return p.poses;
+    case PosePattern::kDesigned:
+    case PosePattern::kTrajectory:
+      if (p.poses.empty())
+        throw InputError("sampling: designed poses are made by the calibration layer (gpm run, gpm simulate); none were given");
+      return p.poses;
   }
   return {};
 }

@@ -13,6 +13,7 @@
 #include "models/robot_yaml.hpp"
 #include "models/yaml_util.hpp"
 #include "sim/effects.hpp"
+#include "sim/moving_sampling.hpp"
 
 namespace gpm::sim {
 namespace {
@@ -43,6 +44,19 @@ void check_targets(const Scenario& s, const Robot& actual, const std::vector<Eig
     check_point(s.controller, actual, poses[k],
                 fmt::format("{}: sampling: pose {} ({:.4f}, {:.4f})", s.file, k, poses[k].x(), poses[k].y()));
   }
+  if (s.sampling && s.sampling->pattern == PosePattern::kTrajectory && !poses.empty()) {
+    // Every millimetre of the excitation path, before anything moves.
+    const WaypointPath path = excitation_path(s.controller.home, poses, s.sampling->path_limits);
+    double since = 1e9;
+    for (std::size_t k = 0; k < path.p.size(); ++k) {
+      since += k > 0 ? (path.p[k] - path.p[k - 1]).norm() : 0.0;
+      if (since < 1.0 && k + 1 < path.p.size()) continue;
+      since = 0.0;
+      check_point(s.controller, actual, path.p[k],
+                  fmt::format("{}: sampling: excitation path at t = {:.3f} s ({:.4f}, {:.4f})", s.file, path.t[k],
+                              path.p[k].x(), path.p[k].y()));
+    }
+  }
   if (s.path) {
     const auto pts = path_points(*s.path);
     for (size_t k = 0; k < pts.size(); ++k) {
@@ -70,9 +84,14 @@ SimulationResult run_simulation(const Scenario& s, std::function<void(const LogR
   TwinState state(model, derive_seed(s.seed, 2));
   r.log.every = s.log_every;
   Session session = make_session(model, state, s.controller, &r.log);
-  for (size_t k = 0; k < poses.size(); ++k) {
-    r.samples.push_back(take_sample(session, poses[k], static_cast<long>(k), s.sampling->options));
+  if (s.sampling && s.sampling->pattern == PosePattern::kTrajectory) {
+    const WaypointPath path = excitation_path(s.controller.home, poses, s.sampling->path_limits);
+    r.samples = sample_along(session, path, s.sampling->sample_every, 0);
+  } else {
+    for (size_t k = 0; k < poses.size(); ++k)
+      r.samples.push_back(take_sample(session, poses[k], static_cast<long>(k), s.sampling->options));
   }
+  r.sampling_s = state.data->time;
   if (s.path) {
     const double speed = s.sampling ? s.sampling->options.move_speed_mm_s : 100.0;
     follow_path(session, make_move(session.desired, path_at(*s.path, 0.0).p, speed));
@@ -87,12 +106,14 @@ SimulationResult run_simulation(const Scenario& s, std::function<void(const LogR
 
 std::string samples_csv(const std::vector<SampleRecord>& samples) {
   std::string out =
-      "sample,theta_m1,theta_m2,theta_m3,x,y,theta_a1,theta_a2,theta_a3,target_x,target_y,settled,tau1,tau2,tau3\n";
+      "sample,theta_m1,theta_m2,theta_m3,x,y,theta_a1,theta_a2,theta_a3,target_x,target_y,settled,tau1,tau2,tau3,"
+      "omega1,omega2,omega3\n";
   for (const SampleRecord& s : samples) {
-    out += fmt::format("{},{},{},{},{},{},{},{},{},{},{},{},{},{},{}\n", s.id, x(s.theta_m[0]), x(s.theta_m[1]),
+    out += fmt::format("{},{},{},{},{},{},{},{},{},{},{},{},{},{},{},{},{},{}\n", s.id, x(s.theta_m[0]), x(s.theta_m[1]),
                        x(s.theta_m[2]), x(s.xy_mm.x()), x(s.xy_mm.y()), x(s.theta_a[0]),
                        x(s.theta_a[1]), x(s.theta_a[2]), x(s.target.x()), x(s.target.y()),
-                       s.settled ? 1 : 0, x(s.tau[0]), x(s.tau[1]), x(s.tau[2]));
+                       s.settled ? 1 : 0, x(s.tau[0]), x(s.tau[1]), x(s.tau[2]), x(s.omega[0]), x(s.omega[1]),
+                       x(s.omega[2]));
   }
   return out;
 }

@@ -21,6 +21,7 @@ struct SimulationResult {
   double max_violation_m = 0.0;  // over the whole run (every logged row)
   double max_torque = 0.0;       // N m, over the logged rows
   double simulated_s = 0.0;
+  double sampling_s = 0.0;       // robot time of the sampling: from the first move to the last reading
 };
 
 // Throws InputError naming the pose (or path point) and the reason when a
@@ -35,7 +36,8 @@ SimulationResult run_simulation(const Scenario& s, std::function<void(const LogR
 
 // samples.csv text: the DESIGN.md contract (sample,theta_m1..3,x,y) followed by
 // extra columns theta_a1..3 (true link angles), target_x, target_y, settled,
-// tau1..3 (mean drive torque over the averaging window, N m).
+// tau1..3 (mean drive torque over the averaging window, N m), omega1..3 (mean
+// joint speed, rad/s; nonzero for samples taken on the fly).
 std::string samples_csv(const std::vector<SampleRecord>& samples);
 
 // trajectory.csv header: t,x_des,y_des,x,y,theta_m1..3,tau1..3,violation_m,

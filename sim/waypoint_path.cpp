@@ -129,6 +129,14 @@ WaypointPath make_waypoint_path(const std::vector<Eigen::Vector2d>& points, cons
   return out;
 }
 
+WaypointPath excitation_path(const Eigen::Vector2d& start, const std::vector<Eigen::Vector2d>& poses,
+                             const WaypointLimits& limits) {
+  std::vector<Eigen::Vector2d> points{start};
+  for (int k : tour_order(start, poses))
+    if ((poses[static_cast<std::size_t>(k)] - points.back()).norm() > 1e-6) points.push_back(poses[static_cast<std::size_t>(k)]);
+  return make_waypoint_path(points, limits);
+}
+
 void waypoint_at(const WaypointPath& path, double t, Eigen::Vector2d& p, Eigen::Vector2d& v) {
   if (path.t.empty()) {
     p.setZero();

@@ -40,6 +40,11 @@ std::vector<int> tour_order(const Eigen::Vector2d& start, const std::vector<Eige
 WaypointPath make_waypoint_path(const std::vector<Eigen::Vector2d>& points, const WaypointLimits& limits,
                                 double step_mm = 0.1);
 
+// The excitation path of a calibration: from start through every pose in
+// tour_order, under limits.
+WaypointPath excitation_path(const Eigen::Vector2d& start, const std::vector<Eigen::Vector2d>& poses,
+                             const WaypointLimits& limits);
+
 // Position and velocity at time t (clamped to [0, duration]; zero velocity outside).
 void waypoint_at(const WaypointPath& path, double t, Eigen::Vector2d& p, Eigen::Vector2d& v);
 
