@@ -104,10 +104,12 @@ std::string mjcf_from_robot(const Robot& actual, const MjcfOptions& o) {
       std::string t;
       for (const char* axis : {"x", "y"}) {
         t += fmt::format("{}<joint name=\"{}{}\" type=\"slide\" axis=\"{}\" limited=\"true\" "
-                         "range=\"{} {}\" stiffness=\"{}\" damping=\"{}\" solreflimit=\"{} 1\"/>\n",
+                         "range=\"{} {}\" stiffness=\"{}\" damping=\"{}\" solreflimit=\"{} 1\" "
+                         "solimplimit=\"{} {} {}\"/>\n",
                          indent, stem, axis, axis[0] == 'x' ? "1 0 0" : "0 1 0", num(-c), num(c),
                          num(fx.clearance_stiffness_N_per_m), num(fx.clearance_damping_N_s_per_m),
-                         num(fx.clearance_solref_s));
+                         num(fx.clearance_solref_s), num(fx.clearance_solimp), num(fx.clearance_solimp),
+                         num(o.solimp_width_m));
       }
       return t;
     };

@@ -46,6 +46,10 @@ struct MjcfEffects {
   double clearance_stiffness_N_per_m = 200.0;     // soft centring spring of the slides
   double clearance_damping_N_s_per_m = 2.0;       // damping of the slides
   double clearance_solref_s = 0.001;              // limit time constant (stiff, >= 2 timesteps)
+  // Limit impedance: MuJoCo's soft limits are mass-normalised, so on a light
+  // pin body the default 0.9-0.95 gives way by ~0.2 mm under the servos'
+  // preload; 0.9999 (as the loop constraints) holds them to well under 1 um.
+  double clearance_solimp = 0.9999;
   double pin_mass_kg = 0.01;                      // hub pin body of chains 2 and 3 (clearance)
 
   bool compliant() const;
