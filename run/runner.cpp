@@ -100,9 +100,16 @@ RunOutcome run_scenario(const RunSpec& spec_in, const std::string& scenario_file
   if (in_motion && spec.hardware)
     throw InputError(fmt::format("{}: sampling.pattern: trajectory runs on the twin only (the hardware interface "
                                  "samples stop-and-go); use pattern: designed with --hardware", scenario_file));
-  if (in_motion && (spec.calibration.method != "lm" || spec.calibration.cost != calib::Cost::kML))
-    throw InputError(fmt::format("{}: sampling.pattern: trajectory needs calibration {{method: lm, cost: ml}} "
-                                 "(compliance and skew are estimated with the ML residual)", scenario_file));
+  calib::MotionModel motion;
+  motion.compliance = spec.calibration.estimate_compliance.value_or(in_motion);
+  motion.skew = spec.calibration.estimate_skew.value_or(in_motion);
+  const bool with_effects = motion.compliance || motion.skew;
+  if (with_effects && (spec.calibration.method != "lm" || spec.calibration.cost != calib::Cost::kML))
+    throw InputError(fmt::format("{}: estimating compliance or skew with the geometry (samples on the fly, or "
+                                 "calibration.estimate) needs calibration {{method: lm, cost: ml}}", scenario_file));
+  if (with_effects && spec.hardware)
+    throw InputError(fmt::format("{}: calibration.estimate needs the drive torques and speeds of each sample, which "
+                                 "the hardware interface does not record yet", scenario_file));
   RunOutcome out;
   out.scenario_file = scenario_file;
   out.spec = spec;
@@ -164,21 +171,22 @@ RunOutcome run_scenario(const RunSpec& spec_in, const std::string& scenario_file
   mo.true_xy = spec.hardware ? nullptr : &true_xy;
   std::vector<Eigen::Vector3d> used = problem.theta_m;  // the readings the fit explains
   try {
-    if (in_motion) {
-      // Readings in motion: transmission compliance and latch skew are
-      // estimated jointly with the geometry (calib/motion_correction.hpp).
+    if (with_effects) {
+      // Transmission compliance (readings follow the motors, links lag by
+      // compliance x torque) and latch skew are estimated jointly with the
+      // geometry (calib/motion_correction.hpp).
       std::vector<Eigen::Vector3d> omega, tau;
       for (const sim::SampleRecord& r : out.sim.samples) omega.push_back(r.omega), tau.push_back(r.tau);
       calib::LmOptions lo;
       lo.encoder_sigma = out.crb_sigma_rad > 0.0 ? std::optional<double>(out.crb_sigma_rad) : std::nullopt;
       lo.true_xy = &true_xy;
-      const calib::MotionFit fit = calib::calibrate_in_motion(problem, omega, tau, lo);
+      const calib::MotionFit fit = calib::calibrate_in_motion(problem, omega, tau, lo, motion);
       out.calibration = fit.result;
       out.motion_nu = fit.nu;
       out.motion_nu_sigma = fit.nu_sigma;
       used = fit.corrected;
       out.calibration->notes.push_back(fmt::format(
-          "samples taken on the fly: estimated latch skew s2 {:.3g} s, s3 {:.3g} s; transmission compliance "
+          "estimated with the geometry: latch skew s2 {:.3g} s, s3 {:.3g} s; transmission compliance "
           "c1 {:.3g}, c2 {:.3g}, c3 {:.3g} rad/N m (0: not excited, e.g. a torque-off joint)",
           fit.nu[0], fit.nu[1], fit.nu[2], fit.nu[3], fit.nu[4]));
     } else {
