@@ -2,7 +2,11 @@
 //   gpm kin home            the home configuration
 //   gpm kin ik X Y          active and passive angles for an end-effector target
 //   gpm kin fk T1 T2 T3     end-effector from three active angles (or readings)
+// With --json: one JSON document on stdout with the same content as the text.
+#include <cmath>
 #include <cstdio>
+#include <cstdlib>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -20,7 +24,63 @@ struct KinOptions {
   std::vector<double> xy;
   std::vector<double> angles;
   bool readings = false;
+  bool json = false;
 };
+
+// Refuses a number argument that is not finite (nan, inf, 1e999): issue 14.14.
+// Text that is not a number at all is left to CLI11's own conversion message.
+const CLI::Validator kFinite(
+    [](std::string& s) -> std::string {
+      char* end = nullptr;
+      const double v = std::strtod(s.c_str(), &end);
+      if (end == s.c_str()) return "";
+      return std::isfinite(v) ? "" : fmt::format("must be a finite number, got '{}'", s);
+    },
+    "FINITE");
+
+// A JSON string literal of s (quotes, backslashes and control characters escaped).
+std::string json_string(const std::string& s) {
+  std::string out = "\"";
+  for (const char ch : s) {
+    const auto c = static_cast<unsigned char>(ch);
+    if (c == '"' || c == '\\') out += '\\', out += ch;
+    else if (c == '\n') out += "\\n";
+    else if (c < 0x20 || c == 0x7f) out += fmt::format("\\u{:04x}", c);
+    else out += ch;
+  }
+  return out + "\"";
+}
+
+// A JSON number exactly as the double (shortest round trip); null when not finite.
+std::string json_number(double x) { return std::isfinite(x) ? fmt::format("{}", x) : "null"; }
+
+std::string json_vector(const Eigen::Vector3d& v) {
+  return fmt::format("[{}, {}, {}]", json_number(v[0]), json_number(v[1]), json_number(v[2]));
+}
+
+// The configuration as one JSON document (the keys mirror the text output).
+void print_configuration_json(const Robot& robot, const Eigen::Vector2d& p, const JointAngles& q,
+                              std::optional<double> closure_mm2) {
+  const Conditioning c = conditioning(robot.geometry, q);
+  const Eigen::Vector3d m = readings_from_active(robot.geometry, q.theta_a);
+  const Reach r = check_reach(robot, p);
+  std::string out = "{\n";
+  out += fmt::format("  \"robot\": {},\n", json_string(robot.name));
+  out += fmt::format("  \"end_effector_mm\": {{\"x\": {}, \"y\": {}}},\n", json_number(p.x()), json_number(p.y()));
+  out += fmt::format("  \"theta_a_rad\": {},\n", json_vector(q.theta_a));
+  out += fmt::format("  \"theta_b_rad\": {},\n", json_vector(q.theta_b));
+  out += fmt::format("  \"theta_m_rad\": {},\n", json_vector(m));
+  out += fmt::format("  \"transmission\": {},\n", json_vector(c.transmission));
+  out += fmt::format("  \"transmission_margin\": {},\n", json_number(robot.limits.min_transmission));
+  out += fmt::format("  \"passive_spread\": {},\n", json_number(c.direct));
+  out += fmt::format("  \"passive_spread_margin\": {},\n", json_number(robot.limits.min_direct));
+  out += fmt::format("  \"jacobian_condition\": {},\n", json_number(c.jacobian_condition));
+  out += fmt::format("  \"workspace\": {{\"inside\": {}, \"reason\": {}}}", r.ok ? "true" : "false",
+                     json_string(r.reason));
+  if (closure_mm2) out += fmt::format(",\n  \"closure_mm2\": {}", json_number(*closure_mm2));
+  out += "\n}\n";
+  fmt::print("{}", out);
+}
 
 void print_configuration(const Robot& robot, const Eigen::Vector2d& p, const JointAngles& q) {
   const Conditioning c = conditioning(robot.geometry, q);
@@ -48,25 +108,31 @@ void add_kin(CLI::App& app) {
 
   auto* home = kin->add_subcommand("home", "Print the home configuration");
   home->add_option("--model", opt->model, "Robot file (YAML); default: the nominal GPM2002");
+  home->add_flag("--json", opt->json, "One JSON document on stdout instead of the text");
   home->callback([opt] {
     const Robot robot = load_robot(opt->model.empty() ? default_model_path() : opt->model);
     const JointAngles q = inverse_kinematics(robot.geometry, robot.home, robot.branch);
-    print_configuration(robot, robot.home, q);
+    if (opt->json) print_configuration_json(robot, robot.home, q, std::nullopt);
+    else print_configuration(robot, robot.home, q);
   });
 
   auto* ik = kin->add_subcommand("ik", "Inverse kinematics: active and passive angles for X Y (mm)");
-  ik->add_option("xy", opt->xy, "End-effector X Y in mm")->required()->expected(2);
+  ik->add_option("xy", opt->xy, "End-effector X Y in mm")->required()->expected(2)->check(kFinite);
   ik->add_option("--model", opt->model, "Robot file (YAML); default: the nominal GPM2002");
+  ik->add_flag("--json", opt->json, "One JSON document on stdout instead of the text");
   ik->callback([opt] {
     const Robot robot = load_robot(opt->model.empty() ? default_model_path() : opt->model);
     const Eigen::Vector2d p(opt->xy[0], opt->xy[1]);
-    print_configuration(robot, p, inverse_kinematics(robot.geometry, p, robot.branch));
+    const JointAngles q = inverse_kinematics(robot.geometry, p, robot.branch);
+    if (opt->json) print_configuration_json(robot, p, q, std::nullopt);
+    else print_configuration(robot, p, q);
   });
 
   auto* fk = kin->add_subcommand("fk", "Forward kinematics from three active angles T1 T2 T3 (rad)");
-  fk->add_option("angles", opt->angles, "Active angles in rad")->required()->expected(3);
+  fk->add_option("angles", opt->angles, "Active angles in rad")->required()->expected(3)->check(kFinite);
   fk->add_flag("--readings", opt->readings, "The angles are encoder readings (theta_a = theta_m + dth)");
   fk->add_option("--model", opt->model, "Robot file (YAML); default: the nominal GPM2002");
+  fk->add_flag("--json", opt->json, "One JSON document on stdout instead of the text");
   fk->callback([opt] {
     const Robot robot = load_robot(opt->model.empty() ? default_model_path() : opt->model);
     Eigen::Vector3d t(opt->angles[0], opt->angles[1], opt->angles[2]);
@@ -76,6 +142,10 @@ void add_kin(CLI::App& app) {
     JointAngles q;
     q.theta_a = t;
     q.theta_b = f->theta_b;
+    if (opt->json) {
+      print_configuration_json(robot, f->p, q, f->power);
+      return;
+    }
     print_configuration(robot, f->p, q);
     fmt::print("closure          {:.6g} mm^2   (power of O w.r.t. each passive circle; 0 when the loops close)\n",
                f->power);

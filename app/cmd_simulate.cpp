@@ -9,6 +9,8 @@
 
 #include "app/commands.hpp"
 #include "models/errors.hpp"
+#include "calib/model_test.hpp"
+#include "run/sampling_design.hpp"
 #include "sim/simulate.hpp"
 
 namespace gpm::cli {
@@ -29,20 +31,22 @@ void add_simulate(CLI::App& app) {
   cmd->add_option("-o,--out", opt->out, "Output folder")->required();
   cmd->callback([opt] {
     const auto t0 = std::chrono::steady_clock::now();
-    const sim::Scenario s = sim::load_scenario(opt->scenario);
+    sim::Scenario s = sim::load_scenario(opt->scenario);
+    // `designed` and `trajectory` plans: poses designed for the default gauge.
+    scenario::design_sampling(s, default_free_mask(),
+                              calib::encoder_sigma(s.twin.encoder.bits, s.twin.encoder.noise_rad));
     sim::SimulationResult r;
     try {
-      r = sim::run_simulation(s);
+      r = sim::simulate_to_folder(s, opt->out);  // trajectory.csv streamed, all files or none
     } catch (const sim::SimError& e) {
       throw InputError(fmt::format("{}: {}", opt->scenario, e.what()));
     }
-    sim::write_simulation(r, opt->out);
     const double wall = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
     int unsettled = 0;
     for (const auto& smp : r.samples) unsettled += smp.settled ? 0 : 1;
     fmt::print("scenario         {}\n", s.name);
     fmt::print("samples          {} ({} did not settle)\n", r.samples.size(), unsettled);
-    fmt::print("trajectory rows  {}\n", r.log.rows.size());
+    fmt::print("trajectory rows  {}\n", r.log.count);
     fmt::print("simulated        {:.3f} s in {:.3f} s wall\n", r.simulated_s, wall);
     fmt::print("loop closure     max gap {:.3g} um\n", r.max_violation_m * 1e6);
     fmt::print("drive torque     max {:.3f} N m\n", r.max_torque);

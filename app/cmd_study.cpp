@@ -11,8 +11,10 @@
 
 #include "app/commands.hpp"
 #include "calib/crb.hpp"
+#include "calib/identifiability.hpp"
 #include "calib/montecarlo.hpp"
 #include "calib/paper_values.hpp"
+#include "calib/sample_check.hpp"
 #include "calib/synthetic.hpp"
 #include "models/errors.hpp"
 #include "models/output_file.hpp"
@@ -62,6 +64,22 @@ void run_crb(const StudyOptions& o) {
   const Robot r = actual_robot(o.actual);
   const Samples s = read_samples_csv(o.data);
   const FreeMask free = ~parse_param_list(o.fix, "--fix");
+  // The same refusals as gpm calibrate (issue 14.10): too few samples, bad
+  // readings, then a free set the samples cannot identify (the bound would be
+  // infinite, printed as -nan).
+  calib::Problem problem;
+  problem.theta_m = s.theta_m;
+  problem.free = free;
+  problem.start = r.geometry;
+  calib::check_samples(problem);
+  const calib::Identifiability id = calib::analyse_identifiability(s.theta_m, r.geometry, free);
+  const int p = static_cast<int>(free.count());
+  if (id.rank < p) {
+    throw InputError(fmt::format(
+        "--fix: the {} free parameters ({}) are not identifiable from encoder angles (rank {} of {}): {}; {} "
+        "(the bound is infinite along those directions)",
+        p, format_param_list(free), id.rank, p, id.description, id.advice));
+  }
   const auto sd = calib::crb_sigma(r.geometry, free, s.theta_m, o.sigma);
   fmt::print("Cramer-Rao bound, {} samples, encoder sigma {} rad (readings taken as noiseless of {})\n", s.size(),
              o.sigma, o.actual);

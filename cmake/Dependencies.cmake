@@ -7,6 +7,8 @@ find_package(fmt REQUIRED)
 find_package(CLI11 REQUIRED)
 find_package(Threads REQUIRED)
 find_package(mujoco REQUIRED)
+find_package(Boost 1.74 REQUIRED)  # header-only: Boost.Math special functions
+find_package(nlohmann_json 3 REQUIRED)
 
 # Debian's mujoco::mujoco lists /usr/include/libqhull_r among its include
 # directories; that folder exists only with libqhull-dev. Drop it if absent so

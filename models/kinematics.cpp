@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 #include <numbers>
 
 #include <Eigen/SVD>
@@ -140,6 +141,10 @@ Conditioning conditioning(const Geometry& g, const JointAngles& q) {
     U(i, 1) = std::sin(q.theta_b[i]);
   }
   c.min_transmission = c.transmission.minCoeff();
+  if (!U.allFinite() || !q.theta_a.allFinite()) {  // no measure of angles that are not numbers
+    c.direct = c.jacobian_condition = c.min_transmission = std::numeric_limits<double>::quiet_NaN();
+    return c;
+  }
   const Eigen::JacobiSVD<Matrix32d> svd_u(U);
   c.direct = svd_u.singularValues()(1) / std::sqrt(1.5);
   if (c.min_transmission > 0.0) {

@@ -114,7 +114,8 @@ struct Conditioning {
   double jacobian_condition = 0.0;
 };
 
-// Conditioning of the mechanism at joint angles q.
+// Conditioning of the mechanism at joint angles q (every measure NaN when an
+// angle is not finite).
 Conditioning conditioning(const Geometry& g, const JointAngles& q);
 
 // Reachability of a target with the robot's margins.

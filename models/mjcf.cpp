@@ -41,6 +41,23 @@ std::string rod_inertial(double mass, double length, double radius) {
 
 }  // namespace
 
+bool MjcfEffects::compliant() const {
+  for (double v : compliance_rad_per_Nm) if (v > 0.0) return true;
+  return false;
+}
+
+bool MjcfEffects::loose() const {
+  for (double v : clearance_m) if (v > 0.0) return true;
+  return false;
+}
+
+double transmission_omega(const MjcfOptions& o, int chain, double la_m) {
+  const double compliance = o.effects.compliance_rad_per_Nm[static_cast<size_t>(chain)];
+  if (!(compliance > 0.0)) return 0.0;
+  const double i_link = o.active_link_mass_kg * la_m * la_m / 3.0;  // rod about its end
+  return std::sqrt((1.0 / compliance) * (1.0 / o.armature_kg_m2 + 1.0 / i_link));
+}
+
 std::string mjcf_from_robot(const Robot& actual, const MjcfOptions& o) {
   const Geometry& g = actual.geometry;
   JointAngles q;
@@ -69,50 +86,107 @@ std::string mjcf_from_robot(const Robot& actual, const MjcfOptions& o) {
   x += "  </default>\n";
   x += "  <worldbody>\n";
   x += "    <light pos=\"0.2165 0.25 1.5\" dir=\"0 0 -1\"/>\n";
+  const MjcfEffects& fx = o.effects;
   for (int i = 0; i < kNumChains; ++i) {
     const int n = i + 1;
     const double la_m = g.la_(i) * kMetresPerMm, lb_m = g.lb_(i) * kMetresPerMm;
     const double ta = q.theta_a[i];
     const double rel = q.theta_b[i] - q.theta_a[i];  // passive joint is relative to its parent
-    x += fmt::format("    <body name=\"link_a{}\" pos=\"{} {} 0\" euler=\"0 0 {}\">\n", n,
-                     num(g[xa(i)] * kMetresPerMm), num(g[ya(i)] * kMetresPerMm), num(ta));
-    x += fmt::format("      <joint name=\"joint_a{}\" type=\"hinge\" axis=\"0 0 1\" ref=\"{}\" "
-                     "damping=\"{}\" armature=\"{}\"/>\n",
-                     n, num(ta), num(o.active_damping), num(o.armature_kg_m2));
-    x += "      " + rod_inertial(o.active_link_mass_kg, la_m, r) + "\n";
-    x += fmt::format("      <geom name=\"geom_a{}\" type=\"capsule\" fromto=\"0 0 0 {} 0 0\" "
-                     "size=\"{}\" rgba=\"0.2 0.4 0.8 1\"/>\n", n, num(la_m), num(r));
-    x += fmt::format("      <site name=\"base_a{}\" pos=\"0 0 0\" size=\"0.02\"/>\n", n);
-    x += fmt::format("      <body name=\"link_b{}\" pos=\"{} 0 0.03\" euler=\"0 0 {}\">\n", n,
-                     num(la_m), num(rel));
-    x += fmt::format("        <joint name=\"joint_b{}\" type=\"hinge\" axis=\"0 0 1\" ref=\"{}\" "
-                     "damping=\"{}\"/>\n", n, num(rel), num(o.passive_damping));
-    x += "        " + rod_inertial(o.passive_link_mass_kg, lb_m, 0.8 * r) + "\n";
-    x += fmt::format("        <geom name=\"geom_b{}\" type=\"capsule\" fromto=\"0 0 0 {} 0 0\" "
-                     "size=\"{}\" rgba=\"0.9 0.6 0.2 1\"/>\n", n, num(lb_m), num(0.8 * r));
-    x += fmt::format("        <site name=\"tip_b{}\" pos=\"{} 0 0\" size=\"0.005\"/>\n", n, num(lb_m));
-    if (i == 0) {
-      x += fmt::format("        <body name=\"ee\" pos=\"{} 0 0\">\n", num(lb_m));
-      x += fmt::format("          <inertial pos=\"0 0 0\" mass=\"{}\" diaginertia=\"{} {} {}\"/>\n",
-                       num(o.ee_mass_kg), num(1e-5), num(1e-5), num(1e-5));
-      x += "          <geom name=\"geom_ee\" type=\"cylinder\" size=\"0.02 0.01\" pos=\"0 0 0.03\" "
-           "rgba=\"0.8 0.1 0.1 1\"/>\n";
-      x += "          <site name=\"ee\" pos=\"0 0 0\" size=\"0.008\"/>\n";
-      x += "        </body>\n";
+    const double c = fx.clearance_m[static_cast<size_t>(i)];
+    const double compliance = fx.compliance_rad_per_Nm[static_cast<size_t>(i)];
+    const std::string damping = num(o.active_damping + fx.viscous_Nm_s[static_cast<size_t>(i)]);
+    const std::string friction =
+        fx.coulomb_Nm[static_cast<size_t>(i)] > 0.0
+            ? fmt::format(" frictionloss=\"{}\"", num(fx.coulomb_Nm[static_cast<size_t>(i)]))
+            : std::string();
+    // Two limited slide joints of a loose passive joint (DESIGN.md: clearance).
+    const auto slides = [&](const std::string& stem, const std::string& indent) {
+      std::string t;
+      for (const char* axis : {"x", "y"}) {
+        t += fmt::format("{}<joint name=\"{}{}\" type=\"slide\" axis=\"{}\" limited=\"true\" "
+                         "range=\"{} {}\" stiffness=\"{}\" damping=\"{}\" solreflimit=\"{} 1\" "
+                         "solimplimit=\"{} {} {}\"/>\n",
+                         indent, stem, axis, axis[0] == 'x' ? "1 0 0" : "0 1 0", num(-c), num(c),
+                         num(fx.clearance_stiffness_N_per_m), num(fx.clearance_damping_N_s_per_m),
+                         num(fx.clearance_solref_s), num(fx.clearance_solimp), num(fx.clearance_solimp),
+                         num(o.solimp_width_m));
+      }
+      return t;
+    };
+    std::string in = "      ";  // indentation inside link_a
+    if (compliance > 0.0) {
+      x += fmt::format("    <body name=\"rotor_a{}\" pos=\"{} {} 0\" euler=\"0 0 {}\">\n", n,
+                       num(g[xa(i)] * kMetresPerMm), num(g[ya(i)] * kMetresPerMm), num(ta));
+      x += fmt::format("      <joint name=\"joint_m{}\" type=\"hinge\" axis=\"0 0 1\" ref=\"{}\" "
+                       "damping=\"{}\" armature=\"{}\"{}/>\n",
+                       n, num(ta), damping, num(o.armature_kg_m2), friction);
+      x += fmt::format("      <inertial pos=\"0 0 0\" mass=\"{}\" diaginertia=\"{} {} {}\"/>\n",
+                       num(fx.rotor_mass_kg), num(1e-6), num(1e-6), num(1e-6));
+      x += fmt::format("      <body name=\"link_a{}\" pos=\"0 0 0\">\n", n);
+      x += fmt::format("        <joint name=\"joint_a{}\" type=\"hinge\" axis=\"0 0 1\" stiffness=\"{}\" "
+                       "springref=\"0\"/>\n", n, num(1.0 / compliance));
+      in = "        ";
+    } else {
+      x += fmt::format("    <body name=\"link_a{}\" pos=\"{} {} 0\" euler=\"0 0 {}\">\n", n,
+                       num(g[xa(i)] * kMetresPerMm), num(g[ya(i)] * kMetresPerMm), num(ta));
+      x += fmt::format("      <joint name=\"joint_a{}\" type=\"hinge\" axis=\"0 0 1\" ref=\"{}\" "
+                       "damping=\"{}\" armature=\"{}\"{}/>\n",
+                       n, num(ta), damping, num(o.armature_kg_m2), friction);
     }
-    x += "      </body>\n";
+    x += in + rod_inertial(o.active_link_mass_kg, la_m, r) + "\n";
+    x += fmt::format("{}<geom name=\"geom_a{}\" type=\"capsule\" fromto=\"0 0 0 {} 0 0\" "
+                     "size=\"{}\" rgba=\"0.2 0.4 0.8 1\"/>\n", in, n, num(la_m), num(r));
+    x += fmt::format("{}<site name=\"base_a{}\" pos=\"0 0 0\" size=\"0.02\"/>\n", in, n);
+    x += fmt::format("{}<body name=\"link_b{}\" pos=\"{} 0 0.03\" euler=\"0 0 {}\">\n", in, n,
+                     num(la_m), num(rel));
+    const std::string inb = in + "  ";
+    if (c > 0.0) x += slides(fmt::format("clear_b{}", n), inb);
+    x += fmt::format("{}<joint name=\"joint_b{}\" type=\"hinge\" axis=\"0 0 1\" ref=\"{}\" "
+                     "damping=\"{}\"/>\n", inb, n, num(rel), num(o.passive_damping));
+    x += inb + rod_inertial(o.passive_link_mass_kg, lb_m, 0.8 * r) + "\n";
+    x += fmt::format("{}<geom name=\"geom_b{}\" type=\"capsule\" fromto=\"0 0 0 {} 0 0\" "
+                     "size=\"{}\" rgba=\"0.9 0.6 0.2 1\"/>\n", inb, n, num(lb_m), num(0.8 * r));
+    if (c > 0.0 && i > 0) {
+      x += fmt::format("{}<body name=\"pin_b{}\" pos=\"{} 0 0\">\n", inb, n, num(lb_m));
+      x += slides(fmt::format("clear_e{}", n), inb + "  ");
+      x += fmt::format("{}  <inertial pos=\"0 0 0\" mass=\"{}\" diaginertia=\"{} {} {}\"/>\n", inb,
+                       num(fx.pin_mass_kg), num(1e-7), num(1e-7), num(1e-7));
+      x += fmt::format("{}  <site name=\"tip_b{}\" pos=\"0 0 0\" size=\"0.005\"/>\n", inb, n);
+      x += inb + "</body>\n";
+    } else {
+      x += fmt::format("{}<site name=\"tip_b{}\" pos=\"{} 0 0\" size=\"0.005\"/>\n", inb, n, num(lb_m));
+    }
+    if (i == 0) {
+      x += fmt::format("{}<body name=\"ee\" pos=\"{} 0 0\">\n", inb, num(lb_m));
+      if (c > 0.0) x += slides("clear_e1", inb + "  ");
+      x += fmt::format("{}  <inertial pos=\"0 0 0\" mass=\"{}\" diaginertia=\"{} {} {}\"/>\n", inb,
+                       num(o.ee_mass_kg), num(1e-5), num(1e-5), num(1e-5));
+      x += inb + "  <geom name=\"geom_ee\" type=\"cylinder\" size=\"0.02 0.01\" pos=\"0 0 0.03\" "
+           "rgba=\"0.8 0.1 0.1 1\"/>\n";
+      x += inb + "  <site name=\"ee\" pos=\"0 0 0\" size=\"0.008\"/>\n";
+      x += inb + "</body>\n";
+    }
+    x += in + "</body>\n";
+    if (compliance > 0.0) x += "      </body>\n";
     x += "    </body>\n";
   }
   x += "  </worldbody>\n";
   x += "  <equality>\n";
   for (int i = 1; i < kNumChains; ++i) {
-    x += fmt::format("    <connect name=\"close_b{}\" body1=\"link_b{}\" body2=\"ee\" anchor=\"{} 0 0\"/>\n",
-                     i + 1, i + 1, num(g.lb_(i) * kMetresPerMm));
+    if (fx.clearance_m[static_cast<size_t>(i)] > 0.0) {
+      x += fmt::format("    <connect name=\"close_b{}\" body1=\"pin_b{}\" body2=\"ee\" anchor=\"0 0 0\"/>\n",
+                       i + 1, i + 1);
+    } else {
+      x += fmt::format("    <connect name=\"close_b{}\" body1=\"link_b{}\" body2=\"ee\" anchor=\"{} 0 0\"/>\n",
+                       i + 1, i + 1, num(g.lb_(i) * kMetresPerMm));
+    }
   }
   x += "  </equality>\n";
   x += "  <actuator>\n";
-  for (int i = 0; i < kNumChains; ++i)
-    x += fmt::format("    <motor name=\"motor_a{}\" joint=\"joint_a{}\" gear=\"1\"/>\n", i + 1, i + 1);
+  for (int i = 0; i < kNumChains; ++i) {
+    const char* joint = fx.compliance_rad_per_Nm[static_cast<size_t>(i)] > 0.0 ? "joint_m" : "joint_a";
+    x += fmt::format("    <motor name=\"motor_a{}\" joint=\"{}{}\" gear=\"1\"/>\n", i + 1, joint, i + 1);
+  }
   x += "  </actuator>\n";
   x += "</mujoco>\n";
   return x;

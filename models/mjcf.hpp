@@ -8,6 +8,17 @@
 //   site tip_b{i}   at the free end of link_b{i} (tip_b1 coincides with ee)
 //   equality close_b2, close_b3: <connect> tip of link_b2 / link_b3 to ee
 //   actuator motor_a{i}: torque motor on joint_a{i} (gear 1, N m)
+// Physical effects (MjcfEffects, all off by default; off = the layout above,
+// byte for byte):
+//   compliance: body rotor_a{i} at A_i with hinge joint_m{i} (absolute, the
+//     rotor armature, the actuator) holds link_a{i} on a relative hinge
+//     joint_a{i} with stiffness 1/compliance and springref 0 (qpos = link -
+//     motor); theta_a = qpos(joint_m) + qpos(joint_a).
+//   clearance: slide joints clear_b{i}x/y (range +-c) ahead of joint_b{i}; at
+//     the hub slide joints clear_e1x/y in body ee and, for chains 2 and 3, a
+//     body pin_b{i} at the tip of link_b{i} (slides clear_e{i}x/y, site
+//     tip_b{i}) which the connect holds at its origin.
+//   friction: frictionloss (Coulomb, N m) and extra damping on the actuated joint.
 // Bodies are laid out already assembled at the actual inverse kinematics of
 // robot.home (paper eq. 29-31), so <connect>, which takes its second anchor at
 // qpos0, closes the loops exactly (DESIGN.md, MuJoCo facts). Joint qpos are
@@ -15,6 +26,7 @@
 // (qpos = theta_b - theta_a). Metres inside MuJoCo; millimetres outside.
 #pragma once
 
+#include <array>
 #include <string>
 
 #include "models/robot.hpp"
@@ -23,6 +35,26 @@ namespace gpm {
 
 // The one place where millimetres become metres for MuJoCo.
 inline constexpr double kMetresPerMm = 1e-3;
+
+// Effects built into the MuJoCo model (per chain; 0 = off).
+struct MjcfEffects {
+  std::array<double, 3> compliance_rad_per_Nm{};  // transmission, motor to link
+  std::array<double, 3> clearance_m{};            // radial, elbow B_i and hub joint of chain i
+  std::array<double, 3> coulomb_Nm{};             // frictionloss at the actuated joint
+  std::array<double, 3> viscous_Nm_s{};           // damping added to active_damping
+  double rotor_mass_kg = 0.05;                    // rotor body (compliance only; inertia is the armature)
+  double clearance_stiffness_N_per_m = 200.0;     // soft centring spring of the slides
+  double clearance_damping_N_s_per_m = 2.0;       // damping of the slides
+  double clearance_solref_s = 0.001;              // limit time constant (stiff, >= 2 timesteps)
+  // Limit impedance: MuJoCo's soft limits are mass-normalised, so on a light
+  // pin body the default 0.9-0.95 gives way by ~0.2 mm under the servos'
+  // preload; 0.9999 (as the loop constraints) holds them to well under 1 um.
+  double clearance_solimp = 0.9999;
+  double pin_mass_kg = 0.01;                      // hub pin body of chains 2 and 3 (clearance)
+
+  bool compliant() const;
+  bool loose() const;
+};
 
 // Mass, drive and solver properties of the MJCF (GPM2002-sized defaults; the
 // reasoning behind each number is in mjcf.cpp).
@@ -40,7 +72,13 @@ struct MjcfOptions {
   double solimp_dmin = 0.9999;         // equality constraint impedance at zero violation
   double solimp_dmax = 0.9999;         // ... and beyond solimp_width_m
   double solimp_width_m = 0.001;
+  MjcfEffects effects;                 // physical effects, all off by default
 };
+
+// Rotational rate (rad/s) of chain i's transmission spring: omega^2 = k (1/Ia
+// + 1/Il) with Ia the armature and Il the active link's inertia about its axis
+// (the passive chain only adds inertia, so this is an upper bound); 0 if rigid.
+double transmission_omega(const MjcfOptions& options, int chain, double la_m);
 
 // MJCF text of the mechanism with the given (actual) parameters, assembled at
 // robot.home. Throws InputError if the parameters cannot assemble there.

@@ -99,6 +99,16 @@ Samples parse_samples_csv(const std::string& text, const std::string& file) {
     ++line_no;
     if (line.find_first_not_of(" \t\r") == std::string::npos) continue;
     const auto f = split_csv_line(line);
+    // Strict reader (issue 14.4): every row has exactly the header's field count,
+    // so a decimal comma (`1,5`) or a missing field never shifts the columns.
+    if (f.size() != header.size()) {
+      const std::string why =
+          f.size() > header.size()
+              ? std::string("a decimal comma or an extra field?")
+              : fmt::format("column '{}' is missing on this row", header[f.size()]);
+      throw InputError(fmt::format("{}:{}: expected {} fields as in the header (line {}), found {} ({})",
+                                   file, line_no, header.size(), header_line, f.size(), why));
+    }
     Eigen::Vector3d t;
     for (int k = 0; k < 3; ++k) t[k] = number(f, c_t[k], line_no);
     s.theta_m.push_back(t);

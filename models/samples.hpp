@@ -20,7 +20,8 @@ struct Samples {
 };
 
 // Reads a samples CSV; throws InputError naming the file, line and column for
-// missing columns, non-numeric or non-finite values.
+// missing columns, non-numeric or non-finite values, and rows whose field count
+// differs from the header's (strict reader).
 Samples read_samples_csv(const std::string& path);
 
 // Parses samples CSV text; file names the source in errors.

@@ -3,9 +3,12 @@
 #include <charconv>
 #include <cmath>
 #include <fstream>
+#include <map>
 #include <sstream>
+#include <vector>
 
 #include <fmt/format.h>
+#include <yaml-cpp/eventhandler.h>
 
 #include "models/errors.hpp"
 #include "models/parameters.hpp"
@@ -21,8 +24,117 @@ std::string yaml_where(const std::string& file, const YAML::Node& node, std::str
   return out;
 }
 
+namespace {
+
+// Streams the parser's events and refuses a map key that appears twice in the
+// same map (issue 14.5: yaml-cpp keeps both entries and which one a reader sees
+// differs by reader). Event-based, so aliases are not expanded: linear in the text.
+class DuplicateKeyCheck final : public YAML::EventHandler {
+ public:
+  explicit DuplicateKeyCheck(const std::string& file) : file_(file) {}
+
+  void OnDocumentStart(const YAML::Mark&) override { stack_.clear(); }
+  void OnDocumentEnd() override {}
+  void OnNull(const YAML::Mark& mark, YAML::anchor_t) override { node(mark, "null", true); }
+  void OnAlias(const YAML::Mark& mark, YAML::anchor_t) override { node(mark, "*alias", false); }
+  void OnScalar(const YAML::Mark& mark, const std::string&, YAML::anchor_t,
+                const std::string& value) override {
+    node(mark, value, true);
+  }
+  void OnSequenceStart(const YAML::Mark& mark, const std::string&, YAML::anchor_t,
+                       YAML::EmitterStyle::value) override {
+    open(mark, false);
+  }
+  void OnSequenceEnd() override { close(); }
+  void OnMapStart(const YAML::Mark& mark, const std::string&, YAML::anchor_t,
+                  YAML::EmitterStyle::value) override {
+    open(mark, true);
+  }
+  void OnMapEnd() override { close(); }
+
+ private:
+  struct Frame {
+    bool is_map = false;
+    bool expect_key = true;  // maps: the next node is a key
+    std::string key;         // maps: the key of the value being read
+    long index = 0;          // sequences: the index of the item being read
+    std::map<std::string, int> lines;  // maps: scalar key -> line (1-based)
+  };
+
+  // Dotted key path of the node being read (sequence items as [i]).
+  std::string path() const {
+    std::string out;
+    for (const Frame& f : stack_) {
+      if (f.is_map) {
+        if (f.expect_key) break;  // inside a (complex) key: stop here
+        out += out.empty() ? f.key : "." + f.key;
+      } else {
+        out += fmt::format("[{}]", f.index);
+      }
+    }
+    return out;
+  }
+
+  // A scalar, null or alias node at mark (text is the key when it is a key).
+  void node(const YAML::Mark& mark, const std::string& text, bool keyable) {
+    if (!stack_.empty() && stack_.back().is_map && stack_.back().expect_key) {
+      Frame& m = stack_.back();
+      const int line = mark.line + 1;
+      if (keyable) {
+        const auto [it, inserted] = m.lines.emplace(text, line);
+        if (!inserted) {
+          const std::string prefix = path();
+          const std::string where = prefix.empty() ? text : prefix + "." + text;
+          throw InputError(fmt::format(
+              "{}:{}: {}: duplicate key (first at line {}, again at line {}); a key may appear "
+              "once in a map: keep one of the two",
+              file_, line, where, it->second, line));
+        }
+      }
+      m.key = keyable ? text : "*alias";
+    }
+    done();
+  }
+
+  void open(const YAML::Mark&, bool is_map) {
+    if (!stack_.empty() && stack_.back().is_map && stack_.back().expect_key) {
+      stack_.back().key = "?";  // a complex (collection) key
+    }
+    Frame f;
+    f.is_map = is_map;
+    stack_.push_back(std::move(f));
+  }
+
+  void close() {
+    if (!stack_.empty()) stack_.pop_back();
+    done();
+  }
+
+  // The node just read in the top frame is complete.
+  void done() {
+    if (stack_.empty()) return;
+    Frame& f = stack_.back();
+    if (f.is_map) {
+      f.expect_key = !f.expect_key;
+    } else {
+      ++f.index;
+    }
+  }
+
+  const std::string& file_;
+  std::vector<Frame> stack_;
+};
+
+}  // namespace
+
 YAML::Node load_yaml_string(const std::string& text, const std::string& file) {
   try {
+    {
+      std::istringstream in(text);
+      YAML::Parser parser(in);
+      DuplicateKeyCheck check(file);
+      parser.HandleNextDocument(check);
+    }
     return YAML::Load(text);
   } catch (const YAML::ParserException& e) {
     throw InputError(fmt::format("{}:{}:{}: YAML syntax error: {}", file, e.mark.line + 1,

@@ -13,10 +13,11 @@ namespace gpm {
 // "FILE:LINE: KEYPATH: " prefix for an error about node.
 std::string yaml_where(const std::string& file, const YAML::Node& node, std::string_view keypath);
 
-// Loads a YAML file; throws InputError for a missing file or a syntax error.
+// Loads a YAML file; throws InputError for a missing file, a syntax error or a
+// key that appears twice in one map (every YAML the toolkit reads comes here).
 YAML::Node load_yaml_file(const std::string& file);
 
-// Parses YAML text (file names the source in errors).
+// Parses YAML text (file names the source in errors); same checks as above.
 YAML::Node load_yaml_string(const std::string& text, const std::string& file);
 
 // A finite number at node; throws InputError for non-numeric or non-finite.

@@ -147,7 +147,7 @@ ReportDocument build_run_report(const RunReport& o) {
                 "test poses, tracking error along the test path, and the servos' internal preload |P tau| (torques "
                 "that do no work on the end-effector, eq. 15).");
     std::vector<std::vector<std::string>> rows;
-    for (const RunAccuracy* a : {&*o.before, o.after ? &*o.after : nullptr}) {
+    for (const RunAccuracy* a : {&*o.before, o.after ? &*o.after : nullptr, o.floor ? &*o.floor : nullptr}) {
       if (!a) continue;
       rows.push_back({a->label, fmt::format("{:.2f}", a->static_rms_um), fmt::format("{:.2f}", a->static_max_um),
                       fmt::format("{:.2f}", a->path_rms_um), fmt::format("{:.2f}", a->path_max_um),
@@ -162,6 +162,18 @@ ReportDocument build_run_report(const RunReport& o) {
                               o.before->path_rms_um / o.after->path_rms_um,
                               o.before->static_preload_rms_nm / std::max(1e-12, o.after->static_preload_rms_nm)));
     }
+    if (o.after && o.floor) {
+      d.paragraph(fmt::format("The `actual` row is the floor: the controller given the true parameters. Calibrated "
+                              "static RMS is {:.2f}x the floor. Sampling took {:.2f} s of robot time.",
+                              o.after->static_rms_um / std::max(1e-12, o.floor->static_rms_um), o.robot_time_s));
+    }
+  }
+  if (o.model_test) {
+    const RunModelTest& t = *o.model_test;
+    d.paragraph(fmt::format("Model test: chi2 = {:.4g} for {:.0f} degrees of freedom (encoder sigma {:.3g} rad), "
+                            "p = {:.3g}: {}.",
+                            t.chi2, t.dof, t.sigma_rad, t.p_value,
+                            t.passed ? "the residuals are as small as the encoders explain" : t.diagnosis));
   }
 
   d.heading(2, "Calibration");

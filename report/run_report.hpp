@@ -52,6 +52,13 @@ struct RunCheck {
   bool passed = true;
 };
 
+// Chi-square test of the residuals against the encoder noise.
+struct RunModelTest {
+  double chi2 = 0.0, dof = 0.0, p_value = 1.0, sigma_rad = 0.0;
+  bool passed = true;
+  std::string diagnosis;
+};
+
 // Everything the run report shows.
 struct RunReport {
   std::string name;                  // the scenario's name
@@ -68,6 +75,9 @@ struct RunReport {
   std::array<double, kNumParams> crb{};     // CRB 1-sigma at the truth (NaN: fixed)
   std::vector<double> residual_urad;        // ML residual per sample after calibration
   std::optional<RunAccuracy> before, after;
+  std::optional<RunAccuracy> floor;         // the controller given the actual parameters
+  std::optional<RunModelTest> model_test;
+  double robot_time_s = 0.0;                // robot time of the sampling
   std::vector<RunCheck> checks;
 };
 

@@ -69,6 +69,29 @@ std::vector<Check> evaluate_expectations(const RunOutcome& o) {
     for (const auto& n : r.notes) ok = ok || n.find(*e.note_contains) != std::string::npos;
     check(out, "note_contains", ok, ok ? "found" : fmt::format("no note contains '{}'", *e.note_contains));
   }
+  if (e.robot_time_s_max) {
+    check(out, "robot_time_s", o.sim.sampling_s <= *e.robot_time_s_max,
+          fmt::format("{:.2f} s of robot time sampling (limit {:.3g})", o.sim.sampling_s, *e.robot_time_s_max));
+  }
+  if (e.model_test_passes) {
+    const bool ok = o.model_test && o.model_test->passed == *e.model_test_passes;
+    check(out, "model_test", ok,
+          o.model_test ? fmt::format("chi2 {:.4g} for {:.0f} degrees of freedom, p = {:.3g} ({}; expected to {})",
+                                     o.model_test->chi2, o.model_test->dof, o.model_test->p_value,
+                                     o.model_test->passed ? "passes" : "fails",
+                                     *e.model_test_passes ? "pass" : "fail")
+                       : "no model test (ML cost with a known encoder sigma only)");
+  }
+  if (e.floor_ratio_max) {
+    const bool ok = o.after && o.floor && o.floor->static_rms_um > 0.0 &&
+                    o.after->static_rms_um <= *e.floor_ratio_max * o.floor->static_rms_um;
+    check(out, "floor_ratio", ok,
+          o.after && o.floor ? fmt::format("static RMS {:.3f} um calibrated, {:.3f} um with the actual parameters: "
+                                           "x{:.3g} (limit x{:.3g})",
+                                           o.after->static_rms_um, o.floor->static_rms_um,
+                                           o.after->static_rms_um / o.floor->static_rms_um, *e.floor_ratio_max)
+                             : "no compensation run with the actual parameters");
+  }
   if (e.static_rms_um_max || e.path_rms_um_max || e.improvement_min) {
     if (!o.after || !o.before) {
       check(out, "compensation", false, "no compensation run (outputs.compensation is off)");

@@ -63,6 +63,11 @@ report::RunReport run_report_data(const RunOutcome& o) {
   r.residual_urad = o.residual_urad;
   if (o.before) r.before = accuracy_data(*o.before);
   if (o.after) r.after = accuracy_data(*o.after);
+  if (o.floor) r.floor = accuracy_data(*o.floor);
+  if (o.model_test)
+    r.model_test = report::RunModelTest{o.model_test->chi2, o.model_test->dof, o.model_test->p_value,
+                                        o.model_test->sigma_rad, o.model_test->passed, o.model_test->diagnosis};
+  r.robot_time_s = o.sim.sampling_s;
   for (const Check& c : o.checks) r.checks.push_back({c.name, c.detail, c.passed});
   return r;
 }

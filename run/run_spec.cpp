@@ -1,5 +1,7 @@
 #include "run/run_spec.hpp"
 
+#include "calib/calibrate.hpp"
+
 #include <filesystem>
 #include <random>
 
@@ -23,7 +25,7 @@ CalibrationSpec parse_calibration(const YAML::Node& n, const std::string& file) 
   for (int i : {kXa1, kYa1, kXa2, kYa2}) c.fixed.set(static_cast<size_t>(i));
   if (!n) return c;
   yaml_check_keys(n, file, "calibration",
-                  {"cost", "method", "fix", "budget", "seed", "sigma", "allow_rank_deficient", "start"});
+                  {"cost", "method", "fix", "budget", "seed", "sigma", "allow_rank_deficient", "start", "estimate"});
   if (n["cost"]) {
     const std::string s = yaml_string(n["cost"], file, "calibration.cost");
     const auto cost = calib::parse_cost(s);
@@ -32,11 +34,9 @@ CalibrationSpec parse_calibration(const YAML::Node& n, const std::string& file) 
     c.cost = *cost;
   }
   if (n["method"]) {
-    c.method = yaml_string(n["method"], file, "calibration.method");
-    if (c.method != "lm" && c.method != "de" && c.method != "pso" && c.method != "ga" && c.method != "de+lm") {
-      throw InputError(yaml_where(file, n["method"], "calibration.method") +
-                       fmt::format("unknown method '{}' (valid: lm, de, pso, ga, de+lm)", c.method));
-    }
+    const std::string where = yaml_where(file, n["method"], "calibration.method");
+    c.method = calib::parse_method(yaml_string(n["method"], file, "calibration.method"),
+                                   where.substr(0, where.size() - 2));  // calib adds ": unknown method ..."
   }
   if (const YAML::Node fix = n["fix"]) {
     if (!fix.IsSequence()) {
@@ -57,6 +57,19 @@ CalibrationSpec parse_calibration(const YAML::Node& n, const std::string& file) 
   if (n["budget"]) c.budget = yaml_integer(n["budget"], file, "calibration.budget", 1, 1000000000000LL);
   if (n["seed"]) c.seed = static_cast<std::uint64_t>(yaml_integer(n["seed"], file, "calibration.seed", 0, (1LL << 53)));
   if (n["sigma"]) c.sigma = yaml_positive(n["sigma"], file, "calibration.sigma");
+  if (const YAML::Node est = n["estimate"]) {
+    if (!est.IsSequence())
+      throw InputError(yaml_where(file, est, "calibration.estimate") + "expected a list of compliance, skew (or [])");
+    c.estimate_compliance = false;
+    c.estimate_skew = false;
+    for (size_t k = 0; k < est.size(); ++k) {
+      const std::string key = fmt::format("calibration.estimate[{}]", k);
+      const std::string what = yaml_string(est[k], file, key);
+      if (what == "compliance") c.estimate_compliance = true;
+      else if (what == "skew") c.estimate_skew = true;
+      else throw InputError(yaml_where(file, est[k], key) + fmt::format("unknown effect '{}' (valid: compliance, skew)", what));
+    }
+  }
   if (n["allow_rank_deficient"]) c.allow_rank_deficient = yaml_bool(n["allow_rank_deficient"], file, "calibration.allow_rank_deficient");
   if (n["start"]) {
     const std::string s = yaml_string(n["start"], file, "calibration.start");
@@ -133,7 +146,8 @@ Expectations parse_expect(const YAML::Node& n, const std::string& file) {
   if (!n) return e;
   yaml_check_keys(n, file, "expect",
                   {"converged", "error", "cost_max", "kmrmse_mm_max", "crb_ratio_max", "static_rms_um_max",
-                   "path_rms_um_max", "improvement_min", "refused_contains", "note_contains"});
+                   "path_rms_um_max", "improvement_min", "refused_contains", "note_contains", "floor_ratio_max",
+                   "robot_time_s_max", "model_test_passes"});
   if (n["converged"]) e.converged = yaml_bool(n["converged"], file, "expect.converged");
   if (const YAML::Node err = n["error"]) {
     if (!err.IsMap()) throw InputError(yaml_where(file, err, "expect.error") + "expected a map of tolerances");
@@ -158,6 +172,9 @@ Expectations parse_expect(const YAML::Node& n, const std::string& file) {
   opt_number(n, "static_rms_um_max", file, e.static_rms_um_max);
   opt_number(n, "path_rms_um_max", file, e.path_rms_um_max);
   opt_number(n, "improvement_min", file, e.improvement_min);
+  opt_number(n, "floor_ratio_max", file, e.floor_ratio_max);
+  opt_number(n, "robot_time_s_max", file, e.robot_time_s_max);
+  if (n["model_test_passes"]) e.model_test_passes = yaml_bool(n["model_test_passes"], file, "expect.model_test_passes");
   if (n["refused_contains"]) e.refused_contains = yaml_string(n["refused_contains"], file, "expect.refused_contains");
   if (n["note_contains"]) e.note_contains = yaml_string(n["note_contains"], file, "expect.note_contains");
   return e;

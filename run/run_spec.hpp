@@ -18,13 +18,16 @@ namespace gpm::scenario {
 
 struct CalibrationSpec {
   calib::Cost cost = calib::Cost::kML;
-  std::string method = "lm";            // lm | de | pso | ga | de+lm
+  calib::Method method = calib::Method::kLM;
   FreeMask fixed;                       // default xa1 ya1 xa2 ya2
   long budget = 200000;                 // evaluations (global methods)
   std::uint64_t seed = 1;
   std::optional<double> sigma;          // encoder sigma for the covariance; default: encoder noise if > 0
   bool allow_rank_deficient = false;
   bool start_reference = false;         // initial offsets from the reference-point procedure (sec. 3.2)
+  // Reading effects estimated with the geometry (calib/motion_correction.hpp):
+  // unset = both for samples taken on the fly, none otherwise.
+  std::optional<bool> estimate_compliance, estimate_skew;
 };
 
 // Expectations; an unset one is not checked.
@@ -40,6 +43,9 @@ struct Expectations {
   std::optional<double> improvement_min;                  // static RMS nominal / calibrated
   std::optional<std::string> refused_contains;            // calibration refused with this diagnosis
   std::optional<std::string> note_contains;               // a warning/diagnosis note
+  std::optional<double> floor_ratio_max;                  // static RMS calibrated / with the actual parameters
+  std::optional<double> robot_time_s_max;                 // robot time of the sampling
+  std::optional<bool> model_test_passes;                  // the chi-square model test passes (true) or fails (false)
 };
 
 struct Outputs {

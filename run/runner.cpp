@@ -7,6 +7,8 @@
 
 #include "calib/calibrate.hpp"
 #include "calib/crb.hpp"
+#include "calib/model_test.hpp"
+#include "calib/motion_correction.hpp"
 #include "calib/residuals.hpp"
 #include "calib/result_yaml.hpp"
 #include "models/errors.hpp"
@@ -19,6 +21,8 @@
 #include "models/samples.hpp"
 #include "run/expectations.hpp"
 #include "run/run_report_data.hpp"
+#include "run/sampling_design.hpp"
+#include "run/summary_json.hpp"
 
 namespace gpm::scenario {
 
@@ -35,7 +39,10 @@ namespace {
 // (uniform, step^2 / 12). An a-priori figure for the bound.
 double effective_sigma(const sim::Scenario& s) {
   const double q = s.twin.encoder.bits > 0 ? 2.0 * M_PI / std::ldexp(1.0, s.twin.encoder.bits) : 0.0;
-  const double n_avg = std::max(1.0, std::round(s.sampling->options.average_s * s.twin.servo_rate_hz));
+  // On the fly every sample is one instantaneous reading.
+  const double n_avg = s.sampling->pattern == sim::PosePattern::kTrajectory
+                           ? 1.0
+                           : std::max(1.0, std::round(s.sampling->options.average_s * s.twin.servo_rate_hz));
   const double noise = s.twin.encoder.noise_rad;
   return std::sqrt(noise * noise / n_avg + q * q / 12.0);
 }
@@ -80,13 +87,33 @@ sim::SimulationResult sample_on_hardware(const RunSpec& spec, const std::string&
 
 }  // namespace
 
-RunOutcome run_scenario(const RunSpec& spec, const std::string& scenario_file, const Progress& progress,
+RunOutcome run_scenario(const RunSpec& spec_in, const std::string& scenario_file, const Progress& progress,
                         const std::string& samples_path) {
   const auto t0 = std::chrono::steady_clock::now();
   auto stage = [&](const std::string& s) { if (progress) progress(s); };
+  RunSpec spec = spec_in;
+  if (spec.sim.sampling && spec.sim.sampling->needs_design()) {
+    stage("designing the calibration poses");
+    design_sampling(spec.sim, ~spec.calibration.fixed, effective_sigma(spec.sim));
+  }
+  const bool in_motion = spec.sim.sampling && spec.sim.sampling->pattern == sim::PosePattern::kTrajectory;
+  if (in_motion && spec.hardware)
+    throw InputError(fmt::format("{}: sampling.pattern: trajectory runs on the twin only (the hardware interface "
+                                 "samples stop-and-go); use pattern: designed with --hardware", scenario_file));
+  calib::MotionModel motion;
+  motion.compliance = spec.calibration.estimate_compliance.value_or(in_motion);
+  motion.skew = spec.calibration.estimate_skew.value_or(in_motion);
+  const bool with_effects = motion.compliance || motion.skew;
+  if (with_effects && (spec.calibration.method != calib::Method::kLM || spec.calibration.cost != calib::Cost::kML))
+    throw InputError(fmt::format("{}: estimating compliance or skew with the geometry (samples on the fly, or "
+                                 "calibration.estimate) needs calibration {{method: lm, cost: ml}}", scenario_file));
+  if (with_effects && spec.hardware)
+    throw InputError(fmt::format("{}: calibration.estimate needs the drive torques and speeds of each sample, which "
+                                 "the hardware interface does not record yet", scenario_file));
   RunOutcome out;
   out.scenario_file = scenario_file;
   out.spec = spec;
+  out.in_motion = in_motion;
   out.nominal = spec.sim.controller;
   out.calibrated = spec.sim.controller;
 
@@ -134,7 +161,7 @@ RunOutcome run_scenario(const RunSpec& spec, const std::string& scenario_file, c
 
   stage("calibrating");
   calib::MethodOptions mo;
-  mo.method = calib::parse_method(spec.calibration.method, "calibration.method");
+  mo.method = spec.calibration.method;
   mo.cost = spec.calibration.cost;
   mo.budget = spec.calibration.budget;
   mo.seed = spec.calibration.seed;
@@ -142,16 +169,43 @@ RunOutcome run_scenario(const RunSpec& spec, const std::string& scenario_file, c
   if (!mo.encoder_sigma && spec.sim.twin.encoder.noise_rad > 0) mo.encoder_sigma = out.crb_sigma_rad;
   mo.allow_rank_deficient = spec.calibration.allow_rank_deficient;
   mo.true_xy = spec.hardware ? nullptr : &true_xy;
+  std::vector<Eigen::Vector3d> used = problem.theta_m;  // the readings the fit explains
   try {
-    out.calibration = calib::calibrate(problem, mo);
+    if (with_effects) {
+      // Transmission compliance (readings follow the motors, links lag by
+      // compliance x torque) and latch skew are estimated jointly with the
+      // geometry (calib/motion_correction.hpp).
+      std::vector<Eigen::Vector3d> omega, tau;
+      for (const sim::SampleRecord& r : out.sim.samples) omega.push_back(r.omega), tau.push_back(r.tau);
+      calib::LmOptions lo;
+      lo.encoder_sigma = out.crb_sigma_rad > 0.0 ? std::optional<double>(out.crb_sigma_rad) : std::nullopt;
+      lo.true_xy = &true_xy;
+      const calib::MotionFit fit = calib::calibrate_in_motion(problem, omega, tau, lo, motion);
+      out.calibration = fit.result;
+      out.motion_nu = fit.nu;
+      out.motion_nu_sigma = fit.nu_sigma;
+      used = fit.corrected;
+      out.calibration->notes.push_back(fmt::format(
+          "estimated with the geometry: latch skew s2 {:.3g} s, s3 {:.3g} s; transmission compliance "
+          "c1 {:.3g}, c2 {:.3g}, c3 {:.3g} rad/N m (0: not excited, e.g. a torque-off joint)",
+          fit.nu[0], fit.nu[1], fit.nu[2], fit.nu[3], fit.nu[4]));
+    } else {
+      out.calibration = calib::calibrate(problem, mo);
+    }
     out.calibrated.geometry = out.calibration->geometry;
   } catch (const InputError& e) {
     if (!spec.expect.refused_contains) throw;
     out.refused = e.what();
   }
 
+  if (out.calibration && out.calibration->cost == calib::Cost::kML && out.crb_sigma_rad > 0.0 &&
+      used.size() > problem.free.count()) {
+    out.model_test = calib::model_test(out.calibration->geometry, problem.free, used, out.crb_sigma_rad);
+    if (!out.model_test->passed) out.calibration->notes.push_back(out.model_test->diagnosis);
+  }
+
   if (out.calibration) {
-    for (const Eigen::Vector3d& m : problem.theta_m) {
+    for (const Eigen::Vector3d& m : used) {
       double r = NAN;
       const calib::MlResidual residual(m);
       residual(out.calibration->geometry.values.data(), &r);
@@ -167,6 +221,12 @@ RunOutcome run_scenario(const RunSpec& spec, const std::string& scenario_file, c
     if (out.calibration) {
       stage("measuring accuracy with the calibrated model");
       out.after = measure_accuracy(actual, spec.sim.twin, out.calibrated, *spec.compensation, seed, "calibrated");
+    }
+    if (!spec.hardware) {
+      stage("measuring accuracy with the actual parameters (the floor)");
+      Robot truth = out.nominal;
+      truth.geometry = actual.geometry;
+      out.floor = measure_accuracy(actual, spec.sim.twin, truth, *spec.compensation, seed, "actual");
     }
   }
   out.checks = evaluate_expectations(out);
@@ -184,6 +244,7 @@ void write_run(const RunOutcome& o, const std::string& dir) {
   }
   out.add("actual.yaml", robot_to_yaml(o.sim.actual));
   if (o.calibration) out.add("calibration.yaml", calib::result_to_yaml(*o.calibration, o.nominal.name));
+  out.add("summary.json", summary_json(o));
   if (o.spec.outputs.report) {
     report::build_run_report(run_report_data(o)).stage(out, "report", fmt::format("gpm run: {}", o.spec.sim.name));
   }

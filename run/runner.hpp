@@ -9,6 +9,7 @@
 #include <string>
 #include <vector>
 
+#include "calib/model_test.hpp"
 #include "calib/problem.hpp"
 #include "models/robot.hpp"
 #include "run/compensation.hpp"
@@ -36,6 +37,13 @@ struct RunOutcome {
   std::array<double, kNumParams> crb{};        // CRB 1-sigma at the truth (NaN: fixed)
   std::vector<double> residual_urad;           // ML residual per sample after calibration
   std::optional<Accuracy> before, after;
+  // The floor: the controller given the actual parameters.
+  std::optional<Accuracy> floor;
+  // Chi-square test of the ML residuals against the encoder noise (ML cost).
+  std::optional<calib::ModelTest> model_test;
+  // Samples taken on the fly: compliance and skew estimated with the geometry.
+  bool in_motion = false;
+  std::array<double, 5> motion_nu{}, motion_nu_sigma{};  // s2, s3 (s), c1..c3 (rad/N m)
   std::vector<Check> checks;
   double seconds = 0.0;
 
@@ -55,7 +63,8 @@ RunOutcome run_scenario(const RunSpec& spec, const std::string& scenario_file,
                         const Progress& progress = {}, const std::string& samples_path = "");
 
 // Writes DIR/samples.csv, trajectory.csv, actual.yaml, model.xml,
-// calibration.yaml, report.md, report.html and the figures, all or nothing.
+// calibration.yaml, summary.json, report.md, report.html and the figures,
+// all or nothing.
 void write_run(const RunOutcome& outcome, const std::string& dir);
 
 }  // namespace gpm::scenario

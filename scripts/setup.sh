@@ -5,7 +5,7 @@ set -euo pipefail
 
 PACKAGES=(
   build-essential cmake pkg-config ninja-build
-  libeigen3-dev libceres-dev libyaml-cpp-dev
+  libeigen3-dev libceres-dev libyaml-cpp-dev libboost-dev nlohmann-json3-dev
   libmujoco-dev libqhull-dev libmujoco-samples
   libosmesa6-dev libavcodec-dev libavformat-dev libswscale-dev libavutil-dev libpng-dev ffmpeg
   libgtest-dev libgmock-dev libbenchmark-dev

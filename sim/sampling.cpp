@@ -15,6 +15,14 @@ long ticks_in(const TwinModel& model, double seconds) {
 
 }  // namespace
 
+void TrajectoryLog::add(const LogRow& row) {
+  ++count;
+  max_violation_m = std::max(max_violation_m, row.violation_m);
+  max_torque = std::max(max_torque, row.torque.cwiseAbs().maxCoeff());
+  if (sink) sink(row);
+  if (keep_rows) rows.push_back(row);
+}
+
 Session make_session(const TwinModel& model, TwinState& state, const Robot& controller,
                      TrajectoryLog* log) {
   return Session{model, state, controller, log, controller.home};
@@ -32,8 +40,8 @@ TwinSnapshot advance(Session& s, const PathPoint& desired) {
   if (s.log) {
     const long tick = s.state.steps / s.model.steps_per_tick() - 1;
     if (tick % s.log->every == 0) {
-      s.log->rows.push_back(
-          LogRow{snap.time_s, desired.p, snap.ee_mm, snap.readings, snap.torque, snap.violation_m});
+      s.log->add(LogRow{snap.time_s, desired.p, snap.ee_mm, snap.readings, snap.torque, snap.violation_m,
+                        snap.growth});
     }
   }
   return snap;
@@ -66,17 +74,22 @@ SampleRecord take_sample(Session& s, const Eigen::Vector2d& target, long id,
   // Average over the window; readings unwrapped around the first one.
   const long n = ticks_in(s.model, o.average_s);
   Eigen::Vector3d first = Eigen::Vector3d::Zero(), sum_m = Eigen::Vector3d::Zero();
-  Eigen::Vector3d sum_a = Eigen::Vector3d::Zero();
+  Eigen::Vector3d sum_a = Eigen::Vector3d::Zero(), sum_tau = Eigen::Vector3d::Zero();
+  Eigen::Vector3d sum_w = Eigen::Vector3d::Zero();
   Eigen::Vector2d sum_xy = Eigen::Vector2d::Zero();
   for (long j = 0; j < n; ++j) {
     const TwinSnapshot snap = advance(s, hold);
     if (j == 0) first = snap.readings;
     for (int i = 0; i < 3; ++i) sum_m[i] += wrap_pi(snap.readings[i] - first[i]);
     sum_a += snap.theta_a;
+    sum_tau += snap.torque;
+    sum_w += snap.velocity;
     sum_xy += snap.ee_mm;
   }
   for (int i = 0; i < 3; ++i) rec.theta_m[i] = wrap_2pi(first[i] + sum_m[i] / n);
   rec.theta_a = sum_a / n;
+  rec.tau = sum_tau / n;
+  rec.omega = sum_w / n;
   rec.xy_mm = sum_xy / n;
   return rec;
 }

@@ -4,6 +4,8 @@
 // rate.
 #pragma once
 
+#include <functional>
+#include <optional>
 #include <vector>
 
 #include <Eigen/Core>
@@ -23,12 +25,24 @@ struct LogRow {
   Eigen::Vector3d readings = Eigen::Vector3d::Zero(); // rad
   Eigen::Vector3d torque = Eigen::Vector3d::Zero();   // N m
   double violation_m = 0.0;
+  double growth = 0.0;  // thermal: relative length growth of the actual mechanism at t
 };
 
-// Log of a run: every `every`-th drive loop period.
+// Log of a run: every `every`-th drive loop period. Rows are kept in memory
+// (keep_rows) and/or handed to sink as they are produced (streaming to disk);
+// count and the maxima cover every logged row either way.
 struct TrajectoryLog {
   int every = 1;
+  bool keep_rows = true;
+  std::function<void(const LogRow&)> sink;  // optional
   std::vector<LogRow> rows;
+  std::optional<Geometry> thermal_reference;  // with thermal growth: the geometry at t = 0
+  long count = 0;
+  double max_violation_m = 0.0;
+  double max_torque = 0.0;  // N m, largest |tau_i|
+
+  // Records one row (sink, maxima, and rows if keep_rows).
+  void add(const LogRow& row);
 };
 
 // When a point-to-point move has come to rest.
@@ -52,6 +66,8 @@ struct SampleRecord {
   Eigen::Vector3d theta_m = Eigen::Vector3d::Zero();  // rad, averaged readings in [0, 2 pi)
   Eigen::Vector3d theta_a = Eigen::Vector3d::Zero();  // rad, averaged true active angles
   Eigen::Vector2d xy_mm = Eigen::Vector2d::Zero();    // mm, averaged true end-effector
+  Eigen::Vector3d tau = Eigen::Vector3d::Zero();      // N m, mean drive torque over the window
+  Eigen::Vector3d omega = Eigen::Vector3d::Zero();    // rad/s, mean joint speed over the window (drive feedback)
   bool settled = false;
   double settle_time_s = 0.0;  // from the end of the move until the criterion held
 };

@@ -11,9 +11,15 @@
 #include "models/kinematics.hpp"
 #include "models/robot_yaml.hpp"
 #include "models/yaml_util.hpp"
+#include "sim/effects_yaml.hpp"
 
 namespace gpm::sim {
 namespace {
+
+// Bounds of counts (scenarios/SCHEMA.md): poses in one plan, and rows of the
+// trajectory log (112 bytes each in memory: 2e7 rows is about 2.2 GB).
+constexpr long long kMaxPoses = 10000;
+constexpr double kMaxLogRows = 2e7;
 
 // Everything a key needs to report an error.
 struct Ctx {
@@ -45,14 +51,39 @@ void opt_positive(const YAML::Node& map, const char* key, const Ctx& c, double& 
   if (map[key]) out = positive(map[key], c.at(key));
 }
 
+// A number in [lo, hi] (unit and reason for the range in the message; issue
+// 14.8/14.9: every duration, speed and tolerance has a physical range).
+double bounded(const YAML::Node& n, const Ctx& c, double lo, double hi, const char* unit) {
+  const double v = number(n, c);
+  if (!(v >= lo && v <= hi)) fail(c, n, fmt::format("must be from {} to {} {}, got {}", lo, hi, unit, n.Scalar()));
+  return v;
+}
+
+// Optional bounded number; keeps the default when absent.
+void opt_bounded(const YAML::Node& map, const char* key, const Ctx& c, double lo, double hi,
+                 const char* unit, double& out) {
+  if (map[key]) out = bounded(map[key], c.at(key), lo, hi, unit);
+}
+
 void require(const YAML::Node& map, const char* key, const Ctx& c, const std::string& why) {
   if (!map[key]) fail(c, map, fmt::format("missing key '{}' ({})", key, why));
 }
 
-ActualSpec parse_actual(const YAML::Node& n, const Ctx& c) {
-  yaml_check_keys(n, c.file, c.path, {"geometry", "perturb"});
+ActualSpec parse_actual(const YAML::Node& n, const Ctx& c, const std::string& base_dir) {
   ActualSpec a;
   a.keep = FreeMask{}.set(kXa1).set(kYa1).set(kXa2).set(kYa2);
+  if (n.IsScalar()) {
+    // A robot (or calibration result) file: all 15 parameters, none perturbed.
+    std::filesystem::path p = yaml_string(n, c.file, c.path);
+    if (p.is_relative()) p = std::filesystem::path(base_dir) / p;
+    const Robot r = load_robot(p.lexically_normal().string());
+    for (int i = 0; i < kNumParams; ++i) a.explicit_values[static_cast<size_t>(i)] = r.geometry[i];
+    return a;
+  }
+  if (!n.IsMap()) {
+    fail(c, n, "expected a robot file (path relative to the scenario) or a map with geometry and/or perturb");
+  }
+  yaml_check_keys(n, c.file, c.path, {"geometry", "perturb"});
   if (const YAML::Node g = n["geometry"]) {
     const Ctx cg = c.at("geometry");
     if (!g.IsMap()) fail(cg, g, "expected a map of parameters, e.g. {la3: 244.5, dth1: 0.01}");
@@ -128,13 +159,13 @@ void parse_encoder(const YAML::Node& n, const Ctx& c, EncoderModel& e) {
 SamplingPlan parse_sampling(const YAML::Node& n, const Ctx& c) {
   yaml_check_keys(n, c.file, c.path,
                   {"pattern", "centre", "radius", "count", "from", "to", "poses", "move_speed_mm_s",
-                   "settle", "average_s"});
+                   "settle", "average_s", "max_speed_mm_s", "max_accel_mm_s2", "sample_every"});
   SamplingPlan p;
-  require(n, "pattern", c, "disc, circle, line or list");
+  require(n, "pattern", c, "disc, circle, line, list, designed or trajectory");
   const std::string pat = yaml_string(n["pattern"], c.file, c.at("pattern").path);
   const auto count = [&](long long lo) {
     require(n, "count", c, "how many poses");
-    return static_cast<int>(yaml_integer(n["count"], c.file, c.at("count").path, lo, 100000));
+    return static_cast<int>(yaml_integer(n["count"], c.file, c.at("count").path, lo, kMaxPoses));
   };
   if (pat == "disc" || pat == "circle") {
     p.pattern = pat == "disc" ? PosePattern::kDisc : PosePattern::kCircle;
@@ -156,17 +187,41 @@ SamplingPlan parse_sampling(const YAML::Node& n, const Ctx& c) {
     if (!n["poses"].IsSequence() || n["poses"].size() == 0) fail(cp, n["poses"], "expected a non-empty list of [x, y] in mm");
     for (size_t i = 0; i < n["poses"].size(); ++i)
       p.poses.push_back(point(n["poses"][i], Ctx{c.file, fmt::format("{}[{}]", cp.path, i)}));
+  } else if (pat == "designed" || pat == "trajectory") {
+    p.pattern = pat == "designed" ? PosePattern::kDesigned : PosePattern::kTrajectory;
+    // At least 11 (the parameters of the default gauge); the run layer checks
+    // the count against the calibration's free set.
+    p.count = count(11);
+    if (n["poses"]) {  // already designed (e.g. pasted from gpm design)
+      const Ctx cp = c.at("poses");
+      if (!n["poses"].IsSequence() || n["poses"].size() < 2) fail(cp, n["poses"], "expected a list of at least two [x, y] in mm");
+      for (size_t i = 0; i < n["poses"].size(); ++i)
+        p.poses.push_back(point(n["poses"][i], Ctx{c.file, fmt::format("{}[{}]", cp.path, i)}));
+    }
+    if (p.pattern == PosePattern::kTrajectory) {
+      opt_bounded(n, "max_speed_mm_s", c, 1.0, 1000.0, "mm/s", p.path_limits.max_speed_mm_s);
+      opt_bounded(n, "max_accel_mm_s2", c, 10.0, 20000.0, "mm/s^2", p.path_limits.max_accel_mm_s2);
+      p.path_limits.max_normal_mm_s2 = p.path_limits.max_accel_mm_s2;
+      if (n["sample_every"])
+        p.sample_every = static_cast<int>(yaml_integer(n["sample_every"], c.file, c.at("sample_every").path, 1, 1000));
+    }
   } else {
-    fail(c.at("pattern"), n["pattern"], fmt::format("'{}' is not disc, circle, line or list", pat));
+    fail(c.at("pattern"), n["pattern"], fmt::format("'{}' is not disc, circle, line, list, designed or trajectory", pat));
   }
-  opt_positive(n, "move_speed_mm_s", c, p.options.move_speed_mm_s);
-  opt_positive(n, "average_s", c, p.options.average_s);
+  if (p.pattern != PosePattern::kTrajectory)
+    for (const char* key : {"max_speed_mm_s", "max_accel_mm_s2", "sample_every"})
+      if (n[key]) fail(c.at(key), n[key], "only for pattern: trajectory");
+  if (p.pattern == PosePattern::kList && p.poses.size() > static_cast<size_t>(kMaxPoses)) {
+    fail(c.at("poses"), n["poses"], fmt::format("at most {} poses, got {}", kMaxPoses, p.poses.size()));
+  }
+  opt_bounded(n, "move_speed_mm_s", c, 1.0, 2000.0, "mm/s", p.options.move_speed_mm_s);
+  opt_bounded(n, "average_s", c, 1e-4, 10.0, "s", p.options.average_s);
   if (const YAML::Node s = n["settle"]) {
     const Ctx cs = c.at("settle");
     yaml_check_keys(s, c.file, cs.path, {"velocity_rad_s", "hold_s", "timeout_s"});
-    opt_positive(s, "velocity_rad_s", cs, p.options.settle.velocity_rad_s);
-    opt_positive(s, "hold_s", cs, p.options.settle.hold_s);
-    opt_positive(s, "timeout_s", cs, p.options.settle.timeout_s);
+    opt_bounded(s, "velocity_rad_s", cs, 1e-6, 1.0, "rad/s", p.options.settle.velocity_rad_s);
+    opt_bounded(s, "hold_s", cs, 1e-4, 10.0, "s", p.options.settle.hold_s);
+    opt_bounded(s, "timeout_s", cs, 1e-3, 60.0, "s", p.options.settle.timeout_s);
   }
   return p;
 }
@@ -182,8 +237,10 @@ Path parse_path(const YAML::Node& n, const Ctx& c) {
     require(n, "radius", c, "mm");
     p.radius = positive(n["radius"], c.at("radius"));
     require(n, "period_s", c, "seconds per revolution");
-    p.period_s = positive(n["period_s"], c.at("period_s"));
-    opt_positive(n, "revolutions", c, p.revolutions);
+    p.period_s = bounded(n["period_s"], c.at("period_s"), 0.1, 600.0, "s");
+    if (n["revolutions"]) {
+      p.revolutions = bounded(n["revolutions"], c.at("revolutions"), 1e-3, 100.0, "revolutions");
+    }
     return p;
   }
   if (shape == "line") {
@@ -193,10 +250,46 @@ Path parse_path(const YAML::Node& n, const Ctx& c) {
     require(n, "duration_s", c, "seconds");
     p.from = point(n["from"], c.at("from"));
     p.to = point(n["to"], c.at("to"));
-    p.duration_s = positive(n["duration_s"], c.at("duration_s"));
+    p.duration_s = bounded(n["duration_s"], c.at("duration_s"), 0.01, 600.0, "s");
     return p;
   }
   fail(c.at("shape"), n["shape"], fmt::format("'{}' is not circle or line", shape));
+}
+
+// Refuses a run whose trajectory log could outgrow memory: an upper bound of
+// its rows, count x (longest move + settle timeout + average) + path duration,
+// at the servo rate / log.every, against kMaxLogRows (112 bytes a row in memory).
+void check_log_size(const Scenario& s, const YAML::Node& root, const Ctx& c) {
+  const double rows_per_s = s.twin.servo_rate_hz / s.log_every;
+  // Every move stays inside the box of home, the poses and the path start (its
+  // diagonal bounds the length of any move).
+  Eigen::Vector2d lo = s.controller.home, hi = s.controller.home;
+  const auto grow = [&](const Eigen::Vector2d& a) { lo = lo.cwiseMin(a), hi = hi.cwiseMax(a); };
+  if (s.path) grow(path_at(*s.path, 0.0).p);
+  double speed = 100.0;  // of the move to the path start without sampling (sim/simulate.cpp)
+  double seconds = 0.0;
+  if (s.sampling) {
+    const SamplingPlan& p = *s.sampling;
+    if (p.pattern == PosePattern::kDisc || p.pattern == PosePattern::kCircle) {
+      grow(p.centre - Eigen::Vector2d::Constant(p.radius));
+      grow(p.centre + Eigen::Vector2d::Constant(p.radius));
+    } else {
+      grow(p.from), grow(p.to);
+      for (const auto& q : p.poses) grow(q);
+    }
+    speed = p.options.move_speed_mm_s;
+    const double n = p.pattern == PosePattern::kList ? static_cast<double>(p.poses.size()) : p.count;
+    seconds += n * (1.875 * (hi - lo).norm() / speed + p.options.settle.timeout_s + p.options.average_s);
+  }
+  if (s.path) seconds += path_duration(*s.path) + 1.875 * (hi - lo).norm() / speed;
+  const double rows = seconds * rows_per_s;
+  if (rows > kMaxLogRows) {
+    fail(c.at(s.sampling ? "sampling.count" : "path"), s.sampling ? root["sampling"] : root["path"],
+         fmt::format("the run could log up to {:.3g} trajectory rows ({:.3g} s simulated at {} Hz / "
+                     "log.every {}), more than the {:.0e} that fit in memory: use fewer poses, "
+                     "shorter timeouts, faster moves or a larger log.every",
+                     rows, seconds, s.twin.servo_rate_hz, s.log_every, kMaxLogRows));
+  }
 }
 
 }  // namespace
@@ -214,7 +307,7 @@ Scenario scenario_from_yaml(const YAML::Node& root, const std::string& file, con
   if (!root.IsMap()) fail(c, root, "expected a map of sections (see scenarios/SCHEMA.md)");
   yaml_check_keys(root, file, "",
                   {"name", "description", "robot", "seed", "actual", "physics", "servo", "encoder",
-                   "sampling", "path", "log", "calibration", "compensation", "expect", "hardware", "outputs", "render"});
+                   "sampling", "path", "log", "effects", "calibration", "compensation", "expect", "hardware", "outputs", "render"});
   Scenario s;
   s.file = file;
   s.name = root["name"] ? yaml_string(root["name"], file, "name")
@@ -231,11 +324,11 @@ Scenario scenario_from_yaml(const YAML::Node& root, const std::string& file, con
     s.controller = load_robot(gpm::models_dir() + "/gpm2002.yaml");
   }
   if (root["seed"]) s.seed = static_cast<std::uint64_t>(yaml_integer(root["seed"], file, "seed", 0, (1LL << 53)));
-  if (root["actual"]) s.actual = parse_actual(root["actual"], c.at("actual"));
+  if (root["actual"]) s.actual = parse_actual(root["actual"], c.at("actual"), base_dir);
   else s.actual.keep = FreeMask{}.set(kXa1).set(kYa1).set(kXa2).set(kYa2);
   if (const YAML::Node p = root["physics"]) {
     yaml_check_keys(p, file, "physics", {"timestep_s"});
-    opt_positive(p, "timestep_s", c.at("physics"), s.twin.mjcf.timestep_s);
+    opt_bounded(p, "timestep_s", c.at("physics"), 1e-5, 2e-3, "s", s.twin.mjcf.timestep_s);
     s.twin.mjcf.solref_timeconst_s = std::max(s.twin.mjcf.solref_timeconst_s, 2.0 * s.twin.mjcf.timestep_s);
   }
   if (root["servo"]) parse_servo(root["servo"], c.at("servo"), s.twin);
@@ -247,6 +340,14 @@ Scenario scenario_from_yaml(const YAML::Node& root, const std::string& file, con
                      s.twin.servo_rate_hz, 1.0 / s.twin.mjcf.timestep_s));
   }
   if (root["encoder"]) parse_encoder(root["encoder"], c.at("encoder"), s.twin.encoder);
+  if (const YAML::Node fx = root["effects"]) {
+    s.twin.effects = parse_effects(fx, file, s.seed);
+    try {
+      check_transmission(s.controller, s.twin);
+    } catch (const InputError& e) {
+      throw InputError(yaml_where(file, fx, "") + e.what());
+    }
+  }
   if (root["sampling"]) s.sampling = parse_sampling(root["sampling"], c.at("sampling"));
   if (root["path"]) s.path = parse_path(root["path"], c.at("path"));
   if (const YAML::Node l = root["log"]) {
@@ -254,6 +355,7 @@ Scenario scenario_from_yaml(const YAML::Node& root, const std::string& file, con
     if (l["every"]) s.log_every = static_cast<int>(yaml_integer(l["every"], file, "log.every", 1, 1000000));
   }
   if (!s.sampling && !s.path) fail(c, root, "nothing to simulate: give a 'sampling' or a 'path' section");
+  check_log_size(s, root, c);
   return s;
 }
 
@@ -301,6 +403,11 @@ std::vector<Eigen::Vector2d> plan_poses(const SamplingPlan& p, std::uint64_t see
     case PosePattern::kCircle: return circle_poses(p.centre, p.radius, p.count);
     case PosePattern::kLine: return line_poses(p.from, p.to, p.count);
     case PosePattern::kList: return p.poses;
+    case PosePattern::kDesigned:
+    case PosePattern::kTrajectory:
+      if (p.poses.empty())
+        throw InputError("sampling: designed poses are made by the calibration layer (gpm run, gpm simulate); none were given");
+      return p.poses;
   }
   return {};
 }

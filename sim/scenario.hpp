@@ -20,6 +20,7 @@
 #include "sim/sampling.hpp"
 #include "sim/trajectory.hpp"
 #include "sim/twin.hpp"
+#include "sim/waypoint_path.hpp"
 
 namespace gpm::sim {
 
@@ -33,7 +34,10 @@ struct ActualSpec {
 };
 
 // Where the samples are taken.
-enum class PosePattern { kDisc, kCircle, kLine, kList };
+// kDesigned and kTrajectory take `count` poses designed at run time for the
+// calibration (calib/excitation, resolved by the run layer into `poses`);
+// kTrajectory samples them on the fly along a continuous excitation path.
+enum class PosePattern { kDisc, kCircle, kLine, kList, kDesigned, kTrajectory };
 
 struct SamplingPlan {
   PosePattern pattern = PosePattern::kDisc;
@@ -41,8 +45,16 @@ struct SamplingPlan {
   double radius = 0.0;
   int count = 0;
   Eigen::Vector2d from = Eigen::Vector2d::Zero(), to = Eigen::Vector2d::Zero();
-  std::vector<Eigen::Vector2d> poses;  // kList
+  std::vector<Eigen::Vector2d> poses;  // kList; kDesigned, kTrajectory once designed
   SamplingOptions options;
+  // kTrajectory: the time law of the excitation path and how many drive loop
+  // periods separate two samples.
+  WaypointLimits path_limits;
+  int sample_every = 4;
+  // True when the poses still have to be designed (kDesigned, kTrajectory with no poses).
+  bool needs_design() const {
+    return (pattern == PosePattern::kDesigned || pattern == PosePattern::kTrajectory) && poses.empty();
+  }
 };
 
 struct Scenario {

@@ -2,6 +2,7 @@
 
 #include <filesystem>
 #include <fstream>
+#include <optional>
 #include <unistd.h>
 
 #include <fmt/format.h>
@@ -11,6 +12,8 @@
 #include "models/output_file.hpp"
 #include "models/robot_yaml.hpp"
 #include "models/yaml_util.hpp"
+#include "sim/effects.hpp"
+#include "sim/moving_sampling.hpp"
 
 namespace gpm::sim {
 namespace {
@@ -41,6 +44,19 @@ void check_targets(const Scenario& s, const Robot& actual, const std::vector<Eig
     check_point(s.controller, actual, poses[k],
                 fmt::format("{}: sampling: pose {} ({:.4f}, {:.4f})", s.file, k, poses[k].x(), poses[k].y()));
   }
+  if (s.sampling && s.sampling->pattern == PosePattern::kTrajectory && !poses.empty()) {
+    // Every millimetre of the excitation path, before anything moves.
+    const WaypointPath path = excitation_path(s.controller.home, poses, s.sampling->path_limits);
+    double since = 1e9;
+    for (std::size_t k = 0; k < path.p.size(); ++k) {
+      since += k > 0 ? (path.p[k] - path.p[k - 1]).norm() : 0.0;
+      if (since < 1.0 && k + 1 < path.p.size()) continue;
+      since = 0.0;
+      check_point(s.controller, actual, path.p[k],
+                  fmt::format("{}: sampling: excitation path at t = {:.3f} s ({:.4f}, {:.4f})", s.file, path.t[k],
+                              path.p[k].x(), path.p[k].y()));
+    }
+  }
   if (s.path) {
     const auto pts = path_points(*s.path);
     for (size_t k = 0; k < pts.size(); ++k) {
@@ -52,9 +68,14 @@ void check_targets(const Scenario& s, const Robot& actual, const std::vector<Eig
   }
 }
 
-SimulationResult run_simulation(const Scenario& s) {
+SimulationResult run_simulation(const Scenario& s, std::function<void(const LogRow&)> sink) {
   SimulationResult r;
   r.actual = make_actual(s);
+  if (s.twin.effects.thermal.on()) r.log.thermal_reference = r.actual.geometry;
+  if (sink) {
+    r.log.sink = std::move(sink);
+    r.log.keep_rows = false;
+  }
   const std::vector<Eigen::Vector2d> poses =
       s.sampling ? plan_poses(*s.sampling, s.seed) : std::vector<Eigen::Vector2d>{};
   check_targets(s, r.actual, poses);
@@ -63,41 +84,68 @@ SimulationResult run_simulation(const Scenario& s) {
   TwinState state(model, derive_seed(s.seed, 2));
   r.log.every = s.log_every;
   Session session = make_session(model, state, s.controller, &r.log);
-  for (size_t k = 0; k < poses.size(); ++k) {
-    r.samples.push_back(take_sample(session, poses[k], static_cast<long>(k), s.sampling->options));
+  if (s.sampling && s.sampling->pattern == PosePattern::kTrajectory) {
+    const WaypointPath path = excitation_path(s.controller.home, poses, s.sampling->path_limits);
+    r.samples = sample_along(session, path, s.sampling->sample_every, 0);
+  } else {
+    for (size_t k = 0; k < poses.size(); ++k)
+      r.samples.push_back(take_sample(session, poses[k], static_cast<long>(k), s.sampling->options));
   }
+  r.sampling_s = state.data->time;
   if (s.path) {
     const double speed = s.sampling ? s.sampling->options.move_speed_mm_s : 100.0;
     follow_path(session, make_move(session.desired, path_at(*s.path, 0.0).p, speed));
     follow_path(session, *s.path);
   }
-  for (const LogRow& row : r.log.rows) {
-    r.max_violation_m = std::max(r.max_violation_m, row.violation_m);
-    r.max_torque = std::max(r.max_torque, row.torque.cwiseAbs().maxCoeff());
-  }
+  r.max_violation_m = r.log.max_violation_m;
+  r.max_torque = r.log.max_torque;
+  r.log.sink = nullptr;
   r.simulated_s = state.data->time;
   return r;
 }
 
 std::string samples_csv(const std::vector<SampleRecord>& samples) {
-  std::string out = "sample,theta_m1,theta_m2,theta_m3,x,y,theta_a1,theta_a2,theta_a3,target_x,target_y,settled\n";
+  std::string out =
+      "sample,theta_m1,theta_m2,theta_m3,x,y,theta_a1,theta_a2,theta_a3,target_x,target_y,settled,tau1,tau2,tau3,"
+      "omega1,omega2,omega3\n";
   for (const SampleRecord& s : samples) {
-    out += fmt::format("{},{},{},{},{},{},{},{},{},{},{},{}\n", s.id, x(s.theta_m[0]), x(s.theta_m[1]),
+    out += fmt::format("{},{},{},{},{},{},{},{},{},{},{},{},{},{},{},{},{},{}\n", s.id, x(s.theta_m[0]), x(s.theta_m[1]),
                        x(s.theta_m[2]), x(s.xy_mm.x()), x(s.xy_mm.y()), x(s.theta_a[0]),
                        x(s.theta_a[1]), x(s.theta_a[2]), x(s.target.x()), x(s.target.y()),
-                       s.settled ? 1 : 0);
+                       s.settled ? 1 : 0, x(s.tau[0]), x(s.tau[1]), x(s.tau[2]), x(s.omega[0]), x(s.omega[1]),
+                       x(s.omega[2]));
   }
   return out;
 }
 
-std::string trajectory_csv(const TrajectoryLog& log) {
-  std::string out = "t,x_des,y_des,x,y,theta_m1,theta_m2,theta_m3,tau1,tau2,tau3,violation_m\n";
-  for (const LogRow& r : log.rows) {
-    out += fmt::format("{},{},{},{},{},{},{},{},{},{},{},{}\n", x(r.t), x(r.desired.x()),
-                       x(r.desired.y()), x(r.actual.x()), x(r.actual.y()), x(r.readings[0]),
-                       x(r.readings[1]), x(r.readings[2]), x(r.torque[0]), x(r.torque[1]),
-                       x(r.torque[2]), x(r.violation_m));
+std::string trajectory_header(bool thermal) {
+  std::string h = "t,x_des,y_des,x,y,theta_m1,theta_m2,theta_m3,tau1,tau2,tau3,violation_m";
+  if (thermal) {
+    h += ",growth";
+    for (int i = 0; i < kNumParams; ++i)
+      if (!is_offset(i)) h += fmt::format(",{}", param_name(i));
   }
+  return h + "\n";
+}
+
+std::string trajectory_line(const LogRow& r, const Geometry* thermal_reference) {
+  std::string out = fmt::format("{},{},{},{},{},{},{},{},{},{},{},{}", x(r.t), x(r.desired.x()),
+                                x(r.desired.y()), x(r.actual.x()), x(r.actual.y()), x(r.readings[0]),
+                                x(r.readings[1]), x(r.readings[2]), x(r.torque[0]), x(r.torque[1]),
+                                x(r.torque[2]), x(r.violation_m));
+  if (thermal_reference) {
+    const Geometry g = thermal_geometry(*thermal_reference, r.growth);
+    out += "," + x(r.growth);
+    for (int i = 0; i < kNumParams; ++i)
+      if (!is_offset(i)) out += "," + x(g[i]);
+  }
+  return out + "\n";
+}
+
+std::string trajectory_csv(const TrajectoryLog& log) {
+  const Geometry* ref = log.thermal_reference ? &*log.thermal_reference : nullptr;
+  std::string out = trajectory_header(ref != nullptr);
+  for (const LogRow& r : log.rows) out += trajectory_line(r, ref);
   return out;
 }
 
@@ -108,6 +156,25 @@ void write_simulation(const SimulationResult& r, const std::string& dir) {
   out.add("actual.yaml", robot_to_yaml(r.actual));
   out.add("model.xml", r.model_xml);
   out.commit();
+}
+
+SimulationResult simulate_to_folder(const Scenario& s, const std::string& dir) {
+  OutputFolder folder(dir);  // models/output_file.hpp: all files or none
+  const std::string traj = folder.staged_path("trajectory.csv");
+  std::ofstream out(traj, std::ios::binary | std::ios::trunc);
+  const bool thermal = s.twin.effects.thermal.on();
+  std::optional<Geometry> ref;
+  if (thermal) ref = make_actual(s).geometry;
+  out << trajectory_header(thermal);
+  SimulationResult r = run_simulation(s, [&](const LogRow& row) { out << trajectory_line(row, ref ? &*ref : nullptr); });
+  out.flush();
+  if (!out) throw InputError(fmt::format("{}/trajectory.csv: cannot write file (disk full or not writable?)", dir));
+  out.close();
+  folder.add("samples.csv", samples_csv(r.samples));
+  folder.add("actual.yaml", robot_to_yaml(r.actual));
+  folder.add("model.xml", r.model_xml);
+  folder.commit();
+  return r;
 }
 
 }  // namespace gpm::sim

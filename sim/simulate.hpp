@@ -3,6 +3,7 @@
 // DIR/samples.csv, trajectory.csv, actual.yaml and model.xml.
 #pragma once
 
+#include <functional>
 #include <string>
 #include <vector>
 
@@ -20,6 +21,7 @@ struct SimulationResult {
   double max_violation_m = 0.0;  // over the whole run (every logged row)
   double max_torque = 0.0;       // N m, over the logged rows
   double simulated_s = 0.0;
+  double sampling_s = 0.0;       // robot time of the sampling: from the first move to the last reading
 };
 
 // Throws InputError naming the pose (or path point) and the reason when a
@@ -28,18 +30,32 @@ struct SimulationResult {
 void check_targets(const Scenario& s, const Robot& actual, const std::vector<Eigen::Vector2d>& poses);
 
 // Runs the scenario in memory; throws InputError for bad targets or
-// parameters, SimError if the physics diverges.
-SimulationResult run_simulation(const Scenario& s);
+// parameters, SimError if the physics diverges. With a sink the trajectory
+// rows are handed to it as they are produced and not kept (log.rows empty).
+SimulationResult run_simulation(const Scenario& s, std::function<void(const LogRow&)> sink = nullptr);
 
 // samples.csv text: the DESIGN.md contract (sample,theta_m1..3,x,y) followed by
-// extra columns theta_a1..3 (true active angles), target_x, target_y, settled.
+// extra columns theta_a1..3 (true link angles), target_x, target_y, settled,
+// tau1..3 (mean drive torque over the averaging window, N m), omega1..3 (mean
+// joint speed, rad/s; nonzero for samples taken on the fly).
 std::string samples_csv(const std::vector<SampleRecord>& samples);
 
-// trajectory.csv text: t,x_des,y_des,x,y,theta_m1..3,tau1..3,violation_m.
+// trajectory.csv header: t,x_des,y_des,x,y,theta_m1..3,tau1..3,violation_m,
+// and with thermal growth growth,xa1,ya1,...,lb3 (the actual parameters at t).
+std::string trajectory_header(bool thermal);
+// One trajectory.csv line; thermal_reference (geometry at t = 0) adds the thermal columns.
+std::string trajectory_line(const LogRow& row, const Geometry* thermal_reference);
+// trajectory.csv text of an in-memory log.
 std::string trajectory_csv(const TrajectoryLog& log);
 
 // Writes the four files into dir (created if needed) all or nothing: they are
 // written to a temporary folder first, then renamed; on failure nothing is left.
 void write_simulation(const SimulationResult& r, const std::string& dir);
+
+// Runs the scenario and writes the same four files into dir, streaming
+// trajectory.csv into the staging folder as it is produced (memory does not
+// grow with the run's length; r.log.rows stays empty); all or nothing as
+// write_simulation.
+SimulationResult simulate_to_folder(const Scenario& s, const std::string& dir);
 
 }  // namespace gpm::sim

@@ -19,27 +19,86 @@ Eigen::Vector3d site_pos(const mjData* d, int site) {
 void sense_kinematics(const TwinModel& model, const mjData* d, TwinSnapshot& s) {
   s.time_s = d->time;
   for (int i = 0; i < 3; ++i) {
-    s.theta_a[i] = d->qpos[model.qpos_a[i]];
+    s.theta_motor[i] = d->qpos[model.qpos_m[i]];
+    s.motor_velocity[i] = d->qvel[model.dof_m[i]];
+    if (model.compliant[i]) {  // joint_a is relative to the rotor
+      s.theta_a[i] = s.theta_motor[i] + d->qpos[model.qpos_a[i]];
+      s.velocity[i] = s.motor_velocity[i] + d->qvel[model.dof_a[i]];
+    } else {
+      s.theta_a[i] = s.theta_motor[i];
+      s.velocity[i] = s.motor_velocity[i];
+    }
     s.theta_b[i] = s.theta_a[i] + d->qpos[model.qpos_b[i]];
-    s.velocity[i] = d->qvel[model.dof_a[i]];
   }
   const Eigen::Vector3d ee = site_pos(d, model.site_ee);
   s.ee_mm = Eigen::Vector2d(ee.x(), ee.y()) / kMetresPerMm;
   s.violation_m = constraint_violation_m(model, d);
 }
 
+// Readings follow the motors. The latch of encoder i is skew_i earlier than
+// the snapshot instant (angle extrapolated with the motor speed), and the
+// once-per-revolution error A_i sin(angle - dth_i + phase_i) is added before
+// noise and quantisation.
 void read_encoders(const TwinModel& model, TwinState& state) {
   const Geometry& g = model.actual().geometry;
+  const Effects& fx = model.config().effects;
   for (int i = 0; i < 3; ++i) {
-    state.last.readings[i] =
-        encoder_reading(model.config().encoder, state.noise, state.last.theta_a[i], g.dth_(i));
+    const size_t k = static_cast<size_t>(i);
+    double angle = state.last.theta_motor[i];
+    if (fx.encoder_skew_s[k] != 0.0) angle -= fx.encoder_skew_s[k] * state.last.motor_velocity[i];
+    angle += cyclic_error(fx.encoder_cyclic_rad[k], fx.encoder_phase_rad[k], angle - g.dth_(i));
+    state.last.readings[i] = encoder_reading(model.config().encoder, state.noise, angle, g.dth_(i));
   }
 }
 
+int optional_id(const mjModel* m, mjtObj type, const std::string& n) { return mj_name2id(m, type, n.c_str()); }
+
+
 }  // namespace
 
+MjcfOptions mjcf_with_effects(const TwinConfig& c) {
+  MjcfOptions o = c.mjcf;
+  o.effects = c.effects.mjcf;
+  return o;
+}
+
+void check_transmission(const Robot& actual, const TwinConfig& config) {
+  const MjcfOptions o = mjcf_with_effects(config);
+  for (int i = 0; i < 3; ++i) {
+    const double c = o.effects.compliance_rad_per_Nm[static_cast<size_t>(i)];
+    if (!(c > 0.0)) continue;
+    const double la_m = actual.geometry.la_(i) * kMetresPerMm;
+    const double omega = transmission_omega(o, i, la_m);
+    if (omega * o.timestep_s > TwinModel::kMaxOmegaDt) {
+      throw InputError(fmt::format(
+          "effects.transmission_compliance_rad_per_Nm: chain {}: {} rad/N m is too stiff for "
+          "physics.timestep_s {} (omega dt = {:.3g} > {}); use a compliance of at least {:.3g} rad/N m "
+          "or a timestep of at most {:.3g} s",
+          i + 1, c, o.timestep_s, omega * o.timestep_s, TwinModel::kMaxOmegaDt,
+          c * std::pow(omega * o.timestep_s / TwinModel::kMaxOmegaDt, 2), TwinModel::kMaxOmegaDt / omega));
+    }
+    // Behind a compliant transmission the velocity loop acts on the rotor
+    // alone: the sampled loop w+ = w - (kv T / Ia) w needs kv T / Ia <= 1 to
+    // settle without ringing (at 2 it diverges).
+    const ServoDrive& d = config.drives[static_cast<size_t>(i)];
+    const double period = 1.0 / config.servo_rate_hz;
+    const double gain = d.kv * period / o.armature_kg_m2;
+    if (d.mode == ServoMode::kPosition && gain > TwinModel::kMaxRotorLoopGain) {
+      const double rate = d.kv / (TwinModel::kMaxRotorLoopGain * o.armature_kg_m2);
+      throw InputError(fmt::format(
+          "effects.transmission_compliance_rad_per_Nm: chain {}: with a compliant transmission the drive's "
+          "velocity loop acts on the rotor (armature {} kg m^2) alone and kv T / armature = {:.3g} > {}: "
+          "use servo.rate_hz >= {:.0f} (with physics.timestep_s <= {:.3g}) or servo.kv <= {:.3g}",
+          i + 1, o.armature_kg_m2, gain, TwinModel::kMaxRotorLoopGain, std::ceil(rate), 1.0 / std::ceil(rate),
+          TwinModel::kMaxRotorLoopGain * o.armature_kg_m2 / period));
+    }
+  }
+}
+
 TwinModel::TwinModel(const Robot& actual, const TwinConfig& config)
-    : actual_(actual), config_(config), xml_(mjcf_from_robot(actual, config.mjcf)) {
+    : actual_(actual), config_(config), xml_(mjcf_from_robot(actual, mjcf_with_effects(config))) {
+  config_.mjcf.effects = config.effects.mjcf;
+  check_transmission(actual, config_);
   const double ratio = 1.0 / (config.servo_rate_hz * config.mjcf.timestep_s);
   steps_per_tick_ = static_cast<int>(std::lround(ratio));
   if (!(config.servo_rate_hz > 0.0) || steps_per_tick_ < 1 ||
@@ -57,15 +116,43 @@ TwinModel::TwinModel(const Robot& actual, const TwinConfig& config)
     qpos_a[i] = m->jnt_qposadr[ja];
     dof_a[i] = m->jnt_dofadr[ja];
     qpos_b[i] = m->jnt_qposadr[jb];
+    const int jm = optional_id(m, mjOBJ_JOINT, name("joint_m", i));
+    compliant[i] = jm >= 0;
+    qpos_m[i] = compliant[i] ? m->jnt_qposadr[jm] : qpos_a[i];
+    dof_m[i] = compliant[i] ? m->jnt_dofadr[jm] : dof_a[i];
     actuator[i] = require_id(m, mjOBJ_ACTUATOR, name("motor_a", i).c_str());
     site_tip[i] = require_id(m, mjOBJ_SITE, name("tip_b", i).c_str());
+    body_base[i] = require_id(m, mjOBJ_BODY, (compliant[i] ? name("rotor_a", i) : name("link_a", i)).c_str());
+    body_elbow[i] = require_id(m, mjOBJ_BODY, name("link_b", i).c_str());
+    body_tip[i] = i == 0 ? require_id(m, mjOBJ_BODY, "ee") : optional_id(m, mjOBJ_BODY, name("pin_b", i));
+    eq_close[i] = i == 0 ? -1 : require_id(m, mjOBJ_EQUALITY, name("close_b", i).c_str());
   }
   site_ee = require_id(m, mjOBJ_SITE, "ee");
+}
+
+void apply_thermal_growth(const TwinModel& model, TwinState& state, double growth) {
+  mjModel* m = state.thermal_model.get();
+  if (!m) return;
+  const Geometry g = thermal_geometry(model.actual().geometry, growth);
+  for (int i = 0; i < 3; ++i) {
+    const double la_m = g.la_(i) * kMetresPerMm, lb_m = g.lb_(i) * kMetresPerMm;
+    m->body_pos[3 * model.body_base[i] + 0] = g[xa(i)] * kMetresPerMm;
+    m->body_pos[3 * model.body_base[i] + 1] = g[ya(i)] * kMetresPerMm;
+    m->body_pos[3 * model.body_elbow[i] + 0] = la_m;
+    if (model.body_tip[i] >= 0) m->body_pos[3 * model.body_tip[i] + 0] = lb_m;  // ee or hub pin
+    if (model.body_tip[i] < 0 || i == 0) m->site_pos[3 * model.site_tip[i] + 0] = lb_m;
+    if (model.eq_close[i] >= 0 && model.body_tip[i] < 0) m->eq_data[model.eq_close[i] * mjNEQDATA + 0] = lb_m;
+  }
+  state.last.growth = growth;
 }
 
 TwinState::TwinState(const TwinModel& model, unsigned long long seed)
     : data(mj_makeData(model.mj())), noise(seed) {
   if (!data) throw SimError("MuJoCo: cannot allocate mjData");
+  if (model.config().effects.thermal.on()) {
+    thermal_model.reset(mj_copyModel(nullptr, model.mj()));
+    if (!thermal_model) throw SimError("MuJoCo: cannot copy the model for thermal growth");
+  }
   mj_forward(model.mj(), data.get());
   twin_sense(model, *this);
   command_position = last.readings;
@@ -90,8 +177,11 @@ void twin_sense(const TwinModel& model, TwinState& state) {
 }
 
 void twin_step(const TwinModel& model, TwinState& state) {
-  const mjModel* m = model.mj();
+  const mjModel* m = state_model(model, state);
   mjData* d = state.data.get();
+  // Thermal growth follows the (slow, smooth) first-order rise every step:
+  // a ramp of nanometres per step, never a jump (DESIGN.md).
+  if (state.thermal_model) apply_thermal_growth(model, state, model.config().effects.thermal.growth(d->time));
   mj_step1(m, d);  // positions, velocities and kinematics at the current time
   sense_kinematics(model, d, state.last);
   if (state.steps % model.steps_per_tick() == 0) {
@@ -99,7 +189,7 @@ void twin_step(const TwinModel& model, TwinState& state) {
     const auto& drives = model.config().drives;
     for (int i = 0; i < 3; ++i) {
       const ServoInput in{state.command_position[i], state.command_velocity[i],
-                          state.last.readings[i], state.last.velocity[i]};
+                          state.last.readings[i], state.last.motor_velocity[i]};
       d->ctrl[model.actuator[i]] = servo_update(drives[static_cast<size_t>(i)], state.servo[i], in);
       state.last.torque[i] = state.servo[i].torque;
     }

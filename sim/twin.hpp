@@ -19,6 +19,7 @@
 
 #include "models/mjcf.hpp"
 #include "models/robot.hpp"
+#include "sim/effects.hpp"
 #include "sim/encoder_model.hpp"
 #include "sim/mujoco_util.hpp"
 #include "sim/servo_drive.hpp"
@@ -28,17 +29,20 @@ namespace gpm::sim {
 // Settings of a twin besides the actual geometry.
 struct TwinConfig {
   MjcfOptions mjcf;                 // masses, damping, armature, timestep, constraint stiffness
+                                    // (mjcf.effects is replaced by effects.mjcf)
   double servo_rate_hz = 2000.0;    // drive loop rate; a whole multiple of timesteps
   std::array<ServoDrive, 3> drives; // per joint; period_s is set from servo_rate_hz
   EncoderModel encoder;
+  Effects effects;                  // physical effects, all off by default
 };
 
 // Constant part of the twin.
 class TwinModel {
  public:
   // Builds and compiles the MJCF of actual (assembled at actual.home). Throws
-  // InputError for parameters that cannot assemble or a servo rate that is not
-  // a whole number of timesteps; SimError if MuJoCo rejects the model.
+  // InputError for parameters that cannot assemble, a servo rate that is not
+  // a whole number of timesteps or a transmission too stiff for the timestep;
+  // SimError if MuJoCo rejects the model.
   TwinModel(const Robot& actual, const TwinConfig& config);
 
   const mjModel* mj() const { return model_.get(); }
@@ -50,8 +54,18 @@ class TwinModel {
   int steps_per_tick() const { return steps_per_tick_; }
   double timestep_s() const { return mj()->opt.timestep; }
 
-  std::array<int, 3> qpos_a{}, qpos_b{}, dof_a{}, actuator{}, site_tip{};
+  // joint_a (link) and, with compliance, joint_m (motor); without compliance
+  // qpos_m == qpos_a and dof_m == dof_a.
+  std::array<int, 3> qpos_a{}, qpos_b{}, dof_a{}, qpos_m{}, dof_m{}, actuator{}, site_tip{};
+  std::array<bool, 3> compliant{};
   int site_ee = -1;
+  // Bodies and constraints whose placement a thermal edit changes.
+  std::array<int, 3> body_base{}, body_elbow{}, body_tip{}, eq_close{};  // -1 where none
+
+  // Largest stable transmission stiffness at a timestep: omega dt <= this.
+  static constexpr double kMaxOmegaDt = 1.5;
+  // Largest velocity loop gain kv T / armature on a rotor behind a compliant transmission.
+  static constexpr double kMaxRotorLoopGain = 1.0;
 
  private:
   Robot actual_;
@@ -64,13 +78,16 @@ class TwinModel {
 // What the twin sensed at the start of its last step (all at one instant).
 struct TwinSnapshot {
   double time_s = 0.0;
-  Eigen::Vector3d theta_a = Eigen::Vector3d::Zero();   // true active angles (rad, unwrapped qpos)
+  Eigen::Vector3d theta_a = Eigen::Vector3d::Zero();   // true active (link) angles (rad, unwrapped)
+  Eigen::Vector3d theta_motor = Eigen::Vector3d::Zero();  // motor angles (rad; = theta_a when rigid)
+  Eigen::Vector3d motor_velocity = Eigen::Vector3d::Zero();  // rad/s (servo velocity feedback)
   Eigen::Vector3d theta_b = Eigen::Vector3d::Zero();   // true passive angles from +X (rad)
   Eigen::Vector3d velocity = Eigen::Vector3d::Zero();  // active joint speeds (rad/s)
   Eigen::Vector3d readings = Eigen::Vector3d::Zero();  // encoder readings (rad, [0, 2 pi)), per drive loop
   Eigen::Vector3d torque = Eigen::Vector3d::Zero();    // drive torques applied (N m)
   Eigen::Vector2d ee_mm = Eigen::Vector2d::Zero();     // true end-effector (site ee), mm
   double violation_m = 0.0;  // largest loop-closure gap |tip_b2 - ee|, |tip_b3 - ee| (m)
+  double growth = 0.0;       // thermal: relative length growth in effect (0 without thermal)
 };
 
 // Mutable part of the twin.
@@ -79,6 +96,7 @@ struct TwinState {
   TwinState(const TwinModel& model, unsigned long long seed);
 
   DataPtr data;
+  ModelPtr thermal_model;  // with thermal growth: this state's own copy of the model, edited as it warms
   std::array<ServoState, 3> servo{};
   EncoderNoise noise;
   Eigen::Vector3d command_position = Eigen::Vector3d::Zero();  // readings (rad)
@@ -99,6 +117,28 @@ void twin_step(const TwinModel& model, TwinState& state);
 // Recomputes state.last from the current mjData without stepping (encoders
 // are read, drawing noise).
 void twin_sense(const TwinModel& model, TwinState& state);
+
+// The mjModel this state steps (its thermal copy, or the shared model).
+inline const mjModel* state_model(const TwinModel& model, const TwinState& state) {
+  return state.thermal_model ? state.thermal_model.get() : model.mj();
+}
+
+// Sets the thermal copy's geometry to the actual geometry grown by `growth`
+// (sim/effects.hpp thermal_geometry): base bodies, elbow and tip offsets,
+// tip sites and connect anchors. Never followed by mj_setConst (it would
+// recompute the anchors and hide the edit from the loop; DESIGN.md).
+void apply_thermal_growth(const TwinModel& model, TwinState& state, double growth);
+
+// The MJCF options of a config with its effects (config.mjcf, effects = config.effects.mjcf).
+MjcfOptions mjcf_with_effects(const TwinConfig& config);
+
+// Throws InputError (key effects.transmission_compliance_rad_per_Nm) if a
+// compliant transmission of config cannot be integrated: explicit
+// integration holds omega dt <= TwinModel::kMaxOmegaDt (DESIGN.md measured
+// instability near 2; omega from transmission_omega), and the drive's
+// velocity loop, which then acts on the rotor alone, needs
+// kv / rate_hz / armature <= TwinModel::kMaxRotorLoopGain.
+void check_transmission(const Robot& actual, const TwinConfig& config);
 
 // Loop-closure gap (m) of the current mjData kinematics (after mj_forward or
 // mj_step1): the largest distance between tip_b2 / tip_b3 and the ee site.

@@ -7,7 +7,7 @@
 
 #include <fmt/format.h>
 
-#include "calib/monitor/chi_square.hpp"
+#include "calib/chi_square.hpp"
 #include "calib/monitor/drift_filter.hpp"
 #include "calib/monitor/explain.hpp"
 #include "models/errors.hpp"

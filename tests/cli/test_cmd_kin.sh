@@ -30,4 +30,38 @@ printf 'name: x\ngeometry: {xa1: 0}\n' >"$tmp/bad.yaml"
 check "bad model" 2 "$GPM" kin home --model "$tmp/bad.yaml"
 expect_err "bad model key" "missing key 'ya1'"
 
+# Issue 14.14: non-finite numbers are refused (exit 2, one line naming the argument).
+for v in nan inf NaN 1e999; do
+  check "ik $v" 2 "$GPM" kin ik "$v" 250
+  expect_err "ik $v message" "xy: must be a finite number, got '$v'"
+done
+check "fk nan" 2 "$GPM" kin fk 1 nan 2
+expect_err "fk nan message" "angles: must be a finite number, got 'nan'"
+
+# Issue 18.3: --json is one JSON document with the text output's numbers.
+check "ik json" 0 "$GPM" kin ik 230 260 --json
+cp "$tmp/out" "$tmp/ik.json"
+check "ik text" 0 "$GPM" kin ik 230 260
+python3 - "$tmp/ik.json" "$tmp/out" <<'PY' && passed=$((passed+1)) || { echo "FAIL ik json matches text"; fail=$((fail+1)); }
+import json, re, sys
+j = json.load(open(sys.argv[1]))
+text = open(sys.argv[2]).read()
+row = lambda name: [float(v) for v in re.search(name + r" +(\S+) +(\S+) +(\S+)", text).groups()]
+assert j["robot"] == "GPM2002"
+assert j["end_effector_mm"] == {"x": 230, "y": 260}
+for key, name in (("theta_a_rad", r"theta_a \(rad\)"), ("theta_b_rad", r"theta_b \(rad\)"), ("theta_m_rad", r"theta_m \(rad\)")):
+    assert all(abs(a - b) < 1e-9 for a, b in zip(j[key], row(name))), key
+assert all(abs(a - b) < 1e-4 for a, b in zip(j["transmission"], row("transmission")))
+assert abs(j["passive_spread"] - float(re.search(r"passive spread +(\S+)", text).group(1))) < 1e-4
+assert 0.0 <= j["passive_spread"] <= 1.0
+assert abs(j["jacobian_condition"] - float(re.search(r"cond\(J\) +(\S+)", text).group(1))) < 1e-4
+assert j["workspace"] == {"inside": True, "reason": ""}
+PY
+check "fk json" 0 "$GPM" kin fk "$t1" "$t2" "$t3" --json
+python3 -c 'import json,sys; j=json.load(open(sys.argv[1])); assert abs(j["end_effector_mm"]["x"]-216.5)<1e-6 and abs(j["closure_mm2"])<1e-4' "$tmp/out" \
+  && passed=$((passed+1)) || { echo "FAIL fk json"; fail=$((fail+1)); }
+check "ik json outside margins" 0 "$GPM" kin ik 487 250 --json
+python3 -c 'import json,sys; j=json.load(open(sys.argv[1])); assert j["workspace"]["inside"] is False and j["workspace"]["reason"]' "$tmp/out" \
+  && passed=$((passed+1)) || { echo "FAIL json outside"; fail=$((fail+1)); }
+
 finish

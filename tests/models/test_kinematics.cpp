@@ -2,6 +2,7 @@
 // three-chain and two-chain forward kinematics, the eq. 11 Jacobian against
 // central differences, singularity measures, and hand-worked home angles.
 #include "models/kinematics.hpp"
+#include "models/rng.hpp"
 
 #include <cmath>
 #include <numbers>
@@ -145,6 +146,23 @@ TEST(Kinematics, SingularityMeasures) {
   // Directions 120 degrees apart give spread 1.
   par.theta_b = Vector3d(0.0, 2 * std::numbers::pi / 3, 4 * std::numbers::pi / 3);
   EXPECT_NEAR(conditioning(r.geometry, par).direct, 1.0, 1e-12);
+  // Hand-worked between the two: directions 0, 0 and 90 degrees give U^T U =
+  // diag(2, 1), smallest singular value 1, spread 1 / sqrt(3/2).
+  par.theta_b = Vector3d(0.0, 0.0, std::numbers::pi / 2);
+  EXPECT_NEAR(conditioning(r.geometry, par).direct, 1.0 / std::sqrt(1.5), 1e-12);
+  // Issue 14.14: the spread stays in 0..1 for any finite angles (trace(U^T U) = 3,
+  // so the smaller eigenvalue is at most 3/2), and is NaN, never 204, for NaN.
+  Rng rng(7);
+  const auto angle = [&](Rng& g) { return g.uniform(-10.0, 10.0); };
+  for (int k = 0; k < 1000; ++k) {
+    par.theta_a = Vector3d(angle(rng), angle(rng), angle(rng));
+    par.theta_b = Vector3d(angle(rng), angle(rng), angle(rng));
+    const double d = conditioning(r.geometry, par).direct;
+    EXPECT_GE(d, 0.0);
+    EXPECT_LE(d, 1.0 + 1e-12);
+  }
+  par.theta_a = par.theta_b = Vector3d::Constant(std::numeric_limits<double>::quiet_NaN());
+  EXPECT_TRUE(std::isnan(conditioning(r.geometry, par).direct));
 }
 
 TEST(Kinematics, CheckReachHonoursMargins) {

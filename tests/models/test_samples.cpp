@@ -60,5 +60,19 @@ TEST(Samples, BadInputNamesLineAndColumn) {
             std::string::npos);
 }
 
+TEST(Samples, RowWithExtraFieldRefused) {
+  // A decimal comma in the last column: 5 fields under a 4-field header.
+  EXPECT_EQ(error_of("sample,theta_m1,theta_m2,theta_m3\n0,1,2,3\n1,1,2,1,5\n"),
+            "s.csv:3: expected 4 fields as in the header (line 1), found 5 (a decimal comma or an "
+            "extra field?)");
+  // Empty trailing fields count too (a trailing comma is one more field).
+  EXPECT_NE(error_of("sample,theta_m1,theta_m2,theta_m3\n0,1,2,3,\n").find("found 5"),
+            std::string::npos);
+  // A short row is refused even when the missing field is one the reader ignores.
+  EXPECT_EQ(error_of("sample,theta_m1,theta_m2,theta_m3,note\n0,1,2,3\n"),
+            "s.csv:2: expected 5 fields as in the header (line 1), found 4 (column 'note' is "
+            "missing on this row)");
+}
+
 }  // namespace
 }  // namespace gpm

@@ -42,6 +42,31 @@ TEST(YamlUtil, SyntaxErrorNamesLine) {
             std::string::npos);
 }
 
+TEST(YamlUtil, DuplicateKeysRefusedWithBothLines) {
+  // A second, tighter safety block appended to a file (issue 14.5).
+  EXPECT_EQ(error_of([] {
+              load_yaml_string("name: a\nsafety:\n  max_velocity: 2\nother: 1\nsafety:\n  max_velocity: 1\n",
+                               "hw.yaml");
+            }),
+            "hw.yaml:5: safety: duplicate key (first at line 2, again at line 5); a key may appear "
+            "once in a map: keep one of the two");
+  // Nested, the key path names the map; in a list item, the index.
+  EXPECT_EQ(error_of([] { load_yaml_string("geometry:\n  xa1: 0\n  ya1: 1\n  xa1: 2\n", "r.yaml"); }),
+            "r.yaml:4: geometry.xa1: duplicate key (first at line 2, again at line 4); a key may "
+            "appear once in a map: keep one of the two");
+  EXPECT_NE(error_of([] { load_yaml_string("poses:\n  - {x: 1, y: 2}\n  - {x: 1, x: 2}\n", "p.yaml"); })
+                .find("p.yaml:3: poses[1].x: duplicate key (first at line 3"),
+            std::string::npos);
+  // The same key in different maps, in sequences, under aliases: all fine.
+  const YAML::Node n = load_yaml_string(
+      "a: &A {x: 1, y: 2}\nb: *A\nc:\n  x: 1\n  d: {x: 3}\nl: [{x: 1}, {x: 2}]\n", "ok.yaml");
+  EXPECT_EQ(n["c"]["d"]["x"].as<int>(), 3);
+  EXPECT_EQ(n["b"]["y"].as<int>(), 2);
+  // A map used as a key does not confuse the path of the keys after it.
+  EXPECT_NE(error_of([] { load_yaml_string("? {k: 1}\n: v\nz: 1\nz: 2\n", "c.yaml"); }).find("c.yaml:4: z:"),
+            std::string::npos);
+}
+
 TEST(YamlUtil, FormatExactRoundTripsRandomDoubles) {
   std::mt19937_64 rng(7);
   std::uniform_real_distribution<double> u(-1e3, 1e3);

@@ -29,7 +29,7 @@ std::string error_of(const std::string& text) {
 TEST(RunSpec, Defaults) {
   const RunSpec s = parse_run_spec(kHead, "s.yaml", kBase);
   EXPECT_EQ(s.calibration.cost, calib::Cost::kML);
-  EXPECT_EQ(s.calibration.method, "lm");
+  EXPECT_EQ(s.calibration.method, calib::Method::kLM);
   EXPECT_EQ(s.calibration.fixed, ~default_free_mask());
   ASSERT_TRUE(s.compensation);
   EXPECT_EQ(s.compensation->poses.size(), 12u);

@@ -7,6 +7,7 @@
 #include <cmath>
 #include <filesystem>
 
+#include <fmt/format.h>
 #include <gtest/gtest.h>
 
 #include "models/errors.hpp"
@@ -167,6 +168,57 @@ TEST(Scenario, ActualThatCannotAssembleIsRefused) {
   } catch (const InputError& e) {
     EXPECT_NE(std::string(e.what()).find("cannot assemble"), std::string::npos) << e.what();
   }
+}
+
+TEST(Scenario, DurationsSpeedsAndCountsAreBounded) {
+  // Issue 14.8 / 14.9: each refused with one line giving the valid range.
+  EXPECT_EQ(error_of("sampling: {pattern: disc, radius: 10, count: 3, move_speed_mm_s: 1e-300}"),
+            "s.yaml:1: sampling.move_speed_mm_s: must be from 1 to 2000 mm/s, got 1e-300");
+  EXPECT_EQ(error_of("sampling: {pattern: disc, radius: 10, count: 3, average_s: 1e9}"),
+            "s.yaml:1: sampling.average_s: must be from 0.0001 to 10 s, got 1e9");
+  EXPECT_EQ(error_of("sampling: {pattern: disc, radius: 10, count: 3, settle: {timeout_s: 1e9}}"),
+            "s.yaml:1: sampling.settle.timeout_s: must be from 0.001 to 60 s, got 1e9");
+  EXPECT_NE(error_of("sampling: {pattern: disc, radius: 10, count: 3, settle: {hold_s: 1e9}}")
+                .find("sampling.settle.hold_s: must be from"),
+            std::string::npos);
+  EXPECT_NE(error_of("sampling: {pattern: disc, radius: 10, count: 3, settle: {velocity_rad_s: 1e-300}}")
+                .find("sampling.settle.velocity_rad_s: must be from"),
+            std::string::npos);
+  EXPECT_NE(error_of("sampling: {pattern: disc, radius: 10, count: 100000}").find("sampling.count: must be a whole number from 1 to 10000"),
+            std::string::npos);
+  EXPECT_NE(error_of("path: {shape: circle, radius: 5, period_s: 1e-9}").find("path.period_s: must be from 0.1 to 600 s"),
+            std::string::npos);
+  EXPECT_NE(error_of("path: {shape: circle, radius: 5, period_s: 1, revolutions: 1e12}").find("path.revolutions: must be from"),
+            std::string::npos);
+  EXPECT_NE(error_of("path: {shape: line, from: [200, 250], to: [230, 250], duration_s: 1e9}").find("path.duration_s: must be from"),
+            std::string::npos);
+  EXPECT_NE(error_of(std::string(kMinimal) + "physics: {timestep_s: 1e-12}").find("physics.timestep_s: must be from 1e-05 to 0.002 s"),
+            std::string::npos);
+  // Each key alone in range, together beyond what the trajectory log can hold in memory.
+  EXPECT_NE(error_of("sampling: {pattern: disc, radius: 100, count: 10000, move_speed_mm_s: 1, settle: {timeout_s: 60}}")
+                .find("sampling.count: the run could log up to"),
+            std::string::npos);
+  // The bounds themselves are accepted.
+  EXPECT_EQ(error_of("sampling: {pattern: disc, radius: 10, count: 3, move_speed_mm_s: 2000, average_s: 10, "
+                     "settle: {timeout_s: 60, hold_s: 0.0001, velocity_rad_s: 1}}"),
+            "");
+}
+
+TEST(Scenario, ActualFromARobotFile) {
+  // The same geometry as a robot file or as an explicit map gives the same actual robot.
+  const Robot file = load_robot(kModels + "/gpm2002.yaml");
+  const Scenario s = parse(std::string(kMinimal) + "seed: 5\nactual: gpm2002.yaml\n");
+  std::string map = "actual:\n  geometry: {";
+  for (int i = 0; i < kNumParams; ++i) map += fmt::format("{}{}: {}", i ? ", " : "", param_name(i), file.geometry[i]);
+  map += "}\n";
+  const Scenario m = parse(std::string(kMinimal) + "seed: 5\n" + map);
+  EXPECT_EQ(make_actual(s).geometry, make_actual(m).geometry);
+  EXPECT_EQ(make_actual(s).geometry, file.geometry);  // no perturbation
+  // A missing file or a wrong type names the key.
+  EXPECT_NE(error_of(std::string(kMinimal) + "actual: nowhere.yaml").find("nowhere.yaml: cannot open file"),
+            std::string::npos);
+  EXPECT_NE(error_of(std::string(kMinimal) + "actual: [1, 2]").find("s.yaml:2: actual: expected a robot file"),
+            std::string::npos);
 }
 
 TEST(Scenario, DerivedSeedsDiffer) {

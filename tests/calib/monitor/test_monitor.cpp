@@ -15,7 +15,7 @@
 #include <gtest/gtest.h>
 
 #include "calib/crb.hpp"
-#include "calib/monitor/chi_square.hpp"
+#include "calib/chi_square.hpp"
 #include "models/errors.hpp"
 #include "tests/calib/monitor/run_circle.hpp"
 

@@ -1,0 +1,80 @@
+// Goodness-of-fit test (calib/model_test.hpp).
+#include "calib/model_test.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <numbers>
+#include <numeric>
+
+#include <fmt/format.h>
+
+#include "calib/chi_square.hpp"
+#include "calib/parameterization.hpp"
+#include "calib/residuals.hpp"
+#include "models/errors.hpp"
+
+namespace gpm::calib {
+
+double encoder_sigma(int bits, double noise_rad) {
+  const double q = bits > 0 ? 2.0 * std::numbers::pi / std::ldexp(1.0, bits) : 0.0;
+  return std::sqrt(q * q / 12.0 + noise_rad * noise_rad);
+}
+
+ModelTest model_test(const Geometry& g, const FreeMask& free,
+                     const std::vector<Eigen::Vector3d>& theta_m, double sigma, double alpha) {
+  if (!(sigma > 0.0) || !std::isfinite(sigma))
+    throw InputError(fmt::format("model test: the reading noise sigma must be positive, got {}", sigma));
+  if (!(alpha > 0.0 && alpha < 1.0))
+    throw InputError(fmt::format("model test: alpha must lie in (0, 1), got {}", alpha));
+  const long n = static_cast<long>(theta_m.size());
+  const long p = static_cast<long>(free.count());
+  if (n <= p)
+    throw InputError(fmt::format("model test: {} samples for {} free parameters leave no degree of freedom", n, p));
+
+  const ParamVector x = to_solver(g, Cost::kML);
+  std::vector<double> z2(n);  // squared normalised residuals
+  for (long j = 0; j < n; ++j) {
+    double r = 0.0;
+    if (!MlResidual(theta_m[j])(x.data(), &r)) r = std::numeric_limits<double>::infinity();
+    z2[j] = (r / sigma) * (r / sigma);
+  }
+  ModelTest t;
+  t.sigma_rad = sigma;
+  t.alpha = alpha;
+  t.dof = static_cast<double>(n - p);
+  t.chi2 = std::accumulate(z2.begin(), z2.end(), 0.0);
+  t.rms_ratio = std::sqrt(t.chi2 / t.dof);
+  t.p_value = chi2_survival(t.dof, t.chi2);
+  t.passed = t.p_value >= alpha;
+
+  std::vector<long> order(n);
+  std::iota(order.begin(), order.end(), 0L);
+  const long shown = std::min<long>(5, n);
+  std::partial_sort(order.begin(), order.begin() + shown, order.end(),
+                    [&](long a, long b) { return z2[a] > z2[b]; });
+  t.worst_samples.assign(order.begin(), order.begin() + shown);
+  if (t.passed) return t;
+
+  // How the excess is spread: outliers put most of chi2 in a few samples
+  // (the largest 1 %, at least one); an unmodelled effect spreads it.
+  const long few = std::max<long>(1, n / 100);
+  std::vector<double> sorted = z2;
+  std::nth_element(sorted.begin(), sorted.begin() + few, sorted.end(), std::greater<>());
+  const double top = std::accumulate(sorted.begin(), sorted.begin() + few, 0.0);
+  const double excess = std::max(t.chi2 - t.dof, 1e-300);
+  if (std::isinf(t.chi2) || top - static_cast<double>(few) > 0.5 * excess) {
+    t.diagnosis = fmt::format(
+        "model test failed (chi2 {:.4g} for {} degrees of freedom, p = {:.2g}): the {} largest residual(s) carry "
+        "most of the excess, first sample {}: outlier samples; check them, or use a robust loss (--loss cauchy)",
+        t.chi2, n - p, t.p_value, few, t.worst_samples.front());
+  } else {
+    t.diagnosis = fmt::format(
+        "model test failed (chi2 {:.4g} for {} degrees of freedom, p = {:.2g}): residuals are {:.3g}x the encoder "
+        "noise throughout: an unmodelled effect (transmission compliance under servo preload, joint clearance, "
+        "thermal growth, encoder error); sample with the redundant joint torque-off, or model the effect",
+        t.chi2, n - p, t.p_value, t.rms_ratio);
+  }
+  return t;
+}
+
+}  // namespace gpm::calib

@@ -1,0 +1,52 @@
+// Goodness-of-fit test of a calibrated model against the encoder noise.
+//
+// Under the model, every ML residual r_j (calib/residuals.hpp: the closure
+// power over the norm of its gradient with respect to the readings, i.e. the
+// smallest reading correction that closes the loops) is N(0, sigma^2) to first
+// order, with sigma the 1-sigma reading error. At the least-squares solution
+// with p free parameters and n samples,
+//   chi2 = sum_j r_j^2 / sigma^2  ~  chi-square(n - p),
+// and the p-value is Pr(X > chi2). A p-value below alpha says that the
+// readings disagree with the rigid kinematic model by more than the encoders
+// can explain: an unmodelled effect (transmission compliance under servo
+// preload, joint clearance, thermal growth, encoder error) or outlier samples.
+// The two are told apart by how the excess is spread over the samples.
+#pragma once
+
+#include <string>
+#include <vector>
+
+#include <Eigen/Core>
+
+#include "models/parameters.hpp"
+
+namespace gpm::calib {
+
+struct ModelTest {
+  double chi2 = 0.0;       // sum of squared normalised ML residuals
+  double dof = 0.0;        // n - p
+  double p_value = 1.0;    // Pr(chi-square(dof) > chi2)
+  double sigma_rad = 0.0;  // the reading noise the test assumed
+  double rms_ratio = 0.0;  // sqrt(chi2 / dof): residual RMS over the noise (1 under the model)
+  double alpha = 0.01;     // significance level
+  bool passed = true;      // p_value >= alpha
+  // When failed: one sentence naming the likely cause and what to do.
+  std::string diagnosis;
+  // Sample indices of the largest normalised residuals, largest first (at most 5).
+  std::vector<long> worst_samples;
+};
+
+// 1-sigma reading error (rad) of an encoder with 2^bits counts per
+// revolution (0: ideal) and Gaussian noise noise_rad: the quantisation step
+// over sqrt(12) combined in quadrature with the noise.
+double encoder_sigma(int bits, double noise_rad);
+
+// Chi-square test of the ML residuals of readings theta_m at geometry g with
+// `free` estimated (p = free count), assuming reading noise sigma (rad) and
+// significance alpha. Throws InputError for sigma <= 0, alpha outside (0, 1)
+// or no degrees of freedom (n <= p).
+ModelTest model_test(const Geometry& g, const FreeMask& free,
+                     const std::vector<Eigen::Vector3d>& theta_m, double sigma,
+                     double alpha = 0.01);
+
+}  // namespace gpm::calib

@@ -1,0 +1,152 @@
+// Calibration from readings taken in motion (calib/motion_correction.hpp).
+#include "calib/motion_correction.hpp"
+
+#include <cmath>
+#include <limits>
+
+#include <Eigen/Dense>
+#include <fmt/format.h>
+
+#include "calib/identifiability.hpp"
+#include "calib/parameterization.hpp"
+#include "calib/residuals.hpp"
+#include "models/errors.hpp"
+
+namespace gpm::calib {
+namespace {
+
+// ML residual of one reading triple at solver vector x.
+double ml_residual(const ParamVector& x, const Eigen::Vector3d& theta) {
+  double r = std::numeric_limits<double>::quiet_NaN();
+  MlResidual{theta}(x.data(), &r);
+  return r;
+}
+
+// Columns of the nuisance Jacobian that model estimates (0..4 = s2 s3 c1 c2 c3).
+std::vector<int> nuisance_columns(const MotionModel& m) {
+  std::vector<int> cols;
+  if (m.skew) cols.insert(cols.end(), {0, 1});
+  if (m.compliance) cols.insert(cols.end(), {2, 3, 4});
+  return cols;
+}
+
+}  // namespace
+
+std::vector<Eigen::Vector3d> correct_readings(const std::vector<Eigen::Vector3d>& theta_m,
+                                              const std::vector<Eigen::Vector3d>& omega,
+                                              const std::vector<Eigen::Vector3d>& tau,
+                                              const std::array<double, 5>& nu) {
+  std::vector<Eigen::Vector3d> out(theta_m.size());
+  for (std::size_t j = 0; j < theta_m.size(); ++j) {
+    const Eigen::Vector3d s(0.0, nu[0], nu[1]), c(nu[2], nu[3], nu[4]);
+    out[j] = theta_m[j] + s.cwiseProduct(omega[j]) - c.cwiseProduct(tau[j]);
+  }
+  return out;
+}
+
+MotionFit calibrate_in_motion(const Problem& problem, const std::vector<Eigen::Vector3d>& omega,
+                              const std::vector<Eigen::Vector3d>& tau, const LmOptions& options,
+                              const MotionModel& model) {
+  const std::size_t n = problem.theta_m.size();
+  if (omega.size() != n || tau.size() != n)
+    throw InputError(fmt::format("calibration in motion: {} readings but {} joint speeds and {} torques", n,
+                                 omega.size(), tau.size()));
+  if (options.cost != Cost::kML)
+    throw InputError("calibration in motion: the reading corrections need the ML cost (--cost ml)");
+  // A nuisance value no sample excites (a torque-off joint transmits no
+  // torque: its compliance column is zero) is not estimated.
+  std::vector<int> cols;
+  for (int c : nuisance_columns(model)) {
+    double excitation = 0.0;
+    for (std::size_t j = 0; j < n; ++j)
+      excitation += c < 2 ? std::abs(omega[j][c + 1]) : std::abs(tau[j][c - 2]);
+    if (excitation > 0.0) cols.push_back(c);
+  }
+  const int q = static_cast<int>(cols.size());
+
+  MotionFit fit;
+  fit.nu_sigma.fill(std::numeric_limits<double>::quiet_NaN());
+  Problem p = problem;
+  LmOptions lm = options;
+  const bool want_covariance = options.compute_covariance;
+  lm.compute_covariance = false;
+  Eigen::MatrixXd Jg_free, Jn;
+  Eigen::VectorXd r;
+  std::vector<int> free_index;
+  for (int k = 0; k < kNumParams; ++k)
+    if (problem.free[k]) free_index.push_back(k);
+
+  for (fit.passes = 1; fit.passes <= std::max(1, model.max_passes); ++fit.passes) {
+    p.theta_m = correct_readings(problem.theta_m, omega, tau, fit.nu);
+    fit.result = calibrate_lm(p, lm);
+    p.start = fit.result.geometry;  // warm start for the next pass
+    // Linearisation at this fit.
+    const ParamVector x = to_solver(fit.result.geometry, Cost::kML);
+    const Eigen::MatrixXd J_all = ml_jacobian(p.theta_m, fit.result.geometry);
+    Jg_free.resize(static_cast<Eigen::Index>(n), static_cast<Eigen::Index>(free_index.size()));
+    for (std::size_t k = 0; k < free_index.size(); ++k) Jg_free.col(static_cast<Eigen::Index>(k)) = J_all.col(free_index[k]);
+    Jn.resize(static_cast<Eigen::Index>(n), q);
+    r.resize(static_cast<Eigen::Index>(n));
+    for (std::size_t j = 0; j < n; ++j) {
+      const Eigen::Vector3d& th = p.theta_m[j];
+      r[static_cast<Eigen::Index>(j)] = ml_residual(x, th);
+      Eigen::Vector3d u;
+      for (int k = 0; k < 3; ++k) {
+        const double h = 1e-7;
+        Eigen::Vector3d a = th, b = th;
+        a[k] += h;
+        b[k] -= h;
+        u[k] = (ml_residual(x, a) - ml_residual(x, b)) / (2.0 * h);
+      }
+      const double all[5] = {u[1] * omega[j][1], u[2] * omega[j][2], -u[0] * tau[j][0], -u[1] * tau[j][1],
+                             -u[2] * tau[j][2]};
+      for (int c = 0; c < q; ++c) Jn(static_cast<Eigen::Index>(j), c) = all[cols[static_cast<std::size_t>(c)]];
+    }
+    if (q == 0) break;
+    // Joint Gauss-Newton step, column-scaled (seconds, rad/N m and mm differ by orders).
+    Eigen::MatrixXd J(static_cast<Eigen::Index>(n), Jg_free.cols() + q);
+    J << Jg_free, Jn;
+    Eigen::VectorXd scale = J.colwise().norm().transpose();
+    for (Eigen::Index c = 0; c < scale.size(); ++c) scale[c] = scale[c] > 0.0 ? scale[c] : 1.0;
+    const Eigen::MatrixXd Js = J * scale.cwiseInverse().asDiagonal();
+    const Eigen::VectorXd step = scale.cwiseInverse().asDiagonal() * Js.colPivHouseholderQr().solve(-r);
+    double change = 0.0;
+    for (int c = 0; c < q; ++c) {
+      const double d = step[Jg_free.cols() + c];
+      fit.nu[static_cast<std::size_t>(cols[static_cast<std::size_t>(c)])] += d;
+      change = std::max(change, std::abs(d) * scale[Jg_free.cols() + c] / (r.norm() + 1e-300));
+    }
+    // Converged when the nuisance step moves the residuals by a negligible fraction.
+    if (change < 1e-6) break;
+  }
+  fit.passes = std::min(fit.passes, std::max(1, model.max_passes));
+  fit.corrected = correct_readings(problem.theta_m, omega, tau, fit.nu);
+  p.theta_m = fit.corrected;
+  lm.compute_covariance = want_covariance;
+  fit.result = calibrate_lm(p, lm);
+  if (want_covariance && q > 0 && fit.result.covariance) {
+    // Joint covariance sigma^2 (J' J)^-1 of [J_g, J_nu]; its geometry block
+    // replaces the geometry-only one, its nuisance diagonal gives nu_sigma.
+    Eigen::MatrixXd J(static_cast<Eigen::Index>(n), Jg_free.cols() + q);
+    J << Jg_free, Jn;
+    const Eigen::Index m = J.cols();
+    const double dof = static_cast<double>(n) - static_cast<double>(m);
+    const double s2 = options.encoder_sigma ? (*options.encoder_sigma) * (*options.encoder_sigma)
+                                            : (dof > 0 ? r.squaredNorm() / dof : std::numeric_limits<double>::quiet_NaN());
+    const Eigen::MatrixXd C = s2 * (J.transpose() * J).ldlt().solve(Eigen::MatrixXd::Identity(m, m));
+    auto& cov = *fit.result.covariance;
+    cov.setZero();
+    for (std::size_t a = 0; a < free_index.size(); ++a)
+      for (std::size_t b = 0; b < free_index.size(); ++b)
+        cov(free_index[a], free_index[b]) = C(static_cast<Eigen::Index>(a), static_cast<Eigen::Index>(b));
+    for (std::size_t a = 0; a < free_index.size(); ++a)
+      fit.result.sigma[static_cast<std::size_t>(free_index[a])] = std::sqrt(C(static_cast<Eigen::Index>(a), static_cast<Eigen::Index>(a)));
+    for (int c = 0; c < q; ++c) {
+      const Eigen::Index i = Jg_free.cols() + c;
+      fit.nu_sigma[static_cast<std::size_t>(cols[static_cast<std::size_t>(c)])] = std::sqrt(C(i, i));
+    }
+  }
+  return fit;
+}
+
+}  // namespace gpm::calib

@@ -1,0 +1,62 @@
+// Calibration from readings taken in motion (sampling on the fly).
+//
+// A reading taken while the robot moves carries two effects the rigid model
+// leaves out: the transmission twist between the motor-side encoder and the
+// link (compliance c_i times the transmitted drive torque tau_i), and the
+// latch skew s_i of encoders 2 and 3 relative to encoder 1 (a reading latched
+// s_i early lags by s_i omega_i). The link angle is then
+//   theta_a_i = theta_m_i + dth_i + s_i omega_i - c_i tau_i,      s_1 = 0,
+// which is linear in the nuisance vector nu = (s2, s3, c1, c2, c3). The
+// estimate minimises the ML cost (calib/residuals.hpp) over the geometry and
+// nu jointly by Gauss-Newton passes: each pass corrects the readings with the
+// current nu and fits the geometry by LM (calib/lm.hpp); then, with the ML
+// residuals r (n), their Jacobian J_g (n x free) and their reading
+// sensitivities u_jk = dr_j / dtheta_k at that fit, the joint linearisation
+//   r + J_g dg + J_nu dnu = 0,   J_nu[j] = (u_j2 omega_j2, u_j3 omega_j3, -u_j1 tau_j1, -u_j2 tau_j2, -u_j3 tau_j3)
+// is solved in least squares for dnu (eliminating dg). The covariance of the
+// geometry then comes from the joint Jacobian [J_g, J_nu], so the nuisance
+// values' uncertainty is carried into the parameters' 1-sigma.
+#pragma once
+
+#include <array>
+#include <vector>
+
+#include <Eigen/Core>
+
+#include "calib/lm.hpp"
+#include "calib/problem.hpp"
+
+namespace gpm::calib {
+
+// What the readings are corrected for.
+struct MotionModel {
+  bool skew = true;        // estimate s2, s3 (s)
+  bool compliance = true;  // estimate c1, c2, c3 (rad/N m)
+  int max_passes = 6;      // Gauss-Newton passes (each one LM fit)
+};
+
+struct MotionFit {
+  Result result;                            // geometry, 1-sigma (joint), diagnostics of the last pass
+  std::array<double, 5> nu{};               // s2, s3 (s), c1, c2, c3 (rad/N m); 0 where not estimated
+  std::array<double, 5> nu_sigma{};         // their 1-sigma (NaN where not estimated, e.g. the
+                                            // compliance of a torque-off joint, which no sample excites)
+  int passes = 0;
+  std::vector<Eigen::Vector3d> corrected;   // readings corrected with nu (rad)
+};
+
+// Estimates problem.free and the nuisance values of model from readings
+// problem.theta_m taken with joint speeds omega (rad/s) and drive torques tau
+// (N m), one per sample. options.cost must be ML. Throws InputError when the
+// sizes differ or the cost is not ML (and for everything calibrate_lm refuses).
+MotionFit calibrate_in_motion(const Problem& problem, const std::vector<Eigen::Vector3d>& omega,
+                              const std::vector<Eigen::Vector3d>& tau, const LmOptions& options,
+                              const MotionModel& model = {});
+
+// The readings corrected for nuisance values nu (as in MotionFit::nu):
+// theta_m + s omega - c tau per joint.
+std::vector<Eigen::Vector3d> correct_readings(const std::vector<Eigen::Vector3d>& theta_m,
+                                              const std::vector<Eigen::Vector3d>& omega,
+                                              const std::vector<Eigen::Vector3d>& tau,
+                                              const std::array<double, 5>& nu);
+
+}  // namespace gpm::calib

@@ -1,0 +1,52 @@
+// summary.json (run/summary_json.hpp), written with nlohmann::json.
+#include "run/summary_json.hpp"
+
+#include <cmath>
+
+#include <nlohmann/json.hpp>
+
+#include "run/runner.hpp"
+
+namespace gpm::scenario {
+namespace {
+
+// A number, or null when it is not finite (JSON has no NaN).
+nlohmann::json number(double v) { return std::isfinite(v) ? nlohmann::json(v) : nlohmann::json(nullptr); }
+
+nlohmann::json accuracy(const std::optional<Accuracy>& a) {
+  if (!a) return nullptr;
+  return {{"static_rms_um", number(a->static_rms_um)},
+          {"static_max_um", number(a->static_max_um)},
+          {"path_rms_um", number(a->path_rms_um)}};
+}
+
+}  // namespace
+
+std::string summary_json(const RunOutcome& o) {
+  nlohmann::json j;
+  j["verdict"] = o.passed() ? "passed" : "failed";
+  j["robot_time_s"] = number(o.sim.sampling_s);
+  j["accuracy"] = {{"nominal", accuracy(o.before)}, {"calibrated", accuracy(o.after)}, {"actual", accuracy(o.floor)}};
+  nlohmann::json params = nlohmann::json::object();
+  if (o.calibration) {
+    for (int k = 0; k < kNumParams; ++k) {
+      if (!o.calibration->free[k]) continue;
+      params[std::string(param_name(k))] = {{"actual", number(o.sim.actual.geometry.values[k])},
+                                            {"estimated", number(o.calibration->geometry.values[k])},
+                                            {"std", number(o.calibration->sigma[k])},
+                                            {"crb", number(o.crb[k])}};
+    }
+  }
+  j["parameters"] = params;
+  if (o.model_test) {
+    j["model_test"] = {{"chi2", number(o.model_test->chi2)},
+                       {"dof", number(o.model_test->dof)},
+                       {"p_value", number(o.model_test->p_value)},
+                       {"passed", o.model_test->passed}};
+  } else {
+    j["model_test"] = nullptr;
+  }
+  return j.dump(2) + "\n";
+}
+
+}  // namespace gpm::scenario

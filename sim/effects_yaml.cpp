@@ -1,0 +1,102 @@
+#include "sim/effects_yaml.hpp"
+
+#include <cmath>
+#include <numbers>
+
+#include <fmt/format.h>
+
+#include "models/errors.hpp"
+#include "models/rng.hpp"
+#include "models/yaml_util.hpp"
+#include "sim/scenario.hpp"
+
+namespace gpm::sim {
+namespace {
+
+struct Range {
+  double lo, hi;
+  const char* what;  // valid values, for the message
+};
+
+double bounded(const YAML::Node& n, const std::string& file, const std::string& key, const Range& r) {
+  const double v = yaml_number(n, file, key);
+  if (v < r.lo || v > r.hi)
+    throw InputError(yaml_where(file, n, key) + fmt::format("{} is out of range (valid: {})", v, r.what));
+  return v;
+}
+
+// A scalar (all three chains) or a list of three, each in range; scale converts units.
+std::array<double, 3> per_chain(const YAML::Node& n, const std::string& file, const std::string& key,
+                                const Range& r, double scale = 1.0) {
+  std::array<double, 3> out{};
+  if (n.IsSequence()) {
+    if (n.size() != 3)
+      throw InputError(yaml_where(file, n, key) +
+                       fmt::format("expected a number or a list of three (one per chain), got a list of {}", n.size()));
+    for (size_t i = 0; i < 3; ++i) out[i] = scale * bounded(n[i], file, fmt::format("{}[{}]", key, i), r);
+  } else {
+    out.fill(scale * bounded(n, file, key, r));
+  }
+  return out;
+}
+
+Effects preset(const YAML::Node& n, const std::string& file, const std::string& key) {
+  const std::string name = yaml_string(n, file, key);
+  if (name == "ideal") return Effects{};
+  if (name == "realistic") return realistic_effects();
+  throw InputError(yaml_where(file, n, key) + fmt::format("'{}' is not a preset (valid: ideal, realistic)", name));
+}
+
+}  // namespace
+
+Effects parse_effects(const YAML::Node& n, const std::string& file, std::uint64_t seed) {
+  const std::string c = "effects";
+  Effects e;
+  if (n.IsScalar()) {
+    e = preset(n, file, c);
+  } else {
+    if (!n.IsMap())
+      throw InputError(yaml_where(file, n, c) + "expected ideal, realistic or a map of effects (scenarios/SCHEMA.md)");
+    yaml_check_keys(n, file, c,
+                    {"preset", "transmission_compliance_rad_per_Nm", "passive_clearance_mm", "coulomb_friction_Nm",
+                     "viscous_friction_Nm_s", "thermal", "encoder_cyclic_rad", "encoder_skew_s"});
+    if (n["preset"]) e = preset(n["preset"], file, c + ".preset");
+    const auto key = [&](const char* k) { return c + "." + k; };
+    if (const YAML::Node v = n["transmission_compliance_rad_per_Nm"])
+      e.mjcf.compliance_rad_per_Nm =
+          per_chain(v, file, key("transmission_compliance_rad_per_Nm"), {0.0, 1.0, "0 (rigid) to 1 rad/N m"});
+    if (const YAML::Node v = n["passive_clearance_mm"])
+      e.mjcf.clearance_m = per_chain(v, file, key("passive_clearance_mm"), {0.0, 1.0, "0 to 1 mm"}, kMetresPerMm);
+    if (const YAML::Node v = n["coulomb_friction_Nm"])
+      e.mjcf.coulomb_Nm = per_chain(v, file, key("coulomb_friction_Nm"), {0.0, 20.0, "0 to 20 N m"});
+    if (const YAML::Node v = n["viscous_friction_Nm_s"])
+      e.mjcf.viscous_Nm_s = per_chain(v, file, key("viscous_friction_Nm_s"), {0.0, 100.0, "0 to 100 N m s/rad"});
+    if (const YAML::Node v = n["encoder_cyclic_rad"])
+      e.encoder_cyclic_rad = per_chain(v, file, key("encoder_cyclic_rad"), {0.0, 0.01, "0 to 0.01 rad"});
+    if (const YAML::Node v = n["encoder_skew_s"]) {
+      const Range r{-0.01, 0.01, "-0.01 to 0.01 s"};
+      if (v.IsSequence()) {
+        e.encoder_skew_s = per_chain(v, file, key("encoder_skew_s"), r);
+      } else {  // encoders 2 and 3 latched this long after encoder 1
+        const double s = bounded(v, file, key("encoder_skew_s"), r);
+        e.encoder_skew_s = {0.0, s, s};
+      }
+    }
+    if (const YAML::Node t = n["thermal"]) {
+      const std::string ct = key("thermal");
+      if (!t.IsMap()) throw InputError(yaml_where(file, t, ct) + "expected {expansion_per_K, rise_K, time_constant_s}");
+      yaml_check_keys(t, file, ct, {"expansion_per_K", "rise_K", "time_constant_s"});
+      if (t["expansion_per_K"])
+        e.thermal.expansion_per_K = bounded(t["expansion_per_K"], file, ct + ".expansion_per_K", {0.0, 1e-3, "0 to 1e-3 per K"});
+      if (t["rise_K"]) e.thermal.rise_K = bounded(t["rise_K"], file, ct + ".rise_K", {-50.0, 100.0, "-50 to 100 K"});
+      if (t["time_constant_s"])
+        e.thermal.time_constant_s =
+            bounded(t["time_constant_s"], file, ct + ".time_constant_s", {1.0, 1e6, "1 to 1e6 s"});
+    }
+  }
+  Rng rng(derive_seed(seed, 5));
+  for (double& ph : e.encoder_phase_rad) ph = rng.uniform(0.0, 2.0 * std::numbers::pi);
+  return e;
+}
+
+}  // namespace gpm::sim

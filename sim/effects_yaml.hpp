@@ -1,0 +1,20 @@
+// The `effects:` section of a scenario (scenarios/SCHEMA.md): a preset name
+// (ideal, realistic), or a map of keys with an optional `preset` to start
+// from. Per-chain keys take a scalar (all three chains) or a list of three.
+#pragma once
+
+#include <cstdint>
+#include <string>
+
+#include <yaml-cpp/yaml.h>
+
+#include "sim/effects.hpp"
+
+namespace gpm::sim {
+
+// Parses node (at key path `effects` of file). Encoder phases are drawn from
+// gpm::Rng seeded by derive_seed(seed, 5), one per encoder. Throws
+// InputError naming the file, line and key for a bad value or unknown key.
+Effects parse_effects(const YAML::Node& node, const std::string& file, std::uint64_t seed);
+
+}  // namespace gpm::sim

@@ -1,0 +1,29 @@
+#!/usr/bin/env bash
+# Tests of app/cmd_study.cpp (gpm study crb): the bound is refused, like gpm
+# calibrate refuses the data, when the samples cannot identify the free
+# parameters (never -nan); a good set gives finite positive bounds.
+set -u
+GPM="$1"
+source "$(dirname "$0")/cli_lib.sh"
+
+check "study samples" 0 "$GPM" study samples --actual table5 --n 20 --radius 80 --seed 3 -o "$tmp/s20.csv"
+check "crb" 0 "$GPM" study crb --data "$tmp/s20.csv" --sigma 1e-4
+expect_out "crb finite" "^dth3 +[0-9.]+(e-?[0-9]+)?$"
+if grep -qi nan "$tmp/out"; then echo "FAIL crb prints nan"; fail=$((fail+1)); else passed=$((passed+1)); fi
+
+# Issue 14.10: 3 samples (fewer than the 11 free parameters), as gpm calibrate.
+head -4 "$tmp/s20.csv" >"$tmp/s3.csv"
+check "crb 3 samples" 2 "$GPM" study crb --data "$tmp/s3.csv" --sigma 1e-4
+expect_err "crb 3 samples message" "3 samples for 11 free parameters; need at least 11"
+check "calibrate 3 samples" 2 "$GPM" calibrate --data "$tmp/s3.csv" -o "$tmp/r.yaml"
+expect_err "calibrate 3 samples message" "3 samples for 11 free parameters; need at least 11"
+
+# 20 copies of one sample: enough rows, rank 1.
+{ head -1 "$tmp/s20.csv"; for _ in $(seq 20); do sed -n 2p "$tmp/s20.csv"; done; } >"$tmp/same.csv"
+check "crb coincident" 2 "$GPM" study crb --data "$tmp/same.csv" --sigma 1e-4
+expect_err "crb coincident message" "are not identifiable from encoder angles \(rank 1 of 11\)"
+[[ ! -s "$tmp/out" ]] && passed=$((passed+1)) || { echo "FAIL crb coincident printed a table"; fail=$((fail+1)); }
+check "calibrate coincident" 2 "$GPM" calibrate --data "$tmp/same.csv" -o "$tmp/r.yaml"
+expect_err "calibrate coincident message" "are not identifiable from encoder angles \(rank 1 of 11\)"
+
+finish
