@@ -29,6 +29,7 @@ void add_study(CLI::App& app);
 void add_design(CLI::App& app);
 void add_sample(CLI::App& app);
 void add_zero(CLI::App& app);
+void add_monitor(CLI::App& app);
 
 // Throws InputError "gpm NAME: not available yet (...)": a subcommand whose
 // issue has not landed.

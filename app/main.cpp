@@ -59,5 +59,6 @@ int main(int argc, char** argv) {
   gpm::cli::add_design(app);
   gpm::cli::add_sample(app);
   gpm::cli::add_zero(app);
+  gpm::cli::add_monitor(app);
   return gpm::cli::run_app(app, argc, argv);
 }

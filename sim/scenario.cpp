@@ -256,6 +256,53 @@ Path parse_path(const YAML::Node& n, const Ctx& c) {
   fail(c.at("shape"), n["shape"], fmt::format("'{}' is not circle or line", shape));
 }
 
+Operation parse_operation(const YAML::Node& n, const Ctx& c) {
+  yaml_check_keys(n, c.file, c.path, {"path", "duration_s"});
+  require(n, "path", c, "the path the robot repeats (as the top-level path)");
+  require(n, "duration_s", c, "seconds of operation");
+  Operation op;
+  op.path = parse_path(n["path"], c.at("path"));
+  op.duration_s = bounded(n["duration_s"], c.at("duration_s"), 0.01, 86400.0, "s");
+  return op;
+}
+
+// events: [{at_s, change: {PARAM: DELTA}} | {at_s, ramp: {PARAM: DELTA}, over_s}].
+std::vector<GeometryEvent> parse_events(const YAML::Node& n, const Ctx& c, double duration_s) {
+  if (!n.IsSequence()) fail(c, n, "expected a list of {at_s, change: {...}} or {at_s, ramp: {...}, over_s}");
+  std::vector<GeometryEvent> out;
+  for (std::size_t k = 0; k < n.size(); ++k) {
+    const Ctx ce{c.file, fmt::format("{}[{}]", c.path, k)};
+    const YAML::Node e = n[k];
+    if (!e.IsMap()) fail(ce, e, "expected {at_s: T, change: {PARAM: DELTA}} or {at_s: T, ramp: {...}, over_s: S}");
+    yaml_check_keys(e, c.file, ce.path, {"at_s", "change", "ramp", "over_s"});
+    require(e, "at_s", ce, "when the change begins, s");
+    GeometryEvent ev;
+    ev.at_s = bounded(e["at_s"], ce.at("at_s"), 0.0, duration_s, "s (within operation.duration_s)");
+    const bool step = static_cast<bool>(e["change"]), ramp = static_cast<bool>(e["ramp"]);
+    if (step == ramp) fail(ce, e, "give exactly one of change (a step) and ramp (a drift)");
+    if (ramp) {
+      require(e, "over_s", ce, "how long the drift lasts, s");
+      ev.over_s = bounded(e["over_s"], ce.at("over_s"), 1e-3, 86400.0, "s");
+    } else if (e["over_s"]) {
+      fail(ce.at("over_s"), e["over_s"], "only for ramp");
+    }
+    const char* key = step ? "change" : "ramp";
+    const Ctx cm = ce.at(key);
+    const YAML::Node m = e[key];
+    if (!m.IsMap() || m.size() == 0) fail(cm, m, "expected a map {PARAM: DELTA} (mm or rad)");
+    for (const auto& kv : m) {
+      const std::string name = kv.first.Scalar();
+      const auto idx = param_index(name);
+      if (!idx) fail(cm.at(name), kv.first, fmt::format("unknown parameter '{}' (did you mean {}?)", name, nearest_param_name(name)));
+      const bool offset = is_offset(*idx);
+      const double lim = offset ? 0.1 : 5.0;
+      ev.delta[static_cast<std::size_t>(*idx)] = bounded(kv.second, cm.at(name), -lim, lim, offset ? "rad" : "mm");
+    }
+    out.push_back(ev);
+  }
+  return out;
+}
+
 // Refuses a run whose trajectory log could outgrow memory: an upper bound of
 // its rows, count x (longest move + settle timeout + average) + path duration,
 // at the servo rate / log.every, against kMaxLogRows (112 bytes a row in memory).
@@ -307,7 +354,8 @@ Scenario scenario_from_yaml(const YAML::Node& root, const std::string& file, con
   if (!root.IsMap()) fail(c, root, "expected a map of sections (see scenarios/SCHEMA.md)");
   yaml_check_keys(root, file, "",
                   {"name", "description", "robot", "seed", "actual", "physics", "servo", "encoder",
-                   "sampling", "path", "log", "effects", "calibration", "compensation", "expect", "hardware", "outputs", "render"});
+                   "sampling", "path", "log", "effects", "operation", "events", "calibration", "compensation", "expect",
+                   "hardware", "outputs", "render"});
   Scenario s;
   s.file = file;
   s.name = root["name"] ? yaml_string(root["name"], file, "name")
@@ -354,7 +402,13 @@ Scenario scenario_from_yaml(const YAML::Node& root, const std::string& file, con
     yaml_check_keys(l, file, "log", {"every"});
     if (l["every"]) s.log_every = static_cast<int>(yaml_integer(l["every"], file, "log.every", 1, 1000000));
   }
-  if (!s.sampling && !s.path) fail(c, root, "nothing to simulate: give a 'sampling' or a 'path' section");
+  if (root["operation"]) s.operation = parse_operation(root["operation"], c.at("operation"));
+  if (const YAML::Node ev = root["events"]) {
+    if (!s.operation) fail(c.at("events"), ev, "events happen during operation: give an 'operation' section");
+    s.twin.events = parse_events(ev, c.at("events"), s.operation->duration_s);
+  }
+  if (!s.sampling && !s.path && !s.operation)
+    fail(c, root, "nothing to simulate: give a 'sampling', 'path' or 'operation' section");
   check_log_size(s, root, c);
   return s;
 }

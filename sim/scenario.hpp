@@ -57,6 +57,13 @@ struct SamplingPlan {
   }
 };
 
+// The robot's normal job (`operation:`, for gpm monitor): a path repeated
+// for duration_s.
+struct Operation {
+  Path path;
+  double duration_s = 0.0;
+};
+
 struct Scenario {
   std::string file;       // the scenario file (for messages)
   std::string name;
@@ -65,6 +72,7 @@ struct Scenario {
   TwinConfig twin;
   std::optional<SamplingPlan> sampling;
   std::optional<Path> path;  // continuous motion after the sampling
+  std::optional<Operation> operation;  // normal operation (events: in twin.events)
   int log_every = 1;
   std::uint64_t seed = 1;
 };

@@ -40,7 +40,7 @@ void sense_kinematics(const TwinModel& model, const mjData* d, TwinSnapshot& s) 
 // once-per-revolution error A_i sin(angle - dth_i + phase_i) is added before
 // noise and quantisation.
 void read_encoders(const TwinModel& model, TwinState& state) {
-  const Geometry& g = model.actual().geometry;
+  const Geometry& g = state.geometry;
   const Effects& fx = model.config().effects;
   for (int i = 0; i < 3; ++i) {
     const size_t k = static_cast<size_t>(i);
@@ -130,10 +130,10 @@ TwinModel::TwinModel(const Robot& actual, const TwinConfig& config)
   site_ee = require_id(m, mjOBJ_SITE, "ee");
 }
 
-void apply_thermal_growth(const TwinModel& model, TwinState& state, double growth) {
+void apply_geometry(const TwinModel& model, TwinState& state, const Geometry& g) {
+  state.geometry = g;
   mjModel* m = state.thermal_model.get();
   if (!m) return;
-  const Geometry g = thermal_geometry(model.actual().geometry, growth);
   for (int i = 0; i < 3; ++i) {
     const double la_m = g.la_(i) * kMetresPerMm, lb_m = g.lb_(i) * kMetresPerMm;
     m->body_pos[3 * model.body_base[i] + 0] = g[xa(i)] * kMetresPerMm;
@@ -143,15 +143,25 @@ void apply_thermal_growth(const TwinModel& model, TwinState& state, double growt
     if (model.body_tip[i] < 0 || i == 0) m->site_pos[3 * model.site_tip[i] + 0] = lb_m;
     if (model.eq_close[i] >= 0 && model.body_tip[i] < 0) m->eq_data[model.eq_close[i] * mjNEQDATA + 0] = lb_m;
   }
+}
+
+void apply_thermal_growth(const TwinModel& model, TwinState& state, double growth) {
+  apply_geometry(model, state, thermal_geometry(model.actual().geometry, growth));
   state.last.growth = growth;
 }
 
+Geometry geometry_at_time(const TwinModel& model, double t_s) {
+  const TwinConfig& c = model.config();
+  const Geometry g = c.events.empty() ? model.actual().geometry : geometry_at(model.actual().geometry, c.events, t_s);
+  return c.effects.thermal.on() ? thermal_geometry(g, c.effects.thermal.growth(t_s)) : g;
+}
+
 TwinState::TwinState(const TwinModel& model, unsigned long long seed)
-    : data(mj_makeData(model.mj())), noise(seed) {
+    : data(mj_makeData(model.mj())), noise(seed), geometry(model.actual().geometry) {
   if (!data) throw SimError("MuJoCo: cannot allocate mjData");
-  if (model.config().effects.thermal.on()) {
+  if (model.config().effects.thermal.on() || !model.config().events.empty()) {
     thermal_model.reset(mj_copyModel(nullptr, model.mj()));
-    if (!thermal_model) throw SimError("MuJoCo: cannot copy the model for thermal growth");
+    if (!thermal_model) throw SimError("MuJoCo: cannot copy the model for thermal growth or events");
   }
   mj_forward(model.mj(), data.get());
   twin_sense(model, *this);
@@ -179,9 +189,12 @@ void twin_sense(const TwinModel& model, TwinState& state) {
 void twin_step(const TwinModel& model, TwinState& state) {
   const mjModel* m = state_model(model, state);
   mjData* d = state.data.get();
-  // Thermal growth follows the (slow, smooth) first-order rise every step:
-  // a ramp of nanometres per step, never a jump (DESIGN.md).
-  if (state.thermal_model) apply_thermal_growth(model, state, model.config().effects.thermal.growth(d->time));
+  // Thermal growth follows the (slow, smooth) first-order rise every step and
+  // events ramp in (sim/events.hpp): nanometres per step, never a jump.
+  if (state.thermal_model) {
+    apply_geometry(model, state, geometry_at_time(model, d->time));
+    state.last.growth = model.config().effects.thermal.growth(d->time);
+  }
   mj_step1(m, d);  // positions, velocities and kinematics at the current time
   sense_kinematics(model, d, state.last);
   if (state.steps % model.steps_per_tick() == 0) {

@@ -22,6 +22,7 @@
 #include "sim/effects.hpp"
 #include "sim/encoder_model.hpp"
 #include "sim/mujoco_util.hpp"
+#include "sim/events.hpp"
 #include "sim/servo_drive.hpp"
 
 namespace gpm::sim {
@@ -34,6 +35,7 @@ struct TwinConfig {
   std::array<ServoDrive, 3> drives; // per joint; period_s is set from servo_rate_hz
   EncoderModel encoder;
   Effects effects;                  // physical effects, all off by default
+  std::vector<GeometryEvent> events;  // changes of the actual mechanism during the run (sim/events.hpp)
 };
 
 // Constant part of the twin.
@@ -96,9 +98,12 @@ struct TwinState {
   TwinState(const TwinModel& model, unsigned long long seed);
 
   DataPtr data;
-  ModelPtr thermal_model;  // with thermal growth: this state's own copy of the model, edited as it warms
+  // With thermal growth or events: this state's own copy of the model, whose
+  // geometry follows the actual mechanism as it warms and changes.
+  ModelPtr thermal_model;
   std::array<ServoState, 3> servo{};
   EncoderNoise noise;
+  Geometry geometry;  // the actual geometry in effect now (the encoders read against its offsets)
   Eigen::Vector3d command_position = Eigen::Vector3d::Zero();  // readings (rad)
   Eigen::Vector3d command_velocity = Eigen::Vector3d::Zero();  // rad/s
   long long steps = 0;
@@ -123,11 +128,18 @@ inline const mjModel* state_model(const TwinModel& model, const TwinState& state
   return state.thermal_model ? state.thermal_model.get() : model.mj();
 }
 
-// Sets the thermal copy's geometry to the actual geometry grown by `growth`
-// (sim/effects.hpp thermal_geometry): base bodies, elbow and tip offsets,
-// tip sites and connect anchors. Never followed by mj_setConst (it would
-// recompute the anchors and hide the edit from the loop; DESIGN.md).
+// Sets the state's own model copy to geometry g: base bodies, elbow and tip
+// offsets, tip sites and connect anchors (and state.geometry, whose offsets
+// the encoders use). Never followed by mj_setConst (it would recompute the
+// anchors and hide the edit from the loop).
+void apply_geometry(const TwinModel& model, TwinState& state, const Geometry& g);
+
+// apply_geometry of the actual geometry grown by `growth` (sim/effects.hpp
+// thermal_geometry), recorded in state.last.growth.
 void apply_thermal_growth(const TwinModel& model, TwinState& state, double growth);
+
+// The actual geometry at time t: the events so far, then thermal growth.
+Geometry geometry_at_time(const TwinModel& model, double t_s);
 
 // The MJCF options of a config with its effects (config.mjcf, effects = config.effects.mjcf).
 MjcfOptions mjcf_with_effects(const TwinConfig& config);

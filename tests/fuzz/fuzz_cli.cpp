@@ -67,6 +67,7 @@ extern "C" int LLVMFuzzerTestOneInput(const uint8_t* data, size_t size) {
   gpm::cli::add_design(app);
   gpm::cli::add_sample(app);
   gpm::cli::add_zero(app);
+  gpm::cli::add_monitor(app);
   strip_callbacks(app);
   try {
     app.parse(reversed);

@@ -1,0 +1,285 @@
+// `gpm monitor` (run/monitor_run.hpp).
+#include "run/monitor_run.hpp"
+
+#include <chrono>
+#include <cmath>
+
+#include <fmt/format.h>
+#include <nlohmann/json.hpp>
+
+#include "models/errors.hpp"
+#include "models/kinematics.hpp"
+#include "models/output_file.hpp"
+#include "models/yaml_util.hpp"
+#include "report/report_document.hpp"
+#include "report/svg_plot.hpp"
+#include "sim/sampling.hpp"
+#include "sim/trajectory.hpp"
+#include "sim/twin.hpp"
+
+namespace gpm::scenario {
+namespace {
+
+// Refuses events that leave a mechanism unable to follow the operation path.
+void check_events_assemble(const sim::Scenario& s, const Robot& controller, const Robot& actual) {
+  const sim::Path& path = s.operation->path;
+  Robot after = actual;
+  after.geometry = sim::geometry_after(actual.geometry, s.twin.events);
+  if (s.twin.effects.thermal.on())
+    after.geometry = sim::thermal_geometry(after.geometry, s.twin.effects.thermal.growth(s.operation->duration_s));
+  for (int k = 0; k <= 200; ++k) {
+    const Eigen::Vector2d p = sim::path_at(path, sim::path_duration(path) * k / 200.0).p;
+    for (const auto& [robot, what] : {std::pair{&controller, "the controller's model"}, std::pair{&actual, "the actual mechanism"},
+                                      std::pair{&after, "the mechanism after the events"}}) {
+      const Reach r = check_reach(*robot, p);
+      if (!r.ok)
+        throw InputError(fmt::format("{}: operation.path: point ({:.3f}, {:.3f}) on {}: {}", s.file, p.x(), p.y(),
+                                     what, r.reason));
+    }
+  }
+}
+
+std::string csv_field(const std::string& s) {
+  std::string out = "\"";
+  for (char c : s) out += c == '"' ? std::string("\"\"") : std::string(1, c);
+  return out + "\"";
+}
+
+}  // namespace
+
+MonitorOutcome run_monitor(const sim::Scenario& s, const Robot& controller,
+                           const std::array<double, kNumParams>& prior_sigma, const MonitorProgress& progress) {
+  namespace mon = calib::monitor;
+  const auto wall0 = std::chrono::steady_clock::now();
+  if (!s.operation)
+    throw InputError(fmt::format("{}: gpm monitor needs an 'operation' section (the robot's normal job)", s.file));
+  MonitorOutcome out;
+  out.scenario_file = s.file;
+  out.scenario = s;
+  out.controller = controller;
+  out.actual = sim::make_actual(s);
+  check_events_assemble(s, controller, out.actual);
+
+  // The twin starts assembled at the start of the operation path, so that
+  // twin time is operation time (the events' at_s).
+  const sim::Path& path = s.operation->path;
+  Robot actual_at_start = out.actual;
+  actual_at_start.home = sim::path_at(path, 0.0).p;
+  const sim::TwinModel twin(actual_at_start, s.twin);
+  sim::TwinState state(twin, sim::derive_seed(s.seed, 2));
+  Robot ctrl = controller;
+  ctrl.home = actual_at_start.home;
+  sim::Session session = sim::make_session(twin, state, ctrl, nullptr);
+
+  mon::MonitorSettings ms;
+  ms.geometry = controller.geometry;
+  ms.prior_sigma = prior_sigma;
+  ms.encoder_bits = s.twin.encoder.bits;
+  ms.noise_rad = s.twin.encoder.noise_rad;
+  ms.cycle_hz = s.twin.servo_rate_hz;
+  if (s.twin.effects.thermal.on()) {
+    const auto& th = s.twin.effects.thermal;
+    ms.thermal_tau_s = th.time_constant_s;
+    ms.thermal_growth_mm = std::max(1e-4, th.expansion_per_K * th.rise_K * controller.geometry.la_(0));
+  }
+  out.model = mon::make_monitor_model(ms);
+  mon::MonitorData md = mon::make_monitor_data(out.model);
+
+  const double period = 1.0 / s.twin.servo_rate_hz;
+  const double loop = sim::path_duration(path);
+  const long ticks = std::lround(s.operation->duration_s / period);
+  const double estimate_every = std::max(0.1, s.operation->duration_s / 2000.0);
+  double next_estimate = 0.0, next_progress = 1.0;
+  auto record_estimate = [&](double t) {
+    const mon::Estimate e = mon::monitor_estimate(out.model, md);
+    out.estimates.push_back({t, e.value, e.sigma});
+  };
+  for (long k = 0; k <= ticks; ++k) {
+    const double t = k * period;
+    const sim::PathPoint desired = sim::path_at(path, std::fmod(t, loop));
+    const sim::TwinSnapshot snap = sim::advance(session, desired);
+    const mon::StepResult r = mon::monitor_step(out.model, md, snap.time_s, snap.readings);
+    if (r.explained) {
+      const mon::Alarm& a = mon::last_alarm(md);
+      out.alarms.push_back({a.t_s, mon::alarm_kind_name(a.kind), a.statistic, a.threshold, mon::describe_alarm(a),
+                            a.param, a.delta});
+    }
+    if (snap.time_s >= next_estimate) {
+      record_estimate(snap.time_s);
+      next_estimate += estimate_every;
+    }
+    if (progress && snap.time_s >= next_progress) {
+      progress(snap.time_s, s.operation->duration_s);
+      next_progress += 1.0;
+    }
+  }
+  mon::monitor_flush(out.model, md);
+  out.simulated_s = state.data->time;
+  out.cycles = md.cycles;
+  record_estimate(out.simulated_s);
+  out.final_estimate = mon::monitor_estimate(out.model, md);
+  out.final_truth = sim::geometry_at_time(twin, out.simulated_s);
+
+  // Each alarm detects the latest event begun before it (within the window);
+  // the others are false alarms.
+  const auto& events = s.twin.events;
+  for (std::size_t e = 0; e < events.size(); ++e) out.detections.push_back({static_cast<int>(e), events[e].at_s, {}, ""});
+  for (const MonitorAlarm& a : out.alarms) {
+    int match = -1;
+    for (std::size_t e = 0; e < events.size(); ++e)
+      if (events[e].at_s <= a.t_s && a.t_s <= events[e].at_s + events[e].over_s + kDetectionWindowS &&
+          (match < 0 || events[e].at_s >= events[static_cast<std::size_t>(match)].at_s))
+        match = static_cast<int>(e);
+    if (match < 0) {
+      ++out.false_alarms;
+      continue;
+    }
+    MonitorDetection& d = out.detections[static_cast<std::size_t>(match)];
+    if (!d.detected_s) d.detected_s = a.t_s, d.explanation = a.explanation;
+  }
+  out.wall_s = std::chrono::duration<double>(std::chrono::steady_clock::now() - wall0).count();
+  return out;
+}
+
+MonitorExpect load_monitor_expect(const std::string& scenario_file) {
+  const YAML::Node root = load_yaml_file(scenario_file);
+  MonitorExpect e;
+  const YAML::Node n = root["expect"];
+  if (!n) return e;
+  yaml_check_keys(n, scenario_file, "expect",
+                  {"detection_delay_s_max", "false_alarms_max", "final_error_um_max", "explanation_contains"});
+  if (n["detection_delay_s_max"])
+    e.detection_delay_s_max = yaml_positive(n["detection_delay_s_max"], scenario_file, "expect.detection_delay_s_max");
+  if (n["false_alarms_max"])
+    e.false_alarms_max = static_cast<int>(yaml_integer(n["false_alarms_max"], scenario_file, "expect.false_alarms_max", 0, 1000000));
+  if (n["final_error_um_max"])
+    e.final_error_um_max = yaml_positive(n["final_error_um_max"], scenario_file, "expect.final_error_um_max");
+  if (n["explanation_contains"])
+    e.explanation_contains = yaml_string(n["explanation_contains"], scenario_file, "expect.explanation_contains");
+  return e;
+}
+
+std::vector<MonitorCheck> check_monitor(const MonitorOutcome& o, const MonitorExpect& e) {
+  std::vector<MonitorCheck> out;
+  for (const MonitorDetection& d : o.detections) {
+    if (e.detection_delay_s_max) {
+      const bool ok = d.detected_s && *d.detected_s - d.at_s <= *e.detection_delay_s_max;
+      out.push_back({fmt::format("detection.{}", d.event), ok,
+                     d.detected_s ? fmt::format("event at {:.3f} s detected after {:.3f} s (limit {:.3g} s)", d.at_s,
+                                                *d.detected_s - d.at_s, *e.detection_delay_s_max)
+                                  : fmt::format("event at {:.3f} s not detected", d.at_s)});
+    }
+    if (e.explanation_contains && d.detected_s) {
+      const bool ok = d.explanation.find(*e.explanation_contains) != std::string::npos;
+      out.push_back({fmt::format("explanation.{}", d.event), ok, d.explanation});
+    }
+  }
+  if (e.false_alarms_max) {
+    out.push_back({"false_alarms", o.false_alarms <= *e.false_alarms_max,
+                   fmt::format("{} false alarms in {:.1f} s (limit {})", o.false_alarms, o.simulated_s, *e.false_alarms_max)});
+  }
+  if (e.final_error_um_max) {
+    const FreeMask est = o.model.settings.estimate;
+    for (int k = 0; k < kNumParams; ++k) {
+      if (!est[static_cast<std::size_t>(k)]) continue;
+      const double scale = is_offset(k) ? o.controller.geometry.la_(k - kDth1) * 1e3 : 1e3;
+      const double err = std::abs(o.final_estimate.value[static_cast<std::size_t>(k)] - o.final_truth.values[static_cast<std::size_t>(k)]) * scale;
+      out.push_back({fmt::format("final_error.{}", param_name(k)), err <= *e.final_error_um_max,
+                     fmt::format("{:.3f} um (limit {:.3g})", err, *e.final_error_um_max)});
+    }
+  }
+  return out;
+}
+
+void write_monitor(const MonitorOutcome& o, const std::string& dir) {
+  OutputFolder folder(dir, {o.scenario_file});
+  const FreeMask est = o.model.settings.estimate;
+
+  std::string alarms = "t_s,kind,statistic,threshold,explanation\n";
+  for (const MonitorAlarm& a : o.alarms)
+    alarms += fmt::format("{:.6f},{},{:.6g},{:.6g},{}\n", a.t_s, a.kind, a.statistic, a.threshold, csv_field(a.explanation));
+  folder.add("alarms.csv", alarms);
+
+  std::string estimates = "t_s";
+  for (int k = 0; k < kNumParams; ++k)
+    if (est[static_cast<std::size_t>(k)]) estimates += fmt::format(",{0},{0}_std", param_name(k));
+  estimates += "\n";
+  for (const MonitorEstimateRow& r : o.estimates) {
+    estimates += fmt::format("{:.6f}", r.t_s);
+    for (int k = 0; k < kNumParams; ++k)
+      if (est[static_cast<std::size_t>(k)])
+        estimates += fmt::format(",{:.12g},{:.6g}", r.value[static_cast<std::size_t>(k)], r.sigma[static_cast<std::size_t>(k)]);
+    estimates += "\n";
+  }
+  folder.add("estimates.csv", estimates);
+
+  nlohmann::json j;
+  j["scenario"] = o.scenario_file;
+  j["duration_s"] = o.simulated_s;
+  j["cycles"] = o.cycles;
+  j["alarms"] = o.alarms.size();
+  j["false_alarms"] = o.false_alarms;
+  j["false_alarm_rate_per_hour"] = o.model.settings.false_alarms_per_hour;
+  j["detections"] = nlohmann::json::array();
+  for (const MonitorDetection& d : o.detections) {
+    nlohmann::json dj = {{"event", d.event}, {"at_s", d.at_s}};
+    dj["detected_s"] = d.detected_s ? nlohmann::json(*d.detected_s) : nlohmann::json(nullptr);
+    dj["delay_s"] = d.detected_s ? nlohmann::json(*d.detected_s - d.at_s) : nlohmann::json(nullptr);
+    dj["explanation"] = d.explanation;
+    j["detections"].push_back(dj);
+  }
+  nlohmann::json fe = nlohmann::json::object();
+  for (int k = 0; k < kNumParams; ++k)
+    if (est[static_cast<std::size_t>(k)])
+      fe[std::string(param_name(k))] = o.final_estimate.value[static_cast<std::size_t>(k)] - o.final_truth.values[static_cast<std::size_t>(k)];
+  j["final_error"] = fe;
+  folder.add("summary.json", j.dump(2) + "\n");
+
+  report::ReportDocument doc;
+  doc.heading(1, fmt::format("gpm monitor: {}", o.scenario.name));
+  doc.paragraph(fmt::format("{:.1f} s of normal operation ({} servo cycles at {:.0f} Hz), {} alarms ({} false), "
+                            "stated false-alarm rate {} per hour (chi-square threshold {:.1f} over {} samples).",
+                            o.simulated_s, o.cycles, o.model.settings.cycle_hz, o.alarms.size(), o.false_alarms,
+                            o.model.settings.false_alarms_per_hour, o.model.threshold, o.model.settings.window));
+  if (!o.detections.empty()) {
+    std::vector<std::vector<std::string>> rows;
+    for (const MonitorDetection& d : o.detections)
+      rows.push_back({std::to_string(d.event), fmt::format("{:.3f}", d.at_s),
+                      d.detected_s ? fmt::format("{:.3f}", *d.detected_s) : "missed",
+                      d.detected_s ? fmt::format("{:.3f}", *d.detected_s - d.at_s) : "", d.explanation});
+    doc.table({"event", "at (s)", "detected (s)", "delay (s)", "explanation"}, rows);
+  }
+  std::vector<std::vector<std::string>> errs;
+  for (int k = 0; k < kNumParams; ++k) {
+    if (!est[static_cast<std::size_t>(k)]) continue;
+    const double scale = is_offset(k) ? o.controller.geometry.la_(k - kDth1) * 1e3 : 1e3;  // um at the link tip
+    errs.push_back({std::string(param_name(k)), fmt::format("{:.9g}", o.final_truth.values[static_cast<std::size_t>(k)]),
+                    fmt::format("{:.9g}", o.final_estimate.value[static_cast<std::size_t>(k)]),
+                    fmt::format("{:.2f}", (o.final_estimate.value[static_cast<std::size_t>(k)] - o.final_truth.values[static_cast<std::size_t>(k)]) * scale),
+                    fmt::format("{:.2f}", o.final_estimate.sigma[static_cast<std::size_t>(k)] * scale)});
+  }
+  doc.heading(2, "Tracked parameters at the end");
+  doc.table({"parameter", "actual", "estimate", "error (um at the link)", "1-sigma (um)"}, errs);
+  // Parameter tracks: estimate minus the value at the start, in um at the link.
+  std::vector<report::Series> series;
+  for (int k = 0; k < kNumParams; ++k) {
+    if (!est[static_cast<std::size_t>(k)] || o.estimates.empty()) continue;
+    const double scale = is_offset(k) ? o.controller.geometry.la_(k - kDth1) * 1e3 : 1e3;
+    report::Series sr;
+    sr.label = std::string(param_name(k));
+    for (const MonitorEstimateRow& r : o.estimates) {
+      sr.x.push_back(r.t_s);
+      sr.y.push_back((r.value[static_cast<std::size_t>(k)] - o.estimates.front().value[static_cast<std::size_t>(k)]) * scale);
+    }
+    series.push_back(sr);
+  }
+  report::PlotOptions po;
+  po.title = "Tracked change of each parameter";
+  po.x_label = "t (s)";
+  po.y_label = "change since start (um at the link)";
+  if (!series.empty()) doc.figure("tracks", "Parameter tracks of the drift estimator", report::svg_plot(series, po));
+  doc.stage(folder, "report", fmt::format("gpm monitor: {}", o.scenario.name));
+  folder.commit();
+}
+
+}  // namespace gpm::scenario

@@ -1,0 +1,96 @@
+// `gpm monitor`: the robot's normal job (scenario `operation:`) on the twin,
+// with the scenario's `events:` changing the actual mechanism, and the drift
+// monitor of calib/monitor/ reading the three encoders every servo cycle
+// (change test with explained alarms, drift tracking of the parameters).
+#pragma once
+
+#include <array>
+#include <functional>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "calib/monitor/monitor.hpp"
+#include "models/robot.hpp"
+#include "sim/scenario.hpp"
+
+namespace gpm::scenario {
+
+// One row of alarms.csv (an explained alarm).
+struct MonitorAlarm {
+  double t_s = 0.0;
+  std::string kind;  // chi_square or step
+  double statistic = 0.0, threshold = 0.0;
+  std::string explanation;
+  int param = -1;
+  double delta = 0.0;
+};
+
+// One row of estimates.csv.
+struct MonitorEstimateRow {
+  double t_s = 0.0;
+  std::array<double, kNumParams> value{}, sigma{};
+};
+
+// How each event of the scenario was detected.
+struct MonitorDetection {
+  int event = 0;                      // index in the scenario's events
+  double at_s = 0.0;                  // when it began
+  std::optional<double> detected_s;   // time of the first alarm it explains (none: missed)
+  std::string explanation;
+};
+
+struct MonitorOutcome {
+  std::string scenario_file;
+  sim::Scenario scenario;
+  Robot controller;  // the model the monitor starts from
+  Robot actual;      // the actual mechanism at t = 0
+  calib::monitor::MonitorModel model;
+  std::vector<MonitorAlarm> alarms;
+  std::vector<MonitorEstimateRow> estimates;
+  std::vector<MonitorDetection> detections;
+  int false_alarms = 0;                    // alarms no event explains
+  Geometry final_truth;                    // the actual geometry at the end (events and thermal growth)
+  calib::monitor::Estimate final_estimate;
+  double simulated_s = 0.0, wall_s = 0.0;
+  long cycles = 0;
+};
+
+// An alarm counts as detecting the latest event begun at most this long
+// before it (plus the event's ramp time); any other alarm is a false alarm.
+inline constexpr double kDetectionWindowS = 10.0;
+
+using MonitorProgress = std::function<void(double t_s, double duration_s)>;
+
+// Runs the scenario's operation on the twin with the monitor in the loop.
+// controller: the model the robot runs (and the monitor starts from);
+// prior_sigma: its 1-sigma per parameter (NaN: the monitor's defaults).
+// Throws InputError when the scenario has no operation, or when an event
+// leaves a mechanism that cannot reach the operation path.
+MonitorOutcome run_monitor(const sim::Scenario& scenario, const Robot& controller,
+                           const std::array<double, kNumParams>& prior_sigma, const MonitorProgress& progress = {});
+
+// The scenario's `expect:` for gpm monitor (every key optional).
+struct MonitorExpect {
+  std::optional<double> detection_delay_s_max;    // every event detected within this delay
+  std::optional<int> false_alarms_max;            // at most this many alarms no event explains
+  std::optional<double> final_error_um_max;       // every tracked parameter within this at the end
+                                                  // (um; offsets at their active link's tip)
+  std::optional<std::string> explanation_contains;  // every detection's explanation contains this
+};
+
+// Reads `expect:` of a monitor scenario file; throws InputError naming the key.
+MonitorExpect load_monitor_expect(const std::string& scenario_file);
+
+// The checks of expect on a finished run: (name, passed, detail).
+struct MonitorCheck {
+  std::string name;
+  bool passed = true;
+  std::string detail;
+};
+std::vector<MonitorCheck> check_monitor(const MonitorOutcome& outcome, const MonitorExpect& expect);
+
+// Writes DIR/alarms.csv, estimates.csv, summary.json and report.md, all or nothing.
+void write_monitor(const MonitorOutcome& outcome, const std::string& dir);
+
+}  // namespace gpm::scenario
