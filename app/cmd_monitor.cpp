@@ -4,6 +4,7 @@
 // DIR/alarms.csv, estimates.csv, summary.json and report.md/html
 // (run/monitor_run.hpp). Bad input exits 2 with one line.
 #include <cstdio>
+#include <unistd.h>
 #include <limits>
 #include <memory>
 #include <string>
@@ -49,10 +50,12 @@ void add_monitor(CLI::App& app) {
     prior.fill(std::numeric_limits<double>::quiet_NaN());
     scenario::MonitorOutcome o;
     try {
-      o = scenario::run_monitor(s, controller, prior, [](double t, double T) {
-        std::fprintf(stderr, "\rgpm monitor: %.0f of %.0f s", t, T);
+      // Progress on a terminal only (a log file gets the summary alone).
+      const bool tty = isatty(STDERR_FILENO) != 0;
+      o = scenario::run_monitor(s, controller, prior, [tty](double t, double T) {
+        if (tty) std::fprintf(stderr, "\rgpm monitor: %.0f of %.0f s of operation", t, T);
       });
-      std::fprintf(stderr, "\n");
+      if (tty) std::fprintf(stderr, "\n");
     } catch (const sim::SimError& e) {
       throw InputError(fmt::format("{}: {}", opt->scenario, e.what()));
     }

@@ -50,7 +50,10 @@ struct MonitorOutcome {
   std::vector<MonitorEstimateRow> estimates;
   std::vector<MonitorDetection> detections;
   int false_alarms = 0;                    // alarms no event explains
-  Geometry final_truth;                    // the actual geometry at the end (events and thermal growth)
+  // The actual geometry at the end (events and thermal growth), expressed in
+  // the monitor's gauge (the similarity that keeps the fixed xa1 ya1 xa2 ya2
+  // where the monitor holds them: encoders cannot see the rest).
+  Geometry final_truth;
   calib::monitor::Estimate final_estimate;
   double simulated_s = 0.0, wall_s = 0.0;
   long cycles = 0;
