@@ -14,8 +14,9 @@
 #include "models/errors.hpp"
 #include "models/kinematics.hpp"
 #include "hw/hardware_config.hpp"
-#include "hw/sample_log.hpp"
-#include "hw/sampling_session.hpp"
+#include "hw/procedures/sample_log.hpp"
+#include "hw/procedures/sampling_session.hpp"
+#include "hw/procedures/stop_on_signal.hpp"
 #include "models/robot_yaml.hpp"
 #include "models/samples.hpp"
 #include "scenarios/calibration_method.hpp"
@@ -60,10 +61,11 @@ sim::SimulationResult sample_on_hardware(const RunSpec& spec, const std::string&
   sim::SimulationResult r;
   r.actual = sim::make_actual(spec.sim);
   {
-    hw::SampleLog log(samples_path, false);
+    const hw::StopOnSignal signals;  // hw/procedures/stop_on_signal.hpp: drives off, exit 130
+    hw::SampleLog log(samples_path, spec.hardware_resume);
     auto robot = hw::make_hardware(cfg);
     description = fmt::format("{} backend from {}", cfg.backend, *spec.hardware);
-    hw::run_sampling_session(*robot, plan, log);
+    hw::run_sampling_session(*robot, plan, log, signals.flag());
   }
   const Samples s = read_samples_csv(samples_path);
   for (size_t j = 0; j < s.size(); ++j) {

@@ -1,4 +1,4 @@
-#include "hw/drive_backend.hpp"
+#include "hw/backends/drive_backend.hpp"
 
 #include <algorithm>
 #include <chrono>

@@ -1,8 +1,9 @@
-#include "hw/register_map.hpp"
+#include "hw/backends/register_map.hpp"
 
 #include <arpa/inet.h>
 
 #include <cmath>
+#include <vector>
 #include <numbers>
 
 #include <fmt/format.h>
@@ -42,8 +43,13 @@ AxisRegisters axis_from_yaml(const YAML::Node& n, const std::string& file, const
                    "actual_torque", "torque_unit", "status_word", "control_word", "fault_code",
                    "enable", "enabled", "fault", "counts_per_rev", "sign", "offset"});
   AxisRegisters a;
-  if (!n["unit_id"]) throw InputError(yaml_where(file, n, kp) + "missing key 'unit_id' (0..247)");
+  if (!n["unit_id"]) throw InputError(yaml_where(file, n, kp) + "missing key 'unit_id' (1..247)");
   a.unit_id = static_cast<int>(yaml_integer(n["unit_id"], file, kp + ".unit_id", 0, 247));
+  if (a.unit_id == 0) {
+    throw InputError(yaml_where(file, n["unit_id"], kp + ".unit_id") +
+                     "0 is the Modbus broadcast address (every drive obeys, none replies): give "
+                     "the drive's own unit id, 1..247");
+  }
   a.position_command = reg(n["position_command"], file, kp + ".position_command", false);
   a.actual_position = reg(n["actual_position"], file, kp + ".actual_position", false);
   a.actual_velocity = reg(n["actual_velocity"], file, kp + ".actual_velocity", true);
@@ -100,6 +106,13 @@ RegisterMap parse_register_map(const std::string& text, const std::string& file)
                                  "digits, e.g. 192.168.10.11; names are not resolved)",
                                  m.host));
   }
+  const std::uint32_t host = ntohl(addr.s_addr);
+  if (host == 0 || host == 0xffffffffu || (host >> 28) == 0xe) {
+    throw InputError(yaml_where(file, c["host"], "connection.host") +
+                     fmt::format("'{}' is not one machine (0.0.0.0, broadcast or multicast): give "
+                                 "the drives' own address, e.g. 192.168.10.11",
+                                 m.host));
+  }
   if (!c["port"]) throw InputError(yaml_where(file, c, "connection") + "missing key 'port' (1..65535)");
   m.port = static_cast<int>(yaml_integer(c["port"], file, "connection.port", 1, 65535));
   if (c["response_timeout"]) {
@@ -122,6 +135,29 @@ RegisterMap parse_register_map(const std::string& text, const std::string& file)
                      "expected a list of three axes (joints 1, 2, 3)");
   }
   for (size_t i = 0; i < 3; ++i) m.axes[i] = axis_from_yaml(axes[i], file, fmt::format("axes[{}]", i));
+  // Axes on one unit id (one drive serving several axes) must use distinct registers.
+  for (size_t i = 0; i < 3; ++i) {
+    for (size_t j = 0; j < i; ++j) {
+      if (m.axes[i].unit_id != m.axes[j].unit_id) continue;
+      const auto used = [](const AxisRegisters& a) {
+        std::vector<int> r{a.position_command, a.position_command + 1, a.actual_position,
+                           a.actual_position + 1, a.status_word, a.control_word};
+        if (a.actual_velocity >= 0) r.insert(r.end(), {a.actual_velocity, a.actual_velocity + 1});
+        if (a.actual_torque >= 0) r.push_back(a.actual_torque);
+        if (a.fault_code >= 0) r.push_back(a.fault_code);
+        return r;
+      };
+      for (int ri : used(m.axes[i])) {
+        for (int rj : used(m.axes[j])) {
+          if (ri != rj) continue;
+          throw InputError(yaml_where(file, axes[i], fmt::format("axes[{}]", i)) +
+                           fmt::format("shares unit_id {} and register {} with axes[{}]: two "
+                                       "axes would command and read the same drive values",
+                                       m.axes[i].unit_id, ri, j));
+        }
+      }
+    }
+  }
   return m;
 }
 

@@ -4,6 +4,8 @@
 // cost (calib/lm.hpp), links and bases fixed at the controller's values.
 #pragma once
 
+#include <atomic>
+
 #include <string>
 #include <vector>
 
@@ -27,8 +29,10 @@ std::vector<Eigen::Vector2d> circle_poses(const Eigen::Vector2d& centre, double 
 
 // Samples poses on hw (left finalized) into samples_csv (a new file) with
 // sensor_joint torque-off, then fits dth1..3 (ML cost). Throws HardwareError
-// when the session fails (samples kept), InputError for bad poses.
+// when the session fails (samples kept; Interrupted on a stop request
+// through stop, see StopOnSignal), InputError for bad poses.
 Section3Offsets section3_offsets(SafetySupervisor& hw, const std::vector<Eigen::Vector2d>& poses,
-                                 int sensor_joint, const std::string& samples_csv);
+                                 int sensor_joint, const std::string& samples_csv,
+                                 const std::atomic<bool>* stop = nullptr);
 
 }  // namespace gpm::hw

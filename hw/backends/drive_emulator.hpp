@@ -12,10 +12,12 @@
 #include <memory>
 #include <mutex>
 #include <string>
+#include <string_view>
 #include <thread>
 
-#include "hw/register_map.hpp"
-#include "hw/twin_backend.hpp"
+#include "hw/backends/register_map.hpp"
+#include "hw/clock.hpp"
+#include "hw/backends/twin_backend.hpp"
 
 namespace gpm::hw {
 
@@ -39,7 +41,21 @@ struct EmulatorOptions {
   double tick_s = 0.001;                   // plant update period (wall clock)
   double comms_watchdog_s = 0.3;           // no request this long: power stages off
   EmulatorFaults faults;
+  Clock* clock = nullptr;                  // time of the plant and the watchdog (nullptr: wall clock)
 };
+
+// The numeric IPv4 address the emulator binds for name (a dotted quad or a
+// host name such as localhost, resolved to its IPv4 address). Throws
+// InputError (one line naming the flag) for a name that does not resolve, and
+// for an address outside 127.0.0.0/8 (0.0.0.0 listens on every interface)
+// unless allow_non_loopback: Modbus TCP has no authentication.
+std::string emulator_bind_address(const std::string& name, bool allow_non_loopback);
+
+// Throws InputError (one line naming the flag and the valid range) for
+// settings no drive would have: port outside 0..65535, tick or comms
+// watchdog not in (0, 60] s, negative fault counts or delay, fault axes
+// outside 0..2, a bind address that is not a numeric IPv4 address.
+void validate_emulator_options(const EmulatorOptions& options);
 
 class DriveEmulator {
  public:
@@ -52,7 +68,8 @@ class DriveEmulator {
   DriveEmulator& operator=(const DriveEmulator&) = delete;
 
   // Binds and listens, then serves on a background thread; returns the port.
-  // Throws HardwareError if it cannot bind.
+  // Throws InputError for invalid options (validate_emulator_options),
+  // HardwareError if it cannot bind.
   int start();
   // Stops serving and closes every socket; idempotent.
   void stop();
@@ -66,8 +83,17 @@ class DriveEmulator {
   sim::TwinSnapshot snapshot() const;
   // Why the server loop stopped on its own (empty while it runs well).
   std::string error() const;
+  // Runs one plant tick now (on the emulator's clock): tests that move an
+  // injected clock see its effect at once, without waiting for the server.
+  void tick_now();
+  // Serves one client connection whose whole request stream is bytes (as if
+  // received until the client closed it), then runs one plant tick at time
+  // t_s; returns the reply bytes. Needs no listening socket and must not be
+  // mixed with start() (tests and the Modbus fuzz target).
+  std::string serve_bytes(std::string_view bytes, double t_s);
 
  private:
+  void prepare();
   void serve();
   void tick(double t);
   void handle_request(int fd);
@@ -75,6 +101,7 @@ class DriveEmulator {
 
   RegisterMap map_;
   EmulatorOptions options_;
+  Clock& clock_;
   TwinBackend twin_;
   mutable std::mutex mutex_;
   std::thread thread_;

@@ -23,12 +23,14 @@
 // "(x_r + d, y_r)" is the robot's point reached by commanding O + (d, 0).
 #pragma once
 
+#include <atomic>
 #include <functional>
 #include <string>
 #include <vector>
 
 #include <Eigen/Core>
 
+#include "hw/hw_errors.hpp"
 #include "hw/safety_supervisor.hpp"
 
 namespace gpm::hw {
@@ -82,7 +84,7 @@ struct ZeroCandidate {
 // What the procedure did.
 struct ZeroSearchResult {
   ZeroMethod method = ZeroMethod::kGrid;
-  bool ok = false;
+  bool ok = false;                          // finished (false only in ZeroSearchStopped::partial)
   std::string error;                        // why it stopped (empty when ok)
   Eigen::Vector3d initial_offsets = Eigen::Vector3d::Zero();  // step 2 at the start
   Eigen::Vector3d offsets = Eigen::Vector3d::Zero();          // the result
@@ -102,11 +104,29 @@ void validate_zero_search_options(const ZeroSearchOptions& options);
 // Called after each evaluation (e.g. to append it to a file at once).
 using ZeroTraceSink = std::function<void(const ZeroCandidate&)>;
 
-// Runs section 2.4 on hw (configured or not; left finalized). Never throws for
-// a failure of the robot or a refused point: it stops (drives disabled by the
-// supervisor's emergency stop), and returns ok = false with the reason naming
-// the point and the trace so far. Throws InputError for invalid options.
+// The search stopped before it finished (drives disabled): what() names the
+// estimate, its round and d, the point and the reason; partial() is what was
+// done up to then (trace, motions, times); interrupted() when a stop was
+// requested (signal) rather than the robot or a point failing.
+class ZeroSearchStopped : public HardwareError {
+ public:
+  ZeroSearchStopped(const std::string& what, ZeroSearchResult partial, bool interrupted);
+  const ZeroSearchResult& partial() const { return partial_; }
+  bool interrupted() const { return interrupted_; }
+
+ private:
+  ZeroSearchResult partial_;
+  bool interrupted_;
+};
+
+// Runs section 2.4 on hw (configured or not; left finalized). Procedure
+// convention (hw/README.md): returns the result (ok = true) when it finished;
+// throws InputError for invalid options before anything moves, and
+// ZeroSearchStopped (drives disabled) for a failure of the robot, a refused
+// point or a stop request through stop (optional; StopOnSignal::flag). Each
+// evaluation was handed to sink as it was made.
 ZeroSearchResult run_zero_offset_search(SafetySupervisor& hw, const ZeroSearchOptions& options,
-                                        const ZeroTraceSink& sink = {});
+                                        const ZeroTraceSink& sink = {},
+                                        const std::atomic<bool>* stop = nullptr);
 
 }  // namespace gpm::hw

@@ -1,11 +1,11 @@
-#include "hw/section3_offsets.hpp"
+#include "hw/procedures/section3_offsets.hpp"
 
 #include <cmath>
 #include <numbers>
 
 #include "calib/lm.hpp"
-#include "hw/sample_log.hpp"
-#include "hw/sampling_session.hpp"
+#include "hw/procedures/sample_log.hpp"
+#include "hw/procedures/sampling_session.hpp"
 #include "models/samples.hpp"
 
 namespace gpm::hw {
@@ -20,7 +20,8 @@ std::vector<Eigen::Vector2d> circle_poses(const Eigen::Vector2d& centre, double 
 }
 
 Section3Offsets section3_offsets(SafetySupervisor& hw, const std::vector<Eigen::Vector2d>& poses,
-                                 int sensor_joint, const std::string& samples_csv) {
+                                 int sensor_joint, const std::string& samples_csv,
+                                 const std::atomic<bool>* stop) {
   SessionPlan plan;
   plan.poses = poses;
   for (int k = 0; k < 3; ++k) plan.modes[k] = k == sensor_joint ? JointMode::kTorqueOff : JointMode::kPosition;
@@ -28,7 +29,7 @@ Section3Offsets section3_offsets(SafetySupervisor& hw, const std::vector<Eigen::
   std::vector<Eigen::Vector3d> readings;
   {
     SampleLog log(samples_csv, false);
-    const SessionResult s = run_sampling_session(hw, plan, log, nullptr);
+    const SessionResult s = run_sampling_session(hw, plan, log, stop);
     out.motions = static_cast<int>(s.taken);
     out.robot_time_s = s.duration_s;
   }

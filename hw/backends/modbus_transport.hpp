@@ -4,7 +4,7 @@
 
 #include <string>
 
-#include "hw/register_transport.hpp"
+#include "hw/backends/register_transport.hpp"
 
 struct _modbus;
 

@@ -1,4 +1,4 @@
-#include "hw/twin_backend.hpp"
+#include "hw/backends/twin_backend.hpp"
 
 #include <fmt/format.h>
 

@@ -1,4 +1,4 @@
-#include "hw/modbus_transport.hpp"
+#include "hw/backends/modbus_transport.hpp"
 
 #include <cerrno>
 

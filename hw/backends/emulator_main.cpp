@@ -1,13 +1,15 @@
 // gpm-drive-emulator: serves a register map over Modbus TCP, backed by the
 // MuJoCo twin of a scenario, so the `modbus` backend can run without drives.
-// Binds to 127.0.0.1 unless --bind says otherwise. Runs until SIGINT/SIGTERM.
+// Binds to 127.0.0.1 unless --bind says otherwise (a loopback address or
+// name; anything else needs --allow-non-loopback). Runs until SIGINT/SIGTERM.
+// Exit 0 stopped, 1 the server failed, 2 bad flags or files (one line).
 #include <csignal>
 #include <cstdio>
 #include <thread>
 
 #include <CLI/CLI.hpp>
 
-#include "hw/drive_emulator.hpp"
+#include "hw/backends/drive_emulator.hpp"
 #include "hw/hardware_config.hpp"
 #include "hw/hw_errors.hpp"
 #include "models/errors.hpp"
@@ -24,9 +26,14 @@ int main(int argc, char** argv) {
   double command_period = 0.004;
   app.add_option("--map", map_path, "register map YAML")->required();
   app.add_option("--scenario", scenario, "scenario YAML giving the twin's actual robot")->required();
-  app.add_option("--bind", opt.bind_address, "address to listen on (default 127.0.0.1)");
-  app.add_option("--port", opt.port, "port (0: ephemeral, printed)");
-  app.add_option("--command-period", command_period, "client's command period (s), for feed-forward");
+  std::string bind = opt.bind_address;
+  bool allow_non_loopback = false;
+  app.add_option("--bind", bind, "loopback address or name to listen on (default 127.0.0.1)");
+  app.add_flag("--allow-non-loopback", allow_non_loopback,
+               "allow --bind beyond this machine (0.0.0.0, a LAN address): no authentication");
+  app.add_option("--port", opt.port, "port 0..65535 (0: ephemeral, printed)");
+  app.add_option("--command-period", command_period, "client's command period (s), for feed-forward")
+      ->check(CLI::Range(1e-4, 1.0));
   app.add_option("--comms-watchdog", opt.comms_watchdog_s, "drive-side comms watchdog (s)");
   app.add_option("--drop-after-writes", opt.faults.drop_after_writes, "fault: drop the connection");
   app.add_option("--delay-after-writes", opt.faults.delay_after_writes, "fault: delay replies");
@@ -37,10 +44,15 @@ int main(int argc, char** argv) {
   app.add_option("--garbage-axis", opt.faults.garbage_axis, "axis of the garbage (0..2)")->check(CLI::Range(0, 2));
   try {
     app.parse(argc, argv);
-  } catch (const CLI::ParseError& e) {
+  } catch (const CLI::CallForHelp& e) {
     return app.exit(e);
+  } catch (const CLI::ParseError& e) {
+    std::fprintf(stderr, "gpm-drive-emulator: error: %s (see --help)\n", e.what());
+    return 2;
   }
   try {
+    opt.bind_address = gpm::hw::emulator_bind_address(bind, allow_non_loopback);
+    gpm::hw::validate_emulator_options(opt);
     const gpm::hw::RegisterMap map = gpm::hw::load_register_map(map_path);
     const gpm::hw::TwinBackendConfig twin =
         gpm::hw::twin_config_from_scenario(scenario, command_period);

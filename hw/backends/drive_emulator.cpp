@@ -1,6 +1,7 @@
-#include "hw/drive_emulator.hpp"
+#include "hw/backends/drive_emulator.hpp"
 
 #include <arpa/inet.h>
+#include <netdb.h>
 #include <netinet/in.h>
 #include <sys/select.h>
 #include <sys/socket.h>
@@ -16,11 +17,11 @@
 #include <modbus.h>
 
 #include "hw/hw_errors.hpp"
+#include "models/errors.hpp"
 
 namespace gpm::hw {
 namespace {
 
-using Clock = std::chrono::steady_clock;
 
 bool get_bit(const std::uint16_t* regs, const RegisterBit& b) { return (regs[b.address] >> b.bit) & 1u; }
 
@@ -32,6 +33,60 @@ void put_bit(std::uint16_t* regs, const RegisterBit& b, bool on) {
 
 }  // namespace
 
+std::string emulator_bind_address(const std::string& name, bool allow_non_loopback) {
+  addrinfo hints{};
+  hints.ai_family = AF_INET;
+  hints.ai_socktype = SOCK_STREAM;
+  addrinfo* found = nullptr;
+  const int rc = ::getaddrinfo(name.c_str(), nullptr, &hints, &found);
+  if (rc != 0 || !found) {
+    throw InputError(fmt::format("--bind: '{}' is not an IPv4 address or a name with one ({}); "
+                                 "e.g. 127.0.0.1 or localhost",
+                                 name, rc != 0 ? gai_strerror(rc) : "no address"));
+  }
+  const in_addr a = reinterpret_cast<const sockaddr_in*>(found->ai_addr)->sin_addr;
+  ::freeaddrinfo(found);
+  char text[INET_ADDRSTRLEN] = {};
+  ::inet_ntop(AF_INET, &a, text, sizeof text);
+  const bool loopback = (ntohl(a.s_addr) >> 24) == 127;
+  if (!loopback && !allow_non_loopback) {
+    throw InputError(fmt::format("--bind: '{}' ({}) is not a loopback address; Modbus TCP has no "
+                                 "authentication, so listening beyond this machine needs "
+                                 "--allow-non-loopback",
+                                 name, text));
+  }
+  return text;
+}
+
+void validate_emulator_options(const EmulatorOptions& o) {
+  in_addr a{};
+  if (::inet_pton(AF_INET, o.bind_address.c_str(), &a) != 1) {
+    throw InputError(fmt::format("--bind: '{}' is not a numeric IPv4 address (resolve names with "
+                                 "emulator_bind_address)",
+                                 o.bind_address));
+  }
+  if (o.port < 0 || o.port > 65535)
+    throw InputError(fmt::format("--port: {} is outside 0..65535 (0: an ephemeral port)", o.port));
+  if (!(o.tick_s > 0 && o.tick_s <= 60))
+    throw InputError(fmt::format("tick: {} s is outside (0, 60] s", o.tick_s));
+  if (!(o.comms_watchdog_s > 0 && o.comms_watchdog_s <= 60)) {
+    throw InputError(fmt::format("--comms-watchdog: {} s is outside (0, 60] s (0 would switch the "
+                                 "drives off before any request)",
+                                 o.comms_watchdog_s));
+  }
+  const EmulatorFaults& f = o.faults;
+  for (const auto& [flag, n] : {std::pair{"--drop-after-writes", f.drop_after_writes},
+                                std::pair{"--delay-after-writes", f.delay_after_writes},
+                                std::pair{"--fault-after-writes", f.fault_after_writes},
+                                std::pair{"--garbage-after-writes", f.garbage_after_writes}}) {
+    if (n < -1) throw InputError(fmt::format("{}: {} is not a count of writes (>= 0, or -1: never)", flag, n));
+  }
+  if (!(f.delay_s >= 0 && f.delay_s <= 60))
+    throw InputError(fmt::format("--delay: {} s is outside [0, 60] s", f.delay_s));
+  if (f.fault_axis < 0 || f.fault_axis > 2 || f.garbage_axis < 0 || f.garbage_axis > 2)
+    throw InputError("--fault-axis, --garbage-axis: an axis is 0, 1 or 2");
+}
+
 struct DriveEmulator::Impl {
   modbus_t* ctx = nullptr;
   std::map<int, modbus_mapping_t*> units;
@@ -41,7 +96,7 @@ struct DriveEmulator::Impl {
   std::array<JointMode, 3> command_mode{};
   double command_time = 0.0;
   bool feedforward_live = false;
-  Clock::time_point start, last_request;
+  double start = 0.0, last_request = 0.0;  // on the emulator's clock (s)
   bool seen_request = false;
   long writes = 0;
   bool delaying = false, dropped = false;
@@ -53,7 +108,14 @@ struct DriveEmulator::Impl {
 
 DriveEmulator::DriveEmulator(const RegisterMap& map, const TwinBackendConfig& twin,
                              const EmulatorOptions& options)
-    : map_(map), options_(options), twin_(twin), impl_(std::make_unique<Impl>()) {}
+    : map_(map), options_(options), clock_(options.clock ? *options.clock : steady_clock()), twin_(twin),
+      impl_(std::make_unique<Impl>()) {}
+
+void DriveEmulator::tick_now() {
+  std::lock_guard lock(mutex_);
+  prepare();
+  tick(clock_.now() - impl_->start);
+}
 
 DriveEmulator::~DriveEmulator() {
   stop();
@@ -61,8 +123,10 @@ DriveEmulator::~DriveEmulator() {
   if (impl_->ctx) modbus_free(impl_->ctx);
 }
 
-int DriveEmulator::start() {
+void DriveEmulator::prepare() {
   Impl& s = *impl_;
+  if (!s.units.empty()) return;
+  validate_emulator_options(options_);
   // Register space per unit, large enough for every address of its axes.
   std::map<int, int> size;
   for (const AxisRegisters& a : map_.axes) {
@@ -83,6 +147,17 @@ int DriveEmulator::start() {
   }
   s.ctx = modbus_new_tcp(options_.bind_address.c_str(), options_.port);
   if (!s.ctx) throw HardwareError("drive emulator: cannot create a Modbus context");
+  // After a malformed request libmodbus waits its response timeout before it
+  // flushes the connection; the server is single-threaded, so keep that short
+  // (the default 0.5 s stalled every client).
+  modbus_set_response_timeout(s.ctx, 0, 1000);
+  s.start = clock_.now();
+  s.last_request = s.start;
+}
+
+int DriveEmulator::start() {
+  Impl& s = *impl_;
+  prepare();
   listen_fd_ = modbus_tcp_listen(s.ctx, 8);
   if (listen_fd_ < 0) {
     throw HardwareError(fmt::format("drive emulator: cannot listen on {}:{}: {}",
@@ -92,8 +167,6 @@ int DriveEmulator::start() {
   socklen_t len = sizeof addr;
   getsockname(listen_fd_, reinterpret_cast<sockaddr*>(&addr), &len);
   port_ = ntohs(addr.sin_port);
-  s.start = Clock::now();
-  s.last_request = s.start;
   tick(0.0);
   thread_ = std::thread([this] { serve(); });
   return port_;
@@ -136,7 +209,7 @@ void DriveEmulator::tick(double t) {
   Impl& s = *impl_;
   const bool comms_lost =
       s.seen_request &&
-      std::chrono::duration<double>(Clock::now() - s.last_request).count() > options_.comms_watchdog_s;
+      clock_.now() - s.last_request > options_.comms_watchdog_s;
   HardwareCommand cmd;
   for (int i = 0; i < 3; ++i) {
     const AxisRegisters& a = map_.axes[i];
@@ -199,7 +272,7 @@ void DriveEmulator::handle_request(int fd) {
     }
     return;
   }
-  s.last_request = Clock::now();
+  s.last_request = clock_.now();
   s.seen_request = true;
   const int unit = q[6], function = q[7];
   const EmulatorFaults& f = options_.faults;
@@ -219,7 +292,7 @@ void DriveEmulator::handle_request(int fd) {
   }
   if (s.delaying) {
     mutex_.unlock();
-    std::this_thread::sleep_for(std::chrono::duration<double>(f.delay_s));
+    clock_.sleep_until(clock_.now() + f.delay_s);
     mutex_.lock();
   }
   modbus_set_socket(s.ctx, fd);
@@ -231,11 +304,43 @@ void DriveEmulator::handle_request(int fd) {
   }
 }
 
+std::string DriveEmulator::serve_bytes(std::string_view bytes, double t_s) {
+  std::lock_guard lock(mutex_);
+  prepare();
+  int sv[2];
+  if (::socketpair(AF_UNIX, SOCK_STREAM, 0, sv) != 0) throw HardwareError("drive emulator: socketpair failed");
+  // The client's end: every request, then end of stream (the client hangs up).
+  size_t sent = 0;
+  while (sent < bytes.size()) {
+    const ssize_t n = ::send(sv[0], bytes.data() + sent, bytes.size() - sent, MSG_NOSIGNAL);
+    if (n <= 0) break;
+    sent += static_cast<size_t>(n);
+  }
+  ::shutdown(sv[0], SHUT_WR);
+  impl_->clients.push_back(sv[1]);
+  // Each request is read and answered; the end of the stream closes the
+  // server's end (each round consumes at least one byte or ends the stream).
+  auto open = [&] { return std::find(impl_->clients.begin(), impl_->clients.end(), sv[1]) != impl_->clients.end(); };
+  for (size_t round = 0; round <= bytes.size() && open(); ++round) handle_request(sv[1]);
+  if (open()) {
+    ::close(sv[1]);
+    impl_->clients.erase(std::remove(impl_->clients.begin(), impl_->clients.end(), sv[1]), impl_->clients.end());
+  }
+  tick(t_s);
+  std::string reply;
+  char buf[4096];
+  for (;;) {
+    const ssize_t n = ::recv(sv[0], buf, sizeof buf, MSG_DONTWAIT);
+    if (n <= 0) break;
+    reply.append(buf, static_cast<size_t>(n));
+  }
+  ::close(sv[0]);
+  return reply;
+}
+
 void DriveEmulator::serve() {
   Impl& s = *impl_;
-  auto next_tick = Clock::now();
-  const auto period =
-      std::chrono::duration_cast<Clock::duration>(std::chrono::duration<double>(options_.tick_s));
+  double next_tick = clock_.now();
   try {
     while (!stop_) {
       fd_set set;
@@ -246,8 +351,10 @@ void DriveEmulator::serve() {
         if (listen_fd_ >= 0) FD_SET(listen_fd_, &set), maxfd = listen_fd_;
         for (int fd : s.clients) FD_SET(fd, &set), maxfd = std::max(maxfd, fd);
       }
-      const auto wait = std::max(next_tick - Clock::now(), Clock::duration::zero());
-      timeval tv{0, static_cast<suseconds_t>(std::chrono::duration_cast<std::chrono::microseconds>(wait).count())};
+      // Wait for a request until the next tick (at most one tick of real time,
+      // so an injected clock that moves by itself is followed too).
+      const double wait = std::clamp(next_tick - clock_.now(), 0.0, options_.tick_s);
+      timeval tv{0, static_cast<suseconds_t>(wait * 1e6)};
       const int n = ::select(maxfd + 1, &set, nullptr, nullptr, &tv);
       std::unique_lock lock(mutex_);
       if (n > 0) {
@@ -261,10 +368,11 @@ void DriveEmulator::serve() {
             handle_request(fd);
         }
       }
-      if (Clock::now() >= next_tick) {
-        tick(std::chrono::duration<double>(Clock::now() - s.start).count());
-        next_tick += period;
-        if (next_tick < Clock::now()) next_tick = Clock::now() + period;
+      const double now = clock_.now();
+      if (now >= next_tick) {
+        tick(now - s.start);
+        next_tick += options_.tick_s;
+        if (next_tick < now) next_tick = now + options_.tick_s;
       }
     }
   } catch (const std::exception& e) {

@@ -1,4 +1,4 @@
-#include "hw/zero_offset_search.hpp"
+#include "hw/procedures/zero_offset_search.hpp"
 
 #include <chrono>
 #include <cmath>
@@ -9,7 +9,7 @@
 #include <fmt/format.h>
 
 #include "calib/projected_error.hpp"
-#include "hw/cycle_clock.hpp"
+#include "hw/procedures/motion.hpp"
 #include "hw/hw_errors.hpp"
 #include "models/errors.hpp"
 #include "models/kinematics.hpp"
@@ -25,11 +25,16 @@ class PointRefused : public std::runtime_error {
   explicit PointRefused(const std::string& what) : std::runtime_error(what) {}
 };
 
-// Smooth 0..1 time law s(u), u = t / T: peak ds/du = pi / 2, peak d2s/du2 = pi^2 / 2.
-double profile(double u) { return 0.5 * (1.0 - std::cos(kPi * u)); }
 
 std::string fmt_v3(const Eigen::Vector3d& v) {
   return fmt::format("({:.6f}, {:.6f}, {:.6f})", v[0], v[1], v[2]);
+}
+
+// Joint modes of the search: the sensor joint read only, the others in position.
+std::array<JointMode, 3> sensor_modes(int sensor_joint) {
+  std::array<JointMode, 3> m{};
+  for (int k = 0; k < 3; ++k) m[k] = k == sensor_joint ? JointMode::kTorqueOff : JointMode::kPosition;
+  return m;
 }
 
 void validate(const ZeroSearchOptions& o) {  // see validate_zero_search_options
@@ -49,9 +54,9 @@ void validate(const ZeroSearchOptions& o) {  // see validate_zero_search_options
 class Runner {
  public:
   Runner(SafetySupervisor& hw, const ZeroSearchOptions& o, const ZeroTraceSink& sink,
-         ZeroSearchResult& r)
+         ZeroSearchResult& r, const std::atomic<bool>* stop)
       : hw_(hw), o_(o), sink_(sink), r_(r), c_(hw.controller()),
-        clock_(hw.period_s(), hw.simulated_time()) {
+        motion_(hw, sensor_modes(o.sensor_joint), o.profile_headroom, stop) {
     for (int k = 0; k < 3; ++k) modes_[k] = k == o.sensor_joint ? JointMode::kTorqueOff : JointMode::kPosition;
     for (int k = 0; k < 3; ++k)
       if (k != o.sensor_joint) (pi_ < 0 ? pi_ : pj_) = k;
@@ -61,14 +66,11 @@ class Runner {
   }
 
   std::string where() const { return where_; }
-  double now() const { return clock_.now(); }
+  double now() const { return motion_.now(); }
 
   // Step 1 (and the start): activate, optionally jog, take R as the first estimate.
   void start() {
-    if (hw_.state() == LifecycleState::kUnconfigured) hw_.configure();
-    state_ = hw_.read(clock_.now());
-    hw_.activate();
-    command_ = state_.theta_m;
+    motion_.start();
     if (o_.jog_to_start) {
       where_ = fmt::format("jog to the start ({:.3f}, {:.3f}) mm", o_.start.x(), o_.start.y());
       const Eigen::Vector3d q = readings_from_active(
@@ -129,9 +131,7 @@ class Runner {
     return z;
   }
 
-  void stop_normally() {
-    if (hw_.state() == LifecycleState::kActive) hw_.deactivate();
-  }
+  void stop_normally() { motion_.finish(); }
 
  private:
   void finish(const ZeroCandidate& z) {
@@ -139,11 +139,7 @@ class Runner {
     if (sink_) sink_(z);
   }
 
-  Eigen::Vector3d wrap_near(const Eigen::Vector3d& q) const {
-    Eigen::Vector3d m = q;
-    for (int i = 0; i < 3; ++i) m[i] = command_[i] + wrap_pi(q[i] - command_[i]);
-    return m;
-  }
+  Eigen::Vector3d wrap_near(const Eigen::Vector3d& q) const { return motion_.wrap_near(q); }
   static Eigen::Vector3d wrap3(const Eigen::Vector3d& v) {
     return Eigen::Vector3d(wrap_pi(v[0]), wrap_pi(v[1]), wrap_pi(v[2]));
   }
@@ -162,26 +158,16 @@ class Runner {
     return p ? *p : Eigen::Vector2d(NAN, NAN);
   }
 
-  // Why the two commanded joints at q are not allowed as a static pose by the
-  // supervisor's limits (its controller model and margins); empty when they are.
+  // Why the two commanded joints at q are not allowed as a static pose: the
+  // supervisor's pose check (joint limits, workspace disc, reach and
+  // singularity margins of its controller model), then this procedure's own
+  // guard on the driven pair; empty when allowed.
   std::string why_unsafe(const Eigen::Vector3d& q) const {
-    const SafetyLimits& L = hw_.limits();
-    for (int k : {pi_, pj_}) {
-      if (q[k] < L.joint_min[k] || q[k] > L.joint_max[k]) {
-        return fmt::format("joint {} command {:.6f} rad is outside the joint limits [{}, {}]", k + 1,
-                           q[k], L.joint_min[k], L.joint_max[k]);
-      }
-    }
+    const std::string why = hw_.check_pose(q, modes_);
+    if (!why.empty()) return why;
     const auto p = forward_kinematics_two(c_.geometry, active_from_readings(c_.geometry, q), pi_,
                                           pj_, pair_mode_);
     if (!p) return fmt::format("passive links {} and {} cannot meet", pi_ + 1, pj_ + 1);
-    const double rmax = L.workspace_radius_mm - L.workspace_margin_mm;
-    const double r = (*p - L.workspace_centre).norm();
-    if (r > rmax) {
-      return fmt::format("({:.3f}, {:.3f}) mm (supervisor frame) is {:.3f} mm from the workspace "
-                         "centre, beyond {:.3f} mm (radius minus margin)",
-                         p->x(), p->y(), r, rmax);
-    }
     const Reach reach = check_reach(c_, *p);
     if (!reach.ok) return fmt::format("({:.3f}, {:.3f}) mm: {}", p->x(), p->y(), reach.reason);
     // Only two chains are driven: their passive links must cross well (the
@@ -239,82 +225,18 @@ class Runner {
     }
   }
 
-  void cycle(const Eigen::Vector3d& q) {
-    state_ = hw_.read(clock_.now());
-    HardwareCommand cmd;
-    cmd.theta_m = q;
-    cmd.mode = modes_;
-    hw_.write(cmd, clock_.now());
-    command_ = q;
-    clock_.wait_next();
-  }
-
-  // Duration of a path q(s), s in [0, 1] sampled at n + 1 points, run with the
-  // cosine time law within headroom of the velocity and acceleration limits.
+  void cycle(const Eigen::Vector3d& q) { motion_.cycle(q); }
   double path_time(const std::vector<Eigen::Vector3d>& q, double min_T) const {
-    const int n = static_cast<int>(q.size()) - 1;
-    const SafetyLimits& L = hw_.limits();
-    const double h = o_.profile_headroom;
-    double T = min_T;
-    for (int i : {pi_, pj_}) {
-      double d1 = 0.0, d2 = 0.0;
-      for (int k = 0; k <= n; ++k) {
-        const int a = std::max(k - 1, 0), b = std::min(k + 1, n);
-        d1 = std::max(d1, std::abs(q[b][i] - q[a][i]) * n / (b - a));
-        if (k > 0 && k < n) d2 = std::max(d2, std::abs(q[k + 1][i] - 2 * q[k][i] + q[k - 1][i]) * n * n);
-      }
-      T = std::max(T, kPi / 2 * d1 / (h * L.max_velocity[i]));
-      const double acc = d2 * kPi * kPi / 4 + d1 * kPi * kPi / 2;
-      T = std::max(T, std::sqrt(acc / (h * L.max_acceleration[i])));
-    }
-    return std::max(T, 4 * hw_.period_s());
+    return motion_.path_time(q, min_T);
   }
-
-  // Straight move in joint space of the commanded joints (a few mm here).
   void move_joints(const Eigen::Vector3d& q1) {
-    const Eigen::Vector3d q0 = command_;
-    std::vector<Eigen::Vector3d> path;
-    for (int k = 0; k <= 8; ++k) path.push_back(q0 + (q1 - q0) * (k / 8.0));
-    // About 1 mm per 4 mrad of joint motion (links 244 mm).
-    const double dist_mm = (q1 - q0).cwiseAbs().maxCoeff() * 244.0;
-    const double T = path_time(path, kPi / 2 * dist_mm / o_.move_speed_mm_s);
-    const long steps = static_cast<long>(std::ceil(T / hw_.period_s()));
-    for (long k = 1; k <= steps; ++k) cycle(q0 + (q1 - q0) * profile(static_cast<double>(k) / steps));
+    motion_.move_joints(q1, o_.move_speed_mm_s);
     ++r_.motions;
   }
-
   void settle() {
-    const double t0 = clock_.now();
-    double still_since = -1.0;
-    const Eigen::Vector3d q = command_;
-    for (;;) {
-      cycle(q);
-      const bool still = state_.velocity.cwiseAbs().maxCoeff() < o_.settle_velocity_rad_s;
-      if (!still) still_since = -1.0;
-      else if (still_since < 0) still_since = clock_.now();
-      if (still_since >= 0 && clock_.now() - still_since >= o_.settle_hold_s) return;
-      if (clock_.now() - t0 > o_.settle_timeout_s) {
-        throw HardwareError(fmt::format("the joints did not settle within {} s (speeds {:.4f} {:.4f} "
-                                        "{:.4f} rad/s)",
-                                        o_.settle_timeout_s, state_.velocity[0], state_.velocity[1],
-                                        state_.velocity[2]));
-      }
-    }
+    motion_.settle({o_.settle_velocity_rad_s, o_.settle_hold_s, o_.settle_timeout_s}, "");
   }
-
-  Eigen::Vector3d average() {
-    const long n = std::max(1L, std::lround(o_.average_s / hw_.period_s()));
-    const Eigen::Vector3d q = command_;
-    Eigen::Vector3d first = Eigen::Vector3d::Zero(), sum = Eigen::Vector3d::Zero();
-    for (long k = 0; k < n; ++k) {
-      cycle(q);
-      if (k == 0) first = state_.theta_m;
-      for (int i = 0; i < 3; ++i) sum[i] += first[i] + wrap_pi(state_.theta_m[i] - first[i]);
-    }
-    Eigen::Vector3d mean = sum / static_cast<double>(n);
-    for (int i = 0; i < 3; ++i) mean[i] = wrap_2pi(mean[i]);
-    return mean;
-  }
+  Eigen::Vector3d average() { return motion_.average(o_.average_s); }
 
   // Step 3: out to the circle, once round it (cosine time law on the angle),
   // recording the reading one cycle after each interpolation point is commanded.
@@ -333,20 +255,20 @@ class Runner {
     for (int k = 0; k <= 96; ++k) path.push_back(command_for(point(k / 96.0), dth));
     // Peak tangential speed of the cosine law: 2 pi r * pi / (2 T).
     const double T = path_time(path, kPi * kPi * rad / o_.circle_speed_mm_s);
-    const long steps = static_cast<long>(std::ceil(T / hw_.period_s()));
+    const long steps = static_cast<long>(std::ceil(T / motion_.period_s()));
     const int n = o_.circle_points;
     std::vector<long> at(n);
     for (int j = 0; j < n; ++j) at[j] = std::lround(steps * std::acos(1.0 - 2.0 * j / n) / kPi);
     int next = 0;
     bool pending = false;
     for (long k = 0; k <= steps + 1; ++k) {
-      const double s = profile(static_cast<double>(std::min(k, steps)) / steps);
+      const double s = motion_profile(static_cast<double>(std::min(k, steps)) / steps);
       const Eigen::Vector2d p = point(s);
-      const Eigen::Vector3d q = k == 0 ? command_ : command_for(p, dth);
+      const Eigen::Vector3d q = k == 0 ? motion_.command() : command_for(p, dth);
       cycle(q);
       if (pending) {  // the reading after the interpolation point's command
-        check_sensor(z.desired.back(), dth, state_.theta_m);
-        z.circle.push_back(state_.theta_m);
+        check_sensor(z.desired.back(), dth, motion_.state().theta_m);
+        z.circle.push_back(motion_.state().theta_m);
         pending = false;
       }
       if (next < n && k == at[next]) {
@@ -371,22 +293,11 @@ class Runner {
         for (int k = 0; k <= 8; ++k) path.push_back(command_for(point(s0 + (s1 - s0) * k / 8.0), dth));
         const double arc = 2 * kPi * o_.circle_radius_mm / n;
         const double T = path_time(path, kPi / 2 * arc / o_.circle_speed_mm_s);
-        const long steps = static_cast<long>(std::ceil(T / hw_.period_s()));
-        for (long k = 1; k <= steps; ++k)
-          cycle(command_for(point(s0 + (s1 - s0) * profile(static_cast<double>(k) / steps)), dth));
+        motion_.follow([&](double u) { return command_for(point(s0 + (s1 - s0) * u), dth); }, T);
       }
       if (j == n) break;  // back at the start: already recorded
       settle();
-      const long m = std::max(1L, std::lround(o_.circle_dwell_s / hw_.period_s()));
-      const Eigen::Vector3d keep = command_;
-      Eigen::Vector3d first = Eigen::Vector3d::Zero(), sum = Eigen::Vector3d::Zero();
-      for (long k = 0; k < m; ++k) {
-        cycle(keep);
-        if (k == 0) first = state_.theta_m;
-        for (int i = 0; i < 3; ++i) sum[i] += first[i] + wrap_pi(state_.theta_m[i] - first[i]);
-      }
-      Eigen::Vector3d mean = sum / static_cast<double>(m);
-      for (int i = 0; i < 3; ++i) mean[i] = wrap_2pi(mean[i]);
+      const Eigen::Vector3d mean = motion_.average(o_.circle_dwell_s);
       check_sensor(point(static_cast<double>(j) / n), dth, mean);
       z.desired.push_back(point(static_cast<double>(j) / n));
       z.circle.push_back(mean);
@@ -400,9 +311,7 @@ class Runner {
   const ZeroTraceSink& sink_;
   ZeroSearchResult& r_;
   const Robot& c_;
-  CycleClock clock_;
-  HardwareState state_;
-  Eigen::Vector3d command_ = Eigen::Vector3d::Zero();
+  Motion motion_;
   std::array<JointMode, 3> modes_{};
   int pi_ = -1, pj_ = -1, pair_mode_ = 1;
   Eigen::Vector3d ref_angles_ = Eigen::Vector3d::Zero();
@@ -468,8 +377,11 @@ void validate_zero_search_options(const ZeroSearchOptions& options) { validate(o
 
 const char* zero_method_name(ZeroMethod m) { return m == ZeroMethod::kGrid ? "grid" : "direct"; }
 
+ZeroSearchStopped::ZeroSearchStopped(const std::string& what, ZeroSearchResult partial, bool interrupted)
+    : HardwareError(what), partial_(std::move(partial)), interrupted_(interrupted) {}
+
 ZeroSearchResult run_zero_offset_search(SafetySupervisor& hw, const ZeroSearchOptions& options,
-                                        const ZeroTraceSink& sink) {
+                                        const ZeroTraceSink& sink, const std::atomic<bool>* stop) {
   validate(options);
   {
     const Reach reach = check_reach(hw.controller(), options.reference);
@@ -478,8 +390,14 @@ ZeroSearchResult run_zero_offset_search(SafetySupervisor& hw, const ZeroSearchOp
   ZeroSearchResult r;
   r.method = options.method;
   const auto wall0 = std::chrono::steady_clock::now();
-  Runner run(hw, options, sink, r);
-  auto fail = [&](const std::string& what, bool moving) {
+  Runner run(hw, options, sink, r, stop);
+  auto times = [&] {
+    r.robot_time_s = run.now();
+    r.wall_time_s = std::chrono::duration<double>(std::chrono::steady_clock::now() - wall0).count();
+  };
+  // Stops the robot (normally before a motion, by emergency stop during one),
+  // and throws what the caller gets: the reason and what was done so far.
+  auto fail = [&](const std::string& what, bool moving, bool interrupted) {
     r.ok = false;
     r.error = fmt::format("{}: {}", run.where(), what);
     if (moving) {
@@ -492,6 +410,8 @@ ZeroSearchResult run_zero_offset_search(SafetySupervisor& hw, const ZeroSearchOp
       }
     }
     hw.shutdown();
+    times();
+    throw ZeroSearchStopped(r.error, r, interrupted);
   };
   try {
     run.start();
@@ -501,18 +421,17 @@ ZeroSearchResult run_zero_offset_search(SafetySupervisor& hw, const ZeroSearchOp
     hw.shutdown();
     r.ok = true;
   } catch (const PointRefused& e) {
-    fail(std::string(e.what()) + "; stopped before moving there, drives disabled", false);
-  } catch (const CommandRejected& e) {
-    fail(std::string(e.what()) + "; drives disabled", true);
-  } catch (const HardwareError& e) {
-    fail(std::string(e.what()) + "; drives disabled", true);
+    fail(std::string(e.what()) + "; stopped before moving there, drives disabled", false, false);
+  } catch (const Interrupted& e) {
+    fail(e.what(), true, true);
+  } catch (const HardwareError& e) {  // also CommandRejected, SafetyError
+    fail(std::string(e.what()) + "; drives disabled", true, false);
   } catch (const LifecycleError& e) {
-    fail(std::string(e.what()) + "; drives disabled", true);
+    fail(std::string(e.what()) + "; drives disabled", true, false);
   } catch (const ReachError& e) {
-    fail(std::string(e.what()) + "; drives disabled", true);
+    fail(std::string(e.what()) + "; drives disabled", true, false);
   }
-  r.robot_time_s = run.now();
-  r.wall_time_s = std::chrono::duration<double>(std::chrono::steady_clock::now() - wall0).count();
+  times();
   return r;
 }
 

@@ -5,6 +5,7 @@
 // samples contract; target_* are the commanded poses, not true positions).
 #pragma once
 
+#include <map>
 #include <set>
 #include <string>
 
@@ -14,9 +15,20 @@ namespace gpm::hw {
 
 class SampleLog {
  public:
-  // Opens path for appending. Without resume an existing file is refused
-  // (InputError: never overwrite measurements); with resume its complete rows
-  // are kept (a torn last line from a crash is dropped) and their ids skipped.
+  // One recorded row (for checking a resumed plan).
+  struct Recorded {
+    Eigen::Vector3d theta_m = Eigen::Vector3d::Zero();
+    bool has_target = false;
+    Eigen::Vector2d target = Eigen::Vector2d::Zero();
+  };
+
+  // Opens path for appending and holds an exclusive lock (flock) on it while
+  // open: a second log on the same file is refused (InputError). Without
+  // resume a file holding measurements is refused (InputError: never
+  // overwrite them); a file without any row is started again. With resume its
+  // complete rows are kept (a torn last line from a crash is dropped) and
+  // their ids skipped. A file that does not exist is created by the first
+  // append, so a session that records nothing leaves no file.
   SampleLog(const std::string& path, bool resume);
   ~SampleLog();
   SampleLog(const SampleLog&) = delete;
@@ -31,12 +43,16 @@ class SampleLog {
   // Closes the file; removes it if this log created it and it holds no sample.
   void close_and_discard_if_empty();
   const std::string& path() const { return path_; }
+  // The rows found in the file when it was opened, by id.
+  const std::map<long, Recorded>& recorded() const { return recorded_; }
 
  private:
   std::string path_;
   int fd_ = -1;
   bool created_ = false;
+  bool closed_ = false;
   std::set<long> ids_;
+  std::map<long, Recorded> recorded_;
 };
 
 }  // namespace gpm::hw

@@ -6,8 +6,8 @@
 
 #include <memory>
 
-#include "hw/register_map.hpp"
-#include "hw/register_transport.hpp"
+#include "hw/backends/register_map.hpp"
+#include "hw/backends/register_transport.hpp"
 #include "hw/robot_hardware.hpp"
 
 namespace gpm::hw {
