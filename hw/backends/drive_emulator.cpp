@@ -111,6 +111,12 @@ DriveEmulator::DriveEmulator(const RegisterMap& map, const TwinBackendConfig& tw
     : map_(map), options_(options), clock_(options.clock ? *options.clock : steady_clock()), twin_(twin),
       impl_(std::make_unique<Impl>()) {}
 
+bool DriveEmulator::wait_until_no_clients(double timeout_s) {
+  std::unique_lock lock(mutex_);
+  return clients_gone_.wait_for(lock, std::chrono::duration<double>(timeout_s),
+                                [&] { return impl_->clients.empty(); });
+}
+
 void DriveEmulator::tick_now() {
   std::lock_guard lock(mutex_);
   prepare();
@@ -183,6 +189,7 @@ void DriveEmulator::stop() {
 void DriveEmulator::close_clients() {
   for (int fd : impl_->clients) ::close(fd);
   impl_->clients.clear();
+  clients_gone_.notify_all();
 }
 
 std::array<bool, 3> DriveEmulator::power_on() const {
@@ -269,6 +276,7 @@ void DriveEmulator::handle_request(int fd) {
     if (rc < 0) {
       ::close(fd);
       s.clients.erase(std::remove(s.clients.begin(), s.clients.end(), fd), s.clients.end());
+      if (s.clients.empty()) clients_gone_.notify_all();
     }
     return;
   }
@@ -321,19 +329,25 @@ std::string DriveEmulator::serve_bytes(std::string_view bytes, double t_s) {
   // Each request is read and answered; the end of the stream closes the
   // server's end (each round consumes at least one byte or ends the stream).
   auto open = [&] { return std::find(impl_->clients.begin(), impl_->clients.end(), sv[1]) != impl_->clients.end(); };
-  for (size_t round = 0; round <= bytes.size() && open(); ++round) handle_request(sv[1]);
+  std::string reply;
+  auto take_replies = [&] {  // the client reads as it goes (a full socket would block the server)
+    char buf[4096];
+    for (;;) {
+      const ssize_t n = ::recv(sv[0], buf, sizeof buf, MSG_DONTWAIT);
+      if (n <= 0) break;
+      reply.append(buf, static_cast<size_t>(n));
+    }
+  };
+  for (size_t round = 0; round <= bytes.size() && open(); ++round) {
+    handle_request(sv[1]);
+    take_replies();
+  }
   if (open()) {
     ::close(sv[1]);
     impl_->clients.erase(std::remove(impl_->clients.begin(), impl_->clients.end(), sv[1]), impl_->clients.end());
   }
   tick(t_s);
-  std::string reply;
-  char buf[4096];
-  for (;;) {
-    const ssize_t n = ::recv(sv[0], buf, sizeof buf, MSG_DONTWAIT);
-    if (n <= 0) break;
-    reply.append(buf, static_cast<size_t>(n));
-  }
+  take_replies();
   ::close(sv[0]);
   return reply;
 }

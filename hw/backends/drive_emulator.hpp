@@ -9,6 +9,7 @@
 
 #include <array>
 #include <atomic>
+#include <condition_variable>
 #include <memory>
 #include <mutex>
 #include <string>
@@ -83,6 +84,9 @@ class DriveEmulator {
   sim::TwinSnapshot snapshot() const;
   // Why the server loop stopped on its own (empty while it runs well).
   std::string error() const;
+  // Waits (on a condition, not a sleep) until no client is connected and
+  // every request received was served; false after timeout_s of wall time.
+  bool wait_until_no_clients(double timeout_s);
   // Runs one plant tick now (on the emulator's clock): tests that move an
   // injected clock see its effect at once, without waiting for the server.
   void tick_now();
@@ -104,6 +108,7 @@ class DriveEmulator {
   Clock& clock_;
   TwinBackend twin_;
   mutable std::mutex mutex_;
+  std::condition_variable clients_gone_;
   std::thread thread_;
   std::atomic<bool> stop_{false};
   int port_ = 0;

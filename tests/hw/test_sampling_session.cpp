@@ -118,7 +118,10 @@ void expect_fault_handled(const std::string& name, const EmulatorFaults& f, cons
   EXPECT_NE(message.find("samples kept"), std::string::npos) << message;
   EXPECT_EQ(message.find('\n'), std::string::npos);
   // Drives disabled: by the client (at the next tick), or, with the connection
-  // gone or stalled, by the drives' own comms watchdog (the clock moves past it).
+  // gone or stalled, by the drives' own comms watchdog (the clock moves past
+  // it once the client is gone and every request it sent was served).
+  hw.reset();
+  ASSERT_TRUE(rig.emu->wait_until_no_clients(30.0)) << name;
   if (!client_disables) rig.clock.advance(1.0);
   rig.emu->tick_now();
   EXPECT_EQ(rig.emu->power_on(), (std::array<bool, 3>{false, false, false})) << name;
