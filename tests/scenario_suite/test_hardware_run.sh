@@ -4,6 +4,7 @@
 # verdict as on the in-process twin backend, and samples within two encoder
 # counts of it (17-bit). A run whose connection drops keeps its samples and
 # says the command that goes on (--resume); that command finishes the run. A
+# signal disables the drives, keeps the samples and exits 130. A
 # bad-input run leaves no samples.csv. Everything happens in a fresh temporary
 # folder that is removed (re-runnable), and no step sleeps on the wall clock.
 set -u
@@ -24,7 +25,7 @@ start_emulator() {
   emu_pid=$!
   local line=""
   read -r -t 60 line <"$tmp/emu.fifo" || { bad "emulator did not start"; cat "$tmp/emu.err"; }
-  local port=${line##*:}
+  port=${line##*:}
   sed "s/port: 1502/port: $port/" "$SRC/hw/examples/register_map_emulator.yaml" >"$tmp/map.yaml"
 }
 
@@ -78,6 +79,34 @@ import csv, sys
 ids = [int(r["sample"]) for r in csv.DictReader(open(sys.argv[1]))]
 sys.exit(0 if sorted(ids) == list(range(50)) else 1)
 PY
+stop_emulator
+
+# A signal while sampling: drives disabled first (the emulator's own watchdog is
+# long here), samples kept, one line with the command that goes on, exit 130.
+start_emulator --comms-watchdog 30
+"$GPM" run "$SRC/scenarios/hardware_twin.yaml" --hardware "$tmp/modbus.yaml" -o "$tmp/sig" --quiet \
+  >"$tmp/sig.out" 2>"$tmp/sig.err" &
+pid=$!
+read -r -t 120 first < <(tail -n +2 -F --pid=$pid "$tmp/sig/samples.csv" 2>/dev/null) || true
+kill -s INT "$pid"; wait "$pid"; rc=$?
+[[ $rc -eq 130 ]] && ok || { bad "interrupted run: exit $rc, want 130"; cat "$tmp/sig.err"; }
+[[ $(wc -l <"$tmp/sig.err") -eq 1 ]] && ok || { bad "interrupted run: stderr not one line"; cat "$tmp/sig.err"; }
+grep -qE "^gpm: interrupted by SIGINT: drives disabled; [0-9]+ samples kept in $tmp/sig/samples.csv; to go on: gpm run .* --resume$" \
+  "$tmp/sig.err" && ok || { bad "interrupted run: message"; cat "$tmp/sig.err"; }
+drives=$(python3 - "$port" <<'PY'
+import socket, struct, sys
+s = socket.create_connection(("127.0.0.1", int(sys.argv[1])), timeout=10)
+on = []
+for unit in (1, 2, 3):
+    s.sendall(struct.pack(">HHHBBHH", unit, 0, 6, unit, 3, 10, 1))
+    r = b""
+    while len(r) < 11:
+        r += s.recv(64)
+    on.append(str(struct.unpack(">H", r[9:11])[0] & 1))
+print(" ".join(on))
+PY
+)
+[[ "$drives" == "0 0 0" ]] && ok || bad "interrupted run: drives still on ($drives)"
 stop_emulator
 
 # Bad input (a pose outside a tight workspace): exit 2, no samples.csv left to block a rerun.
