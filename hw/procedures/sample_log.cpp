@@ -57,6 +57,17 @@ SampleLog::SampleLog(const std::string& path, bool resume) : path_(path) {
     return;  // created with the first sample: a session that takes none leaves no file
   }
   lock_or_refuse(fd_, path);
+  try {
+    read_existing(resume);
+  } catch (...) {  // refused: release the file and its lock
+    ::close(fd_);
+    fd_ = -1;
+    throw;
+  }
+}
+
+void SampleLog::read_existing(bool resume) {
+  const std::string& path = path_;
   std::string text;
   char buf[65536];
   for (;;) {
@@ -69,8 +80,6 @@ SampleLog::SampleLog(const std::string& path, bool resume) : path_(path) {
   const size_t first_line = text.find('\n');
   const bool has_rows = first_line != std::string::npos && first_line + 1 < text.size();
   if (has_rows && !resume) {
-    ::close(fd_);
-    fd_ = -1;
     throw InputError(fmt::format("{}: file exists (it may hold measurements): pass --resume to "
                                  "continue it, or choose another output file",
                                  path));
@@ -130,9 +139,10 @@ SampleLog::~SampleLog() {
 void SampleLog::append(long id, const Eigen::Vector3d& q, const Eigen::Vector2d& target) {
   if (closed_) throw HardwareError(fmt::format("{}: sample log is closed", path_));
   if (fd_ < 0) {  // the first sample creates the file (never over one that appeared meanwhile)
-    fd_ = ::open(path_.c_str(), O_RDWR | O_APPEND | O_CREAT | O_EXCL | O_CLOEXEC, 0644);
-    if (fd_ < 0) throw HardwareError(fmt::format("{}: cannot create: {}", path_, std::strerror(errno)));
-    lock_or_refuse(fd_, path_);
+    const int fd = ::open(path_.c_str(), O_RDWR | O_APPEND | O_CREAT | O_EXCL | O_CLOEXEC, 0644);
+    if (fd < 0) throw HardwareError(fmt::format("{}: cannot create: {}", path_, std::strerror(errno)));
+    lock_or_refuse(fd, path_);  // closes fd when it throws
+    fd_ = fd;
     created_ = true;
     write_all(fd_, kHeader, path_);
   }

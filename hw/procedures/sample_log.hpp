@@ -47,6 +47,9 @@ class SampleLog {
   const std::map<long, Recorded>& recorded() const { return recorded_; }
 
  private:
+  // Reads the rows of the file open on fd_ (locked), see the constructor.
+  void read_existing(bool resume);
+
   std::string path_;
   int fd_ = -1;
   bool created_ = false;
