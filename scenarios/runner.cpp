@@ -49,7 +49,7 @@ double effective_sigma(const sim::Scenario& s) {
 namespace {
 
 // Samples through the hardware interface (hw/): the scenario's poses, the
-// sampling session of hw/sampling_session.hpp, every sample on disk as taken.
+// sampling session of hw/procedures/sampling_session.hpp, every sample on disk as taken.
 sim::SimulationResult sample_on_hardware(const RunSpec& spec, const std::string& samples_path,
                                          std::string& description) {
   if (samples_path.empty()) throw InputError("gpm run --hardware: no output folder for the samples");

@@ -1,5 +1,5 @@
 // The section-3 comparison for the section-2 search: sample poses on the same
-// hardware (hw/sampling_session.hpp, the redundant joint read only) and
+// hardware (hw/procedures/sampling_session.hpp, the redundant joint read only) and
 // estimate the three zero offsets alone by Levenberg-Marquardt with the ML
 // cost (calib/lm.hpp), links and bases fixed at the controller's values.
 #pragma once

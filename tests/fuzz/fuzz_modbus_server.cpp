@@ -1,4 +1,4 @@
-// Fuzz target for hw/drive_emulator.cpp, the Modbus TCP server side: any
+// Fuzz target for hw/backends/drive_emulator.cpp, the Modbus TCP server side: any
 // byte stream from a client is answered or dropped, never crashes the
 // emulator, and leaves its plant and registers consistent (every drive
 // reads an angle in [0, 2 pi) after a tick).
