@@ -3,12 +3,15 @@
 #include <cstdio>
 #include <filesystem>
 #include <memory>
+#include <optional>
 #include <string>
 
 #include <fmt/format.h>
 #include <unistd.h>
 
 #include "app/commands.hpp"
+#include "hw/hw_errors.hpp"
+#include "hw/procedures/stop_on_signal.hpp"
 #include "models/errors.hpp"
 #include "run/run_spec.hpp"
 #include "run/runner.hpp"
@@ -21,6 +24,7 @@ struct RunOptions {
   std::string out;
   std::string hardware;
   bool quiet = false;
+  bool resume = false;
 };
 
 void print_summary(const scenario::RunOutcome& o, const std::string& dir) {
@@ -72,9 +76,11 @@ void add_run(CLI::App& app) {
   cmd->add_option("--hardware", opt->hardware,
                   "Hardware file (hw/examples): take the samples through the robot interface (twin or modbus)");
   cmd->add_flag("-q,--quiet", opt->quiet, "No progress lines");
+  cmd->add_flag("--resume", opt->resume, "With --hardware: continue DIR/samples.csv of a stopped run (same plan)");
   cmd->callback([opt] {
     scenario::RunSpec spec = scenario::load_run_spec(opt->scenario);
     if (!opt->hardware.empty()) spec.hardware = opt->hardware;
+    spec.hardware_resume = opt->resume;
     std::string samples_path;
     if (spec.hardware) {
       // Samples are appended to DIR/samples.csv as they are taken (nothing measured is lost).
@@ -86,9 +92,20 @@ void add_run(CLI::App& app) {
       samples_path = (std::filesystem::path(opt->out) / "samples.csv").string();
     }
     const bool show = !opt->quiet && ::isatty(STDERR_FILENO);
-    const auto outcome = scenario::run_scenario(spec, opt->scenario, [show](const std::string& stage) {
-      if (show) std::fprintf(stderr, "gpm run: %s ...\n", stage.c_str());
-    }, samples_path);
+    std::optional<scenario::RunOutcome> ran;
+    try {  // a stopped hardware session: drives disabled, samples kept (hw/README.md)
+      ran = scenario::run_scenario(spec, opt->scenario, [show](const std::string& stage) {
+        if (show) std::fprintf(stderr, "gpm run: %s ...\n", stage.c_str());
+      }, samples_path);
+    } catch (const hw::HardwareError& e) {
+      const bool interrupted = dynamic_cast<const hw::Interrupted*>(&e) != nullptr;
+      std::fprintf(stderr, "gpm: %s%s; to go on: gpm run %s -o %s --hardware %s --resume\n",
+                   interrupted ? "" : "error: ", e.what(), opt->scenario.c_str(), opt->out.c_str(),
+                   spec.hardware->c_str());
+      set_exit(interrupted ? hw::kInterruptedExit : 1);
+      return;
+    }
+    const scenario::RunOutcome& outcome = *ran;
     scenario::write_run(outcome, opt->out);
     print_summary(outcome, opt->out);
     set_exit(outcome.passed() ? 0 : 1);

@@ -1,9 +1,8 @@
 // gpm sample: a calibration sampling session on the hardware named by a
 // hardware file (the twin or real drives: only the config differs). Samples
 // are appended and flushed as they are taken; --resume continues a file.
-// Exit 0 done; 1 the session failed (drives disabled, samples kept); 2 bad input.
-#include <atomic>
-#include <csignal>
+// Exit 0 done; 1 the session failed (drives disabled, samples kept); 2 bad
+// input; 130 interrupted (SIGINT/SIGTERM/SIGHUP: drives disabled, samples kept).
 #include <cstdio>
 
 #include <fmt/format.h>
@@ -11,15 +10,13 @@
 #include "app/commands.hpp"
 #include "hw/hardware_config.hpp"
 #include "hw/hw_errors.hpp"
-#include "hw/sampling_session.hpp"
-#include "hw/session_plan.hpp"
+#include "hw/procedures/sampling_session.hpp"
+#include "hw/procedures/session_plan.hpp"
+#include "hw/procedures/stop_on_signal.hpp"
 #include "models/errors.hpp"
 
 namespace gpm::cli {
 namespace {
-
-std::atomic<bool> g_stop{false};
-void on_signal(int) { g_stop = true; }
 
 struct SampleArgs {
   std::string hardware, poses, scenario, out;
@@ -34,19 +31,27 @@ void run_sample(const SampleArgs& a) {
   hw::SessionPlan plan = a.poses.empty() ? hw::plan_from_scenario(a.scenario) : hw::load_poses_plan(a.poses);
   plan.modes = config.modes;
   auto robot = hw::make_hardware(config);
+  const hw::StopOnSignal signals;
   hw::SampleLog log(a.out, a.resume);
-  std::signal(SIGINT, on_signal);
-  std::signal(SIGTERM, on_signal);
   try {
-    const hw::SessionResult r = hw::run_sampling_session(*robot, plan, log, &g_stop);
+    const hw::SessionResult r = hw::run_sampling_session(*robot, plan, log, signals.flag());
     std::printf("%s: %ld samples taken, %ld already in %s, %zu in all (%.2f s session time)\n",
                 robot->describe().c_str(), r.taken, r.skipped, a.out.c_str(), log.size(), r.duration_s);
   } catch (const InputError&) {
     log.close_and_discard_if_empty();
     throw;
+  } catch (const hw::Interrupted& e) {
+    log.close_and_discard_if_empty();
+    std::fprintf(stderr, "gpm: %s\n", e.what());
+    set_exit(hw::kInterruptedExit);
   } catch (const hw::HardwareError& e) {
     log.close_and_discard_if_empty();
-    std::fprintf(stderr, "gpm: error: %s\n", e.what());
+    const std::string go_on =
+        log.size() == 0 ? std::string()
+                        : fmt::format("; to go on: gpm sample --hardware {} {} {} -o {} --resume", a.hardware,
+                                      a.poses.empty() ? "--scenario" : "--poses",
+                                      a.poses.empty() ? a.scenario : a.poses, a.out);
+    std::fprintf(stderr, "gpm: error: %s%s\n", e.what(), go_on.c_str());
     set_exit(1);
   }
 }

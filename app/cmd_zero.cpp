@@ -5,7 +5,9 @@
 // Writes DIR/report.md (the table), DIR/offsets.yaml (geometry with the found
 // offsets, usable as `calibration:` of a hardware file) and DIR/trace.csv
 // (every evaluation, appended as it is made).
-// Exit 0 done; 1 a run stopped (one line on stderr; drives disabled; trace kept); 2 bad input.
+// Exit 0 done; 1 a run stopped (one line on stderr; drives disabled; trace kept); 2 bad input;
+// 130 interrupted (SIGINT/SIGTERM/SIGHUP: drives disabled, later runs skipped, the report and
+// trace of what was done written).
 #include <cmath>
 #include <cstdio>
 #include <filesystem>
@@ -19,8 +21,9 @@
 #include "app/commands.hpp"
 #include "hw/hardware_config.hpp"
 #include "hw/hw_errors.hpp"
-#include "hw/section3_offsets.hpp"
-#include "hw/zero_offset_search.hpp"
+#include "hw/procedures/section3_offsets.hpp"
+#include "hw/procedures/stop_on_signal.hpp"
+#include "hw/procedures/zero_offset_search.hpp"
 #include "models/errors.hpp"
 #include "models/robot_yaml.hpp"
 
@@ -141,8 +144,10 @@ void run_zero(const ZeroArgs& a) {
     trace << "run,method,index,round,d_mm,shift_x,shift_y,theta_m1,theta_m2,theta_m3,dth1,dth2,dth3,E\n";
   }
   std::vector<Row> rows;
-  std::string first_error, desc;
+  std::string first_error, desc, interrupted;
+  const hw::StopOnSignal signals;
   auto run_one = [&](const std::string& label, hw::ZeroMethod m, const std::optional<Eigen::Vector2d>& start) {
+    if (!interrupted.empty()) return;
     hw::ZeroSearchOptions o = base;
     o.method = m;
     if (start) {
@@ -151,14 +156,21 @@ void run_zero(const ZeroArgs& a) {
     }
     auto robot = hw::make_hardware(config);
     desc = robot->describe();
-    const hw::ZeroSearchResult r = hw::run_zero_offset_search(*robot, o, [&](const hw::ZeroCandidate& z) {
+    const auto sink = [&](const hw::ZeroCandidate& z) {
       if (!trace.is_open()) return;
       trace << fmt::format("{},{},{},{},{},{:.4f},{:.4f},{:.9f},{:.9f},{:.9f},{:.9f},{:.9f},{:.9f},{:.6e}\n",
                            label, hw::zero_method_name(m), z.index, z.round, z.d_mm, z.shift.x(),
                            z.shift.y(), z.readings[0], z.readings[1], z.readings[2], z.offsets[0],
                            z.offsets[1], z.offsets[2], z.E);
       trace.flush();
-    });
+    };
+    hw::ZeroSearchResult r;
+    try {
+      r = hw::run_zero_offset_search(*robot, o, sink, signals.flag());
+    } catch (const hw::ZeroSearchStopped& e) {  // drives disabled; what was done is in partial()
+      r = e.partial();
+      if (e.interrupted()) interrupted = label + ": " + r.error;
+    }
     Row row{label, hw::zero_method_name(m), start, r.initial_offsets, r.offsets, r.motions, r.circles,
             r.robot_time_s, r.wall_time_s, r.ok, r.error};
     if (!r.ok && first_error.empty()) first_error = label + ": " + r.error;
@@ -168,9 +180,11 @@ void run_zero(const ZeroArgs& a) {
     rows.push_back(row);
   };
   for (size_t k = 0; k < starts.size(); ++k) run_one(fmt::format("start {}", k + 1), method, starts[k]);
-  if (a.compare) {
+  if (a.compare && interrupted.empty()) {
     run_one("other method", method == hw::ZeroMethod::kGrid ? hw::ZeroMethod::kDirect : hw::ZeroMethod::kGrid,
             starts[0]);
+  }
+  if (a.compare && interrupted.empty()) {
     Row row;
     row.label = "section 3";
     row.method = "lm ml (offsets only)";
@@ -181,14 +195,17 @@ void run_zero(const ZeroArgs& a) {
                                      fmt::format("gpm_zero_section3_{}.csv", ::getpid())).string()
                                   : (std::filesystem::path(a.out) / "section3_samples.csv").string();
       std::filesystem::remove(csv);
-      const hw::Section3Offsets s =
-          hw::section3_offsets(*robot, hw::circle_poses(base.reference, a.radius, 12), base.sensor_joint, csv);
+      const hw::Section3Offsets s = hw::section3_offsets(
+          *robot, hw::circle_poses(base.reference, a.radius, 12), base.sensor_joint, csv, signals.flag());
       if (a.out.empty()) std::filesystem::remove(csv);
       row.offsets = s.offsets;
       row.motions = s.motions;
       row.robot_s = s.robot_time_s;
       row.ok = s.converged;
       if (!s.converged) row.error = "LM did not converge";
+    } catch (const hw::Interrupted& e) {
+      row.error = e.what();
+      interrupted = "section 3: " + row.error;
     } catch (const hw::HardwareError& e) {
       row.error = e.what();
     }
@@ -206,7 +223,11 @@ void run_zero(const ZeroArgs& a) {
     if (n > 0) write_file_atomic((std::filesystem::path(a.out) / "offsets.yaml").string(),
                                  offsets_yaml(config.controller, sum / n, rows));
   }
-  if (!first_error.empty()) {
+  if (!interrupted.empty()) {
+    std::fprintf(stderr, "gpm: %s; the runs before it and its trace are kept%s\n", interrupted.c_str(),
+                 a.out.empty() ? "" : (" in " + a.out).c_str());
+    set_exit(hw::kInterruptedExit);
+  } else if (!first_error.empty()) {
     std::fprintf(stderr, "gpm: error: %s\n", first_error.c_str());
     set_exit(1);
   }

@@ -4,8 +4,8 @@
 
 #include <fmt/format.h>
 
-#include "hw/drive_backend.hpp"
-#include "hw/modbus_transport.hpp"
+#include "hw/backends/drive_backend.hpp"
+#include "hw/backends/modbus_transport.hpp"
 #include "models/errors.hpp"
 #include "models/robot_yaml.hpp"
 #include "models/yaml_util.hpp"
@@ -48,8 +48,11 @@ HardwareConfig load_hardware_config(const std::string& path) {
   }
   if (root["rate_hz"]) {
     c.rate_hz = yaml_positive(root["rate_hz"], path, "rate_hz");
-    if (c.rate_hz > 2000.0) {
-      throw InputError(yaml_where(path, root["rate_hz"], "rate_hz") + "must be at most 2000 Hz");
+    if (!(c.rate_hz >= 10.0 && c.rate_hz <= 2000.0)) {
+      throw InputError(yaml_where(path, root["rate_hz"], "rate_hz") +
+                       fmt::format("{} Hz is outside [10, 2000] Hz (the read/write cycle of the "
+                                   "drives; the examples use 250)",
+                                   c.rate_hz));
     }
   }
   if (!root["controller"]) {

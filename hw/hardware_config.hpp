@@ -18,10 +18,10 @@
 #include <string>
 
 #include "hw/hardware_types.hpp"
-#include "hw/register_map.hpp"
+#include "hw/backends/register_map.hpp"
 #include "hw/safety_limits.hpp"
 #include "hw/safety_supervisor.hpp"
-#include "hw/twin_backend.hpp"
+#include "hw/backends/twin_backend.hpp"
 #include "models/robot.hpp"
 
 namespace gpm::hw {

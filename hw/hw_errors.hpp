@@ -1,22 +1,33 @@
-// Errors of the hardware layer. InputError (models/errors.hpp) stays for bad
-// files and values (exit 2); these are run-time failures of a session.
+// Errors of the hardware layer, under gpm::Error (models/errors.hpp).
+// InputError stays for bad files and values (exit 2); HardwareError and its
+// children are run-time failures of the robot or of a session (exit 1);
+// LifecycleError is a misuse of the RobotHardware lifecycle.
+//
+//   gpm::Error
+//   |-- gpm::InputError
+//   |-- HardwareError            backend failed: connection, timeout, fault, reply
+//   |   |-- SafetyError          the supervisor stopped the robot
+//   |   |-- CommandRejected      the supervisor refused one command (robot holds)
+//   |   `-- Interrupted          a stop was requested (signal): drives disabled
+//   `-- LifecycleError           call not allowed in the current state
 #pragma once
 
-#include <stdexcept>
 #include <string>
+
+#include "models/errors.hpp"
 
 namespace gpm::hw {
 
 // A backend failed: lost connection, timeout, drive fault, implausible reply.
-class HardwareError : public std::runtime_error {
+class HardwareError : public Error {
  public:
-  explicit HardwareError(const std::string& what) : std::runtime_error(what) {}
+  explicit HardwareError(const std::string& what) : Error(what) {}
 };
 
 // A lifecycle transition or call not allowed in the current state.
-class LifecycleError : public std::logic_error {
+class LifecycleError : public Error {
  public:
-  explicit LifecycleError(const std::string& what) : std::logic_error(what) {}
+  explicit LifecycleError(const std::string& what) : Error(what) {}
 };
 
 // The safety supervisor refused a command or stopped the robot.
@@ -25,15 +36,18 @@ class SafetyError : public HardwareError {
   explicit SafetyError(const std::string& what) : HardwareError(what) {}
 };
 
-}  // namespace gpm::hw
-
-namespace gpm::hw {
-
 // The safety supervisor refused one command (it was not forwarded; the robot
 // brakes to a hold). The hardware stays active: the caller may send a valid one.
-class CommandRejected : public std::runtime_error {
+class CommandRejected : public HardwareError {
  public:
-  explicit CommandRejected(const std::string& what) : std::runtime_error(what) {}
+  explicit CommandRejected(const std::string& what) : HardwareError(what) {}
+};
+
+// A stop was requested while the robot moved (SIGINT, SIGTERM, SIGHUP): the
+// drives were disabled; what was recorded is kept.
+class Interrupted : public HardwareError {
+ public:
+  explicit Interrupted(const std::string& what) : HardwareError(what) {}
 };
 
 }  // namespace gpm::hw

@@ -116,6 +116,8 @@ void RobotHardware::write(const HardwareCommand& command, double time_s) {
   require(LifecycleState::kActive, "write");
   try {
     on_write(command, time_s);
+  } catch (const CommandRejected&) {
+    throw;  // one refused command: the hardware stays active (the supervisor holds)
   } catch (const HardwareError& e) {
     fail(e.what());
     throw;

@@ -46,7 +46,9 @@ class RobotHardware {
   // Reads the state at time_s (Inactive or Active). A backend failure enters
   // kError (drives disabled) and rethrows.
   const HardwareState& read(double time_s);
-  // Writes a command at time_s (Active only; LifecycleError otherwise).
+  // Writes a command at time_s (Active only; LifecycleError otherwise). A
+  // backend failure enters kError and rethrows; CommandRejected (one refused
+  // command) is rethrown with the hardware still active.
   void write(const HardwareCommand& command, double time_s);
 
   // Current lifecycle state.

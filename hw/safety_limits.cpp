@@ -79,6 +79,28 @@ SafetyLimits safety_limits_from_yaml(const YAML::Node& node, const std::string& 
   }
   s.max_velocity = triple(node, "max_velocity", file, kp, true);
   s.max_acceleration = triple(node, "max_acceleration", file, kp, true);
+  // Physically meaningful ranges (hw/README.md): the GPM2002's proximal links
+  // are 244 mm, so 20 rad/s is about 5 m/s at the elbow.
+  for (size_t i = 0; i < 3; ++i) {
+    if (s.joint_min[i] < -kJointBoundRad || s.joint_max[i] > kJointBoundRad) {
+      throw InputError(yaml_where(file, node[s.joint_min[i] < -kJointBoundRad ? "joint_min" : "joint_max"],
+                                  kp + (s.joint_min[i] < -kJointBoundRad ? ".joint_min" : ".joint_max")) +
+                       fmt::format("joint {}: limits must lie within [-{}, {}] rad (encoder angles "
+                                   "are in [0, 2 pi))",
+                                   i + 1, kJointBoundRad, kJointBoundRad));
+    }
+    if (s.max_velocity[i] > kMaxVelocityRadS) {
+      throw InputError(yaml_where(file, node["max_velocity"], fmt::format("{}.max_velocity[{}]", kp, i)) +
+                       fmt::format("{} rad/s is above {} rad/s (a servo joint of this robot; "
+                                   "first runs use ~0.2)",
+                                   s.max_velocity[i], kMaxVelocityRadS));
+    }
+    if (s.max_acceleration[i] > kMaxAccelerationRadS2) {
+      throw InputError(yaml_where(file, node["max_acceleration"], fmt::format("{}.max_acceleration[{}]", kp, i)) +
+                       fmt::format("{} rad/s^2 is above {} rad/s^2 (first runs use ~1)",
+                                   s.max_acceleration[i], kMaxAccelerationRadS2));
+    }
+  }
   const YAML::Node c = required(node, "workspace_centre", file, kp);
   if (!c.IsSequence() || c.size() != 2) {
     throw InputError(yaml_where(file, c, kp + ".workspace_centre") +
@@ -86,13 +108,18 @@ SafetyLimits safety_limits_from_yaml(const YAML::Node& node, const std::string& 
   }
   s.workspace_centre = {yaml_number(c[0], file, kp + ".workspace_centre[0]"),
                         yaml_number(c[1], file, kp + ".workspace_centre[1]")};
-  s.workspace_radius_mm = scalar(node, "workspace_radius", file, kp, 1e-9, 1e6, "a radius > 0 mm");
-  s.workspace_margin_mm = scalar(node, "workspace_margin", file, kp, 0.0, 1e6, ">= 0 mm");
+  if (s.workspace_centre.cwiseAbs().maxCoeff() > kMaxLengthMm) {
+    throw InputError(yaml_where(file, c, kp + ".workspace_centre") +
+                     fmt::format("each coordinate must be within +-{} mm", kMaxLengthMm));
+  }
+  s.workspace_radius_mm = scalar(node, "workspace_radius", file, kp, 1e-9, kMaxWorkspaceRadiusMm,
+                                 "a radius in (0, 500] mm (the base triangle is 433 x 500 mm)");
+  s.workspace_margin_mm = scalar(node, "workspace_margin", file, kp, 0.0, kMaxWorkspaceRadiusMm, "in [0, 500] mm");
   if (s.workspace_margin_mm >= s.workspace_radius_mm) {
     throw InputError(yaml_where(file, node["workspace_margin"], kp + ".workspace_margin") +
                      fmt::format("must be below workspace_radius ({} mm)", s.workspace_radius_mm));
   }
-  s.reach_margin_mm = scalar(node, "reach_margin", file, kp, 0.0, 1e6, ">= 0 mm");
+  s.reach_margin_mm = scalar(node, "reach_margin", file, kp, 0.0, kMaxWorkspaceRadiusMm, "in [0, 500] mm");
   s.min_transmission = scalar(node, "min_transmission", file, kp, 0.0, 0.999, "in [0, 1)");
   s.min_direct = scalar(node, "min_direct", file, kp, 0.0, 0.999, "in [0, 1)");
   s.max_inconsistency_rad =

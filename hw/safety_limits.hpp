@@ -13,6 +13,16 @@
 
 namespace gpm::hw {
 
+// Physically meaningful ranges of the limits (hw/README.md; a hardware file
+// outside them is refused): joint limits within +-kJointBoundRad, speeds up
+// to kMaxVelocityRadS, accelerations up to kMaxAccelerationRadS2, workspace
+// radius and margins up to kMaxWorkspaceRadiusMm, centre within +-kMaxLengthMm.
+inline constexpr double kJointBoundRad = 4 * 3.14159265358979323846;
+inline constexpr double kMaxVelocityRadS = 20.0;
+inline constexpr double kMaxAccelerationRadS2 = 500.0;
+inline constexpr double kMaxWorkspaceRadiusMm = 500.0;
+inline constexpr double kMaxLengthMm = 2000.0;
+
 struct SafetyLimits {
   // Joint limits on the encoder readings theta_m (rad), per joint.
   std::array<double, kNumChains> joint_min{};

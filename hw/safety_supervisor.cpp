@@ -22,8 +22,8 @@ int position_count(const std::array<JointMode, 3>& mode) {
 }  // namespace
 
 SafetySupervisor::SafetySupervisor(std::unique_ptr<RobotHardware> backend, const Robot& controller,
-                                   const SafetyLimits& limits)
-    : backend_(std::move(backend)), controller_(controller), limits_(limits) {
+                                   const SafetyLimits& limits, Clock& clock)
+    : backend_(std::move(backend)), clock_(clock), controller_(controller), limits_(limits) {
   controller_.limits.reach_margin = limits.reach_margin_mm;
   controller_.limits.min_transmission = limits.min_transmission;
   controller_.limits.min_direct = limits.min_direct;
@@ -92,10 +92,13 @@ std::string SafetySupervisor::check_workspace(const Eigen::Vector3d& q,
 }
 
 std::string SafetySupervisor::check_pose(const Eigen::Vector3d& theta_m) const {
-  const std::array<JointMode, 3> all{JointMode::kPosition, JointMode::kPosition,
-                                     JointMode::kPosition};
-  std::string why = check_joint_positions(theta_m, all, "position");
-  if (why.empty()) why = check_workspace(theta_m, all, "end-effector");
+  return check_pose(theta_m, {JointMode::kPosition, JointMode::kPosition, JointMode::kPosition});
+}
+
+std::string SafetySupervisor::check_pose(const Eigen::Vector3d& theta_m,
+                                         const std::array<JointMode, 3>& mode) const {
+  std::string why = check_joint_positions(theta_m, mode, "position");
+  if (why.empty()) why = check_workspace(theta_m, mode, "end-effector");
   return why;
 }
 
@@ -160,10 +163,10 @@ HardwareCommand SafetySupervisor::brake_command() const {
 
 template <class F>
 void SafetySupervisor::timed(const char* what, F&& f) {
-  const auto t0 = std::chrono::steady_clock::now();
+  const double t0 = clock_.now();
   f();
   if (backend_->simulated_time()) return;
-  const double s = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+  const double s = clock_.now() - t0;
   if (s > limits_.comms_timeout_s) {
     throw SafetyError(fmt::format("comms timeout: {} of {} took {:.1f} ms (comms_timeout {} ms)",
                                   what, backend_->describe(), s * 1e3,

@@ -9,6 +9,7 @@
 #include <memory>
 #include <string>
 
+#include "hw/clock.hpp"
 #include "hw/robot_hardware.hpp"
 #include "hw/safety_limits.hpp"
 #include "models/robot.hpp"
@@ -19,13 +20,19 @@ class SafetySupervisor final : public RobotHardware {
  public:
   // Supervises backend (owned) with limits; controller is the robot model the
   // caller commands with (nominal or calibrated), used for FK/IK checks.
+  // clock measures backend calls against comms_timeout and paces the
+  // procedures' cycles on real time (the wall clock unless tests inject one).
   SafetySupervisor(std::unique_ptr<RobotHardware> backend, const Robot& controller,
-                   const SafetyLimits& limits);
+                   const SafetyLimits& limits, Clock& clock = steady_clock());
 
   // Why cmd would be refused now (empty when it is allowed).
   std::string check(const HardwareCommand& cmd) const;
   // Why the static position theta_m (encoder space) is not allowed (empty when it is).
   std::string check_pose(const Eigen::Vector3d& theta_m) const;
+  // The same for the joints of mode in position mode (two: the end-effector
+  // they put it at; the others are free). The one pose check of every
+  // procedure (sampling poses, zero-search points and circles).
+  std::string check_pose(const Eigen::Vector3d& theta_m, const std::array<JointMode, 3>& mode) const;
   // Number of commands refused so far.
   long rejected_count() const { return rejected_; }
   // True while the robot brakes or holds because no valid command came.
@@ -35,6 +42,8 @@ class SafetySupervisor final : public RobotHardware {
   // The limits and the controller model in force.
   const SafetyLimits& limits() const { return limits_; }
   const Robot& controller() const { return controller_; }
+  // The clock of real time for this robot.
+  Clock& clock() const { return clock_; }
 
   double period_s() const override { return backend_->period_s(); }
   bool simulated_time() const override { return backend_->simulated_time(); }
@@ -61,6 +70,7 @@ class SafetySupervisor final : public RobotHardware {
   template <class F> void timed(const char* what, F&& f);
 
   std::unique_ptr<RobotHardware> backend_;
+  Clock& clock_;
   Robot controller_;
   SafetyLimits limits_;
   double dt_ = 0.0;

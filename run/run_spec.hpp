@@ -60,6 +60,7 @@ struct RunSpec {
   // robot interface (twin or modbus backend) instead of the in-process
   // simulation. Relative to the scenario file; `gpm run --hardware` overrides.
   std::optional<std::string> hardware;
+  bool hardware_resume = false;  // continue DIR/samples.csv (`gpm run --hardware ... --resume`)
   CalibrationSpec calibration;
   std::optional<CompensationPlan> compensation;  // set when outputs.compensation
   Expectations expect;

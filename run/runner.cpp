@@ -15,8 +15,9 @@
 #include "models/kinematics.hpp"
 #include "models/output_file.hpp"
 #include "hw/hardware_config.hpp"
-#include "hw/sample_log.hpp"
-#include "hw/sampling_session.hpp"
+#include "hw/procedures/sample_log.hpp"
+#include "hw/procedures/sampling_session.hpp"
+#include "hw/procedures/stop_on_signal.hpp"
 #include "models/robot_yaml.hpp"
 #include "models/samples.hpp"
 #include "run/expectations.hpp"
@@ -52,7 +53,7 @@ double effective_sigma(const sim::Scenario& s) {
 namespace {
 
 // Samples through the hardware interface (hw/): the scenario's poses, the
-// sampling session of hw/sampling_session.hpp, every sample on disk as taken.
+// sampling session of hw/procedures/sampling_session.hpp, every sample on disk as taken.
 sim::SimulationResult sample_on_hardware(const RunSpec& spec, const std::string& samples_path,
                                          std::string& description) {
   if (samples_path.empty()) throw InputError("gpm run --hardware: no output folder for the samples");
@@ -64,10 +65,11 @@ sim::SimulationResult sample_on_hardware(const RunSpec& spec, const std::string&
   sim::SimulationResult r;
   r.actual = sim::make_actual(spec.sim);
   {
-    hw::SampleLog log(samples_path, false);
+    const hw::StopOnSignal signals;  // hw/procedures/stop_on_signal.hpp: drives off, exit 130
+    hw::SampleLog log(samples_path, spec.hardware_resume);
     auto robot = hw::make_hardware(cfg);
     description = fmt::format("{} backend from {}", cfg.backend, *spec.hardware);
-    hw::run_sampling_session(*robot, plan, log);
+    hw::run_sampling_session(*robot, plan, log, signals.flag());
   }
   const Samples s = read_samples_csv(samples_path);
   for (size_t j = 0; j < s.size(); ++j) {

@@ -1,12 +1,14 @@
 #!/usr/bin/env bash
 # Tests of app/cmd_sample.cpp: gpm sample on the twin and, through
 # gpm-drive-emulator on a loopback ephemeral port, on the modbus backend;
-# refusals exit 2 with one line; a failed session exits 1 and leaves no empty file.
+# refusals exit 2 with one line; a failed session exits 1 and leaves no empty file;
+# SIGINT/SIGTERM/SIGHUP disable the drives, keep the samples, exit 130.
+# No wall-clock sleeps: the script waits on FIFOs and on tail -F.
 set -u
 GPM="$1"; EMU="$2"; SRC="$3"
 fail=0; passed=0
 tmp=$(mktemp -d); emu_pid=""
-cleanup() { [[ -n "$emu_pid" ]] && kill "$emu_pid" 2>/dev/null; rm -rf "$tmp"; }
+cleanup() { [[ -n "$emu_pid" ]] && kill "$emu_pid" 2>/dev/null && wait "$emu_pid" 2>/dev/null; rm -rf "$tmp"; }
 trap cleanup EXIT
 
 check() {  # name, expected exit, command...
@@ -56,12 +58,14 @@ check "pose outside limits" 2 "$GPM" sample --hardware "$tmp/twin.yaml" --poses 
 [[ ! -e "$tmp/f.csv" ]] && passed=$((passed+1)) || { echo "FAIL output left behind (far)"; fail=$((fail+1)); }
 check "both pose sources" 2 "$GPM" sample --hardware "$tmp/twin.yaml" --poses "$tmp/poses2.yaml" --scenario x.yaml -o "$tmp/b.csv"
 
-# modbus through the emulator on an ephemeral loopback port
+# modbus through the emulator on an ephemeral loopback port; its drive-side
+# comms watchdog is long, so only the client can switch the drives off here.
+mkfifo "$tmp/emu.fifo"
 "$EMU" --map "$SRC/hw/examples/register_map_emulator.yaml" --scenario "$SRC/scenarios/simulate_disc.yaml" \
-  --port 0 >"$tmp/emu.out" 2>&1 &
+  --port 0 --comms-watchdog 30 >"$tmp/emu.fifo" 2>"$tmp/emu.err" &
 emu_pid=$!
-for _ in $(seq 100); do grep -q listening "$tmp/emu.out" && break; sleep 0.05; done
-port=$(sed -n 's/.*listening on 127\.0\.0\.1:\([0-9]*\).*/\1/p' "$tmp/emu.out")
+read -r -t 60 line <"$tmp/emu.fifo" || { echo "FAIL emulator did not start"; cat "$tmp/emu.err"; exit 1; }
+port=${line##*:}
 sed "s/port: 1502/port: $port/" "$SRC/hw/examples/register_map_emulator.yaml" >"$tmp/map.yaml"
 cat >"$tmp/modbus.yaml" <<YAML
 backend: modbus
@@ -72,6 +76,43 @@ YAML
 check "modbus session" 0 "$GPM" sample --hardware "$tmp/modbus.yaml" --poses "$tmp/poses2.yaml" -o "$tmp/m.csv"
 expect "modbus describes itself" "$tmp/out" "modbus-tcp 127.0.0.1:$port"
 [[ $(rows "$tmp/m.csv") -eq 2 ]] && passed=$((passed+1)) || { echo "FAIL modbus rows"; fail=$((fail+1)); }
+
+# Power stages on (1) or off (0) of the three drives, read from the emulator
+# over Modbus (status word, register 10, bit 0).
+drives() {
+  python3 - "$port" <<'PY'
+import socket, struct, sys
+s = socket.create_connection(("127.0.0.1", int(sys.argv[1])), timeout=10)
+on = []
+for unit in (1, 2, 3):
+    s.sendall(struct.pack(">HHHBBHH", unit, 0, 6, unit, 3, 10, 1))
+    r = b""
+    while len(r) < 11:
+        r += s.recv(64)
+    on.append(str(struct.unpack(">H", r[9:11])[0] & 1))
+print(" ".join(on))
+PY
+}
+# One signal policy: each of SIGINT, SIGTERM, SIGHUP once the first sample is on disk.
+printf 'poses: [%s]\n' "$(for k in $(seq 0 19); do printf '[%s, 250],' $((206 + k % 2 * 20)); done | sed 's/,$//')" >"$tmp/poses20.yaml"
+for sig in INT TERM HUP; do
+  out="$tmp/sig_$sig.csv"
+  "$GPM" sample --hardware "$tmp/modbus.yaml" --poses "$tmp/poses20.yaml" -o "$out" >"$tmp/sig.out" 2>"$tmp/sig.err" &
+  pid=$!
+  # Returns as soon as the first sample row is on disk (tail follows the file's creation).
+  read -r -t 120 first < <(tail -n +2 -F --pid=$pid "$out" 2>/dev/null) || true
+  kill -s "$sig" "$pid"; wait "$pid"; rc=$?
+  [[ $rc -eq 130 ]] && passed=$((passed+1)) || { echo "FAIL SIG$sig: exit $rc, want 130"; cat "$tmp/sig.err"; fail=$((fail+1)); }
+  [[ $(wc -l <"$tmp/sig.err") -eq 1 ]] && passed=$((passed+1)) || { echo "FAIL SIG$sig: stderr not one line"; cat "$tmp/sig.err"; fail=$((fail+1)); }
+  expect "SIG$sig says so" "$tmp/sig.err" "interrupted by SIG$sig: drives disabled; [0-9]+ samples kept in $out"
+  n=$(rows "$out")
+  [[ $n -ge 1 && $n -lt 20 ]] && passed=$((passed+1)) || { echo "FAIL SIG$sig: $n samples kept"; fail=$((fail+1)); }
+  expect "SIG$sig samples are readable" <(python3 -c "import csv,sys; r=list(csv.DictReader(open(sys.argv[1]))); print(len(r), 'rows', all(len(x) == 6 for x in r))" "$out") "^$n rows True$"
+  [[ "$(drives)" == "0 0 0" ]] && passed=$((passed+1)) || { echo "FAIL SIG$sig: drives still on: $(drives)"; fail=$((fail+1)); }
+done
+check "resume after a signal" 0 "$GPM" sample --hardware "$tmp/modbus.yaml" --poses "$tmp/poses20.yaml" -o "$tmp/sig_INT.csv" --resume
+[[ $(rows "$tmp/sig_INT.csv") -eq 20 ]] && passed=$((passed+1)) || { echo "FAIL resume after signal rows"; fail=$((fail+1)); }
+
 kill "$emu_pid"; wait "$emu_pid" 2>/dev/null; emu_pid=""
 check "drives unreachable" 1 "$GPM" sample --hardware "$tmp/modbus.yaml" --poses "$tmp/poses2.yaml" -o "$tmp/u.csv"
 expect "connect error" "$tmp/err" "127.0.0.1:$port: cannot connect"

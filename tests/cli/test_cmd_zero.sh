@@ -3,7 +3,9 @@
 # chooses (scenario with explicit dth): Table-1 rows from two starts and the
 # comparison rows, report.md / offsets.yaml / trace.csv; bad input exits 2 with
 # one line and creates nothing; a search that leaves the safe workspace exits 1
-# with one line, the trace of what was done kept.
+# with one line, the trace of what was done kept; a signal (SIGINT, SIGTERM,
+# SIGHUP) stops the run with the drives disabled, keeps its trace and report,
+# says so in one line and exits 130.
 set -u
 GPM="$1"; SRC="$2"
 fail=0; passed=0
@@ -72,6 +74,19 @@ check leaves 1 "$GPM" zero --hardware "$tmp/small.yaml" --start 217.5,245 -o "$t
 expect "leave says where and why" "$tmp/err" "search point .* outside the safe workspace"
 expect "leave keeps the trace" "$tmp/leave/trace.csv" "^start 1,grid,1,"
 expect "leave row in the report" "$tmp/leave/report.md" "stopped: "
+
+# Signal policy: as soon as the first evaluation is in the trace (no sleeping).
+"$GPM" zero --hardware "$tmp/twin.yaml" --start 219.5,252.5 --start 213,247.5 --start 217.5,245 \
+  -o "$tmp/sig" >"$tmp/sig.out" 2>"$tmp/sig.err" &
+pid=$!
+read -r -t 120 first < <(tail -n +2 -F --pid=$pid "$tmp/sig/trace.csv" 2>/dev/null) || true
+kill -s TERM "$pid"; wait "$pid"; rc=$?
+[[ $rc -eq 130 ]] && passed=$((passed+1)) || { echo "FAIL zero SIGTERM: exit $rc, want 130"; cat "$tmp/sig.err"; fail=$((fail+1)); }
+[[ $(wc -l <"$tmp/sig.err") -eq 1 ]] && passed=$((passed+1)) || { echo "FAIL zero SIGTERM: stderr not one line"; cat "$tmp/sig.err"; fail=$((fail+1)); }
+expect "zero SIGTERM says so" "$tmp/sig.err" "interrupted by SIGTERM: drives disabled.*kept in $tmp/sig"
+expect "zero SIGTERM keeps the trace" "$tmp/sig/trace.csv" "^start 1,grid,0,"
+expect "zero SIGTERM report row" "$tmp/sig/report.md" "stopped: .*interrupted by SIGTERM"
+! grep -q "^| start 3" "$tmp/sig/report.md" && passed=$((passed+1)) || { echo "FAIL later runs were not skipped"; fail=$((fail+1)); }
 
 echo "passed $passed, failed $fail"
 [[ $fail -eq 0 ]]

@@ -3,14 +3,16 @@
 #pragma once
 
 #include <filesystem>
+#include <memory>
+#include <stdexcept>
+#include <cstdlib>
 #include <fstream>
 #include <string>
 #include <vector>
-#include <chrono>
-#include <thread>
 
 #include <unistd.h>
 
+#include "hw/clock.hpp"
 #include "hw/hw_errors.hpp"
 #include "hw/robot_hardware.hpp"
 #include "hw/safety_limits.hpp"
@@ -49,7 +51,8 @@ class RecordingBackend final : public RobotHardware {
   std::vector<HardwareCommand>* record = nullptr;  // where commands go (outlives this)
   bool fail_reads = false;
   bool wall_clock = false;  // report real (not simulated) time
-  double read_delay_s = 0.0;
+  double read_delay_s = 0.0;  // each read takes this long on clock
+  ManualClock* clock = nullptr;
 
   double period_s() const override { return period_; }
   bool simulated_time() const override { return !wall_clock; }
@@ -63,7 +66,7 @@ class RecordingBackend final : public RobotHardware {
   void on_error() noexcept override { enabled_ = false; }
   void on_read(double t, HardwareState& s) override {
     if (fail_reads) throw HardwareError("recording: read failed");
-    if (read_delay_s > 0) std::this_thread::sleep_for(std::chrono::duration<double>(read_delay_s));
+    if (read_delay_s > 0 && clock) clock->advance(read_delay_s);
     s.time_s = t;
     s.theta_m = position_;
     for (auto& d : s.drive) d.enabled = enabled_;
@@ -80,14 +83,30 @@ class RecordingBackend final : public RobotHardware {
   bool enabled_ = false;
 };
 
-// A fresh empty temporary folder for one test.
-inline std::filesystem::path temp_dir(const std::string& name) {
-  const auto dir = std::filesystem::temp_directory_path() /
-                   ("gpm_hw_" + name + "_" + std::to_string(::getpid()));
-  std::filesystem::remove_all(dir);
-  std::filesystem::create_directories(dir);
-  return dir;
-}
+// A fresh empty temporary folder for one test, removed with everything in it
+// when the object goes out of scope (tests leave no files behind, and a
+// rerun in the same build starts from nothing).
+class TempDir {
+ public:
+  explicit TempDir(const std::string& name) {
+    std::string pattern = (std::filesystem::temp_directory_path() / ("gpm_hw_" + name + "_XXXXXX")).string();
+    if (!::mkdtemp(pattern.data())) throw std::runtime_error("cannot create a temporary folder " + pattern);
+    path_ = pattern;
+  }
+  ~TempDir() {
+    std::error_code ec;
+    std::filesystem::remove_all(path_, ec);
+  }
+  TempDir(const TempDir&) = delete;
+  TempDir& operator=(const TempDir&) = delete;
+
+  const std::filesystem::path& path() const { return path_; }
+  operator const std::filesystem::path&() const { return path_; }
+  std::filesystem::path operator/(const std::string& name) const { return path_ / name; }
+
+ private:
+  std::filesystem::path path_;
+};
 
 inline void write_text(const std::filesystem::path& p, const std::string& text) {
   std::ofstream(p) << text;

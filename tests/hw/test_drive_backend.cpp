@@ -1,11 +1,11 @@
-// Tests of hw/drive_backend.cpp over an in-memory RegisterTransport (the
+// Tests of hw/backends/drive_backend.cpp over an in-memory RegisterTransport (the
 // drive layer does not depend on Modbus): enable bits, scaled position
 // commands, readings, faults, disable on error.
 #include <map>
 
 #include <gtest/gtest.h>
 
-#include "hw/drive_backend.hpp"
+#include "hw/backends/drive_backend.hpp"
 #include "hw/hw_errors.hpp"
 #include "hw_test_util.hpp"
 

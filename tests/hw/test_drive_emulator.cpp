@@ -1,15 +1,19 @@
-// Tests of hw/drive_emulator.cpp: loopback-only ephemeral ports, power stage
+// Tests of hw/backends/drive_emulator.cpp: loopback-only ephemeral ports, power stage
 // on a rising enable edge, off on the drive-side comms watchdog and on a fault.
-#include <thread>
+#include <functional>
 
 #include <arpa/inet.h>
+#include <sys/socket.h>
+#include <unistd.h>
 #include <netinet/in.h>
 
 #include <gtest/gtest.h>
 
-#include "hw/drive_emulator.hpp"
+#include "hw/backends/drive_emulator.hpp"
+#include "hw/clock.hpp"
 #include "hw/hardware_config.hpp"
-#include "hw/modbus_transport.hpp"
+#include "hw/backends/modbus_transport.hpp"
+#include "models/errors.hpp"
 
 namespace gpm::hw {
 namespace {
@@ -22,7 +26,6 @@ std::unique_ptr<DriveEmulator> make(const EmulatorOptions& o = {}) {
       map, twin_config_from_scenario(kSrc + "/scenarios/simulate_disc.yaml", 0.004), o);
 }
 
-void settle_ticks() { std::this_thread::sleep_for(std::chrono::milliseconds(30)); }
 
 TEST(DriveEmulator, EphemeralPortsDifferAndListenOnLoopbackByDefault) {
   EXPECT_EQ(EmulatorOptions{}.bind_address, "127.0.0.1");
@@ -32,12 +35,81 @@ TEST(DriveEmulator, EphemeralPortsDifferAndListenOnLoopbackByDefault) {
   EXPECT_NE(pa, pb);
 }
 
-TEST(DriveEmulator, EnableEdgeWatchdogAndFault) {
+TEST(DriveEmulator, BindAddressesResolveAndStayOnLoopback) {
+  // localhost once bound 255.255.255.255 (the name went to inet_addr unresolved).
+  EXPECT_EQ(emulator_bind_address("localhost", false), "127.0.0.1");
+  EXPECT_EQ(emulator_bind_address("127.0.0.1", false), "127.0.0.1");
+  EXPECT_EQ(emulator_bind_address("127.3.4.5", false), "127.3.4.5");
+  EXPECT_THROW(emulator_bind_address("0.0.0.0", false), InputError);
+  EXPECT_THROW(emulator_bind_address("10.1.2.3", false), InputError);
+  EXPECT_EQ(emulator_bind_address("0.0.0.0", true), "0.0.0.0");
+  EXPECT_THROW(emulator_bind_address("no such host.invalid", true), InputError);
+  EXPECT_THROW(emulator_bind_address("", false), InputError);
+}
+
+TEST(DriveEmulator, OptionsOutsideTheirRangesAreRefused) {
+  EXPECT_NO_THROW(validate_emulator_options(EmulatorOptions{}));
+  auto refused = [](auto change) {
+    EmulatorOptions o;
+    change(o);
+    EXPECT_THROW(validate_emulator_options(o), InputError);
+  };
+  refused([](EmulatorOptions& o) { o.port = -1; });
+  refused([](EmulatorOptions& o) { o.port = 70000; });
+  refused([](EmulatorOptions& o) { o.comms_watchdog_s = 0; });
+  refused([](EmulatorOptions& o) { o.comms_watchdog_s = -1; });
+  refused([](EmulatorOptions& o) { o.bind_address = "localhost"; });  // names are resolved first
+  refused([](EmulatorOptions& o) { o.faults.delay_s = -0.1; });
+  refused([](EmulatorOptions& o) { o.faults.fault_axis = 3; });
+  refused([](EmulatorOptions& o) { o.faults.drop_after_writes = -2; });
   EmulatorOptions o;
+  o.comms_watchdog_s = 0;
+  auto emu = make(o);
+  EXPECT_THROW(emu->start(), InputError);  // before binding anything
+}
+
+// A malformed request (unknown function code) is answered with an exception
+// and does not stall the server: libmodbus waits its response timeout (0.5 s by
+// default) before flushing, which once blocked every client for that long.
+TEST(DriveEmulator, AMalformedRequestDoesNotStallTheServer) {
+  auto emu = make();
+  const int port = emu->start();
+  const int fd = ::socket(AF_INET, SOCK_STREAM, 0);
+  sockaddr_in a{};
+  a.sin_family = AF_INET;
+  a.sin_port = htons(static_cast<std::uint16_t>(port));
+  a.sin_addr.s_addr = htonl(INADDR_LOOPBACK);
+  ASSERT_EQ(::connect(fd, reinterpret_cast<sockaddr*>(&a), sizeof a), 0);
+  const std::uint8_t bad[] = {0, 1, 0, 0, 0, 2, 1, 0x55};  // MBAP, unit 1, function 0x55
+  ModbusTransport t("127.0.0.1", port, 0.3);
+  t.connect();
+  ASSERT_EQ(::send(fd, bad, sizeof bad, 0), static_cast<ssize_t>(sizeof bad));
+  // Another client, right behind it, is served within its response timeout (0.3 s).
+  std::uint16_t st = 0;
+  EXPECT_NO_THROW(t.read(1, 10, 1, &st));
+  std::uint8_t reply[16] = {};
+  ASSERT_EQ(::recv(fd, reply, sizeof reply, 0), 9);  // the exception reply
+  EXPECT_EQ(reply[7], 0x55 | 0x80);
+  EXPECT_EQ(reply[8], 1);  // illegal function
+  ::close(fd);
+}
+
+TEST(DriveEmulator, EnableEdgeWatchdogAndFault) {
+  // The plant and the watchdog run on a clock the test moves: each request is
+  // served before its call returns, and tick_now() shows its effect at once.
+  ManualClock clock;
+  std::function<void()> emu_tick;
+  auto settle_ticks = [&] {
+    clock.advance(0.004);
+    emu_tick();
+  };
+  EmulatorOptions o;
+  o.clock = &clock;
   o.comms_watchdog_s = 0.15;
   o.faults.fault_after_writes = 5;
   o.faults.fault_axis = 0;
   auto emu = make(o);
+  emu_tick = [&] { emu->tick_now(); };
   const int port = emu->start();
   ModbusTransport t("127.0.0.1", port, 0.5);
   t.connect();
@@ -45,8 +117,12 @@ TEST(DriveEmulator, EnableEdgeWatchdogAndFault) {
   t.write(2, 0, 1, &on);  // write 1
   settle_ticks();
   EXPECT_EQ(emu->power_on(), (std::array<bool, 3>{false, true, false}));
+  clock.advance(0.1);  // silence shorter than the comms watchdog: still on
+  emu->tick_now();
+  EXPECT_TRUE(emu->power_on()[1]);
   // Silence longer than the comms watchdog: the drive switches itself off ...
-  std::this_thread::sleep_for(std::chrono::milliseconds(250));
+  clock.advance(0.1);
+  emu->tick_now();
   EXPECT_EQ(emu->power_on(), (std::array<bool, 3>{false, false, false}));
   // ... and stays off although the enable bit is still set, until a new edge.
   std::uint16_t st = 0;

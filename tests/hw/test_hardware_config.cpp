@@ -32,7 +32,7 @@ TEST(HardwareConfig, ExamplesLoad) {
 }
 
 TEST(HardwareConfig, MissingSafetyIsRefused) {
-  const auto dir = test::temp_dir("cfg");
+  const test::TempDir dir("cfg");
   std::string text = test::read_text(kSrc + "/hw/examples/modbus_emulator.yaml");
   text = text.substr(0, text.find("safety:"));
   text.replace(text.find("register_map_emulator.yaml"), 26, kSrc + "/hw/examples/register_map_emulator.yaml");
@@ -43,10 +43,22 @@ TEST(HardwareConfig, MissingSafetyIsRefused) {
 }
 
 TEST(HardwareConfig, BadBackendNamesValidOnes) {
-  const auto dir = test::temp_dir("cfg2");
+  const test::TempDir dir("cfg2");
   test::write_text(dir / "hw.yaml", "backend: ethercat\n");
   EXPECT_NE(error_of((dir / "hw.yaml").string()).find("not a backend (valid: twin, modbus)"),
             std::string::npos);
+}
+
+TEST(HardwareConfig, RateOutsideTenTo2000HzIsRefused) {
+  const test::TempDir dir("cfg3");
+  std::string text = test::read_text(kSrc + "/hw/examples/twin.yaml");
+  for (const char* rate : {"0.001", "5", "2001"}) {
+    std::string t = text;
+    t.replace(t.find("rate_hz: 250"), 12, std::string("rate_hz: ") + rate);
+    test::write_text(dir / "hw.yaml", t);
+    const std::string e = error_of((dir / "hw.yaml").string());
+    EXPECT_NE(e.find("outside [10, 2000] Hz"), std::string::npos) << rate << ": " << e;
+  }
 }
 
 }  // namespace

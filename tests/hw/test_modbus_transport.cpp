@@ -1,12 +1,12 @@
-// Tests of hw/modbus_transport.cpp against the drive emulator on an ephemeral
+// Tests of hw/backends/modbus_transport.cpp against the drive emulator on an ephemeral
 // loopback port: register round trip, clear errors for a closed port and an
 // unknown unit.
 #include <gtest/gtest.h>
 
-#include "hw/drive_emulator.hpp"
+#include "hw/backends/drive_emulator.hpp"
 #include "hw/hardware_config.hpp"
 #include "hw/hw_errors.hpp"
-#include "hw/modbus_transport.hpp"
+#include "hw/backends/modbus_transport.hpp"
 
 namespace gpm::hw {
 namespace {

@@ -1,7 +1,7 @@
-// Tests of hw/register_map.cpp: parsing, clear errors, count conversions.
+// Tests of hw/backends/register_map.cpp: parsing, clear errors, count conversions.
 #include <gtest/gtest.h>
 
-#include "hw/register_map.hpp"
+#include "hw/backends/register_map.hpp"
 #include "hw_test_util.hpp"
 #include "models/errors.hpp"
 
@@ -64,6 +64,30 @@ TEST(RegisterMap, CountsConversions) {
   }
   EXPECT_EQ(split32(0x12345678, WordOrder::kHighFirst)[0], 0x1234);
   EXPECT_EQ(split32(0x12345678, WordOrder::kLowFirst)[0], 0x5678);
+}
+
+// Addresses that are not one drive, and axes that would share registers, are
+// refused (all were once accepted).
+TEST(RegisterMap, BroadcastAddressesAndSharedRegistersAreRefused) {
+  const std::string text = test::read_text(kSrc + "/hw/examples/register_map_emulator.yaml");
+  auto replaced = [&](const std::string& from, const std::string& to, size_t nth = 0) {
+    std::string t = text;
+    size_t a = t.find(from);
+    for (size_t k = 0; k < nth; ++k) a = t.find(from, a + 1);
+    return t.replace(a, from.size(), to);
+  };
+  EXPECT_EQ(error_of(text), "");
+  for (const char* host : {"0.0.0.0", "255.255.255.255", "224.0.0.1", "239.1.2.3"}) {
+    const std::string e = error_of(replaced("host: 127.0.0.1", std::string("host: ") + host));
+    EXPECT_NE(e.find("not one machine"), std::string::npos) << host << ": " << e;
+  }
+  EXPECT_EQ(error_of(replaced("host: 127.0.0.1", "host: 192.168.10.11")), "");
+  const std::string unit0 = error_of(replaced("unit_id: 2", "unit_id: 0"));
+  EXPECT_NE(unit0.find("broadcast"), std::string::npos) << unit0;
+  // Axis 2 on unit 1 with the same registers as axis 1.
+  const std::string shared = error_of(replaced("unit_id: 2", "unit_id: 1"));
+  EXPECT_NE(shared.find("shares unit_id 1 and register"), std::string::npos) << shared;
+  EXPECT_NE(shared.find("axes[0]"), std::string::npos) << shared;
 }
 
 }  // namespace

@@ -59,5 +59,26 @@ TEST(SafetyLimits, BadValuesNameTheKey) {
   EXPECT_NE(error_of(t).find("unknown key"), std::string::npos);
 }
 
+// Speeds, accelerations and lengths beyond what this robot can do are
+// refused (max_velocity 1e9 and workspace_radius 1e6 were once accepted).
+std::string with(const std::string& key, const std::string& value) {
+  std::string t = test::kSafetyYaml;
+  const size_t a = t.find("  " + key + ":");
+  const size_t b = t.find('\n', a);
+  return t.replace(a, b - a, "  " + key + ": " + value);
+}
+
+TEST(SafetyLimits, ValuesOutsidePhysicalRangesAreRefused) {
+  EXPECT_NE(error_of(with("max_velocity", "[1e9, 1, 1]")).find("max_velocity[0]"), std::string::npos);
+  EXPECT_NE(error_of(with("max_velocity", "[1, 1, 20.5]")).find("above 20 rad/s"), std::string::npos);
+  EXPECT_EQ(error_of(with("max_velocity", "[20, 20, 20]")), "");
+  EXPECT_NE(error_of(with("max_acceleration", "[1, 1e6, 1]")).find("max_acceleration[1]"), std::string::npos);
+  EXPECT_NE(error_of(with("workspace_radius", "1e6")).find("(0, 500] mm"), std::string::npos);
+  EXPECT_EQ(error_of(with("workspace_radius", "500")), "");
+  EXPECT_NE(error_of(with("reach_margin", "1e5")).find("reach_margin"), std::string::npos);
+  EXPECT_NE(error_of(with("workspace_centre", "[1e7, 250]")).find("workspace_centre"), std::string::npos);
+  EXPECT_NE(error_of(with("joint_max", "[1.9, 3.8, 100]")).find("joint_max"), std::string::npos);
+}
+
 }  // namespace
 }  // namespace gpm::hw

@@ -206,13 +206,17 @@ TEST(SafetySupervisor, SlowBackendIsACommsTimeout) {
   auto backend = std::make_unique<test::RecordingBackend>(ik_m(robot, robot.home));
   test::RecordingBackend* raw = backend.get();
   raw->wall_clock = true;
-  SafetySupervisor sup(std::move(backend), robot, test::example_limits());
+  ManualClock clock;  // the backend's reads take the time it is told, no sleeping
+  raw->clock = &clock;
+  SafetySupervisor sup(std::move(backend), robot, test::example_limits(), clock);
   sup.configure();
   sup.read(0.0);
   sup.activate();
-  raw->read_delay_s = 0.15;  // comms_timeout is 0.1 s
+  raw->read_delay_s = 0.09;  // comms_timeout is 0.1 s: in time
+  EXPECT_NO_THROW(sup.read(0.004));
+  raw->read_delay_s = 0.15;
   try {
-    sup.read(0.004);
+    sup.read(0.008);
     FAIL() << "no comms timeout";
   } catch (const SafetyError& e) {
     EXPECT_NE(std::string(e.what()).find("comms timeout: read of recording took"), std::string::npos)

@@ -1,14 +1,15 @@
-// Tests of hw/sampling_session.cpp (with the drive emulator, the Modbus
+// Tests of hw/procedures/sampling_session.cpp (with the drive emulator, the Modbus
 // transport and the drive backend underneath): the same session on `twin` and
 // on `modbus` gives samples within one encoder count; injected emulator faults
 // end in one clear error, drives disabled, samples so far intact on disk;
 // a resumed session skips what is recorded.
 #include <gtest/gtest.h>
 
-#include "hw/drive_emulator.hpp"
+#include "hw/backends/drive_emulator.hpp"
+#include "hw/clock.hpp"
 #include "hw/hardware_config.hpp"
 #include "hw/hw_errors.hpp"
-#include "hw/sampling_session.hpp"
+#include "hw/procedures/sampling_session.hpp"
 #include "hw_test_util.hpp"
 #include "models/errors.hpp"
 #include "models/samples.hpp"
@@ -46,12 +47,14 @@ fs::path map_file(const fs::path& dir, int port) {
 }
 
 struct ModbusRig {
-  fs::path dir;
+  test::TempDir dir;
+  ManualClock clock{true};  // the wall clock, which the test may move ahead
   std::unique_ptr<DriveEmulator> emu;
   HardwareConfig config;
-  explicit ModbusRig(const std::string& name, const EmulatorFaults& faults = {}) : dir(test::temp_dir(name)) {
+  explicit ModbusRig(const std::string& name, const EmulatorFaults& faults = {}) : dir(name) {
     EmulatorOptions o;
     o.faults = faults;
+    o.clock = &clock;
     const RegisterMap map0 = load_register_map(map_file(dir, 1502).string());
     emu = std::make_unique<DriveEmulator>(map0, twin_config_from_scenario(kScenario, 0.004), o);
     const int port = emu->start();
@@ -90,13 +93,14 @@ TEST(SamplingSession, TwinAndModbusAgreeWithinOneCount) {
   EXPECT_LE(worst, kCount * 1.0001) << "worst difference " << worst / kCount << " counts";
   std::printf("twin vs modbus: worst difference %.3f encoder counts\n", worst / kCount);
   EXPECT_EQ(hw->state(), LifecycleState::kFinalized);
-  std::this_thread::sleep_for(std::chrono::milliseconds(50));  // a few emulator ticks
+  rig.emu->tick_now();  // the client's disable is in the control words: off at the next tick
   EXPECT_EQ(rig.emu->power_on(), (std::array<bool, 3>{false, false, false}));
 }
 
 // Runs the session against an emulator with faults; expects one HardwareError,
 // the drives off, and the samples before the fault on disk.
-void expect_fault_handled(const std::string& name, const EmulatorFaults& f, const std::string& words) {
+void expect_fault_handled(const std::string& name, const EmulatorFaults& f, const std::string& words,
+                          bool client_disables) {
   ModbusRig rig(name, f);
   auto hw = make_hardware(rig.config);
   const fs::path csv = rig.dir / "s.csv";
@@ -113,9 +117,13 @@ void expect_fault_handled(const std::string& name, const EmulatorFaults& f, cons
   EXPECT_NE(message.find(words), std::string::npos) << message;
   EXPECT_NE(message.find("samples kept"), std::string::npos) << message;
   EXPECT_EQ(message.find('\n'), std::string::npos);
-  // Drives disabled: by the client, or by the drives' own comms watchdog.
-  for (int k = 0; k < 300 && rig.emu->power_on() != std::array<bool, 3>{}; ++k)
-    std::this_thread::sleep_for(std::chrono::milliseconds(10));
+  // Drives disabled: by the client (at the next tick), or, with the connection
+  // gone or stalled, by the drives' own comms watchdog (the clock moves past
+  // it once the client is gone and every request it sent was served).
+  hw.reset();
+  ASSERT_TRUE(rig.emu->wait_until_no_clients(30.0)) << name;
+  if (!client_disables) rig.clock.advance(1.0);
+  rig.emu->tick_now();
   EXPECT_EQ(rig.emu->power_on(), (std::array<bool, 3>{false, false, false})) << name;
   const Samples s = read_samples_csv(csv.string());
   EXPECT_GE(s.size(), 1u) << name;
@@ -129,32 +137,32 @@ constexpr long kAfterFirstSample = 900;
 TEST(SamplingSession, FaultConnectionDropped) {
   EmulatorFaults f;
   f.drop_after_writes = kAfterFirstSample;
-  expect_fault_handled("drop", f, "modbus-tcp 127.0.0.1");
+  expect_fault_handled("drop", f, "modbus-tcp 127.0.0.1", false);
 }
 
 TEST(SamplingSession, FaultDelayedReplies) {
   EmulatorFaults f;
   f.delay_after_writes = kAfterFirstSample;
   f.delay_s = 0.2;
-  expect_fault_handled("delay", f, "127.0.0.1");
+  expect_fault_handled("delay", f, "127.0.0.1", false);
 }
 
 TEST(SamplingSession, FaultBitSet) {
   EmulatorFaults f;
   f.fault_after_writes = kAfterFirstSample;
   f.fault_axis = 1;
-  expect_fault_handled("fault", f, "drive 2 reports a fault (fault code 0x2310");
+  expect_fault_handled("fault", f, "drive 2 reports a fault (fault code 0x2310", true);
 }
 
 TEST(SamplingSession, FaultGarbageRegisters) {
   EmulatorFaults f;
   f.garbage_after_writes = kAfterFirstSample;
   f.garbage_axis = 2;
-  expect_fault_handled("garbage", f, "drive 3: implausible encoder reading");
+  expect_fault_handled("garbage", f, "drive 3: implausible encoder reading", true);
 }
 
 TEST(SamplingSession, ResumeSkipsRecordedPoses) {
-  const fs::path dir = test::temp_dir("resume");
+  const test::TempDir dir("resume");
   test::write_text(dir / "twin.yaml", hw_yaml("twin", "twin: {scenario: " + kScenario + "}\n"));
   const HardwareConfig c = load_hardware_config((dir / "twin.yaml").string());
   SessionPlan p = plan();
@@ -177,7 +185,7 @@ TEST(SamplingSession, ResumeSkipsRecordedPoses) {
 }
 
 TEST(SamplingSession, PoseOutsideTheLimitsIsRefusedBeforeMoving) {
-  const fs::path dir = test::temp_dir("outside");
+  const test::TempDir dir("outside");
   test::write_text(dir / "twin.yaml", hw_yaml("twin", "twin: {scenario: " + kScenario + "}\n"));
   auto hw = make_hardware(load_hardware_config((dir / "twin.yaml").string()));
   SessionPlan p = plan();
@@ -185,6 +193,73 @@ TEST(SamplingSession, PoseOutsideTheLimitsIsRefusedBeforeMoving) {
   SampleLog log((dir / "s.csv").string(), false);
   EXPECT_THROW(run_sampling_session(*hw, p, log), InputError);
   EXPECT_EQ(hw->state(), LifecycleState::kUnconfigured);
+}
+
+// Resume checks the recorded plan: another plan (poses, order) or another
+// robot is refused before anything moves; the file is untouched.
+TEST(SamplingSession, ResumeRefusesAnotherPlanOrRobot) {
+  const test::TempDir dir("resume_plan");
+  test::write_text(dir / "twin.yaml", hw_yaml("twin", "twin: {scenario: " + kScenario + "}\n"));
+  const HardwareConfig c = load_hardware_config((dir / "twin.yaml").string());
+  SessionPlan p = plan();
+  p.poses.resize(2);
+  {
+    auto hw = make_hardware(c);
+    SampleLog log((dir / "s.csv").string(), false);
+    EXPECT_EQ(run_sampling_session(*hw, p, log).taken, 2);
+  }
+  const std::string recorded = test::read_text(dir / "s.csv");
+  auto resume_error = [&](const SessionPlan& q) {
+    auto hw = make_hardware(c);
+    SampleLog log((dir / "s.csv").string(), true);
+    try {
+      run_sampling_session(*hw, q, log);
+    } catch (const InputError& e) {
+      EXPECT_EQ(hw->state(), LifecycleState::kUnconfigured);  // nothing moved
+      return std::string(e.what());
+    }
+    return std::string();
+  };
+  SessionPlan swapped = plan();
+  std::swap(swapped.poses[0], swapped.poses[1]);
+  EXPECT_NE(resume_error(swapped).find("recorded with another plan"), std::string::npos);
+  SessionPlan shorter = plan();
+  shorter.poses.resize(1);
+  EXPECT_NE(resume_error(shorter).find("not in this plan"), std::string::npos);
+  // Another robot: readings far from this controller's IK of the poses.
+  std::string other = recorded;
+  const size_t row = other.find("\n0,") + 3;
+  other.replace(row, other.find(',', row) - row, "0.5");
+  test::write_text(dir / "s.csv", other);
+  EXPECT_NE(resume_error(plan()).find("another robot"), std::string::npos);
+  test::write_text(dir / "s.csv", recorded);
+  EXPECT_EQ(resume_error(plan()), "");  // the same plan resumes
+}
+
+// A stop request (the flag StopOnSignal sets) disables the drives at the next
+// cycle and throws Interrupted; the samples taken before are on disk.
+TEST(SamplingSession, StopRequestDisablesTheDrivesAndKeepsTheSamples) {
+  const test::TempDir dir("stop");
+  test::write_text(dir / "twin.yaml", hw_yaml("twin", "twin: {scenario: " + kScenario + "}\n"));
+  auto hw = make_hardware(load_hardware_config((dir / "twin.yaml").string()));
+  std::atomic<bool> stop{false};
+  SampleLog log((dir / "s.csv").string(), false);
+  std::string message;
+  SessionPlan p = plan();
+  SessionPlan first = p;
+  first.poses.resize(2);
+  EXPECT_EQ(run_sampling_session(*hw, first, log).taken, 2);
+  auto hw2 = make_hardware(load_hardware_config((dir / "twin.yaml").string()));
+  stop = true;  // requested before the first cycle of the resumed session
+  try {
+    run_sampling_session(*hw2, p, log, &stop);
+  } catch (const Interrupted& e) {
+    message = e.what();
+  }
+  EXPECT_NE(message.find("drives disabled"), std::string::npos) << message;
+  EXPECT_NE(message.find("2 samples kept"), std::string::npos) << message;
+  EXPECT_EQ(hw2->state(), LifecycleState::kFinalized);
+  EXPECT_EQ(read_samples_csv((dir / "s.csv").string()).size(), 2u);
 }
 
 }  // namespace

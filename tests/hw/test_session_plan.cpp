@@ -1,7 +1,7 @@
-// Tests of hw/session_plan.cpp: poses files and scenario plans.
+// Tests of hw/procedures/session_plan.cpp: poses files and scenario plans.
 #include <gtest/gtest.h>
 
-#include "hw/session_plan.hpp"
+#include "hw/procedures/session_plan.hpp"
 #include "hw_test_util.hpp"
 #include "models/errors.hpp"
 
@@ -11,7 +11,7 @@ namespace {
 const std::string kSrc = GPM_SOURCE_DIR;
 
 TEST(SessionPlan, PosesFile) {
-  const auto dir = test::temp_dir("plan");
+  const test::TempDir dir("plan");
   test::write_text(dir / "p.yaml",
                    "poses: [[236.5, 260], [196.5, 240]]\nsampling: {move_speed_mm_s: 50, settle: "
                    "{hold_s: 0.3}}\n");
@@ -23,7 +23,7 @@ TEST(SessionPlan, PosesFile) {
 }
 
 TEST(SessionPlan, BadPosesNameTheKey) {
-  const auto dir = test::temp_dir("plan2");
+  const test::TempDir dir("plan2");
   test::write_text(dir / "p.yaml", "poses: [[236.5, 260], [196.5]]\n");
   try {
     load_poses_plan((dir / "p.yaml").string());
@@ -40,6 +40,31 @@ TEST(SessionPlan, ScenarioPlan) {
   EXPECT_EQ(p.poses.size(), 30u);
   EXPECT_EQ(p.options.move_speed_mm_s, 150.0);
   for (const auto& x : p.poses) EXPECT_LE((x - Eigen::Vector2d(216.5, 250)).norm(), 60.0 + 1e-9);
+}
+
+// Speeds and durations outside physical ranges are refused before anything
+// moves (1e-300 mm/s once recorded at the wrong place, 1e9 s hung).
+TEST(SessionPlan, SettingsOutsidePhysicalRangesAreRefused) {
+  const test::TempDir dir("plan3");
+  auto error_of = [&](const std::string& sampling) {
+    test::write_text(dir / "p.yaml", "poses: [[236.5, 260]]\nsampling: " + sampling + "\n");
+    try {
+      load_poses_plan((dir / "p.yaml").string());
+    } catch (const InputError& e) {
+      return std::string(e.what());
+    }
+    return std::string();
+  };
+  EXPECT_NE(error_of("{move_speed_mm_s: 1e-300}").find("sampling.move_speed_mm_s"), std::string::npos);
+  EXPECT_NE(error_of("{move_speed_mm_s: 1e9}").find("outside [0.1, 1000] mm/s"), std::string::npos);
+  EXPECT_NE(error_of("{average_s: 1e9}").find("sampling.average_s"), std::string::npos);
+  EXPECT_NE(error_of("{settle: {timeout_s: 1e9}}").find("sampling.settle.timeout_s"), std::string::npos);
+  EXPECT_NE(error_of("{pattern: disc}").find("sampling.pattern"), std::string::npos);
+  EXPECT_EQ(error_of("{move_speed_mm_s: 1000, average_s: 10, settle: {timeout_s: 60}}"), "");
+  // The same bounds hold for a scenario's plan.
+  test::write_text(dir / "s.yaml",
+                   "name: s\nsampling: {pattern: circle, radius: 10, count: 3, average_s: 1e9}\n");
+  EXPECT_THROW(plan_from_scenario((dir / "s.yaml").string()), InputError);
 }
 
 }  // namespace

@@ -1,10 +1,10 @@
-// Tests of hw/twin_backend.cpp: drives off until activated, position hold,
+// Tests of hw/backends/twin_backend.cpp: drives off until activated, position hold,
 // commanded motion, torque-off joints follow the others, time advances by read().
 #include <gtest/gtest.h>
 
 #include "hw/hardware_config.hpp"
 #include "hw/hw_errors.hpp"
-#include "hw/twin_backend.hpp"
+#include "hw/backends/twin_backend.hpp"
 #include "models/kinematics.hpp"
 
 namespace gpm::hw {

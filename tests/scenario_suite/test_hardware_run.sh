@@ -2,24 +2,36 @@
 # gpm run with --hardware: the hardware_twin scenario sampled through Modbus
 # TCP and gpm-drive-emulator (loopback, ephemeral port) gives the same
 # verdict as on the in-process twin backend, and samples within two encoder
-# counts of it (17-bit).
+# counts of it (17-bit). A run whose connection drops keeps its samples and
+# says the command that goes on (--resume); that command finishes the run. A
+# signal disables the drives, keeps the samples and exits 130. A
+# bad-input run leaves no samples.csv. Everything happens in a fresh temporary
+# folder that is removed (re-runnable), and no step sleeps on the wall clock.
 set -u
 GPM="$1"; EMU="$2"; SRC="$3"
 tmp=$(mktemp -d); emu_pid=""
-cleanup() { [[ -n "$emu_pid" ]] && kill "$emu_pid" 2>/dev/null; rm -rf "$tmp"; }
+stop_emulator() { [[ -n "$emu_pid" ]] && kill "$emu_pid" 2>/dev/null && wait "$emu_pid" 2>/dev/null; emu_pid=""; }
+cleanup() { stop_emulator; rm -rf "$tmp"; }
 trap cleanup EXIT
 fail=0; passed=0
 ok() { passed=$((passed+1)); }
 bad() { echo "FAIL $1"; fail=$((fail+1)); }
 
+# Starts the emulator (extra flags: faults) and writes $tmp/map.yaml for its port.
+start_emulator() {
+  rm -f "$tmp/emu.fifo"; mkfifo "$tmp/emu.fifo"
+  "$EMU" --map "$SRC/hw/examples/register_map_emulator.yaml" --scenario "$SRC/scenarios/simulate_disc.yaml" \
+    --port 0 "$@" >"$tmp/emu.fifo" 2>"$tmp/emu.err" &
+  emu_pid=$!
+  local line=""
+  read -r -t 60 line <"$tmp/emu.fifo" || { bad "emulator did not start"; cat "$tmp/emu.err"; }
+  port=${line##*:}
+  sed "s/port: 1502/port: $port/" "$SRC/hw/examples/register_map_emulator.yaml" >"$tmp/map.yaml"
+}
+
 "$GPM" run "$SRC/scenarios/hardware_twin.yaml" -o "$tmp/twin" --quiet >"$tmp/twin.out" 2>&1 && ok || { bad "twin run"; cat "$tmp/twin.out"; }
 
-"$EMU" --map "$SRC/hw/examples/register_map_emulator.yaml" --scenario "$SRC/scenarios/simulate_disc.yaml" \
-  --port 0 >"$tmp/emu.out" 2>&1 &
-emu_pid=$!
-for _ in $(seq 100); do grep -q listening "$tmp/emu.out" && break; sleep 0.05; done
-port=$(sed -n 's/.*listening on 127\.0\.0\.1:\([0-9]*\).*/\1/p' "$tmp/emu.out")
-sed "s/port: 1502/port: $port/" "$SRC/hw/examples/register_map_emulator.yaml" >"$tmp/map.yaml"
+start_emulator
 sed -e "s|^controller: .*|controller: $SRC/models/gpm2002.yaml|" \
     -e "s|^  register_map: .*|  register_map: $tmp/map.yaml|" "$SRC/hw/examples/modbus_emulator.yaml" >"$tmp/modbus.yaml"
 
@@ -45,6 +57,67 @@ PY
 )
 echo "largest twin/modbus difference: $count counts"
 awk -v c="$count" 'BEGIN { exit !(c != "" && c <= 2.0) }' && ok || bad "samples differ by $count counts"
+stop_emulator
+
+# The connection drops after a few samples: exit 1, samples kept, the command that goes on.
+start_emulator --drop-after-writes 3000
+"$GPM" run "$SRC/scenarios/hardware_twin.yaml" --hardware "$tmp/modbus.yaml" -o "$tmp/drop" --quiet \
+  >"$tmp/drop.out" 2>"$tmp/drop.err"; rc=$?
+[[ $rc -eq 1 ]] && ok || { bad "dropped run: exit $rc, want 1"; cat "$tmp/drop.err"; }
+[[ $(wc -l <"$tmp/drop.err") -eq 1 ]] && ok || { bad "dropped run: stderr not one line"; cat "$tmp/drop.err"; }
+kept=$(($(wc -l <"$tmp/drop/samples.csv") - 1))
+[[ $kept -ge 1 && $kept -lt 50 ]] && ok || bad "dropped run kept $kept samples"
+go_on=$(sed -n 's/.*; to go on: \(gpm run .* --resume\)$/\1/p' "$tmp/drop.err")
+[[ "$go_on" == "gpm run $SRC/scenarios/hardware_twin.yaml -o $tmp/drop --hardware $tmp/modbus.yaml --resume" ]] && ok ||
+  { bad "dropped run: no exact command to go on"; cat "$tmp/drop.err"; }
+stop_emulator
+start_emulator  # the drives are back (new port, same hardware file)
+"$GPM" ${go_on#gpm } --quiet >"$tmp/resume.out" 2>&1 && ok || { bad "resumed run"; cat "$tmp/resume.out"; }
+grep -q "verdict    PASSED" "$tmp/resume.out" && ok || bad "resumed verdict"
+python3 - "$tmp/drop/samples.csv" <<'PY' && ok || bad "resumed samples: 50 distinct ids"
+import csv, sys
+ids = [int(r["sample"]) for r in csv.DictReader(open(sys.argv[1]))]
+sys.exit(0 if sorted(ids) == list(range(50)) else 1)
+PY
+stop_emulator
+
+# A signal while sampling: drives disabled first (the emulator's own watchdog is
+# long here), samples kept, one line with the command that goes on, exit 130.
+start_emulator --comms-watchdog 30
+"$GPM" run "$SRC/scenarios/hardware_twin.yaml" --hardware "$tmp/modbus.yaml" -o "$tmp/sig" --quiet \
+  >"$tmp/sig.out" 2>"$tmp/sig.err" &
+pid=$!
+read -r -t 120 first < <(tail -n +2 -F --pid=$pid "$tmp/sig/samples.csv" 2>/dev/null) || true
+kill -s INT "$pid"; wait "$pid"; rc=$?
+[[ $rc -eq 130 ]] && ok || { bad "interrupted run: exit $rc, want 130"; cat "$tmp/sig.err"; }
+[[ $(wc -l <"$tmp/sig.err") -eq 1 ]] && ok || { bad "interrupted run: stderr not one line"; cat "$tmp/sig.err"; }
+grep -qE "^gpm: interrupted by SIGINT: drives disabled; [0-9]+ samples kept in $tmp/sig/samples.csv; to go on: gpm run .* --resume$" \
+  "$tmp/sig.err" && ok || { bad "interrupted run: message"; cat "$tmp/sig.err"; }
+drives=$(python3 - "$port" <<'PY'
+import socket, struct, sys
+s = socket.create_connection(("127.0.0.1", int(sys.argv[1])), timeout=10)
+on = []
+for unit in (1, 2, 3):
+    s.sendall(struct.pack(">HHHBBHH", unit, 0, 6, unit, 3, 10, 1))
+    r = b""
+    while len(r) < 11:
+        r += s.recv(64)
+    on.append(str(struct.unpack(">H", r[9:11])[0] & 1))
+print(" ".join(on))
+PY
+)
+[[ "$drives" == "0 0 0" ]] && ok || bad "interrupted run: drives still on ($drives)"
+stop_emulator
+
+# Bad input (a pose outside a tight workspace): exit 2, no samples.csv left to block a rerun.
+sed "s/^  workspace_radius: .*/  workspace_radius: 30/" "$tmp/modbus.yaml" >"$tmp/tight.yaml"
+for attempt in 1 2; do
+  "$GPM" run "$SRC/scenarios/hardware_twin.yaml" --hardware "$tmp/tight.yaml" -o "$tmp/tight" --quiet \
+    >"$tmp/tight.out" 2>"$tmp/tight.err"; rc=$?
+  [[ $rc -eq 2 ]] && ok || { bad "bad-input run $attempt: exit $rc, want 2"; cat "$tmp/tight.err"; }
+  grep -q "outside the safety limits" "$tmp/tight.err" && ok || { bad "bad-input run $attempt: message"; cat "$tmp/tight.err"; }
+  [[ ! -e "$tmp/tight/samples.csv" ]] && ok || bad "bad-input run $attempt left samples.csv"
+done
 
 echo "$passed passed, $fail failed"
 [[ $fail -eq 0 ]]

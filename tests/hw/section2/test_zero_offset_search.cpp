@@ -1,9 +1,9 @@
-// Tests of hw/zero_offset_search.cpp (paper section 2.4 on the twin, through
+// Tests of hw/procedures/zero_offset_search.cpp (paper section 2.4 on the twin, through
 // the safety supervisor): the 9-point grid converges from three different
 // initial estimates to the twin's actual offsets; the direct fit of E gets
 // there with far fewer motions; encoder noise does not move the result much
 // (eq. 28); a search that leaves the safe workspace stops and says where.
-#include "hw/zero_offset_search.hpp"
+#include "hw/procedures/zero_offset_search.hpp"
 
 #include <cstdio>
 
@@ -35,7 +35,7 @@ const Vector2d kStarts[3] = {{219.5, 252.5}, {213.0, 247.5}, {217.5, 245.0}};
 constexpr double kGridTol = 1.2e-3;
 
 TEST(ZeroOffsetSearch, GridConvergesFromThreeStartsToTheActualOffsets) {
-  const auto dir = test::temp_dir("zero_grid");
+  const test::TempDir dir("zero_grid");
   const auto hw = test::write_twin_hardware(dir, test::kActualOffsets, 17, 0.0);
   std::vector<Vector3d> found;
   for (const Vector2d& s : kStarts) {
@@ -52,7 +52,7 @@ TEST(ZeroOffsetSearch, GridConvergesFromThreeStartsToTheActualOffsets) {
 }
 
 TEST(ZeroOffsetSearch, DirectFitIsMoreAccurateWithFewerMotions) {
-  const auto dir = test::temp_dir("zero_direct");
+  const test::TempDir dir("zero_direct");
   const auto hw = test::write_twin_hardware(dir, test::kActualOffsets, 17, 0.0);
   ZeroSearchOptions o = test::fast_options(kStarts[0]);
   o.method = ZeroMethod::kDirect;
@@ -71,7 +71,7 @@ TEST(ZeroOffsetSearch, RobustToEncoderNoise) {
   // 5e-5 rad of Gaussian reading noise (about 1 count of a 17-bit encoder):
   // eq. 28 says E only gains the noise variance, so the minimum stays put.
   // The step-2 readings at R enter the offsets directly: average them longer.
-  const auto dir = test::temp_dir("zero_noise");
+  const test::TempDir dir("zero_noise");
   const auto hw = test::write_twin_hardware(dir, test::kActualOffsets, 17, 5e-5);
   ZeroSearchOptions g = test::fast_options(kStarts[1]);
   g.settle_velocity_rad_s = 0.01;  // the noisy speed readings rarely drop below 0.002 rad/s
@@ -100,16 +100,25 @@ TEST(ZeroOffsetSearch, RobustToEncoderNoise) {
 TEST(ZeroOffsetSearch, StopsAndReportsWhenTheSearchLeavesTheSafeWorkspace) {
   // Workspace disc of 45 - 5 mm: the 30 mm circle fits about the start but not
   // about every candidate of the d = 4 mm pattern.
-  const auto dir = test::temp_dir("zero_leave");
+  const test::TempDir dir("zero_leave");
   const auto hw = test::write_twin_hardware(dir, test::kActualOffsets, 17, 0.0, 45.0);
   const HardwareConfig cfg = load_hardware_config(hw.string());
   auto sup = make_hardware(cfg);
   std::vector<ZeroCandidate> sunk;
   ZeroSearchOptions o = test::fast_options(kStarts[2]);
   o.circle_radius_mm = 30.0;
-  const ZeroSearchResult r =
-      run_zero_offset_search(*sup, o, [&](const ZeroCandidate& z) { sunk.push_back(z); });
+  ZeroSearchResult r;
+  bool stopped = false;
+  try {
+    r = run_zero_offset_search(*sup, o, [&](const ZeroCandidate& z) { sunk.push_back(z); });
+  } catch (const ZeroSearchStopped& e) {  // the procedure convention: a stop throws
+    stopped = true;
+    r = e.partial();
+    EXPECT_EQ(std::string(e.what()), r.error);
+    EXPECT_FALSE(e.interrupted());
+  }
   print("leave", r);
+  ASSERT_TRUE(stopped);
   ASSERT_FALSE(r.ok);
   EXPECT_NE(r.error.find("search point"), std::string::npos) << r.error;
   EXPECT_NE(r.error.find("outside the safe workspace"), std::string::npos) << r.error;

@@ -10,7 +10,7 @@
 #include <fmt/format.h>
 
 #include "hw/hardware_config.hpp"
-#include "hw/zero_offset_search.hpp"
+#include "hw/procedures/zero_offset_search.hpp"
 #include "../hw_test_util.hpp"
 
 namespace gpm::hw::test {

@@ -8,8 +8,8 @@
 
 #include <gtest/gtest.h>
 
-#include "hw/drive_emulator.hpp"
-#include "hw/zero_offset_search.hpp"
+#include "hw/backends/drive_emulator.hpp"
+#include "hw/procedures/zero_offset_search.hpp"
 #include "../zero_test_util.hpp"
 
 namespace gpm::hw {
@@ -18,7 +18,7 @@ namespace {
 namespace fs = std::filesystem;
 
 TEST(ZeroOffsetSearchModbus, DirectMethodThroughTheEmulatorFindsTheOffsets) {
-  const fs::path dir = test::temp_dir("zero_modbus");
+  const test::TempDir dir("zero_modbus");
   const fs::path twin_hw = test::write_twin_hardware(dir, test::kActualOffsets, 17, 0.0);
   std::string map_text = test::read_text(test::kSrc + "/hw/examples/register_map_emulator.yaml");
   test::write_text(dir / "map.yaml", map_text);
@@ -46,7 +46,7 @@ TEST(ZeroOffsetSearchModbus, DirectMethodThroughTheEmulatorFindsTheOffsets) {
   EXPECT_GT((r.initial_offsets - test::kActualOffsets).cwiseAbs().maxCoeff(), 5e-3);
   EXPECT_LT((r.offsets - test::kActualOffsets).cwiseAbs().maxCoeff(), 1e-3);
   EXPECT_EQ(hw->state(), LifecycleState::kFinalized);
-  std::this_thread::sleep_for(std::chrono::milliseconds(50));
+  emu.tick_now();  // the client's disable is in the control words: off at the next tick
   EXPECT_EQ(emu.power_on(), (std::array<bool, 3>{false, false, false}));
 }
 

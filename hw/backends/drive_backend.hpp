@@ -1,0 +1,48 @@
+// Backend over servo drives reached through any RegisterTransport, with the
+// register map naming where each value lives. With a ModbusTransport it is
+// the `modbus` backend; the drive logic (enable, command, status, faults)
+// does not depend on the protocol. Time is the wall clock.
+#pragma once
+
+#include <memory>
+
+#include "hw/backends/register_map.hpp"
+#include "hw/backends/register_transport.hpp"
+#include "hw/robot_hardware.hpp"
+
+namespace gpm::hw {
+
+class DriveBackend final : public RobotHardware {
+ public:
+  // Drives described by map, reached through transport (owned), cycled every period_s.
+  DriveBackend(const RegisterMap& map, std::unique_ptr<RegisterTransport> transport,
+               double period_s);
+  ~DriveBackend() override;
+
+  double period_s() const override { return period_s_; }
+  std::string describe() const override { return transport_->describe(); }
+
+ protected:
+  void on_configure(HardwareState& initial) override;
+  void on_activate(const HardwareState& current) override;
+  void on_deactivate() override;
+  void on_shutdown() noexcept override;
+  void on_error() noexcept override;
+  void on_read(double time_s, HardwareState& state) override;
+  void on_write(const HardwareCommand& command, double time_s) override;
+
+ private:
+  void read_axes(double time_s, HardwareState& s);
+  void set_enable(int axis, bool on);
+  void disable_all() noexcept;
+
+  RegisterMap map_;
+  std::unique_ptr<RegisterTransport> transport_;
+  double period_s_;
+  std::array<std::uint16_t, 3> control_{};   // last control word written per axis
+  std::array<bool, 3> enable_{};             // enable bit requested per axis
+  bool have_previous_ = false;
+  HardwareState previous_;
+};
+
+}  // namespace gpm::hw

@@ -1,0 +1,399 @@
+#include "hw/backends/drive_emulator.hpp"
+
+#include <arpa/inet.h>
+#include <netdb.h>
+#include <netinet/in.h>
+#include <sys/select.h>
+#include <sys/socket.h>
+#include <unistd.h>
+
+#include <algorithm>
+#include <chrono>
+#include <map>
+#include <random>
+#include <vector>
+
+#include <fmt/format.h>
+#include <modbus.h>
+
+#include "hw/hw_errors.hpp"
+#include "models/errors.hpp"
+
+namespace gpm::hw {
+namespace {
+
+
+bool get_bit(const std::uint16_t* regs, const RegisterBit& b) { return (regs[b.address] >> b.bit) & 1u; }
+
+void put_bit(std::uint16_t* regs, const RegisterBit& b, bool on) {
+  const auto mask = static_cast<std::uint16_t>(1u << b.bit);
+  regs[b.address] = on ? static_cast<std::uint16_t>(regs[b.address] | mask)
+                       : static_cast<std::uint16_t>(regs[b.address] & ~mask);
+}
+
+}  // namespace
+
+std::string emulator_bind_address(const std::string& name, bool allow_non_loopback) {
+  addrinfo hints{};
+  hints.ai_family = AF_INET;
+  hints.ai_socktype = SOCK_STREAM;
+  addrinfo* found = nullptr;
+  const int rc = ::getaddrinfo(name.c_str(), nullptr, &hints, &found);
+  if (rc != 0 || !found) {
+    throw InputError(fmt::format("--bind: '{}' is not an IPv4 address or a name with one ({}); "
+                                 "e.g. 127.0.0.1 or localhost",
+                                 name, rc != 0 ? gai_strerror(rc) : "no address"));
+  }
+  const in_addr a = reinterpret_cast<const sockaddr_in*>(found->ai_addr)->sin_addr;
+  ::freeaddrinfo(found);
+  char text[INET_ADDRSTRLEN] = {};
+  ::inet_ntop(AF_INET, &a, text, sizeof text);
+  const bool loopback = (ntohl(a.s_addr) >> 24) == 127;
+  if (!loopback && !allow_non_loopback) {
+    throw InputError(fmt::format("--bind: '{}' ({}) is not a loopback address; Modbus TCP has no "
+                                 "authentication, so listening beyond this machine needs "
+                                 "--allow-non-loopback",
+                                 name, text));
+  }
+  return text;
+}
+
+void validate_emulator_options(const EmulatorOptions& o) {
+  in_addr a{};
+  if (::inet_pton(AF_INET, o.bind_address.c_str(), &a) != 1) {
+    throw InputError(fmt::format("--bind: '{}' is not a numeric IPv4 address (resolve names with "
+                                 "emulator_bind_address)",
+                                 o.bind_address));
+  }
+  if (o.port < 0 || o.port > 65535)
+    throw InputError(fmt::format("--port: {} is outside 0..65535 (0: an ephemeral port)", o.port));
+  if (!(o.tick_s > 0 && o.tick_s <= 60))
+    throw InputError(fmt::format("tick: {} s is outside (0, 60] s", o.tick_s));
+  if (!(o.comms_watchdog_s > 0 && o.comms_watchdog_s <= 60)) {
+    throw InputError(fmt::format("--comms-watchdog: {} s is outside (0, 60] s (0 would switch the "
+                                 "drives off before any request)",
+                                 o.comms_watchdog_s));
+  }
+  const EmulatorFaults& f = o.faults;
+  for (const auto& [flag, n] : {std::pair{"--drop-after-writes", f.drop_after_writes},
+                                std::pair{"--delay-after-writes", f.delay_after_writes},
+                                std::pair{"--fault-after-writes", f.fault_after_writes},
+                                std::pair{"--garbage-after-writes", f.garbage_after_writes}}) {
+    if (n < -1) throw InputError(fmt::format("{}: {} is not a count of writes (>= 0, or -1: never)", flag, n));
+  }
+  if (!(f.delay_s >= 0 && f.delay_s <= 60))
+    throw InputError(fmt::format("--delay: {} s is outside [0, 60] s", f.delay_s));
+  if (f.fault_axis < 0 || f.fault_axis > 2 || f.garbage_axis < 0 || f.garbage_axis > 2)
+    throw InputError("--fault-axis, --garbage-axis: an axis is 0, 1 or 2");
+}
+
+struct DriveEmulator::Impl {
+  modbus_t* ctx = nullptr;
+  std::map<int, modbus_mapping_t*> units;
+  std::vector<int> clients;
+  std::array<bool, 3> power{}, armed{true, true, true}, fault{}, garbage{};
+  Eigen::Vector3d command_theta = Eigen::Vector3d::Zero();
+  std::array<JointMode, 3> command_mode{};
+  double command_time = 0.0;
+  bool feedforward_live = false;
+  double start = 0.0, last_request = 0.0;  // on the emulator's clock (s)
+  bool seen_request = false;
+  long writes = 0;
+  bool delaying = false, dropped = false;
+  std::string error;
+  std::mt19937 rng{12345};
+
+  std::uint16_t* regs(int unit) { return units.at(unit)->tab_registers; }
+};
+
+DriveEmulator::DriveEmulator(const RegisterMap& map, const TwinBackendConfig& twin,
+                             const EmulatorOptions& options)
+    : map_(map), options_(options), clock_(options.clock ? *options.clock : steady_clock()), twin_(twin),
+      impl_(std::make_unique<Impl>()) {}
+
+bool DriveEmulator::wait_until_no_clients(double timeout_s) {
+  std::unique_lock lock(mutex_);
+  return clients_gone_.wait_for(lock, std::chrono::duration<double>(timeout_s),
+                                [&] { return impl_->clients.empty(); });
+}
+
+void DriveEmulator::tick_now() {
+  std::lock_guard lock(mutex_);
+  prepare();
+  tick(clock_.now() - impl_->start);
+}
+
+DriveEmulator::~DriveEmulator() {
+  stop();
+  for (auto& [unit, m] : impl_->units) modbus_mapping_free(m);
+  if (impl_->ctx) modbus_free(impl_->ctx);
+}
+
+void DriveEmulator::prepare() {
+  Impl& s = *impl_;
+  if (!s.units.empty()) return;
+  validate_emulator_options(options_);
+  // Register space per unit, large enough for every address of its axes.
+  std::map<int, int> size;
+  for (const AxisRegisters& a : map_.axes) {
+    int hi = std::max({a.position_command + 1, a.actual_position + 1, a.status_word,
+                       a.control_word, a.enable.address, a.enabled.address, a.fault.address,
+                       a.actual_velocity + 1, a.actual_torque, a.fault_code});
+    size[a.unit_id] = std::max(size[a.unit_id], hi + 1);
+  }
+  for (auto [unit, n] : size) s.units[unit] = modbus_mapping_new(0, 0, n, 0);
+  twin_.configure();
+  twin_.activate();
+  const HardwareState& st = twin_.last_state();
+  for (int i = 0; i < 3; ++i) {
+    const AxisRegisters& a = map_.axes[i];
+    const auto c = split32(theta_to_counts(a, st.theta_m[i]), map_.word_order);
+    std::copy(c.begin(), c.end(), s.regs(a.unit_id) + a.position_command);
+    s.command_theta[i] = st.theta_m[i];
+  }
+  s.ctx = modbus_new_tcp(options_.bind_address.c_str(), options_.port);
+  if (!s.ctx) throw HardwareError("drive emulator: cannot create a Modbus context");
+  // After a malformed request libmodbus waits its response timeout before it
+  // flushes the connection; the server is single-threaded, so keep that short
+  // (the default 0.5 s stalled every client).
+  modbus_set_response_timeout(s.ctx, 0, 1000);
+  s.start = clock_.now();
+  s.last_request = s.start;
+}
+
+int DriveEmulator::start() {
+  Impl& s = *impl_;
+  prepare();
+  listen_fd_ = modbus_tcp_listen(s.ctx, 8);
+  if (listen_fd_ < 0) {
+    throw HardwareError(fmt::format("drive emulator: cannot listen on {}:{}: {}",
+                                    options_.bind_address, options_.port, modbus_strerror(errno)));
+  }
+  sockaddr_in addr{};
+  socklen_t len = sizeof addr;
+  getsockname(listen_fd_, reinterpret_cast<sockaddr*>(&addr), &len);
+  port_ = ntohs(addr.sin_port);
+  tick(0.0);
+  thread_ = std::thread([this] { serve(); });
+  return port_;
+}
+
+void DriveEmulator::stop() {
+  stop_ = true;
+  if (thread_.joinable()) thread_.join();
+  close_clients();
+  if (listen_fd_ >= 0) ::close(listen_fd_);
+  listen_fd_ = -1;
+}
+
+void DriveEmulator::close_clients() {
+  for (int fd : impl_->clients) ::close(fd);
+  impl_->clients.clear();
+  clients_gone_.notify_all();
+}
+
+std::array<bool, 3> DriveEmulator::power_on() const {
+  std::lock_guard lock(mutex_);
+  return impl_->power;
+}
+
+long DriveEmulator::writes() const {
+  std::lock_guard lock(mutex_);
+  return impl_->writes;
+}
+
+sim::TwinSnapshot DriveEmulator::snapshot() const {
+  std::lock_guard lock(mutex_);
+  return twin_.snapshot();
+}
+
+std::string DriveEmulator::error() const {
+  std::lock_guard lock(mutex_);
+  return impl_->error;
+}
+
+void DriveEmulator::tick(double t) {
+  Impl& s = *impl_;
+  const bool comms_lost =
+      s.seen_request &&
+      clock_.now() - s.last_request > options_.comms_watchdog_s;
+  HardwareCommand cmd;
+  for (int i = 0; i < 3; ++i) {
+    const AxisRegisters& a = map_.axes[i];
+    std::uint16_t* r = s.regs(a.unit_id);
+    const bool enable = get_bit(r, a.enable);
+    if (!enable) {
+      s.power[i] = false;
+      s.armed[i] = true;
+    } else if (s.armed[i] && !s.fault[i] && !comms_lost) {
+      s.power[i] = true;  // rising edge of enable
+      s.armed[i] = false;
+    }
+    if (s.fault[i] || comms_lost) s.power[i] = false;
+    cmd.mode[i] = s.power[i] ? JointMode::kPosition : JointMode::kTorqueOff;
+    cmd.theta_m[i] = counts_to_theta(a, join32(r + a.position_command, map_.word_order));
+  }
+  if (cmd.theta_m != s.command_theta || cmd.mode != s.command_mode) {
+    twin_.write(cmd, t);
+    s.command_theta = cmd.theta_m;
+    s.command_mode = cmd.mode;
+    s.command_time = t;
+    s.feedforward_live = true;
+  } else if (s.feedforward_live && t - s.command_time > 1.5 * twin_.period_s()) {
+    // No new setpoint for a command period: the target stands still, so the
+    // velocity feed-forward drops to zero (as a drive's setpoint interpolator does).
+    twin_.write(cmd, t);
+    s.feedforward_live = false;
+  }
+  const HardwareState& st = twin_.read(t);
+  for (int i = 0; i < 3; ++i) {
+    const AxisRegisters& a = map_.axes[i];
+    std::uint16_t* r = s.regs(a.unit_id);
+    std::array<std::uint16_t, 2> pos = split32(theta_to_counts(a, st.theta_m[i]), map_.word_order);
+    if (s.garbage[i]) pos = {static_cast<std::uint16_t>(s.rng()), static_cast<std::uint16_t>(s.rng())};
+    std::copy(pos.begin(), pos.end(), r + a.actual_position);
+    if (a.actual_velocity >= 0) {
+      const double cps = a.sign * st.velocity[i] / (2.0 * M_PI) * static_cast<double>(a.counts_per_rev);
+      const auto v = split32(static_cast<std::int32_t>(std::lround(cps)), map_.word_order);
+      std::copy(v.begin(), v.end(), r + a.actual_velocity);
+    }
+    if (a.actual_torque >= 0) {
+      const long tq = std::clamp(std::lround(a.sign * st.torque[i] / a.torque_unit_nm), -32768L, 32767L);
+      r[a.actual_torque] = static_cast<std::uint16_t>(static_cast<std::int16_t>(tq));
+    }
+    put_bit(r, a.enabled, s.power[i]);
+    put_bit(r, a.fault, s.fault[i]);
+    if (a.fault_code >= 0) r[a.fault_code] = s.fault[i] ? options_.faults.fault_code : 0;
+  }
+}
+
+void DriveEmulator::handle_request(int fd) {
+  Impl& s = *impl_;
+  std::uint8_t q[MODBUS_TCP_MAX_ADU_LENGTH];
+  modbus_set_socket(s.ctx, fd);
+  const int rc = modbus_receive(s.ctx, q);
+  if (rc <= 0) {
+    if (rc < 0) {
+      ::close(fd);
+      s.clients.erase(std::remove(s.clients.begin(), s.clients.end(), fd), s.clients.end());
+      if (s.clients.empty()) clients_gone_.notify_all();
+    }
+    return;
+  }
+  s.last_request = clock_.now();
+  s.seen_request = true;
+  const int unit = q[6], function = q[7];
+  const EmulatorFaults& f = options_.faults;
+  if (function == MODBUS_FC_WRITE_SINGLE_REGISTER || function == MODBUS_FC_WRITE_MULTIPLE_REGISTERS) {
+    ++s.writes;
+    auto hit = [&](long after) { return after >= 0 && s.writes >= after; };
+    if (hit(f.drop_after_writes)) {
+      s.dropped = true;
+      close_clients();
+      ::close(listen_fd_);
+      listen_fd_ = -1;
+      return;
+    }
+    if (hit(f.delay_after_writes)) s.delaying = true;
+    if (hit(f.fault_after_writes)) s.fault[static_cast<size_t>(f.fault_axis)] = true;
+    if (hit(f.garbage_after_writes)) s.garbage[static_cast<size_t>(f.garbage_axis)] = true;
+  }
+  if (s.delaying) {
+    mutex_.unlock();
+    clock_.sleep_until(clock_.now() + f.delay_s);
+    mutex_.lock();
+  }
+  modbus_set_socket(s.ctx, fd);
+  const auto it = s.units.find(unit);
+  if (it == s.units.end()) {
+    modbus_reply_exception(s.ctx, q, MODBUS_EXCEPTION_GATEWAY_PATH);
+  } else {
+    modbus_reply(s.ctx, q, rc, it->second);
+  }
+}
+
+std::string DriveEmulator::serve_bytes(std::string_view bytes, double t_s) {
+  std::lock_guard lock(mutex_);
+  prepare();
+  int sv[2];
+  if (::socketpair(AF_UNIX, SOCK_STREAM, 0, sv) != 0) throw HardwareError("drive emulator: socketpair failed");
+  // The client's end: every request, then end of stream (the client hangs up).
+  size_t sent = 0;
+  while (sent < bytes.size()) {
+    const ssize_t n = ::send(sv[0], bytes.data() + sent, bytes.size() - sent, MSG_NOSIGNAL);
+    if (n <= 0) break;
+    sent += static_cast<size_t>(n);
+  }
+  ::shutdown(sv[0], SHUT_WR);
+  impl_->clients.push_back(sv[1]);
+  // Each request is read and answered; the end of the stream closes the
+  // server's end (each round consumes at least one byte or ends the stream).
+  auto open = [&] { return std::find(impl_->clients.begin(), impl_->clients.end(), sv[1]) != impl_->clients.end(); };
+  std::string reply;
+  auto take_replies = [&] {  // the client reads as it goes (a full socket would block the server)
+    char buf[4096];
+    for (;;) {
+      const ssize_t n = ::recv(sv[0], buf, sizeof buf, MSG_DONTWAIT);
+      if (n <= 0) break;
+      reply.append(buf, static_cast<size_t>(n));
+    }
+  };
+  for (size_t round = 0; round <= bytes.size() && open(); ++round) {
+    handle_request(sv[1]);
+    take_replies();
+  }
+  if (open()) {
+    ::close(sv[1]);
+    impl_->clients.erase(std::remove(impl_->clients.begin(), impl_->clients.end(), sv[1]), impl_->clients.end());
+  }
+  tick(t_s);
+  take_replies();
+  ::close(sv[0]);
+  return reply;
+}
+
+void DriveEmulator::serve() {
+  Impl& s = *impl_;
+  double next_tick = clock_.now();
+  try {
+    while (!stop_) {
+      fd_set set;
+      FD_ZERO(&set);
+      int maxfd = -1;
+      {
+        std::lock_guard lock(mutex_);
+        if (listen_fd_ >= 0) FD_SET(listen_fd_, &set), maxfd = listen_fd_;
+        for (int fd : s.clients) FD_SET(fd, &set), maxfd = std::max(maxfd, fd);
+      }
+      // Wait for a request until the next tick (at most one tick of real time,
+      // so an injected clock that moves by itself is followed too).
+      const double wait = std::clamp(next_tick - clock_.now(), 0.0, options_.tick_s);
+      timeval tv{0, static_cast<suseconds_t>(wait * 1e6)};
+      const int n = ::select(maxfd + 1, &set, nullptr, nullptr, &tv);
+      std::unique_lock lock(mutex_);
+      if (n > 0) {
+        if (listen_fd_ >= 0 && FD_ISSET(listen_fd_, &set)) {
+          const int fd = ::accept(listen_fd_, nullptr, nullptr);
+          if (fd >= 0) s.clients.push_back(fd);
+        }
+        const std::vector<int> ready = s.clients;
+        for (int fd : ready) {
+          if (FD_ISSET(fd, &set) && std::find(s.clients.begin(), s.clients.end(), fd) != s.clients.end())
+            handle_request(fd);
+        }
+      }
+      const double now = clock_.now();
+      if (now >= next_tick) {
+        tick(now - s.start);
+        next_tick += options_.tick_s;
+        if (next_tick < now) next_tick = now + options_.tick_s;
+      }
+    }
+  } catch (const std::exception& e) {
+    std::lock_guard lock(mutex_);
+    s.error = e.what();
+    s.power = {};
+  }
+}
+
+}  // namespace gpm::hw

@@ -1,0 +1,103 @@
+#include "hw/backends/twin_backend.hpp"
+
+#include <fmt/format.h>
+
+#include "hw/hw_errors.hpp"
+#include "models/kinematics.hpp"
+#include "sim/mujoco_util.hpp"
+
+namespace gpm::hw {
+
+TwinBackend::TwinBackend(TwinBackendConfig config) : config_(std::move(config)) {}
+
+TwinBackend::~TwinBackend() = default;
+
+const sim::TwinSnapshot& TwinBackend::snapshot() const {
+  if (!state_) throw LifecycleError("twin snapshot: the twin is not configured");
+  return state_->last;
+}
+
+const sim::TwinModel& TwinBackend::model_for(unsigned mask) {
+  auto it = models_.find(mask);
+  if (it == models_.end()) {
+    sim::TwinConfig c = config_.twin;
+    for (int i = 0; i < 3; ++i) {
+      c.drives[i].mode = (mask >> i) & 1u ? sim::ServoMode::kPosition : sim::ServoMode::kTorqueOff;
+    }
+    try {
+      it = models_.emplace(mask, std::make_unique<sim::TwinModel>(config_.actual, c)).first;
+    } catch (const sim::SimError& e) {
+      throw HardwareError(fmt::format("twin: {}", e.what()));
+    }
+  }
+  return *it->second;
+}
+
+void TwinBackend::fill(HardwareState& s) const {
+  const sim::TwinSnapshot& last = state_->last;
+  s.time_s = last.time_s;
+  s.theta_m = last.readings;
+  s.velocity = last.velocity;
+  s.torque = last.torque;
+  for (int i = 0; i < 3; ++i) {
+    s.drive[i] = DriveStatus{};
+    s.drive[i].enabled = (mask_ >> i) & 1u;
+    s.drive[i].status_word = s.drive[i].enabled ? 0x0001 : 0x0000;
+  }
+}
+
+void TwinBackend::on_configure(HardwareState& initial) {
+  mask_ = 0;
+  state_ = std::make_unique<sim::TwinState>(model_for(0b111), config_.seed);
+  model_for(0);
+  last_command_ = state_->last.readings;
+  fill(initial);
+}
+
+void TwinBackend::on_activate(const HardwareState&) {
+  last_command_ = state_->last.readings;
+  sim::twin_command(*state_, last_command_, Eigen::Vector3d::Zero());
+  mask_ = 0b111;
+}
+
+void TwinBackend::on_deactivate() { mask_ = 0; }
+
+void TwinBackend::on_shutdown() noexcept {
+  mask_ = 0;
+  state_.reset();
+}
+
+void TwinBackend::on_error() noexcept { mask_ = 0; }
+
+void TwinBackend::on_reset() { state_.reset(); }
+
+void TwinBackend::on_read(double time_s, HardwareState& s) {
+  const sim::TwinModel& model = model_for(mask_);
+  const double h = model.timestep_s();
+  try {
+    while (state_->data->time + 0.5 * h < time_s) sim::twin_step(model, *state_);
+  } catch (const sim::SimError& e) {
+    throw HardwareError(fmt::format("twin: {}", e.what()));
+  }
+  fill(s);
+}
+
+void TwinBackend::on_write(const HardwareCommand& cmd, double) {
+  unsigned mask = 0;
+  Eigen::Vector3d position = cmd.theta_m;
+  Eigen::Vector3d velocity = Eigen::Vector3d::Zero();
+  for (int i = 0; i < 3; ++i) {
+    if (cmd.mode[i] == JointMode::kPosition) {
+      mask |= 1u << i;
+      velocity[i] = wrap_pi(position[i] - last_command_[i]) / config_.period_s;
+    } else {
+      position[i] = state_->last.readings[i];
+    }
+  }
+  model_for(mask);
+  sim::twin_command(*state_, position, velocity);
+  last_command_ = position;
+  mask_ = mask;
+}
+
+}  // namespace gpm::hw

@@ -1,0 +1,166 @@
+#include "hw/procedures/sample_log.hpp"
+
+#include <fcntl.h>
+#include <sys/file.h>
+#include <unistd.h>
+
+#include <cerrno>
+#include <cstring>
+#include <filesystem>
+#include <fstream>
+#include <sstream>
+#include <vector>
+
+#include <fmt/format.h>
+
+#include "hw/hw_errors.hpp"
+#include "models/errors.hpp"
+#include "models/robot_yaml.hpp"
+#include "models/samples.hpp"
+#include "models/yaml_util.hpp"
+
+namespace gpm::hw {
+namespace {
+
+constexpr const char* kHeader = "sample,theta_m1,theta_m2,theta_m3,target_x,target_y\n";
+
+void write_all(int fd, const std::string& text, const std::string& path) {
+  size_t done = 0;
+  while (done < text.size()) {
+    const ssize_t n = ::write(fd, text.data() + done, text.size() - done);
+    if (n < 0 && errno == EINTR) continue;
+    if (n <= 0) throw HardwareError(fmt::format("{}: write failed: {}", path, std::strerror(errno)));
+    done += static_cast<size_t>(n);
+  }
+  if (::fsync(fd) != 0) throw HardwareError(fmt::format("{}: fsync failed: {}", path, std::strerror(errno)));
+}
+
+// Takes the exclusive lock of fd (one session appends to a file at a time).
+void lock_or_refuse(int fd, const std::string& path) {
+  if (::flock(fd, LOCK_EX | LOCK_NB) == 0) return;
+  const int err = errno;
+  ::close(fd);
+  if (err == EWOULDBLOCK) {
+    throw InputError(fmt::format("{}: another session is appending to this file (it is locked); "
+                                 "wait for it to end",
+                                 path));
+  }
+  throw InputError(fmt::format("{}: cannot lock: {}", path, std::strerror(err)));
+}
+
+}  // namespace
+
+SampleLog::SampleLog(const std::string& path, bool resume) : path_(path) {
+  fd_ = ::open(path.c_str(), O_RDWR | O_APPEND | O_CLOEXEC);
+  if (fd_ < 0) {
+    if (errno != ENOENT) throw InputError(fmt::format("{}: cannot open: {}", path, std::strerror(errno)));
+    return;  // created with the first sample: a session that takes none leaves no file
+  }
+  lock_or_refuse(fd_, path);
+  try {
+    read_existing(resume);
+  } catch (...) {  // refused: release the file and its lock
+    ::close(fd_);
+    fd_ = -1;
+    throw;
+  }
+}
+
+void SampleLog::read_existing(bool resume) {
+  const std::string& path = path_;
+  std::string text;
+  char buf[65536];
+  for (;;) {
+    const ssize_t n = ::pread(fd_, buf, sizeof buf, static_cast<off_t>(text.size()));
+    if (n < 0 && errno == EINTR) continue;
+    if (n < 0) throw InputError(fmt::format("{}: cannot read: {}", path, std::strerror(errno)));
+    if (n == 0) break;
+    text.append(buf, static_cast<size_t>(n));
+  }
+  const size_t first_line = text.find('\n');
+  const bool has_rows = first_line != std::string::npos && first_line + 1 < text.size();
+  if (has_rows && !resume) {
+    throw InputError(fmt::format("{}: file exists (it may hold measurements): pass --resume to "
+                                 "continue it, or choose another output file",
+                                 path));
+  }
+  if (!text.empty() && text.back() != '\n') {
+    // A torn last line (crash while writing): drop it, keep the rest.
+    text.erase(text.rfind('\n') == std::string::npos ? 0 : text.rfind('\n') + 1);
+    if (::ftruncate(fd_, static_cast<off_t>(text.size())) != 0)
+      throw InputError(fmt::format("{}: cannot drop the torn last line: {}", path, std::strerror(errno)));
+  }
+  if (text.empty()) {
+    write_all(fd_, kHeader, path);  // a file without measurements: start it again
+    return;
+  }
+  const Samples s = parse_samples_csv(text, path);
+  // The commanded targets (target_x, target_y: not read by the samples parser,
+  // which takes true positions x, y), row by row in file order.
+  std::vector<std::vector<std::string>> rows;
+  {
+    std::istringstream in(text);
+    std::string line;
+    while (std::getline(in, line)) {
+      if (!line.empty() && line.back() == '\r') line.pop_back();
+      std::vector<std::string> f;
+      std::stringstream ls(line);
+      std::string cell;
+      while (std::getline(ls, cell, ',')) f.push_back(cell);
+      if (!f.empty()) rows.push_back(f);
+    }
+  }
+  int cx = -1, cy = -1;
+  for (size_t k = 0; !rows.empty() && k < rows[0].size(); ++k) {
+    if (rows[0][k] == "target_x") cx = static_cast<int>(k);
+    if (rows[0][k] == "target_y") cy = static_cast<int>(k);
+  }
+  for (size_t j = 0; j < s.size(); ++j) {
+    ids_.insert(s.id[j]);
+    Recorded r;
+    r.theta_m = s.theta_m[j];
+    if (cx >= 0 && cy >= 0 && j + 1 < rows.size() &&
+        static_cast<int>(rows[j + 1].size()) > std::max(cx, cy)) {
+      try {
+        r.target = {std::stod(rows[j + 1][static_cast<size_t>(cx)]), std::stod(rows[j + 1][static_cast<size_t>(cy)])};
+        r.has_target = true;
+      } catch (const std::exception&) {
+        throw InputError(fmt::format("{}: line {}: target_x, target_y are not numbers", path, j + 2));
+      }
+    }
+    recorded_[s.id[j]] = r;
+  }
+}
+
+SampleLog::~SampleLog() {
+  if (fd_ >= 0) ::close(fd_);
+}
+
+void SampleLog::append(long id, const Eigen::Vector3d& q, const Eigen::Vector2d& target) {
+  if (closed_) throw HardwareError(fmt::format("{}: sample log is closed", path_));
+  if (fd_ < 0) {  // the first sample creates the file (never over one that appeared meanwhile)
+    const int fd = ::open(path_.c_str(), O_RDWR | O_APPEND | O_CREAT | O_EXCL | O_CLOEXEC, 0644);
+    if (fd < 0) throw HardwareError(fmt::format("{}: cannot create: {}", path_, std::strerror(errno)));
+    lock_or_refuse(fd, path_);  // closes fd when it throws
+    fd_ = fd;
+    created_ = true;
+    write_all(fd_, kHeader, path_);
+  }
+  write_all(fd_,
+            fmt::format("{},{},{},{},{},{}\n", id, format_exact(q[0]), format_exact(q[1]),
+                        format_exact(q[2]), format_exact(target.x()), format_exact(target.y())),
+            path_);
+  ids_.insert(id);
+}
+
+void SampleLog::close_and_discard_if_empty() {
+  closed_ = true;
+  if (created_ && ids_.empty()) {
+    std::error_code ec;
+    std::filesystem::remove(path_, ec);
+  }
+  if (fd_ >= 0) ::close(fd_);
+  fd_ = -1;
+}
+
+}  // namespace gpm::hw

@@ -1,0 +1,61 @@
+// Samples file written as they are taken: each sample is one line appended
+// and flushed to disk (fsync) at once, so a crash or a lost connection loses
+// nothing already measured; a session can resume, skipping recorded samples.
+// Columns: sample,theta_m1,theta_m2,theta_m3,target_x,target_y (DESIGN.md
+// samples contract; target_* are the commanded poses, not true positions).
+#pragma once
+
+#include <map>
+#include <set>
+#include <string>
+
+#include <Eigen/Core>
+
+namespace gpm::hw {
+
+class SampleLog {
+ public:
+  // One recorded row (for checking a resumed plan).
+  struct Recorded {
+    Eigen::Vector3d theta_m = Eigen::Vector3d::Zero();
+    bool has_target = false;
+    Eigen::Vector2d target = Eigen::Vector2d::Zero();
+  };
+
+  // Opens path for appending and holds an exclusive lock (flock) on it while
+  // open: a second log on the same file is refused (InputError). Without
+  // resume a file holding measurements is refused (InputError: never
+  // overwrite them); a file without any row is started again. With resume its
+  // complete rows are kept (a torn last line from a crash is dropped) and
+  // their ids skipped. A file that does not exist is created by the first
+  // append, so a session that records nothing leaves no file.
+  SampleLog(const std::string& path, bool resume);
+  ~SampleLog();
+  SampleLog(const SampleLog&) = delete;
+  SampleLog& operator=(const SampleLog&) = delete;
+
+  // True when sample id is already in the file.
+  bool has(long id) const { return ids_.count(id) > 0; }
+  // Number of samples in the file.
+  size_t size() const { return ids_.size(); }
+  // Appends one sample and flushes it to disk; throws HardwareError if it cannot.
+  void append(long id, const Eigen::Vector3d& theta_m, const Eigen::Vector2d& target);
+  // Closes the file; removes it if this log created it and it holds no sample.
+  void close_and_discard_if_empty();
+  const std::string& path() const { return path_; }
+  // The rows found in the file when it was opened, by id.
+  const std::map<long, Recorded>& recorded() const { return recorded_; }
+
+ private:
+  // Reads the rows of the file open on fd_ (locked), see the constructor.
+  void read_existing(bool resume);
+
+  std::string path_;
+  int fd_ = -1;
+  bool created_ = false;
+  bool closed_ = false;
+  std::set<long> ids_;
+  std::map<long, Recorded> recorded_;
+};
+
+}  // namespace gpm::hw

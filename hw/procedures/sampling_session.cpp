@@ -1,0 +1,154 @@
+#include "hw/procedures/sampling_session.hpp"
+
+#include <cmath>
+#include <numbers>
+
+#include <fmt/format.h>
+
+#include "hw/procedures/motion.hpp"
+#include "hw/hw_errors.hpp"
+#include "models/errors.hpp"
+#include "models/kinematics.hpp"
+
+namespace gpm::hw {
+namespace {
+
+// Encoder-space joint targets of the controller model at p, each taken
+// within pi of near (readings wrap at 2 pi).
+Eigen::Vector3d ik_readings(const Robot& c, const Eigen::Vector2d& p, const Eigen::Vector3d& near) {
+  const JointAngles q = inverse_kinematics(c.geometry, p, c.branch);
+  Eigen::Vector3d m = readings_from_active(c.geometry, q.theta_a);
+  for (int i = 0; i < 3; ++i) m[i] = near[i] + wrap_pi(m[i] - near[i]);
+  return m;
+}
+
+// The session on the motion primitive: Cartesian straight moves, settle, average.
+class Runner {
+ public:
+  Runner(SafetySupervisor& hw, const SessionPlan& plan, const std::atomic<bool>* stop)
+      : plan_(plan), c_(hw.controller()), motion_(hw, plan.modes, plan.profile_headroom, stop) {}
+
+  // Duration of the straight move p0 -> p1 (blending out offset) that keeps
+  // every joint within headroom of its velocity and acceleration limits and
+  // the Cartesian peak speed at move_speed.
+  double move_time(const Eigen::Vector2d& p0, const Eigen::Vector2d& p1, const Eigen::Vector3d& offset) {
+    const int n = 40;
+    std::vector<Eigen::Vector3d> q(n + 1);
+    for (int k = 0; k <= n; ++k) {
+      const double s = static_cast<double>(k) / n;
+      q[k] = ik_readings(c_, p0 + s * (p1 - p0), motion_.command()) + (1.0 - s) * offset;
+    }
+    return motion_.path_time(q, std::numbers::pi / 2 * (p1 - p0).norm() / plan_.options.move_speed_mm_s);
+  }
+
+  void move(const Eigen::Vector2d& p1) {
+    const Eigen::Vector2d p0 = pose_;
+    const Eigen::Vector3d offset = motion_.command() - ik_readings(c_, p0, motion_.command());
+    const double T = move_time(p0, p1, offset);
+    motion_.follow([&](double s) {
+      return Eigen::Vector3d(ik_readings(c_, p0 + s * (p1 - p0), motion_.command()) + (1.0 - s) * offset);
+    }, T);
+    pose_ = p1;
+  }
+
+  SessionResult run(SampleLog& log) {
+    SessionResult r;
+    motion_.start();
+    const auto fk = forward_kinematics(c_.geometry, active_from_readings(c_.geometry, motion_.command()));
+    if (!fk) throw HardwareError("the controller model has no forward kinematics at the current readings");
+    pose_ = fk->p;
+    for (size_t k = 0; k < plan_.poses.size(); ++k) {
+      const long id = static_cast<long>(k);
+      if (log.has(id)) {
+        ++r.skipped;
+        continue;
+      }
+      move(plan_.poses[k]);
+      motion_.settle(plan_.options.settle, fmt::format("sample {}: ", id));
+      log.append(id, motion_.average(plan_.options.average_s), plan_.poses[k]);
+      ++r.taken;
+    }
+    motion_.finish();
+    r.duration_s = motion_.now();
+    return r;
+  }
+
+ private:
+  const SessionPlan& plan_;
+  const Robot& c_;
+  Motion motion_;
+  Eigen::Vector2d pose_ = Eigen::Vector2d::Zero();
+};
+
+}  // namespace
+
+void check_resumed_plan(const Robot& controller, const SessionPlan& plan, const SampleLog& log) {
+  for (const auto& [id, row] : log.recorded()) {
+    if (id < 0 || id >= static_cast<long>(plan.poses.size())) {
+      throw InputError(fmt::format("{}: sample {} is not in this plan of {} poses: the file was "
+                                   "recorded with another plan; choose another output file",
+                                   log.path(), id, plan.poses.size()));
+    }
+    const Eigen::Vector2d& p = plan.poses[static_cast<size_t>(id)];
+    if (row.has_target && (row.target - p).norm() > 1e-9 * (1.0 + p.norm())) {
+      throw InputError(fmt::format("{}: sample {} was taken at ({}, {}) mm but pose {} of this plan is "
+                                   "({}, {}) mm: the file was recorded with another plan (poses, "
+                                   "order or seed); choose another output file",
+                                   log.path(), id, row.target.x(), row.target.y(), id, p.x(), p.y()));
+    }
+    const Reach reach = check_reach(controller, p);
+    if (!reach.ok) continue;  // refused with the pose check
+    const Eigen::Vector3d q = readings_from_active(controller.geometry, reach.q.theta_a);
+    for (int i = 0; i < 3; ++i) {
+      if (plan.modes[i] != JointMode::kPosition) continue;
+      const double gap = std::abs(wrap_pi(row.theta_m[i] - q[i]));
+      if (gap > kSameRobotRad) {
+        throw InputError(fmt::format("{}: sample {} reads joint {} {:.4f} rad away from where this "
+                                     "controller model puts pose {} (at most {} rad for the same "
+                                     "robot): the file was recorded on another robot or model; "
+                                     "choose another output file",
+                                     log.path(), id, i + 1, gap, id, kSameRobotRad));
+      }
+    }
+  }
+}
+
+SessionResult run_sampling_session(SafetySupervisor& hw, const SessionPlan& plan, SampleLog& log,
+                                   const std::atomic<bool>* stop) {
+  // Every pose must be allowed before anything moves.
+  for (size_t k = 0; k < plan.poses.size(); ++k) {
+    const Robot& c = hw.controller();
+    const Reach reach = check_reach(c, plan.poses[k]);
+    std::string why = reach.ok ? "" : reach.reason;
+    if (why.empty()) why = hw.check_pose(readings_from_active(c.geometry, reach.q.theta_a));
+    if (!why.empty()) {
+      throw InputError(fmt::format("pose {} ({}, {}) mm is outside the safety limits: {}", k,
+                                   plan.poses[k].x(), plan.poses[k].y(), why));
+    }
+  }
+  check_resumed_plan(hw.controller(), plan, log);
+  Runner runner(hw, plan, stop);
+  try {
+    SessionResult r = runner.run(log);
+    hw.shutdown();
+    return r;
+  } catch (const Interrupted& e) {
+    hw.shutdown();
+    throw Interrupted(fmt::format("{}; {} samples kept in {}", e.what(), log.size(), log.path()));
+  } catch (const CommandRejected& e) {
+    hw.emergency_stop(e.what());
+    hw.shutdown();
+    throw HardwareError(fmt::format("{}: drives disabled; {} samples kept in {}", e.what(), log.size(), log.path()));
+  } catch (const HardwareError& e) {
+    hw.emergency_stop(e.what());
+    hw.shutdown();
+    throw HardwareError(fmt::format("{}: drives disabled; {} samples kept in {}", e.what(), log.size(), log.path()));
+  } catch (const LifecycleError& e) {
+    hw.emergency_stop(e.what());
+    hw.shutdown();
+    throw HardwareError(fmt::format("{}: drives disabled; {} samples kept in {}", e.what(),
+                                    log.size(), log.path()));
+  }
+}
+
+}  // namespace gpm::hw

@@ -1,0 +1,60 @@
+// A calibration sampling session on any RobotHardware (twin or drives,
+// chosen by config only): for each pose not yet in the samples file, move
+// along a straight line with a smooth profile inside the velocity and
+// acceleration limits (IK of the controller model, never the twin's actual
+// parameters), wait until the joints settle, average the readings, append
+// the sample to disk. Any failure stops the robot and keeps what was recorded.
+#pragma once
+
+#include <atomic>
+#include <functional>
+#include <string>
+#include <vector>
+
+#include <Eigen/Core>
+
+#include "hw/hardware_types.hpp"
+#include "hw/safety_limits.hpp"
+#include "hw/safety_supervisor.hpp"
+#include "hw/procedures/sample_log.hpp"
+#include "models/robot.hpp"
+#include "sim/sampling.hpp"
+
+namespace gpm::hw {
+
+// What to sample and how (constant).
+struct SessionPlan {
+  std::vector<Eigen::Vector2d> poses;  // mm; sample k is poses[k]
+  sim::SamplingOptions options;        // move speed, settle criterion, averaging window
+  std::array<JointMode, 3> modes{JointMode::kPosition, JointMode::kPosition, JointMode::kPosition};
+  double profile_headroom = 0.5;       // fraction of the velocity/acceleration limits the moves use
+};
+
+// What a session did.
+struct SessionResult {
+  long taken = 0;    // samples recorded by this run
+  long skipped = 0;  // already in the file (resume)
+  double duration_s = 0.0;  // session time (simulated or wall)
+};
+
+// Largest gap (rad) between a recorded reading and the controller model's IK
+// of its pose for a file to count as recorded on the same robot (offsets and
+// geometry errors are a few 0.01 rad; another robot or model is far beyond).
+inline constexpr double kSameRobotRad = 0.1;
+
+// Throws InputError (naming the file and the sample) unless every row already
+// in log belongs to plan: its id is a pose of the plan, its target is that
+// pose (same poses in the same order) and its readings are within
+// kSameRobotRad of the controller's IK there (same robot). Nothing moves.
+void check_resumed_plan(const Robot& controller, const SessionPlan& plan, const SampleLog& log);
+
+// Runs the plan on hw (configured or not; left finalized). Samples go to log
+// as they are taken. stop (optional; StopOnSignal::flag) requests a stop.
+// Procedure convention (hw/README.md): returns what it did when it finished;
+// throws InputError before anything moves for a pose outside the limits,
+// HardwareError (drives disabled, samples so far on disk, the message says how
+// many and where) on a failure, Interrupted (a HardwareError) on a stop request.
+SessionResult run_sampling_session(SafetySupervisor& hw, const SessionPlan& plan, SampleLog& log,
+                                   const std::atomic<bool>* stop = nullptr);
+
+}  // namespace gpm::hw

@@ -1,0 +1,74 @@
+#include "hw/procedures/session_plan.hpp"
+
+#include <filesystem>
+
+#include <fmt/format.h>
+
+#include "models/errors.hpp"
+#include "models/yaml_util.hpp"
+#include "sim/scenario.hpp"
+
+namespace gpm::hw {
+namespace {
+
+// One bounded setting: InputError naming the file and key otherwise.
+void bounded(double x, double lo, double hi, const std::string& file, const char* key, const char* unit) {
+  if (!(x >= lo && x <= hi)) {
+    throw InputError(fmt::format("{}: sampling.{}: {} {} is outside [{}, {}] {}", file, key, x, unit,
+                                 lo, hi, unit));
+  }
+}
+
+}  // namespace
+
+void validate_sampling_options(const sim::SamplingOptions& o, const std::string& file) {
+  bounded(o.move_speed_mm_s, kMinMoveSpeedMmS, kMaxMoveSpeedMmS, file, "move_speed_mm_s", "mm/s");
+  bounded(o.average_s, 0.0, kMaxAverageS, file, "average_s", "s");
+  bounded(o.settle.timeout_s, 0.0, kMaxSettleTimeoutS, file, "settle.timeout_s", "s");
+  bounded(o.settle.hold_s, 0.0, kMaxSettleTimeoutS, file, "settle.hold_s", "s");
+  bounded(o.settle.velocity_rad_s, 0.0, kMaxVelocityRadS, file, "settle.velocity_rad_s", "rad/s");
+}
+
+SessionPlan load_poses_plan(const std::string& path) {
+  const YAML::Node root = load_yaml_file(path);
+  if (!root.IsMap()) throw InputError(path + ": expected a map with keys poses (and optionally sampling)");
+  yaml_check_keys(root, path, "", {"poses", "sampling"});
+  const YAML::Node poses = root["poses"];
+  if (!poses || !poses.IsSequence() || poses.size() == 0) {
+    throw InputError(yaml_where(path, poses ? poses : root, "poses") +
+                     "expected a non-empty list of [x, y] poses in mm");
+  }
+  // The scenario schema's sampling plan (pattern list) reads poses and settings
+  // (sim/scenario.cpp): one parser for both files.
+  YAML::Node sampling = YAML::Clone(root["sampling"] ? root["sampling"] : YAML::Node(YAML::NodeType::Map));
+  if (!sampling.IsMap()) throw InputError(yaml_where(path, root["sampling"], "sampling") + "expected a map");
+  for (const char* key : {"pattern", "poses", "centre", "radius", "count", "from", "to"}) {
+    if (sampling[key]) {
+      throw InputError(yaml_where(path, sampling[key], fmt::format("sampling.{}", key)) +
+                       "unknown key (valid: move_speed_mm_s, settle, average_s)");
+    }
+  }
+  sampling["pattern"] = "list";
+  sampling["poses"] = poses;
+  YAML::Node scenario(YAML::NodeType::Map);
+  scenario["name"] = std::filesystem::path(path).stem().string();
+  scenario["sampling"] = sampling;
+  const sim::Scenario sc = sim::scenario_from_yaml(scenario, path, std::filesystem::path(path).parent_path().string());
+  SessionPlan plan;
+  plan.poses = sc.sampling->poses;
+  plan.options = sc.sampling->options;
+  validate_sampling_options(plan.options, path);
+  return plan;
+}
+
+SessionPlan plan_from_scenario(const std::string& path) {
+  const sim::Scenario sc = sim::load_scenario(path);
+  if (!sc.sampling) throw InputError(path + ": the scenario has no 'sampling' section (poses to sample)");
+  SessionPlan plan;
+  plan.poses = sim::plan_poses(*sc.sampling, sc.seed);
+  plan.options = sc.sampling->options;
+  validate_sampling_options(plan.options, path);
+  return plan;
+}
+
+}  // namespace gpm::hw
