@@ -55,11 +55,10 @@ int main(int argc, char** argv) {
 
   // Bare mj_step on the twin's own mjModel, drives off (ctrl noise as testspeed).
   DataPtr bare(mj_makeData(model.mj()));
-  std::mt19937_64 rng(1);
-  std::normal_distribution<double> n01(0.0, 1.0);
+  Rng rng(1);
   const double bare_rate = best_rate(steps, 3, [&](long n) {
     for (long k = 0; k < n; ++k) {
-      for (int a = 0; a < model.mj()->nu; ++a) bare->ctrl[a] = 0.01 * n01(rng);
+      for (int a = 0; a < model.mj()->nu; ++a) bare->ctrl[a] = 0.01 * rng.normal();
       mj_step(model.mj(), bare.get());
     }
   });
