@@ -1,8 +1,12 @@
 // bench_sim: physics steps per second of the twin (servo drives and encoders
 // included) against bare mj_step on the same compiled model, and optionally
 // writes that model's MJCF for mujoco-testspeed (bench/sim_vs_testspeed.sh).
-//   bench_sim [--steps N] [--write-model FILE]
-// Prints "name steps_per_second" lines.
+//   bench_sim [--steps N] [--write-model FILE] [--effects ideal|realistic]
+//             [--timestep S] [--rate HZ]
+// Prints "name steps_per_second" lines and "sim_seconds_per_wall_second"
+// of the twin (steps/s x timestep: the figure that compares runs at
+// different timesteps; effects: realistic needs 0.25 ms, see SCHEMA.md).
+#include <algorithm>
 #include <chrono>
 #include <cstdio>
 #include <cstring>
@@ -36,30 +40,42 @@ double best_rate(long n, int trials, F&& fn) {
 
 int main(int argc, char** argv) {
   long steps = 200000;
-  std::string model_out;
+  std::string model_out, effects = "ideal";
+  double timestep = 0.0005, rate = 2000.0;
   for (int i = 1; i < argc; ++i) {
     if (!std::strcmp(argv[i], "--steps") && i + 1 < argc) steps = std::stol(argv[++i]);
     else if (!std::strcmp(argv[i], "--write-model") && i + 1 < argc) model_out = argv[++i];
+    else if (!std::strcmp(argv[i], "--effects") && i + 1 < argc) effects = argv[++i];
+    else if (!std::strcmp(argv[i], "--timestep") && i + 1 < argc) timestep = std::stod(argv[++i]);
+    else if (!std::strcmp(argv[i], "--rate") && i + 1 < argc) rate = std::stod(argv[++i]);
     else {
-      std::fprintf(stderr, "usage: bench_sim [--steps N] [--write-model FILE]\n");
+      std::fprintf(stderr, "usage: bench_sim [--steps N] [--write-model FILE] [--effects ideal|realistic] "
+                           "[--timestep S] [--rate HZ]\n");
       return 2;
     }
+  }
+  if (effects != "ideal" && effects != "realistic") {
+    std::fprintf(stderr, "bench_sim: --effects: '%s' is not ideal or realistic\n", effects.c_str());
+    return 2;
   }
   using namespace gpm;
   using namespace gpm::sim;
   const Robot robot;  // nominal
   TwinConfig config;
   config.encoder.noise_rad = 1e-5;  // the noise path included
+  config.mjcf.timestep_s = timestep;
+  config.mjcf.solref_timeconst_s = std::max(config.mjcf.solref_timeconst_s, 2.0 * timestep);
+  config.servo_rate_hz = rate;
+  if (effects == "realistic") config.effects = realistic_effects();
   const TwinModel model(robot, config);
   if (!model_out.empty()) write_file_atomic(model_out, model.xml());
 
   // Bare mj_step on the twin's own mjModel, drives off (ctrl noise as testspeed).
   DataPtr bare(mj_makeData(model.mj()));
-  std::mt19937_64 rng(1);
-  std::normal_distribution<double> n01(0.0, 1.0);
+  Rng rng(1);
   const double bare_rate = best_rate(steps, 3, [&](long n) {
     for (long k = 0; k < n; ++k) {
-      for (int a = 0; a < model.mj()->nu; ++a) bare->ctrl[a] = 0.01 * n01(rng);
+      for (int a = 0; a < model.mj()->nu; ++a) bare->ctrl[a] = 0.01 * rng.normal();
       mj_step(model.mj(), bare.get());
     }
   });
@@ -85,5 +101,6 @@ int main(int argc, char** argv) {
   std::printf("twin_step %.0f\n", twin_rate);
   std::printf("twin_with_controller %.0f\n", ctrl_rate);
   std::printf("twin_overhead_vs_bare %.3f\n", bare_rate / twin_rate - 1.0);
+  std::printf("sim_seconds_per_wall_second %.3f\n", twin_rate * timestep);
   return 0;
 }

@@ -115,16 +115,19 @@ std::string mjcf_from_robot(const Robot& actual, const MjcfOptions& o) {
     };
     std::string in = "      ";  // indentation inside link_a
     if (compliance > 0.0) {
-      x += fmt::format("    <body name=\"rotor_a{}\" pos=\"{} {} 0\" euler=\"0 0 {}\">\n", n,
-                       num(g[xa(i)] * kMetresPerMm), num(g[ya(i)] * kMetresPerMm), num(ta));
-      x += fmt::format("      <joint name=\"joint_m{}\" type=\"hinge\" axis=\"0 0 1\" ref=\"{}\" "
+      // Rotor at zero rotation (qpos0 0): the link body carries the home
+      // angle, so a viewer that poses joint_a with the absolute link angle
+      // and leaves joint_m at qpos0 still draws the link where it is.
+      x += fmt::format("    <body name=\"rotor_a{}\" pos=\"{} {} 0\">\n", n,
+                       num(g[xa(i)] * kMetresPerMm), num(g[ya(i)] * kMetresPerMm));
+      x += fmt::format("      <joint name=\"joint_m{}\" type=\"hinge\" axis=\"0 0 1\" "
                        "damping=\"{}\" armature=\"{}\"{}/>\n",
-                       n, num(ta), damping, num(o.armature_kg_m2), friction);
+                       n, damping, num(o.armature_kg_m2), friction);
       x += fmt::format("      <inertial pos=\"0 0 0\" mass=\"{}\" diaginertia=\"{} {} {}\"/>\n",
                        num(fx.rotor_mass_kg), num(1e-6), num(1e-6), num(1e-6));
-      x += fmt::format("      <body name=\"link_a{}\" pos=\"0 0 0\">\n", n);
-      x += fmt::format("        <joint name=\"joint_a{}\" type=\"hinge\" axis=\"0 0 1\" stiffness=\"{}\" "
-                       "springref=\"0\"/>\n", n, num(1.0 / compliance));
+      x += fmt::format("      <body name=\"link_a{}\" pos=\"0 0 0\" euler=\"0 0 {}\">\n", n, num(ta));
+      x += fmt::format("        <joint name=\"joint_a{}\" type=\"hinge\" axis=\"0 0 1\" ref=\"{}\" "
+                       "stiffness=\"{}\" springref=\"{}\"/>\n", n, num(ta), num(1.0 / compliance), num(ta));
       in = "        ";
     } else {
       x += fmt::format("    <body name=\"link_a{}\" pos=\"{} {} 0\" euler=\"0 0 {}\">\n", n,

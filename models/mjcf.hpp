@@ -10,10 +10,12 @@
 //   actuator motor_a{i}: torque motor on joint_a{i} (gear 1, N m)
 // Physical effects (MjcfEffects, all off by default; off = the layout above,
 // byte for byte):
-//   compliance: body rotor_a{i} at A_i with hinge joint_m{i} (absolute, the
-//     rotor armature, the actuator) holds link_a{i} on a relative hinge
-//     joint_a{i} with stiffness 1/compliance and springref 0 (qpos = link -
-//     motor); theta_a = qpos(joint_m) + qpos(joint_a).
+//   compliance: body rotor_a{i} at A_i (no rotation at qpos0) with hinge
+//     joint_m{i} (the rotor armature, the actuator) holds link_a{i} (euler =
+//     home angle ta) on hinge joint_a{i} with ref = springref = ta and
+//     stiffness 1/compliance: link angle theta_a = qpos(joint_m) +
+//     qpos(joint_a), motor angle = qpos(joint_m) + ta, twist = qpos(joint_a) - ta
+//     (DESIGN.md: springref must be given; it defaults to 0, not to ref).
 //   clearance: slide joints clear_b{i}x/y (range +-c) ahead of joint_b{i}; at
 //     the hub slide joints clear_e1x/y in body ee and, for chains 2 and 3, a
 //     body pin_b{i} at the tip of link_b{i} (slides clear_e{i}x/y, site

@@ -29,7 +29,7 @@ double quantise_reading(const EncoderModel& model, double angle) {
 
 double encoder_reading(const EncoderModel& model, EncoderNoise& noise, double theta_a, double dth) {
   double a = theta_a - dth;  // eq. 35
-  if (model.noise_rad > 0.0) a += model.noise_rad * noise.normal(noise.rng);
+  if (model.noise_rad > 0.0) a += model.noise_rad * noise.rng.normal();
   return quantise_reading(model, a);
 }
 

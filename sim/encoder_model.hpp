@@ -2,11 +2,11 @@
 //   reading = wrap_[0, 2 pi)( quantise( theta_a - dth + noise ) )
 // with dth the actual zero offset (paper eq. 35: theta_a = theta_m + dth),
 // quantisation to 2^bits counts per revolution (bits = 0: ideal, no
-// quantisation) and optional Gaussian noise (std::mt19937_64, explicit seed,
+// quantisation) and optional Gaussian noise (gpm::Rng, explicit seed,
 // so runs are bit-reproducible).
 #pragma once
 
-#include <random>
+#include "models/rng.hpp"
 
 namespace gpm::sim {
 
@@ -22,8 +22,7 @@ struct EncoderModel {
 // Mutable noise source of the encoders.
 struct EncoderNoise {
   explicit EncoderNoise(unsigned long long seed) : rng(seed) {}
-  std::mt19937_64 rng;
-  std::normal_distribution<double> normal{0.0, 1.0};
+  Rng rng;
 };
 
 // Wraps and quantises an angle to the nearest count in [0, 2 pi).

@@ -10,6 +10,7 @@
 #include "models/errors.hpp"
 #include "models/kinematics.hpp"
 #include "models/robot_yaml.hpp"
+#include "models/rng.hpp"
 #include "models/yaml_util.hpp"
 #include "sim/effects_yaml.hpp"
 
@@ -425,10 +426,9 @@ Scenario load_scenario(const std::string& path) {
 Robot make_actual(const Scenario& s) {
   Robot actual = s.controller;
   actual.name = s.controller.name + " (actual)";
-  std::mt19937_64 rng(derive_seed(s.seed, 0));
-  std::normal_distribution<double> normal(0.0, 1.0);
+  Rng rng(derive_seed(s.seed, 0));
   for (int i = 0; i < kNumParams; ++i) {
-    const double z = normal(rng);  // drawn for every parameter: streams do not shift
+    const double z = rng.normal();  // drawn for every parameter: streams do not shift
     const auto& ex = s.actual.explicit_values[static_cast<size_t>(i)];
     if (ex) {
       actual.geometry[i] = *ex;

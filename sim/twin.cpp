@@ -19,10 +19,10 @@ Eigen::Vector3d site_pos(const mjData* d, int site) {
 void sense_kinematics(const TwinModel& model, const mjData* d, TwinSnapshot& s) {
   s.time_s = d->time;
   for (int i = 0; i < 3; ++i) {
-    s.theta_motor[i] = d->qpos[model.qpos_m[i]];
+    s.theta_motor[i] = d->qpos[model.qpos_m[i]] + model.motor_zero[i];
     s.motor_velocity[i] = d->qvel[model.dof_m[i]];
     if (model.compliant[i]) {  // joint_a is relative to the rotor
-      s.theta_a[i] = s.theta_motor[i] + d->qpos[model.qpos_a[i]];
+      s.theta_a[i] = d->qpos[model.qpos_m[i]] + d->qpos[model.qpos_a[i]];
       s.velocity[i] = s.motor_velocity[i] + d->qvel[model.dof_a[i]];
     } else {
       s.theta_a[i] = s.theta_motor[i];
@@ -120,6 +120,7 @@ TwinModel::TwinModel(const Robot& actual, const TwinConfig& config)
     compliant[i] = jm >= 0;
     qpos_m[i] = compliant[i] ? m->jnt_qposadr[jm] : qpos_a[i];
     dof_m[i] = compliant[i] ? m->jnt_dofadr[jm] : dof_a[i];
+    motor_zero[i] = compliant[i] ? m->qpos0[qpos_a[i]] : 0.0;
     actuator[i] = require_id(m, mjOBJ_ACTUATOR, name("motor_a", i).c_str());
     site_tip[i] = require_id(m, mjOBJ_SITE, name("tip_b", i).c_str());
     body_base[i] = require_id(m, mjOBJ_BODY, (compliant[i] ? name("rotor_a", i) : name("link_a", i)).c_str());

@@ -60,6 +60,7 @@ class TwinModel {
   // qpos_m == qpos_a and dof_m == dof_a.
   std::array<int, 3> qpos_a{}, qpos_b{}, dof_a{}, qpos_m{}, dof_m{}, actuator{}, site_tip{};
   std::array<bool, 3> compliant{};
+  std::array<double, 3> motor_zero{};  // motor angle at qpos(joint_m) = 0 (the home angle; 0 if rigid)
   int site_ee = -1;
   // Bodies and constraints whose placement a thermal edit changes.
   std::array<int, 3> body_base{}, body_elbow{}, body_tip{}, eq_close{};  // -1 where none

@@ -1,7 +1,9 @@
 // Tests of models/mjcf.cpp (text only; tests/sim/test_twin.cpp compiles the
 // MJCF with MuJoCo and checks the loop closure): the committed nominal model
 // equals the generator output, bodies sit at the IK of the actual parameters,
-// millimetres become metres, and parameters that cannot assemble are refused.
+// millimetres become metres, and parameters that cannot assemble are refused;
+// effects (off by default: the committed model) add the rotor bodies, the
+// clearance slides and the friction where MjcfEffects says.
 #include "models/mjcf.hpp"
 #include "models/data_dir.hpp"
 
@@ -107,6 +109,40 @@ TEST(Mjcf, EscapesTheModelName) {
   Robot r;
   r.name = "a<b>&\"c\"";
   EXPECT_NE(mjcf_from_robot(r).find("model=\"a&lt;b&gt;&amp;&quot;c&quot;\""), std::string::npos);
+}
+
+TEST(Mjcf, EffectsOffLeaveTheIdealModelAndOnAddTheirParts) {
+  const std::string ideal = mjcf_from_robot(Robot{});
+  for (const char* part : {"rotor_a", "joint_m", "clear_", "pin_b", "frictionloss", "stiffness"})
+    EXPECT_EQ(ideal.find(part), std::string::npos) << part;
+  MjcfOptions o;
+  o.effects.compliance_rad_per_Nm = {1e-4, 0.0, 0.0};
+  o.effects.coulomb_Nm = {0.0, 0.5, 0.0};
+  o.effects.clearance_m = {0.0, 0.0, 5e-6};
+  const std::string x = mjcf_from_robot(Robot{}, o);
+  // Compliance on chain 1 only: the rotor carries the armature and the motor,
+  // the link hinge is a spring of stiffness 1 / compliance about the home angle.
+  EXPECT_NE(x.find("<body name=\"rotor_a1\""), std::string::npos);
+  EXPECT_EQ(x.find("rotor_a2"), std::string::npos);
+  EXPECT_TRUE(std::regex_search(x, std::regex(R"re(joint_m1" type="hinge" axis="0 0 1" damping="0.05" armature="0.0026")re")));
+  EXPECT_TRUE(std::regex_search(x, std::regex(R"re(joint_a1" type="hinge" axis="0 0 1" ref="([-0-9.e]+)" stiffness="10000" springref="\1")re")));
+  EXPECT_NE(x.find(R"(<motor name="motor_a1" joint="joint_m1")"), std::string::npos);
+  EXPECT_NE(x.find(R"(<motor name="motor_a2" joint="joint_a2")"), std::string::npos);
+  EXPECT_NE(x.find(R"(joint_a2" type="hinge" axis="0 0 1" ref=)"), std::string::npos);
+  EXPECT_NE(x.find(R"(frictionloss="0.5")"), std::string::npos);
+  // Clearance on chain 3: elbow slides and a hub pin held by the connect, +-5 um.
+  EXPECT_NE(x.find(R"(<joint name="clear_b3x" type="slide" axis="1 0 0" limited="true" range="-5e-06 5e-06")"),
+            std::string::npos);
+  EXPECT_NE(x.find(R"(<connect name="close_b3" body1="pin_b3" body2="ee" anchor="0 0 0"/>)"), std::string::npos);
+  EXPECT_EQ(x.find("clear_b1"), std::string::npos);
+}
+
+TEST(Mjcf, TransmissionRateIsHookesLawOnTheTwoInertias) {
+  MjcfOptions o;
+  EXPECT_EQ(transmission_omega(o, 0, 0.244), 0.0);
+  o.effects.compliance_rad_per_Nm.fill(1e-4);
+  const double i_link = o.active_link_mass_kg * 0.244 * 0.244 / 3.0;
+  EXPECT_NEAR(transmission_omega(o, 1, 0.244), std::sqrt(1e4 * (1.0 / 0.0026 + 1.0 / i_link)), 1e-9);
 }
 
 }  // namespace

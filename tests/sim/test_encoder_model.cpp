@@ -27,11 +27,10 @@ TEST(EncoderModel, QuantisationErrorIsAtMostHalfACountAndReadingsAreWholeCounts)
   for (int bits : {8, 13, 17, 20}) {
     const EncoderModel m{bits, 0.0};
     const double q = m.count_rad();
-    std::mt19937_64 rng(bits);
-    std::uniform_real_distribution<double> u(-20.0, 20.0);
+    Rng rng(static_cast<std::uint64_t>(bits));
     double worst = 0.0;
     for (int k = 0; k < 20000; ++k) {
-      const double a = u(rng);
+      const double a = rng.uniform(-20.0, 20.0);
       const double r = quantise_reading(m, a);
       ASSERT_GE(r, 0.0);
       ASSERT_LT(r, kTwoPi);

@@ -4,6 +4,8 @@
 #include "sim/simulate.hpp"
 #include "models/data_dir.hpp"
 
+#include <algorithm>
+#include <cmath>
 #include <filesystem>
 #include <fstream>
 #include <sstream>
@@ -118,6 +120,39 @@ TEST(Simulate, NothingIsWrittenWhenTheFolderCannotBeWritten) {
   EXPECT_THROW(write_simulation(r, (file / "sub").string()), InputError);
   EXPECT_EQ(read_text(file), "x");
   fs::remove(file);
+}
+
+TEST(Simulate, StreamedTrajectoryEqualsTheInMemoryOneAndKeepsNoRows) {
+  const fs::path a = temp_dir("mem"), b = temp_dir("stream");
+  write_simulation(run_simulation(parse(kSmall)), a.string());
+  const SimulationResult r = simulate_to_folder(parse(kSmall), b.string());
+  EXPECT_TRUE(r.log.rows.empty()) << "streaming must not hold the log in memory";
+  for (const char* f : {"samples.csv", "trajectory.csv", "actual.yaml", "model.xml"})
+    EXPECT_EQ(read_text(a / f), read_text(b / f)) << f;
+  const std::string traj = read_text(b / "trajectory.csv");
+  EXPECT_EQ(static_cast<long>(std::count(traj.begin(), traj.end(), '\n')), r.log.count + 1);
+  EXPECT_EQ(std::distance(fs::directory_iterator(b), fs::directory_iterator{}), 4) << "no staging folder left";
+  for (const auto& d : {a, b}) fs::remove_all(d);
+}
+
+TEST(Simulate, ThermalRunsLogTheActualParametersAtEachRow) {
+  const fs::path dir = temp_dir("thermal");
+  std::string text = kSmall;
+  text += "effects: {thermal: {expansion_per_K: 1.0e-4, rise_K: 10, time_constant_s: 1}}\n";
+  simulate_to_folder(parse(text), dir.string());
+  std::istringstream in(read_text(dir / "trajectory.csv"));
+  std::string header, line, last;
+  std::getline(in, header);
+  EXPECT_NE(header.find(",violation_m,growth,xa1,ya1,xa2,ya2,xa3,ya3,la1,la2,la3,lb1,lb2,lb3"), std::string::npos);
+  while (std::getline(in, line)) last = line;
+  // Last row: t and la1 (columns 0 and 19) satisfy la1 = L0 (1 + alpha rise (1 - exp(-t / tau))).
+  std::vector<double> v;
+  std::stringstream ls(last);
+  for (std::string f; std::getline(ls, f, ',');) v.push_back(std::stod(f));
+  ASSERT_EQ(v.size(), 25u);
+  const double la1_0 = load_robot((dir / "actual.yaml").string()).geometry.la_(0);  // at t = 0
+  EXPECT_NEAR(v[19], la1_0 * (1.0 + 1e-3 * (1.0 - std::exp(-v[0]))), 1e-9);
+  fs::remove_all(dir);
 }
 
 }  // namespace

@@ -15,7 +15,6 @@
 
 #include <cmath>
 #include <numbers>
-#include <random>
 
 #include <Eigen/Dense>
 #include <gtest/gtest.h>
@@ -26,10 +25,9 @@
 namespace gpm::sim {
 namespace {
 
-Robot perturbed(std::mt19937_64& rng, double sigma_mm, double sigma_rad) {
-  std::normal_distribution<double> n(0.0, 1.0);
+Robot perturbed(Rng& rng, double sigma_mm, double sigma_rad) {
   Robot r;
-  for (int i = 0; i < kNumParams; ++i) r.geometry[i] += (is_offset(i) ? sigma_rad : sigma_mm) * n(rng);
+  for (int i = 0; i < kNumParams; ++i) r.geometry[i] += (is_offset(i) ? sigma_rad : sigma_mm) * rng.normal();
   return r;
 }
 
@@ -46,7 +44,7 @@ Eigen::Vector3d run_and_average_torque(const TwinModel& m, TwinState& s, double 
 }
 
 TEST(Twin, LoopsCloseRightAfterForwardForRandomActualParameters) {
-  std::mt19937_64 rng(2024);
+  Rng rng(2024);
   for (int k = 0; k < 20; ++k) {
     const Robot actual = perturbed(rng, 1.0, 0.02);
     const TwinModel m(actual, TwinConfig{});
@@ -61,7 +59,7 @@ TEST(Twin, LoopsCloseRightAfterForwardForRandomActualParameters) {
 }
 
 TEST(Twin, IdealEncodersReadTrueAngleMinusActualOffset) {
-  std::mt19937_64 rng(7);
+  Rng rng(7);
   const Robot actual = perturbed(rng, 0.3, 0.05);
   TwinConfig c;
   c.encoder.bits = 0;
@@ -88,7 +86,7 @@ TEST(Twin, ConsistentCommandsHoldStillWithoutTorque) {
 }
 
 TEST(Twin, OneCommandOffHoldsThePredictedInternalPreload) {
-  std::mt19937_64 rng(11);
+  Rng rng(11);
   for (const Robot& actual : {Robot{}, perturbed(rng, 0.5, 0.01)}) {
     for (int j = 0; j < 3; ++j) {
       const TwinModel m(actual, TwinConfig{});  // 17-bit encoders
