@@ -341,6 +341,7 @@ Scenario load_scenario(const std::string& path) {
 Robot make_actual(const Scenario& s) {
   Robot actual = s.controller;
   actual.name = s.controller.name + " (actual)";
+  actual.calibration.reset();  // a controller read from a result file: its std etc. are not the actual robot's
   std::mt19937_64 rng(derive_seed(s.seed, 0));
   std::normal_distribution<double> normal(0.0, 1.0);
   for (int i = 0; i < kNumParams; ++i) {
