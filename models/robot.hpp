@@ -3,7 +3,11 @@
 #pragma once
 
 #include <array>
+#include <cmath>
+#include <optional>
 #include <string>
+#include <utility>
+#include <vector>
 
 #include <Eigen/Core>
 
@@ -29,12 +33,35 @@ struct Limits {
   bool operator==(const Limits&) const = default;
 };
 
+// What a calibration result file adds to a robot (DESIGN.md: a result file is
+// also a robot file; its `std`, `fixed` and `diagnostics` are kept).
+struct CalibrationRecord {
+  // `std:` the 1-sigma of each estimated parameter (NaN or inf where the file
+  // says .nan / .inf); empty for parameters it does not list.
+  std::array<std::optional<double>, kNumParams> sigma{};
+  FreeMask fixed;  // `fixed:` the parameters held at known values
+  // `diagnostics:` key and value (flow YAML text, e.g. `12`, `lm`, `[a, b]`) in
+  // file order; the known keys are validated on reading.
+  std::vector<std::pair<std::string, std::string>> diagnostics;
+
+  // Equal, with a NaN sigma equal to a NaN sigma (a round trip keeps them).
+  bool operator==(const CalibrationRecord& o) const {
+    for (size_t i = 0; i < sigma.size(); ++i) {
+      if (sigma[i].has_value() != o.sigma[i].has_value()) return false;
+      if (sigma[i] && !(*sigma[i] == *o.sigma[i] || (std::isnan(*sigma[i]) && std::isnan(*o.sigma[i]))))
+        return false;
+    }
+    return fixed == o.fixed && diagnostics == o.diagnostics;
+  }
+};
+
 struct Robot {
   std::string name = "GPM2002";
   Geometry geometry = Geometry::gpm2002_nominal();
   Eigen::Vector2d home{216.5, 250.0};
   Branches branch{+1, +1, +1};
   Limits limits;
+  std::optional<CalibrationRecord> calibration;  // present when read from a result file
 
   bool operator==(const Robot&) const = default;
 };

@@ -4,6 +4,8 @@
 #include <unistd.h>
 #include <filesystem>
 #include <fstream>
+#include <limits>
+#include <cmath>
 
 #include <fmt/format.h>
 
@@ -16,6 +18,95 @@ namespace gpm {
 namespace {
 
 std::string join(const std::string& a, const std::string& b) { return a.empty() ? b : a + "." + b; }
+
+// A number that may also be .nan / .inf (a result's std and diagnostics may carry them).
+double number_or_special(const YAML::Node& n, const std::string& file, const std::string& key) {
+  if (n.IsScalar()) {
+    const std::string& s = n.Scalar();
+    if (s == ".nan" || s == ".NaN" || s == ".NAN") return std::numeric_limits<double>::quiet_NaN();
+    if (s == ".inf" || s == ".Inf" || s == "+.inf") return std::numeric_limits<double>::infinity();
+  }
+  return yaml_number(n, file, key);
+}
+
+std::string number_text(double x) {
+  if (std::isnan(x)) return ".nan";
+  if (std::isinf(x)) return x > 0 ? ".inf" : "-.inf";
+  return format_exact(x);
+}
+
+// Flow YAML text of a node (scalars quoted where YAML needs it).
+std::string flow_text(const YAML::Node& n) {
+  YAML::Emitter e;
+  e.SetSeqFormat(YAML::Flow);
+  e.SetMapFormat(YAML::Flow);
+  e << n;
+  return e.c_str();
+}
+
+// The `std`, `fixed` and `diagnostics` sections of a calibration result file
+// (calib/result_yaml.hpp writes them), validated and kept.
+CalibrationRecord calibration_from_yaml(const YAML::Node& root, const std::string& file,
+                                        const std::string& keypath) {
+  CalibrationRecord c;
+  if (const YAML::Node fixed = root["fixed"]) {
+    const std::string fp = join(keypath, "fixed");
+    if (!fixed.IsSequence())
+      throw InputError(yaml_where(file, fixed, fp) + "expected a list of parameter names, e.g. [xa1, ya1, xa2, ya2]");
+    for (size_t k = 0; k < fixed.size(); ++k) {
+      const std::string key = fmt::format("{}[{}]", fp, k);
+      const std::string name = yaml_string(fixed[k], file, key);
+      const auto i = param_index(name);
+      if (!i) throw InputError(yaml_where(file, fixed[k], key) + fmt::format("unknown parameter '{}' (did you mean {}?)", name, nearest_param_name(name)));
+      c.fixed.set(static_cast<size_t>(*i));
+    }
+  }
+  if (const YAML::Node sd = root["std"]) {
+    const std::string sp = join(keypath, "std");
+    if (!sd.IsMap()) throw InputError(yaml_where(file, sd, sp) + "expected a map of parameter: 1-sigma, e.g. {la1: 0.002}");
+    for (const auto& kv : sd) {
+      const std::string name = kv.first.Scalar();
+      const auto i = param_index(name);
+      const std::string key = join(sp, name);
+      if (!i) throw InputError(yaml_where(file, kv.first, key) + fmt::format("unknown parameter (did you mean {}?)", nearest_param_name(name)));
+      if (c.fixed.test(static_cast<size_t>(*i)))
+        throw InputError(yaml_where(file, kv.first, key) + "a fixed parameter has no 1-sigma (remove it from std or from fixed)");
+      const double v = number_or_special(kv.second, file, key);
+      if (v < 0.0) throw InputError(yaml_where(file, kv.second, key) + fmt::format("a 1-sigma must be >= 0, got {}", v));
+      c.sigma[static_cast<size_t>(*i)] = v;
+    }
+  }
+  if (const YAML::Node d = root["diagnostics"]) {
+    const std::string dp = join(keypath, "diagnostics");
+    if (!d.IsMap()) throw InputError(yaml_where(file, d, dp) + "expected a map (cost, iterations, rank, ...)");
+    for (const auto& kv : d) {
+      const std::string name = kv.first.IsScalar() ? kv.first.Scalar() : "";
+      const std::string key = join(dp, name);
+      const bool plain = !name.empty() && name.find_first_not_of("abcdefghijklmnopqrstuvwxyz0123456789_") == std::string::npos;
+      if (!plain) throw InputError(yaml_where(file, kv.first, dp) + "a diagnostics key must be a lower-case name such as cost or rank");
+      const YAML::Node& v = kv.second;
+      if (name == "cost" || name == "condition_number" || name == "kmrmse_mm" || name == "seconds") {
+        number_or_special(v, file, key);
+      } else if (name == "iterations" || name == "evaluations" || name == "rank" || name == "free_parameters") {
+        yaml_integer(v, file, key, 0, 1LL << 50);
+      } else if (name == "converged" || name == "rank_deficient") {
+        yaml_bool(v, file, key);
+      } else if (name == "method" || name == "cost_function") {
+        yaml_text(v, file, key);
+      } else if (name == "notes") {
+        if (!v.IsSequence()) throw InputError(yaml_where(file, v, key) + "expected a list of text");
+        for (size_t k = 0; k < v.size(); ++k) yaml_string(v[k], file, fmt::format("{}[{}]", key, k));
+      } else if (!v.IsScalar() && !v.IsSequence()) {
+        throw InputError(yaml_where(file, v, key) + "expected a number, text or list (diagnostics are kept as they are)");
+      }
+      std::string text = flow_text(v);
+      if (text.find('\n') != std::string::npos)
+        throw InputError(yaml_where(file, v, key) + "expected a value that fits on one line");
+      c.diagnostics.emplace_back(name, std::move(text));
+    }
+  }
+  return c;
+}
 
 }  // namespace
 
@@ -77,7 +168,9 @@ Robot robot_from_yaml(const YAML::Node& root, const std::string& file, const std
     throw InputError(yaml_where(file, root, keypath) +
                      "expected a map with keys name, geometry (and optionally home, elbow, limits)");
   }
-  yaml_check_keys(root, file, keypath, {"name", "geometry", "home", "elbow", "limits"});
+  // A calibration result file is also a robot file (its std, fixed, diagnostics kept).
+  yaml_check_keys(root, file, keypath,
+                  {"name", "geometry", "home", "elbow", "limits", "std", "fixed", "diagnostics"});
   Robot r;
   if (root["name"]) r.name = yaml_text(root["name"], file, join(keypath, "name"));
   r.geometry = geometry_from_yaml(root["geometry"], file, join(keypath, "geometry"));
@@ -119,6 +212,7 @@ Robot robot_from_yaml(const YAML::Node& root, const std::string& file, const std
       (std::string_view(key) == "min_transmission" ? r.limits.min_transmission : r.limits.min_direct) = v;
     }
   }
+  if (root["std"] || root["fixed"] || root["diagnostics"]) r.calibration = calibration_from_yaml(root, file, keypath);
   validate_robot(r, keypath.empty() ? file : file + ": " + keypath);
   return r;
 }
@@ -158,6 +252,21 @@ std::string robot_to_yaml(const Robot& r) {
   out += fmt::format("  reach_margin: {}\n", format_exact(r.limits.reach_margin));
   out += fmt::format("  min_transmission: {}\n", format_exact(r.limits.min_transmission));
   out += fmt::format("  min_direct: {}\n", format_exact(r.limits.min_direct));
+  if (r.calibration) {
+    const CalibrationRecord& c = *r.calibration;
+    std::string sd;
+    for (int i = 0; i < kNumParams; ++i) {
+      if (const auto& v = c.sigma[static_cast<size_t>(i)]) sd += fmt::format("  {}: {}\n", param_name(i), number_text(*v));
+    }
+    out += sd.empty() ? "std: {}\n" : "std:                 # 1-sigma of each estimated parameter\n" + sd;
+    std::string fixed;
+    for (int i = 0; i < kNumParams; ++i) {
+      if (c.fixed.test(static_cast<size_t>(i))) fixed += fmt::format("{}{}", fixed.empty() ? "" : ", ", param_name(i));
+    }
+    out += fmt::format("fixed: [{}]\n", fixed);
+    out += c.diagnostics.empty() ? "diagnostics: {}\n" : "diagnostics:\n";
+    for (const auto& [key, value] : c.diagnostics) out += fmt::format("  {}: {}\n", key, value);
+  }
   return out;
 }
 

@@ -426,6 +426,7 @@ Scenario load_scenario(const std::string& path) {
 Robot make_actual(const Scenario& s) {
   Robot actual = s.controller;
   actual.name = s.controller.name + " (actual)";
+  actual.calibration.reset();  // a controller read from a result file: its std etc. are not the actual robot's
   Rng rng(derive_seed(s.seed, 0));
   for (int i = 0; i < kNumParams; ++i) {
     const double z = rng.normal();  // drawn for every parameter: streams do not shift

@@ -30,6 +30,21 @@ printf 'name: x\ngeometry: {xa1: 0}\n' >"$tmp/bad.yaml"
 check "bad model" 2 "$GPM" kin home --model "$tmp/bad.yaml"
 expect_err "bad model key" "missing key 'ya1'"
 
+# Issue 18.2: a calibration result file is a robot file (--model).
+check "study samples" 0 "$GPM" study samples --actual table5 --n 30 --radius 80 --seed 3 -o "$tmp/s.csv"
+check "calibrate" 0 "$GPM" calibrate --data "$tmp/s.csv" -o "$tmp/result.yaml"
+check "kin home result model" 0 "$GPM" kin home --model "$tmp/result.yaml"
+la1=$(awk '/^  la1:/ {print $2; exit}' "$tmp/result.yaml")
+check "kin ik result model json" 0 "$GPM" kin ik 230 260 --model "$tmp/result.yaml" --json
+expect_out "result model used" '"workspace": \{"inside": true'
+# the calibrated geometry is the one used: its home angles differ from the nominal ones
+"$GPM" kin home --model "$tmp/result.yaml" | grep '^theta_a' >"$tmp/a1"
+"$GPM" kin home | grep '^theta_a' >"$tmp/a0"
+[[ -n "$la1" ]] && ! cmp -s "$tmp/a0" "$tmp/a1" && passed=$((passed+1)) || { echo "FAIL result geometry not used"; fail=$((fail+1)); }
+sed 's/^  rank: .*/  rank: eleven/' "$tmp/result.yaml" >"$tmp/bad_result.yaml"
+check "bad result diagnostics" 2 "$GPM" kin home --model "$tmp/bad_result.yaml"
+expect_err "bad result message" "bad_result.yaml:[0-9]+: diagnostics.rank"
+
 # Issue 14.14: non-finite numbers are refused (exit 2, one line naming the argument).
 for v in nan inf NaN 1e999; do
   check "ik $v" 2 "$GPM" kin ik "$v" 250

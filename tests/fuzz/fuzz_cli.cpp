@@ -1,7 +1,10 @@
 // Fuzz target for the command line (app/cmd_*.cpp and CLI11): an argument
 // vector (the input split at NUL bytes) is parsed by the `gpm` app with every
-// subcommand registered as in app/main.cpp, but with the callbacks removed, so
-// only parsing and the option validators run (no simulation, no file written).
+// subcommand registered as in app/main.cpp; the parse stops after every option
+// conversion, validator and requirement has run and before any subcommand's
+// callback (CLI11 calls the top app's pre_callback first), so nothing is
+// simulated or written. (Removing the callbacks instead would free the option
+// storage they own: the callbacks keep each subcommand's options alive.)
 // Any outcome other than a clean parse, a CLI11 ParseError (exit 2) or a help /
 // version request (a crash, a sanitizer report, another exception) is a bug.
 #include <cstddef>
@@ -31,11 +34,15 @@ void not_available(const std::string& name, const std::string& issue) {
 
 namespace {
 
-// Removes every callback of app and its subcommands (parsing and validators stay).
-void strip_callbacks(CLI::App& app) {
-  app.callback(std::function<void()>());
-  for (CLI::App* sub : app.get_subcommands([](CLI::App*) { return true; })) strip_callbacks(*sub);
-}
+// Thrown when parsing and validation are complete, before any callback runs.
+struct Parsed {};
+
+// The gpm app, stopping before the callbacks.
+class ValidateOnlyApp : public CLI::App {
+ public:
+  using CLI::App::App;
+  void pre_callback() override { throw Parsed{}; }
+};
 
 }  // namespace
 
@@ -54,7 +61,7 @@ extern "C" int LLVMFuzzerTestOneInput(const uint8_t* data, size_t size) {
   if (args.size() > 64) return 0;
   std::vector<std::string> reversed(args.rbegin(), args.rend());
 
-  CLI::App app{"gpm"};
+  ValidateOnlyApp app{"gpm"};
   app.require_subcommand(1);
   app.set_version_flag("--version", "gpm 0.1.0");
   gpm::cli::add_kin(app);
@@ -68,9 +75,10 @@ extern "C" int LLVMFuzzerTestOneInput(const uint8_t* data, size_t size) {
   gpm::cli::add_sample(app);
   gpm::cli::add_zero(app);
   gpm::cli::add_monitor(app);
-  strip_callbacks(app);
   try {
     app.parse(reversed);
+    __builtin_trap();  // pre_callback always throws: a parse that returns ran no validation stop
+  } catch (const Parsed&) {
   } catch (const CLI::ParseError&) {
     // Usage errors (exit 2), --help and --version: all expected.
   } catch (const gpm::InputError&) {

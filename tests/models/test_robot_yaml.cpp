@@ -3,6 +3,7 @@
 #include "models/robot_yaml.hpp"
 #include "models/data_dir.hpp"
 
+#include <cmath>
 #include <filesystem>
 #include <random>
 
@@ -58,6 +59,66 @@ TEST(RobotYaml, RoundTripIsBitExact) {
     for (int i = 0; i < kNumParams; ++i) ASSERT_EQ(back.geometry[i], r.geometry[i]);
   }
   std::filesystem::remove_all(dir);
+}
+
+// A calibration result file as gpm calibrate writes it (calib/result_yaml.cpp).
+std::string result_text() {
+  std::string t = nominal_text();
+  t = t.substr(0, t.find("home:"));
+  t.replace(t.find("  la1: 244"), 10, "  la1: 244.1");
+  return "# gpm calibrate result: mm and rad (DESIGN.md)\n" + t +
+         "std:                 # 1-sigma of each estimated parameter\n"
+         "  la1: 0.0021\n  ya3: .nan\n  dth1: 1.5e-05\n"
+         "fixed: [xa1, ya1, xa2, ya2]\n"
+         "diagnostics:\n"
+         "  method: \"lm\"\n  cost_function: ml\n  cost: 1.25e-09\n  iterations: 12\n  evaluations: 13\n"
+         "  rank: 11\n  free_parameters: 11\n  condition_number: .inf\n  kmrmse_mm: 0.0031\n"
+         "  seconds: 0.25\n  converged: true\n  rank_deficient: false\n"
+         "  notes:\n    - \"poorly exciting samples: condition number 1e6\"\n";
+}
+
+TEST(RobotYaml, ResultFileIsARobotFileAndKeepsItsRecord) {
+  // Issue 18.2: accepted, the std, fixed and diagnostics kept.
+  const Robot r = parse_robot(result_text(), "result.yaml");
+  EXPECT_EQ(r.geometry[kLa1], 244.1);
+  EXPECT_EQ(r.home, Robot{}.home);
+  ASSERT_TRUE(r.calibration.has_value());
+  const CalibrationRecord& c = *r.calibration;
+  EXPECT_EQ(c.sigma[kLa1], 0.0021);
+  EXPECT_EQ(c.sigma[kDth1], 1.5e-05);
+  EXPECT_TRUE(std::isnan(*c.sigma[kYa3]));
+  EXPECT_FALSE(c.sigma[kLb2].has_value());
+  EXPECT_EQ(c.fixed, parse_param_list("xa1,ya1,xa2,ya2", "fixed"));
+  ASSERT_EQ(c.diagnostics.size(), 13u);
+  EXPECT_EQ(c.diagnostics[0], (std::pair<std::string, std::string>("method", "lm")));
+  EXPECT_EQ(c.diagnostics[3], (std::pair<std::string, std::string>("iterations", "12")));
+  EXPECT_EQ(c.diagnostics[12].first, "notes");
+  // Round trip: written as a robot file and read back, the same robot, record included.
+  const Robot back = parse_robot(robot_to_yaml(r), "again.yaml");
+  EXPECT_EQ(back, r) << robot_to_yaml(r);
+  EXPECT_EQ(robot_to_yaml(back), robot_to_yaml(r));
+  // A plain robot file has no record, and writes none.
+  EXPECT_FALSE(parse_robot(nominal_text(), "r.yaml").calibration.has_value());
+  EXPECT_EQ(robot_to_yaml(Robot{}).find("diagnostics"), std::string::npos);
+}
+
+TEST(RobotYaml, ResultSectionsAreValidated) {
+  const std::string t = result_text();
+  const auto with = [&](const std::string& from, const std::string& to) {
+    std::string u = t;
+    u.replace(u.find(from), from.size(), to);
+    return error_of(u);
+  };
+  EXPECT_NE(with("  la1: 0.0021", "  lx1: 0.0021").find("std.lx1: unknown parameter (did you mean la1?)"), std::string::npos);
+  EXPECT_NE(with("  la1: 0.0021", "  xa1: 0.0021").find("std.xa1: a fixed parameter has no 1-sigma"), std::string::npos);
+  EXPECT_NE(with("  la1: 0.0021", "  la1: -1").find("std.la1: a 1-sigma must be >= 0"), std::string::npos);
+  EXPECT_NE(with("fixed: [xa1,", "fixed: [xq1,").find("fixed[0]: unknown parameter 'xq1'"), std::string::npos);
+  EXPECT_NE(with("  iterations: 12", "  iterations: many").find("diagnostics.iterations"), std::string::npos);
+  EXPECT_NE(with("  converged: true", "  converged: 3").find("diagnostics.converged: expected true or false"),
+            std::string::npos);
+  EXPECT_NE(with("fixed: [xa1, ya1, xa2, ya2]", "fixed: xa1").find("fixed: expected a list"), std::string::npos);
+  // Keys another version may add are kept, not refused.
+  EXPECT_EQ(with("  seconds: 0.25", "  seconds: 0.25\n  threads: 2"), "");
 }
 
 TEST(RobotYaml, UnknownKeySuggestsNearest) {
