@@ -19,18 +19,7 @@
 #include "models/data_dir.hpp"
 #include "models/errors.hpp"
 
-// app/main.cpp defines these next to main(); the target cannot link main.cpp.
-namespace gpm::cli {
-namespace {
-int g_exit = 0;
-}
-void set_exit(int code) { g_exit = code; }
-int exit_code() { return g_exit; }
-std::string default_model_path() { return gpm::models_dir() + "/gpm2002.yaml"; }
-void not_available(const std::string& name, const std::string& issue) {
-  throw InputError(fmt::format("gpm {}: not available yet ({} has not landed)", name, issue));
-}
-}  // namespace gpm::cli
+// set_exit, default_model_path, ... come from app/cli_main.cpp (gpm_cli).
 
 namespace {
 
