@@ -1,5 +1,5 @@
 // gpm calibrate: identify kinematic parameters from encoder samples (paper
-// section 3; DESIGN.md command line). Parses, calls calib/, prints, writes the
+// section 3; docs/ARCHITECTURE.md command line). Parses, calls calib/, prints, writes the
 // result YAML atomically. Bad input: exit 2 with one line; LM not converged:
 // the result is written (diagnostics.converged: false) and the exit code is 1.
 #include <algorithm>

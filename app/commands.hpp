@@ -1,4 +1,4 @@
-// Subcommands of the `gpm` command line (DESIGN.md). Each file app/cmd_*.cpp
+// Subcommands of the `gpm` command line (docs/FORMATS.md). Each file app/cmd_*.cpp
 // registers one subcommand; the callbacks throw gpm::InputError for bad input
 // (exit 2) and return the exit code through gpm::cli::set_exit().
 #pragma once

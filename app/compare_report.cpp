@@ -131,7 +131,7 @@ std::string compare_markdown(const Comparison& c) {
   if (c.at_actual.rank < c.at_actual.free_count) {
     md += fmt::format(
         "\n**Not an identification.** {}. A run at the floor fits the readings perfectly, yet the "
-        "seeds land on different points of the similarity family (ERRATA): J near zero says nothing "
+        "seeds land on different points of the similarity family (docs/PAPER_NOTES.md): J near zero says nothing "
         "about closeness to the actual values. Fix four base coordinates (e.g. `--gauge 11`).\n",
         c.at_actual.diagnosis);
   } else {

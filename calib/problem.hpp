@@ -1,5 +1,5 @@
 // A calibration problem and its result, shared by the local (Ceres LM) and
-// global (GA, PSO, DE) solvers. Millimetres and radians (DESIGN.md).
+// global (GA, PSO, DE) solvers. Millimetres and radians (docs/ARCHITECTURE.md).
 #pragma once
 
 #include <array>
@@ -50,7 +50,7 @@ struct Box {
   std::array<double, kNumParams> upper{};
 };
 
-// Outcome of any solver; written as the result YAML (DESIGN.md).
+// Outcome of any solver; written as the result YAML (docs/FORMATS.md).
 struct Result {
   Geometry geometry;                        // all 15 (estimated and fixed)
   FreeMask free;

@@ -39,7 +39,7 @@ double number_or_special(const YAML::Node& n, const std::string& file, const std
 
 std::string result_to_yaml(const Result& r, const std::string& robot_name) {
   std::string out;
-  out += "# gpm calibrate result: mm and rad (DESIGN.md)\n";
+  out += "# gpm calibrate result: mm and rad (docs/FORMATS.md)\n";
   out += fmt::format("name: {}\n", quoted(robot_name));
   out += "geometry:            # all 15 parameters, estimated and fixed\n";
   out += geometry_to_yaml(r.geometry, 2);

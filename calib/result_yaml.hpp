@@ -1,4 +1,4 @@
-// Calibration result file (YAML, DESIGN.md file contracts): `geometry:` with
+// Calibration result file (YAML, docs/FORMATS.md file contracts): `geometry:` with
 // all 15 keys, `std:` with the 1-sigma of each estimated key, `fixed:` list,
 // `diagnostics:` (cost, iterations, evaluations, rank, condition_number,
 // kmrmse_mm when known, seconds, method, cost_function, converged,

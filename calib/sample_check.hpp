@@ -1,5 +1,5 @@
 // Checks of encoder samples against a calibration problem before solving
-// (DESIGN.md: bad input is refused with one line naming where).
+// (docs/ARCHITECTURE.md: bad input is refused with one line naming where).
 #pragma once
 
 #include <string>

@@ -1,7 +1,7 @@
 // The project's errors. gpm::Error is the root of every error the toolkit
 // raises on purpose; InputError (bad files, keys, values or arguments) is the
 // one the command line turns into a single line on stderr and exit code 2
-// (DESIGN.md, exit codes). Layers derive their own run-time errors from
+// (docs/ARCHITECTURE.md, exit codes). Layers derive their own run-time errors from
 // Error (e.g. gpm::hw::HardwareError), so one catch of gpm::Error sees them all.
 #pragma once
 

@@ -11,7 +11,7 @@
 // - Equality constraints: solref 0.001 1 (two 0.5 ms steps, the stiffest
 //   MuJoCo accepts) and solimp 0.9999 0.9999. Measured with one drive
 //   commanded 0.01 rad off (about 4 N m internal preload): loop gap 2.8 um with
-//   DESIGN.md's 0.002 1 / 0.99 0.999, 0.7 um with 0.001 1 / 0.99 0.999,
+//   the MuJoCo notes' (docs/ARCHITECTURE.md) 0.002 1 / 0.99 0.999, 0.7 um with 0.001 1 / 0.99 0.999,
 //   0.07 um with 0.001 1 / 0.999 0.9999, 0.007 um with these defaults; the
 //   step rate is unchanged (tests/sim/test_twin.cpp checks < 0.1 um).
 #include "models/mjcf.hpp"
@@ -99,7 +99,7 @@ std::string mjcf_from_robot(const Robot& actual, const MjcfOptions& o) {
         fx.coulomb_Nm[static_cast<size_t>(i)] > 0.0
             ? fmt::format(" frictionloss=\"{}\"", num(fx.coulomb_Nm[static_cast<size_t>(i)]))
             : std::string();
-    // Two limited slide joints of a loose passive joint (DESIGN.md: clearance).
+    // Two limited slide joints of a loose passive joint (docs/ARCHITECTURE.md: clearance).
     const auto slides = [&](const std::string& stem, const std::string& indent) {
       std::string t;
       for (const char* axis : {"x", "y"}) {

@@ -15,7 +15,7 @@
 //     home angle ta) on hinge joint_a{i} with ref = springref = ta and
 //     stiffness 1/compliance: link angle theta_a = qpos(joint_m) +
 //     qpos(joint_a), motor angle = qpos(joint_m) + ta, twist = qpos(joint_a) - ta
-//     (DESIGN.md: springref must be given; it defaults to 0, not to ref).
+//     (docs/ARCHITECTURE.md: springref must be given; it defaults to 0, not to ref).
 //   clearance: slide joints clear_b{i}x/y (range +-c) ahead of joint_b{i}; at
 //     the hub slide joints clear_e1x/y in body ee and, for chains 2 and 3, a
 //     body pin_b{i} at the tip of link_b{i} (slides clear_e{i}x/y, site
@@ -23,7 +23,7 @@
 //   friction: frictionloss (Coulomb, N m) and extra damping on the actuated joint.
 // Bodies are laid out already assembled at the actual inverse kinematics of
 // robot.home (paper eq. 29-31), so <connect>, which takes its second anchor at
-// qpos0, closes the loops exactly (DESIGN.md, MuJoCo facts). Joint qpos are
+// qpos0, closes the loops exactly (docs/ARCHITECTURE.md, MuJoCo facts). Joint qpos are
 // absolute for joint_a (qpos = theta_a) and relative for joint_b
 // (qpos = theta_b - theta_a). Metres inside MuJoCo; millimetres outside.
 #pragma once

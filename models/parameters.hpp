@@ -1,4 +1,4 @@
-// The 15 geometric parameters of a 3-RRR planar manipulator (DESIGN.md):
+// The 15 geometric parameters of a 3-RRR planar manipulator (docs/ARCHITECTURE.md):
 // base joints A1..A3, active links la, passive links lb, encoder zero offsets
 // dth (theta_a = theta_m + dth, paper eq. 1 and 35). Millimetres and radians.
 #pragma once
@@ -17,7 +17,7 @@ namespace gpm {
 inline constexpr int kNumParams = 15;
 inline constexpr int kNumChains = 3;
 
-// Index of each parameter in Geometry::values; order as in DESIGN.md.
+// Index of each parameter in Geometry::values; order as in docs/FORMATS.md.
 enum Param : int {
   kXa1, kYa1, kXa2, kYa2, kXa3, kYa3,
   kLa1, kLa2, kLa3,
@@ -81,7 +81,7 @@ FreeMask parse_param_list(std::string_view list, std::string_view what);
 // Names of the set bits of mask, comma-separated.
 std::string format_param_list(const FreeMask& mask);
 
-// The default gauge: xa1, ya1, xa2, ya2 fixed, the other 11 free (DESIGN.md).
+// The default gauge: xa1, ya1, xa2, ya2 fixed, the other 11 free (docs/ARCHITECTURE.md).
 FreeMask default_free_mask();
 
 }  // namespace gpm

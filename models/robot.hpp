@@ -16,7 +16,7 @@
 namespace gpm {
 
 // Elbow branch of one chain: the active link lies counter-clockwise (+1) or
-// clockwise (-1) of the line A_i -> O (DESIGN.md; default +1 for all chains).
+// clockwise (-1) of the line A_i -> O (docs/ARCHITECTURE.md; default +1 for all chains).
 using Branches = std::array<int, kNumChains>;
 
 // Workspace margins used by reachability and singularity checks.
@@ -33,7 +33,7 @@ struct Limits {
   bool operator==(const Limits&) const = default;
 };
 
-// What a calibration result file adds to a robot (DESIGN.md: a result file is
+// What a calibration result file adds to a robot (docs/FORMATS.md: a result file is
 // also a robot file; its `std`, `fixed` and `diagnostics` are kept).
 struct CalibrationRecord {
   // `std:` the 1-sigma of each estimated parameter (NaN or inf where the file

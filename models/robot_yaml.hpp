@@ -1,4 +1,4 @@
-// Robot file (YAML) load and save (DESIGN.md, file contracts). Saving then
+// Robot file (YAML) load and save (docs/FORMATS.md, file contracts). Saving then
 // loading returns the same Robot to the last bit.
 #pragma once
 

@@ -1,4 +1,4 @@
-// Encoder samples (DESIGN.md, file contracts): CSV with a header row, columns
+// Encoder samples (docs/FORMATS.md, file contracts): CSV with a header row, columns
 // found by name, others ignored: sample,theta_m1,theta_m2,theta_m3[,x,y] with
 // readings in rad and, where known (simulation), the true end-effector in mm.
 #pragma once

@@ -1,5 +1,5 @@
 // Strict reading of YAML scalars and maps, with errors that name the file,
-// the line and the key path (DESIGN.md: one clear line, exit 2).
+// the line and the key path (docs/ARCHITECTURE.md: one clear line, exit 2).
 #pragma once
 
 #include <initializer_list>

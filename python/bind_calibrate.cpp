@@ -105,7 +105,7 @@ void bind_calibrate(py::module_& m) {
   py::class_<CalibrationResult>(m, "CalibrationResult", R"doc(
 The outcome of gpm.calibrate (or gpm.load_result): the geometry, the 1-sigma
 of the estimated parameters and the solver's diagnostics, as written to the
-result file by `gpm calibrate` (DESIGN.md file contracts).
+result file by `gpm calibrate` (docs/FORMATS.md file contracts).
 )doc")
       .def_property_readonly(
           "geometry", [](const CalibrationResult& c) { return geometry_dict(c.result.geometry); },
@@ -139,7 +139,7 @@ result file by `gpm calibrate` (DESIGN.md file contracts).
             if (!c.result.covariance) return py::none();
             return matrix_array(*c.result.covariance);
           },
-          "15 x 15 covariance of the parameters in DESIGN.md order (zero rows and columns for fixed ones), or "
+          "15 x 15 covariance of the parameters in docs/FORMATS.md order (zero rows and columns for fixed ones), or "
           "None when the solver computed none.")
       .def_property_readonly(
           "robot",

@@ -140,7 +140,7 @@ Use gpm.load_robot(path) for a robot file.
           },
           py::arg("readings"),
           "Forward kinematics from encoder readings: (3,) -> (2,) or (n, 3) -> (n, 2) end-effector positions in "
-          "mm, the radical centre of the three passive circles (eq. 32-33 with the ERRATA).")
+          "mm, the radical centre of the three passive circles (eq. 32-33 with the docs/PAPER_NOTES.md).")
       .def(
           "jacobian",
           [](const Robot& r, double x, double y) {

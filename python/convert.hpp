@@ -18,7 +18,7 @@ namespace gpm::python {
 
 namespace py = pybind11;
 
-// {"xa1": ..., ..., "dth3": ...}: all 15 parameters in DESIGN.md order.
+// {"xa1": ..., ..., "dth3": ...}: all 15 parameters in docs/FORMATS.md order.
 py::dict geometry_dict(const Geometry& g);
 
 // The 15 values of a dict; keys not in it keep base's values. Throws

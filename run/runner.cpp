@@ -139,7 +139,7 @@ RunOutcome run_scenario(const RunSpec& spec_in, const std::string& scenario_file
   }
   problem.start = spec.sim.controller.geometry;
   problem.free = ~spec.calibration.fixed;
-  // The fixed coordinates define the frame: they must be the true ones (ERRATA).
+  // The fixed coordinates define the frame: they must be the true ones (docs/PAPER_NOTES.md).
   if (spec.calibration.start_reference) {
     // Paper section 3.2 step 3: readings at the point believed to be home.
     const JointAngles q = inverse_kinematics(actual.geometry, actual.home, actual.branch);

@@ -5,7 +5,7 @@
 // Position feedback is the drive's encoder reading; velocity feedback is the
 // motor speed. At rest the joint behaves as a spring of stiffness kp * kv
 // (N m/rad) towards its command, which is what makes inconsistent commands
-// through the closed chain hold an internal preload (DESIGN.md).
+// through the closed chain hold an internal preload (docs/ARCHITECTURE.md).
 // With ki > 0 fighting servos wind their integrators up to the torque limit,
 // as real drives do; ki therefore defaults to 0 (a P/P cascade).
 // No MuJoCo dependency: a pure function of constants and a small state.

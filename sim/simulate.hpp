@@ -34,7 +34,7 @@ void check_targets(const Scenario& s, const Robot& actual, const std::vector<Eig
 // rows are handed to it as they are produced and not kept (log.rows empty).
 SimulationResult run_simulation(const Scenario& s, std::function<void(const LogRow&)> sink = nullptr);
 
-// samples.csv text: the DESIGN.md contract (sample,theta_m1..3,x,y) followed by
+// samples.csv text: the docs/FORMATS.md contract (sample,theta_m1..3,x,y) followed by
 // extra columns theta_a1..3 (true link angles), target_x, target_y, settled,
 // tau1..3 (mean drive torque over the averaging window, N m), omega1..3 (mean
 // joint speed, rad/s; nonzero for samples taken on the fly).

@@ -147,7 +147,7 @@ MjcfOptions mjcf_with_effects(const TwinConfig& config);
 
 // Throws InputError (key effects.transmission_compliance_rad_per_Nm) if a
 // compliant transmission of config cannot be integrated: explicit
-// integration holds omega dt <= TwinModel::kMaxOmegaDt (DESIGN.md measured
+// integration holds omega dt <= TwinModel::kMaxOmegaDt (docs/ARCHITECTURE.md measured
 // instability near 2; omega from transmission_omega), and the drive's
 // velocity loop, which then acts on the rotor alone, needs
 // kv / rate_hz / armature <= TwinModel::kMaxRotorLoopGain.

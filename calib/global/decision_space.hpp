@@ -2,7 +2,7 @@
 // 15 geometric parameters for each error function.
 //
 // J1 and J2 (eq. 37, 39): one decision coordinate per free parameter, in the
-// order xa1 ... dth3 of DESIGN.md, with that parameter's box.
+// order xa1 ... dth3 of docs/FORMATS.md, with that parameter's box.
 // J3 (eq. 43): the same, except that a chain whose la_i and dth_i are both
 // free is searched in the decoupled variables l_ac_i = la_i cos dth_i and
 // l_as_i = la_i sin dth_i (eq. 41), which take the places of la_i and dth_i.

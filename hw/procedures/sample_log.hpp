@@ -1,7 +1,7 @@
 // Samples file written as they are taken: each sample is one line appended
 // and flushed to disk (fsync) at once, so a crash or a lost connection loses
 // nothing already measured; a session can resume, skipping recorded samples.
-// Columns: sample,theta_m1,theta_m2,theta_m3,target_x,target_y (DESIGN.md
+// Columns: sample,theta_m1,theta_m2,theta_m3,target_x,target_y (docs/ARCHITECTURE.md
 // samples contract; target_* are the commanded poses, not true positions).
 #pragma once
 

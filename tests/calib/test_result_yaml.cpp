@@ -1,6 +1,6 @@
 // Tests of calib/result_yaml.cpp: write then read returns the same numbers to
 // the last bit (geometry, std, fixed, diagnostics), NaN/inf survive, the file
-// has the DESIGN.md keys, bad files are one-line InputErrors, and a result
+// has the docs/FORMATS.md keys, bad files are one-line InputErrors, and a result
 // serves as a robot model.
 #include "calib/result_yaml.hpp"
 

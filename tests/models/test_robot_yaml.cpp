@@ -66,7 +66,7 @@ std::string result_text() {
   std::string t = nominal_text();
   t = t.substr(0, t.find("home:"));
   t.replace(t.find("  la1: 244"), 10, "  la1: 244.1");
-  return "# gpm calibrate result: mm and rad (DESIGN.md)\n" + t +
+  return "# gpm calibrate result: mm and rad (docs/FORMATS.md)\n" + t +
          "std:                 # 1-sigma of each estimated parameter\n"
          "  la1: 0.0021\n  ya3: .nan\n  dth1: 1.5e-05\n"
          "fixed: [xa1, ya1, xa2, ya2]\n"
