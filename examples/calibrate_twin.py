@@ -16,7 +16,7 @@ import numpy as np
 
 import gpm
 
-scenario = sys.argv[1] if len(sys.argv) > 1 else pathlib.Path(gpm.scenarios_dir()) / "main.yaml"
+scenario = sys.argv[1] if len(sys.argv) > 1 else pathlib.Path(gpm.scenarios_dir()) / "procedure_disc_stopgo.yaml"
 run = gpm.simulate(scenario)
 print(f"{scenario}: {len(run.readings)} samples, {run.simulated_s:.2f} s simulated, "
       f"largest loop gap {run.max_violation_m * 1e6:.3f} um")

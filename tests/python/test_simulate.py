@@ -5,7 +5,7 @@ import pytest
 import gpm
 from conftest import ROOT, run_gpm
 
-SCENARIO = ROOT / "scenarios" / "main.yaml"  # 50 poses in a 150 mm disc, perturbed actual robot
+SCENARIO = ROOT / "scenarios" / "procedure_disc_stopgo.yaml"  # 50 poses in a 150 mm disc, perturbed actual robot
 
 
 @pytest.fixture(scope="module")
