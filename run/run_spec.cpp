@@ -3,11 +3,11 @@
 #include "calib/calibrate.hpp"
 
 #include <filesystem>
-#include <random>
 
 #include <fmt/format.h>
 
 #include "models/errors.hpp"
+#include "models/rng.hpp"
 #include "models/yaml_util.hpp"
 
 namespace gpm::scenario {
@@ -129,7 +129,7 @@ CompensationPlan parse_compensation(const YAML::Node& n, const std::string& file
   }
   if (plan.poses.empty()) {
     // Test poses independent of the calibration samples (their own stream).
-    std::mt19937_64 rng(sim::derive_seed(s.seed, 3));
+    Rng rng(sim::derive_seed(s.seed, 3));
     plan.poses = sim::disc_poses(centre, radius, count, rng);
   }
   if (s.sampling) plan.sampling = s.sampling->options;

@@ -3,7 +3,6 @@
 
 #include <cmath>
 #include <filesystem>
-#include <random>
 
 #include <fmt/format.h>
 
@@ -452,7 +451,7 @@ Robot make_actual(const Scenario& s) {
 std::vector<Eigen::Vector2d> plan_poses(const SamplingPlan& p, std::uint64_t seed) {
   switch (p.pattern) {
     case PosePattern::kDisc: {
-      std::mt19937_64 rng(derive_seed(seed, 1));
+      Rng rng(derive_seed(seed, 1));
       return disc_poses(p.centre, p.radius, p.count, rng);
     }
     case PosePattern::kCircle: return circle_poses(p.centre, p.radius, p.count);

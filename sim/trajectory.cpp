@@ -67,12 +67,11 @@ MovePath make_move(const Eigen::Vector2d& from, const Eigen::Vector2d& to, doubl
 }
 
 std::vector<Eigen::Vector2d> disc_poses(const Eigen::Vector2d& centre, double radius, int count,
-                                        std::mt19937_64& rng) {
-  std::uniform_real_distribution<double> uni(0.0, 1.0);
+                                        Rng& rng) {
   std::vector<Eigen::Vector2d> out;
   for (int k = 0; k < count; ++k) {
-    const double r = radius * std::sqrt(uni(rng));
-    const double a = kTwoPi * uni(rng);
+    const double r = radius * std::sqrt(rng.uniform());
+    const double a = kTwoPi * rng.uniform();
     out.push_back(centre + r * Eigen::Vector2d(std::cos(a), std::sin(a)));
   }
   return out;

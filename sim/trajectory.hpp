@@ -2,11 +2,12 @@
 // paths. Pure geometry; the controller turns poses into joint commands.
 #pragma once
 
-#include <random>
 #include <variant>
 #include <vector>
 
 #include <Eigen/Core>
+
+#include "models/rng.hpp"
 
 namespace gpm::sim {
 
@@ -54,7 +55,7 @@ MovePath make_move(const Eigen::Vector2d& from, const Eigen::Vector2d& to, doubl
 
 // count poses uniform over a disc (r = R sqrt(u), angle uniform), from rng.
 std::vector<Eigen::Vector2d> disc_poses(const Eigen::Vector2d& centre, double radius, int count,
-                                        std::mt19937_64& rng);
+                                        Rng& rng);
 
 // count poses evenly spaced on a circle, the first at centre + (radius, 0).
 std::vector<Eigen::Vector2d> circle_poses(const Eigen::Vector2d& centre, double radius, int count);

@@ -1,5 +1,7 @@
 #include "hw/backends/drive_emulator.hpp"
 
+#include "models/rng.hpp"
+
 #include <arpa/inet.h>
 #include <netdb.h>
 #include <netinet/in.h>
@@ -10,7 +12,6 @@
 #include <algorithm>
 #include <chrono>
 #include <map>
-#include <random>
 #include <vector>
 
 #include <fmt/format.h>
@@ -101,7 +102,7 @@ struct DriveEmulator::Impl {
   long writes = 0;
   bool delaying = false, dropped = false;
   std::string error;
-  std::mt19937 rng{12345};
+  Rng rng{12345};
 
   std::uint16_t* regs(int unit) { return units.at(unit)->tab_registers; }
 };
@@ -250,7 +251,7 @@ void DriveEmulator::tick(double t) {
     const AxisRegisters& a = map_.axes[i];
     std::uint16_t* r = s.regs(a.unit_id);
     std::array<std::uint16_t, 2> pos = split32(theta_to_counts(a, st.theta_m[i]), map_.word_order);
-    if (s.garbage[i]) pos = {static_cast<std::uint16_t>(s.rng()), static_cast<std::uint16_t>(s.rng())};
+    if (s.garbage[i]) pos = {static_cast<std::uint16_t>(s.rng.bits()), static_cast<std::uint16_t>(s.rng.bits())};
     std::copy(pos.begin(), pos.end(), r + a.actual_position);
     if (a.actual_velocity >= 0) {
       const double cps = a.sign * st.velocity[i] / (2.0 * M_PI) * static_cast<double>(a.counts_per_rev);

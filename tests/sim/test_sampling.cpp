@@ -22,7 +22,7 @@ Robot perturbed_actual() {
 }
 
 std::vector<Eigen::Vector2d> some_poses() {
-  std::mt19937_64 rng(3);
+  Rng rng(3);
   return disc_poses({216.5, 250.0}, 60.0, 8, rng);
 }
 

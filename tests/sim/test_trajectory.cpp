@@ -56,7 +56,7 @@ TEST(Trajectory, MoveStartsAndEndsAtRestWithTheRequestedPeakSpeed) {
 }
 
 TEST(Trajectory, DiscPosesAreInsideUniformAndSeeded) {
-  std::mt19937_64 a(5), b(5);
+  Rng a(5), b(5);
   const auto p = disc_poses({216.5, 250.0}, 60.0, 4000, a);
   EXPECT_EQ(p, disc_poses({216.5, 250.0}, 60.0, 4000, b));
   int inner = 0;
