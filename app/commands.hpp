@@ -3,6 +3,7 @@
 // (exit 2) and return the exit code through gpm::cli::set_exit().
 #pragma once
 
+#include <functional>
 #include <string>
 
 #include <CLI/CLI.hpp>
@@ -30,6 +31,11 @@ void add_design(CLI::App& app);
 void add_sample(CLI::App& app);
 void add_zero(CLI::App& app);
 void add_monitor(CLI::App& app);
+
+// Registers every subcommand of gpm on app (with the version flag), in the
+// order of `gpm --help`; render through add_render_command (gpm registers an
+// entry that execs gpm-render, the fuzz target the real one).
+void add_commands(CLI::App& app, const std::function<void(CLI::App&)>& add_render_command);
 
 // Throws InputError "gpm NAME: not available yet (...)": a subcommand whose
 // issue has not landed.

@@ -47,18 +47,6 @@ int main(int argc, char** argv) {
   FLAGS_logtostderr = true;
   google::InitGoogleLogging(argv[0]);
   CLI::App app{"gpm: digital twin and auto-calibration toolkit for the GPM2002 planar 3-RRR manipulator"};
-  app.require_subcommand(1);
-  app.set_version_flag("--version", "gpm 0.1.0");
-  gpm::cli::add_kin(app);
-  gpm::cli::add_simulate(app);
-  gpm::cli::add_calibrate(app);
-  gpm::cli::add_run(app);
-  add_render_entry(app);
-  gpm::cli::add_compare(app);
-  gpm::cli::add_study(app);
-  gpm::cli::add_design(app);
-  gpm::cli::add_sample(app);
-  gpm::cli::add_zero(app);
-  gpm::cli::add_monitor(app);
+  gpm::cli::add_commands(app, add_render_entry);
   return gpm::cli::run_app(app, argc, argv);
 }
