@@ -19,6 +19,7 @@
 #include <fmt/format.h>
 
 #include "app/commands.hpp"
+#include "models/pose_layouts.hpp"
 #include "hw/hardware_config.hpp"
 #include "hw/hw_errors.hpp"
 #include "hw/procedures/section3_offsets.hpp"
@@ -196,7 +197,7 @@ void run_zero(const ZeroArgs& a) {
                                   : (std::filesystem::path(a.out) / "section3_samples.csv").string();
       std::filesystem::remove(csv);
       const hw::Section3Offsets s = hw::section3_offsets(
-          *robot, hw::circle_poses(base.reference, a.radius, 12), base.sensor_joint, csv, signals.flag());
+          *robot, circle_points(base.reference, a.radius, 12), base.sensor_joint, csv, signals.flag());
       if (a.out.empty()) std::filesystem::remove(csv);
       row.offsets = s.offsets;
       row.motions = s.motions;

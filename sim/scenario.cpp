@@ -9,6 +9,7 @@
 #include "models/errors.hpp"
 #include "models/kinematics.hpp"
 #include "models/robot_yaml.hpp"
+#include "models/pose_layouts.hpp"
 #include "models/rng.hpp"
 #include "models/yaml_util.hpp"
 #include "sim/effects_yaml.hpp"
@@ -454,8 +455,8 @@ std::vector<Eigen::Vector2d> plan_poses(const SamplingPlan& p, std::uint64_t see
       Rng rng(derive_seed(seed, 1));
       return disc_poses(p.centre, p.radius, p.count, rng);
     }
-    case PosePattern::kCircle: return circle_poses(p.centre, p.radius, p.count);
-    case PosePattern::kLine: return line_poses(p.from, p.to, p.count);
+    case PosePattern::kCircle: return circle_points(p.centre, p.radius, p.count);
+    case PosePattern::kLine: return line_points(p.from, p.to, p.count);
     case PosePattern::kList: return p.poses;
     case PosePattern::kDesigned:
     case PosePattern::kTrajectory:

@@ -57,11 +57,4 @@ MovePath make_move(const Eigen::Vector2d& from, const Eigen::Vector2d& to, doubl
 std::vector<Eigen::Vector2d> disc_poses(const Eigen::Vector2d& centre, double radius, int count,
                                         Rng& rng);
 
-// count poses evenly spaced on a circle, the first at centre + (radius, 0).
-std::vector<Eigen::Vector2d> circle_poses(const Eigen::Vector2d& centre, double radius, int count);
-
-// count poses evenly spaced from `from` to `to`, both ends included (count >= 2).
-std::vector<Eigen::Vector2d> line_poses(const Eigen::Vector2d& from, const Eigen::Vector2d& to,
-                                        int count);
-
 }  // namespace gpm::sim

@@ -1,5 +1,7 @@
 #include "calib/excitation/layouts.hpp"
 
+#include "models/pose_layouts.hpp"
+
 #include <algorithm>
 #include <cmath>
 #include <limits>
@@ -14,18 +16,11 @@ namespace gpm::calib::excitation {
 
 std::vector<Eigen::Vector2d> line_layout(const Eigen::Vector2d& from, const Eigen::Vector2d& to, int count) {
   if (count < 2) throw InputError(fmt::format("a line needs at least 2 poses, got {}", count));
-  std::vector<Eigen::Vector2d> out;
-  for (int k = 0; k < count; ++k) out.push_back(from + (static_cast<double>(k) / (count - 1)) * (to - from));
-  return out;
+  return line_points(from, to, count);
 }
 
 std::vector<Eigen::Vector2d> circle_layout(const Eigen::Vector2d& centre, double radius, int count) {
-  std::vector<Eigen::Vector2d> out;
-  for (int k = 0; k < count; ++k) {
-    const double a = 2.0 * std::numbers::pi * k / count;
-    out.push_back(centre + radius * Eigen::Vector2d(std::cos(a), std::sin(a)));
-  }
-  return out;
+  return circle_points(centre, radius, count);
 }
 
 std::vector<LayoutBounds> compare_layouts(const Robot& nominal, const ComparisonOptions& o) {

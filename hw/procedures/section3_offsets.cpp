@@ -10,15 +10,6 @@
 
 namespace gpm::hw {
 
-std::vector<Eigen::Vector2d> circle_poses(const Eigen::Vector2d& centre, double radius_mm, int count) {
-  std::vector<Eigen::Vector2d> out;
-  for (int k = 0; k < count; ++k) {
-    const double a = 2 * std::numbers::pi * k / count;
-    out.push_back(centre + radius_mm * Eigen::Vector2d(std::cos(a), std::sin(a)));
-  }
-  return out;
-}
-
 Section3Offsets section3_offsets(SafetySupervisor& hw, const std::vector<Eigen::Vector2d>& poses,
                                  int sensor_joint, const std::string& samples_csv,
                                  const std::atomic<bool>* stop) {

@@ -24,8 +24,6 @@ struct Section3Offsets {
   bool converged = false;
 };
 
-// count poses evenly on a circle of radius_mm about centre (mm).
-std::vector<Eigen::Vector2d> circle_poses(const Eigen::Vector2d& centre, double radius_mm, int count);
 
 // Samples poses on hw (left finalized) into samples_csv (a new file) with
 // sensor_joint torque-off, then fits dth1..3 (ML cost). Throws HardwareError

@@ -72,15 +72,5 @@ TEST(Trajectory, DiscPosesAreInsideUniformAndSeeded) {
   EXPECT_LT((mean - Vector2d(216.5, 250.0)).norm(), 2.0);
 }
 
-TEST(Trajectory, CircleAndLinePoses) {
-  const auto c = circle_poses({0, 0}, 10.0, 4);
-  ASSERT_EQ(c.size(), 4u);
-  EXPECT_LT((c[1] - Vector2d(0, 10)).norm(), 1e-12);
-  const auto l = line_poses({0, 0}, {10, 20}, 3);
-  ASSERT_EQ(l.size(), 3u);
-  EXPECT_LT((l[1] - Vector2d(5, 10)).norm(), 1e-12);
-  EXPECT_LT((l[2] - Vector2d(10, 20)).norm(), 1e-12);
-}
-
 }  // namespace
 }  // namespace gpm::sim
