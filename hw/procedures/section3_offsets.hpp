@@ -24,7 +24,6 @@ struct Section3Offsets {
   bool converged = false;
 };
 
-
 // Samples poses on hw (left finalized) into samples_csv (a new file) with
 // sensor_joint torque-off, then fits dth1..3 (ML cost). Throws HardwareError
 // when the session fails (samples kept; Interrupted on a stop request
