@@ -82,27 +82,6 @@ CalibrationSpec parse_calibration(const YAML::Node& n, const std::string& file) 
   return c;
 }
 
-sim::Path parse_path(const YAML::Node& n, const std::string& file, const std::string& key, const Eigen::Vector2d& home) {
-  yaml_check_keys(n, file, key, {"shape", "centre", "radius", "period_s", "revolutions", "from", "to", "duration_s"});
-  const std::string shape = n["shape"] ? yaml_string(n["shape"], file, key + ".shape") : "circle";
-  if (shape == "circle") {
-    sim::CirclePath c;
-    c.centre = n["centre"] ? point(n["centre"], file, key + ".centre") : home;
-    c.radius = n["radius"] ? yaml_positive(n["radius"], file, key + ".radius") : 60.0;
-    c.period_s = n["period_s"] ? yaml_positive(n["period_s"], file, key + ".period_s") : 4.0;
-    c.revolutions = n["revolutions"] ? yaml_positive(n["revolutions"], file, key + ".revolutions") : 1.0;
-    return c;
-  }
-  if (shape == "line") {
-    sim::LinePath l;
-    if (!n["from"] || !n["to"]) throw InputError(yaml_where(file, n, key) + "a line needs from and to");
-    l.from = point(n["from"], file, key + ".from");
-    l.to = point(n["to"], file, key + ".to");
-    l.duration_s = n["duration_s"] ? yaml_positive(n["duration_s"], file, key + ".duration_s") : 2.0;
-    return l;
-  }
-  throw InputError(yaml_where(file, n["shape"], key + ".shape") + fmt::format("'{}' is not circle or line", shape));
-}
 
 CompensationPlan parse_compensation(const YAML::Node& n, const std::string& file, const sim::Scenario& s) {
   CompensationPlan plan;
@@ -113,7 +92,11 @@ CompensationPlan parse_compensation(const YAML::Node& n, const std::string& file
   Eigen::Vector2d centre = home;
   if (n) {
     yaml_check_keys(n, file, "compensation", {"path", "poses", "count", "radius", "centre", "move_speed_mm_s"});
-    if (n["path"]) plan.path = parse_path(n["path"], file, "compensation.path", home);
+    if (n["path"]) {
+      sim::PathDefaults d;
+      d.centre = home;
+      plan.path = sim::path_from_yaml(n["path"], file, "compensation.path", d);
+    }
     if (n["count"]) count = static_cast<int>(yaml_integer(n["count"], file, "compensation.count", 1, 10000));
     if (n["radius"]) radius = yaml_positive(n["radius"], file, "compensation.radius");
     if (n["centre"]) centre = point(n["centre"], file, "compensation.centre");

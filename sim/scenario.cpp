@@ -227,18 +227,24 @@ SamplingPlan parse_sampling(const YAML::Node& n, const Ctx& c) {
   return p;
 }
 
-Path parse_path(const YAML::Node& n, const Ctx& c) {
+// A path map; keys missing from it take `defaults` when given, and are
+// required otherwise.
+Path parse_path(const YAML::Node& n, const Ctx& c, const PathDefaults* defaults = nullptr) {
   yaml_check_keys(n, c.file, c.path,
                   {"shape", "centre", "radius", "period_s", "revolutions", "from", "to", "duration_s"});
-  require(n, "shape", c, "circle or line");
-  const std::string shape = yaml_string(n["shape"], c.file, c.at("shape").path);
+  auto need = [&](const char* key, const char* why) {
+    if (!defaults) require(n, key, c, why);
+  };
+  need("shape", "circle or line");
+  const std::string shape = n["shape"] ? yaml_string(n["shape"], c.file, c.at("shape").path) : "circle";
   if (shape == "circle") {
     CirclePath p;
-    p.centre = n["centre"] ? point(n["centre"], c.at("centre")) : Eigen::Vector2d(216.5, 250.0);
-    require(n, "radius", c, "mm");
-    p.radius = positive(n["radius"], c.at("radius"));
-    require(n, "period_s", c, "seconds per revolution");
-    p.period_s = bounded(n["period_s"], c.at("period_s"), 0.1, 600.0, "s");
+    p.centre = n["centre"] ? point(n["centre"], c.at("centre"))
+                           : (defaults ? defaults->centre : Eigen::Vector2d(216.5, 250.0));
+    need("radius", "mm");
+    p.radius = n["radius"] ? positive(n["radius"], c.at("radius")) : defaults->radius;
+    need("period_s", "seconds per revolution");
+    p.period_s = n["period_s"] ? bounded(n["period_s"], c.at("period_s"), 0.1, 600.0, "s") : defaults->period_s;
     if (n["revolutions"]) {
       p.revolutions = bounded(n["revolutions"], c.at("revolutions"), 1e-3, 100.0, "revolutions");
     }
@@ -248,10 +254,10 @@ Path parse_path(const YAML::Node& n, const Ctx& c) {
     LinePath p;
     require(n, "from", c, "[x, y] in mm");
     require(n, "to", c, "[x, y] in mm");
-    require(n, "duration_s", c, "seconds");
+    need("duration_s", "seconds");
     p.from = point(n["from"], c.at("from"));
     p.to = point(n["to"], c.at("to"));
-    p.duration_s = bounded(n["duration_s"], c.at("duration_s"), 0.01, 600.0, "s");
+    p.duration_s = n["duration_s"] ? bounded(n["duration_s"], c.at("duration_s"), 0.01, 600.0, "s") : defaults->duration_s;
     return p;
   }
   fail(c.at("shape"), n["shape"], fmt::format("'{}' is not circle or line", shape));
@@ -348,6 +354,11 @@ std::uint64_t derive_seed(std::uint64_t seed, int stream) {
   z = (z ^ (z >> 30)) * 0xbf58476d1ce4e5b9ULL;
   z = (z ^ (z >> 27)) * 0x94d049bb133111ebULL;
   return z ^ (z >> 31);
+}
+
+Path path_from_yaml(const YAML::Node& n, const std::string& file, const std::string& keypath,
+                    const PathDefaults& defaults) {
+  return parse_path(n, Ctx{file, keypath}, &defaults);
 }
 
 Scenario scenario_from_yaml(const YAML::Node& root, const std::string& file, const std::string& base_dir) {

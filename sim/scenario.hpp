@@ -77,6 +77,20 @@ struct Scenario {
   std::uint64_t seed = 1;
 };
 
+// Values a path map may leave out where a section gives defaults (the
+// accuracy test path of gpm run); the scenario's own `path` gives them all.
+struct PathDefaults {
+  Eigen::Vector2d centre{216.5, 250.0};
+  double radius = 60.0;     // mm
+  double period_s = 4.0;    // circle
+  double duration_s = 2.0;  // line
+};
+
+// Parses a path map (the schema of `path`, same ranges and messages) at
+// keypath of file; missing keys take defaults.
+Path path_from_yaml(const YAML::Node& n, const std::string& file, const std::string& keypath,
+                    const PathDefaults& defaults);
+
 // Loads and validates a scenario file; throws InputError naming the file,
 // line and key path. Relative robot paths are taken from the file's folder.
 Scenario load_scenario(const std::string& path);
