@@ -5,13 +5,16 @@
 
 #include <gtest/gtest.h>
 
-#include "calib/global/synthetic.hpp"
+#include "calib/paper_values.hpp"
+#include "calib/synthetic.hpp"
 
 namespace gpm::cli {
 namespace {
 
 using namespace calib::global;
 using calib::Cost;
+using calib::Method;
+using calib::paper_free_mask;
 
 ComparisonSettings small(const FreeMask& free) {
   ComparisonSettings s;
