@@ -3,6 +3,7 @@
 #include <fmt/format.h>
 
 #include "models/errors.hpp"
+#include "models/kinematics.hpp"
 #include "models/yaml_util.hpp"
 
 namespace gpm::hw {
@@ -156,6 +157,41 @@ std::string safety_limits_to_yaml(const SafetyLimits& s, int indent) {
   out += fmt::format("{}watchdog_disable: {}\n", pad, format_exact(s.watchdog_disable_s));
   out += fmt::format("{}comms_timeout: {}\n", pad, format_exact(s.comms_timeout_s));
   return out;
+}
+
+std::string joint_limit_violation(const SafetyLimits& limits, const Eigen::Vector3d& q,
+                                  const std::array<JointMode, 3>& mode, const char* what) {
+  for (int i = 0; i < 3; ++i) {
+    if (mode[i] != JointMode::kPosition) continue;
+    if (!std::isfinite(q[i])) return fmt::format("joint {}: {} is not a finite number", i + 1, what);
+    if (q[i] < limits.joint_min[i] || q[i] > limits.joint_max[i]) {
+      return fmt::format("joint {}: {} {:.6f} rad is outside the joint limits [{}, {}]", i + 1, what, q[i],
+                         limits.joint_min[i], limits.joint_max[i]);
+    }
+  }
+  return {};
+}
+
+std::string workspace_violation(const SafetyLimits& limits, const Robot& controller, const Eigen::Vector2d& p,
+                                const char* what) {
+  const double r = (p - limits.workspace_centre).norm();
+  const double rmax = limits.workspace_radius_mm - limits.workspace_margin_mm;
+  if (r > rmax) {
+    return fmt::format("{} ({:.3f}, {:.3f}) mm is {:.3f} mm from the workspace centre, beyond "
+                       "{:.3f} mm (radius minus margin)",
+                       what, p.x(), p.y(), r, rmax);
+  }
+  const Reach reach = check_reach(controller, p);
+  if (!reach.ok) return fmt::format("{} ({:.3f}, {:.3f}) mm: {}", what, p.x(), p.y(), reach.reason);
+  return {};
+}
+
+std::string target_violation(const SafetyLimits& limits, const Robot& controller, const Eigen::Vector2d& p,
+                             const std::array<JointMode, 3>& mode) {
+  std::string why = workspace_violation(limits, controller, p, "target");
+  if (!why.empty()) return why;
+  const JointAngles q = inverse_kinematics(controller.geometry, p, controller.branch);
+  return joint_limit_violation(limits, readings_from_active(controller.geometry, q.theta_a), mode, "target");
 }
 
 }  // namespace gpm::hw

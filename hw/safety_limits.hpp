@@ -9,7 +9,9 @@
 #include <Eigen/Core>
 #include <yaml-cpp/yaml.h>
 
+#include "hw/hardware_types.hpp"
 #include "models/parameters.hpp"
+#include "models/robot.hpp"
 
 namespace gpm::hw {
 
@@ -60,5 +62,20 @@ SafetyLimits safety_limits_from_yaml(const YAML::Node& node, const std::string& 
 
 // YAML text of the limits (a `safety:` body indented by indent).
 std::string safety_limits_to_yaml(const SafetyLimits& limits, int indent);
+
+// The pose checks of the supervisor (SafetySupervisor::check_pose and its
+// command checks call these), as sentences naming `what`; empty when fine.
+// The first joint in position mode whose reading q lies outside its limits.
+std::string joint_limit_violation(const SafetyLimits& limits, const Eigen::Vector3d& q,
+                                  const std::array<JointMode, 3>& mode, const char* what);
+// End-effector point p outside the workspace disc (less its margin) or the
+// controller's reach and singularity margins.
+std::string workspace_violation(const SafetyLimits& limits, const Robot& controller, const Eigen::Vector2d& p,
+                                const char* what);
+// A target p for the controller (its IK readings checked against the joint
+// limits of the position-mode joints, p against the workspace): what a
+// sampling pose must pass before the robot moves (run-time pose design uses it).
+std::string target_violation(const SafetyLimits& limits, const Robot& controller, const Eigen::Vector2d& p,
+                             const std::array<JointMode, 3>& mode);
 
 }  // namespace gpm::hw

@@ -39,15 +39,7 @@ SafetySupervisor::SafetySupervisor(std::unique_ptr<RobotHardware> backend, const
 std::string SafetySupervisor::check_joint_positions(const Eigen::Vector3d& q,
                                                     const std::array<JointMode, 3>& mode,
                                                     const char* what) const {
-  for (int i = 0; i < 3; ++i) {
-    if (mode[i] != JointMode::kPosition) continue;
-    if (!std::isfinite(q[i])) return fmt::format("joint {}: {} is not a finite number", i + 1, what);
-    if (q[i] < limits_.joint_min[i] || q[i] > limits_.joint_max[i]) {
-      return fmt::format("joint {}: {} {:.6f} rad is outside the joint limits [{}, {}]", i + 1,
-                         what, q[i], limits_.joint_min[i], limits_.joint_max[i]);
-    }
-  }
-  return {};
+  return joint_limit_violation(limits_, q, mode, what);
 }
 
 std::string SafetySupervisor::check_workspace(const Eigen::Vector3d& q,
@@ -70,15 +62,9 @@ std::string SafetySupervisor::check_workspace(const Eigen::Vector3d& q,
     if (!fk) return fmt::format("{}: passive links {} and {} cannot meet", what, i + 1, j + 1);
     p = *fk;
   }
-  const double r = (p - limits_.workspace_centre).norm();
-  const double rmax = limits_.workspace_radius_mm - limits_.workspace_margin_mm;
-  if (r > rmax) {
-    return fmt::format("{} ({:.3f}, {:.3f}) mm is {:.3f} mm from the workspace centre, beyond "
-                       "{:.3f} mm (radius minus margin)",
-                       what, p.x(), p.y(), r, rmax);
-  }
+  const std::string why = workspace_violation(limits_, controller_, p, what);
+  if (!why.empty()) return why;
   const Reach reach = check_reach(controller_, p);
-  if (!reach.ok) return fmt::format("{} ({:.3f}, {:.3f}) mm: {}", what, p.x(), p.y(), reach.reason);
   for (int k = 0; k < 3; ++k) {
     if (mode[k] != JointMode::kPosition) continue;
     const double d = std::abs(wrap_pi(reach.q.theta_a[k] - theta_a[k]));

@@ -15,6 +15,7 @@
 #include "models/kinematics.hpp"
 #include "models/output_file.hpp"
 #include "hw/hardware_config.hpp"
+#include "hw/safety_limits.hpp"
 #include "hw/procedures/sample_log.hpp"
 #include "hw/procedures/sampling_session.hpp"
 #include "hw/procedures/stop_on_signal.hpp"
@@ -96,7 +97,18 @@ RunOutcome run_scenario(const RunSpec& spec_in, const std::string& scenario_file
   RunSpec spec = spec_in;
   if (spec.sim.sampling && spec.sim.sampling->needs_design()) {
     stage("designing the calibration poses");
-    design_sampling(spec.sim, ~spec.calibration.fixed, effective_sigma(spec.sim));
+    std::function<bool(const Eigen::Vector2d&)> admissible;
+    std::optional<hw::HardwareConfig> hw_cfg;
+    if (spec.hardware) {  // the poses must pass the hardware's safety limits too
+      hw_cfg = hw::load_hardware_config(*spec.hardware);
+      // With room to brake: 5 mm inside the workspace disc, 0.02 rad inside the joint limits.
+      hw_cfg->safety.workspace_margin_mm += 5.0;
+      for (int i = 0; i < 3; ++i) hw_cfg->safety.joint_min[i] += 0.02, hw_cfg->safety.joint_max[i] -= 0.02;
+      admissible = [&hw_cfg](const Eigen::Vector2d& p) {
+        return hw::target_violation(hw_cfg->safety, hw_cfg->controller, p, hw_cfg->modes).empty();
+      };
+    }
+    design_sampling(spec.sim, ~spec.calibration.fixed, effective_sigma(spec.sim), admissible);
   }
   const bool in_motion = spec.sim.sampling && spec.sim.sampling->pattern == sim::PosePattern::kTrajectory;
   if (in_motion && spec.hardware)

@@ -8,7 +8,8 @@
 
 namespace gpm::scenario {
 
-void design_sampling(sim::Scenario& s, const FreeMask& free, double sigma_rad) {
+void design_sampling(sim::Scenario& s, const FreeMask& free, double sigma_rad,
+                     const std::function<bool(const Eigen::Vector2d&)>& admissible) {
   if (!s.sampling || !s.sampling->needs_design()) return;
   const int p = static_cast<int>(free.count());
   if (s.sampling->count < p)
@@ -19,6 +20,7 @@ void design_sampling(sim::Scenario& s, const FreeMask& free, double sigma_rad) {
   o.count = s.sampling->count;
   o.free = free;
   o.sigma = sigma_rad > 0.0 ? sigma_rad : 1e-5;
+  o.admissible = admissible;
   if (s.sampling->pattern == sim::PosePattern::kTrajectory) {
     // The spline through the poses bulges past them: keep the poses further
     // from the limits than stop-and-go needs, so the path between them stays

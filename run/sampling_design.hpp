@@ -4,14 +4,20 @@
 // parameters, inside the robot's limits tightened by the design's guard.
 #pragma once
 
+#include <functional>
+
+#include <Eigen/Core>
+
 #include "models/parameters.hpp"
 #include "sim/scenario.hpp"
 
 namespace gpm::scenario {
 
 // Fills scenario.sampling->poses when the plan still needs a design (no-op
-// otherwise). Throws InputError, before anything moves, when the count is
-// below the number of free parameters.
-void design_sampling(sim::Scenario& scenario, const FreeMask& free, double sigma_rad);
+// otherwise), from candidates that also pass `admissible` when given (the
+// hardware's safety limits). Throws InputError, before anything moves, when
+// the count is below the number of free parameters.
+void design_sampling(sim::Scenario& scenario, const FreeMask& free, double sigma_rad,
+                     const std::function<bool(const Eigen::Vector2d&)>& admissible = {});
 
 }  // namespace gpm::scenario

@@ -156,7 +156,8 @@ Design design_poses(const Robot& nominal, const DesignOptions& o) {
     throw InputError(fmt::format("{} poses cannot identify {} free parameters (need at least {})",
                                  o.count, p, p));
   Design out;
-  const std::vector<Eigen::Vector2d> cand = reachable_grid(nominal, o.grid_step_mm, o.guard);
+  std::vector<Eigen::Vector2d> cand = reachable_grid(nominal, o.grid_step_mm, o.guard);
+  if (o.admissible) std::erase_if(cand, [&](const Eigen::Vector2d& p) { return !o.admissible(p); });
   out.candidates = static_cast<int>(cand.size());
   if (o.count > out.candidates)
     throw InputError(fmt::format("{} poses requested but the grid of step {} mm has only {} reachable "

@@ -42,6 +42,7 @@
 //  worse than the greedy start.
 #pragma once
 
+#include <functional>
 #include <optional>
 #include <string>
 #include <string_view>
@@ -69,6 +70,9 @@ struct DesignOptions {
   Criterion criterion = Criterion::kWorst;
   double grid_step_mm = 5.0;            // candidate grid spacing
   Guard guard;                          // candidates stricter than the robot's limits
+  // Optional further test every candidate must pass (e.g. the hardware's
+  // safety limits); unset: every guarded reachable grid point is a candidate.
+  std::function<bool(const Eigen::Vector2d&)> admissible;
   int max_exchanges = 2000;             // per exchange stage
 };
 

@@ -9,26 +9,6 @@
 #include "sim/scenario.hpp"
 
 namespace gpm::hw {
-namespace {
-
-// One bounded setting: InputError naming the file and key otherwise.
-void bounded(double x, double lo, double hi, const std::string& file, const char* key, const char* unit) {
-  if (!(x >= lo && x <= hi)) {
-    throw InputError(fmt::format("{}: sampling.{}: {} {} is outside [{}, {}] {}", file, key, x, unit,
-                                 lo, hi, unit));
-  }
-}
-
-}  // namespace
-
-void validate_sampling_options(const sim::SamplingOptions& o, const std::string& file) {
-  bounded(o.move_speed_mm_s, kMinMoveSpeedMmS, kMaxMoveSpeedMmS, file, "move_speed_mm_s", "mm/s");
-  bounded(o.average_s, 0.0, kMaxAverageS, file, "average_s", "s");
-  bounded(o.settle.timeout_s, 0.0, kMaxSettleTimeoutS, file, "settle.timeout_s", "s");
-  bounded(o.settle.hold_s, 0.0, kMaxSettleTimeoutS, file, "settle.hold_s", "s");
-  bounded(o.settle.velocity_rad_s, 0.0, kMaxVelocityRadS, file, "settle.velocity_rad_s", "rad/s");
-}
-
 SessionPlan load_poses_plan(const std::string& path) {
   const YAML::Node root = load_yaml_file(path);
   if (!root.IsMap()) throw InputError(path + ": expected a map with keys poses (and optionally sampling)");
@@ -57,7 +37,6 @@ SessionPlan load_poses_plan(const std::string& path) {
   SessionPlan plan;
   plan.poses = sc.sampling->poses;
   plan.options = sc.sampling->options;
-  validate_sampling_options(plan.options, path);
   return plan;
 }
 
@@ -67,7 +46,6 @@ SessionPlan plan_from_scenario(const std::string& path) {
   SessionPlan plan;
   plan.poses = sim::plan_poses(*sc.sampling, sc.seed);
   plan.options = sc.sampling->options;
-  validate_sampling_options(plan.options, path);
   return plan;
 }
 

@@ -16,17 +16,8 @@
 
 namespace gpm::hw {
 
-// Physically meaningful sampling settings (hw/README.md): a move slower than
-// 0.1 mm/s or faster than 1 m/s, an averaging window over 10 s, a settle
-// timeout or hold over 60 s, or a settle speed above the joints' speed limit
-// range is refused (they once recorded at the wrong place or hung).
-inline constexpr double kMinMoveSpeedMmS = 0.1;
-inline constexpr double kMaxMoveSpeedMmS = 1000.0;
-inline constexpr double kMaxAverageS = 10.0;
-inline constexpr double kMaxSettleTimeoutS = 60.0;
-
-// Throws InputError naming file and the key of the first setting outside its range.
-void validate_sampling_options(const sim::SamplingOptions& options, const std::string& file);
+// Sampling settings are bounded where they are parsed (sim/scenario.cpp,
+// ranges in scenarios/SCHEMA.md): both plans below go through that parser.
 
 // Loads a poses file (its poses and settings go through the scenario schema's
 // sampling parser, pattern list); throws InputError naming the file, line and
