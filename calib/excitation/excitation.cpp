@@ -161,7 +161,9 @@ Design design_poses(const Robot& nominal, const DesignOptions& o) {
   out.candidates = static_cast<int>(cand.size());
   if (o.count > out.candidates)
     throw InputError(fmt::format("{} poses requested but the grid of step {} mm has only {} reachable "
-                                 "candidates (use a finer step)", o.count, o.grid_step_mm, out.candidates));
+                                 "candidates{} (use a finer step or fewer poses)",
+                                 o.count, o.grid_step_mm, out.candidates,
+                                 o.admissible ? " inside the safety limits" : ""));
   const Eigen::MatrixXd rows = information_rows(nominal, o.free, cand);
   if (!std::isfinite(bounds_from_rows(rows, nominal.geometry, o.free, o.sigma).log_det))
     throw InputError(fmt::format("free parameters {} cannot be identified from any poses: encoder angles "

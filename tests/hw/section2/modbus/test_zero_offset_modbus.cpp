@@ -36,7 +36,11 @@ TEST(ZeroOffsetSearchModbus, DirectMethodThroughTheEmulatorFindsTheOffsets) {
   o.method = ZeroMethod::kDirect;
   o.circle_radius_mm = 30.0;
   o.direct_iterations = 3;
-  o.circle_speed_mm_s = 50.0;  // slower: readings over the network lag the commands by a varying time
+  o.circle_speed_mm_s = 50.0;
+  // Stop and average at each point of the circle: readings over the network
+  // lag the commands by a time that varies with the machine's load, which a
+  // moving circle turns into an offset error (up to 1.2e-3 rad measured).
+  o.circle_dwell_s = 0.1;
   const ZeroSearchResult r = run_zero_offset_search(*hw, o);
   std::printf("modbus direct: ok %d offsets %.6f %.6f %.6f err %.2e circles %d motions %d wall %.1f s\n",
               r.ok, r.offsets[0], r.offsets[1], r.offsets[2],
