@@ -19,6 +19,8 @@
 #include <fmt/format.h>
 
 #include "app/commands.hpp"
+#include "models/output_file.hpp"
+#include "report/report_document.hpp"
 #include "models/pose_layouts.hpp"
 #include "hw/hardware_config.hpp"
 #include "hw/hw_errors.hpp"
@@ -71,25 +73,26 @@ struct Row {
 
 std::string v3(const Eigen::Vector3d& v) { return fmt::format("{:.5f}, {:.5f}, {:.5f}", v[0], v[1], v[2]); }
 
-std::string report_markdown(const ZeroArgs& a, const std::vector<Row>& rows,
-                            const std::optional<Eigen::Vector3d>& actual, const std::string& hw_desc) {
-  std::string md = fmt::format("# Zero-offset auto-calibration (paper section 2.4)\n\nHardware: `{}` ({}).  "
-                               "Circle radius {} mm, {} interpolation points, joint {} read only "
-                               "(torque off).\n\n",
-                               a.hardware, hw_desc, a.radius, a.points, a.sensor_joint);
-  if (actual) md += fmt::format("Actual offsets of the twin: {} rad.\n\n", v3(*actual));
-  md += "| run | method | start (mm, commanded) | initial estimate (rad) | result (rad) | "
-        "max error vs actual (rad) | motions | circles | robot s | wall s |\n"
-        "| --- | --- | --- | --- | --- | --- | --- | --- | --- | --- |\n";
+report::ReportDocument zero_report(const ZeroArgs& a, const std::vector<Row>& rows,
+                                   const std::optional<Eigen::Vector3d>& actual, const std::string& hw_desc) {
+  report::ReportDocument d;
+  d.heading(1, "Zero-offset auto-calibration (paper section 2.4)");
+  d.paragraph(fmt::format("Hardware: {} ({}). Circle radius {} mm, {} interpolation points, joint {} read only "
+                          "(torque off).",
+                          a.hardware, hw_desc, a.radius, a.points, a.sensor_joint));
+  if (actual) d.paragraph(fmt::format("Actual offsets of the twin: {} rad.", v3(*actual)));
+  std::vector<std::vector<std::string>> table;
   for (const Row& r : rows) {
     const std::string start = r.start ? fmt::format("{:.2f}, {:.2f}", r.start->x(), r.start->y()) : "as found";
     std::string err = "unknown";
     if (actual && r.ok) err = fmt::format("{:.2e}", (r.offsets - *actual).cwiseAbs().maxCoeff());
-    md += fmt::format("| {} | {} | {} | {} | {} | {} | {} | {} | {:.1f} | {:.1f} |\n", r.label, r.method,
-                      start, r.initial.allFinite() ? v3(r.initial) : "-",
-                      r.ok ? v3(r.offsets) : "stopped: " + r.error, err, r.motions, r.circles,
-                      r.robot_s, r.wall_s);
+    table.push_back({r.label, r.method, start, r.initial.allFinite() ? v3(r.initial) : "-",
+                     r.ok ? v3(r.offsets) : "stopped: " + r.error, err, std::to_string(r.motions),
+                     std::to_string(r.circles), fmt::format("{:.1f}", r.robot_s), fmt::format("{:.1f}", r.wall_s)});
   }
+  d.table({"run", "method", "start (mm, commanded)", "initial estimate (rad)", "result (rad)",
+           "max error vs actual (rad)", "motions", "circles", "robot s", "wall s"},
+          table);
   // Spread of the main method's runs (paper Table 1: same offsets from different starts).
   Eigen::Vector3d lo = Eigen::Vector3d::Constant(INFINITY), hi = -lo;
   int n = 0;
@@ -99,8 +102,8 @@ std::string report_markdown(const ZeroArgs& a, const std::vector<Row>& rows,
     hi = hi.cwiseMax(r.offsets);
     ++n;
   }
-  if (n >= 2) md += fmt::format("\nSpread of the {} {} runs (max - min per joint): {} rad.\n", n, a.method, v3(hi - lo));
-  return md;
+  if (n >= 2) d.paragraph(fmt::format("Spread of the {} {} runs (max - min per joint): {} rad.", n, a.method, v3(hi - lo)));
+  return d;
 }
 
 std::string offsets_yaml(const Robot& controller, const Eigen::Vector3d& offsets, const std::vector<Row>& rows) {
@@ -217,12 +220,15 @@ void run_zero(const ZeroArgs& a) {
   int n = 0;
   for (const Row& r : rows)
     if (r.ok && r.method == a.method && r.label.rfind("start", 0) == 0) sum += r.offsets, ++n;
-  const std::string md = report_markdown(a, rows, actual, desc);
-  std::printf("\n%s", md.c_str());
+  const report::ReportDocument doc = zero_report(a, rows, actual, desc);
+  std::printf("\n%s", doc.markdown().c_str());
   if (!a.out.empty()) {
-    write_file_atomic((std::filesystem::path(a.out) / "report.md").string(), md);
-    if (n > 0) write_file_atomic((std::filesystem::path(a.out) / "offsets.yaml").string(),
-                                 offsets_yaml(config.controller, sum / n, rows));
+    // report.md, report.html and offsets.yaml all or none (models/output_file.hpp);
+    // trace.csv was written as the robot moved and stays.
+    OutputFolder out(a.out);
+    doc.stage(out, "report", "gpm zero: zero-offset auto-calibration");
+    if (n > 0) out.add("offsets.yaml", offsets_yaml(config.controller, sum / n, rows));
+    out.commit();
   }
   if (!interrupted.empty()) {
     std::fprintf(stderr, "gpm: %s; the runs before it and its trace are kept%s\n", interrupted.c_str(),
