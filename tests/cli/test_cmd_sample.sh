@@ -31,7 +31,7 @@ safety=$(sed -n '/^safety:/,$p' "$SRC/hw/examples/twin.yaml")
 cat >"$tmp/twin.yaml" <<YAML
 backend: twin
 controller: $SRC/models/gpm2002.yaml
-twin: {scenario: $SRC/scenarios/simulate_disc.yaml}
+twin: {scenario: $SRC/tests/fixtures/twin_disc.yaml}
 $safety
 YAML
 printf 'poses: [[236.5, 260], [196.5, 240]]\n' >"$tmp/poses2.yaml"
@@ -61,7 +61,7 @@ check "both pose sources" 2 "$GPM" sample --hardware "$tmp/twin.yaml" --poses "$
 # modbus through the emulator on an ephemeral loopback port; its drive-side
 # comms watchdog is long, so only the client can switch the drives off here.
 mkfifo "$tmp/emu.fifo"
-"$EMU" --map "$SRC/hw/examples/register_map_emulator.yaml" --scenario "$SRC/scenarios/simulate_disc.yaml" \
+"$EMU" --map "$SRC/hw/examples/register_map_emulator.yaml" --scenario "$SRC/tests/fixtures/twin_disc.yaml" \
   --port 0 --comms-watchdog 30 >"$tmp/emu.fifo" 2>"$tmp/emu.err" &
 emu_pid=$!
 read -r -t 60 line <"$tmp/emu.fifo" || { echo "FAIL emulator did not start"; cat "$tmp/emu.err"; exit 1; }

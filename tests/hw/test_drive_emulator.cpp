@@ -23,7 +23,7 @@ const std::string kSrc = GPM_SOURCE_DIR;
 std::unique_ptr<DriveEmulator> make(const EmulatorOptions& o = {}) {
   const RegisterMap map = load_register_map(kSrc + "/hw/examples/register_map_emulator.yaml");
   return std::make_unique<DriveEmulator>(
-      map, twin_config_from_scenario(kSrc + "/scenarios/simulate_disc.yaml", 0.004), o);
+      map, twin_config_from_scenario(kSrc + "/tests/fixtures/twin_disc.yaml", 0.004), o);
 }
 
 

@@ -11,7 +11,7 @@ trap cleanup EXIT
 fail=0; passed=0
 ok() { passed=$((passed+1)); }
 bad() { echo "FAIL $1"; fail=$((fail+1)); }
-MAP="$SRC/hw/examples/register_map_emulator.yaml"; SC="$SRC/scenarios/simulate_disc.yaml"
+MAP="$SRC/hw/examples/register_map_emulator.yaml"; SC="$SRC/tests/fixtures/twin_disc.yaml"
 
 refused() {  # name, expected words, flags...
   local name="$1" words="$2"; shift 2

@@ -15,7 +15,7 @@ const std::string kSrc = GPM_SOURCE_DIR;
 
 TEST(ModbusTransport, ReadsAndWritesRegisters) {
   const RegisterMap map = load_register_map(kSrc + "/hw/examples/register_map_emulator.yaml");
-  DriveEmulator emu(map, twin_config_from_scenario(kSrc + "/scenarios/simulate_disc.yaml", 0.004), {});
+  DriveEmulator emu(map, twin_config_from_scenario(kSrc + "/tests/fixtures/twin_disc.yaml", 0.004), {});
   const int port = emu.start();
   ModbusTransport t("127.0.0.1", port, 0.5);
   EXPECT_EQ(t.describe(), "modbus-tcp 127.0.0.1:" + std::to_string(port));
@@ -42,7 +42,7 @@ TEST(ModbusTransport, ClosedPortIsAClearError) {
   int port = 0;
   {
     const RegisterMap map = load_register_map(kSrc + "/hw/examples/register_map_emulator.yaml");
-    DriveEmulator emu(map, twin_config_from_scenario(kSrc + "/scenarios/simulate_disc.yaml", 0.004), {});
+    DriveEmulator emu(map, twin_config_from_scenario(kSrc + "/tests/fixtures/twin_disc.yaml", 0.004), {});
     port = emu.start();
   }  // stopped: nothing listens there now
   ModbusTransport t("127.0.0.1", port, 0.2);

@@ -20,7 +20,7 @@ namespace {
 namespace fs = std::filesystem;
 const std::string kSrc = GPM_SOURCE_DIR;
 // The example disc scenario: a perturbed actual robot, 17-bit encoders.
-const std::string kScenario = kSrc + "/scenarios/simulate_disc.yaml";
+const std::string kScenario = kSrc + "/tests/fixtures/twin_disc.yaml";
 const double kCount = 2 * M_PI / 131072;
 
 SessionPlan plan() {

@@ -36,7 +36,7 @@ TEST(SessionPlan, BadPosesNameTheKey) {
 }
 
 TEST(SessionPlan, ScenarioPlan) {
-  const SessionPlan p = plan_from_scenario(kSrc + "/scenarios/simulate_disc.yaml");
+  const SessionPlan p = plan_from_scenario(kSrc + "/tests/fixtures/twin_disc.yaml");
   EXPECT_EQ(p.poses.size(), 30u);
   EXPECT_EQ(p.options.move_speed_mm_s, 150.0);
   for (const auto& x : p.poses) EXPECT_LE((x - Eigen::Vector2d(216.5, 250)).norm(), 60.0 + 1e-9);

@@ -13,7 +13,7 @@ namespace {
 const std::string kSrc = GPM_SOURCE_DIR;
 
 TEST(TwinBackend, HoldsThenFollowsCommands) {
-  TwinBackend twin(twin_config_from_scenario(kSrc + "/scenarios/simulate_disc.yaml", 0.004));
+  TwinBackend twin(twin_config_from_scenario(kSrc + "/tests/fixtures/twin_disc.yaml", 0.004));
   EXPECT_THROW(twin.read(0.0), LifecycleError);
   twin.configure();
   const HardwareState s0 = twin.last_state();
@@ -29,7 +29,7 @@ TEST(TwinBackend, HoldsThenFollowsCommands) {
   EXPECT_LT((twin.last_state().theta_m - s0.theta_m).cwiseAbs().maxCoeff(), 2e-4);
   EXPECT_TRUE(twin.last_state().drive[2].enabled);
   // Move along consistent targets of the twin's own actual robot: it follows.
-  const Robot& actual = twin_config_from_scenario(kSrc + "/scenarios/simulate_disc.yaml", 0.004).actual;
+  const Robot& actual = twin_config_from_scenario(kSrc + "/tests/fixtures/twin_disc.yaml", 0.004).actual;
   Eigen::Vector3d target = s0.theta_m;
   for (int k = 1; k <= 250; ++k) {
     const Eigen::Vector2d p = actual.home + Eigen::Vector2d(20.0 * k / 250, 0);
@@ -49,7 +49,7 @@ TEST(TwinBackend, HoldsThenFollowsCommands) {
 }
 
 TEST(TwinBackend, TorqueOffJointReportsDisabledAndStillReads) {
-  TwinBackend twin(twin_config_from_scenario(kSrc + "/scenarios/simulate_disc.yaml", 0.004));
+  TwinBackend twin(twin_config_from_scenario(kSrc + "/tests/fixtures/twin_disc.yaml", 0.004));
   twin.configure();
   twin.activate();
   HardwareCommand c = hold_command(twin.last_state().theta_m);

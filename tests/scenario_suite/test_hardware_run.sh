@@ -20,7 +20,7 @@ bad() { echo "FAIL $1"; fail=$((fail+1)); }
 # Starts the emulator (extra flags: faults) and writes $tmp/map.yaml for its port.
 start_emulator() {
   rm -f "$tmp/emu.fifo"; mkfifo "$tmp/emu.fifo"
-  "$EMU" --map "$SRC/hw/examples/register_map_emulator.yaml" --scenario "$SRC/scenarios/simulate_disc.yaml" \
+  "$EMU" --map "$SRC/hw/examples/register_map_emulator.yaml" --scenario "$SRC/tests/fixtures/twin_disc.yaml" \
     --port 0 "$@" >"$tmp/emu.fifo" 2>"$tmp/emu.err" &
   emu_pid=$!
   local line=""
