@@ -68,6 +68,20 @@ def e1(g, th):
     return np.concatenate(rows, axis=1).ravel()
 
 
+def ml(g, th):
+    """The ML residual: the closure power over the norm of its gradient with
+    respect to the readings (central differences)."""
+    P = power(g, th)
+    h = 1e-6
+    grad2 = np.zeros_like(P)
+    for k in range(3):
+        tp, tm = th.copy(), th.copy()
+        tp[:, k] += h
+        tm[:, k] -= h
+        grad2 += ((power(g, tp) - power(g, tm)) / (2 * h)) ** 2
+    return P / np.sqrt(grad2)
+
+
 def main():
     path, reps, cost = sys.argv[1], int(sys.argv[2]), sys.argv[3]
     data = np.genfromtxt(path, delimiter=",", names=True)
@@ -85,17 +99,9 @@ def main():
         g.update(zip(FREE, x))
         if cost == "j1":
             return e1(g, th)
-        P = power(g, th, cost == "j3")
         if cost in ("j2", "j3"):
-            return P
-        h = 1e-6
-        grad2 = np.zeros_like(P)
-        for k in range(3):
-            tp, tm = th.copy(), th.copy()
-            tp[:, k] += h
-            tm[:, k] -= h
-            grad2 += ((power(g, tp) - power(g, tm)) / (2 * h)) ** 2
-        return P / np.sqrt(grad2)
+            return power(g, th, cost == "j3")
+        return ml(g, th)
 
     x0 = np.array([start[n] for n in FREE])
     times = []

@@ -35,15 +35,7 @@ def scipy_calibrate(th):
     def residual(x):
         g = dict(START)
         g.update(zip(FREE, x))
-        P = calib_scipy.power(g, th)
-        h = 1e-6
-        grad2 = np.zeros_like(P)
-        for k in range(3):
-            tp, tm = th.copy(), th.copy()
-            tp[:, k] += h
-            tm[:, k] -= h
-            grad2 += ((calib_scipy.power(g, tp) - calib_scipy.power(g, tm)) / (2 * h)) ** 2
-        return P / np.sqrt(grad2)
+        return calib_scipy.ml(g, th)
 
     x0 = np.array([START[n] for n in FREE])
     sol = least_squares(residual, x0, method="lm", x_scale="jac", ftol=1e-15, xtol=1e-15, gtol=1e-15)
