@@ -66,6 +66,11 @@ int run_app(CLI::App& app, int argc, char** argv) {
     // A file or folder the user named cannot be used: bad input, not a bug.
     std::fprintf(stderr, "gpm: error: %s: %s\n", e.path1().c_str(), e.code().message().c_str());
     return 2;
+  } catch (const gpm::Error& e) {
+    // The hardware, the physics or the renderer stopped the run (not the
+    // user's input, not a bug): one line, exit 1.
+    std::fprintf(stderr, "gpm: error: %s\n", e.what());
+    return 1;
   } catch (const std::exception& e) {
     std::fprintf(stderr, "gpm: internal error: %s (a bug: please report this)\n", e.what());
     return 3;

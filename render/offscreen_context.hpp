@@ -7,12 +7,14 @@
 #include <stdexcept>
 #include <string>
 
+#include "models/errors.hpp"
+
 namespace gpm::render {
 
 // A failure of the rendering or encoding machinery itself (not the user's input).
-class RenderError : public std::runtime_error {
+class RenderError : public Error {
  public:
-  explicit RenderError(const std::string& what) : std::runtime_error(what) {}
+  explicit RenderError(const std::string& what) : Error(what) {}
 };
 
 // Largest frame side (pixels) the command line accepts; MuJoCo's off-screen

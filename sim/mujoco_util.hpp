@@ -7,14 +7,16 @@
 #include <stdexcept>
 #include <string>
 
+#include "models/errors.hpp"
+
 #include <mujoco/mujoco.h>
 
 namespace gpm::sim {
 
 // A failure inside the physics engine (a MuJoCo error, or a diverged step).
-class SimError : public std::runtime_error {
+class SimError : public Error {
  public:
-  explicit SimError(const std::string& what) : std::runtime_error(what) {}
+  explicit SimError(const std::string& what) : Error(what) {}
 };
 
 struct ModelDeleter {
