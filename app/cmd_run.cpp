@@ -43,7 +43,7 @@ void print_summary(const scenario::RunOutcome& o, const std::string& dir) {
       const double e = std::abs(r.geometry[i] - o.sim.actual.geometry[i]) * (is_offset(i) ? 244.0 : 1.0);
       if (e >= worst) worst = e, worst_name = std::string(param_name(i));
     }
-    fmt::print("errors     largest {} (offsets counted as mm at the 244 mm link)\n", worst_name);
+    fmt::print("errors     largest {}: {:.4f} mm (offsets counted as mm at the 244 mm link)\n", worst_name, worst);
   }
   if (o.refused) fmt::print("refused    {}\n", *o.refused);
   if (o.before) {
@@ -53,6 +53,17 @@ void print_summary(const scenario::RunOutcome& o, const std::string& dir) {
   if (o.after) {
     fmt::print("           calibrated model: static RMS {:9.2f} um, max {:9.2f} um; path RMS {:9.2f} um\n",
                o.after->static_rms_um, o.after->static_max_um, o.after->path_rms_um);
+  }
+  if (o.floor) {
+    fmt::print("           actual (floor):   static RMS {:9.2f} um, max {:9.2f} um; path RMS {:9.2f} um\n",
+               o.floor->static_rms_um, o.floor->static_max_um, o.floor->path_rms_um);
+  }
+  if (o.hardware_description.empty()) fmt::print("robot time {:.2f} s of sampling\n", o.sim.sampling_s);
+  if (o.model_test) {
+    fmt::print("model test chi2 {:.4g} for {:.0f} degrees of freedom, p = {:.3g}: {}\n", o.model_test->chi2,
+               o.model_test->dof, o.model_test->p_value,
+               o.model_test->passed ? "the residuals are as small as the encoders explain"
+                                    : "fails (see the report's notes for the likely cause)");
   }
   size_t failed = 0;
   for (const auto& c : o.checks) {
