@@ -80,18 +80,7 @@ expect "modbus describes itself" "$tmp/out" "modbus-tcp 127.0.0.1:$port"
 # Power stages on (1) or off (0) of the three drives, read from the emulator
 # over Modbus (status word, register 10, bit 0).
 drives() {
-  python3 - "$port" <<'PY'
-import socket, struct, sys
-s = socket.create_connection(("127.0.0.1", int(sys.argv[1])), timeout=10)
-on = []
-for unit in (1, 2, 3):
-    s.sendall(struct.pack(">HHHBBHH", unit, 0, 6, unit, 3, 10, 1))
-    r = b""
-    while len(r) < 11:
-        r += s.recv(64)
-    on.append(str(struct.unpack(">H", r[9:11])[0] & 1))
-print(" ".join(on))
-PY
+  python3 "$SRC/tests/hw/emulator_drives.py" "$port"
 }
 # One signal policy: each of SIGINT, SIGTERM, SIGHUP once the first sample is on disk.
 printf 'poses: [%s]\n' "$(for k in $(seq 0 19); do printf '[%s, 250],' $((206 + k % 2 * 20)); done | sed 's/,$//')" >"$tmp/poses20.yaml"

@@ -93,19 +93,7 @@ kill -s INT "$pid"; wait "$pid"; rc=$?
 [[ $(wc -l <"$tmp/sig.err") -eq 1 ]] && ok || { bad "interrupted run: stderr not one line"; cat "$tmp/sig.err"; }
 grep -qE "^gpm: interrupted by SIGINT: drives disabled; [0-9]+ samples kept in $tmp/sig/samples.csv; to go on: gpm run .* --resume$" \
   "$tmp/sig.err" && ok || { bad "interrupted run: message"; cat "$tmp/sig.err"; }
-drives=$(python3 - "$port" <<'PY'
-import socket, struct, sys
-s = socket.create_connection(("127.0.0.1", int(sys.argv[1])), timeout=10)
-on = []
-for unit in (1, 2, 3):
-    s.sendall(struct.pack(">HHHBBHH", unit, 0, 6, unit, 3, 10, 1))
-    r = b""
-    while len(r) < 11:
-        r += s.recv(64)
-    on.append(str(struct.unpack(">H", r[9:11])[0] & 1))
-print(" ".join(on))
-PY
-)
+drives=$(python3 "$SRC/tests/hw/emulator_drives.py" "$port")
 [[ "$drives" == "0 0 0" ]] && ok || bad "interrupted run: drives still on ($drives)"
 stop_emulator
 
