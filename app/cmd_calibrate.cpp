@@ -1,7 +1,8 @@
 // gpm calibrate: identify kinematic parameters from encoder samples (paper
 // section 3; docs/ARCHITECTURE.md command line). Parses, calls calib/, prints, writes the
-// result YAML atomically. Bad input: exit 2 with one line; LM not converged:
-// the result is written (diagnostics.converged: false) and the exit code is 1.
+// result YAML atomically (with --json, prints the result file's content as one
+// JSON document instead of the text). Bad input: exit 2 with one line; LM not
+// converged: the result is written (diagnostics.converged: false), exit code 1.
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
@@ -13,6 +14,7 @@
 #include <fmt/format.h>
 
 #include "app/commands.hpp"
+#include "app/json_output.hpp"
 #include "calib/calibrate.hpp"
 #include "calib/initial.hpp"
 #include "calib/lm.hpp"
@@ -39,6 +41,7 @@ struct CalibrateOptions {
   double sigma = 0.0;
   bool sigma_given = false;
   bool allow_rank_deficient = false;
+  bool json = false;
 };
 
 // "FILE:LINE (sample ID)" for each data row, counting lines as the CSV reader
@@ -146,6 +149,12 @@ void run(const CalibrateOptions& o) {
 
   for (const auto& note : r.notes) std::fprintf(stderr, "gpm: warning: %s\n", note.c_str());
   calib::save_result(r, robot.name, o.out);
+  if (!r.converged) set_exit(1);
+  if (o.json) {
+    // The result file's content (the same text, read back as JSON) and nothing else.
+    print_json(yaml_text_to_json(calib::result_to_yaml(r, robot.name), o.out));
+    return;
+  }
 
   fmt::print("calibrated {} from {} samples with {} ({}), {} free parameters\n", robot.name,
              samples.size(), r.method, calib::cost_name(r.cost), r.free.count());
@@ -160,7 +169,6 @@ void run(const CalibrateOptions& o) {
   if (r.kmrmse_mm) fmt::print(", kmrmse {:.6g} mm", *r.kmrmse_mm);
   fmt::print(", {:.3f} s\n", r.seconds);
   fmt::print("{} -> {}\n", r.converged ? "converged" : "NOT converged", o.out);
-  if (!r.converged) set_exit(1);
 }
 
 }  // namespace
@@ -192,6 +200,8 @@ void add_calibrate(CLI::App& app) {
   cmd->add_option("--reference-reading", o->reference_reading,
                   "Encoder readings T1,T2,T3 (rad) at the reference point; implies --init reference");
   cmd->add_option("--reference-point", o->reference_point, "Reference point X,Y (mm); default: the robot's home");
+  cmd->add_flag("--json", o->json,
+                "Print the result (the content of the result file) as one JSON document on stdout instead of the text");
   cmd->callback([o] { run(*o); });
 }
 

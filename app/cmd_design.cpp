@@ -3,16 +3,18 @@
 // the robot file's (nominal) geometry and writes them as a scenario sampling
 // plan (calib/excitation/pose_list.hpp); with --compare, writes the table,
 // CSV and figures comparing the paper's line, a circle, two random discs and
-// the optimised set at equal poses and noise. Bad input exits 2 with one line.
+// the optimised set at equal poses and noise. --json prints one JSON document
+// (the file's content and the bounds) instead of the text. Bad input exits 2
+// with one line.
 #include <chrono>
 #include <cmath>
 #include <memory>
 #include <string>
 
-
 #include <fmt/format.h>
 
 #include "app/commands.hpp"
+#include "app/json_output.hpp"
 #include "calib/excitation/excitation.hpp"
 #include "calib/excitation/layouts.hpp"
 #include "calib/excitation/pose_list.hpp"
@@ -40,6 +42,7 @@ struct DesignCliOptions {
   double wide_radius = 150.0;
   std::uint64_t seed = 1;
   std::string out;
+  bool json = false;
 };
 
 // Validated design options from the flags; throws InputError naming the flag.
@@ -63,6 +66,21 @@ ex::DesignOptions design_options(const DesignCliOptions& o) {
   return d;
 }
 
+// Bounds as JSON: worst and mean (mm), the worst parameter, log det F, and
+// each free parameter's bound (mm; offsets as rad x la_i); non-finite -> null.
+Json bounds_json(const ex::Bounds& b) {
+  Json per = Json::object();
+  for (size_t k = 0; k < b.free_index.size(); ++k)
+    per[std::string(param_name(b.free_index[k]))] = json_number(b.scaled[static_cast<Eigen::Index>(k)]);
+  Json j;
+  j["worst_mm"] = json_number(b.worst_mm);
+  j["worst_param"] = b.worst_param >= 0 ? Json(std::string(param_name(b.worst_param))) : Json(nullptr);
+  j["mean_mm"] = json_number(b.mean_mm);
+  j["log_det"] = json_number(b.log_det);
+  j["parameters_mm"] = per;
+  return j;
+}
+
 std::string bound_note(const ex::Bounds& b) {
   return fmt::format("{:.4g} mm ({})", b.worst_mm, b.worst_param >= 0 ? std::string(param_name(b.worst_param)) : "-");
 }
@@ -80,7 +98,30 @@ void run_design(const DesignCliOptions& o) {
       "use: gpm simulate THIS_FILE -o DIR, or paste the sampling block into a scenario",
       d.count, ex::criterion_name(d.criterion), d.sigma, format_param_list(d.free), o.model, design.candidates,
       d.grid_step_mm, d.guard.reach_mm, bound_note(design.bounds), design.bounds.mean_mm);
-  write_output_file(o.out, ex::pose_list_yaml(design.poses, comment), {o.model});
+  const std::string text = ex::pose_list_yaml(design.poses, comment);
+  write_output_file(o.out, text, {o.model});
+  if (o.json) {
+    // The pose list file's content, and under "design" what its comment says.
+    Json doc = yaml_text_to_json(text, o.out);
+    Json free = Json::array();
+    for (int i = 0; i < kNumParams; ++i)
+      if (d.free.test(static_cast<size_t>(i))) free.push_back(std::string(param_name(i)));
+    Json info;
+    info["model"] = o.model;
+    info["poses"] = design.poses.size();
+    info["criterion"] = ex::criterion_name(d.criterion);
+    info["sigma_rad"] = d.sigma;
+    info["free"] = free;
+    info["candidates"] = design.candidates;
+    info["grid_step_mm"] = d.grid_step_mm;
+    info["guard_mm"] = d.guard.reach_mm;
+    info["start_bounds"] = bounds_json(design.start_bounds);
+    info["bounds"] = bounds_json(design.bounds);
+    info["exchanges"] = design.exchanges;
+    doc["design"] = info;
+    print_json(doc);
+    return;
+  }
   const double wall = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
   fmt::print("criterion        {}\n", ex::criterion_name(d.criterion));
   fmt::print("candidates       {} (grid {} mm)\n", design.candidates, d.grid_step_mm);
@@ -199,6 +240,24 @@ void run_compare(const DesignCliOptions& o) {
   out.add("design_comparison.csv", comparison_csv(rows));
   out.add("optimised_poses.yaml", ex::pose_list_yaml(rows.back().poses, "gpm design --compare: the optimised set"));
   out.commit();
+  if (o.json) {
+    // design_comparison.csv row by row (with each layout's poses), and the ratio.
+    Json layouts = Json::array();
+    for (const auto& r : rows) {
+      Json poses = Json::array();
+      for (const auto& p : r.poses) poses.push_back({p.x(), p.y()});
+      Json l = bounds_json(r.bounds);
+      l["layout"] = r.name;
+      l["description"] = r.description;
+      l["poses"] = poses;
+      layouts.push_back(l);
+    }
+    Json doc;
+    doc["layouts"] = layouts;
+    doc["improvement_over_best_other"] = json_number(ex::improvement_over_best_other(rows));
+    print_json(doc);
+    return;
+  }
   fmt::print("{:10} {:>14} {:>8} {:>14}\n", "layout", "worst (mm)", "param", "mean (mm)");
   for (const auto& r : rows)
     fmt::print("{:10} {:>14} {:>8} {:>14}\n", r.name, fmt_bound(r.bounds.worst_mm),
@@ -230,6 +289,9 @@ void add_design(CLI::App& app) {
   cmd->add_option("--wide-radius", opt->wide_radius, "--compare: radius of the wide disc, mm")->capture_default_str();
   cmd->add_option("--seed", opt->seed, "--compare: seed of the random discs")->capture_default_str();
   cmd->add_option("-o,--out", opt->out, "Pose list YAML (or folder with --compare)")->required();
+  cmd->add_flag("--json", opt->json,
+                "Print one JSON document on stdout instead of the text: the pose list file's content and the "
+                "design's bounds (with --compare: the comparison table and each layout's poses)");
   cmd->callback([opt] {
     if (opt->compare) run_compare(*opt);
     else run_design(*opt);

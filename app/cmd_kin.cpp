@@ -13,6 +13,7 @@
 #include <fmt/format.h>
 
 #include "app/commands.hpp"
+#include "app/json_output.hpp"
 #include "models/kinematics.hpp"
 #include "models/robot_yaml.hpp"
 
@@ -38,48 +39,32 @@ const CLI::Validator kFinite(
     },
     "FINITE");
 
-// A JSON string literal of s (quotes, backslashes and control characters escaped).
-std::string json_string(const std::string& s) {
-  std::string out = "\"";
-  for (const char ch : s) {
-    const auto c = static_cast<unsigned char>(ch);
-    if (c == '"' || c == '\\') out += '\\', out += ch;
-    else if (c == '\n') out += "\\n";
-    else if (c < 0x20 || c == 0x7f) out += fmt::format("\\u{:04x}", c);
-    else out += ch;
-  }
-  return out + "\"";
-}
-
-// A JSON number exactly as the double (shortest round trip); null when not finite.
-std::string json_number(double x) { return std::isfinite(x) ? fmt::format("{}", x) : "null"; }
-
-std::string json_vector(const Eigen::Vector3d& v) {
-  return fmt::format("[{}, {}, {}]", json_number(v[0]), json_number(v[1]), json_number(v[2]));
-}
-
-// The configuration as one JSON document (the keys mirror the text output).
+// The configuration as one JSON document (the keys mirror the text output;
+// numbers are exact, non-finite ones null).
 void print_configuration_json(const Robot& robot, const Eigen::Vector2d& p, const JointAngles& q,
                               std::optional<double> closure_mm2) {
   const Conditioning c = conditioning(robot.geometry, q);
   const Eigen::Vector3d m = readings_from_active(robot.geometry, q.theta_a);
   const Reach r = check_reach(robot, p);
-  std::string out = "{\n";
-  out += fmt::format("  \"robot\": {},\n", json_string(robot.name));
-  out += fmt::format("  \"end_effector_mm\": {{\"x\": {}, \"y\": {}}},\n", json_number(p.x()), json_number(p.y()));
-  out += fmt::format("  \"theta_a_rad\": {},\n", json_vector(q.theta_a));
-  out += fmt::format("  \"theta_b_rad\": {},\n", json_vector(q.theta_b));
-  out += fmt::format("  \"theta_m_rad\": {},\n", json_vector(m));
-  out += fmt::format("  \"transmission\": {},\n", json_vector(c.transmission));
-  out += fmt::format("  \"transmission_margin\": {},\n", json_number(robot.limits.min_transmission));
-  out += fmt::format("  \"passive_spread\": {},\n", json_number(c.direct));
-  out += fmt::format("  \"passive_spread_margin\": {},\n", json_number(robot.limits.min_direct));
-  out += fmt::format("  \"jacobian_condition\": {},\n", json_number(c.jacobian_condition));
-  out += fmt::format("  \"workspace\": {{\"inside\": {}, \"reason\": {}}}", r.ok ? "true" : "false",
-                     json_string(r.reason));
-  if (closure_mm2) out += fmt::format(",\n  \"closure_mm2\": {}", json_number(*closure_mm2));
-  out += "\n}\n";
-  fmt::print("{}", out);
+  const auto vec = [](const Eigen::Vector3d& v) {
+    Json a = Json::array();
+    for (int i = 0; i < 3; ++i) a.push_back(json_number(v[i]));
+    return a;
+  };
+  Json j;
+  j["robot"] = robot.name;
+  j["end_effector_mm"] = {{"x", json_number(p.x())}, {"y", json_number(p.y())}};
+  j["theta_a_rad"] = vec(q.theta_a);
+  j["theta_b_rad"] = vec(q.theta_b);
+  j["theta_m_rad"] = vec(m);
+  j["transmission"] = vec(c.transmission);
+  j["transmission_margin"] = json_number(robot.limits.min_transmission);
+  j["passive_spread"] = json_number(c.direct);
+  j["passive_spread_margin"] = json_number(robot.limits.min_direct);
+  j["jacobian_condition"] = json_number(c.jacobian_condition);
+  j["workspace"] = {{"inside", r.ok}, {"reason", r.reason}};
+  if (closure_mm2) j["closure_mm2"] = json_number(*closure_mm2);
+  print_json(j);
 }
 
 void print_configuration(const Robot& robot, const Eigen::Vector2d& p, const JointAngles& q) {

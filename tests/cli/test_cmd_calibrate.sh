@@ -95,6 +95,53 @@ expect "line warning" "$tmp/err" "^gpm: warning: poorly exciting samples: condit
 check "budget 1" 1 "$GPM" calibrate --data "$tmp/s.csv" --model "$tmp/start.yaml" --budget 1 -o "$tmp/r.yaml"
 expect "not converged" "$tmp/r.yaml" "^  converged: false"
 
+# Issue 18.3: --json prints the result file's content as one JSON document and
+# nothing else; every value equals the file's (read here by a small reader of
+# the result layout, independent of yaml-cpp), numbers exactly.
+check "calibrate json" 0 "$GPM" calibrate --data "$tmp/s.csv" --model "$tmp/start.yaml" --json -o "$tmp/r.yaml"
+cp "$tmp/out" "$tmp/r.json"; cp "$tmp/r.yaml" "$tmp/r_json_run.yaml"
+python3 - "$tmp/r.json" "$tmp/r_json_run.yaml" <<'PY' && passed=$((passed+1)) || { echo "FAIL calibrate json is the result file"; fail=$((fail+1)); }
+import json, sys
+j = json.load(open(sys.argv[1]))  # fails on any text around the document
+def value(t):
+    t = t.split(" #")[0].strip()
+    if t.startswith('"'): return json.loads(t)
+    if t in ("true", "false"): return t == "true"
+    if t == "[]": return []
+    if t.startswith("["): return [v.strip() for v in t[1:-1].split(",")]
+    for kind in (int, float):
+        try: return kind(t)
+        except ValueError: pass
+    return t
+y, section = {}, None
+for line in open(sys.argv[2]):
+    if not line.strip() or line.startswith("#"): continue
+    key, _, rest = line.strip().partition(":")
+    if line.startswith("    - "): y[section]["notes"].append(json.loads(line.strip()[2:])); continue
+    if not line.startswith(" "):
+        section = key
+        y[key] = {} if rest.split(" #")[0].strip() == "" else value(rest)
+        if rest.strip() == "{}": y[key] = {}
+    else:
+        y[section][key] = [] if rest.strip() == "" else value(rest)
+assert list(j) == ["name", "geometry", "std", "fixed", "diagnostics"], list(j)
+assert len(j["geometry"]) == 15 and len(j["std"]) == 11
+assert j == y, (j, y)
+assert j["diagnostics"]["converged"] is True and j["diagnostics"]["rank"] == 11
+PY
+# The document reads back as a robot file (JSON is YAML): same home as the result file.
+check "json as robot file" 0 "$GPM" kin home --model "$tmp/r.json"
+cp "$tmp/out" "$tmp/home_json.txt"
+check "yaml as robot file" 0 "$GPM" kin home --model "$tmp/r_json_run.yaml"
+if cmp -s "$tmp/out" "$tmp/home_json.txt"; then passed=$((passed+1)); else echo "FAIL json result differs as a robot file"; fail=$((fail+1)); fi
+# Not converged: still one document (converged false), exit 1.
+check "json budget 1" 1 "$GPM" calibrate --data "$tmp/s.csv" --model "$tmp/start.yaml" --budget 1 --json -o "$tmp/r.yaml"
+python3 -c 'import json,sys; j=json.load(open(sys.argv[1])); assert j["diagnostics"]["converged"] is False' "$tmp/out" \
+  && passed=$((passed+1)) || { echo "FAIL json not converged"; fail=$((fail+1)); }
+# Bad input with --json: exit 2, one line on stderr, nothing on stdout.
+check "json bad input" 2 "$GPM" calibrate --data "$tmp/none.csv" --json -o "$tmp/r.yaml"
+if [[ ! -s "$tmp/out" ]]; then passed=$((passed+1)); else echo "FAIL json bad input wrote stdout"; fail=$((fail+1)); fi
+
 # Bad input: exit 2, one line, no result file.
 check "method de with ml" 2 "$GPM" calibrate --data "$tmp/s.csv" --method de -o "$tmp/r.yaml"
 expect "method message" "$tmp/err" "--cost ml works with lm or de\+lm only"

@@ -40,6 +40,47 @@ expect "csv header" "head -1 '$tmp/cmp/design_comparison.csv' | grep -q '^layout
 expect "md table" "grep -q '^| optimised |' '$tmp/cmp/design_comparison.md'"
 expect "no temporary left" "[[ -z \$(ls -A '$tmp/cmp' | grep -E 'tmp') ]]"
 
+# Issue 18.3: --json is one document: the pose list file's content (exact
+# numbers) and the design's bounds; --compare --json is the comparison CSV.
+check "design json" 0 "$GPM" design --count 12 --sigma 1e-4 --grid-step 10 --json -o "$tmp/poses_j.yaml"
+python3 - "$tmp/out" "$tmp/poses_j.yaml" "$tmp/poses.yaml" <<'PY' && passed=$((passed+1)) || { echo "FAIL design json"; fail=$((fail+1)); }
+import json, re, sys
+j = json.load(open(sys.argv[1]))
+text = open(sys.argv[2]).read()
+poses = [[float(a), float(b)] for a, b in re.findall(r"^    - \[([^,]+), ([^]]+)\]$", text, re.M)]
+assert j["sampling"]["pattern"] == "list" and j["sampling"]["poses"] == poses and len(poses) == 12
+assert open(sys.argv[3]).read() == text  # --json changes the output, not the design
+d = j["design"]
+assert d["poses"] == 12 and d["criterion"] == "worst" and d["sigma_rad"] == 1e-4
+assert d["free"] == ["xa3", "ya3", "la1", "la2", "la3", "lb1", "lb2", "lb3", "dth1", "dth2", "dth3"]
+b = d["bounds"]
+assert len(b["parameters_mm"]) == 11 and b["worst_mm"] == max(b["parameters_mm"].values())
+assert b["parameters_mm"][b["worst_param"]] == b["worst_mm"]
+assert abs(b["mean_mm"] - sum(b["parameters_mm"].values()) / 11) < 1e-12 * b["worst_mm"] * 11
+m = re.search(r"worst ([0-9.e+-]+) mm \((\w+)\)", text.splitlines()[3])  # the file's comment
+assert m and abs(float(m.group(1)) - b["worst_mm"]) < 1e-3 * b["worst_mm"] and m.group(2) == b["worst_param"]
+assert d["start_bounds"]["worst_mm"] >= b["worst_mm"]
+PY
+check "compare json" 0 "$GPM" design --compare --count 20 --grid-step 10 --json -o "$tmp/cmp_j"
+python3 - "$tmp/out" "$tmp/cmp_j/design_comparison.csv" "$tmp/cmp_j/optimised_poses.yaml" <<'PY' && passed=$((passed+1)) || { echo "FAIL compare json"; fail=$((fail+1)); }
+import csv, json, math, re, sys
+same = lambda v, t: v == float(t) if v is not None else not math.isfinite(float(t))  # null: inf or nan
+j = json.load(open(sys.argv[1]))
+rows = list(csv.DictReader(open(sys.argv[2])))
+assert [l["layout"] for l in j["layouts"]] == [r["layout"] for r in rows]
+for l, r in zip(j["layouts"], rows):
+    assert len(l["poses"]) == int(r["poses"])
+    for key in ("worst_mm", "mean_mm", "log_det"):
+        assert same(l[key], r[key]), (key, l[key], r[key])
+    assert l["worst_param"] == r["worst_param"]
+    for name, v in l["parameters_mm"].items():
+        assert same(v, r[name + "_mm"]), name
+opt = [[float(a), float(b)] for a, b in re.findall(r"^    - \[([^,]+), ([^]]+)\]$", open(sys.argv[3]).read(), re.M)]
+assert j["layouts"][-1]["layout"] == "optimised" and j["layouts"][-1]["poses"] == opt
+others = min(math.inf if l["worst_mm"] is None else l["worst_mm"] for l in j["layouts"][:-1])
+assert abs(j["improvement_over_best_other"] - others / j["layouts"][-1]["worst_mm"]) < 1e-9 * j["improvement_over_best_other"]
+PY
+
 # Bad input: exit 2, one line naming the flag, no output file.
 check "too few poses" 2 "$GPM" design --count 5 --grid-step 10 -o "$tmp/bad.yaml"
 expect_err "too few message" "5 poses cannot identify 11 free parameters"
