@@ -134,6 +134,34 @@ check "json as robot file" 0 "$GPM" kin home --model "$tmp/r.json"
 cp "$tmp/out" "$tmp/home_json.txt"
 check "yaml as robot file" 0 "$GPM" kin home --model "$tmp/r_json_run.yaml"
 if cmp -s "$tmp/out" "$tmp/home_json.txt"; then passed=$((passed+1)); else echo "FAIL json result differs as a robot file"; fail=$((fail+1)); fi
+# Issue 18.2: the result file is a robot file wherever one is read. As
+# --model: calibrating again from it keeps its estimate. As a scenario's
+# robot: and actual: the twin samples it (ideal encoders), and calibrating
+# those samples from the start robot recovers the result's geometry.
+check "result as --model" 0 "$GPM" calibrate --data "$tmp/s.csv" --model "$tmp/r_json_run.yaml" -o "$tmp/r.yaml"
+cp "$tmp/r.yaml" "$tmp/r_again.yaml"
+cat >"$tmp/sc.yaml" <<YAML
+robot: r_json_run.yaml
+actual: r_json_run.yaml
+encoder: {bits: 0}   # ideal readings: the estimate is exact
+sampling: {pattern: disc, centre: [216.5, 250], radius: 80, count: 30}
+YAML
+check "result as scenario robot" 0 "$GPM" simulate "$tmp/sc.yaml" -o "$tmp/sc_out"
+check "calibrate scenario samples" 0 "$GPM" calibrate --data "$tmp/sc_out/samples.csv" --model "$tmp/start.yaml" --json -o "$tmp/r.yaml"
+cp "$tmp/out" "$tmp/sc.json"
+python3 - "$tmp/r.json" "$tmp/r_again.yaml" "$tmp/sc.json" <<'PY' && passed=$((passed+1)) || { echo "FAIL result file as robot file"; fail=$((fail+1)); }
+import json, sys
+first = json.load(open(sys.argv[1]))["geometry"]
+text = open(sys.argv[2]).read()
+block = text[text.index("\ngeometry:"):text.index("\nstd:")].splitlines()[2:]  # the geometry: map
+again = {l.split(":")[0].strip(): float(l.split(":")[1]) for l in block}
+twin = json.load(open(sys.argv[3]))["geometry"]
+for k, v in first.items():
+    tol = 1e-9 if k.startswith("dth") else 1e-7
+    assert abs(again[k] - v) < tol, (k, again[k], v)
+    assert abs(twin[k] - v) < 10 * tol, (k, twin[k], v)
+PY
+
 # Not converged: still one document (converged false), exit 1.
 check "json budget 1" 1 "$GPM" calibrate --data "$tmp/s.csv" --model "$tmp/start.yaml" --budget 1 --json -o "$tmp/r.yaml"
 python3 -c 'import json,sys; j=json.load(open(sys.argv[1])); assert j["diagnostics"]["converged"] is False' "$tmp/out" \
