@@ -31,12 +31,9 @@ int main() {
   actual.geometry[gpm::kXa3] += 0.5;
   const gpm::Samples samples = gpm::calib::workspace_samples(actual, 40, 7);
 
-  gpm::calib::Problem problem;
-  problem.theta_m = samples.theta_m;
-  problem.start = nominal.geometry;
-  problem.free.set();
-  for (int i : {gpm::kXa1, gpm::kYa1, gpm::kXa2, gpm::kYa2}) problem.free.reset(static_cast<size_t>(i));
-  const gpm::calib::Result r = gpm::calib::calibrate_lm(problem, gpm::calib::LmOptions{});
+  // As in the README's "Installing" section.
+  const gpm::calib::Problem problem{samples.theta_m, nominal.geometry, gpm::default_free_mask()};
+  const gpm::calib::Result r = gpm::calib::calibrate_lm(problem, {});
   double worst = 0.0;
   for (int i = 0; i < gpm::kNumParams; ++i) worst = std::fmax(worst, std::fabs(r.geometry[i] - actual.geometry[i]));
   std::printf("calibration: converged %d, largest parameter error %.3g\n", r.converged ? 1 : 0, worst);
