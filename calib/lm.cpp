@@ -127,9 +127,8 @@ void truncated_svd_lm(const std::vector<std::unique_ptr<ceres::CostFunction>>& f
       const double cost_t = et.ok ? et.r.squaredNorm() : std::numeric_limits<double>::infinity();
       double step_norm = 0.0;
       for (Eigen::Index k = 0; k < p; ++k) step_norm += std::pow(step_s[k] / D[k], 2);
-      res.lm_iterations.push_back({static_cast<int>(res.lm_iterations.size()),
-                                   paper_cost(res.cost, std::min(cost_t, cost)), std::sqrt(step_norm),
-                                   cost_t < cost});
+      res.lm_iterations.push_back({static_cast<int>(res.lm_iterations.size()), paper_cost(res.cost, cost_t),
+                                   std::sqrt(step_norm), cost_t < cost});
       if (cost_t < cost) {
         const double drop = (cost - cost_t) / std::max(cost, 1e-300);
         double xs = 0.0;

@@ -54,7 +54,7 @@ struct Box {
 // is the start; step_norm is |dx| in the solver's parameters (calib/parameterization.hpp).
 struct LmIteration {
   int iteration = 0;
-  double cost = 0.0;       // the error function J at the iterate after this step
+  double cost = 0.0;       // J after this step (rejected: J at the point it rejected)
   double step_norm = 0.0;  // the step tried (0 at iteration 0)
   bool accepted = true;    // false: the step raised J and was rejected
 };
