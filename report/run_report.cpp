@@ -1,5 +1,6 @@
 #include "report/run_report.hpp"
 
+#include <cctype>
 #include <cmath>
 #include <limits>
 
@@ -21,6 +22,30 @@ std::string unit(int i) { return is_offset(i) ? "rad" : "mm"; }
 // Units are written with their symbols (µm, µrad, σ) in every output: the
 // Markdown and the SVG files are UTF-8 like the HTML page.
 
+// Text from the run library (expectation details, calibration notes) writes
+// units in ASCII for terminals: "28.15 um" becomes "28.15 µm" here, and
+// "urad" "µrad", wherever the unit follows a number.
+std::string with_unit_symbols(const std::string& text) {
+  std::string out;
+  for (size_t i = 0; i < text.size(); ++i) {
+    const bool after_number = !out.empty() && (std::isdigit(static_cast<unsigned char>(out.back())) ||
+                                               (out.back() == ' ' && out.size() > 1 &&
+                                                std::isdigit(static_cast<unsigned char>(out[out.size() - 2]))));
+    for (const char* unit : {"urad", "um"}) {
+      const std::string u = unit;
+      const size_t end = i + u.size();
+      const bool whole = end == text.size() || !std::isalnum(static_cast<unsigned char>(text[end]));
+      if (after_number && whole && text.compare(i, u.size(), u) == 0) {
+        out += "µ" + u.substr(1);
+        i = end;
+        break;
+      }
+    }
+    if (i < text.size()) out += text[i];
+  }
+  return out;
+}
+
 // At most about `limit` points of a long series are drawn: every k-th.
 size_t thinning(size_t n, size_t limit) { return n <= limit ? 1 : (n + limit - 1) / limit; }
 
@@ -35,7 +60,7 @@ std::string layout_figure(const RunReport& o) {
   Series samples;
   const size_t k = thinning(o.sample_xy.size(), 1500);
   samples.label = k == 1 ? fmt::format("calibration samples ({})", o.sample_xy.size())
-                         : fmt::format("calibration samples (every {}th of {})", k, o.sample_xy.size());
+                         : fmt::format("calibration samples (1 in {} of {} drawn)", k, o.sample_xy.size());
   samples.style = Series::Style::kMarkers;
   samples.marker_size = k == 1 ? 3.0 : 2.0;
   for (size_t j = 0; j < o.sample_xy.size(); j += k) samples.x.push_back(o.sample_xy[j].x()), samples.y.push_back(o.sample_xy[j].y());
@@ -235,7 +260,7 @@ ReportDocument build_run_report(const RunReport& o) {
   d.heading(1, fmt::format("gpm run: {}", o.name));
   std::vector<std::string> failed;
   for (const RunCheck& c : o.checks)
-    if (!c.passed) failed.push_back(fmt::format("{}: {}", c.name, c.detail));
+    if (!c.passed) failed.push_back(fmt::format("{}: {}", c.name, with_unit_symbols(c.detail)));
   d.paragraph(fmt::format("Scenario {}. Verdict: {} ({} expectations checked, {} failed). Run time {:.1f} s.",
                           o.scenario_file, failed.empty() ? "PASSED" : "FAILED", o.checks.size(),
                           failed.size(), o.seconds));
@@ -262,14 +287,14 @@ ReportDocument build_run_report(const RunReport& o) {
              "static preload RMS (N m)", "path preload RMS (N m)"},
             rows);
     if (o.after) {
-      d.paragraph(fmt::format("Static accuracy improved x{:.3g}; path tracking x{:.3g}; preload x{:.3g}.",
+      d.paragraph(fmt::format("Static accuracy improved ×{:.3g}; path tracking ×{:.3g}; preload ×{:.3g}.",
                               o.before->static_rms_um / o.after->static_rms_um,
                               o.before->path_rms_um / o.after->path_rms_um,
                               o.before->static_preload_rms_nm / std::max(1e-12, o.after->static_preload_rms_nm)));
     }
     if (o.after && o.floor) {
       d.paragraph(fmt::format("The `actual` row is the floor: the controller given the true parameters. Calibrated "
-                              "static RMS is {:.2f}x the floor. Sampling took {:.2f} s of robot time.",
+                              "static RMS is {:.2f}× the floor. Sampling took {:.2f} s of robot time.",
                               o.after->static_rms_um / std::max(1e-12, o.floor->static_rms_um), o.robot_time_s));
     }
   }
@@ -308,13 +333,15 @@ ReportDocument build_run_report(const RunReport& o) {
             {{num(r.final_cost, 4), std::to_string(r.iterations), std::to_string(r.evaluations),
               std::to_string(r.rank), num(r.condition_number, 4), r.kmrmse_mm ? num(*r.kmrmse_mm, 4) : "-",
               num(r.seconds, 3), r.converged ? "yes" : "no"}});
-    if (!r.notes.empty()) d.bullets(r.notes);
+    std::vector<std::string> notes;
+    for (const std::string& n : r.notes) notes.push_back(with_unit_symbols(n));
+    if (!notes.empty()) d.bullets(notes);
   }
 
   if (!o.checks.empty()) {
     d.heading(2, "Expectations");
     std::vector<std::vector<std::string>> rows;
-    for (const RunCheck& c : o.checks) rows.push_back({c.name, c.passed ? "pass" : "FAIL", c.detail});
+    for (const RunCheck& c : o.checks) rows.push_back({c.name, c.passed ? "pass" : "FAIL", with_unit_symbols(c.detail)});
     d.table({"check", "result", "measured"}, rows);
   }
 
