@@ -69,7 +69,7 @@ std::string ReportDocument::html(const std::string& title) const {
       "table{{border-collapse:collapse;margin:1em 0;font-size:.9em}}"
       "td,th{{border:1px solid #ccc;padding:3px 6px;text-align:right;vertical-align:top;"
       "font-variant-numeric:tabular-nums}}th{{background:#f3f3f3;font-weight:600}}"
-      "td:first-child,th:first-child{{text-align:left}}td.t{{text-align:left;overflow-wrap:anywhere;min-width:6em}}"
+      "td:first-child,th:first-child{{text-align:left}}td.t,th.t{{text-align:left;overflow-wrap:anywhere;min-width:6em}}"
       "figure{{margin:1.5em 0}}figure>svg{{display:block;max-width:100%;height:auto}}"
       "figcaption{{font-style:italic;color:#555}}"
       "pre{{background:#f6f6f6;padding:.6em;white-space:pre-wrap;overflow-wrap:anywhere}}"
@@ -86,8 +86,14 @@ std::string ReportDocument::html(const std::string& title) const {
         h += "</ul>\n";
         break;
       case Block::Kind::kTable:
+      {
         h += "<table><tr>";
-        for (const auto& c : b.header) h += "<th>" + xml_escape(c) + "</th>";
+        // A column of text cells (class t, left-aligned) gets a left-aligned header.
+        for (size_t k = 0; k < b.header.size(); ++k) {
+          bool text = false;
+          for (const auto& row : b.rows) text = text || (k < row.size() && row[k].find(' ') != std::string::npos);
+          h += (text && k > 0 ? "<th class=\"t\">" : "<th>") + xml_escape(b.header[k]) + "</th>";
+        }
         h += "</tr>\n";
         for (const auto& row : b.rows) {
           h += "<tr>";
@@ -96,6 +102,7 @@ std::string ReportDocument::html(const std::string& title) const {
         }
         h += "</table>\n";
         break;
+      }
       case Block::Kind::kFigure:
         h += "<figure id=\"fig-" + xml_escape(b.name) + "\">" + b.svg + "<figcaption>" + xml_escape(b.text) +
              "</figcaption></figure>\n";

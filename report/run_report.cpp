@@ -334,7 +334,8 @@ ReportDocument build_run_report(const RunReport& o) {
               std::to_string(r.rank), num(r.condition_number, 4), r.kmrmse_mm ? num(*r.kmrmse_mm, 4) : "-",
               num(r.seconds, 3), r.converged ? "yes" : "no"}});
     std::vector<std::string> notes;
-    for (const std::string& n : r.notes) notes.push_back(with_unit_symbols(n));
+    for (const std::string& n : r.notes)  // the model test's diagnosis is already in its paragraph above
+      if (!(o.model_test && n == o.model_test->diagnosis)) notes.push_back(with_unit_symbols(n));
     if (!notes.empty()) d.bullets(notes);
   }
 
