@@ -60,7 +60,8 @@ std::string ReportDocument::markdown() const {
 
 std::string ReportDocument::html(const std::string& title) const {
   std::string h = fmt::format(
-      "<!DOCTYPE html>\n<html lang=\"en\"><head><meta charset=\"utf-8\"><title>{}</title>\n"
+      "<!DOCTYPE html>\n<html lang=\"en\"><head><meta charset=\"utf-8\">"
+      "<meta name=\"viewport\" content=\"width=device-width, initial-scale=1\"><title>{}</title>\n"
       // Tables fit the page: headers wrap at spaces, text cells (those with a
       // space) wrap anywhere if they must, numbers never break; narrow windows
       // get a smaller table font. Figures scale down with the page.
