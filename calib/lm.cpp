@@ -105,6 +105,7 @@ void truncated_svd_lm(const std::vector<std::unique_ptr<ceres::CostFunction>>& f
   Eigen::VectorXd D(p);  // column scales, frozen at the start
   for (Eigen::Index k = 0; k < p; ++k) D[k] = std::max(e.J.col(idx[static_cast<size_t>(k)]).norm(), 1e-300);
   double cost = e.r.squaredNorm();
+  res.lm_iterations.push_back({0, paper_cost(res.cost, cost), 0.0, true});
   double lambda = -1.0;
   res.converged = false;
   long it = 0;
@@ -124,6 +125,10 @@ void truncated_svd_lm(const std::vector<std::unique_ptr<ceres::CostFunction>>& f
       const Evaluation et = evaluate(f, xt, rows, false);
       ++res.evaluations;
       const double cost_t = et.ok ? et.r.squaredNorm() : std::numeric_limits<double>::infinity();
+      double step_norm = 0.0;
+      for (Eigen::Index k = 0; k < p; ++k) step_norm += std::pow(step_s[k] / D[k], 2);
+      res.lm_iterations.push_back({static_cast<int>(res.lm_iterations.size()), paper_cost(res.cost, cost_t),
+                                   std::sqrt(step_norm), cost_t < cost});
       if (cost_t < cost) {
         const double drop = (cost - cost_t) / std::max(cost, 1e-300);
         double xs = 0.0;
@@ -225,6 +230,9 @@ Result calibrate_lm(const Problem& problem, const LmOptions& opt) {
     so.logging_type = ceres::SILENT;
     ceres::Solver::Summary summary;
     ceres::Solve(so, &cp, &summary);
+    for (const ceres::IterationSummary& it : summary.iterations)  // Ceres' cost is half the sum of squares
+      res.lm_iterations.push_back({it.iteration, paper_cost(opt.cost, 2.0 * it.cost), it.step_norm,
+                                   it.step_is_successful || it.iteration == 0});
     for (size_t k = 0; k < free_index.size(); ++k) x[static_cast<size_t>(free_index[k])] = xf[k];
     res.iterations = static_cast<long>(summary.num_successful_steps + summary.num_unsuccessful_steps);
     // Each Jacobian evaluation also evaluates the residuals: count both kinds.

@@ -50,6 +50,15 @@ struct Box {
   std::array<double, kNumParams> upper{};
 };
 
+// One Levenberg-Marquardt iteration (Ceres' IterationSummary): iteration 0
+// is the start; step_norm is |dx| in the solver's parameters (calib/parameterization.hpp).
+struct LmIteration {
+  int iteration = 0;
+  double cost = 0.0;       // J after this step (rejected: J at the point it rejected)
+  double step_norm = 0.0;  // the step tried (0 at iteration 0)
+  bool accepted = true;    // false: the step raised J and was rejected
+};
+
 // Outcome of any solver; written as the result YAML (docs/FORMATS.md).
 struct Result {
   Geometry geometry;                        // all 15 (estimated and fixed)
@@ -68,6 +77,7 @@ struct Result {
   bool converged = true;
   std::vector<std::string> notes;           // warnings and diagnoses, one sentence each
   std::vector<std::pair<long, double>> history;  // (evaluations, best J) for convergence plots
+  std::vector<LmIteration> lm_iterations;        // every iteration of the last LM solve (empty: none)
   // Covariance of all 15 parameters (zero rows/columns for fixed ones), when
   // the solver computed one (calib/lm.hpp); sigma holds its diagonal's roots.
   std::optional<Eigen::Matrix<double, kNumParams, kNumParams>> covariance;

@@ -60,12 +60,21 @@ std::string ReportDocument::markdown() const {
 
 std::string ReportDocument::html(const std::string& title) const {
   std::string h = fmt::format(
-      "<!DOCTYPE html>\n<html lang=\"en\"><head><meta charset=\"utf-8\"><title>{}</title>\n"
-      "<style>body{{font-family:sans-serif;max-width:980px;margin:2em auto;padding:0 1em;color:#222}}"
-      "table{{border-collapse:collapse;margin:1em 0}}td,th{{border:1px solid #ccc;padding:3px 8px;"
-      "text-align:right;font-variant-numeric:tabular-nums}}th{{background:#f3f3f3}}"
-      "td:first-child,th:first-child{{text-align:left}}figure{{margin:1em 0}}"
-      "figcaption{{font-style:italic;color:#555}}pre{{background:#f6f6f6;padding:.6em;overflow-x:auto}}"
+      "<!DOCTYPE html>\n<html lang=\"en\"><head><meta charset=\"utf-8\">"
+      "<meta name=\"viewport\" content=\"width=device-width, initial-scale=1\"><title>{}</title>\n"
+      // Tables fit the page: headers wrap at spaces, text cells (those with a
+      // space) wrap anywhere if they must, numbers never break; narrow windows
+      // get a smaller table font. Figures scale down with the page.
+      "<style>body{{font-family:sans-serif;max-width:980px;margin:2em auto;padding:0 1em;color:#222;"
+      "line-height:1.4;overflow-wrap:break-word}}"
+      "table{{border-collapse:collapse;margin:1em 0;font-size:.9em}}"
+      "td,th{{border:1px solid #ccc;padding:3px 6px;text-align:right;vertical-align:top;"
+      "font-variant-numeric:tabular-nums}}th{{background:#f3f3f3;font-weight:600}}"
+      "td:first-child,th:first-child{{text-align:left}}td.t,th.t{{text-align:left;overflow-wrap:anywhere;min-width:6em}}"
+      "figure{{margin:1.5em 0}}figure>svg{{display:block;max-width:100%;height:auto}}"
+      "figcaption{{font-style:italic;color:#555}}"
+      "pre{{background:#f6f6f6;padding:.6em;white-space:pre-wrap;overflow-wrap:anywhere}}"
+      "@media (max-width:820px){{table{{font-size:.78em}}td,th{{padding:2px 4px}}}}"
       "</style></head><body>\n",
       xml_escape(title));
   for (const Block& b : blocks_) {
@@ -78,18 +87,26 @@ std::string ReportDocument::html(const std::string& title) const {
         h += "</ul>\n";
         break;
       case Block::Kind::kTable:
+      {
         h += "<table><tr>";
-        for (const auto& c : b.header) h += "<th>" + xml_escape(c) + "</th>";
+        // A column of text cells (class t, left-aligned) gets a left-aligned header.
+        for (size_t k = 0; k < b.header.size(); ++k) {
+          bool text = false;
+          for (const auto& row : b.rows) text = text || (k < row.size() && row[k].find(' ') != std::string::npos);
+          h += (text && k > 0 ? "<th class=\"t\">" : "<th>") + xml_escape(b.header[k]) + "</th>";
+        }
         h += "</tr>\n";
         for (const auto& row : b.rows) {
           h += "<tr>";
-          for (const auto& c : row) h += "<td>" + xml_escape(c) + "</td>";
+          for (const auto& c : row) h += (c.find(' ') == std::string::npos ? "<td>" : "<td class=\"t\">") + xml_escape(c) + "</td>";
           h += "</tr>\n";
         }
         h += "</table>\n";
         break;
+      }
       case Block::Kind::kFigure:
-        h += "<figure>" + b.svg + "<figcaption>" + xml_escape(b.text) + "</figcaption></figure>\n";
+        h += "<figure id=\"fig-" + xml_escape(b.name) + "\">" + b.svg + "<figcaption>" + xml_escape(b.text) +
+             "</figcaption></figure>\n";
         break;
       case Block::Kind::kPre: h += "<pre>" + xml_escape(b.text) + "</pre>\n"; break;
     }

@@ -1,6 +1,8 @@
 #include "report/run_report.hpp"
 
+#include <cctype>
 #include <cmath>
+#include <limits>
 
 #include <fmt/format.h>
 
@@ -17,6 +19,36 @@ std::string num(double v, int digits = 6) {
 
 std::string unit(int i) { return is_offset(i) ? "rad" : "mm"; }
 
+// Units are written with their symbols (µm, µrad, σ) in every output: the
+// Markdown and the SVG files are UTF-8 like the HTML page.
+
+// Text from the run library (expectation details, calibration notes) writes
+// units in ASCII for terminals: "28.15 um" becomes "28.15 µm" here, and
+// "urad" "µrad", wherever the unit follows a number.
+std::string with_unit_symbols(const std::string& text) {
+  std::string out;
+  for (size_t i = 0; i < text.size(); ++i) {
+    const bool after_number = !out.empty() && (std::isdigit(static_cast<unsigned char>(out.back())) ||
+                                               (out.back() == ' ' && out.size() > 1 &&
+                                                std::isdigit(static_cast<unsigned char>(out[out.size() - 2]))));
+    for (const char* unit : {"urad", "um"}) {
+      const std::string u = unit;
+      const size_t end = i + u.size();
+      const bool whole = end == text.size() || !std::isalnum(static_cast<unsigned char>(text[end]));
+      if (after_number && whole && text.compare(i, u.size(), u) == 0) {
+        out += "µ" + u.substr(1);
+        i = end;
+        break;
+      }
+    }
+    if (i < text.size()) out += text[i];
+  }
+  return out;
+}
+
+// At most about `limit` points of a long series are drawn: every k-th.
+size_t thinning(size_t n, size_t limit) { return n <= limit ? 1 : (n + limit - 1) / limit; }
+
 std::string layout_figure(const RunReport& o) {
   Series reach;
   reach.label = "reachable with margins";
@@ -26,19 +58,38 @@ std::string layout_figure(const RunReport& o) {
     for (double y = -60; y <= 560; y += 12)
       if (check_reach(o.nominal, {x, y}).ok) reach.x.push_back(x), reach.y.push_back(y);
   Series samples;
-  samples.label = "calibration samples";
+  const size_t k = thinning(o.sample_xy.size(), 1500);
+  samples.label = k == 1 ? fmt::format("calibration samples ({})", o.sample_xy.size())
+                         : fmt::format("calibration samples (1 in {} of {} drawn)", k, o.sample_xy.size());
   samples.style = Series::Style::kMarkers;
-  for (const auto& p : o.sample_xy) samples.x.push_back(p.x()), samples.y.push_back(p.y());
+  samples.marker_size = k == 1 ? 3.0 : 2.0;
+  for (size_t j = 0; j < o.sample_xy.size(); j += k) samples.x.push_back(o.sample_xy[j].x()), samples.y.push_back(o.sample_xy[j].y());
   Series bases;
-  bases.label = "base joints A1..A3";
+  bases.label = "base joints A1, A2, A3 (nominal)";
   bases.style = Series::Style::kMarkers;
+  bases.marker = Series::Marker::kTriangle;
+  bases.marker_size = 5;
   bases.color = "#000000";
-  for (int i = 0; i < 3; ++i) bases.x.push_back(o.nominal.geometry.A(i).x()), bases.y.push_back(o.nominal.geometry.A(i).y());
-  std::vector<Series> all{reach, samples, bases};
+  for (int i = 0; i < 3; ++i) {
+    bases.x.push_back(o.nominal.geometry.A(i).x());
+    bases.y.push_back(o.nominal.geometry.A(i).y());
+    bases.point_labels.push_back(fmt::format("A{}", i + 1));
+  }
+  Series home;
+  home.label = fmt::format("home ({:.1f}, {:.1f})", o.nominal.home.x(), o.nominal.home.y());
+  home.style = Series::Style::kMarkers;
+  home.marker = Series::Marker::kCross;
+  home.marker_size = 6;
+  home.color = "#9467bd";
+  home.x = {o.nominal.home.x()};
+  home.y = {o.nominal.home.y()};
+  home.point_labels = {"home"};
+  std::vector<Series> all{reach, samples, bases, home};
   if (!o.test_poses.empty()) {
     Series test;
     test.label = "accuracy test poses";
     test.style = Series::Style::kMarkers;
+    test.marker_size = 4;
     test.color = "#2ca02c";
     for (const auto& p : o.test_poses) test.x.push_back(p.x()), test.y.push_back(p.y());
     all.push_back(test);
@@ -53,18 +104,92 @@ std::string layout_figure(const RunReport& o) {
 }
 
 std::string residual_figure(const RunReport& o) {
+  // Long runs: the smallest and the largest residual of each run of k
+  // samples, so no outlier disappears.
+  const size_t n = o.residual_urad.size(), k = thinning(n, 1000);
   Series r;
-  r.label = "ML residual after calibration (urad)";
+  r.label = k == 1 ? "ML residual after calibration (µrad)"
+                   : fmt::format("ML residual after calibration (µrad), extremes of every {} samples", k);
   r.style = Series::Style::kMarkers;
-  for (size_t j = 0; j < o.residual_urad.size(); ++j) r.x.push_back(static_cast<double>(j)), r.y.push_back(o.residual_urad[j]);
+  r.marker_size = 2;
+  for (size_t j = 0; j < n; j += k) {
+    size_t lo = j, hi = j;
+    for (size_t i = j; i < std::min(n, j + k); ++i) {
+      if (o.residual_urad[i] < o.residual_urad[lo]) lo = i;
+      if (o.residual_urad[i] > o.residual_urad[hi]) hi = i;
+    }
+    for (size_t i : {std::min(lo, hi), std::max(lo, hi)}) {
+      r.x.push_back(static_cast<double>(i));
+      r.y.push_back(o.residual_urad[i]);
+      if (lo == hi) break;
+    }
+  }
   PlotOptions po;
-  po.title = "Closure residual per sample (reading-space, maximum-likelihood scaling)";
+  po.title = "Closure residual per sample (reading space, maximum-likelihood scaling)";
   po.x_label = "sample";
-  po.y_label = "urad";
+  po.y_label = "residual (µrad)";
   return svg_plot({r}, po);
 }
 
-std::string convergence_figure(const RunCalibration& r) {
+// Two panels over the LM iterations: J, and the length of each step tried.
+// J spanning more than a decade is drawn on a log axis; a warm start that
+// changes J by a small fraction as J - J_final on a linear axis, so the
+// changes stay readable.
+std::string lm_convergence_figure(const RunCalibration& r) {
+  double j_min = std::numeric_limits<double>::infinity(), j_max = 0.0;
+  for (const RunLmIteration& it : r.lm_iterations)
+    if (std::isfinite(it.cost)) j_min = std::min(j_min, it.cost), j_max = std::max(j_max, it.cost);
+  const bool log_j = j_min > 0.0 && j_max > 10.0 * j_min;
+  const double j_ref = log_j || !std::isfinite(j_min) ? 0.0 : r.final_cost;
+  Series cost, cost_rejected, step, step_rejected;
+  cost.label = fmt::format("J ({} on {}) after each iteration", r.method, r.cost);
+  cost.style = Series::Style::kLineMarkers;
+  step.label = "step accepted";
+  step.style = Series::Style::kLineMarkers;
+  cost_rejected.label = step_rejected.label = "step rejected (J at the point rejected)";
+  cost_rejected.style = step_rejected.style = Series::Style::kMarkers;
+  cost_rejected.marker = step_rejected.marker = Series::Marker::kCross;
+  cost_rejected.color = step_rejected.color = "#d62728";
+  for (const RunLmIteration& it : r.lm_iterations) {
+    const double x = it.iteration;
+    (it.accepted ? cost : cost_rejected).x.push_back(x);
+    (it.accepted ? cost : cost_rejected).y.push_back(it.cost - j_ref);
+    if (it.iteration == 0) continue;  // no step at the start
+    (it.accepted ? step : step_rejected).x.push_back(x);
+    (it.accepted ? step : step_rejected).y.push_back(it.step_norm);
+  }
+  PlotOptions pc;
+  pc.title = fmt::format("Levenberg-Marquardt: {} iterations, final J = {:.6g}",
+                         r.lm_iterations.empty() ? 0 : r.lm_iterations.size() - 1, r.final_cost);
+  pc.x_label = "iteration";
+  pc.y_label = log_j ? "cost J" : "J − final J";
+  pc.log_y = log_j;
+  pc.integer_x = true;
+  pc.height = 300;
+  PlotOptions ps = pc;
+  ps.title.clear();
+  ps.y_label = "step length |Δx|";
+  ps.log_y = true;
+  // Both panels span the same iterations so they line up: an invisible
+  // point at each end of the axis.
+  const double last = r.lm_iterations.empty() ? 1.0 : r.lm_iterations.back().iteration;
+  Series cost_span, step_span;
+  cost_span.style = step_span.style = Series::Style::kMarkers;
+  cost_span.marker_size = step_span.marker_size = 0;
+  cost_span.x = step_span.x = {0.0, last};
+  const double c0 = cost.y.empty() ? 1.0 : cost.y.front(), s0 = step.y.empty() ? 1.0 : step.y.front();
+  cost_span.y = {c0, c0};
+  step_span.y = {s0, s0};
+  std::vector<Series> top{cost}, bottom{step};
+  if (!cost_rejected.x.empty()) top.push_back(cost_rejected);
+  if (!step_rejected.x.empty()) bottom.push_back(step_rejected);
+  top.push_back(cost_span);
+  bottom.push_back(step_span);
+  return svg_stack({svg_plot(top, pc), svg_plot(bottom, ps)});
+}
+
+// The global methods' record: best J against error-function evaluations.
+std::string history_figure(const RunCalibration& r) {
   Series s;
   s.label = fmt::format("{} on {}", r.method, r.cost);
   s.style = Series::Style::kLineMarkers;
@@ -72,7 +197,7 @@ std::string convergence_figure(const RunCalibration& r) {
   PlotOptions po;
   po.title = "Convergence";
   po.x_label = "error-function evaluations";
-  po.y_label = "cost J";
+  po.y_label = "best cost J";
   po.log_y = true;
   return svg_plot({s}, po);
 }
@@ -80,29 +205,34 @@ std::string convergence_figure(const RunCalibration& r) {
 std::string error_figure(const RunReport& o, bool offsets) {
   const RunCalibration& r = *o.calibration;
   Series err;
-  err.label = offsets ? "estimate - actual (mrad), bars: 1-sigma" : "estimate - actual (mm), bars: 1-sigma";
+  err.label = "estimate − actual, bars: the calibration's 1σ";
   err.style = Series::Style::kMarkers;
-  Series bound;
-  bound.label = "Cramer-Rao bound (1-sigma)";
-  bound.style = Series::Style::kMarkers;
-  bound.color = "#bbbbbb";
+  Series bound1, bound3;
+  bound1.label = "Cramér-Rao bound: ±1σ band";
+  bound3.label = "±3σ band";
+  bound1.style = bound3.style = Series::Style::kBand;
+  bound1.color = bound3.color = "#7f7f7f";
+  bound1.opacity = 0.45;
+  bound3.opacity = 0.18;
   PlotOptions po;
   po.title = offsets ? "Encoder zero-offset errors" : "Base and link errors";
-  po.y_label = offsets ? "mrad" : "mm";
-  const double k = offsets ? 1e3 : 1.0;
+  po.y_label = offsets ? "error (µrad)" : "error (µm)";
+  const double scale = offsets ? 1e6 : 1e3;  // rad -> µrad, mm -> µm
   for (int i = 0; i < kNumParams; ++i) {
     if (!r.free.test(static_cast<size_t>(i)) || is_offset(i) != offsets) continue;
     const double x = static_cast<double>(po.x_categories.size());
     po.x_categories.emplace_back(param_name(i));
     err.x.push_back(x);
-    err.y.push_back(k * (r.geometry[i] - o.actual[i]));
-    err.y_err.push_back(std::isnan(r.sigma[static_cast<size_t>(i)]) ? 0.0 : k * r.sigma[static_cast<size_t>(i)]);
-    if (std::isfinite(o.crb[static_cast<size_t>(i)])) {
-      bound.x.push_back(x);
-      bound.y.push_back(k * o.crb[static_cast<size_t>(i)]);
+    err.y.push_back(scale * (r.geometry[i] - o.actual[i]));
+    err.y_err.push_back(std::isnan(r.sigma[static_cast<size_t>(i)]) ? 0.0 : scale * r.sigma[static_cast<size_t>(i)]);
+    const double crb = o.crb[static_cast<size_t>(i)];
+    if (std::isfinite(crb)) {
+      for (Series* b : {&bound1, &bound3}) b->x.push_back(x), b->y.push_back(0.0);
+      bound1.y_err.push_back(scale * crb);
+      bound3.y_err.push_back(3.0 * scale * crb);
     }
   }
-  return svg_plot({err, bound}, po);
+  return svg_plot({err, bound1, bound3}, po);
 }
 
 std::string tracking_figure(const RunReport& o) {
@@ -118,7 +248,7 @@ std::string tracking_figure(const RunReport& o) {
   PlotOptions po;
   po.title = "Tracking error along the test path";
   po.x_label = "t (s)";
-  po.y_label = "|actual - desired| (um)";
+  po.y_label = "|actual − desired| (µm)";
   po.log_y = true;
   return svg_plot(all, po);
 }
@@ -130,7 +260,7 @@ ReportDocument build_run_report(const RunReport& o) {
   d.heading(1, fmt::format("gpm run: {}", o.name));
   std::vector<std::string> failed;
   for (const RunCheck& c : o.checks)
-    if (!c.passed) failed.push_back(fmt::format("{}: {}", c.name, c.detail));
+    if (!c.passed) failed.push_back(fmt::format("{}: {}", c.name, with_unit_symbols(c.detail)));
   d.paragraph(fmt::format("Scenario {}. Verdict: {} ({} expectations checked, {} failed). Run time {:.1f} s.",
                           o.scenario_file, failed.empty() ? "PASSED" : "FAILED", o.checks.size(),
                           failed.size(), o.seconds));
@@ -144,7 +274,7 @@ ReportDocument build_run_report(const RunReport& o) {
   if (o.before) {
     d.heading(2, "Accuracy before and after calibration");
     d.paragraph("The twin (actual parameters) driven by the controller's model: static error after settling at the "
-                "test poses, tracking error along the test path, and the servos' internal preload |P tau| (torques "
+                "test poses, tracking error along the test path, and the servos' internal preload |P τ| (torques "
                 "that do no work on the end-effector, eq. 15).");
     std::vector<std::vector<std::string>> rows;
     for (const RunAccuracy* a : {&*o.before, o.after ? &*o.after : nullptr, o.floor ? &*o.floor : nullptr}) {
@@ -153,24 +283,24 @@ ReportDocument build_run_report(const RunReport& o) {
                       fmt::format("{:.2f}", a->path_rms_um), fmt::format("{:.2f}", a->path_max_um),
                       fmt::format("{:.4f}", a->static_preload_rms_nm), fmt::format("{:.4f}", a->path_preload_rms_nm)});
     }
-    d.table({"controller model", "static RMS (um)", "static max (um)", "path RMS (um)", "path max (um)",
+    d.table({"controller model", "static RMS (µm)", "static max (µm)", "path RMS (µm)", "path max (µm)",
              "static preload RMS (N m)", "path preload RMS (N m)"},
             rows);
     if (o.after) {
-      d.paragraph(fmt::format("Static accuracy improved x{:.3g}; path tracking x{:.3g}; preload x{:.3g}.",
+      d.paragraph(fmt::format("Static accuracy improved ×{:.3g}; path tracking ×{:.3g}; preload ×{:.3g}.",
                               o.before->static_rms_um / o.after->static_rms_um,
                               o.before->path_rms_um / o.after->path_rms_um,
                               o.before->static_preload_rms_nm / std::max(1e-12, o.after->static_preload_rms_nm)));
     }
     if (o.after && o.floor) {
       d.paragraph(fmt::format("The `actual` row is the floor: the controller given the true parameters. Calibrated "
-                              "static RMS is {:.2f}x the floor. Sampling took {:.2f} s of robot time.",
+                              "static RMS is {:.2f}× the floor. Sampling took {:.2f} s of robot time.",
                               o.after->static_rms_um / std::max(1e-12, o.floor->static_rms_um), o.robot_time_s));
     }
   }
   if (o.model_test) {
     const RunModelTest& t = *o.model_test;
-    d.paragraph(fmt::format("Model test: chi2 = {:.4g} for {:.0f} degrees of freedom (encoder sigma {:.3g} rad), "
+    d.paragraph(fmt::format("Model test: χ² = {:.4g} for {:.0f} degrees of freedom (encoder σ {:.3g} rad), "
                             "p = {:.3g}: {}.",
                             t.chi2, t.dof, t.sigma_rad, t.p_value,
                             t.passed ? "the residuals are as small as the encoders explain" : t.diagnosis));
@@ -183,8 +313,8 @@ ReportDocument build_run_report(const RunReport& o) {
   }
   if (o.calibration) {
     const RunCalibration& r = *o.calibration;
-    d.paragraph(fmt::format("{} on {} from {} encoder samples, {} free parameters (fixed: {}). Bound at encoder "
-                            "sigma {:.3g} rad per sample.",
+    d.paragraph(fmt::format("{} on {} from {} encoder samples, {} free parameters (fixed: {}). Cramér-Rao bound (CRB) "
+                            "at encoder σ {:.3g} rad per sample.",
                             r.method, r.cost, o.sample_xy.size(), r.free.count(),
                             format_param_list(~r.free), o.crb_sigma_rad));
     std::vector<std::vector<std::string>> rows;
@@ -197,19 +327,22 @@ ReportDocument build_run_report(const RunReport& o) {
                       free ? num(o.crb[static_cast<size_t>(i)], 3) : "-",
                       free ? num(std::abs(err) / o.crb[static_cast<size_t>(i)], 3) : "-"});
     }
-    d.table({"parameter", "nominal", "actual", "estimated", "1-sigma", "error", "CRB sigma", "|error|/CRB"}, rows);
+    d.table({"parameter", "nominal", "actual", "estimated", "1σ", "error", "CRB σ", "|error| / CRB σ"}, rows);
     d.heading(3, "Diagnostics");
     d.table({"cost J", "iterations", "evaluations", "rank", "condition number", "kmrmse (mm)", "seconds", "converged"},
             {{num(r.final_cost, 4), std::to_string(r.iterations), std::to_string(r.evaluations),
               std::to_string(r.rank), num(r.condition_number, 4), r.kmrmse_mm ? num(*r.kmrmse_mm, 4) : "-",
               num(r.seconds, 3), r.converged ? "yes" : "no"}});
-    if (!r.notes.empty()) d.bullets(r.notes);
+    std::vector<std::string> notes;
+    for (const std::string& n : r.notes)  // the model test's diagnosis is already in its paragraph above
+      if (!(o.model_test && n == o.model_test->diagnosis)) notes.push_back(with_unit_symbols(n));
+    if (!notes.empty()) d.bullets(notes);
   }
 
   if (!o.checks.empty()) {
     d.heading(2, "Expectations");
     std::vector<std::vector<std::string>> rows;
-    for (const RunCheck& c : o.checks) rows.push_back({c.name, c.passed ? "pass" : "FAIL", c.detail});
+    for (const RunCheck& c : o.checks) rows.push_back({c.name, c.passed ? "pass" : "FAIL", with_unit_symbols(c.detail)});
     d.table({"check", "result", "measured"}, rows);
   }
 
@@ -217,9 +350,19 @@ ReportDocument build_run_report(const RunReport& o) {
   d.figure("layout", "Calibration samples and accuracy test poses over the reachable workspace", layout_figure(o));
   if (o.calibration) {
     d.figure("residuals", "Closure residual of each sample after calibration", residual_figure(o));
-    if (!o.calibration->history.empty()) d.figure("convergence", "Cost against evaluations", convergence_figure(*o.calibration));
-    d.figure("errors_mm", "Base and link errors with 1-sigma and the Cramer-Rao bound", error_figure(o, false));
-    d.figure("errors_offsets", "Offset errors with 1-sigma and the Cramer-Rao bound", error_figure(o, true));
+    const RunCalibration& r = *o.calibration;
+    if (!r.lm_iterations.empty()) {
+      d.figure("convergence",
+               "Every Levenberg-Marquardt iteration: the cost J (top) and the length of the step tried, in the "
+               "solver's parameters (bottom)",
+               lm_convergence_figure(r));
+    } else if (r.history.size() > 1) {
+      d.figure("convergence", "Best cost against error-function evaluations", history_figure(r));
+    }
+    d.figure("errors_mm", "Base and link errors with their 1σ and the Cramér-Rao bound as a band around zero",
+             error_figure(o, false));
+    d.figure("errors_offsets", "Offset errors with their 1σ and the Cramér-Rao bound as a band around zero",
+             error_figure(o, true));
   }
   if (o.before) d.figure("tracking", "Tracking error along the test path, nominal and calibrated model", tracking_figure(o));
   return d;

@@ -28,6 +28,14 @@ struct RunAccuracy {
   std::vector<double> path_error_um;    // |actual - desired| at path_t_s (um)
 };
 
+// One Levenberg-Marquardt iteration: J after it and the length of the step
+// tried (in the solver's parameters); iteration 0 is the start.
+struct RunLmIteration {
+  int iteration = 0;
+  double cost = 0.0, step_norm = 0.0;
+  bool accepted = true;
+};
+
 // The calibration's result, as the report shows it.
 struct RunCalibration {
   std::string method;  // "lm", "de", ...
@@ -44,6 +52,7 @@ struct RunCalibration {
   bool converged = true;
   std::vector<std::string> notes;
   std::vector<std::pair<long, double>> history;  // (evaluations, best J)
+  std::vector<RunLmIteration> lm_iterations;     // every LM iteration (empty: a global method alone)
 };
 
 // One expectation and its outcome.

@@ -41,6 +41,8 @@ report::RunCalibration calibration_data(const calib::Result& c) {
   r.converged = c.converged;
   r.notes = c.notes;
   r.history = c.history;
+  for (const calib::LmIteration& it : c.lm_iterations)
+    r.lm_iterations.push_back({it.iteration, it.cost, it.step_norm, it.accepted});
   return r;
 }
 

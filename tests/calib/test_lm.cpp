@@ -13,6 +13,8 @@
 #include <gtest/gtest.h>
 
 #include "calib/crb.hpp"
+#include "calib/parameterization.hpp"
+#include "calib/residuals.hpp"
 #include "calib/paper_values.hpp"
 #include "calib/synthetic.hpp"
 #include "models/errors.hpp"
@@ -245,6 +247,59 @@ TEST(CalibrateLm, AnalyticAndAutodiffJacobiansGiveTheSameEstimateOnNoisyData) {
       EXPECT_NEAR(ra.geometry[i], rd.geometry[i], 1e-6 * rd.sigma[k]) << cost_name(c) << " " << param_name(i);
       EXPECT_NEAR(ra.sigma[k], rd.sigma[k], 1e-6 * rd.sigma[k]) << cost_name(c) << " " << param_name(i);
     }
+  }
+}
+
+// The error function J at a geometry, summed sample by sample from the
+// residual functors (independent of the solver's iteration bookkeeping).
+double cost_at(Cost c, const Geometry& g, const std::vector<Eigen::Vector3d>& theta_m) {
+  const ParamVector x = to_solver(g, c);
+  const double* params[] = {x.data()};
+  double ssq = 0.0;
+  for (const auto& t : theta_m) {
+    std::unique_ptr<ceres::CostFunction> f(make_residual(c, t));
+    Eigen::VectorXd r(residual_rows(c));
+    f->Evaluate(params, r.data(), nullptr);
+    ssq += r.squaredNorm();
+  }
+  return paper_cost(c, ssq);
+}
+
+TEST(CalibrateLm, IterationsRunFromTheStartCostToTheFinalCost) {
+  // Every LM iteration is kept (the report's convergence figure): iteration 0
+  // at J(start), accepted steps never raise J, the last accepted J is the
+  // final cost; both for Ceres' solve and the minimum-norm solve.
+  const Geometry actual = section3_actual();
+  const Samples s = paper_samples(actual, 31, 73);
+  struct Case {
+    Cost cost;
+    FreeMask free;
+    bool rank_deficient;
+  };
+  for (const Case& k : {Case{Cost::kML, ~mask("xa1,ya1,xa2,ya2"), false}, Case{Cost::kJ3, ~mask("xa1,ya1,xa2,ya2"), false},
+                        Case{Cost::kML, ~mask("xa1,ya1,ya2"), true}}) {
+    const Problem pb{s.theta_m, table4_start(actual), k.free};
+    LmOptions opt;
+    opt.cost = k.cost;
+    opt.allow_rank_deficient = k.rank_deficient;
+    const Result r = calibrate_lm(pb, opt);
+    const std::string what = fmt::format("{} rank-deficient {}", cost_name(k.cost), k.rank_deficient);
+    ASSERT_GE(r.lm_iterations.size(), 3u) << what;
+    EXPECT_EQ(r.lm_iterations.front().iteration, 0) << what;
+    EXPECT_EQ(r.lm_iterations.front().step_norm, 0.0) << what;
+    EXPECT_NEAR(r.lm_iterations.front().cost, cost_at(k.cost, pb.start, s.theta_m),
+                1e-9 * cost_at(k.cost, pb.start, s.theta_m)) << what;
+    double last = r.lm_iterations.front().cost;
+    for (size_t i = 1; i < r.lm_iterations.size(); ++i) {
+      const LmIteration& it = r.lm_iterations[i];
+      EXPECT_EQ(it.iteration, static_cast<int>(i)) << what;
+      EXPECT_GT(it.step_norm, 0.0) << what << " iteration " << i;
+      if (!it.accepted) continue;
+      EXPECT_LE(it.cost, last) << what << " iteration " << i;
+      last = it.cost;
+    }
+    EXPECT_NEAR(last, r.final_cost, 1e-9 * r.lm_iterations.front().cost) << what;
+    EXPECT_LT(last, 1e-12 * r.lm_iterations.front().cost) << what << ": noiseless data fit exactly";
   }
 }
 
