@@ -181,6 +181,9 @@ void run_effects(const StudyOptions& o) {
       start = end + 1;
     }
   }
+  if (count < 0 || (count > 0 && count < 12))
+    throw InputError(fmt::format("--count: {} poses cannot identify 11 parameters (use at least 12, or 0 for each "
+                                 "procedure's own)", count));
   if (count > 0) so.sample_count = count;
   if (threads < 1 || threads > 64) throw InputError(fmt::format("--threads: must be 1 to 64, got {}", threads));
   so.threads = threads;
