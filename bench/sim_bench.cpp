@@ -1,16 +1,22 @@
 // bench_sim: physics steps per second of the twin (servo drives and encoders
 // included) against bare mj_step on the same compiled model, and optionally
 // writes that model's MJCF for mujoco-testspeed (bench/sim_vs_testspeed.sh).
-//   bench_sim [--steps N] [--write-model FILE] [--effects ideal|realistic]
-//             [--timestep S] [--rate HZ]
+//   bench_sim [--steps N] [--write-model FILE] [--timestep S] [--rate HZ]
+//             [--effects ideal|realistic|compliance|clearance|friction|thermal|encoder]
 // Prints "name steps_per_second" lines and "sim_seconds_per_wall_second"
 // of the twin (steps/s x timestep: the figure that compares runs at
 // different timesteps; effects: realistic needs 0.25 ms, see SCHEMA.md).
+// With effects, the ideal twin at the same timestep and rate is timed in
+// interleaved rounds (so that load from other processes hits both alike) and
+// "effects_vs_ideal_per_step" is their ratio of best rates (goal for
+// realistic: at most 1.5).
 #include <algorithm>
 #include <chrono>
 #include <cstdio>
 #include <cstring>
+#include <ctime>
 #include <string>
+#include <tuple>
 
 #include "models/robot_yaml.hpp"
 #include "sim/sampling.hpp"
@@ -22,6 +28,13 @@ using Clock = std::chrono::steady_clock;
 
 double seconds_since(Clock::time_point t0) {
   return std::chrono::duration<double>(Clock::now() - t0).count();
+}
+
+// CPU seconds of this thread (insensitive to other processes taking the core).
+double thread_cpu_s() {
+  timespec t{};
+  clock_gettime(CLOCK_THREAD_CPUTIME_ID, &t);
+  return static_cast<double>(t.tv_sec) + 1e-9 * static_cast<double>(t.tv_nsec);
 }
 
 // Best of `trials` timings of fn() over n steps, in steps per second.
@@ -54,19 +67,29 @@ int main(int argc, char** argv) {
       return 2;
     }
   }
-  if (effects != "ideal" && effects != "realistic") {
-    std::fprintf(stderr, "bench_sim: --effects: '%s' is not ideal or realistic\n", effects.c_str());
-    return 2;
-  }
   using namespace gpm;
   using namespace gpm::sim;
+  // One effect of the realistic preset alone, all of them, or none.
+  const Effects real = realistic_effects();
+  Effects fx;
+  if (effects == "realistic") fx = real;
+  else if (effects == "compliance") fx.mjcf.compliance_rad_per_Nm = real.mjcf.compliance_rad_per_Nm;
+  else if (effects == "clearance") fx.mjcf.clearance_m = real.mjcf.clearance_m;
+  else if (effects == "friction") fx.mjcf.coulomb_Nm = real.mjcf.coulomb_Nm, fx.mjcf.viscous_Nm_s = real.mjcf.viscous_Nm_s;
+  else if (effects == "thermal") fx.thermal = real.thermal;
+  else if (effects == "encoder") fx.encoder_cyclic_rad = real.encoder_cyclic_rad, fx.encoder_skew_s = real.encoder_skew_s;
+  else if (effects != "ideal") {
+    std::fprintf(stderr, "bench_sim: --effects: '%s' is not ideal, realistic, compliance, clearance, friction, "
+                         "thermal or encoder\n", effects.c_str());
+    return 2;
+  }
   const Robot robot;  // nominal
   TwinConfig config;
   config.encoder.noise_rad = 1e-5;  // the noise path included
   config.mjcf.timestep_s = timestep;
   config.mjcf.solref_timeconst_s = std::max(config.mjcf.solref_timeconst_s, 2.0 * timestep);
   config.servo_rate_hz = rate;
-  if (effects == "realistic") config.effects = realistic_effects();
+  config.effects = fx;
   const TwinModel model(robot, config);
   if (!model_out.empty()) write_file_atomic(model_out, model.xml());
 
@@ -97,10 +120,51 @@ int main(int argc, char** argv) {
     for (long k = 0; k < n; k += model.steps_per_tick()) advance(session, path_at(circle, period * tick++));
   });
 
+  // The ideal twin at the same timestep and drive rate, interleaved with this one.
+  double effects_rate = twin_rate, ideal_rate = 0.0, effects_cpu_rate = 0.0, ideal_cpu_rate = 0.0;
+  if (effects != "ideal") {
+    TwinConfig ideal_config = config;
+    ideal_config.effects = Effects{};
+    const TwinModel ideal(robot, ideal_config);
+    TwinState si(ideal, 1), se(model, 1);
+    for (TwinState* st : {&si, &se})
+      twin_command(*st, st->last.readings + Eigen::Vector3d(0.001, -0.001, 0.0005), Eigen::Vector3d::Zero());
+    const long n = std::max(1L, steps / 5);
+    for (int round = 0; round < 5; ++round) {
+      double c0 = thread_cpu_s();
+      ideal_rate = std::max(ideal_rate, best_rate(n, 1, [&](long m) {
+        for (long k = 0; k < m; ++k) twin_step(ideal, si);
+      }));
+      double c1 = thread_cpu_s();
+      ideal_cpu_rate = std::max(ideal_cpu_rate, n / (c1 - c0));
+      effects_rate = std::max(effects_rate, best_rate(n, 1, [&](long m) {
+        for (long k = 0; k < m; ++k) twin_step(model, se);
+      }));
+      effects_cpu_rate = std::max(effects_cpu_rate, n / (thread_cpu_s() - c1));
+    }
+    // Constraint solver work per step (MuJoCo's own counters), both twins.
+    for (auto [name, m, st] : {std::tuple{"ideal", &ideal, &si}, std::tuple{"effects", &model, &se}}) {
+      double iter = 0.0, rows = 0.0;
+      const int n = 1000;
+      for (int k = 0; k < n; ++k) {
+        twin_step(*m, *st);
+        iter += st->data->solver_iter, rows += st->data->nefc;
+      }
+      std::printf("%s_nv %d solver_iterations_per_step %.2f constraint_rows %.2f\n", name, m->mj()->nv, iter / n,
+                  rows / n);
+    }
+  }
+
   std::printf("bare_mj_step %.0f\n", bare_rate);
   std::printf("twin_step %.0f\n", twin_rate);
   std::printf("twin_with_controller %.0f\n", ctrl_rate);
   std::printf("twin_overhead_vs_bare %.3f\n", bare_rate / twin_rate - 1.0);
   std::printf("sim_seconds_per_wall_second %.3f\n", twin_rate * timestep);
+  if (effects != "ideal") {
+    std::printf("ideal_twin_step %.0f\n", ideal_rate);
+    // Per step, from thread CPU time (the wall-clock figure swings with the machine's load).
+    std::printf("effects_vs_ideal_per_step %.2f\n", ideal_cpu_rate / effects_cpu_rate);
+    std::printf("effects_vs_ideal_per_step_wall %.2f\n", ideal_rate / effects_rate);
+  }
   return 0;
 }

@@ -99,19 +99,19 @@ std::string mjcf_from_robot(const Robot& actual, const MjcfOptions& o) {
         fx.coulomb_Nm[static_cast<size_t>(i)] > 0.0
             ? fmt::format(" frictionloss=\"{}\"", num(fx.coulomb_Nm[static_cast<size_t>(i)]))
             : std::string();
-    // Two limited slide joints of a loose passive joint (docs/ARCHITECTURE.md: clearance).
-    const auto slides = [&](const std::string& stem, const std::string& indent) {
-      std::string t;
-      for (const char* axis : {"x", "y"}) {
-        t += fmt::format("{}<joint name=\"{}{}\" type=\"slide\" axis=\"{}\" limited=\"true\" "
+    // A loose passive joint: one limited slide along the passive link
+    // (docs/ARCHITECTURE.md: clearance). The passive link is a two-force
+    // member, so only the axial part of a pin's radial play changes the
+    // closure (the transverse part turns the link, which its hinge already
+    // allows: second order, c^2 / lb): a radial clearance c is an axial
+    // play of +-c at each end, exactly to first order.
+    const auto slide = [&](const std::string& name, const std::string& indent) {
+      return fmt::format("{}<joint name=\"{}\" type=\"slide\" axis=\"1 0 0\" limited=\"true\" "
                          "range=\"{} {}\" stiffness=\"{}\" damping=\"{}\" solreflimit=\"{} 1\" "
                          "solimplimit=\"{} {} {}\"/>\n",
-                         indent, stem, axis, axis[0] == 'x' ? "1 0 0" : "0 1 0", num(-c), num(c),
-                         num(fx.clearance_stiffness_N_per_m), num(fx.clearance_damping_N_s_per_m),
-                         num(fx.clearance_solref_s), num(fx.clearance_solimp), num(fx.clearance_solimp),
-                         num(o.solimp_width_m));
-      }
-      return t;
+                         indent, name, num(-c), num(c), num(fx.clearance_stiffness_N_per_m),
+                         num(fx.clearance_damping_N_s_per_m), num(fx.clearance_solref_s), num(fx.clearance_solimp),
+                         num(fx.clearance_solimp), num(o.solimp_width_m));
     };
     std::string in = "      ";  // indentation inside link_a
     if (compliance > 0.0) {
@@ -143,15 +143,16 @@ std::string mjcf_from_robot(const Robot& actual, const MjcfOptions& o) {
     x += fmt::format("{}<body name=\"link_b{}\" pos=\"{} 0 0.03\" euler=\"0 0 {}\">\n", in, n,
                      num(la_m), num(rel));
     const std::string inb = in + "  ";
-    if (c > 0.0) x += slides(fmt::format("clear_b{}", n), inb);
     x += fmt::format("{}<joint name=\"joint_b{}\" type=\"hinge\" axis=\"0 0 1\" ref=\"{}\" "
                      "damping=\"{}\"/>\n", inb, n, num(rel), num(o.passive_damping));
+    // After the hinge: the slide turns with the passive link.
+    if (c > 0.0) x += slide(fmt::format("clear_b{}x", n), inb);
     x += inb + rod_inertial(o.passive_link_mass_kg, lb_m, 0.8 * r) + "\n";
     x += fmt::format("{}<geom name=\"geom_b{}\" type=\"capsule\" fromto=\"0 0 0 {} 0 0\" "
                      "size=\"{}\" rgba=\"0.9 0.6 0.2 1\"/>\n", inb, n, num(lb_m), num(0.8 * r));
     if (c > 0.0 && i > 0) {
       x += fmt::format("{}<body name=\"pin_b{}\" pos=\"{} 0 0\">\n", inb, n, num(lb_m));
-      x += slides(fmt::format("clear_e{}", n), inb + "  ");
+      x += slide(fmt::format("clear_e{}x", n), inb + "  ");
       x += fmt::format("{}  <inertial pos=\"0 0 0\" mass=\"{}\" diaginertia=\"{} {} {}\"/>\n", inb,
                        num(fx.pin_mass_kg), num(1e-7), num(1e-7), num(1e-7));
       x += fmt::format("{}  <site name=\"tip_b{}\" pos=\"0 0 0\" size=\"0.005\"/>\n", inb, n);
@@ -161,7 +162,7 @@ std::string mjcf_from_robot(const Robot& actual, const MjcfOptions& o) {
     }
     if (i == 0) {
       x += fmt::format("{}<body name=\"ee\" pos=\"{} 0 0\">\n", inb, num(lb_m));
-      if (c > 0.0) x += slides("clear_e1", inb + "  ");
+      if (c > 0.0) x += slide("clear_e1x", inb + "  ");
       x += fmt::format("{}  <inertial pos=\"0 0 0\" mass=\"{}\" diaginertia=\"{} {} {}\"/>\n", inb,
                        num(o.ee_mass_kg), num(1e-5), num(1e-5), num(1e-5));
       x += inb + "  <geom name=\"geom_ee\" type=\"cylinder\" size=\"0.02 0.01\" pos=\"0 0 0.03\" "

@@ -16,10 +16,12 @@
 //     stiffness 1/compliance: link angle theta_a = qpos(joint_m) +
 //     qpos(joint_a), motor angle = qpos(joint_m) + ta, twist = qpos(joint_a) - ta
 //     (docs/ARCHITECTURE.md: springref must be given; it defaults to 0, not to ref).
-//   clearance: slide joints clear_b{i}x/y (range +-c) ahead of joint_b{i}; at
-//     the hub slide joints clear_e1x/y in body ee and, for chains 2 and 3, a
-//     body pin_b{i} at the tip of link_b{i} (slides clear_e{i}x/y, site
-//     tip_b{i}) which the connect holds at its origin.
+//   clearance: a slide joint clear_b{i}x (range +-c) along the passive link
+//     after joint_b{i}; at the hub a slide clear_e1x in body ee and, for
+//     chains 2 and 3, a body pin_b{i} at the tip of link_b{i} (slide
+//     clear_e{i}x, site tip_b{i}) which the connect holds at its origin. Axial
+//     slides only: the passive link is a two-force member, so a pin's
+//     transverse play only turns it (mjcf.cpp).
 //   friction: frictionloss (Coulomb, N m) and extra damping on the actuated joint.
 // Bodies are laid out already assembled at the actual inverse kinematics of
 // robot.home (paper eq. 29-31), so <connect>, which takes its second anchor at

@@ -35,7 +35,14 @@ ModelPtr load_model_from_xml(const std::string& xml) {
   const int idx = mj_findFileVFS(vfs.get(), name);
   std::memcpy(vfs->filedata[idx], xml.data(), xml.size());
   char error[1000] = "";
-  mjModel* m = mj_loadXML(name, vfs.get(), error, sizeof(error));
+  mjModel* m = nullptr;
+  {
+    // The XML parser keeps global state: one compilation at a time (runs in
+    // parallel threads, e.g. gpm study effects, each compile their twin).
+    static std::mutex parser;
+    const std::lock_guard lock(parser);
+    m = mj_loadXML(name, vfs.get(), error, sizeof(error));
+  }
   mj_deleteVFS(vfs.get());
   if (!m) throw SimError(fmt::format("MuJoCo cannot compile the model: {}", error));
   return ModelPtr(m);

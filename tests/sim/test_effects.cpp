@@ -6,7 +6,8 @@
 //   L0 (1 + alpha rise (1 - exp(-t / tau))) and the loops stay closed;
 // - clearance: a force reversed on the end-effector moves it through a dead
 //   band of about the clearance only when every chain is loose (the redundant
-//   closure pins a single loose chain);
+//   closure pins a single loose chain), and each passive link, a two-force
+//   member, gives axially by the play of its two pins, 2c, under a preload;
 // - friction: by power balance over whole revolutions of a circle, the
 //   drives' extra mean power is c sum |w_i| (Coulomb) and b sum w_i^2 (viscous);
 // - cyclic error: the reading error fitted over many angles is A sin(theta + phase);
@@ -164,6 +165,36 @@ TEST(Effects, ClearanceGivesADeadBandOnlyWhenEveryChainIsLoose) {
   EXPECT_GT(all, 1.0 * c * 1e3) << "all chains loose: a dead band of at least the clearance";
   EXPECT_LT(all, 8.0 * c * 1e3);
   EXPECT_LT(std::abs(one), 0.2 * c * 1e3) << "one loose chain is pinned by the other two";
+}
+
+// A passive link pinned at both ends carries only an axial force (a two-force
+// member), so the play of its two loose pins shows as a change of its
+// effective length |C - B_i| of up to 2c, and the fighting drives' preload,
+// which stretches or compresses every passive link, takes that play up.
+TEST(Effects, ClearanceLetsEachPassiveLinkGiveTwiceTheClearanceAxially) {
+  const double c_mm = 0.05;  // large against the limits' own give
+  const auto length_change_mm = [](const TwinModel& m, const TwinState& s, int i) {
+    const Geometry& g = m.actual().geometry;
+    const Eigen::Vector2d b = g.A(i) + g.la_(i) * Eigen::Vector2d(std::cos(s.last.theta_a[i]), std::sin(s.last.theta_a[i]));
+    return (s.last.ee_mm - b).norm() - g.lb_(i);
+  };
+  for (const double c : {0.0, c_mm}) {
+    TwinConfig config;
+    config.encoder.bits = 0;
+    config.effects.mjcf.clearance_m.fill(c * kMetresPerMm);
+    const TwinModel m(Robot{}, config);
+    TwinState s(m, 1);
+    // Commands 5 mm apart at the link tips, far more than the play absorbs.
+    twin_command(s, s.last.readings + Eigen::Vector3d(0.02, -0.02, 0.01), Eigen::Vector3d::Zero());
+    run_for(m, s, 0.5);
+    for (int i = 0; i < 3; ++i) {
+      const double d = std::abs(length_change_mm(m, s, i));
+      // Never more than the two pins' play (1 um for the limits' own give) ...
+      EXPECT_LT(d, 2.0 * c + 1e-3) << "chain " << i + 1 << ", clearance " << c << " mm";
+      // ... and under the preload all of it (both pins at their limits).
+      if (c > 0.0) EXPECT_GT(d, 1.9 * c) << "chain " << i + 1 << ", clearance " << c << " mm";
+    }
+  }
 }
 
 // Mean drive power sum tau_i w_i and mean sum |w_i|, sum w_i^2 over whole revolutions of a circle.

@@ -1,0 +1,352 @@
+#include "run/effects_study.hpp"
+
+#include <algorithm>
+#include <atomic>
+#include <chrono>
+#include <cmath>
+#include <exception>
+#include <mutex>
+#include <thread>
+#include <variant>
+
+#include <fmt/format.h>
+#include <nlohmann/json.hpp>
+
+#include "models/data_dir.hpp"
+#include "models/errors.hpp"
+#include "models/output_file.hpp"
+#include "report/svg_plot.hpp"
+#include "run/runner.hpp"
+
+namespace gpm::scenario {
+namespace {
+
+constexpr double kLinkMm = 244.0;  // offsets counted as length at the nominal link
+
+struct CaseName {
+  EffectCase c;
+  const char* name;
+};
+constexpr CaseName kCaseNames[] = {
+    {EffectCase::kIdeal, "ideal"},         {EffectCase::kCompliance, "compliance"},
+    {EffectCase::kClearance, "clearance"}, {EffectCase::kFriction, "friction"},
+    {EffectCase::kThermal, "thermal"},     {EffectCase::kEncoderCyclic, "encoder_cyclic"},
+    {EffectCase::kEncoderSkew, "encoder_skew"}, {EffectCase::kAll, "all"},
+};
+
+nlohmann::json number(double v) { return std::isfinite(v) ? nlohmann::json(v) : nlohmann::json(nullptr); }
+
+std::string cell(double v, const char* f) { return std::isfinite(v) ? fmt::format(fmt::runtime(f), v) : "-"; }
+
+// Applies the options' reductions to one procedure's spec, and the case's effects.
+RunSpec case_spec(const StudyProcedure& p, EffectCase c, const EffectsStudyOptions& o) {
+  RunSpec s = p.spec;
+  // The realistic values whatever the procedure's file holds, with its (seeded) encoder phases.
+  sim::Effects realistic = sim::realistic_effects();
+  realistic.encoder_phase_rad = p.spec.sim.twin.effects.encoder_phase_rad;
+  s.sim.twin.effects = effects_for_case(c, realistic);
+  s.expect = Expectations{};  // the study reports numbers; it checks nothing per run
+  s.outputs.report = false;
+  if (o.sample_count && s.sim.sampling) {
+    s.sim.sampling->count = *o.sample_count;
+    s.sim.sampling->poses.clear();
+  }
+  if (s.compensation) {
+    if (o.compensation_count && static_cast<size_t>(*o.compensation_count) < s.compensation->poses.size())
+      s.compensation->poses.resize(static_cast<size_t>(*o.compensation_count));
+    if (o.path_revolutions)
+      if (auto* circle = std::get_if<sim::CirclePath>(&s.compensation->path)) circle->revolutions = *o.path_revolutions;
+  }
+  return s;
+}
+
+EffectsRow row_of(const RunOutcome& o) {
+  EffectsRow r;
+  r.error.fill(NAN);
+  r.crb.fill(NAN);
+  r.nominal_um = o.before ? o.before->static_rms_um : NAN;
+  r.calibrated_um = o.after ? o.after->static_rms_um : NAN;
+  r.floor_um = o.floor ? o.floor->static_rms_um : NAN;
+  r.floor_ratio = r.calibrated_um / r.floor_um;
+  if (o.model_test) r.model_test_passed = o.model_test->passed;
+  r.motion_estimated = o.in_motion || o.spec.calibration.estimate_compliance.value_or(false) ||
+                       o.spec.calibration.estimate_skew.value_or(false);
+  r.motion_nu = o.motion_nu;
+  if (!o.calibration) {
+    r.failure = o.refused.value_or("no calibration");
+    return r;
+  }
+  if (!o.calibration->converged) r.failure = "calibration did not converge";
+  double worst = -1.0, worst_crb = -1.0;
+  for (int k = 0; k < kNumParams; ++k) {
+    if (!o.calibration->free.test(static_cast<size_t>(k))) continue;
+    const auto u = static_cast<size_t>(k);
+    r.error[u] = o.calibration->geometry[k] - o.sim.actual.geometry[k];
+    r.crb[u] = o.crb[u];
+    const double um = std::abs(r.error[u]) * (is_offset(k) ? kLinkMm : 1.0) * 1e3;
+    if (um > worst) worst = um, r.worst_param = std::string(param_name(k));
+    const double in_sigmas = r.crb[u] > 0.0 ? std::abs(r.error[u]) / r.crb[u] : NAN;
+    if (std::isfinite(in_sigmas) && in_sigmas > worst_crb) worst_crb = in_sigmas, r.worst_crb_param = std::string(param_name(k));
+  }
+  r.worst_error_um = worst;
+  r.worst_crb_ratio = worst_crb >= 0.0 ? worst_crb : NAN;
+  return r;
+}
+
+EffectsRow failed_row(const std::string& why) {
+  EffectsRow r;
+  r.failure = why;
+  r.error.fill(NAN);
+  r.crb.fill(NAN);
+  r.worst_error_um = r.worst_crb_ratio = r.nominal_um = r.calibrated_um = r.floor_um = r.floor_ratio = NAN;
+  return r;
+}
+
+// Figure: one value per case (x: the cases), one marker series per procedure.
+std::string per_case_plot(const EffectsStudy& s, double EffectsRow::*field, const std::string& title,
+                          const std::string& y_label) {
+  std::vector<report::Series> series;
+  const size_t nc = s.cases.size();
+  for (size_t p = 0; p < s.procedures.size(); ++p) {
+    report::Series ser;
+    ser.label = s.procedures[p].name;
+    ser.style = report::Series::Style::kMarkers;
+    for (size_t c = 0; c < nc; ++c) {
+      const double v = s.rows[p * nc + c].*field;
+      if (!std::isfinite(v)) continue;
+      ser.x.push_back(static_cast<double>(c));
+      ser.y.push_back(v);
+    }
+    series.push_back(ser);
+  }
+  report::PlotOptions po;
+  po.title = title;
+  po.x_label = "effect (alone at its realistic value; all: every one)";
+  po.y_label = y_label;
+  po.log_y = true;
+  po.width = 720;
+  for (EffectCase c : s.cases) po.x_categories.push_back(effect_case_name(c));
+  return report::svg_plot(series, po);
+}
+
+}  // namespace
+
+std::vector<EffectCase> all_effect_cases() {
+  std::vector<EffectCase> v;
+  for (const CaseName& n : kCaseNames) v.push_back(n.c);
+  return v;
+}
+
+std::string effect_case_name(EffectCase c) {
+  for (const CaseName& n : kCaseNames)
+    if (n.c == c) return n.name;
+  return "?";
+}
+
+std::optional<EffectCase> parse_effect_case(const std::string& name) {
+  for (const CaseName& n : kCaseNames)
+    if (name == n.name) return n.c;
+  return std::nullopt;
+}
+
+sim::Effects effects_for_case(EffectCase c, const sim::Effects& realistic) {
+  sim::Effects e;  // ideal
+  e.encoder_phase_rad = realistic.encoder_phase_rad;
+  switch (c) {
+    case EffectCase::kIdeal: break;
+    case EffectCase::kCompliance: e.mjcf.compliance_rad_per_Nm = realistic.mjcf.compliance_rad_per_Nm; break;
+    case EffectCase::kClearance: e.mjcf.clearance_m = realistic.mjcf.clearance_m; break;
+    case EffectCase::kFriction:
+      e.mjcf.coulomb_Nm = realistic.mjcf.coulomb_Nm;
+      e.mjcf.viscous_Nm_s = realistic.mjcf.viscous_Nm_s;
+      break;
+    case EffectCase::kThermal: e.thermal = realistic.thermal; break;
+    case EffectCase::kEncoderCyclic: e.encoder_cyclic_rad = realistic.encoder_cyclic_rad; break;
+    case EffectCase::kEncoderSkew: e.encoder_skew_s = realistic.encoder_skew_s; break;
+    case EffectCase::kAll: e = realistic; break;
+  }
+  return e;
+}
+
+std::vector<StudyProcedure> default_study_procedures() {
+  const std::string dir = scenarios_dir();
+  std::vector<StudyProcedure> v(2);
+  v[0].name = "on the fly";
+  v[0].description =
+      "today's default (main.yaml): designed poses sampled on the fly, joint 1 torque-off, compliance and skew "
+      "estimated with the geometry";
+  v[0].scenario = dir + "/main.yaml";
+  v[1].name = "disc stop-and-go";
+  v[1].description =
+      "the former default (procedure_disc_stopgo_realistic.yaml): random poses in a disc, stop-and-go, three "
+      "position-controlled drives";
+  v[1].scenario = dir + "/procedure_disc_stopgo_realistic.yaml";
+  for (StudyProcedure& p : v) p.spec = load_run_spec(p.scenario);
+  return v;
+}
+
+EffectsStudy run_effects_study(const std::vector<StudyProcedure>& procedures, const EffectsStudyOptions& options,
+                               const EffectsProgress& progress) {
+  const auto t0 = std::chrono::steady_clock::now();
+  if (options.sample_count && *options.sample_count < 12)
+    throw InputError(fmt::format("study effects: --count: {} poses cannot identify 11 parameters (use at least 12)",
+                                 *options.sample_count));
+  EffectsStudy study;
+  study.procedures = procedures;
+  study.cases = options.cases;
+  const size_t nc = options.cases.size(), n = procedures.size() * nc;
+  // The specs first (bad input shows before any run).
+  std::vector<RunSpec> specs;
+  for (size_t k = 0; k < n; ++k) specs.push_back(case_spec(procedures[k / nc], options.cases[k % nc], options));
+  study.rows.resize(n);
+  std::atomic<size_t> next{0};
+  std::mutex mutex;
+  std::exception_ptr bug;
+  auto worker = [&] {
+    for (size_t k = next++; k < n; k = next++) {
+      const auto c0 = std::chrono::steady_clock::now();
+      EffectsRow r;
+      try {
+        r = row_of(run_scenario(specs[k], procedures[k / nc].scenario));
+      } catch (const Error& e) {  // refused, diverged: a result of the study, not a stop
+        r = failed_row(e.what());
+      } catch (...) {
+        const std::lock_guard lock(mutex);
+        if (!bug) bug = std::current_exception();
+        continue;
+      }
+      r.procedure = procedures[k / nc].name;
+      r.effect = effect_case_name(options.cases[k % nc]);
+      r.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - c0).count();
+      const std::lock_guard lock(mutex);
+      study.rows[k] = r;
+      if (progress) progress(r);
+    }
+  };
+  const int threads = std::clamp(options.threads, 1, static_cast<int>(std::max<size_t>(n, 1)));
+  std::vector<std::thread> pool;
+  for (int t = 1; t < threads; ++t) pool.emplace_back(worker);
+  worker();
+  for (std::thread& t : pool) t.join();
+  if (bug) std::rethrow_exception(bug);
+  study.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+  return study;
+}
+
+std::vector<std::string> effects_table_header() {
+  return {"procedure", "effect", "worst parameter", "its error (um)", "worst error / CRB sigma",
+          "calibrated static RMS (um)", "floor (um)", "calibrated / floor", "model test"};
+}
+
+std::vector<std::vector<std::string>> effects_table_rows(const EffectsStudy& s) {
+  std::vector<std::vector<std::string>> rows;
+  for (const EffectsRow& r : s.rows) {
+    const std::string test = r.model_test_passed ? (*r.model_test_passed ? "passes" : "fails") : "-";
+    rows.push_back({r.procedure, r.effect, r.worst_param.empty() ? "-" : r.worst_param,
+                    cell(r.worst_error_um, "{:.1f}"),
+                    r.worst_crb_param.empty() ? "-" : fmt::format("{} ({})", cell(r.worst_crb_ratio, "{:.3g}"), r.worst_crb_param),
+                    cell(r.calibrated_um, "{:.1f}"), cell(r.floor_um, "{:.1f}"), cell(r.floor_ratio, "{:.2f}"),
+                    r.failure ? fmt::format("{} ({})", test, *r.failure) : test});
+  }
+  return rows;
+}
+
+std::string effects_markdown_table(const EffectsStudy& s) {
+  report::ReportDocument table;  // the report's own Markdown table
+  table.table(effects_table_header(), effects_table_rows(s));
+  return table.markdown();
+}
+
+std::string effects_json(const EffectsStudy& s) {
+  nlohmann::json j;
+  j["seconds"] = number(s.seconds);
+  j["procedures"] = nlohmann::json::array();
+  for (const StudyProcedure& p : s.procedures)
+    j["procedures"].push_back({{"name", p.name}, {"description", p.description}, {"scenario", p.spec.sim.name},
+                               {"seed", p.spec.sim.seed}});
+  j["effects"] = nlohmann::json::array();
+  for (EffectCase c : s.cases) j["effects"].push_back(effect_case_name(c));
+  j["rows"] = nlohmann::json::array();
+  for (const EffectsRow& r : s.rows) {
+    nlohmann::json row;
+    row["procedure"] = r.procedure;
+    row["effect"] = r.effect;
+    row["failure"] = r.failure ? nlohmann::json(*r.failure) : nlohmann::json(nullptr);
+    nlohmann::json params = nlohmann::json::object();
+    for (int k = 0; k < kNumParams; ++k) {
+      const auto u = static_cast<size_t>(k);
+      if (!std::isfinite(r.error[u])) continue;
+      params[std::string(param_name(k))] = {{"error", r.error[u]}, {"crb", number(r.crb[u])}};
+    }
+    row["parameters"] = params;
+    row["worst_parameter"] = r.worst_param;
+    row["worst_error_um"] = number(r.worst_error_um);
+    row["worst_crb_parameter"] = r.worst_crb_param;
+    row["worst_crb_ratio"] = number(r.worst_crb_ratio);
+    row["static_rms_um"] = {{"nominal", number(r.nominal_um)}, {"calibrated", number(r.calibrated_um)},
+                            {"actual", number(r.floor_um)}};
+    row["floor_ratio"] = number(r.floor_ratio);
+    row["model_test_passed"] = r.model_test_passed ? nlohmann::json(*r.model_test_passed) : nlohmann::json(nullptr);
+    if (r.motion_estimated)
+      row["estimated_effects"] = {{"skew_s2_s", r.motion_nu[0]}, {"skew_s3_s", r.motion_nu[1]},
+                                  {"compliance_rad_per_Nm", {r.motion_nu[2], r.motion_nu[3], r.motion_nu[4]}}};
+    row["seconds"] = number(r.seconds);
+    j["rows"].push_back(row);
+  }
+  return j.dump(2) + "\n";
+}
+
+report::ReportDocument effects_report(const EffectsStudy& s) {
+  report::ReportDocument doc;
+  doc.heading(1, "What each physical effect does to calibration");
+  const sim::Effects fx = sim::realistic_effects();
+  doc.paragraph(fmt::format(
+      "Each effect of the realistic twin alone at its realistic value (transmission compliance {:g} rad/N m, "
+      "passive clearance {:g} um, friction {:g} N m + {:g} N m s/rad, thermal {:g}/K x {:g} K with time constant "
+      "{:g} s, encoder cyclic error {:g} rad, encoder latch skew {:g} / {:g} s), all of them together, and none "
+      "(ideal), on the same actual robot (the scenario's seed) for each procedure. Errors are estimated minus "
+      "actual; offsets are counted in um at the 244 mm link. The floor is the static RMS error of the controller "
+      "given the actual parameters on the same twin; calibrated / floor is what the calibration leaves on the "
+      "table. CRB sigma: the Cramer-Rao bound of the parameter for the encoder quantisation and noise alone.",
+      fx.mjcf.compliance_rad_per_Nm[0], fx.mjcf.clearance_m[0] * 1e6, fx.mjcf.coulomb_Nm[0], fx.mjcf.viscous_Nm_s[0],
+      fx.thermal.expansion_per_K, fx.thermal.rise_K, fx.thermal.time_constant_s, fx.encoder_cyclic_rad[0],
+      fx.encoder_skew_s[1], fx.encoder_skew_s[2]));
+  std::vector<std::string> procs;
+  for (const StudyProcedure& p : s.procedures) procs.push_back(fmt::format("{}: {}", p.name, p.description));
+  doc.bullets(procs);
+  doc.table(effects_table_header(), effects_table_rows(s));
+  doc.figure("effects_floor_ratio", "Static RMS error after calibration over the floor, per effect and procedure",
+             per_case_plot(s, &EffectsRow::floor_ratio, "calibrated / floor (static RMS)", "calibrated / floor"));
+  doc.figure("effects_crb_ratio", "Largest parameter error in Cramer-Rao sigmas, per effect and procedure",
+             per_case_plot(s, &EffectsRow::worst_crb_ratio, "worst parameter error / CRB sigma", "error / CRB sigma"));
+  doc.figure("effects_worst_error", "Largest parameter error (offsets x 244 mm), per effect and procedure",
+             per_case_plot(s, &EffectsRow::worst_error_um, "worst parameter error", "um"));
+  const size_t nc = s.cases.size();
+  for (size_t p = 0; p < s.procedures.size(); ++p) {
+    doc.heading(2, fmt::format("Parameter errors: {}", s.procedures[p].name));
+    std::vector<int> free;
+    for (int k = 0; k < kNumParams; ++k)
+      if (!s.procedures[p].spec.calibration.fixed.test(static_cast<size_t>(k))) free.push_back(k);
+    std::vector<std::string> header{"effect"};
+    for (int k : free) header.push_back(fmt::format("{} ({})", param_name(k), is_offset(k) ? "urad" : "um"));
+    std::vector<std::vector<std::string>> rows;
+    for (size_t c = 0; c < nc; ++c) {
+      const EffectsRow& r = s.rows[p * nc + c];
+      std::vector<std::string> row{r.effect};
+      for (int k : free) row.push_back(cell(r.error[static_cast<size_t>(k)] * 1e3 * (is_offset(k) ? 1e3 : 1.0), "{:.1f}"));
+      rows.push_back(row);
+    }
+    doc.table(header, rows);
+  }
+  doc.paragraph(fmt::format("{} runs in {:.0f} s.", s.rows.size(), s.seconds));
+  return doc;
+}
+
+void write_effects_study(const EffectsStudy& s, const std::string& dir) {
+  OutputFolder out(dir);
+  out.add("effects.json", effects_json(s));
+  effects_report(s).stage(out, "effects", "gpm study effects");
+  out.commit();
+}
+
+}  // namespace gpm::scenario
