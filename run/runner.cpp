@@ -117,6 +117,7 @@ RunOutcome run_scenario(const RunSpec& spec_in, const std::string& scenario_file
   calib::MotionModel motion;
   motion.compliance = spec.calibration.estimate_compliance.value_or(in_motion);
   motion.skew = spec.calibration.estimate_skew.value_or(in_motion);
+  motion.friction = motion.compliance && spec.calibration.estimate_friction.value_or(in_motion);
   const bool with_effects = motion.compliance || motion.skew;
   if (with_effects && (spec.calibration.method != calib::Method::kLM || spec.calibration.cost != calib::Cost::kML))
     throw InputError(fmt::format("{}: estimating compliance or skew with the geometry (samples on the fly, or "
@@ -182,6 +183,7 @@ RunOutcome run_scenario(const RunSpec& spec_in, const std::string& scenario_file
   mo.encoder_sigma = spec.calibration.sigma;
   if (!mo.encoder_sigma && spec.sim.twin.encoder.noise_rad > 0) mo.encoder_sigma = out.crb_sigma_rad;
   mo.allow_rank_deficient = spec.calibration.allow_rank_deficient;
+  mo.loss = spec.calibration.loss;
   mo.true_xy = spec.hardware ? nullptr : &true_xy;
   std::vector<Eigen::Vector3d> used = problem.theta_m;  // the readings the fit explains
   try {
@@ -194,6 +196,9 @@ RunOutcome run_scenario(const RunSpec& spec_in, const std::string& scenario_file
       calib::LmOptions lo;
       lo.encoder_sigma = out.crb_sigma_rad > 0.0 ? std::optional<double>(out.crb_sigma_rad) : std::nullopt;
       lo.true_xy = &true_xy;
+      lo.loss = spec.calibration.loss;
+      if (lo.loss.active() && !(lo.loss.scale > 0.0))
+        lo.loss.scale = calib::default_tuning(lo.loss.kind) * out.crb_sigma_rad;
       const calib::MotionFit fit = calib::calibrate_in_motion(problem, omega, tau, lo, motion);
       out.calibration = fit.result;
       out.motion_nu = fit.nu;
@@ -229,18 +234,23 @@ RunOutcome run_scenario(const RunSpec& spec_in, const std::string& scenario_file
 
   if (spec.compensation) {
     sim::check_targets(spec.sim, actual, spec.compensation->poses);
+    // A constant-torque joint preloads the chain for the sampling only; the
+    // accuracy test runs the robot as in operation (that joint torque-off).
+    sim::TwinConfig test_twin = spec.sim.twin;
+    for (sim::ServoDrive& d : test_twin.drives)
+      if (d.mode == sim::ServoMode::kTorque) d.mode = sim::ServoMode::kTorqueOff;
     stage("measuring accuracy with the nominal model");
     const unsigned long long seed = sim::derive_seed(spec.sim.seed, 4);
-    out.before = measure_accuracy(actual, spec.sim.twin, out.nominal, *spec.compensation, seed, "nominal");
+    out.before = measure_accuracy(actual, test_twin, out.nominal, *spec.compensation, seed, "nominal");
     if (out.calibration) {
       stage("measuring accuracy with the calibrated model");
-      out.after = measure_accuracy(actual, spec.sim.twin, out.calibrated, *spec.compensation, seed, "calibrated");
+      out.after = measure_accuracy(actual, test_twin, out.calibrated, *spec.compensation, seed, "calibrated");
     }
     if (!spec.hardware) {
       stage("measuring accuracy with the actual parameters (the floor)");
       Robot truth = out.nominal;
       truth.geometry = actual.geometry;
-      out.floor = measure_accuracy(actual, spec.sim.twin, truth, *spec.compensation, seed, "actual");
+      out.floor = measure_accuracy(actual, test_twin, truth, *spec.compensation, seed, "actual");
     }
   }
   out.checks = evaluate_expectations(out);
