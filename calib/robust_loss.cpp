@@ -12,12 +12,15 @@
 namespace gpm::calib {
 namespace {
 
-// rho(s), rho'(s) of a Ceres loss.
-void rho_of(const ceres::LossFunction& rho, double s, double& value, double& slope) {
+// rho(s) / s and rho'(s) of a Ceres loss. Deep inside the scale (rho' within
+// 1e-6 of 1) rho(s) / s is taken as (1 + rho') / 2, exact to second order for
+// smooth losses: Ceres' Cauchy evaluates log(1 + s/b) without log1p, which
+// loses the relative accuracy of rho(s) for s << b.
+void rho_of(const ceres::LossFunction& rho, double s, double& ratio, double& slope) {
   double out[3];
   rho.Evaluate(s, out);
-  value = out[0];
   slope = out[1];
+  ratio = 1.0 - slope < 1e-6 ? 0.5 * (1.0 + slope) : out[0] / s;
 }
 
 class RobustResidual final : public ceres::CostFunction {
@@ -105,19 +108,18 @@ Eigen::MatrixXd robust_factor(const ceres::LossFunction& rho, const Eigen::Vecto
   const Eigen::Index m = r.size();
   const double s = r.squaredNorm();
   if (!(s > 0.0)) return Eigen::MatrixXd::Identity(m, m);  // rho(s) = s near 0 for Ceres' losses
-  double value = 0.0, slope = 0.0;
-  rho_of(rho, s, value, slope);
-  if (!(value > 0.0)) return Eigen::MatrixXd::Identity(m, m);
-  const double k = std::sqrt(value / s);
-  return k * (Eigen::MatrixXd::Identity(m, m) + (s * slope / value - 1.0) * (r * r.transpose()) / s);
+  double ratio = 0.0, slope = 0.0;
+  rho_of(rho, s, ratio, slope);
+  if (!(ratio > 0.0)) return Eigen::MatrixXd::Identity(m, m);
+  return std::sqrt(ratio) * (Eigen::MatrixXd::Identity(m, m) + (slope / ratio - 1.0) * (r * r.transpose()) / s);
 }
 
 Eigen::VectorXd robust_residual(const ceres::LossFunction& rho, const Eigen::VectorXd& r) {
   const double s = r.squaredNorm();
   if (!(s > 0.0)) return r;
-  double value = 0.0, slope = 0.0;
-  rho_of(rho, s, value, slope);
-  return std::sqrt(value / s) * r;
+  double ratio = 0.0, slope = 0.0;
+  rho_of(rho, s, ratio, slope);
+  return std::sqrt(ratio) * r;
 }
 
 std::unique_ptr<ceres::CostFunction> make_robust_residual(ceres::CostFunction* inner, int rows,
