@@ -95,6 +95,8 @@ RunOutcome run_scenario(const RunSpec& spec_in, const std::string& scenario_file
   const auto t0 = std::chrono::steady_clock::now();
   auto stage = [&](const std::string& s) { if (progress) progress(s); };
   RunSpec spec = spec_in;
+  if (spec.sim.sampling && !spec.sim.sampling->needs_design())
+    design_sampling(spec.sim, ~spec.calibration.fixed, 0.0);  // given poses: only their number is checked
   if (spec.sim.sampling && spec.sim.sampling->needs_design()) {
     stage("designing the calibration poses");
     std::function<bool(const Eigen::Vector2d&)> admissible;
