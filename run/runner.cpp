@@ -208,8 +208,9 @@ RunOutcome run_scenario(const RunSpec& spec_in, const std::string& scenario_file
       used = fit.corrected;
       out.calibration->notes.push_back(fmt::format(
           "estimated with the geometry: latch skew s2 {:.3g} s, s3 {:.3g} s; transmission compliance "
-          "c1 {:.3g}, c2 {:.3g}, c3 {:.3g} rad/N m (0: not excited, e.g. a torque-off joint)",
-          fit.nu[0], fit.nu[1], fit.nu[2], fit.nu[3], fit.nu[4]));
+          "c1 {:.3g}, c2 {:.3g}, c3 {:.3g} rad/N m (0: not excited, e.g. a torque-off joint); friction twist "
+          "c F {:.3g}, {:.3g}, {:.3g} rad",
+          fit.nu[0], fit.nu[1], fit.nu[2], fit.nu[3], fit.nu[4], fit.friction[0], fit.friction[1], fit.friction[2]));
     } else {
       out.calibration = calib::calibrate(problem, mo);
     }
