@@ -55,9 +55,7 @@ Result robust_lm(const Problem& problem, LmOptions lm, const RobustLoss& loss) {
     if (!(sigma > 0.0)) return first;  // exact data: nothing to be robust against
   }
   lm.loss.scale = tuning * sigma;
-  Result r = calibrate_lm(p, lm);
-  r.notes.push_back(fmt::format("robust loss {} (scale {:.3g} sigma, sigma {:.3g})", loss_name(lm.loss), tuning, sigma));
-  return r;
+  return calibrate_lm(p, lm);
 }
 
 }  // namespace
