@@ -42,6 +42,7 @@ struct CalibrateOptions {
   bool sigma_given = false;
   bool allow_rank_deficient = false;
   bool json = false;
+  std::string loss = "plain";
 };
 
 // "FILE:LINE (sample ID)" for each data row, counting lines as the CSV reader
@@ -96,6 +97,7 @@ void run(const CalibrateOptions& o) {
   const auto cost = calib::parse_cost(o.cost);
   if (!cost) throw InputError(fmt::format("--cost: '{}' is not one of j1, j2, j3, ml", o.cost));
   const calib::Method method = calib::parse_method(o.method, "--method");
+  const calib::RobustLoss loss = calib::parse_loss(o.loss, "--loss");
   if (o.budget_given && o.budget < 1) throw InputError(fmt::format("--budget: must be at least 1, got {}", o.budget));
   const std::string model_path = o.model.empty() ? default_model_path() : o.model;
   const Robot robot = load_robot(model_path);
@@ -135,6 +137,7 @@ void run(const CalibrateOptions& o) {
   mo.cost = *cost;
   mo.seed = static_cast<std::uint64_t>(o.seed);
   mo.allow_rank_deficient = o.allow_rank_deficient;
+  mo.loss = loss;
   if (o.budget_given) {
     if (method == calib::Method::kLM) mo.lm_max_iterations = static_cast<int>(std::min<long>(o.budget, 1000000));
     else mo.budget = o.budget;
@@ -193,6 +196,11 @@ void add_calibrate(CLI::App& app) {
       ->each([o](const std::string&) { o->budget_given = true; });
   cmd->add_option("--sigma", o->sigma, "Encoder noise 1-sigma (rad) for the uncertainty; default: estimated from the residuals")
       ->each([o](const std::string&) { o->sigma_given = true; });
+  cmd->add_option("--loss", o->loss,
+                  "Loss per sample: plain (least squares), cauchy or huber (robust to outlier samples), "
+                  "optionally :SCALE in residual units (rad for ml); default scale 2.385 (cauchy) or 1.345 "
+                  "(huber) x the noise (--sigma, or estimated robustly from a plain fit)")
+      ->capture_default_str();
   cmd->add_flag("--allow-rank-deficient", o->allow_rank_deficient,
                 "Solve a rank-deficient free set anyway (minimum-norm step; the result says so)");
   cmd->add_option("--init", o->init, "Start offsets: model (the robot file) or reference (section 3.2 step 3)")

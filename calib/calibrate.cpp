@@ -1,14 +1,64 @@
 #include "calib/calibrate.hpp"
 
+#include <algorithm>
+#include <cmath>
+#include <limits>
+#include <memory>
+
+#include <ceres/ceres.h>
+
 #include <fmt/format.h>
 
 #include "calib/global/decision_space.hpp"
 #include "calib/global/global.hpp"
 #include "calib/kmrmse.hpp"
 #include "calib/lm.hpp"
+#include "calib/parameterization.hpp"
+#include "calib/residuals.hpp"
 #include "models/errors.hpp"
 
 namespace gpm::calib {
+
+namespace {
+
+// Residuals of one sample at geometry g under cost c.
+Eigen::VectorXd sample_residuals(Cost c, const Eigen::Vector3d& theta_m, const Geometry& g) {
+  const ParamVector x = to_solver(g, c);
+  const std::unique_ptr<ceres::CostFunction> f(make_residual(c, theta_m));
+  Eigen::VectorXd r(residual_rows(c));
+  const double* params[] = {x.data()};
+  if (!f->Evaluate(params, r.data(), nullptr)) r.setConstant(std::numeric_limits<double>::quiet_NaN());
+  return r;
+}
+
+// LM with the robust loss of o.loss (calib/calibrate.hpp: its default scale).
+Result robust_lm(const Problem& problem, LmOptions lm, const RobustLoss& loss) {
+  lm.loss = loss;
+  if (!loss.active() || loss.scale > 0.0) return calibrate_lm(problem, lm);
+  const double tuning = default_tuning(loss.kind);
+  Problem p = problem;
+  double sigma = lm.encoder_sigma.value_or(0.0);
+  if (!(sigma > 0.0)) {
+    // Noise from the residuals of a plain fit, robustly (median absolute residual).
+    LmOptions plain = lm;
+    plain.loss = {};
+    plain.compute_covariance = false;
+    const Result first = calibrate_lm(problem, plain);
+    p.start = first.geometry;
+    std::vector<double> a;
+    for (const Eigen::Vector3d& t : problem.theta_m) {
+      const Eigen::VectorXd r = sample_residuals(lm.cost, t, first.geometry);
+      for (Eigen::Index k = 0; k < r.size(); ++k) a.push_back(std::abs(r[k]));
+    }
+    std::nth_element(a.begin(), a.begin() + static_cast<std::ptrdiff_t>(a.size() / 2), a.end());
+    sigma = 1.4826 * a[a.size() / 2];
+    if (!(sigma > 0.0)) return first;  // exact data: nothing to be robust against
+  }
+  lm.loss.scale = tuning * sigma;
+  return calibrate_lm(p, lm);
+}
+
+}  // namespace
 
 Result calibrate(const Problem& problem, const MethodOptions& o) {
   LmOptions lm;
@@ -17,7 +67,10 @@ Result calibrate(const Problem& problem, const MethodOptions& o) {
   lm.allow_rank_deficient = o.allow_rank_deficient;
   lm.true_xy = o.true_xy;
   lm.max_iterations = o.lm_max_iterations;
-  if (o.method == Method::kLM) return calibrate_lm(problem, lm);
+  if (o.method == Method::kLM) return robust_lm(problem, lm, o.loss);
+  if (o.loss.active() && o.method != Method::kDELM)
+    throw InputError(fmt::format("--loss {} works with lm or de+lm (the LM stage); {} is not robustified",
+                                 loss_name(o.loss), method_name(o.method)));
 
   const bool ml = o.cost == Cost::kML;
   if (ml && o.method != Method::kDELM) {
@@ -37,7 +90,7 @@ Result calibrate(const Problem& problem, const MethodOptions& o) {
   if (!ml) return g;
   Problem refine = problem;
   refine.start = g.geometry;
-  Result r = calibrate_lm(refine, lm);
+  Result r = robust_lm(refine, lm, o.loss);
   r.method = "de+lm";
   r.evaluations += g.evaluations;
   r.seconds += g.seconds;

@@ -214,7 +214,9 @@ Result calibrate_lm(const Problem& problem, const LmOptions& opt) {
   ceres::Problem::Options po;
   po.cost_function_ownership = ceres::DO_NOT_TAKE_OWNERSHIP;
   ceres::Problem cp(po);
-  cp.AddResidualBlock(&stacked, nullptr, xf.data());
+  const std::unique_ptr<ceres::LossFunction> rho = make_loss_function(opt.loss);
+  const std::unique_ptr<ceres::CostFunction> robust = rho ? make_robust_residual(&stacked, rows, rho.get()) : nullptr;
+  cp.AddResidualBlock(robust ? robust.get() : &stacked, nullptr, xf.data());
 
   if (res.rank_deficient) {
     truncated_svd_lm(functions, rows, problem.free, id.rank, opt.max_iterations, x, res);
@@ -244,9 +246,16 @@ Result calibrate_lm(const Problem& problem, const LmOptions& opt) {
   }
 
   res.geometry = from_solver(x, opt.cost);
-  const Evaluation fin = evaluate(functions, x, rows, opt.compute_covariance && !res.rank_deficient);
+  Evaluation fin = evaluate(functions, x, rows, opt.compute_covariance && !res.rank_deficient);
+  res.final_cost = paper_cost(opt.cost, fin.ok ? fin.r.squaredNorm() : kNaN);
+  std::vector<Eigen::MatrixXd> W;  // robust loss: per-sample factors W_j (calib/robust_loss.hpp)
+  for (size_t j = 0; rho && fin.ok && j < n; ++j) {
+    const auto g = static_cast<Eigen::Index>(j) * rows;
+    W.push_back(robust_factor(*rho, fin.r.segment(g, rows)));
+    if (fin.J.rows() > 0) fin.J.middleRows(g, rows) = W.back() * fin.J.middleRows(g, rows);
+    fin.r.segment(g, rows) = robust_residual(*rho, fin.r.segment(g, rows));
+  }
   const double ssq = fin.ok ? fin.r.squaredNorm() : kNaN;
-  res.final_cost = paper_cost(opt.cost, ssq);
 
   // 1-sigma from ceres::Covariance: C0 = (J'J)^-1 on the free parameters.
   if (opt.compute_covariance && !res.rank_deficient && fin.ok) {
@@ -282,6 +291,7 @@ Result calibrate_lm(const Problem& problem, const LmOptions& opt) {
             fm->Evaluate(params, rm.data(), nullptr);
             R.col(k) = (rp - rm) / (2.0 * h);
           }
+          if (!W.empty()) R = W[j] * R;
           const auto Jj = fin.J.middleRows(static_cast<Eigen::Index>(j) * rows, rows);
           const Eigen::MatrixXd JR = Jj.transpose() * R;
           M += s2 * JR * JR.transpose();

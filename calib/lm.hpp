@@ -10,6 +10,7 @@
 #include <Eigen/Core>
 
 #include "calib/problem.hpp"
+#include "calib/robust_loss.hpp"
 
 namespace gpm::calib {
 
@@ -32,6 +33,9 @@ struct LmOptions {
   // of the analytic Jacobians of calib/analytic_residuals.hpp; same result,
   // slower (for benchmarks and cross-checks).
   bool autodiff = false;
+  // Robust loss per sample (calib/robust_loss.hpp; its scale must be set);
+  // the covariance is then that of the robust problem.
+  RobustLoss loss;
 };
 
 // Estimates problem.free from problem.theta_m starting at problem.start.

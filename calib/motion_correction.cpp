@@ -1,6 +1,7 @@
 // Calibration from readings taken in motion (calib/motion_correction.hpp).
 #include "calib/motion_correction.hpp"
 
+#include <algorithm>
 #include <cmath>
 #include <limits>
 
@@ -22,11 +23,15 @@ double ml_residual(const ParamVector& x, const Eigen::Vector3d& theta) {
   return r;
 }
 
-// Columns of the nuisance Jacobian that model estimates (0..4 = s2 s3 c1 c2 c3).
+// Joint speed below which Coulomb friction is treated as static (rad/s).
+constexpr double kFrictionSpeed = 0.01;
+
+// Columns of the nuisance Jacobian that model estimates (0..4 = s2 s3 c1 c2 c3, 5..7 = c1 F1, c2 F2, c3 F3).
 std::vector<int> nuisance_columns(const MotionModel& m) {
   std::vector<int> cols;
   if (m.skew) cols.insert(cols.end(), {0, 1});
   if (m.compliance) cols.insert(cols.end(), {2, 3, 4});
+  if (m.compliance && m.friction) cols.insert(cols.end(), {5, 6, 7});
   return cols;
 }
 
@@ -53,19 +58,33 @@ MotionFit calibrate_in_motion(const Problem& problem, const std::vector<Eigen::V
                                  omega.size(), tau.size()));
   if (options.cost != Cost::kML)
     throw InputError("calibration in motion: the reading corrections need the ML cost (--cost ml)");
-  // A nuisance value no sample excites (a torque-off joint transmits no
-  // torque: its compliance column is zero) is not estimated.
+  // A nuisance value no sample excites is not estimated: a latch skew without
+  // joint speed, or a compliance whose torque never varies (a torque-off joint
+  // transmits none; a joint held at a constant torque twists by a constant
+  // angle, which the zero offset dth absorbs).
+  // Coulomb friction F_i on the motor side of the transmission: the
+  // transmitted torque is tau_i - F_i sign(omega_i), so the link twists by
+  // c_i F_i sign(omega_i) less than c_i tau_i says (the sign smoothed over
+  // 0.01 rad/s, inside which the friction is static and unknown).
+  std::vector<Eigen::Vector3d> fric(n, Eigen::Vector3d::Zero());
+  if (model.friction)
+    for (std::size_t j = 0; j < n; ++j) fric[j] = (omega[j] / kFrictionSpeed).array().tanh();
+  auto regressor = [&](int c, std::size_t j) {
+    if (c < 2) return omega[j][c + 1];
+    if (c < 5) return tau[j][c - 2] - tau[0][c - 2];
+    return fric[j][c - 5];
+  };
   std::vector<int> cols;
   for (int c : nuisance_columns(model)) {
     double excitation = 0.0;
-    for (std::size_t j = 0; j < n; ++j)
-      excitation += c < 2 ? std::abs(omega[j][c + 1]) : std::abs(tau[j][c - 2]);
+    for (std::size_t j = 0; j < n; ++j) excitation += std::abs(regressor(c, j));
     if (excitation > 0.0) cols.push_back(c);
   }
   const int q = static_cast<int>(cols.size());
 
   MotionFit fit;
   fit.nu_sigma.fill(std::numeric_limits<double>::quiet_NaN());
+  fit.friction_sigma.fill(std::numeric_limits<double>::quiet_NaN());
   Problem p = problem;
   LmOptions lm = options;
   const bool want_covariance = options.compute_covariance;
@@ -76,8 +95,17 @@ MotionFit calibrate_in_motion(const Problem& problem, const std::vector<Eigen::V
   for (int k = 0; k < kNumParams; ++k)
     if (problem.free[k]) free_index.push_back(k);
 
+  std::array<double, 8> nu_all{};  // nu, then c_i F_i
+  auto corrected = [&]() {
+    std::copy_n(nu_all.begin(), 5, fit.nu.begin());
+    std::copy_n(nu_all.begin() + 5, 3, fit.friction.begin());
+    std::vector<Eigen::Vector3d> out = correct_readings(problem.theta_m, omega, tau, fit.nu);
+    for (std::size_t j = 0; j < n; ++j)
+      for (int k = 0; k < 3; ++k) out[j][k] += fit.friction[static_cast<std::size_t>(k)] * fric[j][k];
+    return out;
+  };
   for (fit.passes = 1; fit.passes <= std::max(1, model.max_passes); ++fit.passes) {
-    p.theta_m = correct_readings(problem.theta_m, omega, tau, fit.nu);
+    p.theta_m = corrected();
     fit.result = calibrate_lm(p, lm);
     p.start = fit.result.geometry;  // warm start for the next pass
     // Linearisation at this fit.
@@ -98,8 +126,8 @@ MotionFit calibrate_in_motion(const Problem& problem, const std::vector<Eigen::V
         b[k] -= h;
         u[k] = (ml_residual(x, a) - ml_residual(x, b)) / (2.0 * h);
       }
-      const double all[5] = {u[1] * omega[j][1], u[2] * omega[j][2], -u[0] * tau[j][0], -u[1] * tau[j][1],
-                             -u[2] * tau[j][2]};
+      const double all[8] = {u[1] * omega[j][1], u[2] * omega[j][2], -u[0] * tau[j][0], -u[1] * tau[j][1],
+                             -u[2] * tau[j][2],  u[0] * fric[j][0],  u[1] * fric[j][1],  u[2] * fric[j][2]};
       for (int c = 0; c < q; ++c) Jn(static_cast<Eigen::Index>(j), c) = all[cols[static_cast<std::size_t>(c)]];
     }
     if (q == 0) break;
@@ -113,14 +141,14 @@ MotionFit calibrate_in_motion(const Problem& problem, const std::vector<Eigen::V
     double change = 0.0;
     for (int c = 0; c < q; ++c) {
       const double d = step[Jg_free.cols() + c];
-      fit.nu[static_cast<std::size_t>(cols[static_cast<std::size_t>(c)])] += d;
+      nu_all[static_cast<std::size_t>(cols[static_cast<std::size_t>(c)])] += d;
       change = std::max(change, std::abs(d) * scale[Jg_free.cols() + c] / (r.norm() + 1e-300));
     }
     // Converged when the nuisance step moves the residuals by a negligible fraction.
     if (change < 1e-6) break;
   }
   fit.passes = std::min(fit.passes, std::max(1, model.max_passes));
-  fit.corrected = correct_readings(problem.theta_m, omega, tau, fit.nu);
+  fit.corrected = corrected();
   p.theta_m = fit.corrected;
   lm.compute_covariance = want_covariance;
   fit.result = calibrate_lm(p, lm);
@@ -143,7 +171,8 @@ MotionFit calibrate_in_motion(const Problem& problem, const std::vector<Eigen::V
       fit.result.sigma[static_cast<std::size_t>(free_index[a])] = std::sqrt(C(static_cast<Eigen::Index>(a), static_cast<Eigen::Index>(a)));
     for (int c = 0; c < q; ++c) {
       const Eigen::Index i = Jg_free.cols() + c;
-      fit.nu_sigma[static_cast<std::size_t>(cols[static_cast<std::size_t>(c)])] = std::sqrt(C(i, i));
+      const std::size_t k = static_cast<std::size_t>(cols[static_cast<std::size_t>(c)]);
+      (k < 5 ? fit.nu_sigma[k] : fit.friction_sigma[k - 5]) = std::sqrt(C(i, i));
     }
   }
   return fit;

@@ -32,6 +32,8 @@ namespace gpm::calib {
 struct MotionModel {
   bool skew = true;        // estimate s2, s3 (s)
   bool compliance = true;  // estimate c1, c2, c3 (rad/N m)
+  bool friction = true;    // with compliance: the twist c_i F_i sign(omega_i) that the motor-side
+                           // Coulomb friction F_i takes off the drive torque
   int max_passes = 6;      // Gauss-Newton passes (each one LM fit)
 };
 
@@ -40,6 +42,8 @@ struct MotionFit {
   std::array<double, 5> nu{};               // s2, s3 (s), c1, c2, c3 (rad/N m); 0 where not estimated
   std::array<double, 5> nu_sigma{};         // their 1-sigma (NaN where not estimated, e.g. the
                                             // compliance of a torque-off joint, which no sample excites)
+  std::array<double, 3> friction{};         // c_i F_i (rad), i = 1..3; 0 where not estimated
+  std::array<double, 3> friction_sigma{};   // their 1-sigma (NaN where not estimated)
   int passes = 0;
   std::vector<Eigen::Vector3d> corrected;   // readings corrected with nu (rad)
 };

@@ -25,7 +25,7 @@ CalibrationSpec parse_calibration(const YAML::Node& n, const std::string& file) 
   for (int i : {kXa1, kYa1, kXa2, kYa2}) c.fixed.set(static_cast<size_t>(i));
   if (!n) return c;
   yaml_check_keys(n, file, "calibration",
-                  {"cost", "method", "fix", "budget", "seed", "sigma", "allow_rank_deficient", "start", "estimate"});
+                  {"cost", "method", "fix", "budget", "seed", "sigma", "allow_rank_deficient", "start", "estimate", "loss"});
   if (n["cost"]) {
     const std::string s = yaml_string(n["cost"], file, "calibration.cost");
     const auto cost = calib::parse_cost(s);
@@ -59,15 +59,24 @@ CalibrationSpec parse_calibration(const YAML::Node& n, const std::string& file) 
   if (n["sigma"]) c.sigma = yaml_positive(n["sigma"], file, "calibration.sigma");
   if (const YAML::Node est = n["estimate"]) {
     if (!est.IsSequence())
-      throw InputError(yaml_where(file, est, "calibration.estimate") + "expected a list of compliance, skew (or [])");
+      throw InputError(yaml_where(file, est, "calibration.estimate") + "expected a list of compliance, skew, friction (or [])");
     c.estimate_compliance = false;
     c.estimate_skew = false;
+    c.estimate_friction = false;
     for (size_t k = 0; k < est.size(); ++k) {
       const std::string key = fmt::format("calibration.estimate[{}]", k);
       const std::string what = yaml_string(est[k], file, key);
       if (what == "compliance") c.estimate_compliance = true;
       else if (what == "skew") c.estimate_skew = true;
-      else throw InputError(yaml_where(file, est[k], key) + fmt::format("unknown effect '{}' (valid: compliance, skew)", what));
+      else if (what == "friction") c.estimate_friction = true;
+      else throw InputError(yaml_where(file, est[k], key) + fmt::format("unknown effect '{}' (valid: compliance, skew, friction)", what));
+    }
+  }
+  if (n["loss"]) {
+    try {
+      c.loss = calib::parse_loss(yaml_string(n["loss"], file, "calibration.loss"), "calibration.loss");
+    } catch (const InputError& e) {
+      throw InputError(yaml_where(file, n["loss"], "") + e.what());
     }
   }
   if (n["allow_rank_deficient"]) c.allow_rank_deficient = yaml_bool(n["allow_rank_deficient"], file, "calibration.allow_rank_deficient");

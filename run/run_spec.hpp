@@ -11,6 +11,7 @@
 #include <Eigen/Core>
 
 #include "calib/problem.hpp"
+#include "calib/robust_loss.hpp"
 #include "run/compensation.hpp"
 #include "sim/scenario.hpp"
 
@@ -28,6 +29,10 @@ struct CalibrationSpec {
   // Reading effects estimated with the geometry (calib/motion_correction.hpp):
   // unset = both for samples taken on the fly, none otherwise.
   std::optional<bool> estimate_compliance, estimate_skew;
+  // The twist of the motor-side Coulomb friction (with the compliance);
+  // unset = with the compliance on the fly.
+  std::optional<bool> estimate_friction;
+  calib::RobustLoss loss;               // `loss: cauchy|huber[:SCALE]` (calib/robust_loss.hpp)
 };
 
 // Expectations; an unset one is not checked.

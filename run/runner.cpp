@@ -95,6 +95,8 @@ RunOutcome run_scenario(const RunSpec& spec_in, const std::string& scenario_file
   const auto t0 = std::chrono::steady_clock::now();
   auto stage = [&](const std::string& s) { if (progress) progress(s); };
   RunSpec spec = spec_in;
+  if (spec.sim.sampling && !spec.sim.sampling->needs_design())
+    design_sampling(spec.sim, ~spec.calibration.fixed, 0.0);  // given poses: only their number is checked
   if (spec.sim.sampling && spec.sim.sampling->needs_design()) {
     stage("designing the calibration poses");
     std::function<bool(const Eigen::Vector2d&)> admissible;
@@ -117,6 +119,7 @@ RunOutcome run_scenario(const RunSpec& spec_in, const std::string& scenario_file
   calib::MotionModel motion;
   motion.compliance = spec.calibration.estimate_compliance.value_or(in_motion);
   motion.skew = spec.calibration.estimate_skew.value_or(in_motion);
+  motion.friction = motion.compliance && spec.calibration.estimate_friction.value_or(in_motion);
   const bool with_effects = motion.compliance || motion.skew;
   if (with_effects && (spec.calibration.method != calib::Method::kLM || spec.calibration.cost != calib::Cost::kML))
     throw InputError(fmt::format("{}: estimating compliance or skew with the geometry (samples on the fly, or "
@@ -182,6 +185,7 @@ RunOutcome run_scenario(const RunSpec& spec_in, const std::string& scenario_file
   mo.encoder_sigma = spec.calibration.sigma;
   if (!mo.encoder_sigma && spec.sim.twin.encoder.noise_rad > 0) mo.encoder_sigma = out.crb_sigma_rad;
   mo.allow_rank_deficient = spec.calibration.allow_rank_deficient;
+  mo.loss = spec.calibration.loss;
   mo.true_xy = spec.hardware ? nullptr : &true_xy;
   std::vector<Eigen::Vector3d> used = problem.theta_m;  // the readings the fit explains
   try {
@@ -194,6 +198,9 @@ RunOutcome run_scenario(const RunSpec& spec_in, const std::string& scenario_file
       calib::LmOptions lo;
       lo.encoder_sigma = out.crb_sigma_rad > 0.0 ? std::optional<double>(out.crb_sigma_rad) : std::nullopt;
       lo.true_xy = &true_xy;
+      lo.loss = spec.calibration.loss;
+      if (lo.loss.active() && !(lo.loss.scale > 0.0))
+        lo.loss.scale = calib::default_tuning(lo.loss.kind) * out.crb_sigma_rad;
       const calib::MotionFit fit = calib::calibrate_in_motion(problem, omega, tau, lo, motion);
       out.calibration = fit.result;
       out.motion_nu = fit.nu;
@@ -201,8 +208,9 @@ RunOutcome run_scenario(const RunSpec& spec_in, const std::string& scenario_file
       used = fit.corrected;
       out.calibration->notes.push_back(fmt::format(
           "estimated with the geometry: latch skew s2 {:.3g} s, s3 {:.3g} s; transmission compliance "
-          "c1 {:.3g}, c2 {:.3g}, c3 {:.3g} rad/N m (0: not excited, e.g. a torque-off joint)",
-          fit.nu[0], fit.nu[1], fit.nu[2], fit.nu[3], fit.nu[4]));
+          "c1 {:.3g}, c2 {:.3g}, c3 {:.3g} rad/N m (0: not excited, e.g. a torque-off joint); friction twist "
+          "c F {:.3g}, {:.3g}, {:.3g} rad",
+          fit.nu[0], fit.nu[1], fit.nu[2], fit.nu[3], fit.nu[4], fit.friction[0], fit.friction[1], fit.friction[2]));
     } else {
       out.calibration = calib::calibrate(problem, mo);
     }
@@ -229,18 +237,23 @@ RunOutcome run_scenario(const RunSpec& spec_in, const std::string& scenario_file
 
   if (spec.compensation) {
     sim::check_targets(spec.sim, actual, spec.compensation->poses);
+    // A constant-torque joint preloads the chain for the sampling only; the
+    // accuracy test runs the robot as in operation (that joint torque-off).
+    sim::TwinConfig test_twin = spec.sim.twin;
+    for (sim::ServoDrive& d : test_twin.drives)
+      if (d.mode == sim::ServoMode::kTorque) d.mode = sim::ServoMode::kTorqueOff;
     stage("measuring accuracy with the nominal model");
     const unsigned long long seed = sim::derive_seed(spec.sim.seed, 4);
-    out.before = measure_accuracy(actual, spec.sim.twin, out.nominal, *spec.compensation, seed, "nominal");
+    out.before = measure_accuracy(actual, test_twin, out.nominal, *spec.compensation, seed, "nominal");
     if (out.calibration) {
       stage("measuring accuracy with the calibrated model");
-      out.after = measure_accuracy(actual, spec.sim.twin, out.calibrated, *spec.compensation, seed, "calibrated");
+      out.after = measure_accuracy(actual, test_twin, out.calibrated, *spec.compensation, seed, "calibrated");
     }
     if (!spec.hardware) {
       stage("measuring accuracy with the actual parameters (the floor)");
       Robot truth = out.nominal;
       truth.geometry = actual.geometry;
-      out.floor = measure_accuracy(actual, spec.sim.twin, truth, *spec.compensation, seed, "actual");
+      out.floor = measure_accuracy(actual, test_twin, truth, *spec.compensation, seed, "actual");
     }
   }
   out.checks = evaluate_expectations(out);

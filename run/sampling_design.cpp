@@ -10,8 +10,15 @@ namespace gpm::scenario {
 
 void design_sampling(sim::Scenario& s, const FreeMask& free, double sigma_rad,
                      const std::function<bool(const Eigen::Vector2d&)>& admissible) {
-  if (!s.sampling || !s.sampling->needs_design()) return;
+  if (!s.sampling) return;
   const int p = static_cast<int>(free.count());
+  const bool designed = s.sampling->pattern == sim::PosePattern::kDesigned ||
+                        s.sampling->pattern == sim::PosePattern::kTrajectory;
+  if (designed && !s.sampling->needs_design() && static_cast<int>(s.sampling->poses.size()) < p)
+    throw InputError(fmt::format("{}: sampling.poses: {} designed poses cannot determine {} free parameters; "
+                                 "give at least {} (gpm design --count {})",
+                                 s.file, s.sampling->poses.size(), p, p, p));
+  if (!s.sampling->needs_design()) return;
   if (s.sampling->count < p)
     throw InputError(fmt::format("{}: sampling.count: {} designed poses cannot determine {} free parameters; "
                                  "use a count of at least {}",

@@ -16,7 +16,8 @@ namespace gpm::scenario {
 // Fills scenario.sampling->poses when the plan still needs a design (no-op
 // otherwise), from candidates that also pass `admissible` when given (the
 // hardware's safety limits). Throws InputError, before anything moves, when
-// the count is below the number of free parameters.
+// the count (or the number of poses given to a designed or trajectory plan)
+// is below the number of free parameters.
 void design_sampling(sim::Scenario& scenario, const FreeMask& free, double sigma_rad,
                      const std::function<bool(const Eigen::Vector2d&)>& admissible = {});
 

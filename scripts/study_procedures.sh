@@ -2,12 +2,14 @@
 # Compares the calibration procedures on the same perturbed GPM2002, on the
 # ideal and on the realistic twin: today's disc stop-and-go with three
 # position-controlled drives, designed poses stop-and-go with joint 1
-# torque-off, and designed poses sampled on the fly. Runs the six
-# scenarios/procedure_*.yaml with `gpm run` and tabulates their summary.json
+# torque-off, and designed poses sampled on the fly; on the realistic twin
+# also on the fly without the friction twist estimated, with joint 1
+# preloading instead of torque-off, and on three other perturbed robots.
+# Runs the scenarios/procedure_*.yaml with `gpm run` and tabulates their summary.json
 # (robot time, static RMS calibrated and with the actual parameters, worst
 # parameter error in Cramer-Rao sigmas, model test) into DIR/procedures.md
 # and DIR/procedures.json.
-#   bash scripts/study_procedures.sh [DIR]     (default out/procedures; a few minutes)
+#   bash scripts/study_procedures.sh [DIR]     (default out/procedures; about ten minutes)
 set -euo pipefail
 cd "$(dirname "$0")/.."
 out=${1:-out/procedures}
@@ -15,7 +17,9 @@ gpm=${GPM:-./build/app/gpm}
 [[ -x $gpm ]] || bash scripts/build.sh
 mkdir -p "$out"
 names=(procedure_disc_stopgo procedure_designed_stopgo procedure_trajectory
-       procedure_disc_stopgo_realistic procedure_designed_stopgo_realistic procedure_trajectory_realistic)
+       procedure_disc_stopgo_realistic procedure_designed_stopgo_realistic
+       procedure_trajectory_realistic_nofriction procedure_trajectory_realistic procedure_trajectory_realistic_preload
+       procedure_trajectory_realistic_seed7 procedure_trajectory_realistic_seed11 procedure_trajectory_realistic_seed99)
 for n in "${names[@]}"; do
   echo "study procedures: $n" >&2
   "$gpm" run "scenarios/$n.yaml" -o "$out/$n" --quiet || true  # a failed expectation still reports
@@ -43,7 +47,7 @@ for n in names:
         n, row["robot_time_s"], row["static_rms_um_calibrated"], row["static_rms_um_actual"], row["floor_ratio"],
         worst, "n/a" if mt is None else "{:.3g} ({})".format(row["chi2_per_dof"], "passes" if mt["passed"] else "fails")))
 md = ["# Calibration procedures compared", "",
-      "Same perturbed GPM2002 (seed 2026), 17-bit encoders, ML calibration of the 11 identifiable parameters; "
+      "Same perturbed GPM2002 (seed 2026, unless the scenario says seed N), 17-bit encoders, ML calibration of the 11 identifiable parameters; "
       "accuracy measured on the twin at 12 test poses. `floor` is the controller given the actual parameters.", "",
       "| scenario | robot time (s) | static RMS calibrated (um) | floor (um) | calibrated / floor | worst error / CRB | model test chi2/dof |",
       "| --- | ---: | ---: | ---: | ---: | ---: | --- |"] + table

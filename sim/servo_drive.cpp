@@ -23,6 +23,11 @@ double servo_update(const ServoDrive& drive, ServoState& state, const ServoInput
     state = ServoState{};
     return 0.0;
   }
+  if (drive.mode == ServoMode::kTorque) {
+    state = ServoState{};
+    state.torque = std::clamp(drive.torque_Nm, -drive.torque_limit, drive.torque_limit);
+    return state.torque;
+  }
   const double e = angle_diff(in.position_command, in.position);
   const double w_cmd = std::clamp(drive.kp * e + drive.feedforward * in.velocity_command,
                                   -drive.velocity_limit, drive.velocity_limit);

@@ -17,6 +17,8 @@ namespace gpm::sim {
 enum class ServoMode {
   kPosition,   // closes the position loop on its command
   kTorqueOff,  // no torque; the encoder is still read (redundant joint as sensor)
+  kTorque,     // a constant torque (ServoDrive::torque_Nm): the redundant joint preloads the
+               // chain one way, so every joint clearance is taken up along the same direction
 };
 
 // Constant settings of one drive (defaults: 400 W servo behind a 10:1 reducer,
@@ -30,6 +32,7 @@ struct ServoDrive {
   double torque_limit = 38.0;    // N m (peak torque at the reducer output)
   double velocity_limit = 6.0;   // rad/s
   double period_s = 0.0005;      // loop period (1 / loop rate)
+  double torque_Nm = 0.0;        // kTorque: the constant torque applied (clamped to +-torque_limit)
 
   // Holding stiffness at rest, kp * kv (N m/rad).
   double stiffness() const { return kp * kv; }

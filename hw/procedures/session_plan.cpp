@@ -13,15 +13,20 @@ SessionPlan load_poses_plan(const std::string& path) {
   const YAML::Node root = load_yaml_file(path);
   if (!root.IsMap()) throw InputError(path + ": expected a map with keys poses (and optionally sampling)");
   yaml_check_keys(root, path, "", {"poses", "sampling"});
-  const YAML::Node poses = root["poses"];
+  // `gpm design` writes its poses as a scenario's sampling: {pattern: list, poses: [...]}.
+  const YAML::Node given = root["sampling"];
+  const bool designed = !root["poses"] && given && given.IsMap() && given["poses"] && given["pattern"] &&
+                        given["pattern"].IsScalar() && given["pattern"].Scalar() == "list";
+  const YAML::Node poses = designed ? given["poses"] : root["poses"];
   if (!poses || !poses.IsSequence() || poses.size() == 0) {
     throw InputError(yaml_where(path, poses ? poses : root, "poses") +
                      "expected a non-empty list of [x, y] poses in mm");
   }
   // The scenario schema's sampling plan (pattern list) reads poses and settings
   // (sim/scenario.cpp): one parser for both files.
-  YAML::Node sampling = YAML::Clone(root["sampling"] ? root["sampling"] : YAML::Node(YAML::NodeType::Map));
-  if (!sampling.IsMap()) throw InputError(yaml_where(path, root["sampling"], "sampling") + "expected a map");
+  YAML::Node sampling = YAML::Clone(given ? given : YAML::Node(YAML::NodeType::Map));
+  if (!sampling.IsMap()) throw InputError(yaml_where(path, given, "sampling") + "expected a map");
+  if (designed) sampling.remove("pattern"), sampling.remove("poses");
   for (const char* key : {"pattern", "poses", "centre", "radius", "count", "from", "to"}) {
     if (sampling[key]) {
       throw InputError(yaml_where(path, sampling[key], fmt::format("sampling.{}", key)) +

@@ -57,6 +57,23 @@ TEST(RunSpec, OtherSchemaErrors) {
             std::string::npos);
   EXPECT_NE(error_of("robot: models/gpm2002.yaml\npath: {shape: circle, radius: 20, period_s: 2}\n").find("needs a sampling plan"),
             std::string::npos);
+  EXPECT_EQ(error_of(kHead + "calibration: {loss: tukey}\n").rfind("s.yaml:3: calibration.loss: unknown loss 'tukey' (valid: ", 0),
+            0u);
+  EXPECT_NE(error_of(kHead + "calibration: {loss: 'huber:-2'}\n").find("calibration.loss: 'huber:-2' has no valid scale"),
+            std::string::npos);
+  EXPECT_NE(error_of(kHead + "calibration: {estimate: [drag]}\n").find("(valid: compliance, skew, friction)"),
+            std::string::npos);
+}
+
+TEST(RunSpec, LossAndEstimatedEffects) {
+  const RunSpec s = parse_run_spec(kHead + "calibration: {loss: 'cauchy:2e-4', estimate: [compliance, friction]}\n",
+                                   "s.yaml", kBase);
+  EXPECT_EQ(s.calibration.loss.kind, calib::LossKind::kCauchy);
+  EXPECT_EQ(s.calibration.loss.scale, 2e-4);
+  EXPECT_EQ(s.calibration.estimate_compliance, true);
+  EXPECT_EQ(s.calibration.estimate_skew, false);
+  EXPECT_EQ(s.calibration.estimate_friction, true);
+  EXPECT_FALSE(parse_run_spec(kHead, "s.yaml", kBase).calibration.loss.active());
 }
 
 }  // namespace

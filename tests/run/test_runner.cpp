@@ -1,14 +1,21 @@
 // Tests of run/runner.cpp (with expectations.cpp and run_report.cpp):
 // a small run end to end in-process, failing and refused expectations, and
-// outputs written all or nothing.
+// outputs written all or nothing; gpm design's pose list as the sampling of a
+// scenario and as a poses file of gpm sample; bad sampling requests refused
+// before the robot moves.
 #include "run/runner.hpp"
 #include "models/data_dir.hpp"
 
 #include <filesystem>
+#include <fstream>
 
 #include <gtest/gtest.h>
 
+#include "calib/excitation/excitation.hpp"
+#include "calib/excitation/pose_list.hpp"
+#include "hw/procedures/session_plan.hpp"
 #include "models/errors.hpp"
+#include "models/robot_yaml.hpp"
 
 namespace gpm::scenario {
 namespace {
@@ -77,6 +84,79 @@ TEST(Runner, UnwritableOutputLeavesNothing) {
   const RunSpec spec = parse_run_spec(scenario("outputs: {compensation: false}\n", ""), "t.yaml", kBase);
   const RunOutcome o = run_scenario(spec, "t.yaml");
   EXPECT_THROW(write_run(o, "/proc/gpm-not-writable/x"), InputError);
+}
+
+// The file `gpm design --count 14 --grid-step 20 --guard 12` writes
+// (calib/excitation/pose_list.hpp): the 12 mm guard keeps the excitation path
+// through the poses inside the limits too (the default 2 mm suits stop-and-go).
+std::string design_file_text() {
+  const Robot nominal = load_robot(gpm::models_dir() + "/gpm2002.yaml");
+  calib::excitation::DesignOptions d;
+  d.count = 14;
+  d.grid_step_mm = 20.0;
+  d.guard.reach_mm = 12.0;
+  return calib::excitation::pose_list_yaml(calib::excitation::design_poses(nominal, d).poses, "gpm design: test");
+}
+
+// A perturbed robot with ideal encoders calibrated from the design's block
+// pasted as the scenario's sampling (stop-and-go list, and on the fly).
+std::string with_design(const std::string& design) {
+  return design + "robot: ../models/gpm2002.yaml\nseed: 3\n"
+                  "actual: {geometry: {xa3: 433.5, ya3: 499.4, la1: 244.1, lb2: 244.2, dth1: 0.01, dth3: -0.01}}\n"
+                  "encoder: {bits: 0}\ncalibration: {cost: ml}\noutputs: {compensation: false}\n";
+}
+
+TEST(Runner, DesignOutputIsTheSamplingOfAScenarioAndAPosesFileOfGpmSample) {
+  const std::string text = design_file_text();
+  const YAML::Node design = YAML::Load(text);
+  std::vector<Eigen::Vector2d> poses;
+  for (const YAML::Node& p : design["sampling"]["poses"]) poses.emplace_back(p[0].as<double>(), p[1].as<double>());
+  ASSERT_EQ(poses.size(), 14u);
+
+  // gpm sample --poses reads it as is (hw/procedures/session_plan.hpp).
+  const fs::path file = fs::temp_directory_path() / "gpm_test_runner_design.yaml";
+  { std::ofstream(file) << text; }
+  const hw::SessionPlan plan = hw::load_poses_plan(file.string());
+  fs::remove(file);
+  EXPECT_EQ(plan.poses, poses);
+
+  // As the sampling of a scenario: stop-and-go, and the same poses on the fly.
+  std::string fly = text;
+  fly.replace(fly.find("pattern: list"), 13, "pattern: trajectory\n  count: 14");
+  for (const std::string& t : {text, fly}) {
+    const RunSpec spec = parse_run_spec(with_design(t), "t.yaml", kBase);
+    const RunOutcome o = run_scenario(spec, "t.yaml");
+    EXPECT_EQ(o.sim.samples.size() > 14, t == fly);  // on the fly: many readings per pose
+    ASSERT_TRUE(o.calibration);
+    EXPECT_NEAR(o.calibration->geometry[kLa1], 244.1, 1e-3);
+    EXPECT_NEAR(o.calibration->geometry[kDth3], -0.01, 1e-5);
+  }
+}
+
+// Each refused with one line naming the key before anything moves (the
+// runner throws before the twin is built).
+TEST(Runner, BadSamplingRequestsAreRefusedBeforeTheRobotMoves) {
+  auto refused = [](const std::string& sampling, const std::string& contains) {
+    try {
+      run_scenario(parse_run_spec(with_design(sampling), "t.yaml", kBase), "t.yaml");
+      ADD_FAILURE() << sampling << " accepted";
+    } catch (const InputError& e) {
+      const std::string what = e.what();
+      EXPECT_NE(what.find(contains), std::string::npos) << what;
+      EXPECT_EQ(what.find('\n'), std::string::npos) << what;
+    }
+  };
+  // A designed count below the 11 free parameters.
+  EXPECT_THROW(parse_run_spec(with_design("sampling: {pattern: designed, count: 8}\n"), "t.yaml", kBase), InputError);
+  // Designed poses given, fewer than the free parameters.
+  refused("sampling: {pattern: trajectory, count: 11, poses: [[216.5, 250], [236.5, 260], [196.5, 240], [230, 225]]}\n",
+          "4 designed poses cannot determine 11 free parameters");
+  // Poses inside the limits whose excitation path is not: it bulges past
+  // chain 2's reach between the poses on an arc 484 mm from A2 (reach 488 less 2).
+  refused("sampling: {pattern: trajectory, count: 11, poses: [[267.462, 454.811], [228.453, 438.653], [191.0, 419.156], "
+          "[155.389, 396.47], [121.891, 370.766], [90.76, 342.24], [62.234, 311.109], [216.5, 250], [236.5, 260], "
+          "[196.5, 240], [230, 225]]}\n",
+          "sampling: excitation path at t = ");
 }
 
 }  // namespace

@@ -99,6 +99,12 @@ TEST(Scenario, ErrorsNameTheKeyPath) {
             std::string::npos);
   EXPECT_NE(error_of(std::string(kMinimal) + "servo: {modes: [position, off, position]}").find("servo.modes[1]"),
             std::string::npos);
+  EXPECT_NE(error_of(std::string(kMinimal) + "servo: {modes: [{torque: 50}, position, position]}").find("servo.modes[0].torque: must be within +-torque_limit (38 N m), got 50"),
+            std::string::npos);
+  EXPECT_NE(error_of(std::string(kMinimal) + "servo: {modes: [{torque: 1}, position, torque_off]}").find("at least two"),
+            std::string::npos);
+  EXPECT_NE(error_of(std::string(kMinimal) + "servo: {modes: [{torq: 1}, position, position]}").find("servo.modes[0]"),
+            std::string::npos);
   EXPECT_NE(error_of(std::string(kMinimal) + "servo: {modes: [position, torque_off, torque_off]}").find("at least two"),
             std::string::npos);
   EXPECT_NE(error_of(std::string(kMinimal) + "servo: {rate_hz: 1500}").find("servo.rate_hz"), std::string::npos);

@@ -69,5 +69,18 @@ TEST(ServoDrive, TorqueOffGivesNoTorqueAndClearsState) {
   EXPECT_EQ(s.torque, 0.0);
 }
 
+TEST(ServoDrive, TorqueModeHoldsItsConstantTorqueWithinTheLimitWhateverTheError) {
+  ServoDrive d;
+  d.mode = ServoMode::kTorque;
+  d.torque_Nm = -1.5;
+  ServoState s{2.0, 4.0};
+  EXPECT_EQ(servo_update(d, s, {3.0, 1.0, 0.0, 0.0}), -1.5);
+  EXPECT_EQ(servo_update(d, s, {-3.0, -1.0, 0.5, 2.0}), -1.5);
+  EXPECT_EQ(s.integral, 0.0);
+  EXPECT_EQ(s.torque, -1.5);
+  d.torque_Nm = 100.0;  // clamped to the drive's limit
+  EXPECT_EQ(servo_update(d, s, {0.0, 0.0, 0.0, 0.0}), d.torque_limit);
+}
+
 }  // namespace
 }  // namespace gpm::sim
