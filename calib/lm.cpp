@@ -255,6 +255,12 @@ Result calibrate_lm(const Problem& problem, const LmOptions& opt) {
     ceres::Solver::Options so;
     so.trust_region_strategy_type = ceres::LEVENBERG_MARQUARDT;
     so.linear_solver_type = ceres::DENSE_NORMAL_CHOLESKY;
+    // Start nearly undamped: with Jacobi scaling the damping is 1 / radius
+    // against a normal matrix of unit diagonal whose smallest eigenvalue is
+    // 1 / cond^2 (about 2e-6 for 50 samples, cond ~ 700), so Ceres' default
+    // 1e4 damps the weakest directions for several iterations (J1: 10
+    // iterations instead of 5). Failed steps still raise the damping.
+    so.initial_trust_region_radius = 1e8;
     so.max_num_iterations = opt.max_iterations;
     so.function_tolerance = 1e-15;
     so.gradient_tolerance = 1e-16;
