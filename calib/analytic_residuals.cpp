@@ -34,46 +34,55 @@ void offset_trig(const double* x, double c[3], double s[3]) {
   }
 }
 
-// The closure of one sample (elbows, then the radical centre of
-// models/closure.hpp) and its first-order sensitivities (header comment).
-struct Sensitivity {
+// The closure of one sample: base joints, elbows (eq. 30 and 35, or eq. 41
+// decoupled) and the radical centre of models/closure.hpp.
+struct Loop {
   double Ax[3], Ay[3], Bx[3], By[3];
+  double ca[3], sa[3];  // direction of the active link (coupled) or of theta_m (decoupled)
   RadicalCentre<double> rc;
-  double o[3][2];                 // dO for a unit right-hand side at chain k
-  double q[3];                    // dP for a unit right-hand side at chain k
-  double dB[3][kChainParams][2];  // d B_k / d p
-  double dA[3][kChainParams][2];  // d A_k / d p
-  double s[3][kChainParams];      // right-hand side s_p
 };
 
-bool sensitivity(const double* x, const ReadingTrig& t, bool decoupled, Sensitivity& S) {
-  double ca[3], sa[3];  // direction of the active link (coupled) or of theta_m (decoupled)
+// Fills L; false when the elbows are collinear (no radical centre).
+bool loop_of(const double* x, const ReadingTrig& t, bool decoupled, Loop& L) {
   if (decoupled) {
-    for (int i = 0; i < 3; ++i) ca[i] = t.c[i], sa[i] = t.s[i];
+    for (int i = 0; i < 3; ++i) L.ca[i] = t.c[i], L.sa[i] = t.s[i];
   } else {
     double cd[3], sd[3];
     offset_trig(x, cd, sd);
     for (int i = 0; i < 3; ++i) {  // theta_a = theta_m + dth (eq. 35)
-      ca[i] = t.c[i] * cd[i] - t.s[i] * sd[i];
-      sa[i] = t.s[i] * cd[i] + t.c[i] * sd[i];
+      L.ca[i] = t.c[i] * cd[i] - t.s[i] * sd[i];
+      L.sa[i] = t.s[i] * cd[i] + t.c[i] * sd[i];
     }
   }
   double lb_[3];
   for (int i = 0; i < 3; ++i) {
-    S.Ax[i] = x[xa(i)];
-    S.Ay[i] = x[ya(i)];
+    L.Ax[i] = x[xa(i)];
+    L.Ay[i] = x[ya(i)];
     lb_[i] = x[lb(i)];
     if (decoupled) {  // eq. 41
-      S.Bx[i] = S.Ax[i] + x[la(i)] * ca[i] - x[dth(i)] * sa[i];
-      S.By[i] = S.Ay[i] + x[la(i)] * sa[i] + x[dth(i)] * ca[i];
+      L.Bx[i] = L.Ax[i] + x[la(i)] * L.ca[i] - x[dth(i)] * L.sa[i];
+      L.By[i] = L.Ay[i] + x[la(i)] * L.sa[i] + x[dth(i)] * L.ca[i];
     } else {  // eq. 30
-      S.Bx[i] = S.Ax[i] + x[la(i)] * ca[i];
-      S.By[i] = S.Ay[i] + x[la(i)] * sa[i];
+      L.Bx[i] = L.Ax[i] + x[la(i)] * L.ca[i];
+      L.By[i] = L.Ay[i] + x[la(i)] * L.sa[i];
     }
   }
-  S.rc = radical_centre(S.Bx, S.By, lb_);
-  if (!S.rc.ok) return false;
-  const RadicalCentre<double>& r = S.rc;
+  L.rc = radical_centre(L.Bx, L.By, lb_);
+  return L.rc.ok;
+}
+
+// First-order sensitivities of a loop (header comment): for a unit right-hand
+// side at chain k, dO = o[k] and dP = q[k]; parameter m of chain k moves B_k
+// by dB[k][m] with right-hand side s[k][m].
+struct Sensitivity {
+  double o[3][2];
+  double q[3];
+  double dB[3][kChainParams][2];
+  double s[3][kChainParams];
+};
+
+void sensitivity(const double* x, const Loop& L, bool decoupled, Sensitivity& S) {
+  const RadicalCentre<double>& r = L.rc;
   for (int k = 0; k < 3; ++k) {
     const double rhs2 = (k == 1 ? 1.0 : 0.0) - (k == 0 ? 1.0 : 0.0);
     const double rhs3 = (k == 2 ? 1.0 : 0.0) - (k == 0 ? 1.0 : 0.0);
@@ -82,42 +91,37 @@ bool sensitivity(const double* x, const ReadingTrig& t, bool decoupled, Sensitiv
     S.q[k] = 2.0 * (r.ux * S.o[k][0] + r.uy * S.o[k][1]) - (k == 0 ? 1.0 : 0.0);
   }
   for (int k = 0; k < 3; ++k) {
-    double e_l[2], e_d[2];  // dB_k / d(la slot), dB_k / d(dth slot)
-    if (decoupled) {
-      e_l[0] = ca[k], e_l[1] = sa[k];
-      e_d[0] = -sa[k], e_d[1] = ca[k];
-    } else {
-      e_l[0] = ca[k], e_l[1] = sa[k];
-      e_d[0] = -(S.By[k] - S.Ay[k]), e_d[1] = S.Bx[k] - S.Ax[k];
-    }
-    const double dB[kChainParams][2] = {{1, 0}, {0, 1}, {e_l[0], e_l[1]}, {e_d[0], e_d[1]}, {0, 0}};
-    const double wx = r.Ox - S.Bx[k], wy = r.Oy - S.By[k];
+    // dB_k / d(la slot) and dB_k / d(dth slot)
+    const double el0 = L.ca[k], el1 = L.sa[k];
+    const double ed0 = decoupled ? -L.sa[k] : -(L.By[k] - L.Ay[k]);
+    const double ed1 = decoupled ? L.ca[k] : L.Bx[k] - L.Ax[k];
+    const double dB[kChainParams][2] = {{1, 0}, {0, 1}, {el0, el1}, {ed0, ed1}, {0, 0}};
+    const double wx = r.Ox - L.Bx[k], wy = r.Oy - L.By[k];
     for (int m = 0; m < kChainParams; ++m) {
       S.dB[k][m][0] = dB[m][0], S.dB[k][m][1] = dB[m][1];
-      S.dA[k][m][0] = m == 0 ? 1.0 : 0.0, S.dA[k][m][1] = m == 1 ? 1.0 : 0.0;
       S.s[k][m] = m == 4 ? 2.0 * x[lb(k)] : 2.0 * (wx * dB[m][0] + wy * dB[m][1]);
     }
   }
-  return true;
 }
 
 }  // namespace
 
 bool E1Analytic::Evaluate(double const* const* params, double* res, double** jac) const {
   const double* x = params[0];
-  Sensitivity S;
-  if (!sensitivity(x, trig_, false, S)) return false;
-  const Sensitivity& c = S;
-  double w[3][2], n[3], f[3];
+  Loop L;
+  if (!loop_of(x, trig_, false, L)) return false;
+  double w[3][2], n[3];
   for (int i = 0; i < 3; ++i) {
-    w[i][0] = S.rc.Ox - c.Bx[i], w[i][1] = S.rc.Oy - c.By[i];
+    w[i][0] = L.rc.Ox - L.Bx[i], w[i][1] = L.rc.Oy - L.By[i];
     n[i] = std::sqrt(w[i][0] * w[i][0] + w[i][1] * w[i][1]);
     if (!(n[i] > 0.0)) return false;
-    f[i] = (n[i] - x[lb(i)]) / n[i];
-    res[2 * i] = f[i] * w[i][0];
-    res[2 * i + 1] = f[i] * w[i][1];
+    res[i] = n[i] - x[lb(i)];
   }
   if (!jac || !jac[0]) return true;
+  Sensitivity S;
+  sensitivity(x, L, false, S);
+  double u[3][2];  // w_i / |w_i|
+  for (int i = 0; i < 3; ++i) u[i][0] = w[i][0] / n[i], u[i][1] = w[i][1] / n[i];
   double* J = jac[0];
   for (int k = 0; k < 3; ++k) {
     for (int m = 0; m < kChainParams; ++m) {
@@ -126,11 +130,7 @@ bool E1Analytic::Evaluate(double const* const* params, double* res, double** jac
       for (int i = 0; i < 3; ++i) {
         const double dwx = dOx - (i == k ? S.dB[k][m][0] : 0.0);
         const double dwy = dOy - (i == k ? S.dB[k][m][1] : 0.0);
-        const double lb_i = x[lb(i)];
-        double df = lb_i * (w[i][0] * dwx + w[i][1] * dwy) / (n[i] * n[i] * n[i]);
-        if (i == k && m == 4) df -= 1.0 / n[i];
-        J[(2 * i) * kNumParams + p] = df * w[i][0] + f[i] * dwx;
-        J[(2 * i + 1) * kNumParams + p] = df * w[i][1] + f[i] * dwy;
+        J[i * kNumParams + p] = u[i][0] * dwx + u[i][1] * dwy - (i == k && m == 4 ? 1.0 : 0.0);
       }
     }
   }
@@ -138,10 +138,13 @@ bool E1Analytic::Evaluate(double const* const* params, double* res, double** jac
 }
 
 bool PowerAnalytic::Evaluate(double const* const* params, double* res, double** jac) const {
-  Sensitivity S;
-  if (!sensitivity(params[0], trig_, decoupled_, S)) return false;
-  res[0] = S.rc.P;
+  const double* x = params[0];
+  Loop L;
+  if (!loop_of(x, trig_, decoupled_, L)) return false;
+  res[0] = L.rc.P;
   if (!jac || !jac[0]) return true;
+  Sensitivity S;
+  sensitivity(x, L, decoupled_, S);
   for (int k = 0; k < 3; ++k)
     for (int m = 0; m < kChainParams; ++m) jac[0][param_of(k, m)] = S.s[k][m] * S.q[k];
   return true;
@@ -149,21 +152,23 @@ bool PowerAnalytic::Evaluate(double const* const* params, double* res, double** 
 
 bool MlAnalytic::Evaluate(double const* const* params, double* res, double** jac) const {
   const double* x = params[0];
+  Loop L;
+  if (!loop_of(x, trig_, false, L)) return false;
+  // g = dP/d theta_m needs q, so the sensitivities are needed for the residual too.
   Sensitivity S;
-  if (!sensitivity(x, trig_, false, S)) return false;
-  const Sensitivity& c = S;
+  sensitivity(x, L, false, S);
   double w[3][2], t[3][2], b[3], g[3];
   double g2 = 0.0;
   for (int j = 0; j < 3; ++j) {
-    w[j][0] = S.rc.Ox - c.Bx[j], w[j][1] = S.rc.Oy - c.By[j];
-    t[j][0] = -(c.By[j] - c.Ay[j]), t[j][1] = c.Bx[j] - c.Ax[j];  // perp(B_j - A_j)
+    w[j][0] = L.rc.Ox - L.Bx[j], w[j][1] = L.rc.Oy - L.By[j];
+    t[j][0] = -(L.By[j] - L.Ay[j]), t[j][1] = L.Bx[j] - L.Ax[j];  // perp(B_j - A_j)
     b[j] = 2.0 * (w[j][0] * t[j][0] + w[j][1] * t[j][1]);
     g[j] = S.q[j] * b[j];
     g2 += g[j] * g[j];
   }
   if (!(g2 > 0.0)) return false;
   const double gn = std::sqrt(g2);
-  res[0] = S.rc.P / gn;
+  res[0] = L.rc.P / gn;
   if (!jac || !jac[0]) return true;
   for (int k = 0; k < 3; ++k) {
     for (int m = 0; m < kChainParams; ++m) {
@@ -171,7 +176,7 @@ bool MlAnalytic::Evaluate(double const* const* params, double* res, double** jac
       const double dOx = sp * S.o[k][0], dOy = sp * S.o[k][1];
       const double dP = sp * S.q[k];
       const double* dB = S.dB[k][m];
-      const double* dA = S.dA[k][m];
+      const double dA[2] = {m == 0 ? 1.0 : 0.0, m == 1 ? 1.0 : 0.0};  // d A_k / d p
       const double vx = -dOx - S.q[k] * dB[0], vy = -dOy - S.q[k] * dB[1];
       double g_dg = 0.0;
       for (int j = 0; j < 3; ++j) {
@@ -184,7 +189,7 @@ bool MlAnalytic::Evaluate(double const* const* params, double* res, double** jac
         }
         g_dg += g[j] * (dq * b[j] + S.q[j] * db);
       }
-      jac[0][param_of(k, m)] = dP / gn - S.rc.P * g_dg / (g2 * gn);
+      jac[0][param_of(k, m)] = dP / gn - L.rc.P * g_dg / (g2 * gn);
     }
   }
   return true;

@@ -27,10 +27,9 @@
 //
 // E2, E3 (one row g = P):   dg/dp = s_p q_k.
 //
-// E1 (rows 2i, 2i+1):  r_i = f_i w_i,  f_i = 1 - lb_i / |w_i|, with
+// E1 (row i, calib/residuals.hpp's E1LengthResidual): e_i = |w_i| - lb_i, with
 //   dw_i = dO - [i = k] dB_k,
-//   df_i = lb_i (w_i . dw_i) / |w_i|^3 - [i = k, p = lb_k] / |w_i|,
-//   dr_i = df_i w_i + f_i dw_i.
+//   de_i = (w_i . dw_i) / |w_i| - [i = k, p = lb_k].
 //
 // ML: r = P / |g|, g_j = dP/d theta_m^j = q_j b_j, b_j = 2 w_j . perp(B_j - A_j)
 // (a reading turns its own elbow about A_j). Differentiating q^T M = e_3^T:
@@ -53,8 +52,9 @@ struct ReadingTrig {
   double c[3], s[3];
 };
 
-// E1 (eq. 36-37): six rows per sample.
-class E1Analytic final : public ceres::SizedCostFunction<6, kNumParams> {
+// E1 (eq. 36-37) as its three signed lengths e_i = |O - B_i| - lb_i per
+// sample (|E1_i| = |e_i|, so sum e^2 = J1).
+class E1Analytic final : public ceres::SizedCostFunction<3, kNumParams> {
  public:
   explicit E1Analytic(const Eigen::Vector3d& theta_m) : trig_(theta_m) {}
   bool Evaluate(double const* const* x, double* r, double** jac) const override;

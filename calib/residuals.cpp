@@ -4,7 +4,7 @@
 
 namespace gpm::calib {
 
-int residual_rows(Cost c) { return c == Cost::kJ1 ? 6 : 1; }
+int residual_rows(Cost c) { return c == Cost::kJ1 ? 3 : 1; }
 
 bool is_decoupled(Cost c) { return c == Cost::kJ3; }
 
@@ -15,7 +15,7 @@ ceres::CostFunction* make_residual(Cost c, const Eigen::Vector3d& theta_m) {
 ceres::CostFunction* make_autodiff_residual(Cost c, const Eigen::Vector3d& theta_m) {
   switch (c) {
     case Cost::kJ1:
-      return new ceres::AutoDiffCostFunction<E1Residual, 6, kNumParams>(new E1Residual(theta_m));
+      return new ceres::AutoDiffCostFunction<E1LengthResidual, 3, kNumParams>(new E1LengthResidual(theta_m));
     case Cost::kJ2:
       return new ceres::AutoDiffCostFunction<E2Residual, 1, kNumParams>(new E2Residual(theta_m));
     case Cost::kJ3:

@@ -22,7 +22,8 @@ namespace gpm::calib {
 // from eq. 34 (atan2),
 //   E1_i = O - A_i - l_a^i u(theta_m^i + dth^i) - l_b^i u(theta_b^i)
 //        = (|O - B_i| - l_b^i) (O - B_i) / |O - B_i|,      u(t) = (cos t, sin t).
-// Six rows per sample; J1 = sum_j |E1_j|^2.
+// Six rows per sample; J1 = sum_j |E1_j|^2. The paper's form, kept as the
+// reference of eq. 36; the solver uses E1LengthResidual below.
 struct E1Residual {
   explicit E1Residual(const Eigen::Vector3d& theta_m) : theta_m_{theta_m[0], theta_m[1], theta_m[2]} {}
   template <typename T>
@@ -36,6 +37,27 @@ struct E1Residual {
       const T f = (dist - x[lb(i)]) / dist;
       r[2 * i] = f * wx;
       r[2 * i + 1] = f * wy;
+    }
+    return true;
+  }
+  double theta_m_[3];
+};
+
+// E1 as the solver uses it: the signed length of each E1_i,
+//   e_i = |O - B_i| - l_b^i,       E1_i = e_i (O - B_i) / |O - B_i|,
+// three rows per sample. |E1_i| = |e_i|, so sum e^2 = J1 at every parameter
+// set: the same cost and minimiser as eq. 36's six rows, with half the rows
+// (each E1_i is a vector along O - B_i, whose direction carries no error).
+struct E1LengthResidual {
+  explicit E1LengthResidual(const Eigen::Vector3d& theta_m) : theta_m_{theta_m[0], theta_m[1], theta_m[2]} {}
+  template <typename T>
+  bool operator()(const T* x, T* r) const {
+    using std::sqrt;
+    const Closure<T> c = closure(x, theta_m_, false, false);
+    if (!c.ok) return false;
+    for (int i = 0; i < 3; ++i) {
+      const T wx = c.Ox - c.Bx[i], wy = c.Oy - c.By[i];
+      r[i] = sqrt(wx * wx + wy * wy) - x[lb(i)];
     }
     return true;
   }
@@ -101,7 +123,7 @@ struct MlResidual {
   double theta_m_[3];
 };
 
-// Rows per sample that the solver uses for cost c (6 for J1, else 1).
+// Rows per sample that the solver uses for cost c (3 for J1: E1LengthResidual; else 1).
 int residual_rows(Cost c);
 
 // True when cost c works in the decoupled layout l_ac, l_as (J3).

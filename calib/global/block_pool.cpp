@@ -25,12 +25,17 @@ void BlockPool::work(Job& job) {
 void BlockPool::helper_loop() {
   long seen = 0;
   for (;;) {
+    // Watch for the next job for kSpin, then sleep until woken.
+    const auto until = std::chrono::steady_clock::now() + kSpin;
+    while (epoch_.load(std::memory_order_acquire) == seen && !stop_.load(std::memory_order_acquire) &&
+           std::chrono::steady_clock::now() < until)
+      std::this_thread::yield();
     Job* job = nullptr;
     {
       std::unique_lock<std::mutex> lock(mutex_);
-      wake_.wait(lock, [&] { return stop_ || epoch_ != seen; });
+      wake_.wait(lock, [&] { return stop_.load() || epoch_.load() != seen; });
       if (stop_) return;
-      seen = epoch_;
+      seen = epoch_.load();
       job = job_;
       if (job) job->active.fetch_add(1);
     }

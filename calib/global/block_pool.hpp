@@ -1,10 +1,15 @@
 // Helper threads that share the blocks of one population evaluation with the
 // calling thread. Blocks are claimed from an atomic counter and the caller
 // works too, so when the helpers are slow to wake (a busy machine) the caller
-// simply does more blocks itself instead of waiting for them.
+// simply does more blocks itself instead of waiting for them. Between jobs a
+// helper watches for the next one for a short while (kSpin, yielding the core
+// to anyone who wants it) before it sleeps: an optimiser's generations follow
+// each other every few tens of microseconds, about the time a sleeping thread
+// takes to wake, so a sleeping helper would join each generation late.
 #pragma once
 
 #include <atomic>
+#include <chrono>
 #include <condition_variable>
 #include <functional>
 #include <mutex>
@@ -37,12 +42,15 @@ class BlockPool {
   static void work(Job& job);
   void helper_loop();
 
+  // How long a helper watches for the next job before it sleeps.
+  static constexpr std::chrono::microseconds kSpin{200};
+
   std::mutex run_mutex_;  // one run at a time
-  std::mutex mutex_;      // guards job_, epoch_, stop_
+  std::mutex mutex_;      // guards job_ and the writes of epoch_, stop_
   std::condition_variable wake_;
   Job* job_ = nullptr;
-  long epoch_ = 0;
-  bool stop_ = false;
+  std::atomic<long> epoch_{0};  // read without the lock while a helper watches
+  std::atomic<bool> stop_{false};
   std::vector<std::thread> threads_;
 };
 

@@ -3,11 +3,15 @@
 // (docs/EQUATIONS.md: la3 = 244.5) from the paper's initial estimates; every error
 // function must recover the actual values to 1e-6 mm / rad. Also the
 // 12-parameter gauge refused as rank-deficient, the minimum-norm solve, bad
-// input, the 1-sigma against the Cramer-Rao bound, and the analytic Jacobians
-// giving the autodiff reference's estimate and 1-sigma on noisy data.
+// input, the 1-sigma against the Cramer-Rao bound, the analytic Jacobians
+// giving the autodiff reference's estimate and 1-sigma on noisy data, and
+// noisy fits ending at the optimum (the Gauss-Newton step there is nil).
 #include "calib/lm.hpp"
 
 #include <cmath>
+#include <memory>
+
+#include <Eigen/Dense>
 
 #include <fmt/format.h>
 #include <gtest/gtest.h>
@@ -300,6 +304,53 @@ TEST(CalibrateLm, IterationsRunFromTheStartCostToTheFinalCost) {
     }
     EXPECT_NEAR(last, r.final_cost, 1e-9 * r.lm_iterations.front().cost) << what;
     EXPECT_LT(last, 1e-12 * r.lm_iterations.front().cost) << what << ": noiseless data fit exactly";
+  }
+}
+
+TEST(CalibrateLm, NoisyFitsEndAtTheGaussNewtonFixedPoint) {
+  // At the least-squares optimum J'r = 0, so the Gauss-Newton step
+  // -(J'J)^-1 J'r computed independently here (QR of the stacked Jacobian
+  // of the free parameters, analytic or autodiff as the solver used) is nil:
+  // below 1e-8 of each parameter's 1-sigma (s^2 (J'J)^-1, s^2 = sum r^2 /
+  // (n - p)), for every cost and both kinds of Jacobian.
+  const Geometry actual = table5_actual();
+  const Robot r = robot_of(actual);
+  const Samples s = samples_at(r, disc_poses(r, 40, r.home, 80.0, 4), 1e-4, 77);
+  Geometry start = Geometry::gpm2002_nominal();
+  for (int i : {kXa1, kYa1, kXa2, kYa2}) start[i] = actual[i];
+  std::vector<int> idx;
+  for (int i = 0; i < kNumParams; ++i)
+    if (default_free_mask().test(static_cast<size_t>(i))) idx.push_back(i);
+  const auto p = static_cast<Eigen::Index>(idx.size());
+  for (Cost c : {Cost::kJ1, Cost::kJ2, Cost::kJ3, Cost::kML}) {
+    for (bool autodiff : {false, true}) {
+      LmOptions o;
+      o.cost = c;
+      o.autodiff = autodiff;
+      const Result res = calibrate_lm(Problem{s.theta_m, start, default_free_mask()}, o);
+      ASSERT_TRUE(res.converged) << cost_name(c);
+      const ParamVector x = to_solver(res.geometry, c);
+      const int rows = residual_rows(c);
+      const auto m = static_cast<Eigen::Index>(s.theta_m.size()) * rows;
+      Eigen::MatrixXd J(m, p);
+      Eigen::VectorXd rv(m);
+      Eigen::Matrix<double, Eigen::Dynamic, kNumParams, Eigen::RowMajor> Jj(rows, kNumParams);
+      for (size_t j = 0; j < s.theta_m.size(); ++j) {
+        std::unique_ptr<ceres::CostFunction> f(autodiff ? make_autodiff_residual(c, s.theta_m[j])
+                                                        : make_residual(c, s.theta_m[j]));
+        const double* params[] = {x.data()};
+        double* jac[] = {Jj.data()};
+        ASSERT_TRUE(f->Evaluate(params, rv.data() + static_cast<Eigen::Index>(j) * rows, jac));
+        for (Eigen::Index k = 0; k < p; ++k)
+          J.block(static_cast<Eigen::Index>(j) * rows, k, rows, 1) = Jj.col(idx[static_cast<size_t>(k)]);
+      }
+      const Eigen::VectorXd step = J.colPivHouseholderQr().solve(-rv);
+      const Eigen::MatrixXd C = (rv.squaredNorm() / static_cast<double>(m - p)) * (J.transpose() * J).inverse();
+      for (Eigen::Index k = 0; k < p; ++k) {
+        EXPECT_LT(std::abs(step[k]), 1e-8 * std::sqrt(C(k, k)))
+            << cost_name(c) << (autodiff ? " autodiff " : " analytic ") << param_name(idx[static_cast<size_t>(k)]);
+      }
+    }
   }
 }
 

@@ -101,10 +101,19 @@ TEST(Residuals, ZeroAtTheTruthAndE2RowsEqualThePower) {
   EXPECT_DOUBLE_EQ(paper_cost(Cost::kML, 2.0), 2.0);
 }
 
+// Eq. 36's six E1 rows (E1Residual, the paper's form) at x.
+Eigen::VectorXd eval_eq36(const Vector3d& t, const ParamVector& x) {
+  const ceres::AutoDiffCostFunction<E1Residual, 6, kNumParams> f(new E1Residual(t));
+  Eigen::VectorXd r(6);
+  const double* p[] = {x.data()};
+  EXPECT_TRUE(f.Evaluate(p, r.data(), nullptr));
+  return r;
+}
+
 TEST(Residuals, E1RowsAreEq36WithPassiveAnglesFromFk) {
   const Geometry g = perturbed();
   const Vector3d t = readings_at(table5_actual(), 190.0, 260.0);
-  const Eigen::VectorXd r = eval(Cost::kJ1, t, to_solver(g, Cost::kJ1));
+  const Eigen::VectorXd r = eval_eq36(t, to_solver(g, Cost::kJ1));
   const Vector3d ta = active_from_readings(g, t);
   const auto f = forward_kinematics(g, ta);
   ASSERT_TRUE(f.has_value());
@@ -113,6 +122,27 @@ TEST(Residuals, E1RowsAreEq36WithPassiveAnglesFromFk) {
                               g.lb_(i) * Eigen::Vector2d(std::cos(f->theta_b[i]), std::sin(f->theta_b[i]));
     EXPECT_NEAR(r[2 * i], e.x(), 1e-9);
     EXPECT_NEAR(r[2 * i + 1], e.y(), 1e-9);
+  }
+}
+
+TEST(Residuals, E1SolverRowsAreTheSignedLengthsOfEq36Rows) {
+  // The solver's three J1 rows e_i = |O - B_i| - lb_i: |e_i| = |E1_i|, so both
+  // forms give the same J1 everywhere; the sign is that of |O - B_i| - lb_i.
+  const Geometry g = perturbed();
+  for (const Eigen::Vector2d& p : {Eigen::Vector2d(190.0, 260.0), Eigen::Vector2d(250.0, 210.0)}) {
+    const Vector3d t = readings_at(table5_actual(), p.x(), p.y());
+    const ParamVector x = to_solver(g, Cost::kJ1);
+    const Eigen::VectorXd e = eval(Cost::kJ1, t, x), r6 = eval_eq36(t, x);
+    ASSERT_EQ(e.size(), 3);
+    const auto f = forward_kinematics(g, active_from_readings(g, t));
+    ASSERT_TRUE(f.has_value());
+    const auto B = elbows(g, active_from_readings(g, t));
+    for (int i = 0; i < 3; ++i) {
+      EXPECT_GT(std::abs(e[i]), 1e-3) << i;  // off the truth: a real error
+      EXPECT_NEAR(std::abs(e[i]), r6.segment<2>(2 * i).norm(), 1e-9) << i;
+      EXPECT_NEAR(e[i], (f->p - B[static_cast<size_t>(i)]).norm() - g.lb_(i), 1e-9) << i;
+    }
+    EXPECT_NEAR(e.squaredNorm(), r6.squaredNorm(), 1e-9 * r6.squaredNorm());
   }
 }
 
