@@ -12,7 +12,7 @@ const char* reason_name(Reason r) {
     case Reason::kAgrees: return "agrees";
     case Reason::kPaperMistake: return "paper mistake";
     case Reason::kMethod: return "property of the method";
-    case Reason::kSetup: return "different data";
+    case Reason::kSetup: return "different setup";
     case Reason::kOpen: return "open question";
   }
   return "?";

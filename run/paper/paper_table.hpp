@@ -15,11 +15,11 @@ enum class Reason {
   kAgrees,        // equal to the printed digits (no sentence needed)
   kPaperMistake,  // the printed value is wrong (docs/PAPER_NOTES.md, an errata item)
   kMethod,        // a property of the method or of the solver
-  kSetup,         // the paper's data or hardware cannot be reproduced exactly
+  kSetup,         // a different setup: the paper's data, robot or budget are not reproduced exactly
   kOpen,          // not explained: an open question
 };
 
-// "agrees", "paper mistake", "property of the method", "different data", "open question".
+// "agrees", "paper mistake", "property of the method", "different setup", "open question".
 const char* reason_name(Reason r);
 
 struct Row {

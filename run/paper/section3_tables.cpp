@@ -1,6 +1,7 @@
 #include "run/paper/section3_tables.hpp"
 
 #include <array>
+#include <cctype>
 #include <cmath>
 #include <vector>
 
@@ -39,6 +40,13 @@ Robot robot_with(const Geometry& g) {
   Robot r;
   r.geometry = g;
   return r;
+}
+
+// "J1", "J2", "J3" as the paper writes them.
+std::string cost_label(calib::Cost c) {
+  std::string s(calib::cost_name(c));
+  for (char& ch : s) ch = static_cast<char>(std::toupper(static_cast<unsigned char>(ch)));
+  return s;
 }
 
 std::string fixed5(double v) { return fmt::format("{:.5f}", v); }
@@ -120,7 +128,7 @@ Table table2() {
   for (int c = 0; c < 2; ++c) {
     for (int k = 0; k < 2; ++k) {
       const LocalRun run = run_lm(actual, start, free_of({kDth1, kDth2, kDth3}), costs[c], counts[k]);
-      const std::string col = fmt::format("{}, {} samples", calib::cost_name(costs[c]), counts[k]);
+      const std::string col = fmt::format("{}, {} samples", cost_label(costs[c]), counts[k]);
       for (int i = 0; i < 3; ++i) {
         Row r = compare_row(fmt::format("dth{}, {}", i + 1, col), "rad", fixed5(pt.dth[c][k][i]),
                             run.result.geometry[dth(i)], Reason::kMethod, kStoppingError);
@@ -174,7 +182,7 @@ Table table3() {
   for (int c = 0; c < 3; ++c) {
     const LocalRun run = run_lm(actual, start, free, costs[c], 21);
     iters[c] = run.result.iterations;
-    const std::string col(calib::cost_name(costs[c]));
+    const std::string col(cost_label(costs[c]));
     for (int i : kLinkOrder) {
       Row r = compare_row(param_label(i) + ", " + col, unit_of(i), printed(pt.result[c][i], 5),
                           run.result.geometry[i], Reason::kMethod, kStoppingError);
