@@ -24,12 +24,12 @@ check "output is a file" 2 "$GPM" paper -o "$tmp/file"
 check "negative jobs" 2 "$GPM" paper -o "$tmp/jobs" -j -1
 
 if [[ "$MODE" == full ]]; then
-  check "default run" 0 "$GPM" paper -o "$tmp/out"
+  check "default run" 0 "$GPM" paper -o "$tmp/paper"
   expect_out "summary line" "gpm paper: 11 tables and figures, [0-9]+ rows \([0-9]+ agree, [0-9]+ differ, each explained\)"
   for f in paper.md paper.html paper.json figure3.svg figure4.svg figure5.svg; do
-    [[ -s "$tmp/out/$f" ]] && passed=$((passed+1)) || { echo "FAIL missing $f"; fail=$((fail+1)); }
+    [[ -s "$tmp/paper/$f" ]] && passed=$((passed+1)) || { echo "FAIL missing $f"; fail=$((fail+1)); }
   done
-  if /usr/bin/python3 - "$tmp/out" <<'PY'
+  if /usr/bin/python3 - "$tmp/paper" <<'PY'
 import json, sys
 d = sys.argv[1]
 j = json.load(open(d + "/paper.json"))
