@@ -40,8 +40,8 @@ void run_paper_command(const PaperArgs& a) {
   paper::PaperProgress progress;
   if (isatty(STDERR_FILENO)) {
     progress = [](const std::string& stage, double f) {
-      std::fprintf(stderr, "\r\033[Kgpm paper: %s %s", stage.c_str(),
-                   f > 0 ? fmt::format("{:.0f}%", 100 * f).c_str() : "");
+      const std::string pct = f > 0 ? fmt::format("{:.0f}%", 100 * f) : "";
+      std::fprintf(stderr, "\r\033[Kgpm paper: %s %s", stage.c_str(), pct.c_str());
       std::fflush(stderr);
     };
   }

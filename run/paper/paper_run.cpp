@@ -22,6 +22,7 @@ PaperRun run_paper(const PaperSettings& settings, const PaperProgress& progress)
   Table1Settings t1;
   t1.circle_points = settings.zero_circle_points;
   t1.d_min_mm = settings.zero_d_min_mm;
+  t1.on_experiment = [&](int k) { stage("Table 1 (section 2.4 search on the twin)", (k - 1) / 3.0); };
   run.tables.push_back(table1(t1));
   stage("Tables 2-4 (section 3.3, LM)", 0.0);
   run.tables.push_back(table2());

@@ -92,6 +92,7 @@ Table table1(const Table1Settings& settings) {
       "final d); the twin's results scatter about its actual offsets by its own amount, so only "
       "the size of the two scatters is comparable.";
   for (int k = 0; k < 3; ++k) {
+    if (settings.on_experiment) settings.on_experiment(k + 1);
     const Eigen::Vector3d initial(pt.initial[k][0], pt.initial[k][1], pt.initial[k][2]);
     const Eigen::Vector3d e_paper = initial - paper_mean;
     const Eigen::Vector2d start = start_for_initial_error(actual, e_paper);

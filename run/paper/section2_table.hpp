@@ -6,6 +6,7 @@
 #pragma once
 
 #include <array>
+#include <functional>
 
 #include <Eigen/Core>
 
@@ -29,6 +30,7 @@ Eigen::Vector2d start_for_initial_error(const Robot& model, const Eigen::Vector3
 struct Table1Settings {
   int circle_points = 24;
   double d_min_mm = 0.125;
+  std::function<void(int experiment)> on_experiment;  // called as experiment 1, 2, 3 starts (optional)
 };
 
 // Runs the three searches (about 10 s of wall time each) and builds Table 1.
