@@ -43,6 +43,7 @@ struct PrintedTable1 {
   std::array<std::array<double, 3>, 3> initial;
   std::array<std::array<double, 3>, 3> result;
 };
+// Table 1 as printed.
 PrintedTable1 printed_table1();
 
 // Table 2 (section 3.3 A): offsets only, start from the reading at (210, 245).
@@ -52,6 +53,7 @@ struct PrintedTable2 {
   std::array<std::array<std::array<double, 3>, 2>, 2> dth;
   std::array<std::array<double, 2>, 2> kmrmse_mm;
 };
+// Table 2 as printed.
 PrintedTable2 printed_table2();
 
 // Table 3 (section 3.3 B): offsets and six links from 21 samples, J1, J2, J3.
@@ -62,6 +64,7 @@ struct PrintedTable3 {
   std::array<double, 3> kmrmse_mm;
   std::array<int, 3> iterations;
 };
+// Table 3 as printed.
 PrintedTable3 printed_table3();
 
 // Table 4 (section 3.3 C): 12 parameters (xa1, ya1, ya2 fixed) and 11
@@ -73,6 +76,7 @@ struct PrintedTable4 {
   double kmrmse_twelve_mm = 3.3521, kmrmse_eleven_mm = 1.0211e-4;
   int iterations_twelve = 34, iterations_eleven = 70;
 };
+// Table 4 as printed.
 PrintedTable4 printed_table4();
 
 // Table 7 (section 4.4): DE on J3 after 5e7 evaluations, 12 free parameters.
@@ -81,6 +85,7 @@ struct PrintedTable7 {
   double kmrmse_mm = 0.0371;
   double largest_error_mm = 0.3530;                     // stated in the text
 };
+// Table 7 as printed.
 PrintedTable7 printed_table7();
 
 // Table 8 (section 4.5): DE on J3 with the real robot's 50 readings on a
@@ -90,6 +95,7 @@ struct PrintedTable8 {
   double j3_nominal = 2.1517e5, j3_calibrated = 3.1841e2;
   double evaluations = 1e6;
 };
+// Table 8 as printed.
 PrintedTable8 printed_table8();
 
 // Figures 3-5 (section 4.4 text): the final log10 J the text states for each
