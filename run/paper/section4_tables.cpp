@@ -253,8 +253,7 @@ Section4Tables section4_tables(const Section4Settings& settings, const Evaluatio
     Geometry printed_g = actual;
     for (int i : kOrder) {
       printed_g[i] = pt.de[i];
-      Row r = compare_row(std::string(param_name(i)), unit_of(i),
-                          is_offset(i) ? fmt::format("{:.4f}", pt.de[i]) : fmt::format("{:.4f}", pt.de[i]),
+      Row r = compare_row(std::string(param_name(i)), unit_of(i), fmt::format("{:.4f}", pt.de[i]),
                           de.result.geometry[i], Reason::kMethod, kFamily);
       r.extra_text = shortest(actual[i]);
       t.rows.push_back(r);
