@@ -84,7 +84,7 @@ std::pair<Reason, std::string> final_j_reason(Method m, Cost c, double ours, dou
   if (ours < paper) {
     return {Reason::kSetup,
             "This run's J is lower than the paper's: its samples, seeds and operator details (GA bit strings, "
-            "reinitialisation) are not given, and GA's and PSO's J after a fixed budget, far from convergence, "
+            "reinitialisation) are not given, and the J a stochastic search reaches after a fixed budget "
             "varies by orders of magnitude between runs."};
   }
   if (static_cast<double>(budget) < kPaperBudget) {
