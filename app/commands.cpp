@@ -17,6 +17,7 @@ void add_commands(CLI::App& app, const std::function<void(CLI::App&)>& add_rende
   add_sample(app);
   add_zero(app);
   add_monitor(app);
+  add_paper(app);
 }
 
 }  // namespace gpm::cli

@@ -31,6 +31,7 @@ void add_design(CLI::App& app);
 void add_sample(CLI::App& app);
 void add_zero(CLI::App& app);
 void add_monitor(CLI::App& app);
+void add_paper(CLI::App& app);
 
 // Registers every subcommand of gpm on app (with the version flag), in the
 // order of `gpm --help`; render through add_render_command (gpm registers an

@@ -25,7 +25,7 @@ CalibrationSpec parse_calibration(const YAML::Node& n, const std::string& file) 
   for (int i : {kXa1, kYa1, kXa2, kYa2}) c.fixed.set(static_cast<size_t>(i));
   if (!n) return c;
   yaml_check_keys(n, file, "calibration",
-                  {"cost", "method", "fix", "budget", "seed", "sigma", "allow_rank_deficient", "start", "estimate", "loss"});
+                  {"cost", "method", "fix", "budget", "seed", "sigma", "allow_rank_deficient", "start", "reference_at", "estimate", "loss"});
   if (n["cost"]) {
     const std::string s = yaml_string(n["cost"], file, "calibration.cost");
     const auto cost = calib::parse_cost(s);
@@ -87,6 +87,13 @@ CalibrationSpec parse_calibration(const YAML::Node& n, const std::string& file) 
                        fmt::format("'{}' is not nominal or reference", s));
     }
     c.start_reference = s == "reference";
+  }
+  if (n["reference_at"]) {
+    if (!c.start_reference) {
+      throw InputError(yaml_where(file, n["reference_at"], "calibration.reference_at") +
+                       "needs start: reference (it says where the reference readings are taken)");
+    }
+    c.reference_at = point(n["reference_at"], file, "calibration.reference_at");
   }
   return c;
 }

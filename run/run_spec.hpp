@@ -26,6 +26,9 @@ struct CalibrationSpec {
   std::optional<double> sigma;          // encoder sigma for the covariance; default: encoder noise if > 0
   bool allow_rank_deficient = false;
   bool start_reference = false;         // initial offsets from the reference-point procedure (sec. 3.2)
+  // Where the robot really stands when those readings are taken (default: at
+  // home exactly; the paper's section 3.3: the rough guess (210, 245)).
+  std::optional<Eigen::Vector2d> reference_at;
   // Reading effects estimated with the geometry (calib/motion_correction.hpp):
   // unset = both for samples taken on the fly, none otherwise.
   std::optional<bool> estimate_compliance, estimate_skew;

@@ -156,8 +156,9 @@ RunOutcome run_scenario(const RunSpec& spec_in, const std::string& scenario_file
   problem.free = ~spec.calibration.fixed;
   // The fixed coordinates define the frame: they must be the true ones (docs/PAPER_NOTES.md).
   if (spec.calibration.start_reference) {
-    // Paper section 3.2 step 3: readings at the point believed to be home.
-    const JointAngles q = inverse_kinematics(actual.geometry, actual.home, actual.branch);
+    // Paper section 3.2 step 3: readings where the robot stands, taken as if at home.
+    const JointAngles q = inverse_kinematics(actual.geometry, spec.calibration.reference_at.value_or(actual.home),
+                                             actual.branch);
     const Eigen::Vector3d m = readings_from_active(actual.geometry, q.theta_a);
     const JointAngles qn = inverse_kinematics(problem.start, out.nominal.home, out.nominal.branch);
     for (int i = 0; i < 3; ++i) problem.start[dth(i)] = wrap_pi(qn.theta_a[i] - m[i]);

@@ -76,5 +76,17 @@ TEST(RunSpec, LossAndEstimatedEffects) {
   EXPECT_FALSE(parse_run_spec(kHead, "s.yaml", kBase).calibration.loss.active());
 }
 
+TEST(RunSpec, ReferenceReadingsTakenWhereTheRobotStands) {
+  const RunSpec s = parse_run_spec(kHead + "calibration: {start: reference, reference_at: [210, 245]}\n", "s.yaml", kBase);
+  EXPECT_TRUE(s.calibration.start_reference);
+  ASSERT_TRUE(s.calibration.reference_at);
+  EXPECT_EQ(*s.calibration.reference_at, Eigen::Vector2d(210, 245));
+  EXPECT_FALSE(parse_run_spec(kHead, "s.yaml", kBase).calibration.reference_at);  // default: at home
+  EXPECT_NE(error_of(kHead + "calibration: {reference_at: [210, 245]}\n").find("needs start: reference"),
+            std::string::npos);
+  EXPECT_NE(error_of(kHead + "calibration: {start: reference, reference_at: [210]}\n").find("expected [x, y] in mm"),
+            std::string::npos);
+}
+
 }  // namespace
 }  // namespace gpm::scenario
