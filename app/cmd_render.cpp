@@ -14,6 +14,7 @@
 #include "models/errors.hpp"
 #include "models/mjcf.hpp"
 #include "models/output_file.hpp"
+#include "models/progress.hpp"
 #include "render/render_options.hpp"
 #include "render/scene_renderer.hpp"
 #include "render/video_job.hpp"
@@ -93,7 +94,12 @@ void add_render(CLI::App& app) {
     for (size_t i = 0; i < scenarios.size(); ++i) results.push_back(run(scenarios[i], files[i]));
     std::vector<render::RunView> views;
     for (size_t i = 0; i < results.size(); ++i) views.push_back(render::run_view(results[i], scenarios[i].name));
-    const render::VideoSummary v = render::render_video(views, o, opt->out, pngs);
+    // A progress line on a terminal (frames, fps, ETA); PNG-only renders are short.
+    const int total = render::part_frame_counts({views}, o).front();
+    Progress progress = Progress::terminal("gpm render", "frames", opt->out.empty() ? 0 : total);
+    render::VideoJobOptions job;
+    job.progress = opt->out.empty() ? nullptr : &progress;
+    const render::VideoSummary v = render::render_video(views, o, opt->out, pngs, job);
 
     fmt::print("scenario         {}\n", fmt::join(files, " | "));
     fmt::print("frames           {} at {} fps, {}x{}, camera {}, quality {}\n", v.frames, o.fps, v.width,

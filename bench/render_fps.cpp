@@ -1,6 +1,8 @@
 // bench_render: frames per second of off-screen rendering alone and of
 // rendering plus H.264 encoding, at a given size and quality, on one
-// scenario's run (default scenarios/simulate_circle.yaml, 640x480, fast).
+// scenario's run (default scenarios/simulate_circle.yaml, 640x480, fast);
+// then the whole run through gpm render's video job, overlapped (render and
+// encode on two threads) and sequential.
 //   bench_render [SCENARIO.yaml] [--size WxH] [--quality fast|high] [--frames N]
 // Prints "name frames_per_second" lines.
 #include <chrono>
@@ -49,9 +51,23 @@ int main(int argc, char** argv) {
     }
     const double both_fps = frames / std::chrono::duration<double>(Clock::now() - t).count();
     std::filesystem::remove(out);
+    // The whole run through gpm render's video job (render/video_job.hpp):
+    // render and encode overlapped on two threads (render/frame_queue.hpp),
+    // then one after the other.
+    render::VideoJobOptions job;
+    job.pipeline = render::Pipeline::kOverlapped;
+    const double overlapped_fps = render::render_video({render::run_view(r, s.name)}, o, out, {}, job).frames_per_s;
+    std::filesystem::remove(out);
+    job.pipeline = render::Pipeline::kSequential;
+    const double sequential_fps = render::render_video({render::run_view(r, s.name)}, o, out, {}, job).frames_per_s;
+    std::filesystem::remove(out);
     std::printf("renderer %s\n", sr.gl_renderer().c_str());
     std::printf("render_%dx%d_%s %.1f\n", o.width, o.height, render::quality_name(o.quality).c_str(), render_fps);
     std::printf("render_encode_%dx%d_%s %.1f\n", o.width, o.height, render::quality_name(o.quality).c_str(), both_fps);
+    std::printf("video_job_sequential_%dx%d_%s %.1f\n", o.width, o.height, render::quality_name(o.quality).c_str(),
+                sequential_fps);
+    std::printf("video_job_overlapped_%dx%d_%s %.1f\n", o.width, o.height, render::quality_name(o.quality).c_str(),
+                overlapped_fps);
   } catch (const std::exception& e) {
     std::fprintf(stderr, "bench_render: %s\n", e.what());
     return 2;

@@ -24,7 +24,28 @@ constexpr double kFramingMarginFrac = 0.04;
 constexpr double kMarkerRadiusPx = 5.0;
 constexpr int kHighQualitySamples = 4;
 
-// Region covering the bases, the elbows and the end-effector over each run.
+int font_scale_for(int height) {
+  if (height < 360) return mjFONTSCALE_50;
+  if (height <= 720) return mjFONTSCALE_100;
+  if (height <= 1080) return mjFONTSCALE_150;
+  return mjFONTSCALE_200;
+}
+
+struct RunSlot {
+  RunView view;
+  sim::ModelPtr model;
+  sim::DataPtr data;
+  JointAddresses adr;
+  mjvScene scene;
+  bool scene_made = false;
+  mjvOption option;
+  mjvCamera camera;
+  std::unique_ptr<OverlayPainter> painter;
+  std::array<int, 4> viewport{};
+};
+
+}  // namespace
+
 Framing framing_of(const std::vector<RunView>& runs) {
   Framing f;
   for (const RunView& r : runs) {
@@ -47,28 +68,6 @@ Framing framing_of(const std::vector<RunView>& runs) {
   f.hi += margin;
   return f;
 }
-
-int font_scale_for(int height) {
-  if (height < 360) return mjFONTSCALE_50;
-  if (height <= 720) return mjFONTSCALE_100;
-  if (height <= 1080) return mjFONTSCALE_150;
-  return mjFONTSCALE_200;
-}
-
-struct RunSlot {
-  RunView view;
-  sim::ModelPtr model;
-  sim::DataPtr data;
-  JointAddresses adr;
-  mjvScene scene;
-  bool scene_made = false;
-  mjvOption option;
-  mjvCamera camera;
-  std::unique_ptr<OverlayPainter> painter;
-  std::array<int, 4> viewport{};
-};
-
-}  // namespace
 
 RunView run_view(const sim::SimulationResult& r, const std::string& label) {
   return RunView{label, r.actual, r.model_xml, &r.log};
@@ -98,7 +97,8 @@ struct SceneRenderer::Impl {
   }
 };
 
-SceneRenderer::SceneRenderer(const std::vector<RunView>& runs, const RenderOptions& options) {
+SceneRenderer::SceneRenderer(const std::vector<RunView>& runs, const RenderOptions& options,
+                             const std::optional<Framing>& region_in) {
   if (runs.empty() || runs.size() > 2)
     throw InputError(fmt::format("render: one or two runs can be shown, got {}", runs.size()));
   check_size(options.width, options.height, "size");
@@ -114,7 +114,7 @@ SceneRenderer::SceneRenderer(const std::vector<RunView>& runs, const RenderOptio
                                  options.height, im.context.max_renderbuffer_size(),
                                  im.context.max_renderbuffer_size()));
 
-  const Framing region = framing_of(runs);
+  const Framing region = region_in ? *region_in : framing_of(runs);
   const int n = static_cast<int>(runs.size());
   const int panel_w = options.width / n;
   const double aspect = static_cast<double>(panel_w) / options.height;

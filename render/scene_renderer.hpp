@@ -4,6 +4,7 @@
 #pragma once
 
 #include <memory>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -35,12 +36,17 @@ RunView run_view(const sim::SimulationResult& r, const std::string& label);
 void check_render_setup(const std::string& model_xml, const RenderOptions& options,
                         const std::string& camera_what = "camera");
 
+// The region of the plane (mm) a free camera shows for these runs: the base
+// joints, elbows, end-effector and desired path over every log, with a margin.
+Framing framing_of(const std::vector<RunView>& runs);
+
 class SceneRenderer {
  public:
-  // One or two runs (side by side, each in half the width). Throws
-  // InputError for a bad size or camera, or an empty log; RenderError if
-  // OpenGL fails.
-  SceneRenderer(const std::vector<RunView>& runs, const RenderOptions& options);
+  // One or two runs (side by side, each in half the width), framing region
+  // (framing_of(runs) if not given). Throws InputError for a bad size or
+  // camera, or an empty log; RenderError if OpenGL fails.
+  SceneRenderer(const std::vector<RunView>& runs, const RenderOptions& options,
+                const std::optional<Framing>& region = std::nullopt);
   ~SceneRenderer();
   SceneRenderer(const SceneRenderer&) = delete;
   SceneRenderer& operator=(const SceneRenderer&) = delete;
