@@ -37,7 +37,8 @@ struct RenderCliOptions {
 
 sim::SimulationResult run(const sim::Scenario& s, const std::string& file) {
   try {
-    return sim::run_simulation(s);
+    Progress progress = Progress::terminal("gpm render: simulating", "simulated s");  // on a terminal only
+    return sim::run_simulation(s, nullptr, &progress);
   } catch (const sim::SimError& e) {
     throw InputError(fmt::format("{}: {}", file, e.what()));
   }

@@ -136,7 +136,9 @@ RunOutcome run_scenario(const RunSpec& spec_in, const std::string& scenario_file
     out.sim = sample_on_hardware(spec, samples_path, out.hardware_description);
   } else {
     stage("simulating the twin");
-    out.sim = sim::run_simulation(spec.sim);
+    gpm::Progress simulated = progress ? gpm::Progress::terminal("gpm run: simulating", "simulated s")
+                                       : gpm::Progress("", "", 0, nullptr, nullptr);  // models/progress.hpp
+    out.sim = sim::run_simulation(spec.sim, nullptr, &simulated);
   }
   const Robot& actual = out.sim.actual;
 
