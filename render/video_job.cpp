@@ -1,6 +1,9 @@
 #include "render/video_job.hpp"
 
+#include <algorithm>
+#include <cctype>
 #include <chrono>
+#include <filesystem>
 #include <cmath>
 #include <cstdio>
 #include <optional>
@@ -27,6 +30,19 @@ int frame_count(double t0, double t1, double fps, double speed) {
 }
 
 double frame_time(double t0, int k, double fps, double speed) { return t0 + k * speed / fps; }
+
+void check_output_suffix(const std::string& path, const std::string& suffix, const std::string& what) {
+  namespace fs = std::filesystem;
+  std::error_code ec;
+  const fs::file_status st = fs::status(path, ec);
+  if (!ec && (fs::is_character_file(st) || fs::is_fifo(st) || fs::is_block_file(st))) return;
+  std::string ext = fs::path(path).extension().string();
+  std::transform(ext.begin(), ext.end(), ext.begin(), [](unsigned char c) { return std::tolower(c); });
+  if (ext == suffix) return;
+  const std::string format = suffix == ".mp4" ? "H.264 MP4" : suffix == ".png" ? "PNG" : suffix;
+  throw InputError(fmt::format("{} {}: gpm render writes {} only: give a name ending in {} (got {})", what, path,
+                               format, suffix, ext.empty() ? "no suffix" : "'" + ext + "'"));
+}
 
 FrameRequest parse_frame_request(const std::string& text, const std::string& what) {
   const auto colon = text.find(':');

@@ -32,6 +32,11 @@ struct FrameRequest {
   std::string path;
 };
 
+// Refuses (InputError naming `what`) an output whose name does not end in
+// suffix (".mp4", ".png"; any case): the name must say the format written.
+// A device or FIFO that exists (e.g. /dev/null) is accepted by any name.
+void check_output_suffix(const std::string& path, const std::string& suffix, const std::string& what);
+
 // Parses "N:FILE" (e.g. "12:frame.png"); throws InputError naming `what`.
 FrameRequest parse_frame_request(const std::string& text, const std::string& what);
 
