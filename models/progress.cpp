@@ -32,7 +32,6 @@ Progress::Progress(std::string what, std::string unit, double total, Sink sink, 
       sink_(std::move(sink)),
       clock_(std::move(clock)),
       min_interval_s_(min_interval_s) {
-  if (sink_) start_ = last_ = clock_();
 }
 
 Progress::Progress(Progress&& o) noexcept
@@ -44,6 +43,8 @@ Progress::Progress(Progress&& o) noexcept
       min_interval_s_(o.min_interval_s_),
       start_(o.start_),
       last_(o.last_),
+      done0_(o.done0_),
+      started_(o.started_),
       width_(o.width_),
       finished_(o.finished_) {
   o.sink_ = nullptr;
@@ -72,8 +73,8 @@ std::string Progress::line(double done, double elapsed_s) const {
   std::string s = fmt::format("{}  {}", what_, amount(done));
   if (total_ > 0) s += fmt::format("/{}", amount(total_));
   s += fmt::format(" {}", unit_);
-  if (elapsed_s > 0 && done > 0) {
-    const double rate = done / elapsed_s;
+  if (elapsed_s > 0 && done > done0_) {
+    const double rate = (done - done0_) / elapsed_s;
     s += fmt::format("  {:.1f} {}/s", rate, unit_);
     if (total_ > 0 && done <= total_) s += fmt::format("  ETA {}", duration((total_ - done) / rate));
   }
@@ -83,6 +84,12 @@ std::string Progress::line(double done, double elapsed_s) const {
 void Progress::update(double done) {
   if (!sink_ || finished_) return;
   const double now = clock_();
+  if (!started_) {  // the rate counts from the first update: set-up time is not work
+    started_ = true;
+    start_ = last_ = now;
+    done0_ = done;
+    return;
+  }
   if (now - last_ < min_interval_s_) return;
   last_ = now;
   std::string s = line(done, now - start_);

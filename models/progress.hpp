@@ -36,14 +36,16 @@ class Progress {
   // by the steady clock.
   static Progress terminal(std::string what, std::string unit, double total = 0.0);
 
-  // Records that `done` units are done; rewrites the line when min_interval_s
-  // has passed since the last one (the first after min_interval_s of work).
+  // Records that `done` units are done. The first call starts the clock
+  // (the rate counts the units done after it, so set-up time is left out);
+  // later calls rewrite the line when min_interval_s has passed since the
+  // last one.
   void update(double done);
 
   // Erases the line (if one was written); later updates are ignored.
   void finish();
 
-  // The line for `done` units after `elapsed_s` seconds, e.g.
+  // The line for `done` units, elapsed_s seconds after the first update, e.g.
   // "gpm render  120/294 frames  97.3 frames/s  ETA 1.8 s".
   std::string line(double done, double elapsed_s) const;
 
@@ -57,6 +59,8 @@ class Progress {
   Clock clock_;
   double min_interval_s_;
   double start_ = 0.0, last_ = 0.0;
+  double done0_ = 0.0;  // units done at the first update
+  bool started_ = false;
   size_t width_ = 0;  // length of the last line written (to blank it)
   bool finished_ = false;
 };

@@ -1,6 +1,7 @@
 // Tests of models/progress.cpp: with a fake clock and a string sink (no
-// sleeping, no terminal), the line shows done/total, the rate and the ETA
-// computed by hand, is rewritten in place at most once per interval, blanks
+// sleeping, no terminal), the line shows done/total, the rate (from the
+// first update on) and the ETA computed by hand, is rewritten in place at
+// most once per interval, blanks
 // the rest of a longer previous line, and is erased by finish(); a reporter
 // without a sink (stderr not a terminal) writes nothing.
 #include "models/progress.hpp"
@@ -33,6 +34,18 @@ TEST(Progress, LineShowsDoneTotalRateAndEta) {
   EXPECT_EQ(p.line(0, 0.0), "gpm render  0/300 frames");
 }
 
+// Set-up before the first update (an OpenGL context, a video file) is not
+// counted: 10 s of set-up, then 30 frames in 1 s is 30 frames/s, 60 left: 2 s.
+TEST(Progress, RateCountsFromTheFirstUpdate) {
+  Fake f;
+  Progress p = f.make(90, 0.5);
+  f.now += 10.0;
+  p.update(0);
+  f.now += 1.0;
+  p.update(30);
+  EXPECT_EQ(f.out, "\rgpm render  30/90 frames  30.0 frames/s  ETA 2.0 s");
+}
+
 TEST(Progress, UnknownTotalShowsNoEta) {
   Fake f;
   const Progress p("simulate", "s simulated", 0.0, [&f](const std::string& s) { f.out += s; },
@@ -43,6 +56,7 @@ TEST(Progress, UnknownTotalShowsNoEta) {
 TEST(Progress, RewritesInPlaceAtMostOncePerInterval) {
   Fake f;
   Progress p = f.make(100);
+  p.update(0);  // starts the clock, writes nothing
   // Times in binary fractions of a second, so that the sums are exact.
   for (int k = 1; k <= 10; ++k) {  // 10 updates within 10/64 s: nothing yet
     f.now += 1.0 / 64;
@@ -65,6 +79,7 @@ TEST(Progress, RewritesInPlaceAtMostOncePerInterval) {
 TEST(Progress, ShorterLineBlanksTheRestOfTheLongerOne) {
   Fake f;
   Progress p = f.make(0, 0.0);
+  p.update(0);
   f.now += 1.0;
   p.update(1000.5);  // "... 1000.5 frames  1000.5 frames/s"
   const std::string first = f.out;
@@ -79,6 +94,7 @@ TEST(Progress, ShorterLineBlanksTheRestOfTheLongerOne) {
 TEST(Progress, FinishErasesTheLineAndSilencesLaterUpdates) {
   Fake f;
   Progress p = f.make(10, 0.0);
+  p.update(0);
   f.now += 1.0;
   p.update(5);
   const size_t n = f.out.size() - 1;  // the line without its \r
@@ -107,6 +123,7 @@ TEST(Progress, DestructorErasesAnUnfinishedLine) {
   Fake f;
   {
     Progress p = f.make(10, 0.0);
+    p.update(0);
     f.now += 1.0;
     p.update(2);
   }
