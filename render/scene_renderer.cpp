@@ -24,7 +24,7 @@ constexpr double kFramingMarginMm = 25.0;  // link radius and base markers
 constexpr double kFramingMarginFrac = 0.04;
 constexpr double kMarkerRadiusPx = 5.0;
 constexpr int kHighQualitySamples = 4;
-constexpr double kMaxColumnFrac = 0.4;  // the text column takes at most this share of a panel
+constexpr double kMaxColumnFrac = 0.5;  // the text column takes at most this share of a panel
 constexpr int kSwatchChars = 3;         // legend swatch length, in digit widths
 constexpr const char* kLegendDesired = "desired path";
 constexpr const char* kLegendActual = "actual trace";
@@ -204,8 +204,8 @@ SceneRenderer::SceneRenderer(const std::vector<RunView>& runs, const RenderOptio
     throw RenderError(fmt::format("MuJoCo could not make a {}x{} off-screen buffer", options.width, options.height));
 
   // The text column (frame_layout.hpp): as wide as its longest line; used
-  // when it leaves most of the panel to the mechanism, else the text is
-  // drawn over the scene in the corners as before.
+  // when it leaves at least half the panel to the mechanism and its lines fit
+  // the height, else the text is drawn over the scene in the corners.
   const auto text_px = [&im](const std::string& t) {
     int w = 0, best = 0;
     for (const char c : t) {
@@ -217,10 +217,18 @@ SceneRenderer::SceneRenderer(const std::vector<RunView>& runs, const RenderOptio
   const int cw = std::max(1, im.con.charWidth[static_cast<int>('0')]);
   im.pad = std::max(2, cw / 2);
   im.line_h = std::max(1, im.con.charHeight);
-  int column = text_px("enc 1") + text_px("-3.14159 rad") + 5 * cw;  // the two columns of the data block
-  for (const auto& s : im.slots) column = std::max(column, text_px(s->view.label) + 3 * cw);
+  int column = text_px("enc 1") + text_px("-3.14159 rad") + 3 * cw;  // the two columns of the data block
+  for (const auto& s : im.slots) column = std::max(column, text_px(s->view.label) + 2 * cw);
   column = std::max(column, kSwatchChars * cw + text_px(std::string(kLegendDesired)) + 4 * cw);
-  im.column = column <= kMaxColumnFrac * panel_w ? column : 0;
+  // Height: caption, 5 data lines, 2 legend lines, the scale bar's label and ticks, margins.
+  int label_lines = 0;
+  for (const auto& s : im.slots)
+    if (!s->view.label.empty())
+      label_lines = std::max(label_lines, 1 + static_cast<int>(std::count(s->view.label.begin(),
+                                                                           s->view.label.end(), '\n')));
+  const int pitch = im.line_h + im.line_h / 4;  // mjr_overlay's line spacing, measured
+  const int column_h = (label_lines + 5 + 2 + 1) * pitch + std::max(6, im.line_h / 2) + 6 * im.pad;
+  im.column = column <= kMaxColumnFrac * panel_w && column_h <= options.height ? column : 0;
   for (auto& s : im.slots) {
     mjModel* m = s->model.get();
     const Framing shown =
