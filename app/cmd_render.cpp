@@ -104,7 +104,7 @@ void add_render(CLI::App& app) {
   auto* cmd = app.add_subcommand("render", kRenderDescription);
   cmd->add_option("scenario", opt->scenario, "Scenario file (YAML, see scenarios/SCHEMA.md and render/README.md)")
       ->required();
-  cmd->add_option("-o,--out", opt->out, "Output video (H.264 MP4)");
+  cmd->add_option("-o,--out", opt->out, "Output video (H.264 MP4; the name must end in .mp4)");
   CLI::Option* fps = cmd->add_option("--fps", opt->fps, "Video frames per second (default 30)");
   cmd->add_option("--size", opt->size, "Frame size WxH in pixels, even (default 640x480)");
   cmd->add_option("--camera", opt->camera, "Camera: top (default), oblique, or a camera of the model");
