@@ -1,22 +1,33 @@
 // gpm render SCENARIO.yaml -o VIDEO.mp4: simulates the scenario on the twin
 // and renders its motion off-screen (render/): H.264 MP4 and PNG frames.
+// A `gpm run` scenario (with calibration: or compensation:) is run as gpm
+// run does and shown as a story: the nominal controller on the test path,
+// the sampling, then the calibrated controller on the test path.
 // Options override the scenario's `render` section. Bad input (size, camera,
-// frame, output path) exits 2 with one line before anything is simulated
-// where possible; no partial file is left behind.
+// frame, output path or suffix) exits 2 with one line before anything is
+// simulated where possible; no partial file is left behind.
+#include <algorithm>
+#include <cstdio>
 #include <memory>
+#include <optional>
 #include <string>
+#include <unistd.h>
 #include <vector>
 
 #include <fmt/format.h>
 #include <fmt/ranges.h>
+#include <yaml-cpp/yaml.h>
 
 #include "app/commands.hpp"
 #include "models/errors.hpp"
 #include "models/mjcf.hpp"
 #include "models/output_file.hpp"
+#include "models/progress.hpp"
 #include "render/render_options.hpp"
 #include "render/scene_renderer.hpp"
 #include "render/video_job.hpp"
+#include "run/run_spec.hpp"
+#include "run/runner.hpp"
 #include "sim/simulate.hpp"
 
 namespace gpm::cli {
@@ -32,14 +43,58 @@ struct RenderCliOptions {
   std::string camera;
   std::string quality;
   std::vector<std::string> frame_png;
+  bool simulation_only = false;
 };
 
 sim::SimulationResult run(const sim::Scenario& s, const std::string& file) {
   try {
-    return sim::run_simulation(s);
+    Progress progress = Progress::terminal("gpm render: simulating", "simulated s");  // on a terminal only
+    return sim::run_simulation(s, nullptr, &progress);
   } catch (const sim::SimError& e) {
     throw InputError(fmt::format("{}: {}", file, e.what()));
   }
+}
+
+// A scenario for `gpm run`: it calibrates or compensates.
+bool is_run_scenario(const std::string& file) {
+  const YAML::Node root = YAML::LoadFile(file);
+  return root.IsMap() && (root["calibration"] || root["compensation"]);
+}
+
+// The story of a gpm run scenario (run as gpm run runs it, always on the twin):
+// the nominal controller on the test path, the sampling, the calibrated
+// controller on the test path (the parts that exist).
+struct Story {
+  scenario::RunOutcome outcome;
+  std::vector<std::vector<render::RunView>> parts;
+};
+
+std::unique_ptr<Story> run_story(const std::string& file) {
+  scenario::RunSpec spec = scenario::load_run_spec(file);
+  spec.hardware.reset();  // a video shows the twin
+  const bool tty = ::isatty(STDERR_FILENO);
+  scenario::Progress stages;
+  if (tty) stages = [](const std::string& stage) { std::fprintf(stderr, "gpm render: %s ...\n", stage.c_str()); };
+  auto story = std::make_unique<Story>();
+  try {
+    story->outcome = scenario::run_scenario(spec, file, stages);
+  } catch (const sim::SimError& e) {
+    throw InputError(fmt::format("{}: {}", file, e.what()));
+  }
+  const scenario::RunOutcome& o = story->outcome;
+  const auto view = [&o](const std::string& caption, const sim::TrajectoryLog& log) {
+    return std::vector<render::RunView>{render::RunView{caption, o.sim.actual, o.sim.model_xml, &log}};
+  };
+  const bool before = o.before && !o.before->path_log.rows.empty();
+  const bool after = o.after && !o.after->path_log.rows.empty();
+  const int n = (before ? 1 : 0) + (o.sim.log.rows.empty() ? 0 : 1) + (after ? 1 : 0);
+  int k = 0;
+  if (before) story->parts.push_back(view(fmt::format("{}/{} nominal model\ntest path", ++k, n), o.before->path_log));
+  if (!o.sim.log.rows.empty())
+    story->parts.push_back(view(fmt::format("{}/{} sampling for\nthe calibration", ++k, n), o.sim.log));
+  if (after) story->parts.push_back(view(fmt::format("{}/{} calibrated model\ntest path", ++k, n), o.after->path_log));
+  if (story->parts.empty()) throw InputError(fmt::format("{}: the run has no motion to show", file));
+  return story;
 }
 
 }  // namespace
@@ -49,7 +104,7 @@ void add_render(CLI::App& app) {
   auto* cmd = app.add_subcommand("render", kRenderDescription);
   cmd->add_option("scenario", opt->scenario, "Scenario file (YAML, see scenarios/SCHEMA.md and render/README.md)")
       ->required();
-  cmd->add_option("-o,--out", opt->out, "Output video (H.264 MP4)");
+  cmd->add_option("-o,--out", opt->out, "Output video (H.264 MP4; the name must end in .mp4)");
   CLI::Option* fps = cmd->add_option("--fps", opt->fps, "Video frames per second (default 30)");
   cmd->add_option("--size", opt->size, "Frame size WxH in pixels, even (default 640x480)");
   cmd->add_option("--camera", opt->camera, "Camera: top (default), oblique, or a camera of the model");
@@ -57,6 +112,8 @@ void add_render(CLI::App& app) {
   CLI::Option* speed = cmd->add_option("--speed", opt->speed, "Simulated seconds per video second (default 1)");
   cmd->add_option("--frame-png", opt->frame_png, "Save frame N (0-based) as a PNG: N:FILE (repeatable)");
   cmd->add_option("--beside", opt->beside, "A second scenario shown side by side (e.g. the calibrated controller)");
+  cmd->add_flag("--simulation-only", opt->simulation_only,
+                "For a gpm run scenario: only its simulation (the sampling), not the story of the run");
   cmd->callback([opt, fps, speed] {
     if (opt->out.empty() && opt->frame_png.empty())
       throw InputError("gpm render: give -o VIDEO.mp4 and/or --frame-png N:FILE");
@@ -88,16 +145,41 @@ void add_render(CLI::App& app) {
     // Output policy (models/output_file.hpp): an output that is an input is refused.
     if (!opt->out.empty()) check_output_file(opt->out, files);
     for (const render::FrameRequest& p : pngs) check_output_file(p.path, files);
+    // The suffix says the format: only what is written is accepted (render/video_job.hpp).
+    if (!opt->out.empty()) render::check_output_suffix(opt->out, ".mp4", "-o");
+    for (const render::FrameRequest& p : pngs) render::check_output_suffix(p.path, ".png", "--frame-png");
 
+    const bool story = opt->beside.empty() && !opt->simulation_only && is_run_scenario(opt->scenario);
+    std::unique_ptr<Story> ran;
     std::vector<sim::SimulationResult> results;
-    for (size_t i = 0; i < scenarios.size(); ++i) results.push_back(run(scenarios[i], files[i]));
-    std::vector<render::RunView> views;
-    for (size_t i = 0; i < results.size(); ++i) views.push_back(render::run_view(results[i], scenarios[i].name));
-    const render::VideoSummary v = render::render_video(views, o, opt->out, pngs);
+    std::vector<std::vector<render::RunView>> parts;
+    if (story) {
+      ran = run_story(opt->scenario);
+      parts = ran->parts;
+    } else {
+      for (size_t i = 0; i < scenarios.size(); ++i) results.push_back(run(scenarios[i], files[i]));
+      std::vector<render::RunView> views;
+      for (size_t i = 0; i < results.size(); ++i) views.push_back(render::run_view(results[i], scenarios[i].name));
+      parts.push_back(views);
+    }
+    // A progress line on a terminal (frames, fps, ETA); PNG-only renders are short.
+    int total = 0;
+    for (int c : render::part_frame_counts(parts, o)) total += c;
+    Progress progress = Progress::terminal("gpm render", "frames", opt->out.empty() ? 0 : total);
+    render::VideoJobOptions job;
+    job.progress = opt->out.empty() ? nullptr : &progress;
+    const render::VideoSummary v = render::render_parts(parts, o, opt->out, pngs, job);
 
     fmt::print("scenario         {}\n", fmt::join(files, " | "));
     fmt::print("frames           {} at {} fps, {}x{}, camera {}, quality {}\n", v.frames, o.fps, v.width,
                v.height, o.camera, render::quality_name(o.quality));
+    if (story) {
+      for (size_t i = 0; i < parts.size(); ++i) {
+        std::string caption = parts[i].front().label;
+        std::replace(caption.begin(), caption.end(), '\n', ' ');
+        fmt::print("part             {} from frame {}\n", caption, v.part_first[i]);
+      }
+    }
     fmt::print("rendered         {:.1f} frames/s ({:.2f} s wall, {})\n", v.frames_per_s, v.wall_s, v.gl_renderer);
     if (!opt->out.empty()) fmt::print("wrote            {} ({})\n", opt->out, v.codec);
     for (const render::FrameRequest& p : pngs) fmt::print("wrote            {} (frame {})\n", p.path, p.frame);

@@ -105,9 +105,9 @@ void add_run(CLI::App& app) {
     const bool show = !opt->quiet && ::isatty(STDERR_FILENO);
     std::optional<scenario::RunOutcome> ran;
     try {  // a stopped hardware session: drives disabled, samples kept (hw/README.md)
-      ran = scenario::run_scenario(spec, opt->scenario, [show](const std::string& stage) {
-        if (show) std::fprintf(stderr, "gpm run: %s ...\n", stage.c_str());
-      }, samples_path);
+      scenario::Progress stages;  // none when quiet or not on a terminal
+      if (show) stages = [](const std::string& stage) { std::fprintf(stderr, "gpm run: %s ...\n", stage.c_str()); };
+      ran = scenario::run_scenario(spec, opt->scenario, stages, samples_path);
     } catch (const hw::HardwareError& e) {
       const bool interrupted = dynamic_cast<const hw::Interrupted*>(&e) != nullptr;
       std::fprintf(stderr, "gpm: %s%s; to go on: gpm run %s -o %s --hardware %s --resume\n",

@@ -37,7 +37,8 @@ void add_simulate(CLI::App& app) {
                               calib::encoder_sigma(s.twin.encoder.bits, s.twin.encoder.noise_rad));
     sim::SimulationResult r;
     try {
-      r = sim::simulate_to_folder(s, opt->out);  // trajectory.csv streamed, all files or none
+      Progress progress = Progress::terminal("gpm simulate", "simulated s");  // on a terminal only
+      r = sim::simulate_to_folder(s, opt->out, &progress);  // trajectory.csv streamed, all files or none
     } catch (const sim::SimError& e) {
       throw InputError(fmt::format("{}: {}", opt->scenario, e.what()));
     }

@@ -24,7 +24,8 @@ void add_calibrate(CLI::App& app);
 void add_run(CLI::App& app);
 void add_render(CLI::App& app);  // in gpm-render (app/render_main.cpp) only
 inline constexpr const char* kRenderDescription =
-    "Render an off-screen MP4 video (and PNG frames) of a scenario's motion";
+    "Render an off-screen MP4 video (and PNG frames) of a scenario's motion; a gpm run scenario as its story "
+    "(nominal controller, sampling, calibrated controller)";
 void add_compare(CLI::App& app);
 void add_study(CLI::App& app);
 void add_design(CLI::App& app);

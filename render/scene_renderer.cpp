@@ -9,6 +9,7 @@
 #include "models/errors.hpp"
 #include "models/kinematics.hpp"
 #include "models/mjcf.hpp"
+#include "render/frame_layout.hpp"
 #include "render/mechanism_pose.hpp"
 #include "render/offscreen_context.hpp"
 #include "render/overlay_painter.hpp"
@@ -23,8 +24,36 @@ constexpr double kFramingMarginMm = 25.0;  // link radius and base markers
 constexpr double kFramingMarginFrac = 0.04;
 constexpr double kMarkerRadiusPx = 5.0;
 constexpr int kHighQualitySamples = 4;
+constexpr double kMaxColumnFrac = 0.5;  // the text column takes at most this share of a panel
+constexpr int kSwatchChars = 3;         // legend swatch length, in digit widths
+constexpr const char* kLegendDesired = "desired path";
+constexpr const char* kLegendActual = "actual trace";
 
-// Region covering the bases, the elbows and the end-effector over each run.
+int font_scale_for(int height) {
+  if (height < 360) return mjFONTSCALE_50;
+  if (height <= 720) return mjFONTSCALE_100;
+  if (height <= 1080) return mjFONTSCALE_150;
+  return mjFONTSCALE_200;
+}
+
+struct RunSlot {
+  RunView view;
+  sim::ModelPtr model;
+  sim::DataPtr data;
+  JointAddresses adr;
+  mjvScene scene;
+  bool scene_made = false;
+  mjvOption option;
+  mjvCamera camera;
+  std::unique_ptr<OverlayPainter> painter;
+  std::array<int, 4> viewport{};
+  double px_per_mm = 0.0;  // in the plane of the traces (top camera)
+  double scale_mm = 0.0;   // scale bar length (0: none)
+  OverlayLayout layout;    // filled as drawn
+};
+
+}  // namespace
+
 Framing framing_of(const std::vector<RunView>& runs) {
   Framing f;
   for (const RunView& r : runs) {
@@ -48,28 +77,6 @@ Framing framing_of(const std::vector<RunView>& runs) {
   return f;
 }
 
-int font_scale_for(int height) {
-  if (height < 360) return mjFONTSCALE_50;
-  if (height <= 720) return mjFONTSCALE_100;
-  if (height <= 1080) return mjFONTSCALE_150;
-  return mjFONTSCALE_200;
-}
-
-struct RunSlot {
-  RunView view;
-  sim::ModelPtr model;
-  sim::DataPtr data;
-  JointAddresses adr;
-  mjvScene scene;
-  bool scene_made = false;
-  mjvOption option;
-  mjvCamera camera;
-  std::unique_ptr<OverlayPainter> painter;
-  std::array<int, 4> viewport{};
-};
-
-}  // namespace
-
 RunView run_view(const sim::SimulationResult& r, const std::string& label) {
   return RunView{label, r.actual, r.model_xml, &r.log};
 }
@@ -87,8 +94,57 @@ struct SceneRenderer::Impl {
   mjrContext con;
   bool con_made = false;
   int font = mjFONTSCALE_100;
+  int column = 0;  // text column width (px); 0: text over the scene
+  int pad = 4, line_h = 16;
   std::vector<unsigned char> bottom_up;
   FrameImage frame;
+
+  // The text column of slot s: caption and data at the top; legend and
+  // scale bar at the bottom (OpenGL pixels, bottom-up).
+  void draw_column(RunSlot& s, const std::array<std::string, 2>& text) {
+    const int x0 = s.viewport[0], h = s.viewport[3];
+    const int cw = std::max(1, con.charWidth[static_cast<int>('0')]);
+    int top = h;  // the column above this row is used
+    if (!s.view.label.empty()) {
+      mjr_overlay(mjFONT_NORMAL, mjGRID_TOPLEFT, mjrRect{x0, 0, column, top}, s.view.label.c_str(), nullptr, &con);
+      top -= (1 + static_cast<int>(std::count(s.view.label.begin(), s.view.label.end(), '\n'))) * line_h + 2 * pad;
+    }
+    mjr_overlay(mjFONT_NORMAL, mjGRID_TOPLEFT, mjrRect{x0, 0, column, top}, text[0].c_str(), text[1].c_str(), &con);
+    // Scale bar: a white bar of scale_mm with end ticks, its length written under it.
+    int bottom = pad;
+    if (s.scale_mm > 0) {
+      const std::string label = fmt::format("{:g} mm", s.scale_mm);
+      mjr_overlay(mjFONT_NORMAL, mjGRID_BOTTOMLEFT, mjrRect{x0, 0, column, h}, label.c_str(), nullptr, &con);
+      bottom += line_h + 2 * pad;
+      const int len = static_cast<int>(std::lround(s.scale_mm * s.px_per_mm));
+      const int bar_h = std::max(2, line_h / 6), tick_h = std::max(6, line_h / 2);
+      const int bx = x0 + pad + cw / 2;
+      mjr_rectangle(mjrRect{bx - 1, bottom - 1, len + 2, tick_h + 2}, 0.0f, 0.0f, 0.0f, 0.6f);
+      s.layout.scale_x = bx;
+      s.layout.scale_y = h - 1 - bottom;
+      s.layout.scale_len = len;
+      mjr_rectangle(mjrRect{bx, bottom, len, bar_h}, 1.0f, 1.0f, 1.0f, 1.0f);
+      mjr_rectangle(mjrRect{bx, bottom, bar_h, tick_h}, 1.0f, 1.0f, 1.0f, 1.0f);
+      mjr_rectangle(mjrRect{bx + len - bar_h, bottom, bar_h, tick_h}, 1.0f, 1.0f, 1.0f, 1.0f);
+      bottom += tick_h + 2 * pad;
+    }
+    // Legend: a swatch of each trace's colour left of its name.
+    const int swatch = kSwatchChars * cw;
+    const std::string names = fmt::format("{}\n{}", kLegendDesired, kLegendActual);
+    const int legend_h = 2 * line_h + 2 * pad;
+    mjr_rectangle(mjrRect{x0 + pad, bottom, swatch + 2 * pad, legend_h}, 0.0f, 0.0f, 0.0f, 0.6f);
+    mjr_overlay(mjFONT_NORMAL, mjGRID_BOTTOMLEFT, mjrRect{x0 + swatch + 3 * pad, bottom - pad, column, h},
+                names.c_str(), nullptr, &con);
+    const auto& d = OverlayStyle::kDesiredRgba;
+    const auto& t = OverlayStyle::kTraceRgba;
+    const int sw_h = std::max(3, line_h / 5);
+    const int row_actual = bottom + pad + line_h / 2, row_desired = row_actual + line_h;
+    mjr_rectangle(mjrRect{x0 + 2 * pad, row_desired - sw_h / 2, swatch, sw_h}, d[0], d[1], d[2], 1.0f);
+    mjr_rectangle(mjrRect{x0 + 2 * pad, row_actual - sw_h / 2, swatch, sw_h}, t[0], t[1], t[2], 1.0f);
+    s.layout.legend_rows = {h - 1 - row_desired, h - 1 - row_actual};
+    s.layout.legend_x0 = x0 + 2 * pad;
+    s.layout.legend_x1 = x0 + 2 * pad + swatch;
+  }
 
   ~Impl() {
     context.make_current();
@@ -98,7 +154,8 @@ struct SceneRenderer::Impl {
   }
 };
 
-SceneRenderer::SceneRenderer(const std::vector<RunView>& runs, const RenderOptions& options) {
+SceneRenderer::SceneRenderer(const std::vector<RunView>& runs, const RenderOptions& options,
+                             const std::optional<Framing>& region_in) {
   if (runs.empty() || runs.size() > 2)
     throw InputError(fmt::format("render: one or two runs can be shown, got {}", runs.size()));
   check_size(options.width, options.height, "size");
@@ -114,7 +171,7 @@ SceneRenderer::SceneRenderer(const std::vector<RunView>& runs, const RenderOptio
                                  options.height, im.context.max_renderbuffer_size(),
                                  im.context.max_renderbuffer_size()));
 
-  const Framing region = framing_of(runs);
+  const Framing region = region_in ? *region_in : framing_of(runs);
   const int n = static_cast<int>(runs.size());
   const int panel_w = options.width / n;
   const double aspect = static_cast<double>(panel_w) / options.height;
@@ -134,23 +191,6 @@ SceneRenderer::SceneRenderer(const std::vector<RunView>& runs, const RenderOptio
     check_camera(m, options.camera, "camera");
     s->data.reset(mj_makeData(m));
     s->adr = joint_addresses(m);
-    s->camera = make_camera(m, options.camera, region, aspect);
-    // Scale of the plane in the image: pixels per mm at the framing distance.
-    const double fovy = m->vis.global.fovy;
-    const double px_per_m = 0.5 * options.height / std::tan(0.5 * fovy * kPi / 180.0) /
-                            std::max(s->camera.distance, 1e-3);
-    const double mm_per_px = 1.0 / (px_per_m * kMetresPerMm);
-    const double line_px = std::max(1.5, options.height / 320.0);
-    s->painter = std::make_unique<OverlayPainter>(s->view.actual, *s->view.log, std::max(0.2, 1.5 * mm_per_px),
-                                                  std::max(2.0, kMarkerRadiusPx * mm_per_px), line_px);
-    mjv_defaultOption(&s->option);
-    for (int g = 0; g < mjNGROUP; ++g) s->option.sitegroup[g] = 0;
-    mjv_defaultScene(&s->scene);
-    mjv_makeScene(m, &s->scene, m->ngeom + s->painter->max_geoms() + 16);
-    s->scene_made = true;
-    s->scene.flags[mjRND_SHADOW] = options.quality == Quality::kHigh;
-    s->scene.flags[mjRND_REFLECTION] = 0;
-    s->scene.flags[mjRND_SKYBOX] = 0;
     s->viewport = {i * panel_w, 0, panel_w, options.height};
     im.slots.push_back(std::move(s));
   }
@@ -162,6 +202,62 @@ SceneRenderer::SceneRenderer(const std::vector<RunView>& runs, const RenderOptio
   if (im.con.currentBuffer != mjFB_OFFSCREEN || im.con.offWidth < options.width ||
       im.con.offHeight < options.height)
     throw RenderError(fmt::format("MuJoCo could not make a {}x{} off-screen buffer", options.width, options.height));
+
+  // The text column (frame_layout.hpp): as wide as its longest line; used
+  // when it leaves at least half the panel to the mechanism and its lines fit
+  // the height, else the text is drawn over the scene in the corners.
+  const auto text_px = [&im](const std::string& t) {
+    int w = 0, best = 0;
+    for (const char c : t) {
+      if (c == '\n') w = 0;
+      else if (c > 0 && c < 127) best = std::max(best, w += im.con.charWidth[static_cast<int>(c)]);
+    }
+    return best;
+  };
+  const int cw = std::max(1, im.con.charWidth[static_cast<int>('0')]);
+  im.pad = std::max(2, cw / 2);
+  im.line_h = std::max(1, im.con.charHeight);
+  int column = text_px("enc 1") + text_px("-3.14159 rad") + 3 * cw;  // the two columns of the data block
+  for (const auto& s : im.slots) column = std::max(column, text_px(s->view.label) + 2 * cw);
+  column = std::max(column, kSwatchChars * cw + text_px(std::string(kLegendDesired)) + 4 * cw);
+  // Height: caption, 5 data lines, 2 legend lines, the scale bar's label and ticks, margins.
+  int label_lines = 0;
+  for (const auto& s : im.slots)
+    if (!s->view.label.empty())
+      label_lines = std::max(label_lines, 1 + static_cast<int>(std::count(s->view.label.begin(),
+                                                                           s->view.label.end(), '\n')));
+  const int pitch = im.line_h + im.line_h / 4;  // mjr_overlay's line spacing, measured
+  const int column_h = (label_lines + 5 + 2 + 1) * pitch + std::max(6, im.line_h / 2) + 6 * im.pad;
+  im.column = column <= kMaxColumnFrac * panel_w && column_h <= options.height ? column : 0;
+  for (auto& s : im.slots) {
+    mjModel* m = s->model.get();
+    const Framing shown =
+        im.column > 0 && (options.camera == "top" || options.camera == "oblique")
+            ? frame_beside_column(region, panel_w, options.height, im.column, im.pad)
+            : region;
+    s->camera = make_camera(m, options.camera, shown, aspect);
+    // Scale of the plane in the image: pixels per mm at the framing distance.
+    const double fovy = m->vis.global.fovy;
+    const double px_per_m = 0.5 * options.height / std::tan(0.5 * fovy * kPi / 180.0) /
+                            std::max(s->camera.distance, 1e-3);
+    const double mm_per_px = 1.0 / (px_per_m * kMetresPerMm);
+    const double line_px = std::max(1.5, options.height / 320.0);
+    s->painter = std::make_unique<OverlayPainter>(s->view.actual, *s->view.log, std::max(0.2, 1.5 * mm_per_px),
+                                                  std::max(2.0, kMarkerRadiusPx * mm_per_px), line_px);
+    // Scale bar in the plane of the traces, top camera only (elsewhere the scale varies across the image).
+    if (options.camera == "top" && im.column > 0) {
+      s->px_per_mm = top_px_per_mm(s->camera.distance, OverlayStyle::kPathZ_m, fovy, options.height);
+      s->scale_mm = scale_bar_mm(s->px_per_mm, im.column - 2 * im.pad - 2 * cw);
+    }
+    mjv_defaultOption(&s->option);
+    for (int g = 0; g < mjNGROUP; ++g) s->option.sitegroup[g] = 0;
+    mjv_defaultScene(&s->scene);
+    mjv_makeScene(m, &s->scene, m->ngeom + s->painter->max_geoms() + 16);
+    s->scene_made = true;
+    s->scene.flags[mjRND_SHADOW] = options.quality == Quality::kHigh;
+    s->scene.flags[mjRND_REFLECTION] = 0;
+    s->scene.flags[mjRND_SKYBOX] = 0;
+  }
   im.frame.width = options.width;
   im.frame.height = options.height;
   im.frame.rgb.assign(static_cast<size_t>(options.width) * options.height * 3, 0);
@@ -184,9 +280,13 @@ const FrameImage& SceneRenderer::render(double t) {
     const mjrRect vp = {s->viewport[0], s->viewport[1], s->viewport[2], s->viewport[3]};
     mjr_render(vp, &s->scene, &im.con);
     const auto text = OverlayPainter::text(row);
-    mjr_overlay(mjFONT_NORMAL, mjGRID_TOPLEFT, vp, text[0].c_str(), text[1].c_str(), &im.con);
-    if (!s->view.label.empty())
-      mjr_overlay(mjFONT_NORMAL, mjGRID_TOPRIGHT, vp, s->view.label.c_str(), nullptr, &im.con);
+    if (im.column > 0) {
+      im.draw_column(*s, text);
+    } else {
+      mjr_overlay(mjFONT_NORMAL, mjGRID_TOPLEFT, vp, text[0].c_str(), text[1].c_str(), &im.con);
+      if (!s->view.label.empty())
+        mjr_overlay(mjFONT_NORMAL, mjGRID_TOPRIGHT, vp, s->view.label.c_str(), nullptr, &im.con);
+    }
   }
   const mjrRect full = {0, 0, im.frame.width, im.frame.height};
   mjr_readPixels(im.bottom_up.data(), nullptr, full, &im.con);
@@ -201,6 +301,15 @@ const FrameImage& SceneRenderer::render(double t) {
 const mjvCamera& SceneRenderer::camera(size_t i) const { return impl_->slots.at(i)->camera; }
 
 std::array<int, 4> SceneRenderer::viewport(size_t i) const { return impl_->slots.at(i)->viewport; }
+
+OverlayLayout SceneRenderer::layout(size_t i) const {
+  const RunSlot& s = *impl_->slots.at(i);
+  OverlayLayout l = s.layout;
+  l.column = impl_->column;
+  l.scale_mm = s.scale_mm;
+  l.px_per_mm = s.px_per_mm;
+  return l;
+}
 
 double SceneRenderer::fovy_deg(size_t i) const { return impl_->slots.at(i)->model->vis.global.fovy; }
 

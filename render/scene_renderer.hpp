@@ -4,6 +4,7 @@
 #pragma once
 
 #include <memory>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -35,12 +36,28 @@ RunView run_view(const sim::SimulationResult& r, const std::string& label);
 void check_render_setup(const std::string& model_xml, const RenderOptions& options,
                         const std::string& camera_what = "camera");
 
+// The region of the plane (mm) a free camera shows for these runs: the base
+// joints, elbows, end-effector and desired path over every log, with a margin.
+Framing framing_of(const std::vector<RunView>& runs);
+
+// Where the 2-D overlays of a panel are (image pixels, x from the left, y
+// from the top), for tests and tools.
+struct OverlayLayout {
+  int column = 0;         // width of the text column at the panel's left (0: text over the scene)
+  double scale_mm = 0.0;  // length the scale bar stands for (0: no bar; top camera with a column only)
+  double px_per_mm = 0.0;  // its pixels per mm, in the plane of the traces
+  int scale_x = 0, scale_y = 0, scale_len = 0;  // the bar: left end, row, length (px)
+  std::array<int, 2> legend_rows{};  // rows of the desired-path and actual-trace swatches
+  int legend_x0 = 0, legend_x1 = 0;  // swatch columns [x0, x1)
+};
+
 class SceneRenderer {
  public:
-  // One or two runs (side by side, each in half the width). Throws
-  // InputError for a bad size or camera, or an empty log; RenderError if
-  // OpenGL fails.
-  SceneRenderer(const std::vector<RunView>& runs, const RenderOptions& options);
+  // One or two runs (side by side, each in half the width), framing region
+  // (framing_of(runs) if not given). Throws InputError for a bad size or
+  // camera, or an empty log; RenderError if OpenGL fails.
+  SceneRenderer(const std::vector<RunView>& runs, const RenderOptions& options,
+                const std::optional<Framing>& region = std::nullopt);
   ~SceneRenderer();
   SceneRenderer(const SceneRenderer&) = delete;
   SceneRenderer& operator=(const SceneRenderer&) = delete;
@@ -52,6 +69,8 @@ class SceneRenderer {
   // (left, bottom, width, height in OpenGL pixels, bottom-up).
   const mjvCamera& camera(size_t i) const;
   std::array<int, 4> viewport(size_t i) const;
+  // The overlay layout of run i's panel (positions known after the first render()).
+  OverlayLayout layout(size_t i) const;
   // Vertical field of view (degrees) of free cameras in run i's model.
   double fovy_deg(size_t i) const;
 

@@ -1,6 +1,9 @@
 #include "render/video_job.hpp"
 
+#include <algorithm>
+#include <cctype>
 #include <chrono>
+#include <filesystem>
 #include <cmath>
 #include <cstdio>
 #include <optional>
@@ -9,10 +12,17 @@
 
 #include "models/errors.hpp"
 #include "models/output_file.hpp"
+#include "render/frame_queue.hpp"
 #include "render/png_writer.hpp"
 #include "render/video_encoder.hpp"
 
 namespace gpm::render {
+namespace {
+
+// Frames waiting for the encoder at most (a frame is 0.9 MB at 640x480).
+constexpr int kQueuedFrames = 3;
+
+}  // namespace
 
 int frame_count(double t0, double t1, double fps, double speed) {
   const double span = std::max(0.0, t1 - t0);
@@ -20,6 +30,19 @@ int frame_count(double t0, double t1, double fps, double speed) {
 }
 
 double frame_time(double t0, int k, double fps, double speed) { return t0 + k * speed / fps; }
+
+void check_output_suffix(const std::string& path, const std::string& suffix, const std::string& what) {
+  namespace fs = std::filesystem;
+  std::error_code ec;
+  const fs::file_status st = fs::status(path, ec);
+  if (!ec && (fs::is_character_file(st) || fs::is_fifo(st) || fs::is_block_file(st))) return;
+  std::string ext = fs::path(path).extension().string();
+  std::transform(ext.begin(), ext.end(), ext.begin(), [](unsigned char c) { return std::tolower(c); });
+  if (ext == suffix) return;
+  const std::string format = suffix == ".mp4" ? "H.264 MP4" : suffix == ".png" ? "PNG" : suffix;
+  throw InputError(fmt::format("{} {}: gpm render writes {} only: give a name ending in {} (got {})", what, path,
+                               format, suffix, ext.empty() ? "no suffix" : "'" + ext + "'"));
+}
 
 FrameRequest parse_frame_request(const std::string& text, const std::string& what) {
   const auto colon = text.find(':');
@@ -41,44 +64,82 @@ FrameRequest parse_frame_request(const std::string& text, const std::string& wha
   return r;
 }
 
-namespace {
-
-// Temporary PNG files, renamed together at the end or removed.
-
-}  // namespace
+std::vector<int> part_frame_counts(const std::vector<std::vector<RunView>>& parts, const RenderOptions& options) {
+  std::vector<int> n;
+  for (const std::vector<RunView>& runs : parts) {
+    double t0 = 1e300, t1 = -1e300;
+    for (const RunView& r : runs) {
+      if (!r.log || r.log->rows.empty())
+        throw InputError(fmt::format("render: run '{}' has an empty trajectory log (nothing to show)", r.label));
+      t0 = std::min(t0, r.log->rows.front().t);
+      t1 = std::max(t1, r.log->rows.back().t);
+    }
+    n.push_back(frame_count(t0, t1, options.fps, options.speed));
+  }
+  return n;
+}
 
 VideoSummary render_video(const std::vector<RunView>& runs, const RenderOptions& options,
-                          const std::string& mp4_path, const std::vector<FrameRequest>& pngs) {
+                          const std::string& mp4_path, const std::vector<FrameRequest>& pngs,
+                          const VideoJobOptions& job) {
+  return render_parts({runs}, options, mp4_path, pngs, job);
+}
+
+VideoSummary render_parts(const std::vector<std::vector<RunView>>& parts, const RenderOptions& options,
+                          const std::string& mp4_path, const std::vector<FrameRequest>& pngs,
+                          const VideoJobOptions& job) {
   if (!(options.fps > 0)) throw InputError(fmt::format("fps must be positive, got {}", options.fps));
   if (!(options.speed > 0)) throw InputError(fmt::format("speed must be positive, got {}", options.speed));
-  SceneRenderer renderer(runs, options);
-  const double t0 = renderer.start_time();
-  const int n = frame_count(t0, renderer.end_time(), options.fps, options.speed);
+  if (parts.empty()) throw InputError("render: nothing to show (no part)");
+  const std::vector<int> counts = part_frame_counts(parts, options);
+  std::vector<int> first;
+  int n = 0;
+  for (int c : counts) first.push_back(n), n += c;
   for (const FrameRequest& p : pngs) {
     if (p.frame >= n)
       throw InputError(fmt::format("--frame-png {}: the video has {} frames (0..{})", p.frame, n, n - 1));
   }
+  std::vector<RunView> all;
+  for (const auto& runs : parts) all.insert(all.end(), runs.begin(), runs.end());
+  const Framing region = framing_of(all);
+  // The first renderer checks the size and the camera before any file is opened.
+  auto renderer = std::make_unique<SceneRenderer>(parts.front(), options, region);
   // Every PNG staged (or a device opened in place) before any frame is rendered.
   std::vector<OutputFile> png_out;
   png_out.reserve(pngs.size());
   for (const FrameRequest& p : pngs) png_out.emplace_back(p.path);
   std::optional<VideoEncoder> encoder;
   if (!mp4_path.empty()) encoder.emplace(mp4_path, options.width, options.height, options.fps);
-  int last = n - 1;
-  if (!encoder) {
-    last = -1;
-    for (const FrameRequest& p : pngs) last = std::max(last, p.frame);
-  }
-  const auto start = std::chrono::steady_clock::now();
-  for (int k = 0; k <= last; ++k) {
-    bool wanted = encoder.has_value();
-    for (const FrameRequest& p : pngs) wanted = wanted || p.frame == k;
-    if (!wanted) continue;
-    const FrameImage& img = renderer.render(frame_time(t0, k, options.fps, options.speed));
+  std::vector<bool> wanted(static_cast<size_t>(n), encoder.has_value());
+  for (const FrameRequest& p : pngs) wanted[static_cast<size_t>(p.frame)] = true;
+
+  // What happens to a rendered frame: encoded, and saved as the PNGs asking for it.
+  const auto consume = [&](const FrameImage& img, int k) {
     if (encoder) encoder->add_frame(img);
     for (size_t i = 0; i < pngs.size(); ++i)
       if (pngs[i].frame == k) write_png_to(png_out[i], img);
+  };
+  std::optional<FrameQueue> queue;
+  if (job.pipeline == Pipeline::kOverlapped) queue.emplace(kQueuedFrames, consume);
+  const auto start = std::chrono::steady_clock::now();
+  int rendered = 0;
+  std::string gl;
+  for (size_t part = 0; part < parts.size(); ++part) {
+    if (part > 0) renderer = std::make_unique<SceneRenderer>(parts[part], options, region);
+    const double t0 = renderer->start_time();
+    for (int j = 0; j < counts[part]; ++j) {
+      const int k = first[part] + j;
+      if (!wanted[static_cast<size_t>(k)]) continue;
+      const FrameImage& img = renderer->render(frame_time(t0, j, options.fps, options.speed));
+      if (queue) queue->push(img, k);
+      else consume(img, k);
+      ++rendered;
+      if (job.progress) job.progress->update(rendered);
+    }
+    gl = renderer->gl_renderer();
   }
+  if (queue) queue->finish();
+  if (job.progress) job.progress->finish();
   if (encoder) encoder->finish();
   for (OutputFile& f : png_out) f.commit();
   const double wall = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
@@ -87,9 +148,10 @@ VideoSummary render_video(const std::vector<RunView>& runs, const RenderOptions&
   s.width = options.width;
   s.height = options.height;
   s.wall_s = wall;
-  s.frames_per_s = wall > 0 ? s.frames / wall : 0.0;
-  s.gl_renderer = renderer.gl_renderer();
+  s.frames_per_s = wall > 0 ? rendered / wall : 0.0;
+  s.gl_renderer = gl;
   s.codec = encoder ? encoder->codec_name() : "";
+  s.part_first = first;
   return s;
 }
 

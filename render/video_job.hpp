@@ -12,6 +12,7 @@
 #include <string>
 #include <vector>
 
+#include "models/progress.hpp"
 #include "render/render_options.hpp"
 #include "render/scene_renderer.hpp"
 
@@ -31,6 +32,11 @@ struct FrameRequest {
   std::string path;
 };
 
+// Refuses (InputError naming `what`) an output whose name does not end in
+// suffix (".mp4", ".png"; any case): the name must say the format written.
+// A device or FIFO that exists (e.g. /dev/null) is accepted by any name.
+void check_output_suffix(const std::string& path, const std::string& suffix, const std::string& what);
+
 // Parses "N:FILE" (e.g. "12:frame.png"); throws InputError naming `what`.
 FrameRequest parse_frame_request(const std::string& text, const std::string& what);
 
@@ -41,12 +47,39 @@ struct VideoSummary {
   double frames_per_s = 0.0;   // frames / wall_s
   std::string gl_renderer;
   std::string codec;
+  std::vector<int> part_first;  // render_parts: first frame of each part
+};
+
+// How frames reach the encoder: rendered and encoded one after the other
+// (kSequential), or overlapped on two threads through a frame queue
+// (kOverlapped, frame_queue.hpp; the same bytes).
+enum class Pipeline { kSequential, kOverlapped };
+
+// How a video is made beyond its look: the pipeline, and a progress line
+// (frames, fps, ETA) on a terminal (none if null).
+struct VideoJobOptions {
+  Pipeline pipeline = Pipeline::kOverlapped;
+  Progress* progress = nullptr;
 };
 
 // Renders runs over their whole logs into mp4_path (none if empty) and the
 // requested PNG frames. Throws InputError for a bad size, camera, frame index
 // or output path; on any failure no output file is left behind.
 VideoSummary render_video(const std::vector<RunView>& runs, const RenderOptions& options,
-                          const std::string& mp4_path, const std::vector<FrameRequest>& pngs);
+                          const std::string& mp4_path, const std::vector<FrameRequest>& pngs,
+                          const VideoJobOptions& job = {});
+
+// Renders parts one after the other into one video (e.g. the story of a
+// calibration run: the nominal controller on the test path, the sampling,
+// the calibrated controller), each over its whole log, all framed alike (the
+// region covering every part); each part is one run or two side by side.
+// Frame indices of pngs count over the whole video. Part i starts at frame
+// sum of frames of parts before it (returned in VideoSummary::part_first).
+VideoSummary render_parts(const std::vector<std::vector<RunView>>& parts, const RenderOptions& options,
+                          const std::string& mp4_path, const std::vector<FrameRequest>& pngs,
+                          const VideoJobOptions& job = {});
+
+// Frames each part of render_parts would have (the timeline, no rendering).
+std::vector<int> part_frame_counts(const std::vector<std::vector<RunView>>& parts, const RenderOptions& options);
 
 }  // namespace gpm::render

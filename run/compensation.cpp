@@ -43,7 +43,7 @@ double internal_preload(const Geometry& g, const Eigen::Vector2d& p, const Eigen
 
 Accuracy measure_accuracy(const Robot& actual, const sim::TwinConfig& twin,
                           const Robot& controller, const CompensationPlan& plan,
-                          unsigned long long seed, const std::string& label) {
+                          unsigned long long seed, const std::string& label, Progress* progress) {
   Accuracy acc;
   acc.label = label;
   const sim::TwinModel model(actual, twin);
@@ -52,8 +52,10 @@ Accuracy measure_accuracy(const Robot& actual, const sim::TwinConfig& twin,
 
   std::vector<double> preload;
   long id = 0;
+  if (progress) progress->update(0);
   for (const Eigen::Vector2d& target : plan.poses) {
     const sim::SampleRecord r = sim::take_sample(session, target, id++, plan.sampling);
+    if (progress) progress->update(static_cast<double>(id));
     acc.static_error_um.push_back((r.xy_mm - target).norm() * 1e3);
     const sim::TwinSnapshot snap = sim::advance(session, sim::PathPoint{target, Eigen::Vector2d::Zero()});
     preload.push_back(internal_preload(actual.geometry, snap.ee_mm, snap.torque, actual.branch));
@@ -75,6 +77,7 @@ Accuracy measure_accuracy(const Robot& actual, const sim::TwinConfig& twin,
   acc.path_rms_um = rms(err);
   acc.path_max_um = max_of(err);
   acc.path_preload_rms_nm = rms(path_preload);
+  if (progress) progress->finish();
   return acc;
 }
 

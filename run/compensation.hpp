@@ -9,6 +9,7 @@
 
 #include <Eigen/Core>
 
+#include "models/progress.hpp"
 #include "models/robot.hpp"
 #include "sim/sampling.hpp"
 #include "sim/trajectory.hpp"
@@ -41,10 +42,11 @@ struct Accuracy {
   sim::TrajectoryLog path_log;  // the path run, for figures and video
 };
 
-// Runs the plan on a fresh twin of `actual` driven by `controller`.
+// Runs the plan on a fresh twin of `actual` driven by `controller`; with
+// progress, reports the test poses done (then the path, one more step).
 Accuracy measure_accuracy(const Robot& actual, const sim::TwinConfig& twin,
                           const Robot& controller, const CompensationPlan& plan,
-                          unsigned long long seed, const std::string& label);
+                          unsigned long long seed, const std::string& label, Progress* progress = nullptr);
 
 // |P tau| for torques tau at joint configuration q of geometry g (N m).
 double internal_preload(const Geometry& g, const Eigen::Vector2d& p, const Eigen::Vector3d& tau,

@@ -139,7 +139,9 @@ RunOutcome run_scenario(const RunSpec& spec_in, const std::string& scenario_file
     out.sim = sample_on_hardware(spec, samples_path, out.hardware_description);
   } else {
     stage("simulating the twin");
-    out.sim = sim::run_simulation(spec.sim);
+    gpm::Progress simulated = progress ? gpm::Progress::terminal("gpm run: simulating", "simulated s")
+                                       : gpm::Progress("", "", 0, nullptr, nullptr);  // models/progress.hpp
+    out.sim = sim::run_simulation(spec.sim, nullptr, &simulated);
   }
   const Robot& actual = out.sim.actual;
 
@@ -245,16 +247,28 @@ RunOutcome run_scenario(const RunSpec& spec_in, const std::string& scenario_file
       if (d.mode == sim::ServoMode::kTorque) d.mode = sim::ServoMode::kTorqueOff;
     stage("measuring accuracy with the nominal model");
     const unsigned long long seed = sim::derive_seed(spec.sim.seed, 4);
-    out.before = measure_accuracy(actual, test_twin, out.nominal, *spec.compensation, seed, "nominal");
+    // A progress line per measurement on a terminal (models/progress.hpp): test poses, then the path.
+    std::optional<gpm::Progress> measuring;
+    const auto steps = [&](const std::string& label) -> gpm::Progress& {
+      measuring.reset();
+      measuring.emplace(progress ? gpm::Progress::terminal("gpm run: " + label, "test steps",
+                                                           static_cast<double>(spec.compensation->poses.size() + 1))
+                                 : gpm::Progress("", "", 0, nullptr, nullptr));
+      return *measuring;
+    };
+    out.before = measure_accuracy(actual, test_twin, out.nominal, *spec.compensation, seed, "nominal",
+                                 &steps("nominal model"));
     if (out.calibration) {
       stage("measuring accuracy with the calibrated model");
-      out.after = measure_accuracy(actual, test_twin, out.calibrated, *spec.compensation, seed, "calibrated");
+      out.after = measure_accuracy(actual, test_twin, out.calibrated, *spec.compensation, seed, "calibrated",
+                                 &steps("calibrated model"));
     }
     if (!spec.hardware) {
       stage("measuring accuracy with the actual parameters (the floor)");
       Robot truth = out.nominal;
       truth.geometry = actual.geometry;
-      out.floor = measure_accuracy(actual, test_twin, truth, *spec.compensation, seed, "actual");
+      out.floor = measure_accuracy(actual, test_twin, truth, *spec.compensation, seed, "actual",
+                                 &steps("actual parameters"));
     }
   }
   out.checks = evaluate_expectations(out);

@@ -21,6 +21,9 @@ namespace {
 // trajectory log (112 bytes each in memory: 2e7 rows is about 2.2 GB).
 constexpr long long kMaxPoses = 10000;
 constexpr double kMaxLogRows = 2e7;
+// Default rate of the trajectory log (trajectory.csv): ample for figures and
+// 30 fps video, a tenth to a fortieth of the servo rate (log.every: 1 for all).
+constexpr double kDefaultLogRateHz = 200.0;
 
 // Everything a key needs to report an error.
 struct Ctx {
@@ -421,10 +424,24 @@ Scenario scenario_from_yaml(const YAML::Node& root, const std::string& file, con
   }
   if (root["sampling"]) s.sampling = parse_sampling(root["sampling"], c.at("sampling"));
   if (root["path"]) s.path = parse_path(root["path"], c.at("path"));
+  // trajectory.csv at kDefaultLogRateHz unless log.every or log.rate_hz says otherwise
+  // (log.every: 1 is the servo rate).
+  double log_rate_hz = kDefaultLogRateHz;
   if (const YAML::Node l = root["log"]) {
-    yaml_check_keys(l, file, "log", {"every"});
+    yaml_check_keys(l, file, "log", {"every", "rate_hz"});
+    if (l["every"] && l["rate_hz"])
+      fail(c.at("log"), l, "give log.every or log.rate_hz, not both");
     if (l["every"]) s.log_every = static_cast<int>(yaml_integer(l["every"], file, "log.every", 1, 1000000));
+    if (l["rate_hz"]) {
+      log_rate_hz = yaml_positive(l["rate_hz"], file, "log.rate_hz");
+      if (log_rate_hz > s.twin.servo_rate_hz)
+        fail(c.at("log.rate_hz"), l["rate_hz"],
+             fmt::format("must be at most the servo rate ({} Hz; log.every: 1 logs every servo period), got {}",
+                         s.twin.servo_rate_hz, log_rate_hz));
+    }
   }
+  if (!root["log"] || !root["log"]["every"])
+    s.log_every = std::max(1, static_cast<int>(std::lround(s.twin.servo_rate_hz / log_rate_hz)));
   if (root["operation"]) s.operation = parse_operation(root["operation"], c.at("operation"));
   if (const YAML::Node ev = root["events"]) {
     if (!s.operation) fail(c.at("events"), ev, "events happen during operation: give an 'operation' section");

@@ -68,13 +68,18 @@ void check_targets(const Scenario& s, const Robot& actual, const std::vector<Eig
   }
 }
 
-SimulationResult run_simulation(const Scenario& s, std::function<void(const LogRow&)> sink) {
+SimulationResult run_simulation(const Scenario& s, std::function<void(const LogRow&)> sink, Progress* progress) {
   SimulationResult r;
   r.actual = make_actual(s);
   if (s.twin.effects.thermal.on()) r.log.thermal_reference = r.actual.geometry;
-  if (sink) {
+  if (sink) r.log.keep_rows = false;
+  if (progress && progress->active()) {
+    r.log.sink = [sink = std::move(sink), progress](const LogRow& row) {
+      if (sink) sink(row);
+      progress->update(row.t);
+    };
+  } else {
     r.log.sink = std::move(sink);
-    r.log.keep_rows = false;
   }
   const std::vector<Eigen::Vector2d> poses =
       s.sampling ? plan_poses(*s.sampling, s.seed) : std::vector<Eigen::Vector2d>{};
@@ -100,6 +105,7 @@ SimulationResult run_simulation(const Scenario& s, std::function<void(const LogR
   r.max_violation_m = r.log.max_violation_m;
   r.max_torque = r.log.max_torque;
   r.log.sink = nullptr;
+  if (progress) progress->finish();
   r.simulated_s = state.data->time;
   return r;
 }
@@ -158,7 +164,7 @@ void write_simulation(const SimulationResult& r, const std::string& dir) {
   out.commit();
 }
 
-SimulationResult simulate_to_folder(const Scenario& s, const std::string& dir) {
+SimulationResult simulate_to_folder(const Scenario& s, const std::string& dir, Progress* progress) {
   OutputFolder folder(dir);  // models/output_file.hpp: all files or none
   const std::string traj = folder.staged_path("trajectory.csv");
   std::ofstream out(traj, std::ios::binary | std::ios::trunc);
@@ -166,7 +172,8 @@ SimulationResult simulate_to_folder(const Scenario& s, const std::string& dir) {
   std::optional<Geometry> ref;
   if (thermal) ref = make_actual(s).geometry;
   out << trajectory_header(thermal);
-  SimulationResult r = run_simulation(s, [&](const LogRow& row) { out << trajectory_line(row, ref ? &*ref : nullptr); });
+  SimulationResult r = run_simulation(
+      s, [&](const LogRow& row) { out << trajectory_line(row, ref ? &*ref : nullptr); }, progress);
   out.flush();
   if (!out) throw InputError(fmt::format("{}/trajectory.csv: cannot write file (disk full or not writable?)", dir));
   out.close();

@@ -7,6 +7,7 @@
 #include <string>
 #include <vector>
 
+#include "models/progress.hpp"
 #include "models/robot.hpp"
 #include "sim/sampling.hpp"
 #include "sim/scenario.hpp"
@@ -32,7 +33,9 @@ void check_targets(const Scenario& s, const Robot& actual, const std::vector<Eig
 // Runs the scenario in memory; throws InputError for bad targets or
 // parameters, SimError if the physics diverges. With a sink the trajectory
 // rows are handed to it as they are produced and not kept (log.rows empty).
-SimulationResult run_simulation(const Scenario& s, std::function<void(const LogRow&)> sink = nullptr);
+// With progress, the simulated time of each logged row is reported to it.
+SimulationResult run_simulation(const Scenario& s, std::function<void(const LogRow&)> sink = nullptr,
+                                Progress* progress = nullptr);
 
 // samples.csv text: the docs/FORMATS.md contract (sample,theta_m1..3,x,y) followed by
 // extra columns theta_a1..3 (true link angles), target_x, target_y, settled,
@@ -56,6 +59,6 @@ void write_simulation(const SimulationResult& r, const std::string& dir);
 // trajectory.csv into the staging folder as it is produced (memory does not
 // grow with the run's length; r.log.rows stays empty); all or nothing as
 // write_simulation.
-SimulationResult simulate_to_folder(const Scenario& s, const std::string& dir);
+SimulationResult simulate_to_folder(const Scenario& s, const std::string& dir, Progress* progress = nullptr);
 
 }  // namespace gpm::sim

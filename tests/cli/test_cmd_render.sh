@@ -1,8 +1,11 @@
 #!/usr/bin/env bash
 # Tests of app/cmd_render.cpp: gpm render writes an H.264 MP4 that ffprobe
 # reads with the requested size and frame count and a PNG frame; the same
-# scenario gives identical files; bad camera, size or output path exits 2
-# with one line and leaves nothing behind; MuJoCo never writes MUJOCO_LOG.TXT.
+# scenario gives identical files; bad camera, size, output path or suffix
+# exits 2 with one line and leaves nothing behind; a gpm run scenario is
+# shown as its story (nominal, sampling, calibrated, in that order); off a
+# terminal nothing but the summary is printed; MuJoCo never writes
+# MUJOCO_LOG.TXT.
 set -u
 GPM="$1"
 source "$(dirname "$0")/cli_lib.sh"
@@ -37,6 +40,47 @@ check "fps 0" 2 "$GPM" render s.yaml -o c.mp4 --fps 0
 expect_err "fps message" "--fps: must be in \(0, 240\], got 0"
 check "speed 0" 2 "$GPM" render s.yaml -o c.mp4 --speed 0
 expect_err "speed message" "--speed: must be positive, got 0"
+
+# The suffix names the format: anything but .mp4 for -o and .png for
+# --frame-png is refused before anything is simulated (issue 19: -o video.avi
+# used to write MP4 silently).
+check "avi refused" 2 "$GPM" render s.yaml -o c.avi
+expect_err "suffix message" "^gpm: error: -o c.avi: gpm render writes H.264 MP4 only: give a name ending in .mp4 \(got '.avi'\)$"
+check "no suffix refused" 2 "$GPM" render s.yaml -o video
+expect_err "no suffix message" "give a name ending in .mp4 \(got no suffix\)"
+check "jpg frame refused" 2 "$GPM" render s.yaml --frame-png 1:c.jpg
+expect_err "png suffix message" "--frame-png c.jpg: gpm render writes PNG only"
+check "upper-case suffix accepted" 0 "$GPM" render s.yaml -o C.MP4
+if [[ ! -e c.avi && ! -e video && ! -e c.jpg ]]; then passed=$((passed+1)); else echo "FAIL refused outputs written"; fail=$((fail+1)); fi
+rm -f C.MP4
+# Off a terminal (here stderr is a file) no progress line is written.
+if [[ ! -s "$tmp/err" ]]; then passed=$((passed+1)); else echo "FAIL stderr not empty off a terminal:"; cat "$tmp/err"; fail=$((fail+1)); fi
+
+# A gpm run scenario is shown as a story: the nominal controller on the test
+# path (a 0.4 s circle: 9 frames at 20 fps), the sampling, then the
+# calibrated controller on the same path (9 frames), in that order.
+cat >run.yaml <<'YAML'
+name: render_story
+seed: 3
+actual: {geometry: {dth1: 0.01, dth2: -0.01, dth3: 0.01}}
+encoder: {bits: 0, noise_rad: 0}
+sampling: {pattern: disc, centre: [216.5, 250], radius: 60, count: 3, move_speed_mm_s: 400}
+calibration: {cost: j2, method: lm, fix: [xa1, ya1, xa2, ya2, xa3, ya3, la1, la2, la3, lb1, lb2, lb3]}
+compensation: {count: 2, radius: 20, path: {shape: circle, centre: [216.5, 250], radius: 15, period_s: 0.4}}
+render: {size: 320x240, fps: 20}
+YAML
+check "story" 0 "$GPM" render run.yaml -o story.mp4
+parts=$(sed -nE 's/^part +([0-9])\/3 ([a-z]+) .* from frame ([0-9]+)$/\1 \2 \3/p' "$tmp/out" | tr '\n' ';')
+total=$(sed -nE 's/^frames +([0-9]+) at.*/\1/p' "$tmp/out")
+if [[ "$parts" == "1 nominal 0;2 sampling 9;3 calibrated $((total - 9));" ]]; then passed=$((passed+1))
+else echo "FAIL story parts: '$parts' (total $total)"; cat "$tmp/out"; fail=$((fail+1)); fi
+probe=$(ffprobe -v error -count_frames -select_streams v:0 -show_entries stream=nb_read_frames -of csv=p=0 story.mp4)
+if [[ "$probe" == "$total" ]]; then passed=$((passed+1)); else echo "FAIL story frames: ffprobe $probe, summary $total"; fail=$((fail+1)); fi
+# --simulation-only: the sampling alone, as many frames as the story's second part.
+check "simulation only" 0 "$GPM" render run.yaml -o sim.mp4 --simulation-only
+n=$(sed -nE 's/^frames +([0-9]+) at.*/\1/p' "$tmp/out")
+if [[ "$n" -eq $((total - 18)) ]] && ! grep -q '^part' "$tmp/out"; then passed=$((passed+1)); else echo "FAIL simulation only: $n frames, want $((total - 18))"; fail=$((fail+1)); fi
+rm -f story.mp4 sim.mp4 run.yaml
 
 # Output policy (models/output_file.hpp): the scenario is never overwritten, a
 # device is written in place, a symlink is followed.

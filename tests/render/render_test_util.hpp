@@ -29,12 +29,13 @@ path: {shape: circle, centre: [216.5, 250], radius: 20, period_s: 0.5}
 log: {every: 2}
 )";
 
-// A short straight line from home: about 0.35 s.
+// A short straight line from home: about 0.35 s, logged at the servo rate.
 inline const char* kLineScenario = R"(
 name: tiny_line
 seed: 7
 actual: {perturb: {base_mm: 0.5, link_mm: 0.5, offset_rad: 0.01}}
 path: {shape: line, from: [216.5, 250], to: [246.5, 230], duration_s: 0.3}
+log: {every: 1}
 )";
 
 // The simulation of scenario text (cached per text: runs once per test binary).

@@ -1,5 +1,6 @@
 // Tests of render/video_job.cpp: the frame timeline, whole videos with PNG
-// snapshots, reproducibility, and all-or-nothing failures.
+// snapshots, reproducibility, the overlapped pipeline against the sequential
+// one, videos in parts, and all-or-nothing failures.
 #include <fstream>
 #include <iterator>
 
@@ -77,6 +78,46 @@ TEST(VideoJob, SameScenarioSameBytes) {
   }
   EXPECT_EQ(bytes_of(d / "a.png"), bytes_of(d / "b.png"));
   EXPECT_EQ(bytes_of(d / "a.mp4"), bytes_of(d / "b.mp4"));
+  fs::remove_all(d);
+}
+
+// Issue 20: rendering and encoding overlapped through the frame queue give
+// the same bytes as the sequential loop (video and PNG alike).
+TEST(VideoJob, OverlappedPipelineGivesTheSequentialBytes) {
+  const auto& r = run_of(testing::kCircleScenario);
+  const fs::path d = testing::fresh_dir("job_pipeline");
+  for (const Pipeline p : {Pipeline::kSequential, Pipeline::kOverlapped}) {
+    const std::string name = p == Pipeline::kSequential ? "seq" : "ovl";
+    VideoJobOptions job;
+    job.pipeline = p;
+    const VideoSummary v = render_video({run_view(r, "circle")}, tiny(), (d / (name + ".mp4")).string(),
+                                        {{5, (d / (name + ".png")).string()}}, job);
+    EXPECT_GT(v.frames, 10);
+  }
+  EXPECT_GT(bytes_of(d / "seq.mp4").size(), 1000u);
+  EXPECT_EQ(bytes_of(d / "seq.mp4"), bytes_of(d / "ovl.mp4"));
+  EXPECT_EQ(bytes_of(d / "seq.png"), bytes_of(d / "ovl.png"));
+  fs::remove_all(d);
+}
+
+// Parts follow each other: frame counts add up, each part starts at its
+// first frame, and a PNG of part 2's first frame is that part rendered alone.
+TEST(VideoJob, PartsPlayOneAfterTheOther) {
+  const auto& a = run_of(testing::kCircleScenario);
+  const auto& b = run_of(testing::kLineScenario);
+  const fs::path d = testing::fresh_dir("job_parts");
+  const RenderOptions o = tiny();
+  const std::vector<std::vector<RunView>> parts = {{run_view(a, "first")}, {run_view(b, "second")}};
+  const std::vector<int> n = part_frame_counts(parts, o);
+  ASSERT_EQ(n.size(), 2u);
+  EXPECT_EQ(n[0], part_frame_counts({{run_view(a, "")}}, o)[0]);
+  const VideoSummary v = render_parts(parts, o, (d / "v.mp4").string(), {{n[0], (d / "p.png").string()}});
+  EXPECT_EQ(v.frames, n[0] + n[1]);
+  EXPECT_EQ(v.part_first, (std::vector<int>{0, n[0]}));
+  EXPECT_EQ(testing::probe((d / "v.mp4").string()), fmt::format("h264,160,120,20/1,{}\n", n[0] + n[1]));
+  std::vector<RunView> all = {run_view(a, ""), run_view(b, "")};
+  SceneRenderer alone({run_view(b, "second")}, o, framing_of(all));
+  EXPECT_EQ(read_png((d / "p.png").string()).rgb, alone.render(b.log.rows.front().t).rgb);
   fs::remove_all(d);
 }
 

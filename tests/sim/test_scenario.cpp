@@ -88,6 +88,25 @@ log: {every: 10}
   EXPECT_DOUBLE_EQ(poses[3].x(), 230.0);
 }
 
+// Issue 19: trajectory.csv at 200 rows/s unless asked otherwise; log.every: 1
+// is the servo rate; log.rate_hz picks the nearest whole divisor of it.
+TEST(Scenario, TrajectoryLogRate) {
+  const auto every = [](const std::string& extra) {
+    return parse_scenario(std::string(kMinimal) + extra, "t.yaml", ".").log_every;
+  };
+  EXPECT_EQ(every("servo: {rate_hz: 4000}\nphysics: {timestep_s: 0.00025}\n"), 20);  // 4000 / 200
+  EXPECT_EQ(every("servo: {rate_hz: 4000}\nphysics: {timestep_s: 0.00025}\nlog: {every: 1}\n"), 1);
+  EXPECT_EQ(every("servo: {rate_hz: 4000}\nphysics: {timestep_s: 0.00025}\nlog: {rate_hz: 1000}\n"), 4);
+  EXPECT_EQ(every("servo: {rate_hz: 4000}\nphysics: {timestep_s: 0.00025}\nlog: {rate_hz: 4000}\n"), 1);
+  EXPECT_EQ(every("servo: {rate_hz: 4000}\nphysics: {timestep_s: 0.00025}\nlog: {rate_hz: 300}\n"), 13);  // 13.3
+  EXPECT_NE(error_of(std::string(kMinimal) + "log: {every: 2, rate_hz: 100}").find("not both"), std::string::npos);
+  EXPECT_NE(error_of(std::string(kMinimal) + "servo: {rate_hz: 4000}\nphysics: {timestep_s: 0.00025}\n"
+                                             "log: {rate_hz: 5000}")
+                .find("log.rate_hz: must be at most the servo rate (4000 Hz"),
+            std::string::npos);
+  EXPECT_NE(error_of(std::string(kMinimal) + "log: {rate_hz: 0}").find("log.rate_hz"), std::string::npos);
+}
+
 TEST(Scenario, ErrorsNameTheKeyPath) {
   EXPECT_NE(error_of("sampling: {pattern: disc, radius: -5, count: 3}").find("sampling.radius: must be positive"),
             std::string::npos);
