@@ -10,6 +10,7 @@
 
 #include "models/errors.hpp"
 #include "models/kinematics.hpp"
+#include "models/mjcf.hpp"
 #include "models/output_file.hpp"
 #include "models/yaml_util.hpp"
 #include "report/report_document.hpp"
@@ -75,8 +76,29 @@ std::string csv_field(const std::string& s) {
 
 }  // namespace
 
+void apply_reading_model(calib::monitor::MonitorSettings& ms, const sim::TwinConfig& twin,
+                         const std::optional<std::array<double, 5>>& motion_nu) {
+  const sim::Effects& fx = twin.effects;
+  for (std::size_t i = 0; i < 3; ++i) {
+    ms.skew_s[i] = fx.encoder_skew_s[i];
+    ms.compliance_rad_per_Nm[i] = fx.mjcf.compliance_rad_per_Nm[i];
+    // The reducer's friction and damping sit on the rotor, ahead of the
+    // compliance (models/mjcf.cpp): only with a compliance does it matter.
+    ms.coulomb_Nm[i] = fx.mjcf.coulomb_Nm[i];
+    ms.viscous_Nm_s[i] = twin.mjcf.active_damping + fx.mjcf.viscous_Nm_s[i];
+    ms.cyclic_rad[i] = fx.encoder_cyclic_rad[i];
+    ms.clearance_mm[i] = fx.mjcf.clearance_m[i] / kMetresPerMm;
+  }
+  if (motion_nu) {
+    // s2, s3 relative to encoder 1, then c1..c3 (calib/motion_correction.hpp).
+    ms.skew_s = {0.0, (*motion_nu)[0], (*motion_nu)[1]};
+    ms.compliance_rad_per_Nm = {(*motion_nu)[2], (*motion_nu)[3], (*motion_nu)[4]};
+  }
+}
+
 MonitorOutcome run_monitor(const sim::Scenario& s, const Robot& controller,
-                           const std::array<double, kNumParams>& prior_sigma, const MonitorProgress& progress) {
+                           const std::array<double, kNumParams>& prior_sigma, const MonitorProgress& progress,
+                           const std::optional<std::array<double, 5>>& motion_nu) {
   namespace mon = calib::monitor;
   const auto wall0 = std::chrono::steady_clock::now();
   if (!s.operation)
@@ -110,6 +132,7 @@ MonitorOutcome run_monitor(const sim::Scenario& s, const Robot& controller,
   // the links growing relative to the base, which the monitor's growth state
   // follows on its own time constant.
   if (s.twin.effects.thermal.on()) ms.thermal_tau_s = s.twin.effects.thermal.time_constant_s;
+  apply_reading_model(ms, s.twin, motion_nu);
   out.model = mon::make_monitor_model(ms);
   mon::MonitorData md = mon::make_monitor_data(out.model);
 
@@ -126,7 +149,7 @@ MonitorOutcome run_monitor(const sim::Scenario& s, const Robot& controller,
     const double t = k * period;
     const sim::PathPoint desired = sim::path_at(path, std::fmod(t, loop));
     const sim::TwinSnapshot snap = sim::advance(session, desired);
-    const mon::StepResult r = mon::monitor_step(out.model, md, snap.time_s, snap.readings);
+    const mon::StepResult r = mon::monitor_step(out.model, md, snap.time_s, snap.readings, snap.motor_velocity, snap.torque);
     if (r.explained) {
       const mon::Alarm& a = mon::last_alarm(md);
       out.alarms.push_back({a.t_s, mon::alarm_kind_name(a.kind), a.statistic, a.threshold, mon::describe_alarm(a),

@@ -70,8 +70,19 @@ using MonitorProgress = std::function<void(double t_s, double duration_s)>;
 // prior_sigma: its 1-sigma per parameter (NaN: the monitor's defaults).
 // Throws InputError when the scenario has no operation, or when an event
 // leaves a mechanism that cannot reach the operation path.
+// motion_nu: latch skew s2, s3 (s) and compliance c1..c3 (rad/N m) estimated
+// by a calibration in motion (calib/motion_correction.hpp); without it the
+// monitor takes the values the scenario's effects state.
 MonitorOutcome run_monitor(const sim::Scenario& scenario, const Robot& controller,
-                           const std::array<double, kNumParams>& prior_sigma, const MonitorProgress& progress = {});
+                           const std::array<double, kNumParams>& prior_sigma, const MonitorProgress& progress = {},
+                           const std::optional<std::array<double, 5>>& motion_nu = std::nullopt);
+
+// The monitor's reading model from the twin's stated effects: the motion
+// corrections (skew, compliance; from motion_nu when given; the friction on
+// the rotor) and the stated magnitudes of the cyclic encoder error and the
+// joint clearance.
+void apply_reading_model(calib::monitor::MonitorSettings& settings, const sim::TwinConfig& twin,
+                         const std::optional<std::array<double, 5>>& motion_nu);
 
 // The scenario's `expect:` for gpm monitor (every key optional).
 struct MonitorExpect {

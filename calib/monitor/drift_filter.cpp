@@ -6,19 +6,43 @@
 namespace gpm::calib::monitor {
 namespace {
 
-// h = dr/du (zero for the rate), P h' and s = sigma^2 + h P h'.
+// The readings with the estimated cyclic error removed:
+// theta_m_i - (a_i sin theta_m_i + b_i cos theta_m_i).
+Eigen::Vector3d without_cyclic(const MonitorModel& m, const std::array<double, kNumCyclic>& cyc,
+                               const Eigen::Vector3d& theta_m) {
+  if (m.cyclic_index < 0) return theta_m;
+  Eigen::Vector3d t = theta_m;
+  for (int i = 0; i < 3; ++i)
+    t[i] -= cyc[static_cast<size_t>(2 * i)] * std::sin(theta_m[i]) + cyc[static_cast<size_t>(2 * i + 1)] * std::cos(theta_m[i]);
+  return t;
+}
+
+// h = dr/du (zero for the rate; for the cyclic coefficients dr/dtheta_i =
+// dr/ddth_i times -sin, -cos theta_m_i), P h' and s = sigma^2 + clearance
+// variance + h P h'.
 double innovation_variance(const MonitorModel& m, const StateMatrix& P, const ParamRow& g,
-                           std::array<double, kMaxState>& Ph) {
+                           const Eigen::Vector3d& theta_m, std::array<double, kMaxState>& Ph) {
   std::array<double, kMaxState> h{};
   for (int k = 0; k < m.n_free; ++k) h[static_cast<size_t>(k)] = g[m.free_index[static_cast<size_t>(k)]] / m.scale[static_cast<size_t>(k)];
+  if (m.cyclic_index >= 0)
+    for (int i = 0; i < 3; ++i) {
+      const auto k = static_cast<size_t>(m.cyclic_index + 2 * i);
+      h[k] = -g[dth(i)] * std::sin(theta_m[i]) / m.scale[k];
+      h[k + 1] = -g[dth(i)] * std::cos(theta_m[i]) / m.scale[k + 1];
+    }
   double hPh = 0.0;
   for (int k = 0; k < m.n_state; ++k) {
     double acc = 0.0;
-    for (int l = 0; l < m.n_free; ++l) acc += P(k, l) * h[static_cast<size_t>(l)];
+    for (int l = 0; l < m.n_state; ++l) acc += P(k, l) * h[static_cast<size_t>(l)];
     Ph[static_cast<size_t>(k)] = acc;
-    if (k < m.n_free) hPh += h[static_cast<size_t>(k)] * acc;
+    hPh += h[static_cast<size_t>(k)] * acc;
   }
-  return m.sigma_rad * m.sigma_rad + hPh;
+  double clearance = 0.0;
+  for (int i = 0; i < 3; ++i) {
+    const double c = m.settings.clearance_mm[static_cast<size_t>(i)];
+    clearance += 0.5 * c * c * (g[la(i)] * g[la(i)] + 2.0 * g[lb(i)] * g[lb(i)]);
+  }
+  return m.sigma_rad * m.sigma_rad + clearance + hPh;
 }
 
 }  // namespace
@@ -69,9 +93,9 @@ bool filter_innovation(const MonitorModel& m, const MonitorData& d, double t_s, 
   if (d.filtered > 0) filter_predict(m, x, rate, P, t_s - d.t_last_update);
   double r = 0.0;
   ParamRow g;
-  if (!ml_residual_and_gradient(x, theta_m, r, g)) return false;
+  if (!ml_residual_and_gradient(x, without_cyclic(m, d.cyclic, theta_m), r, g)) return false;
   std::array<double, kMaxState> Ph{};
-  const double sqrt_s = std::sqrt(innovation_variance(m, P, g, Ph));
+  const double sqrt_s = std::sqrt(innovation_variance(m, P, g, theta_m, Ph));
   z = r / sqrt_s;
   dz = g / sqrt_s;
   return true;
@@ -82,12 +106,14 @@ void filter_update(const MonitorModel& m, MonitorData& d, double t_s, const Eige
   d.t_last_update = std::max(t_s, d.t_last_update);
   double r = 0.0;
   ParamRow g;
-  if (!ml_residual_and_gradient(d.estimate, theta_m, r, g)) return;
+  if (!ml_residual_and_gradient(d.estimate, without_cyclic(m, d.cyclic, theta_m), r, g)) return;
   std::array<double, kMaxState> Ph{};
-  const double s = innovation_variance(m, d.P, g, Ph);
+  const double s = innovation_variance(m, d.P, g, theta_m, Ph);
   for (int k = 0; k < m.n_state; ++k) {
     const double du = -Ph[static_cast<size_t>(k)] / s * r;
     if (k == m.rate_index) d.growth_rate += du;
+    else if (m.cyclic_index >= 0 && k >= m.cyclic_index)
+      d.cyclic[static_cast<size_t>(k - m.cyclic_index)] += du / m.scale[static_cast<size_t>(k)];
     else d.estimate[m.free_index[static_cast<size_t>(k)]] += du / m.scale[static_cast<size_t>(k)];
   }
   for (int k = 0; k < m.n_state; ++k)

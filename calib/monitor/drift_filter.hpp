@@ -8,8 +8,11 @@
 // w_k independent random walks of variance drift_rate_k dt and w_rho a random
 // walk of variance rate_noise dt (integrated into u: the discrete process
 // noise of a white rate derivative, [dt^3/3 v v', dt^2/2 v; dt^2/2 v', dt]).
+// With a stated cyclic encoder error the state also holds its coefficients
+// a_i, b_i (constant; the readings lose a_i sin theta_i + b_i cos theta_i).
 // Measurement: the ML residual of the readings, r(u) = 0 with variance
-// sigma^2 (calib/residuals.hpp), linearised at the current estimate.
+// sigma^2 plus the stated clearance's share (MonitorSettings::clearance_mm)
+// (calib/residuals.hpp), linearised at the current estimate.
 #pragma once
 
 #include "calib/monitor/monitor.hpp"

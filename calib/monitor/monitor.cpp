@@ -73,6 +73,20 @@ MonitorModel make_monitor_model(const MonitorSettings& s) {
   require(s.jump_offset_rad > 0.0 && s.jump_length_mm > 0.0, "jump scales must be > 0");
   require(s.min_motion_counts >= 0.0, "min_motion_counts must be >= 0");
   require(s.estimate.any(), "no parameter to estimate");
+  for (int i = 0; i < 3; ++i) {
+    const auto k = static_cast<size_t>(i);
+    require(std::isfinite(s.skew_s[k]) && std::abs(s.skew_s[k]) <= 0.01,
+            fmt::format("skew_s of encoder {} must be within +-0.01 s", i + 1));
+    require(std::isfinite(s.compliance_rad_per_Nm[k]) && s.compliance_rad_per_Nm[k] >= 0.0 && s.compliance_rad_per_Nm[k] <= 1.0,
+            fmt::format("compliance_rad_per_Nm of chain {} must be in 0..1", i + 1));
+    require(std::isfinite(s.coulomb_Nm[k]) && s.coulomb_Nm[k] >= 0.0 && std::isfinite(s.viscous_Nm_s[k]) &&
+                s.viscous_Nm_s[k] >= 0.0,
+            fmt::format("coulomb_Nm and viscous_Nm_s of chain {} must be finite and >= 0", i + 1));
+    require(std::isfinite(s.cyclic_rad[k]) && s.cyclic_rad[k] >= 0.0 && s.cyclic_rad[k] <= 0.01,
+            fmt::format("cyclic_rad of encoder {} must be in 0..0.01", i + 1));
+    require(std::isfinite(s.clearance_mm[k]) && s.clearance_mm[k] >= 0.0 && s.clearance_mm[k] <= 1.0,
+            fmt::format("clearance_mm of chain {} must be in 0..1", i + 1));
+  }
 
   MonitorModel m;
   m.settings = s;
@@ -115,6 +129,18 @@ MonitorModel make_monitor_model(const MonitorSettings& s) {
     m.prior_variance[static_cast<size_t>(m.rate_index)] = rate * rate;
     m.variance_cap[static_cast<size_t>(m.rate_index)] = 4.0 * rate * rate;
   }
+  if (s.cyclic_rad[0] > 0.0 || s.cyclic_rad[1] > 0.0 || s.cyclic_rad[2] > 0.0) {
+    // a_i, b_i = A_i cos(phase_i), A_i sin(phase_i) with a uniform phase:
+    // variance A_i^2 / 2 each; constant (no process noise).
+    m.cyclic_index = m.n_state;
+    for (int c = 0; c < kNumCyclic; ++c) {
+      const auto k = static_cast<size_t>(m.n_state++);
+      const double a = s.cyclic_rad[static_cast<size_t>(c / 2)];
+      m.scale[k] = mean_la;
+      m.prior_variance[k] = std::max(mean_la * mean_la * a * a / 2.0, 1e-30);
+      m.variance_cap[k] = m.prior_variance[k];
+    }
+  }
   m.glr_threshold = chi2_upper_quantile(1, 0.5 * m.p_window / (m.n_free * s.window));
   return m;
 }
@@ -138,14 +164,36 @@ void monitor_flush(const MonitorModel& m, MonitorData& d) {
 }
 
 StepResult monitor_step(const MonitorModel& m, MonitorData& d, double t_s, const Eigen::Vector3d& theta_m) {
+  return monitor_step(m, d, t_s, theta_m, Eigen::Vector3d::Zero(), Eigen::Vector3d::Zero());
+}
+
+StepResult monitor_step(const MonitorModel& m, MonitorData& d, double t_s, const Eigen::Vector3d& theta_raw,
+                        const Eigen::Vector3d& omega, const Eigen::Vector3d& tau) {
   StepResult out;
+  // Motion corrections (calib/motion_correction.hpp): the link angle the
+  // reading stands for.
+  Eigen::Vector3d theta_m = theta_raw;
+  for (int i = 0; i < 3; ++i) {
+    const auto k = static_cast<size_t>(i);
+    const double sign = omega[i] > 0.0 ? 1.0 : (omega[i] < 0.0 ? -1.0 : 0.0);
+    const double carried = tau[i] - m.settings.coulomb_Nm[k] * sign - m.settings.viscous_Nm_s[k] * omega[i];
+    theta_m[i] += m.settings.skew_s[k] * omega[i] - m.settings.compliance_rad_per_Nm[k] * carried;
+  }
   ++d.cycles;
   ++d.cycles_since_accepted;
   // Independence gate (README.md): at most one sample per `decimation`
   // cycles, and only when every joint has moved, so that the quantisation
   // errors of accepted samples are not copies of each other.
-  if (d.has_accepted && d.cycles_since_accepted < m.settings.decimation) return out;
-  if (!moved_enough(m, d, theta_m)) return out;
+  if (!d.has_accepted) {
+    // The first reading is only the reference of the motion gate: a robot
+    // starting from rest gives no sample until every joint moves.
+    d.has_accepted = true;
+    d.last_accepted = theta_raw;
+    d.cycles_since_accepted = 0;
+    return out;
+  }
+  if (d.cycles_since_accepted < m.settings.decimation) return out;
+  if (!moved_enough(m, d, theta_raw)) return out;
 
   // The oldest sample leaves a full window and updates the filter; while an
   // alarm waits for its explanation the filter waits too (it must not absorb
@@ -166,7 +214,7 @@ StepResult monitor_step(const MonitorModel& m, MonitorData& d, double t_s, const
     return out;
   }
   d.has_accepted = true;
-  d.last_accepted = theta_m;
+  d.last_accepted = theta_raw;
   d.cycles_since_accepted = 0;
   ++d.accepted;
 

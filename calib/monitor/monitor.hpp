@@ -38,8 +38,10 @@ namespace gpm::calib::monitor {
 // alarm's explanation) and the number of alarms kept.
 inline constexpr int kMaxWindow = 512;
 inline constexpr int kMaxAlarms = 64;
-// Filter coordinates: the estimated parameters plus the common thermal growth rate.
-inline constexpr int kMaxState = kNumParams + 1;
+// Filter coordinates: the estimated parameters, the common thermal growth
+// rate and the two coefficients of each encoder's once-per-revolution error.
+inline constexpr int kNumCyclic = 6;
+inline constexpr int kMaxState = kNumParams + 1 + kNumCyclic;
 using StateMatrix = Eigen::Matrix<double, kMaxState, kMaxState>;
 
 // What the user states; make_monitor_model() checks it and derives the rest.
@@ -72,6 +74,29 @@ struct MonitorSettings {
   // (calib/monitor/explain.hpp): an encoder slip, a knock on a link or base.
   double jump_offset_rad = 1e-3;
   double jump_length_mm = 0.005;
+  // Motion corrections of the readings (the model of calib/motion_correction.hpp,
+  // with the values a calibration in motion estimated): the monitor tests the
+  // link angles theta_m_i + skew_s_i omega_i - compliance_i tau_t_i, omega the
+  // joint (motor) speed passed to monitor_step() and tau_t the torque the
+  // transmission carries: the drive torque tau minus the friction on the
+  // motor side of the compliance, tau_t = tau - coulomb sign(omega) -
+  // viscous omega (the reducer's friction acts on the rotor; a torque-off
+  // joint's link still drags its rotor through the twist).
+  std::array<double, 3> skew_s{};                  // latch skew of each encoder (s)
+  std::array<double, 3> compliance_rad_per_Nm{};  // transmission compliance of each chain
+  std::array<double, 3> coulomb_Nm{};             // Coulomb friction on the motor side (N m)
+  std::array<double, 3> viscous_Nm_s{};           // viscous friction on the motor side (N m s/rad)
+  // Reading errors known by their magnitude only:
+  // - once-per-revolution encoder error A_i sin(theta_m_i + phase_i) of
+  //   unknown phase: estimated by the filter as a_i sin(theta_m_i) +
+  //   b_i cos(theta_m_i) with prior variance A_i^2 / 2 each (the slowly varying
+  //   error it leaves would otherwise look like a step);
+  // - radial clearance of the elbow and hub joints of chain i (mm): adds
+  //   c_i^2 / 2 (dr/dla_i^2 + 2 dr/dlb_i^2) to each residual's variance (each
+  //   pin anywhere within c_i; its shift along a link changes that link's
+  //   effective length).
+  std::array<double, 3> cyclic_rad{};
+  std::array<double, 3> clearance_mm{};
 
   // An array of NaN (the "use the default" marker of prior_sigma).
   static std::array<double, kNumParams> nan_array();
@@ -89,9 +114,11 @@ struct MonitorModel {
   int n_free = 0;                        // number of estimated parameters
   int n_state = 0;                       // filter coordinates: n_free, plus 1 with a growth-rate state
   int rate_index = -1;                   // index of the growth-rate coordinate, -1 without
+  int cyclic_index = -1;                 // first of the kNumCyclic cyclic-error coordinates, -1 without
   std::array<int, kNumParams> free_index{};  // parameter of each filter coordinate (first n_free)
   // Filter coordinates u = scale * value: 1 for mm, the mean active length
-  // (mm) for offsets, so that P is well scaled; the rate is in mm/s.
+  // (mm) for offsets and cyclic coefficients, so that P is well scaled; the
+  // rate is in mm/s.
   std::array<double, kMaxState> scale{};
   std::array<double, kMaxState> growth{};        // d u_k / d (common growth, mm): L_i / mean L for links, else 0
   std::array<double, kMaxState> drift_rate{};    // independent random-walk variance per second of u_k
@@ -126,6 +153,9 @@ struct Alarm {
 // Mutable state of the monitor.
 struct MonitorData {
   Geometry estimate;  // current parameter estimate (fixed ones at the model's values)
+  // Estimated cyclic encoder error (rad): a_1, b_1, a_2, b_2, a_3, b_3; the
+  // reading error of encoder i is a_i sin(theta_m_i) + b_i cos(theta_m_i).
+  std::array<double, kNumCyclic> cyclic{};
   double growth_rate = 0.0;  // estimated common growth rate (mm/s for a link of the mean length)
   StateMatrix P;             // covariance of the filter coordinates (n_state x n_state used)
   Eigen::Vector3d last_accepted = Eigen::Vector3d::Zero();
@@ -169,6 +199,12 @@ struct StepResult {
 // Allocation-free.
 StepResult monitor_step(const MonitorModel& model, MonitorData& data, double t_s,
                         const Eigen::Vector3d& theta_m);
+
+// The same with the joint speeds omega (rad/s) and drive torques tau (N m) of
+// the cycle, for the motion corrections of the settings. Allocation-free.
+StepResult monitor_step(const MonitorModel& model, MonitorData& data, double t_s,
+                        const Eigen::Vector3d& theta_m, const Eigen::Vector3d& omega,
+                        const Eigen::Vector3d& tau);
 
 // Feeds every sample still in the window to the filter (e.g. at the end of a
 // run) and empties the window. Allocation-free.
