@@ -127,6 +127,9 @@ MonitorOutcome run_monitor(const sim::Scenario& s, const Robot& controller,
   ms.encoder_bits = s.twin.encoder.bits;
   ms.noise_rad = s.twin.encoder.noise_rad;
   ms.cycle_hz = s.twin.servo_rate_hz;
+  // At most 200 samples per second whatever the servo rate (the independence
+  // gate of calib/monitor/README.md: closer samples share quantisation errors).
+  ms.decimation = std::max(1, static_cast<int>(std::lround(ms.cycle_hz / 200.0)));
   // A uniform expansion of links and base plate is a similarity, which the
   // encoders cannot see (and the monitor need not track); what they see is
   // the links growing relative to the base, which the monitor's growth state

@@ -73,6 +73,9 @@ MonitorModel make_monitor_model(const MonitorSettings& s) {
   require(s.jump_offset_rad > 0.0 && s.jump_length_mm > 0.0, "jump scales must be > 0");
   require(s.min_motion_counts >= 0.0, "min_motion_counts must be >= 0");
   require(s.estimate.any(), "no parameter to estimate");
+  require(s.friction_speed_rad_s >= 0.0 && std::isfinite(s.friction_speed_rad_s) && s.friction_stick_rad_s >= 0.0 &&
+              std::isfinite(s.friction_stick_rad_s),
+          "friction_speed_rad_s and friction_stick_rad_s must be >= 0");
   for (int i = 0; i < 3; ++i) {
     const auto k = static_cast<size_t>(i);
     require(std::isfinite(s.skew_s[k]) && std::abs(s.skew_s[k]) <= 0.01,
@@ -175,7 +178,8 @@ StepResult monitor_step(const MonitorModel& m, MonitorData& d, double t_s, const
   Eigen::Vector3d theta_m = theta_raw;
   for (int i = 0; i < 3; ++i) {
     const auto k = static_cast<size_t>(i);
-    const double sign = omega[i] > 0.0 ? 1.0 : (omega[i] < 0.0 ? -1.0 : 0.0);
+    const double vs = m.settings.friction_speed_rad_s;
+    const double sign = vs > 0.0 ? std::clamp(omega[i] / vs, -1.0, 1.0) : (omega[i] > 0.0 ? 1.0 : (omega[i] < 0.0 ? -1.0 : 0.0));
     const double carried = tau[i] - m.settings.coulomb_Nm[k] * sign - m.settings.viscous_Nm_s[k] * omega[i];
     theta_m[i] += m.settings.skew_s[k] * omega[i] - m.settings.compliance_rad_per_Nm[k] * carried;
   }
@@ -194,6 +198,12 @@ StepResult monitor_step(const MonitorModel& m, MonitorData& d, double t_s, const
   }
   if (d.cycles_since_accepted < m.settings.decimation) return out;
   if (!moved_enough(m, d, theta_raw)) return out;
+  for (int i = 0; i < 3; ++i) {
+    const auto k = static_cast<size_t>(i);
+    if (m.settings.compliance_rad_per_Nm[k] * m.settings.coulomb_Nm[k] > 0.5 * m.sigma_rad &&
+        std::abs(omega[i]) < m.settings.friction_stick_rad_s)
+      return out;
+  }
 
   // The oldest sample leaves a full window and updates the filter; while an
   // alarm waits for its explanation the filter waits too (it must not absorb

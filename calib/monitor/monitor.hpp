@@ -86,6 +86,14 @@ struct MonitorSettings {
   std::array<double, 3> compliance_rad_per_Nm{};  // transmission compliance of each chain
   std::array<double, 3> coulomb_Nm{};             // Coulomb friction on the motor side (N m)
   std::array<double, 3> viscous_Nm_s{};           // viscous friction on the motor side (N m s/rad)
+  // The Coulomb friction develops over joint speeds up to friction_speed_rad_s
+  // (taken as coulomb x speed / friction_speed below it); under
+  // friction_stick_rad_s it lies anywhere in +-coulomb, and a sample is used
+  // only when every joint whose friction twist compliance x coulomb exceeds
+  // half the reading noise moves faster (measured on the twin's MuJoCo
+  // friction: the twist error grows below 0.1 rad/s).
+  double friction_speed_rad_s = 0.1;
+  double friction_stick_rad_s = 0.05;
   // Reading errors known by their magnitude only:
   // - once-per-revolution encoder error A_i sin(theta_m_i + phase_i) of
   //   unknown phase: estimated by the filter as a_i sin(theta_m_i) +
