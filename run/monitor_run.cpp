@@ -3,6 +3,7 @@
 
 #include <chrono>
 #include <cmath>
+#include <limits>
 
 #include <Eigen/Geometry>
 #include <fmt/format.h>
@@ -14,6 +15,7 @@
 #include "models/output_file.hpp"
 #include "models/yaml_util.hpp"
 #include "report/report_document.hpp"
+#include "run/runner.hpp"
 #include "report/svg_plot.hpp"
 #include "sim/sampling.hpp"
 #include "sim/trajectory.hpp"
@@ -197,6 +199,21 @@ MonitorOutcome run_monitor(const sim::Scenario& s, const Robot& controller,
   return out;
 }
 
+std::optional<MonitorOutcome> monitor_after_calibration(const RunOutcome& run) {
+  const sim::Scenario& s = run.spec.sim;
+  if (!s.operation || run.spec.hardware) return std::nullopt;
+  std::array<double, kNumParams> prior;
+  prior.fill(std::numeric_limits<double>::quiet_NaN());
+  if (run.calibration)
+    for (int k = 0; k < kNumParams; ++k) {
+      const double sd = run.calibration->sigma[static_cast<std::size_t>(k)];
+      if (std::isfinite(sd) && sd > 0.0) prior[static_cast<std::size_t>(k)] = sd;
+    }
+  std::optional<std::array<double, 5>> nu;
+  if (run.calibration && run.in_motion) nu = run.motion_nu;
+  return run_monitor(s, run.calibrated, prior, {}, nu);
+}
+
 MonitorExpect load_monitor_expect(const std::string& scenario_file) {
   const YAML::Node root = load_yaml_file(scenario_file);
   MonitorExpect e;
@@ -247,15 +264,15 @@ std::vector<MonitorCheck> check_monitor(const MonitorOutcome& o, const MonitorEx
   return out;
 }
 
-void write_monitor(const MonitorOutcome& o, const std::string& dir) {
-  OutputFolder folder(dir, {o.scenario_file});
-  const FreeMask est = o.model.settings.estimate;
-
+std::string monitor_alarms_csv(const MonitorOutcome& o) {
   std::string alarms = "t_s,kind,statistic,threshold,explanation\n";
   for (const MonitorAlarm& a : o.alarms)
     alarms += fmt::format("{:.6f},{},{:.6g},{:.6g},{}\n", a.t_s, a.kind, a.statistic, a.threshold, csv_field(a.explanation));
-  folder.add("alarms.csv", alarms);
+  return alarms;
+}
 
+std::string monitor_estimates_csv(const MonitorOutcome& o) {
+  const FreeMask est = o.model.settings.estimate;
   std::string estimates = "t_s";
   for (int k = 0; k < kNumParams; ++k)
     if (est[static_cast<std::size_t>(k)]) estimates += fmt::format(",{0},{0}_std", param_name(k));
@@ -267,8 +284,11 @@ void write_monitor(const MonitorOutcome& o, const std::string& dir) {
         estimates += fmt::format(",{:.12g},{:.6g}", r.value[static_cast<std::size_t>(k)], r.sigma[static_cast<std::size_t>(k)]);
     estimates += "\n";
   }
-  folder.add("estimates.csv", estimates);
+  return estimates;
+}
 
+nlohmann::json monitor_summary(const MonitorOutcome& o) {
+  const FreeMask est = o.model.settings.estimate;
   nlohmann::json j;
   j["scenario"] = o.scenario_file;
   j["duration_s"] = o.simulated_s;
@@ -289,10 +309,11 @@ void write_monitor(const MonitorOutcome& o, const std::string& dir) {
     if (est[static_cast<std::size_t>(k)])
       fe[std::string(param_name(k))] = o.final_estimate.value[static_cast<std::size_t>(k)] - o.final_truth.values[static_cast<std::size_t>(k)];
   j["final_error"] = fe;
-  folder.add("summary.json", j.dump(2) + "\n");
+  return j;
+}
 
-  report::ReportDocument doc;
-  doc.heading(1, fmt::format("gpm monitor: {}", o.scenario.name));
+void add_monitor_section(report::ReportDocument& doc, const MonitorOutcome& o, int level, const std::string& figure) {
+  const FreeMask est = o.model.settings.estimate;
   doc.paragraph(fmt::format("{:.1f} s of normal operation ({} servo cycles at {:.0f} Hz), {} alarms ({} false), "
                             "stated false-alarm rate {} per hour (chi-square threshold {:.1f} over {} samples).",
                             o.simulated_s, o.cycles, o.model.settings.cycle_hz, o.alarms.size(), o.false_alarms,
@@ -305,6 +326,16 @@ void write_monitor(const MonitorOutcome& o, const std::string& dir) {
                       d.detected_s ? fmt::format("{:.3f}", *d.detected_s - d.at_s) : "", d.explanation});
     doc.table({"event", "at (s)", "detected (s)", "delay (s)", "explanation"}, rows);
   }
+  if (!o.alarms.empty()) {
+    std::vector<std::vector<std::string>> rows;
+    for (std::size_t k = 0; k < o.alarms.size() && k < 20; ++k) {
+      const MonitorAlarm& a = o.alarms[k];
+      rows.push_back({fmt::format("{:.3f}", a.t_s), a.kind, fmt::format("{:.1f}", a.statistic),
+                      fmt::format("{:.1f}", a.threshold), a.explanation});
+    }
+    doc.heading(level, o.alarms.size() > 20 ? fmt::format("Alarms (first 20 of {})", o.alarms.size()) : "Alarms");
+    doc.table({"t (s)", "test", "statistic", "threshold", "explanation"}, rows);
+  }
   std::vector<std::vector<std::string>> errs;
   for (int k = 0; k < kNumParams; ++k) {
     if (!est[static_cast<std::size_t>(k)]) continue;
@@ -314,7 +345,7 @@ void write_monitor(const MonitorOutcome& o, const std::string& dir) {
                     fmt::format("{:.2f}", (o.final_estimate.value[static_cast<std::size_t>(k)] - o.final_truth.values[static_cast<std::size_t>(k)]) * scale),
                     fmt::format("{:.2f}", o.final_estimate.sigma[static_cast<std::size_t>(k)] * scale)});
   }
-  doc.heading(2, "Tracked parameters at the end");
+  doc.heading(level, "Tracked parameters at the end");
   doc.table({"parameter", "actual", "estimate", "error (um at the link)", "1-sigma (um)"}, errs);
   // Parameter tracks: estimate minus the value at the start, in um at the link.
   std::vector<report::Series> series;
@@ -333,7 +364,17 @@ void write_monitor(const MonitorOutcome& o, const std::string& dir) {
   po.title = "Tracked change of each parameter";
   po.x_label = "t (s)";
   po.y_label = "change since start (um at the link)";
-  if (!series.empty()) doc.figure("tracks", "Parameter tracks of the drift estimator", report::svg_plot(series, po));
+  if (!series.empty()) doc.figure(figure, "Parameter tracks of the drift estimator", report::svg_plot(series, po));
+}
+
+void write_monitor(const MonitorOutcome& o, const std::string& dir) {
+  OutputFolder folder(dir, {o.scenario_file});
+  folder.add("alarms.csv", monitor_alarms_csv(o));
+  folder.add("estimates.csv", monitor_estimates_csv(o));
+  folder.add("summary.json", monitor_summary(o).dump(2) + "\n");
+  report::ReportDocument doc;
+  doc.heading(1, fmt::format("gpm monitor: {}", o.scenario.name));
+  add_monitor_section(doc, o, 2, "tracks");
   doc.stage(folder, "report", fmt::format("gpm monitor: {}", o.scenario.name));
   folder.commit();
 }

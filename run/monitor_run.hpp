@@ -10,8 +10,11 @@
 #include <string>
 #include <vector>
 
+#include <nlohmann/json.hpp>
+
 #include "calib/monitor/monitor.hpp"
 #include "models/robot.hpp"
+#include "report/report_document.hpp"
 #include "sim/scenario.hpp"
 
 namespace gpm::scenario {
@@ -106,5 +109,25 @@ std::vector<MonitorCheck> check_monitor(const MonitorOutcome& outcome, const Mon
 
 // Writes DIR/alarms.csv, estimates.csv, summary.json and report.md, all or nothing.
 void write_monitor(const MonitorOutcome& outcome, const std::string& dir);
+
+// The parts of write_monitor's output, for gpm run: alarms.csv
+// (t_s,kind,statistic,threshold,explanation), estimates.csv (t_s, then each
+// estimated parameter and its std), the summary (alarms, false_alarms,
+// detections, final_error, ...) and the report section (headings at `level`,
+// the parameter-track figure named `figure`).
+std::string monitor_alarms_csv(const MonitorOutcome& outcome);
+std::string monitor_estimates_csv(const MonitorOutcome& outcome);
+nlohmann::json monitor_summary(const MonitorOutcome& outcome);
+void add_monitor_section(report::ReportDocument& doc, const MonitorOutcome& outcome, int level,
+                         const std::string& figure);
+
+struct RunOutcome;  // run/runner.hpp
+
+// gpm run's hook: when the scenario has `operation:`, the calibrated model
+// (the calibration's geometry, its 1-sigma as the monitor's prior, and the
+// compliance and skew it estimated when the samples were taken in motion)
+// monitors the operation on the twin; none without operation, or when the
+// run went through hardware (gpm monitor --hardware does that).
+std::optional<MonitorOutcome> monitor_after_calibration(const RunOutcome& run);
 
 }  // namespace gpm::scenario
