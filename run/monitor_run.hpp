@@ -5,6 +5,7 @@
 #pragma once
 
 #include <array>
+#include <atomic>
 #include <functional>
 #include <optional>
 #include <string>
@@ -60,6 +61,9 @@ struct MonitorOutcome {
   calib::monitor::Estimate final_estimate;
   double simulated_s = 0.0, wall_s = 0.0;
   long cycles = 0;
+  long accepted = 0;           // samples the monitor used (independence gate, calib/monitor/README.md)
+  bool truth_known = true;     // false through hardware: no detections, no final errors
+  std::string hardware;        // the backend monitored through (empty: the in-process twin)
 };
 
 // An alarm counts as detecting the latest event begun at most this long
@@ -79,6 +83,20 @@ using MonitorProgress = std::function<void(double t_s, double duration_s)>;
 MonitorOutcome run_monitor(const sim::Scenario& scenario, const Robot& controller,
                            const std::array<double, kNumParams>& prior_sigma, const MonitorProgress& progress = {},
                            const std::optional<std::array<double, 5>>& motion_nu = std::nullopt);
+
+// The same through hardware (hw/: the twin backend, or the drives): the file
+// hardware_file (hw/hardware_config.hpp) chooses the backend and its rate;
+// the robot moves to the start of the operation path, then follows it for
+// duration_s under the hardware's safety supervisor while the monitor reads
+// every cycle (readings, speeds and torques as the drives report them). The
+// actual mechanism is unknown here: detections and final errors are left
+// out (truth_known false). stop (optional) is polled every cycle: a request
+// disables the drives and throws hw::Interrupted with what was monitored so far
+// lost only from memory (nothing is written yet). InputError for a bad file
+// or a path outside the safety limits, before anything moves.
+MonitorOutcome run_monitor_hardware(const sim::Scenario& scenario, const std::string& hardware_file,
+                                    const Robot& controller, const std::array<double, kNumParams>& prior_sigma,
+                                    const MonitorProgress& progress = {}, const std::atomic<bool>* stop = nullptr);
 
 // The monitor's reading model from the twin's stated effects: the motion
 // corrections (skew, compliance; from motion_nu when given; the friction on
