@@ -150,9 +150,15 @@ MonitorOutcome run_monitor(const sim::Scenario& s, const Robot& controller,
   const long ticks = std::lround(s.operation->duration_s / period);
   const double estimate_every = std::max(0.1, s.operation->duration_s / 2000.0);
   double next_estimate = 0.0, next_progress = 1.0;
+  const FreeMask gauge = ~default_free_mask();  // xa1 ya1 xa2 ya2
+  const bool regauge = (gauge & out.model.settings.estimate).none();
+  auto truth_at = [&](double t) {
+    const Geometry g = sim::geometry_at_time(twin, t);
+    return regauge ? in_gauge(g, controller.geometry) : g;
+  };
   auto record_estimate = [&](double t) {
     const mon::Estimate e = mon::monitor_estimate(out.model, md);
-    out.estimates.push_back({t, e.value, e.sigma});
+    out.estimates.push_back({t, e.value, e.sigma, truth_at(t)});
   };
   for (long k = 0; k <= ticks; ++k) {
     const double t = k * period;
@@ -179,9 +185,7 @@ MonitorOutcome run_monitor(const sim::Scenario& s, const Robot& controller,
   out.accepted = md.accepted;
   record_estimate(out.simulated_s);
   out.final_estimate = mon::monitor_estimate(out.model, md);
-  out.final_truth = sim::geometry_at_time(twin, out.simulated_s);
-  const FreeMask gauge = ~default_free_mask();  // xa1 ya1 xa2 ya2
-  if ((gauge & out.model.settings.estimate).none()) out.final_truth = in_gauge(out.final_truth, controller.geometry);
+  out.final_truth = truth_at(out.simulated_s);
 
   // Each alarm detects the latest event begun before it (within the window);
   // the others are false alarms.
@@ -327,13 +331,18 @@ MonitorExpect load_monitor_expect(const std::string& scenario_file) {
   const YAML::Node n = root["expect"];
   if (!n) return e;
   yaml_check_keys(n, scenario_file, "expect",
-                  {"detection_delay_s_max", "false_alarms_max", "final_error_um_max", "explanation_contains"});
+                  {"detection_delay_s_max", "false_alarms_max", "final_error_um_max", "tracking_error_um_max",
+                   "tracking_after_s", "explanation_contains"});
   if (n["detection_delay_s_max"])
     e.detection_delay_s_max = yaml_positive(n["detection_delay_s_max"], scenario_file, "expect.detection_delay_s_max");
   if (n["false_alarms_max"])
     e.false_alarms_max = static_cast<int>(yaml_integer(n["false_alarms_max"], scenario_file, "expect.false_alarms_max", 0, 1000000));
   if (n["final_error_um_max"])
     e.final_error_um_max = yaml_positive(n["final_error_um_max"], scenario_file, "expect.final_error_um_max");
+  if (n["tracking_error_um_max"])
+    e.tracking_error_um_max = yaml_positive(n["tracking_error_um_max"], scenario_file, "expect.tracking_error_um_max");
+  if (n["tracking_after_s"])
+    e.tracking_after_s = yaml_positive(n["tracking_after_s"], scenario_file, "expect.tracking_after_s");
   if (n["explanation_contains"])
     e.explanation_contains = yaml_string(n["explanation_contains"], scenario_file, "expect.explanation_contains");
   return e;
@@ -360,6 +369,23 @@ std::vector<MonitorCheck> check_monitor(const MonitorOutcome& o, const MonitorEx
     out.push_back({"false_alarms", n <= *e.false_alarms_max,
                    fmt::format("{} {}alarms in {:.1f} s (limit {})", n, o.truth_known ? "false " : "", o.simulated_s,
                                *e.false_alarms_max)});
+  }
+  if (e.tracking_error_um_max && o.truth_known) {
+    // The worst error of each tracked parameter over the estimates from tracking_after_s on.
+    const FreeMask est = o.model.settings.estimate;
+    for (int k = 0; k < kNumParams; ++k) {
+      if (!est[static_cast<std::size_t>(k)]) continue;
+      const double scale = is_offset(k) ? o.controller.geometry.la_(k - kDth1) * 1e3 : 1e3;
+      double worst = 0.0, at = 0.0;
+      for (const MonitorEstimateRow& r : o.estimates) {
+        if (r.t_s < e.tracking_after_s || !r.truth) continue;
+        const double err = std::abs(r.value[static_cast<std::size_t>(k)] - (*r.truth)[k]) * scale;
+        if (err > worst) worst = err, at = r.t_s;
+      }
+      out.push_back({fmt::format("tracking_error.{}", param_name(k)), worst <= *e.tracking_error_um_max,
+                     fmt::format("worst {:.3f} um at {:.1f} s from {:.0f} s on (limit {:.3g})", worst, at,
+                                 e.tracking_after_s, *e.tracking_error_um_max)});
+    }
   }
   if (e.final_error_um_max && o.truth_known) {
     const FreeMask est = o.model.settings.estimate;

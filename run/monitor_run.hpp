@@ -34,6 +34,7 @@ struct MonitorAlarm {
 struct MonitorEstimateRow {
   double t_s = 0.0;
   std::array<double, kNumParams> value{}, sigma{};
+  std::optional<Geometry> truth;  // the actual geometry at t_s in the monitor's gauge (twin only)
 };
 
 // How each event of the scenario was detected.
@@ -111,6 +112,8 @@ struct MonitorExpect {
   std::optional<int> false_alarms_max;            // at most this many alarms no event explains
   std::optional<double> final_error_um_max;       // every tracked parameter within this at the end
                                                   // (um; offsets at their active link's tip)
+  std::optional<double> tracking_error_um_max;    // ... and at every estimate from tracking_after_s on
+  double tracking_after_s = 10.0;
   std::optional<std::string> explanation_contains;  // every detection's explanation contains this
 };
 
