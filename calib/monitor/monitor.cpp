@@ -11,6 +11,7 @@
 #include "calib/monitor/drift_filter.hpp"
 #include "calib/monitor/explain.hpp"
 #include "models/errors.hpp"
+#include "models/kinematics.hpp"
 
 namespace gpm::calib::monitor {
 namespace {
@@ -144,6 +145,18 @@ MonitorModel make_monitor_model(const MonitorSettings& s) {
       m.variance_cap[k] = m.prior_variance[k];
     }
   }
+  m.has_clearance = s.clearance_mm[0] > 0.0 || s.clearance_mm[1] > 0.0 || s.clearance_mm[2] > 0.0;
+  if (m.has_clearance) {
+    m.clearance_index = m.n_state;
+    for (int i = 0; i < 3; ++i) {
+      const auto k = static_cast<size_t>(m.n_state++);
+      const double c = s.clearance_mm[static_cast<size_t>(i)];
+      m.scale[k] = 1.0;
+      m.prior_variance[k] = std::max(0.0625 * c * c, 1e-30);
+      m.variance_cap[k] = m.prior_variance[k];
+    }
+  }
+  require(s.tension_min_N >= 0.0 && std::isfinite(s.tension_min_N), "tension_min_N must be >= 0");
   m.glr_threshold = chi2_upper_quantile(1, 0.5 * m.p_window / (m.n_free * s.window));
   return m;
 }
@@ -151,6 +164,7 @@ MonitorModel make_monitor_model(const MonitorSettings& s) {
 MonitorData make_monitor_data(const MonitorModel& m) {
   MonitorData d;
   d.estimate = m.settings.geometry;
+  d.clearance = m.settings.clearance_mm;
   d.P.setZero();
   for (int k = 0; k < m.n_state; ++k) d.P(k, k) = m.prior_variance[static_cast<size_t>(k)];
   return d;
@@ -159,7 +173,7 @@ MonitorData make_monitor_data(const MonitorModel& m) {
 void monitor_flush(const MonitorModel& m, MonitorData& d) {
   for (int j = 0; j < d.count; ++j) {
     const auto slot = static_cast<size_t>(slot_of(d, j));
-    filter_update(m, d, d.t[slot], d.theta[slot]);
+    filter_update(m, d, d.t[slot], d.theta[slot], d.tension[slot]);
   }
   d.count = 0;
   d.statistic = 0.0;
@@ -175,13 +189,13 @@ StepResult monitor_step(const MonitorModel& m, MonitorData& d, double t_s, const
   StepResult out;
   // Motion corrections (calib/motion_correction.hpp): the link angle the
   // reading stands for.
-  Eigen::Vector3d theta_m = theta_raw;
+  Eigen::Vector3d theta_m = theta_raw, carried;
   for (int i = 0; i < 3; ++i) {
     const auto k = static_cast<size_t>(i);
     const double vs = m.settings.friction_speed_rad_s;
     const double sign = vs > 0.0 ? std::clamp(omega[i] / vs, -1.0, 1.0) : (omega[i] > 0.0 ? 1.0 : (omega[i] < 0.0 ? -1.0 : 0.0));
-    const double carried = tau[i] - m.settings.coulomb_Nm[k] * sign - m.settings.viscous_Nm_s[k] * omega[i];
-    theta_m[i] += m.settings.skew_s[k] * omega[i] - m.settings.compliance_rad_per_Nm[k] * carried;
+    carried[i] = tau[i] - m.settings.coulomb_Nm[k] * sign - m.settings.viscous_Nm_s[k] * omega[i];
+    theta_m[i] += m.settings.skew_s[k] * omega[i] - m.settings.compliance_rad_per_Nm[k] * carried[i];
   }
   ++d.cycles;
   ++d.cycles_since_accepted;
@@ -211,15 +225,36 @@ StepResult monitor_step(const MonitorModel& m, MonitorData& d, double t_s, const
   const int W = m.settings.window;
   if (d.count >= W && d.pending < 0) {
     const auto oldest = static_cast<size_t>(slot_of(d, 0));
-    filter_update(m, d, d.t[oldest], d.theta[oldest]);
+    filter_update(m, d, d.t[oldest], d.theta[oldest], d.tension[oldest]);
     --d.count;
+  }
+
+  // Clearance (MonitorSettings::clearance_mm): each passive link acts as
+  // lb_i + 2 c_i sign(T_i), T_i its axial force from the moment balance of
+  // the active link; a sample whose tension sign is uncertain is not used.
+  Eigen::Vector3d tension_sign = Eigen::Vector3d::Zero();
+  if (m.has_clearance) {
+    Eigen::Vector3d theta_a;
+    for (int i = 0; i < 3; ++i) theta_a[i] = theta_m[i] + d.estimate.dth_(i);
+    const std::optional<ForwardResult> fk = forward_kinematics(d.estimate, theta_a);
+    if (!fk) {
+      ++d.skipped;
+      return out;
+    }
+    for (int i = 0; i < 3; ++i) {
+      const double c = m.settings.clearance_mm[static_cast<size_t>(i)];
+      if (c <= 0.0) continue;
+      const double tension = -carried[i] / (1e-3 * d.estimate.la_(i) * std::sin(fk->theta_b[i] - theta_a[i]));
+      if (!(std::abs(tension) >= m.settings.tension_min_N)) return out;
+      tension_sign[i] = tension > 0.0 ? 1.0 : -1.0;
+    }
   }
 
   // Innovation against the filter (which has seen no sample of the window)
   // predicted to t_s.
   double z = 0.0;
   ParamRow dz;
-  if (!filter_innovation(m, d, t_s, theta_m, z, dz)) {
+  if (!filter_innovation(m, d, t_s, theta_m, tension_sign, z, dz)) {
     ++d.skipped;
     return out;
   }
@@ -233,6 +268,7 @@ StepResult monitor_step(const MonitorModel& m, MonitorData& d, double t_s, const
   d.t[slot] = t_s;
   d.dz[slot] = dz;
   d.theta[slot] = theta_m;
+  d.tension[slot] = tension_sign;
   d.head = (d.head + 1) % kMaxWindow;
   ++d.count;
   const bool full = d.count == W && d.pending < 0;
@@ -265,7 +301,10 @@ StepResult monitor_step(const MonitorModel& m, MonitorData& d, double t_s, const
     d.statistic = 0.0;
     d.step_statistic = 0.0;
     d.pending = -1;
-  } else if (d.pending < 0 && (d.statistic > m.threshold || d.step_statistic > m.glr_threshold)) {
+  } else if (d.pending < 0 && d.filtered >= W && (d.statistic > m.threshold || d.step_statistic > m.glr_threshold)) {
+    // (No alarm before the filter has absorbed one window: until then the
+    // innovations share the prior's error of the nuisance states, cyclic
+    // error and clearance, which the step test does not normalise by.)
     Alarm& a = d.alarms[static_cast<size_t>(d.alarm_count % kMaxAlarms)];
     a = Alarm{};
     a.t_s = t_s;
