@@ -109,8 +109,8 @@ struct HardwareRig {
 };
 
 // The calibrated (here: the actual) model raises no alarm through the twin
-// backend; the nominal model, 0.01 rad off in its offsets, is alarmed at once
-// and the alarm names an offset. Truth unknown: no false-alarm count.
+// backend; the nominal model (0.3 mm and 0.01 rad off) is alarmed as soon as
+// the monitor may alarm. Truth unknown: no false-alarm count.
 TEST(MonitorRun, MonitorsThroughTheTwinBackend) {
   HardwareRig rig("monitor_twin");
   const std::string hw_actual = rig.hardware("twin", "twin: {scenario: " + kTwinScenario + "}\n",
@@ -129,7 +129,9 @@ TEST(MonitorRun, MonitorsThroughTheTwinBackend) {
   const std::string hw_nominal = rig.hardware("twin", "twin: {scenario: " + kTwinScenario + "}\n", kSrc + "/models/gpm2002.yaml");
   const MonitorOutcome bad = run_monitor_hardware(rig.scenario(), hw_nominal, Robot{}, prior);
   ASSERT_FALSE(bad.alarms.empty());
-  EXPECT_NE(bad.alarms.front().explanation.find("offset jump"), std::string::npos) << bad.alarms.front().explanation;
+  // as soon as the monitor may alarm (one window learnt), with a parameter named
+  EXPECT_LT(bad.alarms.front().t_s, 4.0);
+  EXPECT_GE(bad.alarms.front().param, 0) << bad.alarms.front().explanation;
 }
 
 // The same through the drive emulator (Modbus/TCP on localhost): readings,
