@@ -1,8 +1,11 @@
-// gpm monitor SCENARIO.yaml -o DIR [--model CALIBRATED.yaml]: the robot's
-// normal job (scenario `operation:`) on the twin, with `events:` changing the
-// actual mechanism and the drift monitor in the servo loop; writes
+// gpm monitor SCENARIO.yaml -o DIR [--model CALIBRATED.yaml] [--hardware HW.yaml]:
+// the robot's normal job (scenario `operation:`) on the twin, with `events:`
+// changing the actual mechanism, or through hw/ (twin backend or drives), and
+// the drift monitor in the servo loop (starting from the 1-sigma of a
+// calibration result given as the model); writes
 // DIR/alarms.csv, estimates.csv, summary.json and report.md/html
 // (run/monitor_run.hpp). Bad input exits 2 with one line.
+#include <cmath>
 #include <cstdio>
 #include <unistd.h>
 #include <limits>
@@ -15,6 +18,8 @@
 #include "calib/result_yaml.hpp"
 #include "models/errors.hpp"
 #include "models/robot_yaml.hpp"
+#include "hw/hw_errors.hpp"
+#include "hw/procedures/stop_on_signal.hpp"
 #include "run/monitor_run.hpp"
 #include "sim/twin.hpp"
 
@@ -38,36 +43,60 @@ void add_monitor(CLI::App& app) {
       ->required();
   cmd->add_option("-o,--out", opt->out, "Output folder: alarms.csv, estimates.csv, summary.json, report.md")->required();
   cmd->add_option("--model", opt->model, "The controller's model (robot or calibration result file); default: the scenario's robot");
-  cmd->add_option("--hardware", opt->hardware, "Hardware file (not yet: the monitor runs on the twin)");
+  cmd->add_option("--hardware", opt->hardware,
+                  "Hardware file (hw/): monitor the operation through the twin backend or the drives");
   cmd->callback([opt] {
-    if (!opt->hardware.empty())
-      throw InputError("gpm monitor --hardware: monitoring a live robot is not available yet; run it on the twin "
-                       "(omit --hardware)");
     sim::Scenario s = sim::load_scenario(opt->scenario);
     Robot controller = s.controller;
     if (!opt->model.empty()) controller = load_robot(opt->model);
     std::array<double, kNumParams> prior;
     prior.fill(std::numeric_limits<double>::quiet_NaN());
+    // A calibration result as the model: the monitor starts from its 1-sigma.
+    if (controller.calibration)
+      for (int k = 0; k < kNumParams; ++k) {
+        const auto& sd = controller.calibration->sigma[static_cast<std::size_t>(k)];
+        if (sd && std::isfinite(*sd) && *sd > 0.0) prior[static_cast<std::size_t>(k)] = *sd;
+      }
     scenario::MonitorOutcome o;
+    const scenario::MonitorExpect expect = scenario::load_monitor_expect(opt->scenario);  // bad keys before moving
+    // Progress on a terminal only (a log file gets the summary alone).
+    const bool tty = isatty(STDERR_FILENO) != 0;
+    const auto progress = [tty](double t, double T) {
+      if (tty) std::fprintf(stderr, "\rgpm monitor: %.0f of %.0f s of operation", t, T);
+    };
     try {
-      // Progress on a terminal only (a log file gets the summary alone).
-      const bool tty = isatty(STDERR_FILENO) != 0;
-      o = scenario::run_monitor(s, controller, prior, [tty](double t, double T) {
-        if (tty) std::fprintf(stderr, "\rgpm monitor: %.0f of %.0f s of operation", t, T);
-      });
+      if (opt->hardware.empty()) {
+        o = scenario::run_monitor(s, controller, prior, progress);
+      } else {
+        // A robot that moves: drives disabled on SIGINT/SIGTERM/SIGHUP (exit 130).
+        const hw::StopOnSignal signals;
+        try {
+          o = scenario::run_monitor_hardware(s, opt->hardware, controller, prior, progress, signals.flag());
+        } catch (const hw::Interrupted& e) {
+          if (tty) std::fprintf(stderr, "\n");
+          std::fprintf(stderr, "gpm monitor: %s: %s (drives disabled; nothing written)\n", hw::StopOnSignal::signal_name(), e.what());
+          set_exit(hw::kInterruptedExit);
+          return;
+        }
+      }
       if (tty) std::fprintf(stderr, "\n");
     } catch (const sim::SimError& e) {
       throw InputError(fmt::format("{}: {}", opt->scenario, e.what()));
     }
-    const scenario::MonitorExpect expect = scenario::load_monitor_expect(opt->scenario);
     scenario::write_monitor(o, opt->out);
     const auto checks = scenario::check_monitor(o, expect);
     int failed = 0;
     for (const auto& c : checks) failed += c.passed ? 0 : 1;
     fmt::print("scenario   {} ({})\n", s.name, opt->scenario);
     fmt::print("operation  {:.1f} s, {} servo cycles, {:.1f} s wall\n", o.simulated_s, o.cycles, o.wall_s);
-    fmt::print("alarms     {} ({} false; stated rate {} per hour)\n", o.alarms.size(), o.false_alarms,
-               o.model.settings.false_alarms_per_hour);
+    if (!o.hardware.empty()) fmt::print("hardware   {}\n", o.hardware);
+    if (o.truth_known)
+      fmt::print("alarms     {} ({} false; stated rate {} per hour)\n", o.alarms.size(), o.false_alarms,
+                 o.model.settings.false_alarms_per_hour);
+    else
+      fmt::print("alarms     {} (stated false-alarm rate {} per hour)\n", o.alarms.size(),
+                 o.model.settings.false_alarms_per_hour);
+    for (const auto& a : o.alarms) fmt::print("alarm      at {:.3f} s ({} {:.1f} > {:.1f}): {}\n", a.t_s, a.kind, a.statistic, a.threshold, a.explanation);
     for (const auto& d : o.detections) {
       if (d.detected_s)
         fmt::print("event {}    at {:.3f} s detected at {:.3f} s (delay {:.3f} s): {}\n", d.event, d.at_s, *d.detected_s,

@@ -5,13 +5,17 @@
 #pragma once
 
 #include <array>
+#include <atomic>
 #include <functional>
 #include <optional>
 #include <string>
 #include <vector>
 
+#include <nlohmann/json.hpp>
+
 #include "calib/monitor/monitor.hpp"
 #include "models/robot.hpp"
+#include "report/report_document.hpp"
 #include "sim/scenario.hpp"
 
 namespace gpm::scenario {
@@ -30,6 +34,7 @@ struct MonitorAlarm {
 struct MonitorEstimateRow {
   double t_s = 0.0;
   std::array<double, kNumParams> value{}, sigma{};
+  std::optional<Geometry> truth;  // the actual geometry at t_s in the monitor's gauge (twin only)
 };
 
 // How each event of the scenario was detected.
@@ -57,6 +62,9 @@ struct MonitorOutcome {
   calib::monitor::Estimate final_estimate;
   double simulated_s = 0.0, wall_s = 0.0;
   long cycles = 0;
+  long accepted = 0;           // samples the monitor used (independence gate, calib/monitor/README.md)
+  bool truth_known = true;     // false through hardware: no detections, no final errors
+  std::string hardware;        // the backend monitored through (empty: the in-process twin)
 };
 
 // An alarm counts as detecting the latest event begun at most this long
@@ -70,8 +78,33 @@ using MonitorProgress = std::function<void(double t_s, double duration_s)>;
 // prior_sigma: its 1-sigma per parameter (NaN: the monitor's defaults).
 // Throws InputError when the scenario has no operation, or when an event
 // leaves a mechanism that cannot reach the operation path.
+// motion_nu: latch skew s2, s3 (s) and compliance c1..c3 (rad/N m) estimated
+// by a calibration in motion (calib/motion_correction.hpp); without it the
+// monitor takes the values the scenario's effects state.
 MonitorOutcome run_monitor(const sim::Scenario& scenario, const Robot& controller,
-                           const std::array<double, kNumParams>& prior_sigma, const MonitorProgress& progress = {});
+                           const std::array<double, kNumParams>& prior_sigma, const MonitorProgress& progress = {},
+                           const std::optional<std::array<double, 5>>& motion_nu = std::nullopt);
+
+// The same through hardware (hw/: the twin backend, or the drives): the file
+// hardware_file (hw/hardware_config.hpp) chooses the backend and its rate;
+// the robot moves to the start of the operation path, then follows it for
+// duration_s under the hardware's safety supervisor while the monitor reads
+// every cycle (readings, speeds and torques as the drives report them). The
+// actual mechanism is unknown here: detections and final errors are left
+// out (truth_known false). stop (optional) is polled every cycle: a request
+// disables the drives and throws hw::Interrupted with what was monitored so far
+// lost only from memory (nothing is written yet). InputError for a bad file
+// or a path outside the safety limits, before anything moves.
+MonitorOutcome run_monitor_hardware(const sim::Scenario& scenario, const std::string& hardware_file,
+                                    const Robot& controller, const std::array<double, kNumParams>& prior_sigma,
+                                    const MonitorProgress& progress = {}, const std::atomic<bool>* stop = nullptr);
+
+// The monitor's reading model from the twin's stated effects: the motion
+// corrections (skew, compliance; from motion_nu when given; the friction on
+// the rotor) and the stated magnitudes of the cyclic encoder error and the
+// joint clearance.
+void apply_reading_model(calib::monitor::MonitorSettings& settings, const sim::TwinConfig& twin,
+                         const std::optional<std::array<double, 5>>& motion_nu);
 
 // The scenario's `expect:` for gpm monitor (every key optional).
 struct MonitorExpect {
@@ -79,6 +112,8 @@ struct MonitorExpect {
   std::optional<int> false_alarms_max;            // at most this many alarms no event explains
   std::optional<double> final_error_um_max;       // every tracked parameter within this at the end
                                                   // (um; offsets at their active link's tip)
+  std::optional<double> tracking_error_um_max;    // ... and at every estimate from tracking_after_s on
+  double tracking_after_s = 10.0;
   std::optional<std::string> explanation_contains;  // every detection's explanation contains this
 };
 
@@ -95,5 +130,25 @@ std::vector<MonitorCheck> check_monitor(const MonitorOutcome& outcome, const Mon
 
 // Writes DIR/alarms.csv, estimates.csv, summary.json and report.md, all or nothing.
 void write_monitor(const MonitorOutcome& outcome, const std::string& dir);
+
+// The parts of write_monitor's output, for gpm run: alarms.csv
+// (t_s,kind,statistic,threshold,explanation), estimates.csv (t_s, then each
+// estimated parameter and its std), the summary (alarms, false_alarms,
+// detections, final_error, ...) and the report section (headings at `level`,
+// the parameter-track figure named `figure`).
+std::string monitor_alarms_csv(const MonitorOutcome& outcome);
+std::string monitor_estimates_csv(const MonitorOutcome& outcome);
+nlohmann::json monitor_summary(const MonitorOutcome& outcome);
+void add_monitor_section(report::ReportDocument& doc, const MonitorOutcome& outcome, int level,
+                         const std::string& figure);
+
+struct RunOutcome;  // run/runner.hpp
+
+// gpm run's hook: when the scenario has `operation:`, the calibrated model
+// (the calibration's geometry, its 1-sigma as the monitor's prior, and the
+// compliance and skew it estimated when the samples were taken in motion)
+// monitors the operation on the twin; none without operation, or when the
+// run went through hardware (gpm monitor --hardware does that).
+std::optional<MonitorOutcome> monitor_after_calibration(const RunOutcome& run);
 
 }  // namespace gpm::scenario

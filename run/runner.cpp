@@ -271,6 +271,10 @@ RunOutcome run_scenario(const RunSpec& spec_in, const std::string& scenario_file
                                  &steps("actual parameters"));
     }
   }
+  if (spec.sim.operation) {
+    stage("monitoring the operation with the calibrated model");
+    out.monitor = monitor_after_calibration(out);
+  }
   out.checks = evaluate_expectations(out);
   out.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
   return out;
@@ -287,8 +291,17 @@ void write_run(const RunOutcome& o, const std::string& dir) {
   out.add("actual.yaml", robot_to_yaml(o.sim.actual));
   if (o.calibration) out.add("calibration.yaml", calib::result_to_yaml(*o.calibration, o.nominal.name));
   out.add("summary.json", summary_json(o));
+  if (o.monitor) {
+    out.add("alarms.csv", monitor_alarms_csv(*o.monitor));
+    out.add("estimates.csv", monitor_estimates_csv(*o.monitor));
+  }
   if (o.spec.outputs.report) {
-    report::build_run_report(run_report_data(o)).stage(out, "report", fmt::format("gpm run: {}", o.spec.sim.name));
+    report::ReportDocument doc = report::build_run_report(run_report_data(o));
+    if (o.monitor) {
+      doc.heading(2, "Monitoring the operation with the calibrated model");
+      add_monitor_section(doc, *o.monitor, 3, "monitor_tracks");
+    }
+    doc.stage(out, "report", fmt::format("gpm run: {}", o.spec.sim.name));
   }
   out.commit();
 }

@@ -13,6 +13,7 @@
 #include "calib/problem.hpp"
 #include "models/robot.hpp"
 #include "run/compensation.hpp"
+#include "run/monitor_run.hpp"
 #include "run/run_spec.hpp"
 #include "sim/simulate.hpp"
 
@@ -44,6 +45,7 @@ struct RunOutcome {
   // Samples taken on the fly: compliance and skew estimated with the geometry.
   bool in_motion = false;
   std::array<double, 5> motion_nu{}, motion_nu_sigma{};  // s2, s3 (s), c1..c3 (rad/N m)
+  std::optional<MonitorOutcome> monitor;  // the calibrated model monitoring `operation:` (run/monitor_run.hpp)
   std::vector<Check> checks;
   double seconds = 0.0;
 

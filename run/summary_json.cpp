@@ -46,6 +46,7 @@ std::string summary_json(const RunOutcome& o) {
   } else {
     j["model_test"] = nullptr;
   }
+  if (o.monitor) j["monitor"] = monitor_summary(*o.monitor);
   return j.dump(2) + "\n";
 }
 

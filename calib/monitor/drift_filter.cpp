@@ -6,17 +6,38 @@
 namespace gpm::calib::monitor {
 namespace {
 
-// h = dr/du (zero for the rate), P h' and s = sigma^2 + h P h'.
+// The readings with the estimated cyclic error removed:
+// theta_m_i - (a_i sin theta_m_i + b_i cos theta_m_i).
+Eigen::Vector3d without_cyclic(const MonitorModel& m, const std::array<double, kNumCyclic>& cyc,
+                               const Eigen::Vector3d& theta_m) {
+  if (m.cyclic_index < 0) return theta_m;
+  Eigen::Vector3d t = theta_m;
+  for (int i = 0; i < 3; ++i)
+    t[i] -= cyc[static_cast<size_t>(2 * i)] * std::sin(theta_m[i]) + cyc[static_cast<size_t>(2 * i + 1)] * std::cos(theta_m[i]);
+  return t;
+}
+
+// h = dr/du (zero for the rate; for the cyclic coefficients dr/dtheta_i =
+// dr/ddth_i times -sin, -cos theta_m_i), P h' and s = sigma^2 + h P h'.
 double innovation_variance(const MonitorModel& m, const StateMatrix& P, const ParamRow& g,
+                           const Eigen::Vector3d& theta_m, const Eigen::Vector3d& tension,
                            std::array<double, kMaxState>& Ph) {
   std::array<double, kMaxState> h{};
   for (int k = 0; k < m.n_free; ++k) h[static_cast<size_t>(k)] = g[m.free_index[static_cast<size_t>(k)]] / m.scale[static_cast<size_t>(k)];
+  if (m.cyclic_index >= 0)
+    for (int i = 0; i < 3; ++i) {
+      const auto k = static_cast<size_t>(m.cyclic_index + 2 * i);
+      h[k] = -g[dth(i)] * std::sin(theta_m[i]) / m.scale[k];
+      h[k + 1] = -g[dth(i)] * std::cos(theta_m[i]) / m.scale[k + 1];
+    }
+  if (m.clearance_index >= 0)
+    for (int i = 0; i < 3; ++i) h[static_cast<size_t>(m.clearance_index + i)] = 2.0 * tension[i] * g[lb(i)];
   double hPh = 0.0;
   for (int k = 0; k < m.n_state; ++k) {
     double acc = 0.0;
-    for (int l = 0; l < m.n_free; ++l) acc += P(k, l) * h[static_cast<size_t>(l)];
+    for (int l = 0; l < m.n_state; ++l) acc += P(k, l) * h[static_cast<size_t>(l)];
     Ph[static_cast<size_t>(k)] = acc;
-    if (k < m.n_free) hPh += h[static_cast<size_t>(k)] * acc;
+    hPh += h[static_cast<size_t>(k)] * acc;
   }
   return m.sigma_rad * m.sigma_rad + hPh;
 }
@@ -61,33 +82,45 @@ void filter_predict(const MonitorModel& m, Geometry& x, double& rate, StateMatri
     }
 }
 
+// The geometry a sample is read against: the estimate with its clearance shift.
+static Geometry shifted(const Geometry& x, const std::array<double, 3>& clearance, const Eigen::Vector3d& tension) {
+  Geometry g = x;
+  for (int i = 0; i < 3; ++i) g[lb(i)] += 2.0 * clearance[static_cast<size_t>(i)] * tension[i];
+  return g;
+}
+
 bool filter_innovation(const MonitorModel& m, const MonitorData& d, double t_s, const Eigen::Vector3d& theta_m,
-                       double& z, ParamRow& dz) {
+                       const Eigen::Vector3d& tension, double& z, ParamRow& dz) {
   Geometry x = d.estimate;
   double rate = d.growth_rate;
   StateMatrix P = d.P;
   if (d.filtered > 0) filter_predict(m, x, rate, P, t_s - d.t_last_update);
   double r = 0.0;
   ParamRow g;
-  if (!ml_residual_and_gradient(x, theta_m, r, g)) return false;
+  if (!ml_residual_and_gradient(shifted(x, d.clearance, tension), without_cyclic(m, d.cyclic, theta_m), r, g)) return false;
   std::array<double, kMaxState> Ph{};
-  const double sqrt_s = std::sqrt(innovation_variance(m, P, g, Ph));
+  const double sqrt_s = std::sqrt(innovation_variance(m, P, g, theta_m, tension, Ph));
   z = r / sqrt_s;
   dz = g / sqrt_s;
   return true;
 }
 
-void filter_update(const MonitorModel& m, MonitorData& d, double t_s, const Eigen::Vector3d& theta_m) {
+void filter_update(const MonitorModel& m, MonitorData& d, double t_s, const Eigen::Vector3d& theta_m,
+                   const Eigen::Vector3d& tension) {
   if (d.filtered > 0) filter_predict(m, d.estimate, d.growth_rate, d.P, std::max(t_s - d.t_last_update, 0.0));
   d.t_last_update = std::max(t_s, d.t_last_update);
   double r = 0.0;
   ParamRow g;
-  if (!ml_residual_and_gradient(d.estimate, theta_m, r, g)) return;
+  if (!ml_residual_and_gradient(shifted(d.estimate, d.clearance, tension), without_cyclic(m, d.cyclic, theta_m), r, g)) return;
   std::array<double, kMaxState> Ph{};
-  const double s = innovation_variance(m, d.P, g, Ph);
+  const double s = innovation_variance(m, d.P, g, theta_m, tension, Ph);
   for (int k = 0; k < m.n_state; ++k) {
     const double du = -Ph[static_cast<size_t>(k)] / s * r;
     if (k == m.rate_index) d.growth_rate += du;
+    else if (m.clearance_index >= 0 && k >= m.clearance_index)
+      d.clearance[static_cast<size_t>(k - m.clearance_index)] += du / m.scale[static_cast<size_t>(k)];
+    else if (m.cyclic_index >= 0 && k >= m.cyclic_index)
+      d.cyclic[static_cast<size_t>(k - m.cyclic_index)] += du / m.scale[static_cast<size_t>(k)];
     else d.estimate[m.free_index[static_cast<size_t>(k)]] += du / m.scale[static_cast<size_t>(k)];
   }
   for (int k = 0; k < m.n_state; ++k)

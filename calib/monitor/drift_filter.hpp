@@ -8,8 +8,14 @@
 // w_k independent random walks of variance drift_rate_k dt and w_rho a random
 // walk of variance rate_noise dt (integrated into u: the discrete process
 // noise of a white rate derivative, [dt^3/3 v v', dt^2/2 v; dt^2/2 v', dt]).
+// With a stated cyclic encoder error the state also holds its coefficients
+// a_i, b_i (constant; the readings lose a_i sin theta_i + b_i cos theta_i),
+// and with a stated clearance the effective clearance c_i of each chain
+// (constant; the passive length is lb_i + 2 c_i sign(T_i)).
 // Measurement: the ML residual of the readings, r(u) = 0 with variance
-// sigma^2 (calib/residuals.hpp), linearised at the current estimate.
+// sigma^2 (calib/residuals.hpp) at the geometry with each passive length
+// shifted by the sample's clearance (MonitorSettings::clearance_mm),
+// linearised at the current estimate.
 #pragma once
 
 #include "calib/monitor/monitor.hpp"
@@ -25,13 +31,16 @@ void filter_predict(const MonitorModel& model, Geometry& estimate, double& growt
 // predicted to t_s: z = r / sqrt(s), s = sigma^2 + h P h' with h = dr/du.
 // Also returns dz/dparams = (dr/dparams) / sqrt(s). False when the readings
 // have no ML residual (collinear elbows). Allocation-free.
+// tension: the sign of each passive link's axial force for the sample (its
+// length is lb_i + 2 c_i tension_i, c_i the estimated effective clearance).
 bool filter_innovation(const MonitorModel& model, const MonitorData& data, double t_s,
-                       const Eigen::Vector3d& theta_m, double& z, ParamRow& dz_dparams);
+                       const Eigen::Vector3d& theta_m, const Eigen::Vector3d& tension, double& z,
+                       ParamRow& dz_dparams);
 
 // Kalman update with one sample (predict to t_s, then K = P h' / s,
 // u += K (0 - r), P -= K h P). Directions h does not see get no gain.
 // Allocation-free.
 void filter_update(const MonitorModel& model, MonitorData& data, double t_s,
-                   const Eigen::Vector3d& theta_m);
+                   const Eigen::Vector3d& theta_m, const Eigen::Vector3d& tension);
 
 }  // namespace gpm::calib::monitor

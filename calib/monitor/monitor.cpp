@@ -11,6 +11,7 @@
 #include "calib/monitor/drift_filter.hpp"
 #include "calib/monitor/explain.hpp"
 #include "models/errors.hpp"
+#include "models/kinematics.hpp"
 
 namespace gpm::calib::monitor {
 namespace {
@@ -73,6 +74,23 @@ MonitorModel make_monitor_model(const MonitorSettings& s) {
   require(s.jump_offset_rad > 0.0 && s.jump_length_mm > 0.0, "jump scales must be > 0");
   require(s.min_motion_counts >= 0.0, "min_motion_counts must be >= 0");
   require(s.estimate.any(), "no parameter to estimate");
+  require(s.friction_speed_rad_s >= 0.0 && std::isfinite(s.friction_speed_rad_s) && s.friction_stick_rad_s >= 0.0 &&
+              std::isfinite(s.friction_stick_rad_s),
+          "friction_speed_rad_s and friction_stick_rad_s must be >= 0");
+  for (int i = 0; i < 3; ++i) {
+    const auto k = static_cast<size_t>(i);
+    require(std::isfinite(s.skew_s[k]) && std::abs(s.skew_s[k]) <= 0.01,
+            fmt::format("skew_s of encoder {} must be within +-0.01 s", i + 1));
+    require(std::isfinite(s.compliance_rad_per_Nm[k]) && s.compliance_rad_per_Nm[k] >= 0.0 && s.compliance_rad_per_Nm[k] <= 1.0,
+            fmt::format("compliance_rad_per_Nm of chain {} must be in 0..1", i + 1));
+    require(std::isfinite(s.coulomb_Nm[k]) && s.coulomb_Nm[k] >= 0.0 && std::isfinite(s.viscous_Nm_s[k]) &&
+                s.viscous_Nm_s[k] >= 0.0,
+            fmt::format("coulomb_Nm and viscous_Nm_s of chain {} must be finite and >= 0", i + 1));
+    require(std::isfinite(s.cyclic_rad[k]) && s.cyclic_rad[k] >= 0.0 && s.cyclic_rad[k] <= 0.01,
+            fmt::format("cyclic_rad of encoder {} must be in 0..0.01", i + 1));
+    require(std::isfinite(s.clearance_mm[k]) && s.clearance_mm[k] >= 0.0 && s.clearance_mm[k] <= 1.0,
+            fmt::format("clearance_mm of chain {} must be in 0..1", i + 1));
+  }
 
   MonitorModel m;
   m.settings = s;
@@ -115,6 +133,30 @@ MonitorModel make_monitor_model(const MonitorSettings& s) {
     m.prior_variance[static_cast<size_t>(m.rate_index)] = rate * rate;
     m.variance_cap[static_cast<size_t>(m.rate_index)] = 4.0 * rate * rate;
   }
+  if (s.cyclic_rad[0] > 0.0 || s.cyclic_rad[1] > 0.0 || s.cyclic_rad[2] > 0.0) {
+    // a_i, b_i = A_i cos(phase_i), A_i sin(phase_i) with a uniform phase:
+    // variance A_i^2 / 2 each; constant (no process noise).
+    m.cyclic_index = m.n_state;
+    for (int c = 0; c < kNumCyclic; ++c) {
+      const auto k = static_cast<size_t>(m.n_state++);
+      const double a = s.cyclic_rad[static_cast<size_t>(c / 2)];
+      m.scale[k] = mean_la;
+      m.prior_variance[k] = std::max(mean_la * mean_la * a * a / 2.0, 1e-30);
+      m.variance_cap[k] = m.prior_variance[k];
+    }
+  }
+  m.has_clearance = s.clearance_mm[0] > 0.0 || s.clearance_mm[1] > 0.0 || s.clearance_mm[2] > 0.0;
+  if (m.has_clearance) {
+    m.clearance_index = m.n_state;
+    for (int i = 0; i < 3; ++i) {
+      const auto k = static_cast<size_t>(m.n_state++);
+      const double c = s.clearance_mm[static_cast<size_t>(i)];
+      m.scale[k] = 1.0;
+      m.prior_variance[k] = std::max(0.0625 * c * c, 1e-30);
+      m.variance_cap[k] = m.prior_variance[k];
+    }
+  }
+  require(s.tension_min_N >= 0.0 && std::isfinite(s.tension_min_N), "tension_min_N must be >= 0");
   m.glr_threshold = chi2_upper_quantile(1, 0.5 * m.p_window / (m.n_free * s.window));
   return m;
 }
@@ -122,6 +164,7 @@ MonitorModel make_monitor_model(const MonitorSettings& s) {
 MonitorData make_monitor_data(const MonitorModel& m) {
   MonitorData d;
   d.estimate = m.settings.geometry;
+  d.clearance = m.settings.clearance_mm;
   d.P.setZero();
   for (int k = 0; k < m.n_state; ++k) d.P(k, k) = m.prior_variance[static_cast<size_t>(k)];
   return d;
@@ -130,7 +173,7 @@ MonitorData make_monitor_data(const MonitorModel& m) {
 void monitor_flush(const MonitorModel& m, MonitorData& d) {
   for (int j = 0; j < d.count; ++j) {
     const auto slot = static_cast<size_t>(slot_of(d, j));
-    filter_update(m, d, d.t[slot], d.theta[slot]);
+    filter_update(m, d, d.t[slot], d.theta[slot], d.tension[slot]);
   }
   d.count = 0;
   d.statistic = 0.0;
@@ -138,14 +181,43 @@ void monitor_flush(const MonitorModel& m, MonitorData& d) {
 }
 
 StepResult monitor_step(const MonitorModel& m, MonitorData& d, double t_s, const Eigen::Vector3d& theta_m) {
+  return monitor_step(m, d, t_s, theta_m, Eigen::Vector3d::Zero(), Eigen::Vector3d::Zero());
+}
+
+StepResult monitor_step(const MonitorModel& m, MonitorData& d, double t_s, const Eigen::Vector3d& theta_raw,
+                        const Eigen::Vector3d& omega, const Eigen::Vector3d& tau) {
   StepResult out;
+  // Motion corrections (calib/motion_correction.hpp): the link angle the
+  // reading stands for.
+  Eigen::Vector3d theta_m = theta_raw, carried;
+  for (int i = 0; i < 3; ++i) {
+    const auto k = static_cast<size_t>(i);
+    const double vs = m.settings.friction_speed_rad_s;
+    const double sign = vs > 0.0 ? std::clamp(omega[i] / vs, -1.0, 1.0) : (omega[i] > 0.0 ? 1.0 : (omega[i] < 0.0 ? -1.0 : 0.0));
+    carried[i] = tau[i] - m.settings.coulomb_Nm[k] * sign - m.settings.viscous_Nm_s[k] * omega[i];
+    theta_m[i] += m.settings.skew_s[k] * omega[i] - m.settings.compliance_rad_per_Nm[k] * carried[i];
+  }
   ++d.cycles;
   ++d.cycles_since_accepted;
   // Independence gate (README.md): at most one sample per `decimation`
   // cycles, and only when every joint has moved, so that the quantisation
   // errors of accepted samples are not copies of each other.
-  if (d.has_accepted && d.cycles_since_accepted < m.settings.decimation) return out;
-  if (!moved_enough(m, d, theta_m)) return out;
+  if (!d.has_accepted) {
+    // The first reading is only the reference of the motion gate: a robot
+    // starting from rest gives no sample until every joint moves.
+    d.has_accepted = true;
+    d.last_accepted = theta_raw;
+    d.cycles_since_accepted = 0;
+    return out;
+  }
+  if (d.cycles_since_accepted < m.settings.decimation) return out;
+  if (!moved_enough(m, d, theta_raw)) return out;
+  for (int i = 0; i < 3; ++i) {
+    const auto k = static_cast<size_t>(i);
+    if (m.settings.compliance_rad_per_Nm[k] * m.settings.coulomb_Nm[k] > 0.5 * m.sigma_rad &&
+        std::abs(omega[i]) < m.settings.friction_stick_rad_s)
+      return out;
+  }
 
   // The oldest sample leaves a full window and updates the filter; while an
   // alarm waits for its explanation the filter waits too (it must not absorb
@@ -153,20 +225,41 @@ StepResult monitor_step(const MonitorModel& m, MonitorData& d, double t_s, const
   const int W = m.settings.window;
   if (d.count >= W && d.pending < 0) {
     const auto oldest = static_cast<size_t>(slot_of(d, 0));
-    filter_update(m, d, d.t[oldest], d.theta[oldest]);
+    filter_update(m, d, d.t[oldest], d.theta[oldest], d.tension[oldest]);
     --d.count;
+  }
+
+  // Clearance (MonitorSettings::clearance_mm): each passive link acts as
+  // lb_i + 2 c_i sign(T_i), T_i its axial force from the moment balance of
+  // the active link; a sample whose tension sign is uncertain is not used.
+  Eigen::Vector3d tension_sign = Eigen::Vector3d::Zero();
+  if (m.has_clearance) {
+    Eigen::Vector3d theta_a;
+    for (int i = 0; i < 3; ++i) theta_a[i] = theta_m[i] + d.estimate.dth_(i);
+    const std::optional<ForwardResult> fk = forward_kinematics(d.estimate, theta_a);
+    if (!fk) {
+      ++d.skipped;
+      return out;
+    }
+    for (int i = 0; i < 3; ++i) {
+      const double c = m.settings.clearance_mm[static_cast<size_t>(i)];
+      if (c <= 0.0) continue;
+      const double tension = -carried[i] / (1e-3 * d.estimate.la_(i) * std::sin(fk->theta_b[i] - theta_a[i]));
+      if (!(std::abs(tension) >= m.settings.tension_min_N)) return out;
+      tension_sign[i] = tension > 0.0 ? 1.0 : -1.0;
+    }
   }
 
   // Innovation against the filter (which has seen no sample of the window)
   // predicted to t_s.
   double z = 0.0;
   ParamRow dz;
-  if (!filter_innovation(m, d, t_s, theta_m, z, dz)) {
+  if (!filter_innovation(m, d, t_s, theta_m, tension_sign, z, dz)) {
     ++d.skipped;
     return out;
   }
   d.has_accepted = true;
-  d.last_accepted = theta_m;
+  d.last_accepted = theta_raw;
   d.cycles_since_accepted = 0;
   ++d.accepted;
 
@@ -175,6 +268,7 @@ StepResult monitor_step(const MonitorModel& m, MonitorData& d, double t_s, const
   d.t[slot] = t_s;
   d.dz[slot] = dz;
   d.theta[slot] = theta_m;
+  d.tension[slot] = tension_sign;
   d.head = (d.head + 1) % kMaxWindow;
   ++d.count;
   const bool full = d.count == W && d.pending < 0;
@@ -207,7 +301,10 @@ StepResult monitor_step(const MonitorModel& m, MonitorData& d, double t_s, const
     d.statistic = 0.0;
     d.step_statistic = 0.0;
     d.pending = -1;
-  } else if (d.pending < 0 && (d.statistic > m.threshold || d.step_statistic > m.glr_threshold)) {
+  } else if (d.pending < 0 && d.filtered >= W && (d.statistic > m.threshold || d.step_statistic > m.glr_threshold)) {
+    // (No alarm before the filter has absorbed one window: until then the
+    // innovations share the prior's error of the nuisance states, cyclic
+    // error and clearance, which the step test does not normalise by.)
     Alarm& a = d.alarms[static_cast<size_t>(d.alarm_count % kMaxAlarms)];
     a = Alarm{};
     a.t_s = t_s;

@@ -38,8 +38,11 @@ namespace gpm::calib::monitor {
 // alarm's explanation) and the number of alarms kept.
 inline constexpr int kMaxWindow = 512;
 inline constexpr int kMaxAlarms = 64;
-// Filter coordinates: the estimated parameters plus the common thermal growth rate.
-inline constexpr int kMaxState = kNumParams + 1;
+// Filter coordinates: the estimated parameters, the common thermal growth
+// rate, the two coefficients of each encoder's once-per-revolution error and
+// the effective clearance of each chain.
+inline constexpr int kNumCyclic = 6;
+inline constexpr int kMaxState = kNumParams + 1 + kNumCyclic + 3;
 using StateMatrix = Eigen::Matrix<double, kMaxState, kMaxState>;
 
 // What the user states; make_monitor_model() checks it and derives the rest.
@@ -72,6 +75,46 @@ struct MonitorSettings {
   // (calib/monitor/explain.hpp): an encoder slip, a knock on a link or base.
   double jump_offset_rad = 1e-3;
   double jump_length_mm = 0.005;
+  // Motion corrections of the readings (the model of calib/motion_correction.hpp,
+  // with the values a calibration in motion estimated): the monitor tests the
+  // link angles theta_m_i + skew_s_i omega_i - compliance_i tau_t_i, omega the
+  // joint (motor) speed passed to monitor_step() and tau_t the torque the
+  // transmission carries: the drive torque tau minus the friction on the
+  // motor side of the compliance, tau_t = tau - coulomb sign(omega) -
+  // viscous omega (the reducer's friction acts on the rotor; a torque-off
+  // joint's link still drags its rotor through the twist).
+  std::array<double, 3> skew_s{};                  // latch skew of each encoder (s)
+  std::array<double, 3> compliance_rad_per_Nm{};  // transmission compliance of each chain
+  std::array<double, 3> coulomb_Nm{};             // Coulomb friction on the motor side (N m)
+  std::array<double, 3> viscous_Nm_s{};           // viscous friction on the motor side (N m s/rad)
+  // The Coulomb friction develops over joint speeds up to friction_speed_rad_s
+  // (taken as coulomb x speed / friction_speed below it); under
+  // friction_stick_rad_s it lies anywhere in +-coulomb, and a sample is used
+  // only when every joint whose friction twist compliance x coulomb exceeds
+  // half the reading noise moves faster (measured on the twin's MuJoCo
+  // friction: the twist error grows below 0.1 rad/s).
+  double friction_speed_rad_s = 0.1;
+  double friction_stick_rad_s = 0.05;
+  // Reading errors of the mechanism:
+  // - once-per-revolution encoder error A_i sin(theta_m_i + phase_i) of
+  //   unknown phase: estimated by the filter as a_i sin(theta_m_i) +
+  //   b_i cos(theta_m_i) with prior variance A_i^2 / 2 each (the slowly varying
+  //   error it leaves would otherwise look like a step);
+  // - radial clearance c_i of the elbow and hub joints of chain i (mm): the
+  //   passive link is a two-force member, both its pins sit against their
+  //   clearance along the link in the direction of its axial force, so it
+  //   acts as a link of length lb_i + 2 c_i sign(T_i); the filter estimates
+  //   the effective c_i (prior: the stated value, 1-sigma a quarter of it;
+  //   a soft stop lets the pins go a little further). The tension T_i comes
+  //   from the quasi-static moment balance of the active link,
+  //   T_i = -tau_t_i / (la_i sin(theta_b_i - theta_a_i)) (tau_t the
+  //   transmitted torque above, theta_b from forward kinematics); a sample is
+  //   used only when |T_i| >= tension_min_N for every chain with clearance
+  //   (below it the sign is uncertain: on the twin the pins followed the
+  //   sign of T in 98-100 % of the samples above 0.1 N, 50-70 % below 0.05 N).
+  std::array<double, 3> cyclic_rad{};
+  std::array<double, 3> clearance_mm{};
+  double tension_min_N = 0.3;
 
   // An array of NaN (the "use the default" marker of prior_sigma).
   static std::array<double, kNumParams> nan_array();
@@ -89,9 +132,13 @@ struct MonitorModel {
   int n_free = 0;                        // number of estimated parameters
   int n_state = 0;                       // filter coordinates: n_free, plus 1 with a growth-rate state
   int rate_index = -1;                   // index of the growth-rate coordinate, -1 without
+  int cyclic_index = -1;                 // first of the kNumCyclic cyclic-error coordinates, -1 without
+  bool has_clearance = false;            // some clearance_mm > 0: the passive lengths follow the tension
+  int clearance_index = -1;              // first of the 3 effective-clearance coordinates, -1 without
   std::array<int, kNumParams> free_index{};  // parameter of each filter coordinate (first n_free)
   // Filter coordinates u = scale * value: 1 for mm, the mean active length
-  // (mm) for offsets, so that P is well scaled; the rate is in mm/s.
+  // (mm) for offsets and cyclic coefficients, so that P is well scaled; the
+  // rate is in mm/s.
   std::array<double, kMaxState> scale{};
   std::array<double, kMaxState> growth{};        // d u_k / d (common growth, mm): L_i / mean L for links, else 0
   std::array<double, kMaxState> drift_rate{};    // independent random-walk variance per second of u_k
@@ -126,6 +173,10 @@ struct Alarm {
 // Mutable state of the monitor.
 struct MonitorData {
   Geometry estimate;  // current parameter estimate (fixed ones at the model's values)
+  // Estimated cyclic encoder error (rad): a_1, b_1, a_2, b_2, a_3, b_3; the
+  // reading error of encoder i is a_i sin(theta_m_i) + b_i cos(theta_m_i).
+  std::array<double, kNumCyclic> cyclic{};
+  std::array<double, 3> clearance{};  // estimated effective clearance of each chain (mm)
   double growth_rate = 0.0;  // estimated common growth rate (mm/s for a link of the mean length)
   StateMatrix P;             // covariance of the filter coordinates (n_state x n_state used)
   Eigen::Vector3d last_accepted = Eigen::Vector3d::Zero();
@@ -140,6 +191,7 @@ struct MonitorData {
   std::array<double, kMaxWindow> t{};
   std::array<ParamRow, kMaxWindow> dz{};
   std::array<Eigen::Vector3d, kMaxWindow> theta{};
+  std::array<Eigen::Vector3d, kMaxWindow> tension{};  // sign of each passive link's axial force (+-1, 0 without clearance)
   int head = 0;   // next slot to write
   int count = 0;  // samples held
   double statistic = 0.0;  // latest window sum of z^2 (0 until the window is full)
@@ -169,6 +221,12 @@ struct StepResult {
 // Allocation-free.
 StepResult monitor_step(const MonitorModel& model, MonitorData& data, double t_s,
                         const Eigen::Vector3d& theta_m);
+
+// The same with the joint speeds omega (rad/s) and drive torques tau (N m) of
+// the cycle, for the motion corrections of the settings. Allocation-free.
+StepResult monitor_step(const MonitorModel& model, MonitorData& data, double t_s,
+                        const Eigen::Vector3d& theta_m, const Eigen::Vector3d& omega,
+                        const Eigen::Vector3d& tau);
 
 // Feeds every sample still in the window to the filter (e.g. at the end of a
 // run) and empties the window. Allocation-free.

@@ -74,7 +74,7 @@ TEST(DriftFilter, UpdatesEqualTheInformationFormWithoutProcessNoise) {
     Eigen::VectorXd h(n);
     for (int k = 0; k < n; ++k) h[k] = g[m.free_index[static_cast<size_t>(k)]] / m.scale[static_cast<size_t>(k)];
     info += h * h.transpose() / (m.sigma_rad * m.sigma_rad);
-    filter_update(m, d, t, th);
+    filter_update(m, d, t, th, Eigen::Vector3d::Zero());
   }
   const Eigen::MatrixXd want = info.inverse();
   const Eigen::VectorXd scale = want.diagonal().cwiseSqrt().cwiseInverse();
@@ -92,7 +92,7 @@ TEST(DriftFilter, InnovationIsTheResidualOverItsPredictedSpread) {
   const Eigen::Vector3d th = cs.readings(truth, 0.8);
   double z = 0.0;
   ParamRow dz;
-  ASSERT_TRUE(filter_innovation(m, d, 0.8, th, z, dz));
+  ASSERT_TRUE(filter_innovation(m, d, 0.8, th, Eigen::Vector3d::Zero(), z, dz));
   double r = 0.0;
   ParamRow g;
   ASSERT_TRUE(ml_residual_and_gradient(d.estimate, th, r, g));

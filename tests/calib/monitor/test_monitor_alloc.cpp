@@ -91,5 +91,31 @@ TEST(MonitorAlloc, TenThousandCyclesAllocateNothing) {
   delete d;
 }
 
+// The same with the reading model of a real drive (motion corrections,
+// cyclic-error and clearance coordinates, forward kinematics per sample).
+TEST(MonitorAlloc, ReadingModelAllocatesNothing) {
+  MonitorSettings s;
+  s.skew_s = {0.0, 5e-5, 1e-4};
+  s.compliance_rad_per_Nm = {1e-4, 1e-4, 1e-4};
+  s.coulomb_Nm = {0.3, 0.3, 0.3};
+  s.cyclic_rad = {2e-5, 2e-5, 2e-5};
+  s.clearance_mm = {0.005, 0.005, 0.005};
+  const MonitorModel m = make_monitor_model(s);
+  MonitorData* d = new MonitorData(make_monitor_data(m));
+  testing::CircleStream cs;
+  const int n = 6000;
+  std::vector<Eigen::Vector3d> readings(n);
+  for (int c = 0; c < n; ++c) readings[static_cast<size_t>(c)] = cs.readings(s.geometry, c / 1000.0);
+  const Eigen::Vector3d omega(0.3, -0.3, 0.3), tau(0.0, 1.0, -1.0);
+  for (int c = 0; c < 2000; ++c) monitor_step(m, *d, c / 1000.0, readings[static_cast<size_t>(c)], omega, tau);
+  long accepted = 0;
+  const long before = g_allocations.load();
+  for (int c = 2000; c < n; ++c)
+    accepted += monitor_step(m, *d, c / 1000.0, readings[static_cast<size_t>(c)], omega, tau).accepted;
+  EXPECT_EQ(g_allocations.load() - before, 0);
+  EXPECT_GT(accepted, 300);
+  delete d;
+}
+
 }  // namespace
 }  // namespace gpm::calib::monitor
