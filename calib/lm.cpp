@@ -284,8 +284,10 @@ Result calibrate_lm(const Problem& problem, const LmOptions& opt) {
     // Each Jacobian evaluation also evaluates the residuals: count both kinds.
     res.evaluations = summary.num_residual_evaluations + summary.num_jacobian_evaluations;
     res.converged = summary.termination_type == ceres::CONVERGENCE;
-    // Rejected steps: the cost may have reached its rounding floor short of the optimum.
-    if (res.converged && summary.num_unsuccessful_steps > 0)
+    // Rejected steps: the cost may have reached its rounding floor short of the
+    // optimum. The polish solves the plain least-squares problem, so it is for
+    // the plain loss only (a robust loss has its own optimum).
+    if (res.converged && !rho && summary.num_unsuccessful_steps > 0)
       res.evaluations += polish_gauss_newton(functions, rows, free_index, x);
     if (!res.converged) {
       res.notes.push_back(fmt::format("Levenberg-Marquardt did not converge: {}", summary.message));
