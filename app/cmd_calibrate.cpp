@@ -21,6 +21,7 @@
 #include "calib/result_yaml.hpp"
 #include "calib/sample_check.hpp"
 #include "models/errors.hpp"
+#include "models/progress.hpp"
 #include "models/output_file.hpp"
 #include "models/robot_yaml.hpp"
 #include "models/samples.hpp"
@@ -148,7 +149,14 @@ void run(const CalibrateOptions& o) {
     mo.encoder_sigma = o.sigma;
   }
   if (samples.has_xy) mo.true_xy = &samples.xy;
+  // A global method's budget on a terminal (models/progress.hpp): evaluations, rate, ETA.
+  gpm::Progress progress = method == calib::Method::kLM
+                               ? gpm::Progress("", "", 0, nullptr, nullptr)
+                               : gpm::Progress::terminal("gpm calibrate: " + std::string(calib::method_name(method)), "evaluations",
+                                                         static_cast<double>(mo.budget));
+  if (progress.active()) mo.progress = [&progress](long done, long, double) { progress.update(static_cast<double>(done)); };
   const calib::Result r = calib::calibrate(problem, mo);
+  progress.finish();
 
   for (const auto& note : r.notes) std::fprintf(stderr, "gpm: warning: %s\n", note.c_str());
   calib::save_result(r, robot.name, o.out);

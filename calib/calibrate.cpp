@@ -85,7 +85,8 @@ Result calibrate(const Problem& problem, const MethodOptions& o) {
   const Box box = global::default_box(problem.start, problem.free);
   // ML is a least-squares residual, not a population cost: DE searches J3
   // (same minimiser, docs/EQUATIONS.md), then LM refines on ML.
-  Result g = global::solve_global(problem, ml ? Cost::kJ3 : o.cost, ml ? Method::kDE : o.method, box, go);
+  Result g = global::solve_global(problem, ml ? Cost::kJ3 : o.cost, ml ? Method::kDE : o.method, box, go,
+                                 o.progress);
   if (o.true_xy) g.kmrmse_mm = kmrmse(g.geometry, problem.theta_m, *o.true_xy);
   if (!ml) return g;
   Problem refine = problem;

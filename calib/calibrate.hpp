@@ -12,6 +12,7 @@
 
 #include <Eigen/Core>
 
+#include "calib/global/objective.hpp"
 #include "calib/problem.hpp"
 #include "calib/robust_loss.hpp"
 
@@ -31,6 +32,8 @@ struct MethodOptions {
   // Gaussian noise, with sigma = encoder_sigma or, when not given, 1.4826 x
   // the median absolute residual of a plain fit (which also starts the robust one).
   RobustLoss loss;
+  // Called as the global stage spends its budget (evaluations, budget, best J); empty: none.
+  global::ProgressFn progress;
 };
 
 // Solves problem with the chosen method. Global stages use J1/J2/J3 (ML is

@@ -104,9 +104,20 @@ MotionFit calibrate_in_motion(const Problem& problem, const std::vector<Eigen::V
       for (int k = 0; k < 3; ++k) out[j][k] += fit.friction[static_cast<std::size_t>(k)] * fric[j][k];
     return out;
   };
+  // Every LM iteration of every pass, numbered on (the report's convergence
+  // figure): each pass restarts from the last geometry on re-corrected readings.
+  std::vector<LmIteration> iterations;
+  const auto keep_iterations = [&iterations](const std::vector<LmIteration>& pass) {
+    const int next = iterations.empty() ? 0 : iterations.back().iteration + 1;
+    for (LmIteration it : pass) {
+      it.iteration += next;
+      iterations.push_back(it);
+    }
+  };
   for (fit.passes = 1; fit.passes <= std::max(1, model.max_passes); ++fit.passes) {
     p.theta_m = corrected();
     fit.result = calibrate_lm(p, lm);
+    keep_iterations(fit.result.lm_iterations);
     p.start = fit.result.geometry;  // warm start for the next pass
     // Linearisation at this fit.
     const ParamVector x = to_solver(fit.result.geometry, Cost::kML);
@@ -152,6 +163,8 @@ MotionFit calibrate_in_motion(const Problem& problem, const std::vector<Eigen::V
   p.theta_m = fit.corrected;
   lm.compute_covariance = want_covariance;
   fit.result = calibrate_lm(p, lm);
+  keep_iterations(fit.result.lm_iterations);
+  fit.result.lm_iterations = std::move(iterations);
   if (want_covariance && q > 0 && fit.result.covariance) {
     // Joint covariance sigma^2 (J' J)^-1 of [J_g, J_nu]; its geometry block
     // replaces the geometry-only one, its nuisance diagonal gives nu_sigma.

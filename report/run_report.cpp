@@ -154,7 +154,7 @@ std::string lm_convergence_figure(const RunCalibration& r) {
     const double x = it.iteration;
     (it.accepted ? cost : cost_rejected).x.push_back(x);
     (it.accepted ? cost : cost_rejected).y.push_back(it.cost - j_ref);
-    if (it.iteration == 0) continue;  // no step at the start
+    if (it.iteration == 0 || !(it.step_norm > 0.0)) continue;  // no step at a start (or a pass's restart)
     (it.accepted ? step : step_rejected).x.push_back(x);
     (it.accepted ? step : step_rejected).y.push_back(it.step_norm);
   }
