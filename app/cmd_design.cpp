@@ -20,6 +20,7 @@
 #include "calib/excitation/pose_list.hpp"
 #include "models/errors.hpp"
 #include "models/output_file.hpp"
+#include "models/progress.hpp"
 #include "models/robot_yaml.hpp"
 #include "report/report_document.hpp"
 #include "report/svg_plot.hpp"
@@ -87,9 +88,13 @@ std::string bound_note(const ex::Bounds& b) {
 
 void run_design(const DesignCliOptions& o) {
   const auto t0 = std::chrono::steady_clock::now();
-  const ex::DesignOptions d = design_options(o);
+  ex::DesignOptions d = design_options(o);
   const Robot robot = load_robot(o.model);
+  // The design's stages on a terminal (models/progress.hpp).
+  gpm::Progress progress = gpm::Progress::terminal("gpm design", "stages", d.criterion == ex::Criterion::kWorst ? 6 : 2);
+  if (progress.active()) d.progress = [&progress](int done, int) { progress.update(done); };
   const ex::Design design = ex::design_poses(robot, d);
+  progress.finish();
   const std::string comment = fmt::format(
       "gpm design: {} poses, criterion {}, encoder noise {} rad, free {}\n"
       "designed at the geometry of {} (nominal: what is known before calibration)\n"

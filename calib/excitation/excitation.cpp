@@ -186,7 +186,13 @@ Design design_poses(const Robot& nominal, const DesignOptions& o) {
     return bounds_from_rows(r, nominal.geometry, o.free, o.sigma);
   };
 
+  const int stages = o.criterion == Criterion::kWorst ? 6 : 2;
+  int stages_done = 0;
+  const auto stage_done = [&] {
+    if (o.progress) o.progress(++stages_done, stages);
+  };
   std::vector<int> chosen = greedy_d_optimal(rows_s, o.count);
+  stage_done();
   out.start = poses_of(chosen);
   out.start_bounds = bounds_of(chosen);
   std::vector<int> best = chosen;
@@ -197,10 +203,12 @@ Design design_poses(const Robot& nominal, const DesignOptions& o) {
   };
   out.exchanges += exchange_d_optimal(rows_s, chosen, o.max_exchanges);
   keep_if_better();
+  stage_done();
   if (o.criterion == Criterion::kWorst) {
     for (int q : {1, 4, 16, 0}) {
       out.exchanges += exchange_variances(rows_s, chosen, q, o.max_exchanges);
       keep_if_better();
+      stage_done();
     }
   }
   out.poses = poses_of(best);

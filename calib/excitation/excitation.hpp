@@ -74,6 +74,9 @@ struct DesignOptions {
   // safety limits); unset: every guarded reachable grid point is a candidate.
   std::function<bool(const Eigen::Vector2d&)> admissible;
   int max_exchanges = 2000;             // per exchange stage
+  // Called after each stage (greedy start, then each exchange stage) with
+  // the stages done and their number; empty: none.
+  std::function<void(int done, int stages)> progress;
 };
 
 struct Design {

@@ -67,6 +67,29 @@ TEST(Calibrate, DePlusLmOnMlRecoversExactDataAndPopulationMethodsRefuseMl) {
   }
 }
 
+TEST(Calibrate, GlobalProgressRisesToTheBudgetAndDoesNotChangeTheResult) {
+  // The progress hook sees the evaluations spent (never more than the budget,
+  // never going back) and reaches the budget; the result is the same with it.
+  const Problem p = exact_problem();
+  MethodOptions o;
+  o.method = Method::kDE;
+  o.cost = Cost::kJ3;
+  o.budget = 20'000;
+  const Result plain = calibrate(p, o);
+  long last = 0, calls = 0;
+  o.progress = [&](long done, long budget, double) {
+    EXPECT_EQ(budget, 20'000);
+    EXPECT_GE(done, last);
+    EXPECT_LE(done, budget);
+    last = done;
+    ++calls;
+  };
+  const Result watched = calibrate(p, o);
+  EXPECT_GT(calls, 10);
+  EXPECT_EQ(last, 20'000);
+  for (int i = 0; i < kNumParams; ++i) EXPECT_EQ(watched.geometry[i], plain.geometry[i]) << param_name(i);
+}
+
 TEST(RobustLoss, NamesParseAndBadValuesAreOneLineNamingTheValidForms) {
   EXPECT_EQ(parse_loss("cauchy").kind, LossKind::kCauchy);
   EXPECT_EQ(parse_loss("cauchy").scale, 0.0);

@@ -56,6 +56,27 @@ TEST(Excitation, WorstNeverWorseThanStartAndReachable) {
               1e-9 * d.bounds.worst_mm);
 }
 
+TEST(Excitation, ProgressCountsEveryStageOnceAndLeavesTheDesignUnchanged) {
+  // Greedy start, then the D exchange (D criterion: 2 stages) or the D
+  // exchange and the four variance exchanges q = 1, 4, 16, inf (worst: 6).
+  const Robot nominal;
+  for (const auto& [c, stages] : {std::pair{Criterion::kDOptimal, 2}, std::pair{Criterion::kWorst, 6}}) {
+    DesignOptions o = small_options(c);
+    std::vector<int> seen;
+    o.progress = [&](int done, int total) {
+      EXPECT_EQ(total, stages);
+      seen.push_back(done);
+    };
+    const Design with = design_poses(nominal, o);
+    o.progress = nullptr;
+    const Design without = design_poses(nominal, o);
+    std::vector<int> expected(static_cast<size_t>(stages));
+    for (int k = 0; k < stages; ++k) expected[static_cast<size_t>(k)] = k + 1;
+    EXPECT_EQ(seen, expected) << criterion_name(c);
+    EXPECT_EQ(with.poses, without.poses) << criterion_name(c);
+  }
+}
+
 TEST(Excitation, DOptimalBeatsRandomDiscs) {
   const Robot nominal;
   DesignOptions o = small_options(Criterion::kDOptimal);
