@@ -95,6 +95,10 @@ RunOutcome run_scenario(const RunSpec& spec_in, const std::string& scenario_file
   const auto t0 = std::chrono::steady_clock::now();
   auto stage = [&](const std::string& s) { if (progress) progress(s); };
   RunSpec spec = spec_in;
+  // events: belong to the operation (the monitor's twin time); the
+  // calibration's sampling and accuracy tests run on the mechanism before them.
+  const std::vector<sim::GeometryEvent> operation_events = std::move(spec.sim.twin.events);
+  spec.sim.twin.events.clear();
   if (spec.sim.sampling && !spec.sim.sampling->needs_design())
     design_sampling(spec.sim, ~spec.calibration.fixed, 0.0);  // given poses: only their number is checked
   if (spec.sim.sampling && spec.sim.sampling->needs_design()) {
@@ -130,6 +134,7 @@ RunOutcome run_scenario(const RunSpec& spec_in, const std::string& scenario_file
   RunOutcome out;
   out.scenario_file = scenario_file;
   out.spec = spec;
+  out.spec.sim.twin.events = operation_events;  // for the monitor of the operation
   out.in_motion = in_motion;
   out.nominal = spec.sim.controller;
   out.calibrated = spec.sim.controller;

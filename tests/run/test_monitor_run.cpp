@@ -56,6 +56,27 @@ TEST(MonitorRun, GpmRunMonitorsTheOperationWithTheCalibratedModel) {
   EXPECT_NE(json.find("\"false_alarms\": 0"), std::string::npos) << json;
 }
 
+// events: belong to the operation: the calibration's sampling (about 20 s
+// of stop-and-go here, longer than the event's at_s) runs on the mechanism
+// before them, so it is the same with or without them, and the monitor of
+// the operation detects the jump.
+TEST(MonitorRun, OperationEventsLeaveTheCalibrationAloneAndAreDetected) {
+  const std::string op =
+      "operation: {path: {shape: circle, centre: [216.5, 250], radius: 60, period_s: 4}, duration_s: 8}\n";
+  const RunOutcome plain = run_scenario(parse_run_spec(run_yaml(op), "t.yaml", kBase), "t.yaml");
+  const RunOutcome with =
+      run_scenario(parse_run_spec(run_yaml(op + "events: [{at_s: 5, change: {dth2: 1.0e-3}}]\n"), "t.yaml", kBase),
+                   "t.yaml");
+  ASSERT_TRUE(plain.calibration && with.calibration);
+  EXPECT_GT(with.sim.sampling_s, 5.0) << "the sampling should outlast the event's time";
+  EXPECT_EQ(with.calibration->geometry.values, plain.calibration->geometry.values);
+  ASSERT_TRUE(with.monitor);
+  ASSERT_EQ(with.monitor->detections.size(), 1u);
+  ASSERT_TRUE(with.monitor->detections[0].detected_s) << "the jump at 5 s was not detected";
+  EXPECT_GE(*with.monitor->detections[0].detected_s, 5.0);
+  EXPECT_EQ(with.monitor->false_alarms, 0);
+}
+
 TEST(MonitorRun, GpmRunWithoutOperationDoesNotMonitor) {
   const RunSpec spec = parse_run_spec(run_yaml(""), "t.yaml", kBase);
   const RunOutcome o = run_scenario(spec, "t.yaml");
