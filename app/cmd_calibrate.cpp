@@ -151,7 +151,7 @@ void run(const CalibrateOptions& o) {
   if (samples.has_xy) mo.true_xy = &samples.xy;
   // A global method's budget on a terminal (models/progress.hpp): evaluations, rate, ETA.
   gpm::Progress progress = method == calib::Method::kLM
-                               ? gpm::Progress("", "", 0, nullptr, nullptr)
+                               ? gpm::Progress::silent()
                                : gpm::Progress::terminal("gpm calibrate: " + std::string(calib::method_name(method)), "evaluations",
                                                          static_cast<double>(mo.budget));
   if (progress.active()) mo.progress = [&progress](long done, long, double) { progress.update(static_cast<double>(done)); };

@@ -55,6 +55,8 @@ Progress::~Progress() {
   if (sink_ && !finished_) finish();
 }
 
+Progress Progress::silent() { return Progress("", "", 0.0, nullptr, nullptr); }
+
 Progress Progress::terminal(std::string what, std::string unit, double total) {
   Sink sink;
   if (::isatty(STDERR_FILENO)) {

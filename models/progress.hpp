@@ -36,6 +36,9 @@ class Progress {
   // by the steady clock.
   static Progress terminal(std::string what, std::string unit, double total = 0.0);
 
+  // A reporter that writes nothing (for a caller that was asked to be quiet).
+  static Progress silent();
+
   // Records that `done` units are done. The first call starts the clock
   // (the rate counts the units done after it, so set-up time is left out);
   // later calls rewrite the line when min_interval_s has passed since the

@@ -145,7 +145,7 @@ RunOutcome run_scenario(const RunSpec& spec_in, const std::string& scenario_file
   } else {
     stage("simulating the twin");
     gpm::Progress simulated = progress ? gpm::Progress::terminal("gpm run: simulating", "simulated s")
-                                       : gpm::Progress("", "", 0, nullptr, nullptr);  // models/progress.hpp
+                                       : gpm::Progress::silent();  // models/progress.hpp
     out.sim = sim::run_simulation(spec.sim, nullptr, &simulated);
   }
   const Robot& actual = out.sim.actual;
@@ -258,7 +258,7 @@ RunOutcome run_scenario(const RunSpec& spec_in, const std::string& scenario_file
       measuring.reset();
       measuring.emplace(progress ? gpm::Progress::terminal("gpm run: " + label, "test steps",
                                                            static_cast<double>(spec.compensation->poses.size() + 1))
-                                 : gpm::Progress("", "", 0, nullptr, nullptr));
+                                 : gpm::Progress::silent());
       return *measuring;
     };
     out.before = measure_accuracy(actual, test_twin, out.nominal, *spec.compensation, seed, "nominal",

@@ -117,6 +117,9 @@ TEST(Progress, NothingWrittenBeforeAnyLineOrWithoutASink) {
   f.now += 1.0;
   silent.update(3);  // no sink: nothing happens, nothing crashes
   silent.finish();
+  Progress quiet = Progress::silent();
+  EXPECT_FALSE(quiet.active());
+  quiet.update(1);
 }
 
 TEST(Progress, DestructorErasesAnUnfinishedLine) {
