@@ -3,15 +3,11 @@
 #include <cmath>
 #include <numbers>
 
+#include "models/kinematics.hpp"
+
 namespace gpm::sim {
 namespace {
 constexpr double kTwoPi = 2.0 * std::numbers::pi;
-
-double wrap_2pi(double a) {
-  a = std::fmod(a, kTwoPi);
-  if (a < 0.0) a += kTwoPi;
-  return a;
-}
 }  // namespace
 
 double EncoderModel::count_rad() const {
