@@ -10,8 +10,10 @@
 
 #include "calib/identifiability.hpp"
 #include "calib/parameterization.hpp"
+#include "calib/passive_tension.hpp"
 #include "calib/residuals.hpp"
 #include "models/errors.hpp"
+#include "models/kinematics.hpp"
 
 namespace gpm::calib {
 namespace {
@@ -23,16 +25,36 @@ double ml_residual(const ParamVector& x, const Eigen::Vector3d& theta) {
   return r;
 }
 
-// Joint speed below which Coulomb friction is treated as static (rad/s).
-constexpr double kFrictionSpeed = 0.01;
-
 // Columns of the nuisance Jacobian that model estimates (0..4 = s2 s3 c1 c2 c3, 5..7 = c1 F1, c2 F2, c3 F3).
 std::vector<int> nuisance_columns(const MotionModel& m) {
   std::vector<int> cols;
   if (m.skew) cols.insert(cols.end(), {0, 1});
   if (m.compliance) cols.insert(cols.end(), {2, 3, 4});
   if (m.compliance && m.friction) cols.insert(cols.end(), {5, 6, 7});
+  if (m.clearance) cols.insert(cols.end(), {8, 9, 10});
   return cols;
+}
+
+// Clearance regressors (calib/motion_correction.hpp): per sample and chain,
+// sign(T_i) / (la_i sin(theta_b_i - theta_a_i)) (rad/mm), 0 where |T_i| is
+// below tension_min_N (its sign uncertain), at geometry g with the readings
+// corrected by the current nuisance values (corrected); tau_t: the torques
+// transmitted to the active links (calib/passive_tension.hpp).
+std::vector<Eigen::Vector3d> clearance_regressors(const Geometry& g, const std::vector<Eigen::Vector3d>& corrected,
+                                                  const std::vector<Eigen::Vector3d>& tau_t, double tension_min_N) {
+  std::vector<Eigen::Vector3d> out(corrected.size(), Eigen::Vector3d::Zero());
+  for (std::size_t j = 0; j < corrected.size(); ++j) {
+    Eigen::Vector3d theta_a;
+    for (int i = 0; i < 3; ++i) theta_a[i] = corrected[j][i] + g.dth_(i);
+    const std::optional<ForwardResult> fk = forward_kinematics(g, theta_a);
+    if (!fk) continue;
+    for (int i = 0; i < 3; ++i) {
+      const double tension = passive_link_tension(g, i, theta_a[i], fk->theta_b[i], tau_t[j][i]);
+      if (!(std::abs(tension) >= tension_min_N)) continue;
+      out[j][i] = (tension > 0.0 ? 1.0 : -1.0) * reading_per_passive_length(g, i, theta_a[i], fk->theta_b[i]);
+    }
+  }
+  return out;
 }
 
 }  // namespace
@@ -51,7 +73,7 @@ std::vector<Eigen::Vector3d> correct_readings(const std::vector<Eigen::Vector3d>
 
 MotionFit calibrate_in_motion(const Problem& problem, const std::vector<Eigen::Vector3d>& omega,
                               const std::vector<Eigen::Vector3d>& tau, const LmOptions& options,
-                              const MotionModel& model) {
+                              const MotionModel& model, const std::vector<Eigen::Vector3d>& alpha) {
   const std::size_t n = problem.theta_m.size();
   if (omega.size() != n || tau.size() != n)
     throw InputError(fmt::format("calibration in motion: {} readings but {} joint speeds and {} torques", n,
@@ -69,10 +91,21 @@ MotionFit calibrate_in_motion(const Problem& problem, const std::vector<Eigen::V
   std::vector<Eigen::Vector3d> fric(n, Eigen::Vector3d::Zero());
   if (model.friction)
     for (std::size_t j = 0; j < n; ++j) fric[j] = (omega[j] / kFrictionSpeed).array().tanh();
+  if (!alpha.empty() && alpha.size() != n)
+    throw InputError(fmt::format("calibration in motion: {} readings but {} joint accelerations", n, alpha.size()));
+  // Clearance regressors at the start geometry, recomputed at every pass.
+  std::vector<Eigen::Vector3d> tau_t(n, Eigen::Vector3d::Zero()), clr(n, Eigen::Vector3d::Zero());
+  if (model.clearance) {
+    for (std::size_t j = 0; j < n; ++j)
+      for (int i = 0; i < 3; ++i)
+        tau_t[j][i] = transmitted_torque(model.load, i, tau[j][i], omega[j][i], alpha.empty() ? 0.0 : alpha[j][i]);
+    clr = clearance_regressors(problem.start, problem.theta_m, tau_t, model.tension_min_N);
+  }
   auto regressor = [&](int c, std::size_t j) {
     if (c < 2) return omega[j][c + 1];
     if (c < 5) return tau[j][c - 2] - tau[0][c - 2];
-    return fric[j][c - 5];
+    if (c < 8) return model.friction ? fric[j][c - 5] : 0.0;
+    return clr[j][c - 8];
   };
   std::vector<int> cols;
   for (int c : nuisance_columns(model)) {
@@ -85,6 +118,7 @@ MotionFit calibrate_in_motion(const Problem& problem, const std::vector<Eigen::V
   MotionFit fit;
   fit.nu_sigma.fill(std::numeric_limits<double>::quiet_NaN());
   fit.friction_sigma.fill(std::numeric_limits<double>::quiet_NaN());
+  fit.clearance_sigma.fill(std::numeric_limits<double>::quiet_NaN());
   Problem p = problem;
   LmOptions lm = options;
   const bool want_covariance = options.compute_covariance;
@@ -95,13 +129,21 @@ MotionFit calibrate_in_motion(const Problem& problem, const std::vector<Eigen::V
   for (int k = 0; k < kNumParams; ++k)
     if (problem.free[k]) free_index.push_back(k);
 
-  std::array<double, 8> nu_all{};  // nu, then c_i F_i
-  auto corrected = [&]() {
+  std::array<double, 11> nu_all{};  // nu, then c_i F_i, then the clearances d_i
+  // The readings corrected for the twist, skew and friction (without the clearance).
+  auto twist_corrected = [&]() {
     std::copy_n(nu_all.begin(), 5, fit.nu.begin());
     std::copy_n(nu_all.begin() + 5, 3, fit.friction.begin());
+    std::copy_n(nu_all.begin() + 8, 3, fit.clearance.begin());
     std::vector<Eigen::Vector3d> out = correct_readings(problem.theta_m, omega, tau, fit.nu);
     for (std::size_t j = 0; j < n; ++j)
       for (int k = 0; k < 3; ++k) out[j][k] += fit.friction[static_cast<std::size_t>(k)] * fric[j][k];
+    return out;
+  };
+  auto corrected = [&]() {
+    std::vector<Eigen::Vector3d> out = twist_corrected();
+    for (std::size_t j = 0; j < n; ++j)
+      for (int k = 0; k < 3; ++k) out[j][k] += fit.clearance[static_cast<std::size_t>(k)] * clr[j][k];
     return out;
   };
   // Every LM iteration of every pass, numbered on (the report's convergence
@@ -115,6 +157,8 @@ MotionFit calibrate_in_motion(const Problem& problem, const std::vector<Eigen::V
     }
   };
   for (fit.passes = 1; fit.passes <= std::max(1, model.max_passes); ++fit.passes) {
+    if (model.clearance && fit.passes > 1)
+      clr = clearance_regressors(p.start, twist_corrected(), tau_t, model.tension_min_N);
     p.theta_m = corrected();
     fit.result = calibrate_lm(p, lm);
     keep_iterations(fit.result.lm_iterations);
@@ -137,8 +181,9 @@ MotionFit calibrate_in_motion(const Problem& problem, const std::vector<Eigen::V
         b[k] -= h;
         u[k] = (ml_residual(x, a) - ml_residual(x, b)) / (2.0 * h);
       }
-      const double all[8] = {u[1] * omega[j][1], u[2] * omega[j][2], -u[0] * tau[j][0], -u[1] * tau[j][1],
-                             -u[2] * tau[j][2],  u[0] * fric[j][0],  u[1] * fric[j][1],  u[2] * fric[j][2]};
+      const double all[11] = {u[1] * omega[j][1], u[2] * omega[j][2], -u[0] * tau[j][0], -u[1] * tau[j][1],
+                              -u[2] * tau[j][2],  u[0] * fric[j][0],  u[1] * fric[j][1],  u[2] * fric[j][2],
+                              u[0] * clr[j][0],   u[1] * clr[j][1],   u[2] * clr[j][2]};
       for (int c = 0; c < q; ++c) Jn(static_cast<Eigen::Index>(j), c) = all[cols[static_cast<std::size_t>(c)]];
     }
     if (q == 0) break;
@@ -160,6 +205,9 @@ MotionFit calibrate_in_motion(const Problem& problem, const std::vector<Eigen::V
   }
   fit.passes = std::min(fit.passes, std::max(1, model.max_passes));
   fit.corrected = corrected();
+  for (std::size_t j = 0; j < n; ++j)
+    for (int k = 0; k < 3; ++k)
+      if (clr[j][k] != 0.0) fit.clearance_used[static_cast<std::size_t>(k)] += 1.0 / static_cast<double>(n);
   p.theta_m = fit.corrected;
   lm.compute_covariance = want_covariance;
   fit.result = calibrate_lm(p, lm);
@@ -185,7 +233,7 @@ MotionFit calibrate_in_motion(const Problem& problem, const std::vector<Eigen::V
     for (int c = 0; c < q; ++c) {
       const Eigen::Index i = Jg_free.cols() + c;
       const std::size_t k = static_cast<std::size_t>(cols[static_cast<std::size_t>(c)]);
-      (k < 5 ? fit.nu_sigma[k] : fit.friction_sigma[k - 5]) = std::sqrt(C(i, i));
+      (k < 5 ? fit.nu_sigma[k] : k < 8 ? fit.friction_sigma[k - 5] : fit.clearance_sigma[k - 8]) = std::sqrt(C(i, i));
     }
   }
   return fit;

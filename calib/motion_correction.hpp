@@ -13,7 +13,13 @@
 // residuals r (n), their Jacobian J_g (n x free) and their reading
 // sensitivities u_jk = dr_j / dtheta_k at that fit, the joint linearisation
 //   r + J_g dg + J_nu dnu = 0,   J_nu[j] = (u_j2 omega_j2, u_j3 omega_j3, -u_j1 tau_j1, -u_j2 tau_j2, -u_j3 tau_j3)
-// is solved in least squares for dnu (eliminating dg). The covariance of the
+// is solved in least squares for dnu (eliminating dg). With the joint clearance,
+// passive link i acts as lb_i + d_i sign(T_i) (T_i its axial force from chain
+// i's own moment balance, calib/passive_tension.hpp, the transmitted torque
+// being tau_i less the stated friction and inertia of MotionModel::load),
+// which is the reading correction d_i sign(T_i) / (la_i sin(theta_b_i - theta_a_i)):
+// a further column u_ji sign(T_ji) / (la_i sin(...)) per chain, 0 in samples
+// whose sign is uncertain. The covariance of the
 // geometry then comes from the joint Jacobian [J_g, J_nu], so the nuisance
 // values' uncertainty is carried into the parameters' 1-sigma.
 #pragma once
@@ -24,6 +30,7 @@
 #include <Eigen/Core>
 
 #include "calib/lm.hpp"
+#include "calib/passive_tension.hpp"
 #include "calib/problem.hpp"
 
 namespace gpm::calib {
@@ -34,6 +41,10 @@ struct MotionModel {
   bool compliance = true;  // estimate c1, c2, c3 (rad/N m)
   bool friction = true;    // with compliance: the twist c_i F_i sign(omega_i) that the motor-side
                            // Coulomb friction F_i takes off the drive torque
+  bool clearance = false;  // estimate the axial play d_i of each passive link (mm): its length is
+                           // lb_i + d_i sign(T_i), T_i its axial force (calib/passive_tension.hpp)
+  TransmissionLoad load;       // for the force signs: the friction and inertia the transmissions take off
+  double tension_min_N = 0.3;  // |T_i| below this: the sign is uncertain, chain i's play is left out of that sample
   int max_passes = 6;      // Gauss-Newton passes (each one LM fit)
 };
 
@@ -44,17 +55,21 @@ struct MotionFit {
                                             // compliance of a torque-off joint, which no sample excites)
   std::array<double, 3> friction{};         // c_i F_i (rad), i = 1..3; 0 where not estimated
   std::array<double, 3> friction_sigma{};   // their 1-sigma (NaN where not estimated)
+  std::array<double, 3> clearance{};        // axial play d_i of each passive link (mm); 0 where not estimated
+  std::array<double, 3> clearance_sigma{};  // their 1-sigma (NaN where not estimated)
+  std::array<double, 3> clearance_used{};   // fraction of the samples whose force sign was certain, per chain
   int passes = 0;
   std::vector<Eigen::Vector3d> corrected;   // readings corrected with nu (rad)
 };
 
 // Estimates problem.free and the nuisance values of model from readings
 // problem.theta_m taken with joint speeds omega (rad/s) and drive torques tau
-// (N m), one per sample. options.cost must be ML. Throws InputError when the
-// sizes differ or the cost is not ML (and for everything calibrate_lm refuses).
+// (N m), one per sample, and (for the clearance's force signs; empty: 0) joint
+// accelerations alpha (rad/s^2). options.cost must be ML. Throws InputError when
+// the sizes differ or the cost is not ML (and for everything calibrate_lm refuses).
 MotionFit calibrate_in_motion(const Problem& problem, const std::vector<Eigen::Vector3d>& omega,
                               const std::vector<Eigen::Vector3d>& tau, const LmOptions& options,
-                              const MotionModel& model = {});
+                              const MotionModel& model = {}, const std::vector<Eigen::Vector3d>& alpha = {});
 
 // The readings corrected for nuisance values nu (as in MotionFit::nu):
 // theta_m + s omega - c tau per joint.

@@ -59,17 +59,19 @@ CalibrationSpec parse_calibration(const YAML::Node& n, const std::string& file) 
   if (n["sigma"]) c.sigma = yaml_positive(n["sigma"], file, "calibration.sigma");
   if (const YAML::Node est = n["estimate"]) {
     if (!est.IsSequence())
-      throw InputError(yaml_where(file, est, "calibration.estimate") + "expected a list of compliance, skew, friction (or [])");
+      throw InputError(yaml_where(file, est, "calibration.estimate") + "expected a list of compliance, skew, friction, clearance (or [])");
     c.estimate_compliance = false;
     c.estimate_skew = false;
     c.estimate_friction = false;
+    c.estimate_clearance = false;
     for (size_t k = 0; k < est.size(); ++k) {
       const std::string key = fmt::format("calibration.estimate[{}]", k);
       const std::string what = yaml_string(est[k], file, key);
       if (what == "compliance") c.estimate_compliance = true;
       else if (what == "skew") c.estimate_skew = true;
       else if (what == "friction") c.estimate_friction = true;
-      else throw InputError(yaml_where(file, est[k], key) + fmt::format("unknown effect '{}' (valid: compliance, skew, friction)", what));
+      else if (what == "clearance") c.estimate_clearance = true;
+      else throw InputError(yaml_where(file, est[k], key) + fmt::format("unknown effect '{}' (valid: compliance, skew, friction, clearance)", what));
     }
   }
   if (n["loss"]) {

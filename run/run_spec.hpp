@@ -35,6 +35,10 @@ struct CalibrationSpec {
   // The twist of the motor-side Coulomb friction (with the compliance);
   // unset = with the compliance on the fly.
   std::optional<bool> estimate_friction;
+  // The axial play of the passive links (joint clearance), by the sign of each
+  // link's force; unset = on the fly when the robot's stated effects have a
+  // joint clearance.
+  std::optional<bool> estimate_clearance;
   calib::RobustLoss loss;               // `loss: cauchy|huber[:SCALE]` (calib/robust_loss.hpp)
 };
 

@@ -1,5 +1,6 @@
 #include "run/runner.hpp"
 
+#include <algorithm>
 #include <chrono>
 #include <cmath>
 
@@ -124,9 +125,27 @@ RunOutcome run_scenario(const RunSpec& spec_in, const std::string& scenario_file
   motion.compliance = spec.calibration.estimate_compliance.value_or(in_motion);
   motion.skew = spec.calibration.estimate_skew.value_or(in_motion);
   motion.friction = motion.compliance && spec.calibration.estimate_friction.value_or(in_motion);
-  const bool with_effects = motion.compliance || motion.skew;
+  const auto& stated_clearance = spec.sim.twin.effects.mjcf.clearance_m;
+  motion.clearance = spec.calibration.estimate_clearance.value_or(
+      in_motion && std::any_of(stated_clearance.begin(), stated_clearance.end(), [](double c) { return c > 0.0; }));
+  {
+    // The force signs of the clearance need what the transmissions take off
+    // the drive torque (calib/passive_tension.hpp): the drives' stated
+    // friction, and the inertia about A_i of rotor, active link (a bar) and
+    // the passive link's half carried at B_i.
+    const sim::TwinConfig& twin = spec.sim.twin;
+    const Geometry& g = spec.sim.controller.geometry;
+    for (std::size_t i = 0; i < 3; ++i) {
+      const double la_m = 1e-3 * g.la_(static_cast<int>(i));
+      motion.load.coulomb_Nm[i] = twin.effects.mjcf.coulomb_Nm[i];
+      motion.load.viscous_Nm_s[i] = twin.mjcf.active_damping + twin.effects.mjcf.viscous_Nm_s[i];
+      motion.load.inertia_kg_m2[i] = twin.mjcf.armature_kg_m2 +
+                                     (twin.mjcf.active_link_mass_kg / 3.0 + twin.mjcf.passive_link_mass_kg / 2.0) * la_m * la_m;
+    }
+  }
+  const bool with_effects = motion.compliance || motion.skew || motion.clearance;
   if (with_effects && (spec.calibration.method != calib::Method::kLM || spec.calibration.cost != calib::Cost::kML))
-    throw InputError(fmt::format("{}: estimating compliance or skew with the geometry (samples on the fly, or "
+    throw InputError(fmt::format("{}: estimating compliance, skew or clearance with the geometry (samples on the fly, or "
                                  "calibration.estimate) needs calibration {{method: lm, cost: ml}}", scenario_file));
   if (with_effects && spec.hardware)
     throw InputError(fmt::format("{}: calibration.estimate needs the drive torques and speeds of each sample, which "
@@ -203,13 +222,23 @@ RunOutcome run_scenario(const RunSpec& spec_in, const std::string& scenario_file
       // geometry (calib/motion_correction.hpp).
       std::vector<Eigen::Vector3d> omega, tau;
       for (const sim::SampleRecord& r : out.sim.samples) omega.push_back(r.omega), tau.push_back(r.tau);
+      // Joint accelerations of samples on the fly (consecutive, sample_every
+      // drive periods apart): central differences of the speeds.
+      std::vector<Eigen::Vector3d> alpha;
+      if (in_motion && omega.size() >= 2) {
+        const double dt = spec.sim.sampling->sample_every / spec.sim.twin.servo_rate_hz;
+        const std::size_t n = omega.size();
+        for (std::size_t j = 0; j < n; ++j)
+          alpha.push_back((omega[std::min(j + 1, n - 1)] - omega[j > 0 ? j - 1 : 0]) /
+                          (dt * static_cast<double>(std::min(j + 1, n - 1) - (j > 0 ? j - 1 : 0))));
+      }
       calib::LmOptions lo;
       lo.encoder_sigma = out.crb_sigma_rad > 0.0 ? std::optional<double>(out.crb_sigma_rad) : std::nullopt;
       lo.true_xy = &true_xy;
       lo.loss = spec.calibration.loss;
       if (lo.loss.active() && !(lo.loss.scale > 0.0))
         lo.loss.scale = calib::default_tuning(lo.loss.kind) * out.crb_sigma_rad;
-      const calib::MotionFit fit = calib::calibrate_in_motion(problem, omega, tau, lo, motion);
+      const calib::MotionFit fit = calib::calibrate_in_motion(problem, omega, tau, lo, motion, alpha);
       out.calibration = fit.result;
       out.motion_nu = fit.nu;
       out.motion_nu_sigma = fit.nu_sigma;
@@ -219,6 +248,14 @@ RunOutcome run_scenario(const RunSpec& spec_in, const std::string& scenario_file
           "c1 {:.3g}, c2 {:.3g}, c3 {:.3g} rad/N m (0: not excited, e.g. a torque-off joint); friction twist "
           "c F {:.3g}, {:.3g}, {:.3g} rad",
           fit.nu[0], fit.nu[1], fit.nu[2], fit.nu[3], fit.nu[4], fit.friction[0], fit.friction[1], fit.friction[2]));
+      if (motion.clearance)
+        out.calibration->notes.push_back(fmt::format(
+            "joint clearance estimated with the geometry: passive links act as lb_i +- d_i by the sign of their axial "
+            "force, d = {:.2f}, {:.2f}, {:.2f} um (1-sigma {:.2f}, {:.2f}, {:.2f} um; force sign certain in {:.0f}, {:.0f}, "
+            "{:.0f} % of the samples)",
+            1e3 * fit.clearance[0], 1e3 * fit.clearance[1], 1e3 * fit.clearance[2], 1e3 * fit.clearance_sigma[0],
+            1e3 * fit.clearance_sigma[1], 1e3 * fit.clearance_sigma[2], 100 * fit.clearance_used[0],
+            100 * fit.clearance_used[1], 100 * fit.clearance_used[2]));
     } else {
       out.calibration = calib::calibrate(problem, mo);
     }

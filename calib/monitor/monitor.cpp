@@ -10,6 +10,7 @@
 #include "calib/chi_square.hpp"
 #include "calib/monitor/drift_filter.hpp"
 #include "calib/monitor/explain.hpp"
+#include "calib/passive_tension.hpp"
 #include "models/errors.hpp"
 #include "models/kinematics.hpp"
 
@@ -244,7 +245,7 @@ StepResult monitor_step(const MonitorModel& m, MonitorData& d, double t_s, const
     for (int i = 0; i < 3; ++i) {
       const double c = m.settings.clearance_mm[static_cast<size_t>(i)];
       if (c <= 0.0) continue;
-      const double tension = -carried[i] / (1e-3 * d.estimate.la_(i) * std::sin(fk->theta_b[i] - theta_a[i]));
+      const double tension = passive_link_tension(d.estimate, i, theta_a[i], fk->theta_b[i], carried[i]);
       if (!(std::abs(tension) >= m.settings.tension_min_N)) return out;
       tension_sign[i] = tension > 0.0 ? 1.0 : -1.0;
     }

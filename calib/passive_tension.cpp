@@ -1,0 +1,22 @@
+// Axial force of a passive link (calib/passive_tension.hpp).
+#include "calib/passive_tension.hpp"
+
+#include <cmath>
+
+namespace gpm::calib {
+
+double transmitted_torque(const TransmissionLoad& load, int i, double tau, double omega, double alpha) {
+  const auto k = static_cast<std::size_t>(i);
+  return tau - load.coulomb_Nm[k] * std::tanh(omega / kFrictionSpeed) - load.viscous_Nm_s[k] * omega -
+         load.inertia_kg_m2[k] * alpha;
+}
+
+double passive_link_tension(const Geometry& g, int i, double theta_a, double theta_b, double tau_t) {
+  return -tau_t / (1e-3 * g.la_(i) * std::sin(theta_b - theta_a));
+}
+
+double reading_per_passive_length(const Geometry& g, int i, double theta_a, double theta_b) {
+  return 1.0 / (g.la_(i) * std::sin(theta_b - theta_a));
+}
+
+}  // namespace gpm::calib
