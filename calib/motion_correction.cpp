@@ -25,6 +25,9 @@ double ml_residual(const ParamVector& x, const Eigen::Vector3d& theta) {
   return r;
 }
 
+// Share of the samples each sign of a passive link's force must hold for its play to be estimated.
+constexpr double kMinSignShare = 0.02;
+
 // Columns of the nuisance Jacobian that model estimates (0..4 = s2 s3 c1 c2 c3, 5..7 = c1 F1, c2 F2, c3 F3).
 std::vector<int> nuisance_columns(const MotionModel& m) {
   std::vector<int> cols;
@@ -101,6 +104,37 @@ MotionFit calibrate_in_motion(const Problem& problem, const std::vector<Eigen::V
         tau_t[j][i] = transmitted_torque(model.load, i, tau[j][i], omega[j][i], alpha.empty() ? 0.0 : alpha[j][i]);
     clr = clearance_regressors(problem.start, problem.theta_m, tau_t, model.tension_min_N);
   }
+  // Samples left out: the leading ones, and (with the clearance) those in
+  // which some chain's force sign is uncertain; the fit runs on the rest.
+  std::vector<std::size_t> kept;
+  for (std::size_t j = static_cast<std::size_t>(std::max(0, model.skip_first)); j < n; ++j)
+    if (!(model.clearance && model.drop_uncertain) || (clr[j].array() != 0.0).all()) kept.push_back(j);
+  if (kept.size() < n) {
+    Problem sub = problem;
+    sub.theta_m.clear();
+    std::vector<Eigen::Vector3d> sub_omega, sub_tau, sub_alpha;
+    std::vector<Eigen::Vector2d> sub_xy;
+    for (std::size_t j : kept) {
+      sub.theta_m.push_back(problem.theta_m[j]);
+      sub_omega.push_back(omega[j]);
+      sub_tau.push_back(tau[j]);
+      if (!alpha.empty()) sub_alpha.push_back(alpha[j]);
+      if (options.true_xy && options.true_xy->size() == n) sub_xy.push_back((*options.true_xy)[j]);
+    }
+    LmOptions sub_options = options;
+    if (options.true_xy) sub_options.true_xy = sub_xy.empty() ? nullptr : &sub_xy;
+    MotionModel sub_model = model;
+    sub_model.skip_first = 0;
+    sub_model.drop_uncertain = false;
+    MotionFit fit = calibrate_in_motion(sub, sub_omega, sub_tau, sub_options, sub_model, sub_alpha);
+    for (std::size_t& j : fit.kept) j = kept[j];
+    for (int k = 0; k < 3; ++k) {
+      double certain = 0.0;
+      for (std::size_t j = 0; j < n; ++j) certain += clr[j][k] != 0.0 ? 1.0 : 0.0;
+      fit.clearance_used[static_cast<std::size_t>(k)] = certain / static_cast<double>(n);
+    }
+    return fit;
+  }
   auto regressor = [&](int c, std::size_t j) {
     if (c < 2) return omega[j][c + 1];
     if (c < 5) return tau[j][c - 2] - tau[0][c - 2];
@@ -111,6 +145,15 @@ MotionFit calibrate_in_motion(const Problem& problem, const std::vector<Eigen::V
   for (int c : nuisance_columns(model)) {
     double excitation = 0.0;
     for (std::size_t j = 0; j < n; ++j) excitation += std::abs(regressor(c, j));
+    if (c >= 8) {
+      // A passive link whose force keeps one sign stays at one end of its
+      // play: a constant length change, part of lb_i (chain 1 held at a
+      // constant torque). Its play is estimated when each sign holds in at
+      // least kMinSignShare of the samples.
+      double pos = 0.0, neg = 0.0;
+      for (std::size_t j = 0; j < n; ++j) (clr[j][c - 8] > 0.0 ? pos : clr[j][c - 8] < 0.0 ? neg : excitation) += 1.0;
+      excitation = std::min(pos, neg) >= kMinSignShare * static_cast<double>(n) ? 1.0 : 0.0;
+    }
     if (excitation > 0.0) cols.push_back(c);
   }
   const int q = static_cast<int>(cols.size());
@@ -205,6 +248,7 @@ MotionFit calibrate_in_motion(const Problem& problem, const std::vector<Eigen::V
   }
   fit.passes = std::min(fit.passes, std::max(1, model.max_passes));
   fit.corrected = corrected();
+  fit.kept = std::move(kept);
   for (std::size_t j = 0; j < n; ++j)
     for (int k = 0; k < 3; ++k)
       if (clr[j][k] != 0.0) fit.clearance_used[static_cast<std::size_t>(k)] += 1.0 / static_cast<double>(n);

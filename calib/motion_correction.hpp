@@ -44,7 +44,11 @@ struct MotionModel {
   bool clearance = false;  // estimate the axial play d_i of each passive link (mm): its length is
                            // lb_i + d_i sign(T_i), T_i its axial force (calib/passive_tension.hpp)
   TransmissionLoad load;       // for the force signs: the friction and inertia the transmissions take off
-  double tension_min_N = 0.3;  // |T_i| below this: the sign is uncertain, chain i's play is left out of that sample
+  double tension_min_N = 1.5;  // |T_i| below this: the sign is uncertain (on the realistic twin 5 % of the
+                               // signs were wrong above 0.3 N, 1 % above 1 N, 0.3 % above 1.5 N)
+  bool drop_uncertain = true;  // with clearance: a sample where some chain's force sign is uncertain is left
+                               // out (false: only that chain's play is left out of it)
+  int skip_first = 0;          // leading samples left out (the drives' start transient)
   int max_passes = 6;      // Gauss-Newton passes (each one LM fit)
 };
 
@@ -59,7 +63,8 @@ struct MotionFit {
   std::array<double, 3> clearance_sigma{};  // their 1-sigma (NaN where not estimated)
   std::array<double, 3> clearance_used{};   // fraction of the samples whose force sign was certain, per chain
   int passes = 0;
-  std::vector<Eigen::Vector3d> corrected;   // readings corrected with nu (rad)
+  std::vector<std::size_t> kept;            // the samples the fit used (indices into the readings)
+  std::vector<Eigen::Vector3d> corrected;   // those readings corrected with nu (rad)
 };
 
 // Estimates problem.free and the nuisance values of model from readings

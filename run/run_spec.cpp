@@ -25,7 +25,7 @@ CalibrationSpec parse_calibration(const YAML::Node& n, const std::string& file) 
   for (int i : {kXa1, kYa1, kXa2, kYa2}) c.fixed.set(static_cast<size_t>(i));
   if (!n) return c;
   yaml_check_keys(n, file, "calibration",
-                  {"cost", "method", "fix", "budget", "seed", "sigma", "allow_rank_deficient", "start", "reference_at", "estimate", "loss"});
+                  {"cost", "method", "fix", "budget", "seed", "sigma", "allow_rank_deficient", "start", "reference_at", "estimate", "loss", "tension_min_N"});
   if (n["cost"]) {
     const std::string s = yaml_string(n["cost"], file, "calibration.cost");
     const auto cost = calib::parse_cost(s);
@@ -57,6 +57,12 @@ CalibrationSpec parse_calibration(const YAML::Node& n, const std::string& file) 
   if (n["budget"]) c.budget = yaml_integer(n["budget"], file, "calibration.budget", 1, 1000000000000LL);
   if (n["seed"]) c.seed = static_cast<std::uint64_t>(yaml_integer(n["seed"], file, "calibration.seed", 0, (1LL << 53)));
   if (n["sigma"]) c.sigma = yaml_positive(n["sigma"], file, "calibration.sigma");
+  if (n["tension_min_N"]) {
+    c.tension_min_N = yaml_positive(n["tension_min_N"], file, "calibration.tension_min_N");
+    if (*c.tension_min_N > 100.0)
+      throw InputError(yaml_where(file, n["tension_min_N"], "calibration.tension_min_N") +
+                       fmt::format("{} N leaves no sample of a GPM2002 (valid: 0 < N <= 100)", *c.tension_min_N));
+  }
   if (const YAML::Node est = n["estimate"]) {
     if (!est.IsSequence())
       throw InputError(yaml_where(file, est, "calibration.estimate") + "expected a list of compliance, skew, friction, clearance (or [])");

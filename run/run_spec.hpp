@@ -39,6 +39,9 @@ struct CalibrationSpec {
   // link's force; unset = on the fly when the robot's stated effects have a
   // joint clearance.
   std::optional<bool> estimate_clearance;
+  // With the clearance: samples where some passive link's axial force is
+  // below this (N) are left out (its sign is uncertain); unset = MotionModel's.
+  std::optional<double> tension_min_N;
   calib::RobustLoss loss;               // `loss: cauchy|huber[:SCALE]` (calib/robust_loss.hpp)
 };
 

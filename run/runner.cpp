@@ -37,6 +37,9 @@ bool RunOutcome::passed() const {
 
 namespace {
 
+// Samples on the fly left out at the start with a compliant transmission (s).
+constexpr double kStartTransient_s = 0.05;
+
 // Encoder noise of one averaged sample: white reading noise over the
 // averaging window (one reading per drive period) plus quantisation
 // (uniform, step^2 / 12). An a-priori figure for the bound.
@@ -126,6 +129,7 @@ RunOutcome run_scenario(const RunSpec& spec_in, const std::string& scenario_file
   motion.skew = spec.calibration.estimate_skew.value_or(in_motion);
   motion.friction = motion.compliance && spec.calibration.estimate_friction.value_or(in_motion);
   const auto& stated_clearance = spec.sim.twin.effects.mjcf.clearance_m;
+  if (spec.calibration.tension_min_N) motion.tension_min_N = *spec.calibration.tension_min_N;
   motion.clearance = spec.calibration.estimate_clearance.value_or(
       in_motion && std::any_of(stated_clearance.begin(), stated_clearance.end(), [](double c) { return c > 0.0; }));
   {
@@ -232,6 +236,14 @@ RunOutcome run_scenario(const RunSpec& spec_in, const std::string& scenario_file
           alpha.push_back((omega[std::min(j + 1, n - 1)] - omega[j > 0 ? j - 1 : 0]) /
                           (dt * static_cast<double>(std::min(j + 1, n - 1) - (j > 0 ? j - 1 : 0))));
       }
+      // A compliant transmission rings after the drives' start step (the
+      // first command jumps from the readings where the robot stands to the
+      // controller's home): its twist is not c tau for a few periods; the
+      // first kStartTransient_s of samples are left out.
+      const auto& stated_compliance = spec.sim.twin.effects.mjcf.compliance_rad_per_Nm;
+      if (in_motion && std::any_of(stated_compliance.begin(), stated_compliance.end(), [](double c) { return c > 0.0; }))
+        motion.skip_first = static_cast<int>(std::ceil(kStartTransient_s * spec.sim.twin.servo_rate_hz /
+                                                       spec.sim.sampling->sample_every));
       calib::LmOptions lo;
       lo.encoder_sigma = out.crb_sigma_rad > 0.0 ? std::optional<double>(out.crb_sigma_rad) : std::nullopt;
       lo.true_xy = &true_xy;
@@ -243,6 +255,22 @@ RunOutcome run_scenario(const RunSpec& spec_in, const std::string& scenario_file
       out.motion_nu = fit.nu;
       out.motion_nu_sigma = fit.nu_sigma;
       used = fit.corrected;
+      if (fit.kept.size() < noiseless.size()) {
+        // The bound of the samples the fit used.
+        std::vector<Eigen::Vector3d> kept_noiseless;
+        for (std::size_t j : fit.kept) kept_noiseless.push_back(noiseless[j]);
+        try {
+          out.crb = calib::crb_sigma(actual.geometry, problem.free, kept_noiseless, 1.0);
+          for (double& v : out.crb) v *= out.crb_sigma_rad;
+        } catch (const std::exception&) {
+          out.crb.fill(NAN);
+        }
+        out.calibration->notes.push_back(fmt::format(
+            "{} of {} samples used: the first {} left out (the drives' start transient), {} where a passive link's "
+            "force sign was uncertain",
+            fit.kept.size(), noiseless.size(), motion.skip_first,
+            noiseless.size() - fit.kept.size() - static_cast<std::size_t>(motion.skip_first)));
+      }
       out.calibration->notes.push_back(fmt::format(
           "estimated with the geometry: latch skew s2 {:.3g} s, s3 {:.3g} s; transmission compliance "
           "c1 {:.3g}, c2 {:.3g}, c3 {:.3g} rad/N m (0: not excited, e.g. a torque-off joint); friction twist "
