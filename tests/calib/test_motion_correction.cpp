@@ -4,7 +4,9 @@
 // calibration of the same readings is biased far beyond its own 1-sigma; the
 // reading correction is the exact inverse of the generating model; the twist
 // of the motor-side friction is recovered the same way (and ignoring it
-// biases the fit); a joint at constant torque leaves its compliance to dth.
+// biases the fit); a joint at constant torque leaves its compliance to dth;
+// readings of passive links that sit at the end of their axial play by the
+// sign of their force give back the play, and ignoring it biases the fit.
 #include "calib/motion_correction.hpp"
 
 #include <cmath>
@@ -14,6 +16,7 @@
 #include "calib/paper_values.hpp"
 #include "calib/synthetic.hpp"
 #include "models/errors.hpp"
+#include "models/kinematics.hpp"
 #include "models/rng.hpp"
 
 namespace gpm::calib {
@@ -157,6 +160,104 @@ TEST(MotionCorrection, AConstantTorqueJointsTwistGoesIntoItsOffset) {
   // theta_a = theta_m + dth - c tau0: the offset absorbs -c1 tau0.
   EXPECT_LT(std::abs(fit.result.geometry[kDth1] - (d.truth[kDth1] - kNu[2] * tau0)), 4.0 * fit.result.sigma[kDth1]);
   for (int k : {0, 1, 3, 4}) EXPECT_LT(std::abs(fit.nu[k] - kNu[k]), 4.0 * fit.nu_sigma[k]) << "nuisance " << k;
+}
+
+// Joint clearance: each passive link is lb_i + d_i in tension and lb_i - d_i
+// in compression, the sign of its force T_i = tau_i / (d|C - B_i| / dtheta_i)
+// by virtual work (finite differences, independent of the calibration's
+// formula); readings by IK of that sample's geometry, with the compliance
+// and skew of make_data. The clearance model recovers d_i and the geometry
+// within 4 sigma and leaves out the samples with some |T_i| below
+// tension_min_N (judged at the start geometry: to 10 %); without it the same
+// samples give a fit biased beyond 4 sigma.
+TEST(MotionCorrection, RecoversTheJointClearanceAndIgnoringItBiasesTheFit) {
+  const std::array<double, 3> play = {0.010, 0.008, 0.012};  // mm
+  Robot a;
+  a.geometry = table5_actual();
+  const std::vector<Eigen::Vector2d> poses = disc_poses(a, 800, a.home, 100.0, 21);
+  MotionData d;
+  d.truth = a.geometry;
+  d.problem.start = Robot{}.geometry;
+  for (int k : {kXa1, kYa1, kXa2, kYa2}) d.problem.start.values[k] = a.geometry.values[k];
+  d.problem.free = default_free_mask();
+  Rng rng(22);
+  MotionModel model;  // no load: the drive torque is the transmitted torque
+  std::vector<double> weakest;  // per sample, min |T_i| (N)
+  for (std::size_t j = 0; j < poses.size(); ++j) {
+    const Eigen::Vector3d w(rng.normal(0, 1.0), rng.normal(0, 1.0), rng.normal(0, 1.0));
+    const Eigen::Vector3d t(rng.normal(0, 3.0), rng.normal(0, 3.0), rng.normal(0, 3.0));
+    const JointAngles q = inverse_kinematics(a.geometry, poses[j]);
+    Geometry gj = a.geometry;
+    double weak = INFINITY;
+    for (int i = 0; i < 3; ++i) {
+      const Eigen::Vector2d A(a.geometry[xa(i)], a.geometry[ya(i)]);
+      const auto dist = [&](double th) {
+        return (poses[j] - A - a.geometry.la_(i) * Eigen::Vector2d(std::cos(th), std::sin(th))).norm();
+      };
+      const double tension = t[i] / (1e-3 * (dist(q.theta_a[i] + 1e-6) - dist(q.theta_a[i] - 1e-6)) / 2e-6);
+      gj.values[lb(i)] += (tension > 0.0 ? 1.0 : -1.0) * play[static_cast<std::size_t>(i)];
+      weak = std::min(weak, std::abs(tension));
+    }
+    weakest.push_back(weak);
+    const JointAngles qj = inverse_kinematics(gj, poses[j]);
+    const Eigen::Vector3d s(0.0, kNu[0], kNu[1]), c(kNu[2], kNu[3], kNu[4]);
+    const Eigen::Vector3d noise(rng.normal(0, kSigma), rng.normal(0, kSigma), rng.normal(0, kSigma));
+    d.omega.push_back(w);
+    d.tau.push_back(t);
+    d.problem.theta_m.push_back(readings_from_active(gj, qj.theta_a) + noise - s.cwiseProduct(w) + c.cwiseProduct(t));
+  }
+  LmOptions o;
+  o.encoder_sigma = kSigma;
+  model.clearance = true;
+  const MotionFit fit = calibrate_in_motion(d.problem, d.omega, d.tau, o, model);
+  ASSERT_LT(fit.kept.size(), poses.size());
+  ASSERT_GT(fit.kept.size(), poses.size() / 2);
+  std::vector<bool> kept(poses.size(), false);
+  for (std::size_t j : fit.kept) kept[j] = true;
+  for (std::size_t j = 0; j < poses.size(); ++j) {
+    if (weakest[j] > 1.1 * model.tension_min_N) {
+      EXPECT_TRUE(kept[j]) << "sample " << j << " min |T| " << weakest[j];
+    }
+    if (weakest[j] < 0.9 * model.tension_min_N) {
+      EXPECT_FALSE(kept[j]) << "sample " << j << " min |T| " << weakest[j];
+    }
+  }
+  auto worst = [&](const Result& r) {
+    double w = 0.0;
+    for (int k = 0; k < kNumParams; ++k)
+      if (d.problem.free[k]) w = std::max(w, std::abs(r.geometry.values[k] - d.truth.values[k]) / r.sigma[k]);
+    return w;
+  };
+  for (std::size_t k = 0; k < 3; ++k) {
+    ASSERT_TRUE(std::isfinite(fit.clearance_sigma[k]));
+    EXPECT_LT(std::abs(fit.clearance[k] - play[k]), 4.0 * fit.clearance_sigma[k]) << "play of chain " << k + 1;
+    EXPECT_LT(fit.clearance_sigma[k], 0.2 * play[k]) << "play of chain " << k + 1 << " poorly determined";
+  }
+  for (int k = 0; k < 5; ++k) EXPECT_LT(std::abs(fit.nu[k] - kNu[k]), 4.0 * fit.nu_sigma[k]) << "nuisance " << k;
+  EXPECT_LT(worst(fit.result), 4.0);
+  model.clearance = false;
+  const MotionFit biased = calibrate_in_motion(d.problem, d.omega, d.tau, o, model);
+  EXPECT_EQ(biased.kept.size(), poses.size());
+  EXPECT_GT(worst(biased.result), 4.0);
+}
+
+// Chain 1 held at one torque sign: its link stays at one end of the play, a
+// constant length change that lb1 absorbs; the play is not estimated.
+TEST(MotionCorrection, AOneSignedLinksPlayIsNotEstimated) {
+  MotionData d = make_data(300, 9);
+  for (std::size_t j = 0; j < d.tau.size(); ++j) {
+    d.problem.theta_m[j][0] += kNu[2] * (2.0 - d.tau[j][0]);
+    d.tau[j][0] = 2.0;
+  }
+  LmOptions o;
+  o.encoder_sigma = kSigma;
+  MotionModel model;
+  model.clearance = true;
+  model.tension_min_N = 0.0;
+  const MotionFit fit = calibrate_in_motion(d.problem, d.omega, d.tau, o, model);
+  EXPECT_EQ(fit.clearance[0], 0.0);
+  EXPECT_TRUE(std::isnan(fit.clearance_sigma[0]));
+  EXPECT_TRUE(std::isfinite(fit.clearance_sigma[1]));
 }
 
 TEST(MotionCorrection, RefusesMismatchedSizesAndOtherCosts) {
