@@ -61,7 +61,10 @@ TEST(RunSpec, OtherSchemaErrors) {
             0u);
   EXPECT_NE(error_of(kHead + "calibration: {loss: 'huber:-2'}\n").find("calibration.loss: 'huber:-2' has no valid scale"),
             std::string::npos);
-  EXPECT_NE(error_of(kHead + "calibration: {estimate: [drag]}\n").find("(valid: compliance, skew, friction)"),
+  EXPECT_NE(error_of(kHead + "calibration: {estimate: [drag]}\n").find("(valid: compliance, skew, friction, clearance)"),
+            std::string::npos);
+  EXPECT_NE(error_of(kHead + "calibration: {tension_min_N: 0}\n").find("calibration.tension_min_N"), std::string::npos);
+  EXPECT_NE(error_of(kHead + "calibration: {tension_min_N: 1000}\n").find("calibration.tension_min_N: 1000 N leaves no sample"),
             std::string::npos);
 }
 
@@ -73,7 +76,13 @@ TEST(RunSpec, LossAndEstimatedEffects) {
   EXPECT_EQ(s.calibration.estimate_compliance, true);
   EXPECT_EQ(s.calibration.estimate_skew, false);
   EXPECT_EQ(s.calibration.estimate_friction, true);
+  EXPECT_EQ(s.calibration.estimate_clearance, false);  // a list names every estimated effect
   EXPECT_FALSE(parse_run_spec(kHead, "s.yaml", kBase).calibration.loss.active());
+  EXPECT_FALSE(parse_run_spec(kHead, "s.yaml", kBase).calibration.estimate_clearance);  // unset: the runner decides
+  const RunSpec c = parse_run_spec(kHead + "calibration: {estimate: [clearance], tension_min_N: 0.5}\n", "s.yaml", kBase);
+  EXPECT_EQ(c.calibration.estimate_clearance, true);
+  EXPECT_EQ(c.calibration.estimate_compliance, false);
+  EXPECT_EQ(c.calibration.tension_min_N, 0.5);
 }
 
 TEST(RunSpec, ReferenceReadingsTakenWhereTheRobotStands) {
