@@ -3,8 +3,9 @@
 # ideal and on the realistic twin: today's disc stop-and-go with three
 # position-controlled drives, designed poses stop-and-go with joint 1
 # torque-off, and designed poses sampled on the fly; on the realistic twin
-# also on the fly without the friction twist estimated, with joint 1
-# preloading instead of torque-off, and on three other perturbed robots.
+# also on the fly without the friction twist or without the joint clearance
+# estimated, with joint 1 preloading instead of torque-off, and on three other
+# perturbed robots.
 # Runs the scenarios/procedure_*.yaml with `gpm run` and tabulates their summary.json
 # (robot time, static RMS calibrated and with the actual parameters, worst
 # parameter error in Cramer-Rao sigmas, model test) into DIR/procedures.md
