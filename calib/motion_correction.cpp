@@ -60,6 +60,85 @@ std::vector<Eigen::Vector3d> clearance_regressors(const Geometry& g, const std::
   return out;
 }
 
+// Reading sensitivities u_k = dr / dtheta_k of the ML residual at x (central differences).
+Eigen::Vector3d reading_sensitivity(const ParamVector& x, const Eigen::Vector3d& th) {
+  Eigen::Vector3d u;
+  for (int k = 0; k < 3; ++k) {
+    const double h = 1e-7;
+    Eigen::Vector3d a = th, b = th;
+    a[k] += h;
+    b[k] -= h;
+    u[k] = (ml_residual(x, a) - ml_residual(x, b)) / (2.0 * h);
+  }
+  return u;
+}
+
+// One row of the nuisance Jacobian, every column (0..10), from the reading
+// sensitivities u and the sample's regressors.
+std::array<double, 11> nuisance_row(const Eigen::Vector3d& u, const Eigen::Vector3d& omega, const Eigen::Vector3d& tau,
+                                    const Eigen::Vector3d& fric, const Eigen::Vector3d& clr) {
+  return {u[1] * omega[1], u[2] * omega[2], -u[0] * tau[0], -u[1] * tau[1], -u[2] * tau[2], u[0] * fric[0],
+          u[1] * fric[1],  u[2] * fric[2],  u[0] * clr[0],  u[1] * clr[1],  u[2] * clr[2]};
+}
+
+// The nuisance columns of model that the samples excite (calibrate_in_motion).
+std::vector<int> excited_columns(const MotionModel& model, const std::vector<Eigen::Vector3d>& omega,
+                                 const std::vector<Eigen::Vector3d>& tau, const std::vector<Eigen::Vector3d>& fric,
+                                 const std::vector<Eigen::Vector3d>& clr) {
+  const std::size_t n = omega.size();
+  auto regressor = [&](int c, std::size_t j) {
+    if (c < 2) return omega[j][c + 1];
+    if (c < 5) return tau[j][c - 2] - tau[0][c - 2];
+    if (c < 8) return model.friction ? fric[j][c - 5] : 0.0;
+    return clr[j][c - 8];
+  };
+  std::vector<int> cols;
+  for (int c : nuisance_columns(model)) {
+    double excitation = 0.0;
+    for (std::size_t j = 0; j < n; ++j) excitation += std::abs(regressor(c, j));
+    if (c >= 8) {
+      // A passive link whose force keeps one sign stays at one end of its
+      // play: a constant length change, part of lb_i (chain 1 held at a
+      // constant torque). Its play is estimated when each sign holds in at
+      // least kMinSignShare of the samples.
+      double pos = 0.0, neg = 0.0;
+      for (std::size_t j = 0; j < n; ++j) (clr[j][c - 8] > 0.0 ? pos : clr[j][c - 8] < 0.0 ? neg : excitation) += 1.0;
+      excitation = std::min(pos, neg) >= kMinSignShare * static_cast<double>(n) ? 1.0 : 0.0;
+    }
+    if (excitation > 0.0) cols.push_back(c);
+  }
+  return cols;
+}
+
+// The motor-side friction regressors tanh(omega / kFrictionSpeed) (0 without model.friction).
+std::vector<Eigen::Vector3d> friction_regressors(const MotionModel& model, const std::vector<Eigen::Vector3d>& omega) {
+  std::vector<Eigen::Vector3d> fric(omega.size(), Eigen::Vector3d::Zero());
+  if (model.friction)
+    for (std::size_t j = 0; j < omega.size(); ++j) fric[j] = (omega[j] / kFrictionSpeed).array().tanh();
+  return fric;
+}
+
+// The torques transmitted to the active links (0 without model.clearance).
+std::vector<Eigen::Vector3d> transmitted_torques(const MotionModel& model, const std::vector<Eigen::Vector3d>& omega,
+                                                 const std::vector<Eigen::Vector3d>& tau,
+                                                 const std::vector<Eigen::Vector3d>& alpha) {
+  std::vector<Eigen::Vector3d> tau_t(omega.size(), Eigen::Vector3d::Zero());
+  if (model.clearance)
+    for (std::size_t j = 0; j < omega.size(); ++j)
+      for (int i = 0; i < 3; ++i)
+        tau_t[j][i] = transmitted_torque(model.load, i, tau[j][i], omega[j][i], alpha.empty() ? 0.0 : alpha[j][i]);
+  return tau_t;
+}
+
+// The samples calibrate_in_motion keeps: after the first model.skip_first,
+// those whose clearance regressors are all certain (with drop_uncertain).
+std::vector<std::size_t> kept_samples(const MotionModel& model, const std::vector<Eigen::Vector3d>& clr) {
+  std::vector<std::size_t> kept;
+  for (std::size_t j = static_cast<std::size_t>(std::max(0, model.skip_first)); j < clr.size(); ++j)
+    if (!(model.clearance && model.drop_uncertain) || (clr[j].array() != 0.0).all()) kept.push_back(j);
+  return kept;
+}
+
 }  // namespace
 
 std::vector<Eigen::Vector3d> correct_readings(const std::vector<Eigen::Vector3d>& theta_m,
@@ -91,24 +170,16 @@ MotionFit calibrate_in_motion(const Problem& problem, const std::vector<Eigen::V
   // transmitted torque is tau_i - F_i sign(omega_i), so the link twists by
   // c_i F_i sign(omega_i) less than c_i tau_i says (the sign smoothed over
   // 0.01 rad/s, inside which the friction is static and unknown).
-  std::vector<Eigen::Vector3d> fric(n, Eigen::Vector3d::Zero());
-  if (model.friction)
-    for (std::size_t j = 0; j < n; ++j) fric[j] = (omega[j] / kFrictionSpeed).array().tanh();
+  const std::vector<Eigen::Vector3d> fric = friction_regressors(model, omega);
   if (!alpha.empty() && alpha.size() != n)
     throw InputError(fmt::format("calibration in motion: {} readings but {} joint accelerations", n, alpha.size()));
   // Clearance regressors at the start geometry, recomputed at every pass.
-  std::vector<Eigen::Vector3d> tau_t(n, Eigen::Vector3d::Zero()), clr(n, Eigen::Vector3d::Zero());
-  if (model.clearance) {
-    for (std::size_t j = 0; j < n; ++j)
-      for (int i = 0; i < 3; ++i)
-        tau_t[j][i] = transmitted_torque(model.load, i, tau[j][i], omega[j][i], alpha.empty() ? 0.0 : alpha[j][i]);
-    clr = clearance_regressors(problem.start, problem.theta_m, tau_t, model.tension_min_N);
-  }
+  const std::vector<Eigen::Vector3d> tau_t = transmitted_torques(model, omega, tau, alpha);
+  std::vector<Eigen::Vector3d> clr(n, Eigen::Vector3d::Zero());
+  if (model.clearance) clr = clearance_regressors(problem.start, problem.theta_m, tau_t, model.tension_min_N);
   // Samples left out: the leading ones, and (with the clearance) those in
   // which some chain's force sign is uncertain; the fit runs on the rest.
-  std::vector<std::size_t> kept;
-  for (std::size_t j = static_cast<std::size_t>(std::max(0, model.skip_first)); j < n; ++j)
-    if (!(model.clearance && model.drop_uncertain) || (clr[j].array() != 0.0).all()) kept.push_back(j);
+  std::vector<std::size_t> kept = kept_samples(model, clr);
   if (kept.size() < n) {
     Problem sub = problem;
     sub.theta_m.clear();
@@ -135,27 +206,7 @@ MotionFit calibrate_in_motion(const Problem& problem, const std::vector<Eigen::V
     }
     return fit;
   }
-  auto regressor = [&](int c, std::size_t j) {
-    if (c < 2) return omega[j][c + 1];
-    if (c < 5) return tau[j][c - 2] - tau[0][c - 2];
-    if (c < 8) return model.friction ? fric[j][c - 5] : 0.0;
-    return clr[j][c - 8];
-  };
-  std::vector<int> cols;
-  for (int c : nuisance_columns(model)) {
-    double excitation = 0.0;
-    for (std::size_t j = 0; j < n; ++j) excitation += std::abs(regressor(c, j));
-    if (c >= 8) {
-      // A passive link whose force keeps one sign stays at one end of its
-      // play: a constant length change, part of lb_i (chain 1 held at a
-      // constant torque). Its play is estimated when each sign holds in at
-      // least kMinSignShare of the samples.
-      double pos = 0.0, neg = 0.0;
-      for (std::size_t j = 0; j < n; ++j) (clr[j][c - 8] > 0.0 ? pos : clr[j][c - 8] < 0.0 ? neg : excitation) += 1.0;
-      excitation = std::min(pos, neg) >= kMinSignShare * static_cast<double>(n) ? 1.0 : 0.0;
-    }
-    if (excitation > 0.0) cols.push_back(c);
-  }
+  const std::vector<int> cols = excited_columns(model, omega, tau, fric, clr);
   const int q = static_cast<int>(cols.size());
 
   MotionFit fit;
@@ -216,18 +267,8 @@ MotionFit calibrate_in_motion(const Problem& problem, const std::vector<Eigen::V
     for (std::size_t j = 0; j < n; ++j) {
       const Eigen::Vector3d& th = p.theta_m[j];
       r[static_cast<Eigen::Index>(j)] = ml_residual(x, th);
-      Eigen::Vector3d u;
-      for (int k = 0; k < 3; ++k) {
-        const double h = 1e-7;
-        Eigen::Vector3d a = th, b = th;
-        a[k] += h;
-        b[k] -= h;
-        u[k] = (ml_residual(x, a) - ml_residual(x, b)) / (2.0 * h);
-      }
-      const double all[11] = {u[1] * omega[j][1], u[2] * omega[j][2], -u[0] * tau[j][0], -u[1] * tau[j][1],
-                              -u[2] * tau[j][2],  u[0] * fric[j][0],  u[1] * fric[j][1],  u[2] * fric[j][2],
-                              u[0] * clr[j][0],   u[1] * clr[j][1],   u[2] * clr[j][2]};
-      for (int c = 0; c < q; ++c) Jn(static_cast<Eigen::Index>(j), c) = all[cols[static_cast<std::size_t>(c)]];
+      const std::array<double, 11> all = nuisance_row(reading_sensitivity(x, th), omega[j], tau[j], fric[j], clr[j]);
+      for (int c = 0; c < q; ++c) Jn(static_cast<Eigen::Index>(j), c) = all[static_cast<std::size_t>(cols[static_cast<std::size_t>(c)])];
     }
     if (q == 0) break;
     // Joint Gauss-Newton step, column-scaled (seconds, rad/N m and mm differ by orders).
@@ -281,6 +322,55 @@ MotionFit calibrate_in_motion(const Problem& problem, const std::vector<Eigen::V
     }
   }
   return fit;
+}
+
+std::array<double, kNumParams> motion_crb(const Geometry& truth, const FreeMask& free,
+                                          const std::vector<Eigen::Vector3d>& theta_m,
+                                          const std::vector<Eigen::Vector3d>& omega,
+                                          const std::vector<Eigen::Vector3d>& tau, const MotionModel& model,
+                                          const std::vector<Eigen::Vector3d>& alpha, double sigma) {
+  const std::size_t n = theta_m.size();
+  if (omega.size() != n || tau.size() != n || (!alpha.empty() && alpha.size() != n))
+    throw InputError(fmt::format("motion bound: {} readings but {} joint speeds, {} torques, {} accelerations", n,
+                                 omega.size(), tau.size(), alpha.size()));
+  const std::vector<Eigen::Vector3d> tau_t = transmitted_torques(model, omega, tau, alpha);
+  std::vector<Eigen::Vector3d> clr(n, Eigen::Vector3d::Zero());
+  if (model.clearance) clr = clearance_regressors(truth, theta_m, tau_t, model.tension_min_N);
+  std::vector<Eigen::Vector3d> th, w, t, c;
+  for (std::size_t j : kept_samples(model, clr)) {
+    th.push_back(theta_m[j]);
+    w.push_back(omega[j]);
+    t.push_back(tau[j]);
+    c.push_back(clr[j]);
+  }
+  const std::vector<Eigen::Vector3d> fric = friction_regressors(model, w);
+  const std::vector<int> cols = excited_columns(model, w, t, fric, c);
+  std::vector<int> free_index;
+  for (int k = 0; k < kNumParams; ++k)
+    if (free[k]) free_index.push_back(k);
+  const Eigen::MatrixXd J_all = ml_jacobian(th, truth);
+  const auto m = static_cast<Eigen::Index>(free_index.size() + cols.size());
+  Eigen::MatrixXd J(static_cast<Eigen::Index>(th.size()), m);
+  const ParamVector x = to_solver(truth, Cost::kML);
+  for (std::size_t j = 0; j < th.size(); ++j) {
+    const auto row = static_cast<Eigen::Index>(j);
+    for (std::size_t k = 0; k < free_index.size(); ++k) J(row, static_cast<Eigen::Index>(k)) = J_all(row, free_index[k]);
+    const std::array<double, 11> all = nuisance_row(reading_sensitivity(x, th[j]), w[j], t[j], fric[j], c[j]);
+    for (std::size_t k = 0; k < cols.size(); ++k)
+      J(row, static_cast<Eigen::Index>(free_index.size() + k)) = all[static_cast<std::size_t>(cols[k])];
+  }
+  // Column-scaled inverse (seconds, rad/N m and mm differ by orders).
+  Eigen::VectorXd scale = J.colwise().norm().transpose();
+  for (Eigen::Index k = 0; k < scale.size(); ++k) scale[k] = scale[k] > 0.0 ? scale[k] : 1.0;
+  const Eigen::MatrixXd Js = J * scale.cwiseInverse().asDiagonal();
+  const Eigen::MatrixXd C = (Js.transpose() * Js).ldlt().solve(Eigen::MatrixXd::Identity(m, m));
+  std::array<double, kNumParams> out;
+  out.fill(std::numeric_limits<double>::quiet_NaN());
+  for (std::size_t k = 0; k < free_index.size(); ++k) {
+    const auto i = static_cast<Eigen::Index>(k);
+    out[static_cast<std::size_t>(free_index[k])] = sigma * std::sqrt(C(i, i)) / scale[i];
+  }
+  return out;
 }
 
 }  // namespace gpm::calib

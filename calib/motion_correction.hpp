@@ -76,6 +76,19 @@ MotionFit calibrate_in_motion(const Problem& problem, const std::vector<Eigen::V
                               const std::vector<Eigen::Vector3d>& tau, const LmOptions& options,
                               const MotionModel& model = {}, const std::vector<Eigen::Vector3d>& alpha = {});
 
+// Cramer-Rao 1-sigma (15 slots, NaN for fixed ones) of the free parameters of
+// truth estimated jointly with the nuisance values of model, as
+// calibrate_in_motion does, from the noiseless readings theta_m of truth (rad)
+// with speeds omega, torques tau and accelerations alpha (empty: 0), each
+// reading with noise sigma (rad): sigma sqrt(diag((J' J)^-1)) of [J_g, J_nu]
+// at the truth, the force signs at the truth, the same samples left out.
+// Throws InputError when the sizes differ.
+std::array<double, kNumParams> motion_crb(const Geometry& truth, const FreeMask& free,
+                                          const std::vector<Eigen::Vector3d>& theta_m,
+                                          const std::vector<Eigen::Vector3d>& omega,
+                                          const std::vector<Eigen::Vector3d>& tau, const MotionModel& model,
+                                          const std::vector<Eigen::Vector3d>& alpha, double sigma);
+
 // The readings corrected for nuisance values nu (as in MotionFit::nu):
 // theta_m + s omega - c tau per joint.
 std::vector<Eigen::Vector3d> correct_readings(const std::vector<Eigen::Vector3d>& theta_m,
