@@ -255,7 +255,16 @@ RunOutcome run_scenario(const RunSpec& spec_in, const std::string& scenario_file
       out.motion_nu = fit.nu;
       out.motion_nu_sigma = fit.nu_sigma;
       used = fit.corrected;
-      if (fit.kept.size() < noiseless.size()) {
+      if (motion.clearance) {
+        // With the clearance, the bound of the joint estimation (geometry and
+        // nuisance values, the samples the procedure keeps at the truth).
+        try {
+          out.crb = calib::motion_crb(actual.geometry, problem.free, noiseless, omega, tau, motion, alpha, 1.0);
+          for (double& v : out.crb) v *= out.crb_sigma_rad;
+        } catch (const std::exception&) {
+          out.crb.fill(NAN);
+        }
+      } else if (fit.kept.size() < noiseless.size()) {
         // The bound of the samples the fit used.
         std::vector<Eigen::Vector3d> kept_noiseless;
         for (std::size_t j : fit.kept) kept_noiseless.push_back(noiseless[j]);
@@ -265,6 +274,8 @@ RunOutcome run_scenario(const RunSpec& spec_in, const std::string& scenario_file
         } catch (const std::exception&) {
           out.crb.fill(NAN);
         }
+      }
+      if (fit.kept.size() < noiseless.size()) {
         out.calibration->notes.push_back(fmt::format(
             "{} of {} samples used: the first {} left out (the drives' start transient), {} where a passive link's "
             "force sign was uncertain",

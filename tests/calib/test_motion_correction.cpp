@@ -13,6 +13,7 @@
 
 #include <gtest/gtest.h>
 
+#include "calib/crb.hpp"
 #include "calib/paper_values.hpp"
 #include "calib/synthetic.hpp"
 #include "models/errors.hpp"
@@ -258,6 +259,36 @@ TEST(MotionCorrection, AOneSignedLinksPlayIsNotEstimated) {
   EXPECT_EQ(fit.clearance[0], 0.0);
   EXPECT_TRUE(std::isnan(fit.clearance_sigma[0]));
   EXPECT_TRUE(std::isfinite(fit.clearance_sigma[1]));
+}
+
+// The joint bound: without nuisance values it is the geometry-only bound of
+// calib/crb.hpp (two algorithms); each nuisance value estimated can only
+// widen it; and it agrees with the 1-sigma the fit reports from its own
+// joint Jacobian at the estimate (to 5 %).
+TEST(MotionCorrection, JointBoundCrossChecks) {
+  const MotionData d = make_data(400, 17);
+  Robot a;
+  a.geometry = d.truth;
+  const Samples smp = samples_at(a, disc_poses(a, 400, a.home, 100.0, 17), 0.0, 18);
+  MotionModel none;
+  none.skew = none.compliance = false;
+  const auto plain = crb_sigma(d.truth, d.problem.free, smp.theta_m, kSigma);
+  const auto rigid = motion_crb(d.truth, d.problem.free, smp.theta_m, d.omega, d.tau, none, {}, kSigma);
+  const auto joint = motion_crb(d.truth, d.problem.free, smp.theta_m, d.omega, d.tau, MotionModel{}, {}, kSigma);
+  LmOptions o;
+  o.encoder_sigma = kSigma;
+  const MotionFit fit = calibrate_in_motion(d.problem, d.omega, d.tau, o);
+  for (int k = 0; k < kNumParams; ++k) {
+    if (!d.problem.free[k]) {
+      EXPECT_TRUE(std::isnan(joint[static_cast<std::size_t>(k)]));
+      continue;
+    }
+    const auto K = static_cast<std::size_t>(k);
+    EXPECT_NEAR(rigid[K], plain[K], 1e-9 * plain[K]) << param_name(k);
+    EXPECT_GE(joint[K], plain[K] * (1.0 - 1e-9)) << param_name(k);
+    EXPECT_NEAR(fit.result.sigma[K], joint[K], 0.05 * joint[K]) << param_name(k);
+  }
+  EXPECT_THROW(motion_crb(d.truth, d.problem.free, smp.theta_m, d.omega, {}, none, {}, kSigma), InputError);
 }
 
 TEST(MotionCorrection, RefusesMismatchedSizesAndOtherCosts) {
