@@ -3,6 +3,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <functional>
 #include <limits>
 
 #include <Eigen/Dense>
@@ -58,6 +59,29 @@ std::vector<Eigen::Vector3d> clearance_regressors(const Geometry& g, const std::
     }
   }
   return out;
+}
+
+// The force threshold calibrate_in_motion uses (MotionModel::min_kept_share):
+// model.tension_min_N, or the weakest force of the min_kept_share strongest
+// samples when fewer samples clear it; at geometry g, readings theta_m.
+double effective_tension_min(const MotionModel& model, const Geometry& g, const std::vector<Eigen::Vector3d>& theta_m,
+                             const std::vector<Eigen::Vector3d>& tau_t) {
+  if (!model.clearance || !model.drop_uncertain || theta_m.empty()) return model.tension_min_N;
+  std::vector<double> weakest(theta_m.size(), 0.0);  // min_i |T_i| per sample
+  for (std::size_t j = 0; j < theta_m.size(); ++j) {
+    Eigen::Vector3d theta_a;
+    for (int i = 0; i < 3; ++i) theta_a[i] = theta_m[j][i] + g.dth_(i);
+    const std::optional<ForwardResult> fk = forward_kinematics(g, theta_a);
+    if (!fk) continue;
+    double w = std::numeric_limits<double>::infinity();
+    for (int i = 0; i < 3; ++i) w = std::min(w, std::abs(passive_link_tension(g, i, theta_a[i], fk->theta_b[i], tau_t[j][i])));
+    weakest[j] = w;
+  }
+  const auto want = static_cast<std::size_t>(std::ceil(std::clamp(model.min_kept_share, 0.0, 1.0) * static_cast<double>(weakest.size())));
+  const auto above = static_cast<std::size_t>(std::count_if(weakest.begin(), weakest.end(), [&](double w) { return w >= model.tension_min_N; }));
+  if (want == 0 || above >= want) return model.tension_min_N;
+  std::nth_element(weakest.begin(), weakest.begin() + static_cast<std::ptrdiff_t>(want - 1), weakest.end(), std::greater<>());
+  return weakest[want - 1];
 }
 
 // Reading sensitivities u_k = dr / dtheta_k of the ML residual at x (central differences).
@@ -175,8 +199,9 @@ MotionFit calibrate_in_motion(const Problem& problem, const std::vector<Eigen::V
     throw InputError(fmt::format("calibration in motion: {} readings but {} joint accelerations", n, alpha.size()));
   // Clearance regressors at the start geometry, recomputed at every pass.
   const std::vector<Eigen::Vector3d> tau_t = transmitted_torques(model, omega, tau, alpha);
+  const double tension_min = effective_tension_min(model, problem.start, problem.theta_m, tau_t);
   std::vector<Eigen::Vector3d> clr(n, Eigen::Vector3d::Zero());
-  if (model.clearance) clr = clearance_regressors(problem.start, problem.theta_m, tau_t, model.tension_min_N);
+  if (model.clearance) clr = clearance_regressors(problem.start, problem.theta_m, tau_t, tension_min);
   // Samples left out: the leading ones, and (with the clearance) those in
   // which some chain's force sign is uncertain; the fit runs on the rest.
   std::vector<std::size_t> kept = kept_samples(model, clr);
@@ -197,6 +222,7 @@ MotionFit calibrate_in_motion(const Problem& problem, const std::vector<Eigen::V
     MotionModel sub_model = model;
     sub_model.skip_first = 0;
     sub_model.drop_uncertain = false;
+    sub_model.tension_min_N = tension_min;
     MotionFit fit = calibrate_in_motion(sub, sub_omega, sub_tau, sub_options, sub_model, sub_alpha);
     for (std::size_t& j : fit.kept) j = kept[j];
     for (int k = 0; k < 3; ++k) {
@@ -252,7 +278,7 @@ MotionFit calibrate_in_motion(const Problem& problem, const std::vector<Eigen::V
   };
   for (fit.passes = 1; fit.passes <= std::max(1, model.max_passes); ++fit.passes) {
     if (model.clearance && fit.passes > 1)
-      clr = clearance_regressors(p.start, twist_corrected(), tau_t, model.tension_min_N);
+      clr = clearance_regressors(p.start, twist_corrected(), tau_t, tension_min);
     p.theta_m = corrected();
     fit.result = calibrate_lm(p, lm);
     keep_iterations(fit.result.lm_iterations);
@@ -290,6 +316,7 @@ MotionFit calibrate_in_motion(const Problem& problem, const std::vector<Eigen::V
   fit.passes = std::min(fit.passes, std::max(1, model.max_passes));
   fit.corrected = corrected();
   fit.kept = std::move(kept);
+  fit.tension_min_N = tension_min;
   for (std::size_t j = 0; j < n; ++j)
     for (int k = 0; k < 3; ++k)
       if (clr[j][k] != 0.0) fit.clearance_used[static_cast<std::size_t>(k)] += 1.0 / static_cast<double>(n);
@@ -335,7 +362,8 @@ std::array<double, kNumParams> motion_crb(const Geometry& truth, const FreeMask&
                                  omega.size(), tau.size(), alpha.size()));
   const std::vector<Eigen::Vector3d> tau_t = transmitted_torques(model, omega, tau, alpha);
   std::vector<Eigen::Vector3d> clr(n, Eigen::Vector3d::Zero());
-  if (model.clearance) clr = clearance_regressors(truth, theta_m, tau_t, model.tension_min_N);
+  if (model.clearance)
+    clr = clearance_regressors(truth, theta_m, tau_t, effective_tension_min(model, truth, theta_m, tau_t));
   std::vector<Eigen::Vector3d> th, w, t, c;
   for (std::size_t j : kept_samples(model, clr)) {
     th.push_back(theta_m[j]);

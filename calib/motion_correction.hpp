@@ -48,6 +48,9 @@ struct MotionModel {
                                // signs were wrong above 0.3 N, 1 % above 1 N, 0.3 % above 1.5 N)
   bool drop_uncertain = true;  // with clearance: a sample where some chain's force sign is uncertain is left
                                // out (false: only that chain's play is left out of it)
+  double min_kept_share = 0.25;  // with drop_uncertain: when fewer samples than this share have every
+                                 // |T_i| >= tension_min_N, the threshold is lowered to keep this share
+                                 // (a robot of little friction: its links carry small forces)
   int skip_first = 0;          // leading samples left out (the drives' start transient)
   int max_passes = 6;      // Gauss-Newton passes (each one LM fit)
 };
@@ -61,6 +64,7 @@ struct MotionFit {
   std::array<double, 3> friction_sigma{};   // their 1-sigma (NaN where not estimated)
   std::array<double, 3> clearance{};        // axial play d_i of each passive link (mm); 0 where not estimated
   std::array<double, 3> clearance_sigma{};  // their 1-sigma (NaN where not estimated)
+  double tension_min_N = 0.0;               // the force threshold used (MotionModel::tension_min_N or lower)
   std::array<double, 3> clearance_used{};   // fraction of the samples whose force sign was certain, per chain
   int passes = 0;
   std::vector<std::size_t> kept;            // the samples the fit used (indices into the readings)

@@ -278,9 +278,9 @@ RunOutcome run_scenario(const RunSpec& spec_in, const std::string& scenario_file
       if (fit.kept.size() < noiseless.size()) {
         out.calibration->notes.push_back(fmt::format(
             "{} of {} samples used: the first {} left out (the drives' start transient), {} where a passive link's "
-            "force sign was uncertain",
+            "force was below {:.2g} N (its sign uncertain)",
             fit.kept.size(), noiseless.size(), motion.skip_first,
-            noiseless.size() - fit.kept.size() - static_cast<std::size_t>(motion.skip_first)));
+            noiseless.size() - fit.kept.size() - static_cast<std::size_t>(motion.skip_first), fit.tension_min_N));
       }
       out.calibration->notes.push_back(fmt::format(
           "estimated with the geometry: latch skew s2 {:.3g} s, s3 {:.3g} s; transmission compliance "

@@ -242,6 +242,24 @@ TEST(MotionCorrection, RecoversTheJointClearanceAndIgnoringItBiasesTheFit) {
   EXPECT_GT(worst(biased.result), 4.0);
 }
 
+// A threshold no sample clears is lowered to keep min_kept_share of them
+// (the strongest: every kept sample's forces clear the threshold used).
+TEST(MotionCorrection, TooHighAForceThresholdKeepsTheStrongestShare) {
+  const MotionData d = make_data(200, 23);
+  LmOptions o;
+  o.encoder_sigma = kSigma;
+  MotionModel model;
+  model.clearance = true;
+  model.tension_min_N = 1e4;
+  model.min_kept_share = 0.3;
+  const MotionFit fit = calibrate_in_motion(d.problem, d.omega, d.tau, o, model);
+  EXPECT_EQ(fit.kept.size(), 60u);
+  EXPECT_LT(fit.tension_min_N, 1e4);
+  EXPECT_GT(fit.tension_min_N, 0.0);
+  model.min_kept_share = 0.0;  // no floor: nothing is left, which calibrate_lm refuses
+  EXPECT_THROW(calibrate_in_motion(d.problem, d.omega, d.tau, o, model), InputError);
+}
+
 // Chain 1 held at one torque sign: its link stays at one end of the play, a
 // constant length change that lb1 absorbs; the play is not estimated.
 TEST(MotionCorrection, AOneSignedLinksPlayIsNotEstimated) {
