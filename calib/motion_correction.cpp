@@ -401,4 +401,10 @@ std::array<double, kNumParams> motion_crb(const Geometry& truth, const FreeMask&
   return out;
 }
 
+bool clearance_detected(const MotionFit& fit, double k) {
+  for (std::size_t i = 0; i < 3; ++i)
+    if (std::isfinite(fit.clearance_sigma[i]) && std::abs(fit.clearance[i]) >= k * fit.clearance_sigma[i]) return true;
+  return false;
+}
+
 }  // namespace gpm::calib

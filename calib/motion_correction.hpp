@@ -100,4 +100,9 @@ std::vector<Eigen::Vector3d> correct_readings(const std::vector<Eigen::Vector3d>
                                               const std::vector<Eigen::Vector3d>& tau,
                                               const std::array<double, 5>& nu);
 
+// True if some estimated play d_i of fit lies at least k 1-sigma from 0 (the
+// test of "no joint clearance", d_i = 0, two-sided at k sigma per chain); a
+// play not estimated (sigma NaN) does not count.
+bool clearance_detected(const MotionFit& fit, double k = 3.0);
+
 }  // namespace gpm::calib

@@ -7,8 +7,10 @@
 #include <fmt/format.h>
 
 #include "models/errors.hpp"
+#include "models/mjcf.hpp"
 #include "models/rng.hpp"
 #include "models/yaml_util.hpp"
+#include "sim/effects.hpp"
 
 namespace gpm::scenario {
 namespace {
@@ -20,12 +22,45 @@ Eigen::Vector2d point(const YAML::Node& n, const std::string& file, const std::s
   return {yaml_number(n[0], file, key + "[0]"), yaml_number(n[1], file, key + "[1]")};
 }
 
+// A number or a list of three (one per joint), each in [0, hi] (unit: what it is in).
+std::array<double, 3> per_joint(const YAML::Node& n, const std::string& file, const std::string& key, double hi,
+                                const char* unit) {
+  const auto one = [&](const YAML::Node& v, const std::string& k) {
+    const double x = yaml_number(v, file, k);
+    if (!(x >= 0.0 && x <= hi))
+      throw InputError(yaml_where(file, v, k) + fmt::format("{} is out of range (valid: 0 to {} {})", x, hi, unit));
+    return x;
+  };
+  std::array<double, 3> out{};
+  if (n.IsSequence()) {
+    if (n.size() != 3)
+      throw InputError(yaml_where(file, n, key) +
+                       fmt::format("expected a number or a list of three (one per joint), got a list of {}", n.size()));
+    for (std::size_t i = 0; i < 3; ++i) out[i] = one(n[i], fmt::format("{}[{}]", key, i));
+  } else {
+    out.fill(one(n, key));
+  }
+  return out;
+}
+
+DriveFriction parse_drive_friction(const YAML::Node& n, const std::string& file) {
+  const std::string key = "calibration.drive_friction";
+  if (!n.IsMap())
+    throw InputError(yaml_where(file, n, key) + "expected {coulomb_Nm: N m, viscous_Nm_s: N m s/rad} (each a number or a list of three)");
+  yaml_check_keys(n, file, key, {"coulomb_Nm", "viscous_Nm_s"});
+  DriveFriction f = gpm2002_drive_friction();  // a key left out keeps its default
+  if (n["coulomb_Nm"]) f.coulomb_Nm = per_joint(n["coulomb_Nm"], file, key + ".coulomb_Nm", 20.0, "N m");
+  if (n["viscous_Nm_s"]) f.viscous_Nm_s = per_joint(n["viscous_Nm_s"], file, key + ".viscous_Nm_s", 100.0, "N m s/rad");
+  return f;
+}
+
 CalibrationSpec parse_calibration(const YAML::Node& n, const std::string& file) {
   CalibrationSpec c;
   for (int i : {kXa1, kYa1, kXa2, kYa2}) c.fixed.set(static_cast<size_t>(i));
   if (!n) return c;
   yaml_check_keys(n, file, "calibration",
-                  {"cost", "method", "fix", "budget", "seed", "sigma", "allow_rank_deficient", "start", "reference_at", "estimate", "loss", "tension_min_N"});
+                  {"cost", "method", "fix", "budget", "seed", "sigma", "allow_rank_deficient", "start", "reference_at", "estimate", "loss", "tension_min_N",
+                   "drive_friction"});
   if (n["cost"]) {
     const std::string s = yaml_string(n["cost"], file, "calibration.cost");
     const auto cost = calib::parse_cost(s);
@@ -63,6 +98,7 @@ CalibrationSpec parse_calibration(const YAML::Node& n, const std::string& file) 
       throw InputError(yaml_where(file, n["tension_min_N"], "calibration.tension_min_N") +
                        fmt::format("{} N leaves no sample of a GPM2002 (valid: 0 < N <= 100)", *c.tension_min_N));
   }
+  if (n["drive_friction"]) c.drive_friction = parse_drive_friction(n["drive_friction"], file);
   if (const YAML::Node est = n["estimate"]) {
     if (!est.IsSequence())
       throw InputError(yaml_where(file, est, "calibration.estimate") + "expected a list of compliance, skew, friction, clearance (or [])");
@@ -210,6 +246,14 @@ RunSpec from_root(const YAML::Node& root, const std::string& file, const std::st
 }
 
 }  // namespace
+
+DriveFriction gpm2002_drive_friction() {
+  const sim::Effects realistic = sim::realistic_effects();
+  DriveFriction f;
+  f.coulomb_Nm = realistic.mjcf.coulomb_Nm;
+  for (std::size_t i = 0; i < 3; ++i) f.viscous_Nm_s[i] = MjcfOptions{}.active_damping + realistic.mjcf.viscous_Nm_s[i];
+  return f;
+}
 
 RunSpec parse_run_spec(const std::string& text, const std::string& file, const std::string& base_dir) {
   return from_root(load_yaml_string(text, file), file, base_dir);

@@ -17,6 +17,21 @@
 
 namespace gpm::scenario {
 
+// What the calibration assumes of each drive's friction, motor side, per
+// joint (calibration.drive_friction): the passive links' force signs of the
+// joint clearance are reckoned from the drive torque less this friction
+// (calib/passive_tension.hpp). A statement of the user, as of a real robot:
+// the twin's `effects:` (the simulated machine's truth) are never read for it.
+struct DriveFriction {
+  std::array<double, 3> coulomb_Nm{};    // Coulomb friction F_i (N m)
+  std::array<double, 3> viscous_Nm_s{};  // viscous friction b_i, all of it (N m s/rad)
+};
+
+// The GPM2002 data-sheet class (the default): the Coulomb and viscous
+// friction of the realistic effects preset (sim::realistic_effects) plus the
+// gearbox's design damping (MjcfOptions::active_damping): 0.3 N m, 0.15 N m s/rad.
+DriveFriction gpm2002_drive_friction();
+
 struct CalibrationSpec {
   calib::Cost cost = calib::Cost::kML;
   calib::Method method = calib::Method::kLM;
@@ -36,9 +51,10 @@ struct CalibrationSpec {
   // unset = with the compliance on the fly.
   std::optional<bool> estimate_friction;
   // The axial play of the passive links (joint clearance), by the sign of each
-  // link's force; unset = on the fly when the robot's stated effects have a
-  // joint clearance.
+  // link's force; unset = on the fly.
   std::optional<bool> estimate_clearance;
+  // The drives' friction the procedure assumes (for the force signs).
+  DriveFriction drive_friction = gpm2002_drive_friction();
   // With the clearance: samples where some passive link's axial force is
   // below this (N) are left out (its sign is uncertain); unset = MotionModel's.
   std::optional<double> tension_min_N;

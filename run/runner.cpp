@@ -128,23 +128,26 @@ RunOutcome run_scenario(const RunSpec& spec_in, const std::string& scenario_file
   motion.compliance = spec.calibration.estimate_compliance.value_or(in_motion);
   motion.skew = spec.calibration.estimate_skew.value_or(in_motion);
   motion.friction = motion.compliance && spec.calibration.estimate_friction.value_or(in_motion);
-  const auto& stated_clearance = spec.sim.twin.effects.mjcf.clearance_m;
   if (spec.calibration.tension_min_N) motion.tension_min_N = *spec.calibration.tension_min_N;
-  motion.clearance = spec.calibration.estimate_clearance.value_or(
-      in_motion && std::any_of(stated_clearance.begin(), stated_clearance.end(), [](double c) { return c > 0.0; }));
+  // What the calibration assumes is what its user states (calibration:), as
+  // on a real robot: the twin's effects (the simulated truth) are not read.
+  // On the fly the joint clearance is estimated (a play whose force sign
+  // never changes is left to lb_i), and the drives' start transient is left out.
+  motion.clearance = spec.calibration.estimate_clearance.value_or(in_motion);
   {
     // The force signs of the clearance need what the transmissions take off
-    // the drive torque (calib/passive_tension.hpp): the drives' stated
-    // friction, and the inertia about A_i of rotor, active link (a bar) and
-    // the passive link's half carried at B_i.
-    const sim::TwinConfig& twin = spec.sim.twin;
+    // the drive torque (calib/passive_tension.hpp): the stated friction
+    // (calibration.drive_friction), and from the design data the inertia
+    // about A_i of rotor, active link (a bar) and the passive link's half
+    // carried at B_i.
+    const MjcfOptions& design = spec.sim.twin.mjcf;
     const Geometry& g = spec.sim.controller.geometry;
     for (std::size_t i = 0; i < 3; ++i) {
       const double la_m = 1e-3 * g.la_(static_cast<int>(i));
-      motion.load.coulomb_Nm[i] = twin.effects.mjcf.coulomb_Nm[i];
-      motion.load.viscous_Nm_s[i] = twin.mjcf.active_damping + twin.effects.mjcf.viscous_Nm_s[i];
-      motion.load.inertia_kg_m2[i] = twin.mjcf.armature_kg_m2 +
-                                     (twin.mjcf.active_link_mass_kg / 3.0 + twin.mjcf.passive_link_mass_kg / 2.0) * la_m * la_m;
+      motion.load.coulomb_Nm[i] = spec.calibration.drive_friction.coulomb_Nm[i];
+      motion.load.viscous_Nm_s[i] = spec.calibration.drive_friction.viscous_Nm_s[i];
+      motion.load.inertia_kg_m2[i] = design.armature_kg_m2 +
+                                     (design.active_link_mass_kg / 3.0 + design.passive_link_mass_kg / 2.0) * la_m * la_m;
     }
   }
   const bool with_effects = motion.compliance || motion.skew || motion.clearance;
@@ -238,10 +241,10 @@ RunOutcome run_scenario(const RunSpec& spec_in, const std::string& scenario_file
       }
       // A compliant transmission rings after the drives' start step (the
       // first command jumps from the readings where the robot stands to the
-      // controller's home): its twist is not c tau for a few periods; the
-      // first kStartTransient_s of samples are left out.
-      const auto& stated_compliance = spec.sim.twin.effects.mjcf.compliance_rad_per_Nm;
-      if (in_motion && std::any_of(stated_compliance.begin(), stated_compliance.end(), [](double c) { return c > 0.0; }))
+      // controller's home): its twist is not c tau for a few periods; on the
+      // fly the first kStartTransient_s of samples are left out (whether the
+      // robot's transmissions are compliant or not: the procedure does not know).
+      if (in_motion)
         motion.skip_first = static_cast<int>(std::ceil(kStartTransient_s * spec.sim.twin.servo_rate_hz /
                                                        spec.sim.sampling->sample_every));
       calib::LmOptions lo;
@@ -250,7 +253,20 @@ RunOutcome run_scenario(const RunSpec& spec_in, const std::string& scenario_file
       lo.loss = spec.calibration.loss;
       if (lo.loss.active() && !(lo.loss.scale > 0.0))
         lo.loss.scale = calib::default_tuning(lo.loss.kind) * out.crb_sigma_rad;
-      const calib::MotionFit fit = calib::calibrate_in_motion(problem, omega, tau, lo, motion, alpha);
+      calib::MotionFit fit = calib::calibrate_in_motion(problem, omega, tau, lo, motion, alpha);
+      std::string clearance_dropped;
+      if (motion.clearance && !spec.calibration.estimate_clearance && !calib::clearance_detected(fit)) {
+        // By default the clearance stays in the model only where the data
+        // show it: no play 3 sigma from 0, the fit is made again without it
+        // (every sample used; the force signs are not needed).
+        clearance_dropped = fmt::format(
+            "joint clearance not detected (d = {:.2f}, {:.2f}, {:.2f} um, 1-sigma {:.2f}, {:.2f}, {:.2f} um: none 3 "
+            "sigma from 0): calibrated without it, from every sample",
+            1e3 * fit.clearance[0], 1e3 * fit.clearance[1], 1e3 * fit.clearance[2], 1e3 * fit.clearance_sigma[0],
+            1e3 * fit.clearance_sigma[1], 1e3 * fit.clearance_sigma[2]);
+        motion.clearance = false;
+        fit = calib::calibrate_in_motion(problem, omega, tau, lo, motion, alpha);
+      }
       out.calibration = fit.result;
       out.motion_nu = fit.nu;
       out.motion_nu_sigma = fit.nu_sigma;
@@ -275,12 +291,15 @@ RunOutcome run_scenario(const RunSpec& spec_in, const std::string& scenario_file
           out.crb.fill(NAN);
         }
       }
+      if (!clearance_dropped.empty()) out.calibration->notes.push_back(clearance_dropped);
       if (fit.kept.size() < noiseless.size()) {
-        out.calibration->notes.push_back(fmt::format(
-            "{} of {} samples used: the first {} left out (the drives' start transient), {} where a passive link's "
-            "force was below {:.2g} N (its sign uncertain)",
-            fit.kept.size(), noiseless.size(), motion.skip_first,
-            noiseless.size() - fit.kept.size() - static_cast<std::size_t>(motion.skip_first), fit.tension_min_N));
+        const std::size_t weak = noiseless.size() - fit.kept.size() - static_cast<std::size_t>(motion.skip_first);
+        out.calibration->notes.push_back(
+            fmt::format("{} of {} samples used: the first {} left out (the drives' start transient)", fit.kept.size(),
+                        noiseless.size(), motion.skip_first) +
+            (weak > 0 ? fmt::format(", {} where a passive link's force was below {:.2g} N (its sign uncertain)", weak,
+                                    fit.tension_min_N)
+                      : std::string()));
       }
       out.calibration->notes.push_back(fmt::format(
           "estimated with the geometry: latch skew s2 {:.3g} s, s3 {:.3g} s; transmission compliance "

@@ -236,6 +236,7 @@ TEST(MotionCorrection, RecoversTheJointClearanceAndIgnoringItBiasesTheFit) {
   }
   for (int k = 0; k < 5; ++k) EXPECT_LT(std::abs(fit.nu[k] - kNu[k]), 4.0 * fit.nu_sigma[k]) << "nuisance " << k;
   EXPECT_LT(worst(fit.result), 4.0);
+  EXPECT_TRUE(clearance_detected(fit));
   model.clearance = false;
   const MotionFit biased = calibrate_in_motion(d.problem, d.omega, d.tau, o, model);
   EXPECT_EQ(biased.kept.size(), poses.size());
@@ -277,6 +278,30 @@ TEST(MotionCorrection, AOneSignedLinksPlayIsNotEstimated) {
   EXPECT_EQ(fit.clearance[0], 0.0);
   EXPECT_TRUE(std::isnan(fit.clearance_sigma[0]));
   EXPECT_TRUE(std::isfinite(fit.clearance_sigma[1]));
+}
+
+// Without a play in the data the estimated d_i stay within 3 sigma of 0 (no
+// clearance detected); the test by hand: |d_i| >= k sigma_i for some
+// estimated chain, a play not estimated (sigma NaN) never counts.
+TEST(MotionCorrection, NoClearanceIsDetectedWhereThereIsNone) {
+  const MotionData d = make_data(300, 31);
+  LmOptions o;
+  o.encoder_sigma = kSigma;
+  MotionModel model;
+  model.clearance = true;
+  model.tension_min_N = 0.0;
+  const MotionFit fit = calibrate_in_motion(d.problem, d.omega, d.tau, o, model);
+  for (std::size_t k = 0; k < 3; ++k) ASSERT_TRUE(std::isfinite(fit.clearance_sigma[k])) << "chain " << k + 1;
+  EXPECT_FALSE(clearance_detected(fit));
+  MotionFit hand;
+  hand.clearance = {0.0, 0.0029, 0.0};
+  hand.clearance_sigma = {NAN, 0.001, 0.001};
+  EXPECT_FALSE(clearance_detected(hand));
+  EXPECT_TRUE(clearance_detected(hand, 2.8));
+  hand.clearance = {1.0, -0.0031, 0.0};
+  EXPECT_TRUE(clearance_detected(hand));  // chain 2, negative d: two-sided
+  hand.clearance[1] = 0.0;
+  EXPECT_FALSE(clearance_detected(hand));  // chain 1's play is not estimated
 }
 
 // The joint bound: without nuisance values it is the geometry-only bound of

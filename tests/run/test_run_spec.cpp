@@ -6,6 +6,8 @@
 #include <gtest/gtest.h>
 
 #include "models/errors.hpp"
+#include "models/mjcf.hpp"
+#include "sim/effects.hpp"
 
 namespace gpm::scenario {
 namespace {
@@ -83,6 +85,44 @@ TEST(RunSpec, LossAndEstimatedEffects) {
   EXPECT_EQ(c.calibration.estimate_clearance, true);
   EXPECT_EQ(c.calibration.estimate_compliance, false);
   EXPECT_EQ(c.calibration.tension_min_N, 0.5);
+}
+
+// calibration.drive_friction: what the procedure assumes, independent of the
+// twin's effects; default the realistic preset's friction plus the design
+// gearbox damping; a number or one per joint; a key left out keeps its default.
+TEST(RunSpec, DriveFrictionStatedByTheCalibration) {
+  const RunSpec d = parse_run_spec(kHead, "s.yaml", kBase);
+  const sim::Effects realistic = sim::realistic_effects();
+  for (std::size_t i = 0; i < 3; ++i) {
+    EXPECT_EQ(d.calibration.drive_friction.coulomb_Nm[i], realistic.mjcf.coulomb_Nm[i]);
+    EXPECT_DOUBLE_EQ(d.calibration.drive_friction.viscous_Nm_s[i],
+                     MjcfOptions{}.active_damping + realistic.mjcf.viscous_Nm_s[i]);
+  }
+  // The twin's effects are the simulated machine: they do not change what the calibration assumes.
+  const RunSpec ideal = parse_run_spec(kHead + "effects: {coulomb_friction_Nm: 2, viscous_friction_Nm_s: 1}\n",
+                                       "s.yaml", kBase);
+  EXPECT_EQ(ideal.calibration.drive_friction.coulomb_Nm, d.calibration.drive_friction.coulomb_Nm);
+  EXPECT_EQ(ideal.calibration.drive_friction.viscous_Nm_s, d.calibration.drive_friction.viscous_Nm_s);
+  const RunSpec s = parse_run_spec(kHead + "calibration: {drive_friction: {coulomb_Nm: [0.1, 0.2, 0.4]}}\n", "s.yaml", kBase);
+  EXPECT_EQ(s.calibration.drive_friction.coulomb_Nm, (std::array<double, 3>{0.1, 0.2, 0.4}));
+  EXPECT_EQ(s.calibration.drive_friction.viscous_Nm_s, d.calibration.drive_friction.viscous_Nm_s);
+  const RunSpec v = parse_run_spec(kHead + "calibration: {drive_friction: {viscous_Nm_s: 0, coulomb_Nm: 0.6}}\n", "s.yaml", kBase);
+  EXPECT_EQ(v.calibration.drive_friction.viscous_Nm_s, (std::array<double, 3>{0.0, 0.0, 0.0}));
+  EXPECT_EQ(v.calibration.drive_friction.coulomb_Nm, (std::array<double, 3>{0.6, 0.6, 0.6}));
+  EXPECT_EQ(error_of(kHead + "calibration: {drive_friction: {coulomb_Nm: -0.3}}\n"),
+            "s.yaml:3: calibration.drive_friction.coulomb_Nm: -0.3 is out of range (valid: 0 to 20 N m)");
+  EXPECT_NE(error_of(kHead + "calibration: {drive_friction: {viscous_Nm_s: [0.1, 0.2]}}\n")
+                .find("calibration.drive_friction.viscous_Nm_s: expected a number or a list of three"),
+            std::string::npos);
+  EXPECT_NE(error_of(kHead + "calibration: {drive_friction: {viscous_Nm_s: [0.1, 0.2, 500]}}\n")
+                .find("calibration.drive_friction.viscous_Nm_s[2]: 500 is out of range (valid: 0 to 100 N m s/rad)"),
+            std::string::npos);
+  EXPECT_NE(error_of(kHead + "calibration: {drive_friction: {coulomb: 0.3}}\n").find("calibration.drive_friction"),
+            std::string::npos);
+  EXPECT_NE(error_of(kHead + "calibration: {drive_friction: 0.3}\n").find("calibration.drive_friction: expected {coulomb_Nm"),
+            std::string::npos);
+  EXPECT_NE(error_of(kHead + "calibration: {drive_friction: {coulomb_Nm: fast}}\n").find("calibration.drive_friction.coulomb_Nm"),
+            std::string::npos);
 }
 
 TEST(RunSpec, ReferenceReadingsTakenWhereTheRobotStands) {
