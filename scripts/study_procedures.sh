@@ -4,8 +4,10 @@
 # position-controlled drives, designed poses stop-and-go with joint 1
 # torque-off, and designed poses sampled on the fly; on the realistic twin
 # also on the fly without the friction twist or without the joint clearance
-# estimated, with joint 1 preloading instead of torque-off, and on three other
-# perturbed robots.
+# estimated, with joint 1 preloading instead of torque-off, with the
+# calibration assuming half or twice the drives' friction of the twin
+# (calibration.drive_friction: the force signs of the joint clearance), and
+# on three other perturbed robots.
 # Runs the scenarios/procedure_*.yaml with `gpm run` and tabulates their summary.json
 # (robot time, static RMS calibrated and with the actual parameters, worst
 # parameter error in Cramer-Rao sigmas, model test) into DIR/procedures.md
@@ -20,6 +22,7 @@ mkdir -p "$out"
 names=(procedure_disc_stopgo procedure_designed_stopgo procedure_trajectory
        procedure_disc_stopgo_realistic procedure_designed_stopgo_realistic
        procedure_trajectory_realistic_nofriction procedure_trajectory_realistic_noclearance procedure_trajectory_realistic procedure_trajectory_realistic_preload
+       procedure_trajectory_realistic_friction_half procedure_trajectory_realistic_friction_double
        procedure_trajectory_realistic_seed7 procedure_trajectory_realistic_seed11 procedure_trajectory_realistic_seed99)
 for n in "${names[@]}"; do
   echo "study procedures: $n" >&2
