@@ -173,8 +173,8 @@ std::vector<StudyProcedure> default_study_procedures() {
   std::vector<StudyProcedure> v(2);
   v[0].name = "on the fly";
   v[0].description =
-      "today's default (main.yaml): designed poses sampled on the fly, joint 1 torque-off, compliance, skew "
-      "and friction twist estimated with the geometry";
+      "today's default (main.yaml): designed poses sampled on the fly, joint 1 torque-off, compliance, skew, "
+      "friction twist and joint clearance estimated with the geometry";
   v[0].scenario = dir + "/main.yaml";
   v[1].name = "disc stop-and-go";
   v[1].description =
