@@ -46,10 +46,11 @@ std::array<double, 3> per_joint(const YAML::Node& n, const std::string& file, co
 DriveFriction parse_drive_friction(const YAML::Node& n, const std::string& file) {
   const std::string key = "calibration.drive_friction";
   if (!n.IsMap())
-    throw InputError(yaml_where(file, n, key) + "expected {coulomb_Nm: N m, viscous_Nm_s: N m s/rad} (each a number or a list of three)");
-  yaml_check_keys(n, file, key, {"coulomb_Nm", "viscous_Nm_s"});
+    throw InputError(yaml_where(file, n, key) + "expected {coulomb_Nm: N m, viscous_Nm_s: N m s/rad, fit_scale: bool} (each friction a number or a list of three)");
+  yaml_check_keys(n, file, key, {"coulomb_Nm", "viscous_Nm_s", "fit_scale"});
   DriveFriction f = gpm2002_drive_friction();  // a key left out keeps its default
   if (n["coulomb_Nm"]) f.coulomb_Nm = per_joint(n["coulomb_Nm"], file, key + ".coulomb_Nm", 20.0, "N m");
+  if (n["fit_scale"]) f.fit_scale = yaml_bool(n["fit_scale"], file, key + ".fit_scale");
   if (n["viscous_Nm_s"]) f.viscous_Nm_s = per_joint(n["viscous_Nm_s"], file, key + ".viscous_Nm_s", 100.0, "N m s/rad");
   return f;
 }

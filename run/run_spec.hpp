@@ -25,6 +25,9 @@ namespace gpm::scenario {
 struct DriveFriction {
   std::array<double, 3> coulomb_Nm{};    // Coulomb friction F_i (N m)
   std::array<double, 3> viscous_Nm_s{};  // viscous friction b_i, all of it (N m s/rad)
+  // Both times a common factor k chosen by the model test
+  // (calib/friction_profile.hpp): the stated values are a guess of their shape.
+  bool fit_scale = false;
 };
 
 // The GPM2002 data-sheet class (the default): the Coulomb and viscous

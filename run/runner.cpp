@@ -8,6 +8,7 @@
 
 #include "calib/calibrate.hpp"
 #include "calib/crb.hpp"
+#include "calib/friction_profile.hpp"
 #include "calib/model_test.hpp"
 #include "calib/motion_correction.hpp"
 #include "calib/residuals.hpp"
@@ -253,7 +254,24 @@ RunOutcome run_scenario(const RunSpec& spec_in, const std::string& scenario_file
       lo.loss = spec.calibration.loss;
       if (lo.loss.active() && !(lo.loss.scale > 0.0))
         lo.loss.scale = calib::default_tuning(lo.loss.kind) * out.crb_sigma_rad;
-      calib::MotionFit fit = calib::calibrate_in_motion(problem, omega, tau, lo, motion, alpha);
+      calib::MotionFit fit;
+      std::string friction_note;
+      if (motion.clearance && spec.calibration.drive_friction.fit_scale && out.crb_sigma_rad > 0.0) {
+        // The stated friction times the factor the model test prefers.
+        calib::FrictionProfile profile = calib::calibrate_friction_profile(
+            problem, omega, tau, lo, motion, alpha, calib::default_friction_scales(), out.crb_sigma_rad);
+        fit = std::move(profile.fit);
+        motion = profile.model;
+        std::string tried;
+        for (std::size_t k = 0; k < profile.scales.size(); ++k)
+          tried += fmt::format("{}{:.2f}: {:.3g}", k ? ", " : "", profile.scales[k], profile.chi2_per_dof[k]);
+        friction_note = fmt::format(
+            "drive friction for the force signs: the stated values x{:.2f} (Coulomb {:.3g}, {:.3g}, {:.3g} N m), the "
+            "smallest chi2/dof of the factors tried ({})",
+            profile.scale, motion.load.coulomb_Nm[0], motion.load.coulomb_Nm[1], motion.load.coulomb_Nm[2], tried);
+      } else {
+        fit = calib::calibrate_in_motion(problem, omega, tau, lo, motion, alpha);
+      }
       std::string clearance_dropped;
       if (motion.clearance && !spec.calibration.estimate_clearance && !calib::clearance_detected(fit)) {
         // By default the clearance stays in the model only where the data
@@ -291,6 +309,7 @@ RunOutcome run_scenario(const RunSpec& spec_in, const std::string& scenario_file
           out.crb.fill(NAN);
         }
       }
+      if (!friction_note.empty()) out.calibration->notes.push_back(friction_note);
       if (!clearance_dropped.empty()) out.calibration->notes.push_back(clearance_dropped);
       if (fit.kept.size() < noiseless.size()) {
         const std::size_t weak = noiseless.size() - fit.kept.size() - static_cast<std::size_t>(motion.skip_first);

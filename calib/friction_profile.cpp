@@ -1,0 +1,59 @@
+// The drives' friction chosen by the model test (calib/friction_profile.hpp).
+#include "calib/friction_profile.hpp"
+
+#include <cmath>
+#include <limits>
+#include <optional>
+
+#include <fmt/format.h>
+
+#include "calib/model_test.hpp"
+#include "models/errors.hpp"
+
+namespace gpm::calib {
+
+std::vector<double> default_friction_scales() {
+  std::vector<double> s;
+  for (int m = -4; m <= 4; ++m) s.push_back(std::pow(2.0, 0.5 * m));
+  return s;
+}
+
+FrictionProfile calibrate_friction_profile(const Problem& problem, const std::vector<Eigen::Vector3d>& omega,
+                                           const std::vector<Eigen::Vector3d>& tau, const LmOptions& options,
+                                           const MotionModel& model, const std::vector<Eigen::Vector3d>& alpha,
+                                           const std::vector<double>& scales, double sigma) {
+  if (scales.empty()) throw InputError("friction profile: no friction factor to try");
+  for (double k : scales)
+    if (!(k > 0.0 && std::isfinite(k)))
+      throw InputError(fmt::format("friction profile: factor {} is not a positive number", k));
+  if (!(sigma > 0.0)) throw InputError(fmt::format("friction profile: reading noise {} rad is not positive", sigma));
+  FrictionProfile best;
+  best.scales = scales;
+  double best_value = std::numeric_limits<double>::infinity();
+  std::optional<InputError> last_error;
+  bool any = false;
+  for (double k : scales) {
+    MotionModel m = model;
+    for (std::size_t i = 0; i < 3; ++i) m.load.coulomb_Nm[i] *= k, m.load.viscous_Nm_s[i] *= k;
+    double value = std::numeric_limits<double>::infinity();
+    try {
+      MotionFit fit = calibrate_in_motion(problem, omega, tau, options, m, alpha);
+      const ModelTest t = model_test(fit.result.geometry, problem.free, fit.corrected, sigma);
+      value = t.chi2 / t.dof;
+      if (!any || value < best_value) {
+        best.fit = std::move(fit);
+        best.scale = k;
+        best.model = m;
+        best_value = value;
+        any = true;
+      }
+    } catch (const InputError& e) {
+      last_error = e;
+    }
+    best.chi2_per_dof.push_back(value);
+  }
+  if (!any) throw *last_error;
+  return best;
+}
+
+}  // namespace gpm::calib

@@ -1,0 +1,43 @@
+// The drives' friction that the clearance's force signs assume, chosen by
+// the model test: a profile of the calibration in motion over a common
+// factor k of the stated friction.
+//
+// The passive links' force signs (calib/passive_tension.hpp) come from the
+// drive torque less the stated motor-side friction k F_i, k b_i. A wrong
+// friction gives wrong signs where the drive torque is near it, and the
+// plays and the geometry fitted to those signs leave larger ML residuals.
+// Each factor k of a grid is fitted (calibrate_in_motion with MotionModel::load's
+// Coulomb and viscous friction times k); the factor whose fit has the
+// smallest chi2 / dof of its model test (calib/model_test.hpp: ML residuals
+// of the corrected readings over sigma, n - p degrees of freedom) is taken.
+// On the realistic twin's main job chi2/dof against k (the twin at k = 1):
+// 8.2 at 0, 1.49 at 0.5, 1.31 at 0.75, 1.43 at 1, 1.81 at 1.25, 2.8 at 1.5, 7.1 at 2.
+#pragma once
+
+#include <vector>
+
+#include "calib/motion_correction.hpp"
+
+namespace gpm::calib {
+
+struct FrictionProfile {
+  MotionFit fit;                      // the fit at the chosen factor
+  double scale = 1.0;                 // the chosen factor k
+  MotionModel model;                  // the model with the friction times k (for motion_crb)
+  std::vector<double> scales;         // the factors tried
+  std::vector<double> chi2_per_dof;   // the model test's chi2 / dof of each (inf where the fit failed)
+};
+
+// The factors 2^(m/2), m = -4..4 (0.25 to 4 in steps of sqrt 2).
+std::vector<double> default_friction_scales();
+
+// calibrate_in_motion at each factor of scales (> 0) times model.load's
+// friction, the fit of the smallest chi2/dof taken (reading noise sigma, rad,
+// > 0). Throws InputError for no factor, a factor <= 0, sigma <= 0, or when
+// no factor's fit succeeds (the last fit's error).
+FrictionProfile calibrate_friction_profile(const Problem& problem, const std::vector<Eigen::Vector3d>& omega,
+                                           const std::vector<Eigen::Vector3d>& tau, const LmOptions& options,
+                                           const MotionModel& model, const std::vector<Eigen::Vector3d>& alpha,
+                                           const std::vector<double>& scales, double sigma);
+
+}  // namespace gpm::calib

@@ -1,0 +1,120 @@
+// Tests of calib/friction_profile.cpp: readings of passive links at the end
+// of their axial play by the sign of their force, that force from the drive
+// torque less a Coulomb friction F (virtual work, independent of the
+// calibration's formula); a calibration told 2F or F/2 picks the factor that
+// gives back F (the smallest chi2/dof), and there recovers the plays within
+// 4 sigma; bad arguments are refused.
+#include "calib/friction_profile.hpp"
+
+#include <algorithm>
+#include <cmath>
+
+#include <gtest/gtest.h>
+
+#include "calib/paper_values.hpp"
+#include "calib/synthetic.hpp"
+#include "models/errors.hpp"
+#include "models/kinematics.hpp"
+#include "models/rng.hpp"
+
+namespace gpm::calib {
+namespace {
+
+constexpr double kSigma = 1e-5;
+constexpr double kFriction_Nm = 1.0;
+const std::array<double, 3> kPlay = {0.010, 0.008, 0.012};  // mm
+const Eigen::Vector3d kCompliance(1.0e-4, 1.2e-4, 0.8e-4);   // rad/N m
+
+struct PlayData {
+  Problem problem;
+  std::vector<Eigen::Vector3d> omega, tau;
+  Geometry truth;
+};
+
+// 800 samples of the Table-5 robot, drive torques ~ N(0, 1.5 N m) and speeds
+// ~ N(0, 1 rad/s); link i is lb_i + d_i sign(T_i), T_i from the transmitted
+// torque tau_i - F tanh(omega_i / kFrictionSpeed); readings by IK of that
+// geometry, twisted by c_i (tau_i - F tanh(...)), plus noise.
+PlayData make_play_data() {
+  Robot a;
+  a.geometry = table5_actual();
+  const std::vector<Eigen::Vector2d> poses = disc_poses(a, 800, a.home, 100.0, 41);
+  PlayData d;
+  d.truth = a.geometry;
+  d.problem.start = Robot{}.geometry;
+  for (int k : {kXa1, kYa1, kXa2, kYa2}) d.problem.start.values[k] = a.geometry.values[k];
+  d.problem.free = default_free_mask();
+  Rng rng(42);
+  for (const Eigen::Vector2d& p : poses) {
+    const Eigen::Vector3d w(rng.normal(0, 1.0), rng.normal(0, 1.0), rng.normal(0, 1.0));
+    const Eigen::Vector3d t(rng.normal(0, 1.5), rng.normal(0, 1.5), rng.normal(0, 1.5));
+    const JointAngles q = inverse_kinematics(a.geometry, p);
+    Geometry gj = a.geometry;
+    Eigen::Vector3d carried;
+    for (int i = 0; i < 3; ++i) {
+      carried[i] = t[i] - kFriction_Nm * std::tanh(w[i] / kFrictionSpeed);
+      const Eigen::Vector2d A(a.geometry[xa(i)], a.geometry[ya(i)]);
+      const auto dist = [&](double th) {
+        return (p - A - a.geometry.la_(i) * Eigen::Vector2d(std::cos(th), std::sin(th))).norm();
+      };
+      const double tension = carried[i] / (1e-3 * (dist(q.theta_a[i] + 1e-6) - dist(q.theta_a[i] - 1e-6)) / 2e-6);
+      gj.values[lb(i)] += (tension > 0.0 ? 1.0 : -1.0) * kPlay[static_cast<std::size_t>(i)];
+    }
+    const JointAngles qj = inverse_kinematics(gj, p);
+    const Eigen::Vector3d noise(rng.normal(0, kSigma), rng.normal(0, kSigma), rng.normal(0, kSigma));
+    d.omega.push_back(w);
+    d.tau.push_back(t);
+    d.problem.theta_m.push_back(readings_from_active(gj, qj.theta_a) + noise + kCompliance.cwiseProduct(carried));
+  }
+  return d;
+}
+
+MotionModel stated(double coulomb_Nm) {
+  MotionModel m;
+  m.skew = false;
+  m.clearance = true;
+  m.load.coulomb_Nm.fill(coulomb_Nm);
+  return m;
+}
+
+TEST(FrictionProfile, PicksTheFactorThatGivesBackTheFriction) {
+  const PlayData d = make_play_data();
+  LmOptions o;
+  o.encoder_sigma = kSigma;
+  const std::vector<double> scales = {0.25, 0.5, 1.0, 2.0, 4.0};
+  for (double told : {2.0 * kFriction_Nm, 0.5 * kFriction_Nm}) {
+    const FrictionProfile p = calibrate_friction_profile(d.problem, d.omega, d.tau, o, stated(told), {}, scales, kSigma);
+    EXPECT_DOUBLE_EQ(p.scale * told, kFriction_Nm) << "told " << told;
+    EXPECT_DOUBLE_EQ(p.model.load.coulomb_Nm[1], kFriction_Nm);
+    ASSERT_EQ(p.chi2_per_dof.size(), scales.size());
+    const double best = *std::min_element(p.chi2_per_dof.begin(), p.chi2_per_dof.end());
+    for (std::size_t k = 0; k < scales.size(); ++k)
+      if (scales[k] != p.scale) EXPECT_GT(p.chi2_per_dof[k], best) << "factor " << scales[k];
+    for (std::size_t i = 0; i < 3; ++i) {
+      ASSERT_TRUE(std::isfinite(p.fit.clearance_sigma[i]));
+      EXPECT_LT(std::abs(p.fit.clearance[i] - kPlay[i]), 4.0 * p.fit.clearance_sigma[i]) << "play of chain " << i + 1;
+    }
+  }
+  // Told the truth, the wrong factors fit worse by a margin (the model test tells them apart).
+  const FrictionProfile truth = calibrate_friction_profile(d.problem, d.omega, d.tau, o, stated(kFriction_Nm), {}, scales, kSigma);
+  EXPECT_EQ(truth.scale, 1.0);
+  EXPECT_GT(truth.chi2_per_dof[4], 1.5 * truth.chi2_per_dof[2]);  // 4x the friction
+}
+
+TEST(FrictionProfile, RefusesBadArguments) {
+  const PlayData d = make_play_data();
+  LmOptions o;
+  o.encoder_sigma = kSigma;
+  EXPECT_THROW(calibrate_friction_profile(d.problem, d.omega, d.tau, o, stated(1.0), {}, {}, kSigma), InputError);
+  EXPECT_THROW(calibrate_friction_profile(d.problem, d.omega, d.tau, o, stated(1.0), {}, {1.0, -0.5}, kSigma), InputError);
+  EXPECT_THROW(calibrate_friction_profile(d.problem, d.omega, d.tau, o, stated(1.0), {}, {1.0}, 0.0), InputError);
+  const std::vector<double> g = default_friction_scales();
+  ASSERT_EQ(g.size(), 9u);
+  EXPECT_DOUBLE_EQ(g.front(), 0.25);
+  EXPECT_DOUBLE_EQ(g[4], 1.0);
+  EXPECT_DOUBLE_EQ(g.back(), 4.0);
+  EXPECT_DOUBLE_EQ(g[5] / g[4], std::sqrt(2.0));
+}
+
+}  // namespace
+}  // namespace gpm::calib
