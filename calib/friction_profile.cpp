@@ -13,7 +13,7 @@
 namespace gpm::calib {
 
 std::vector<double> default_friction_scales() {
-  std::vector<double> s;
+  std::vector<double> s = {0.0};
   for (int m = -4; m <= 4; ++m) s.push_back(std::pow(2.0, 0.5 * m));
   return s;
 }
@@ -24,8 +24,8 @@ FrictionProfile calibrate_friction_profile(const Problem& problem, const std::ve
                                            const std::vector<double>& scales, double sigma) {
   if (scales.empty()) throw InputError("friction profile: no friction factor to try");
   for (double k : scales)
-    if (!(k > 0.0 && std::isfinite(k)))
-      throw InputError(fmt::format("friction profile: factor {} is not a positive number", k));
+    if (!(k >= 0.0 && std::isfinite(k)))
+      throw InputError(fmt::format("friction profile: factor {} is not a number >= 0", k));
   if (!(sigma > 0.0)) throw InputError(fmt::format("friction profile: reading noise {} rad is not positive", sigma));
   FrictionProfile best;
   best.scales = scales;

@@ -28,12 +28,12 @@ struct FrictionProfile {
   std::vector<double> chi2_per_dof;   // the model test's chi2 / dof of each (inf where the fit failed)
 };
 
-// The factors 2^(m/2), m = -4..4 (0.25 to 4 in steps of sqrt 2).
+// The factors 0 (no friction) and 2^(m/2), m = -4..4 (0.25 to 4 in steps of sqrt 2).
 std::vector<double> default_friction_scales();
 
-// calibrate_in_motion at each factor of scales (> 0) times model.load's
+// calibrate_in_motion at each factor of scales (>= 0) times model.load's
 // friction, the fit of the smallest chi2/dof taken (reading noise sigma, rad,
-// > 0). Throws InputError for no factor, a factor <= 0, sigma <= 0, or when
+// > 0). Throws InputError for no factor, a factor < 0, sigma <= 0, or when
 // no factor's fit succeeds (the last fit's error).
 FrictionProfile calibrate_friction_profile(const Problem& problem, const std::vector<Eigen::Vector3d>& omega,
                                            const std::vector<Eigen::Vector3d>& tau, const LmOptions& options,

@@ -309,7 +309,7 @@ RunOutcome run_scenario(const RunSpec& spec_in, const std::string& scenario_file
           out.crb.fill(NAN);
         }
       }
-      if (!friction_note.empty()) out.calibration->notes.push_back(friction_note);
+      if (!friction_note.empty() && motion.clearance) out.calibration->notes.push_back(friction_note);
       if (!clearance_dropped.empty()) out.calibration->notes.push_back(clearance_dropped);
       if (fit.kept.size() < noiseless.size()) {
         const std::size_t weak = noiseless.size() - fit.kept.size() - static_cast<std::size_t>(motion.skip_first);

@@ -23,6 +23,7 @@ names=(procedure_disc_stopgo procedure_designed_stopgo procedure_trajectory
        procedure_disc_stopgo_realistic procedure_designed_stopgo_realistic
        procedure_trajectory_realistic_nofriction procedure_trajectory_realistic_noclearance procedure_trajectory_realistic procedure_trajectory_realistic_preload
        procedure_trajectory_realistic_friction_half procedure_trajectory_realistic_friction_double
+       procedure_trajectory_realistic_friction_half_fixed procedure_trajectory_realistic_friction_double_fixed
        procedure_trajectory_realistic_seed7 procedure_trajectory_realistic_seed11 procedure_trajectory_realistic_seed99)
 for n in "${names[@]}"; do
   echo "study procedures: $n" >&2

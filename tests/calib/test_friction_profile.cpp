@@ -109,11 +109,12 @@ TEST(FrictionProfile, RefusesBadArguments) {
   EXPECT_THROW(calibrate_friction_profile(d.problem, d.omega, d.tau, o, stated(1.0), {}, {1.0, -0.5}, kSigma), InputError);
   EXPECT_THROW(calibrate_friction_profile(d.problem, d.omega, d.tau, o, stated(1.0), {}, {1.0}, 0.0), InputError);
   const std::vector<double> g = default_friction_scales();
-  ASSERT_EQ(g.size(), 9u);
-  EXPECT_DOUBLE_EQ(g.front(), 0.25);
-  EXPECT_DOUBLE_EQ(g[4], 1.0);
+  ASSERT_EQ(g.size(), 10u);
+  EXPECT_EQ(g.front(), 0.0);
+  EXPECT_DOUBLE_EQ(g[1], 0.25);
+  EXPECT_DOUBLE_EQ(g[5], 1.0);
   EXPECT_DOUBLE_EQ(g.back(), 4.0);
-  EXPECT_DOUBLE_EQ(g[5] / g[4], std::sqrt(2.0));
+  EXPECT_DOUBLE_EQ(g[6] / g[5], std::sqrt(2.0));
 }
 
 }  // namespace

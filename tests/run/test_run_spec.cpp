@@ -89,7 +89,8 @@ TEST(RunSpec, LossAndEstimatedEffects) {
 
 // calibration.drive_friction: what the procedure assumes, independent of the
 // twin's effects; default the realistic preset's friction plus the design
-// gearbox damping; a number or one per joint; a key left out keeps its default.
+// gearbox damping, its scale fitted; a number or one per joint; a key left
+// out keeps its default.
 TEST(RunSpec, DriveFrictionStatedByTheCalibration) {
   const RunSpec d = parse_run_spec(kHead, "s.yaml", kBase);
   const sim::Effects realistic = sim::realistic_effects();
@@ -109,6 +110,12 @@ TEST(RunSpec, DriveFrictionStatedByTheCalibration) {
   const RunSpec v = parse_run_spec(kHead + "calibration: {drive_friction: {viscous_Nm_s: 0, coulomb_Nm: 0.6}}\n", "s.yaml", kBase);
   EXPECT_EQ(v.calibration.drive_friction.viscous_Nm_s, (std::array<double, 3>{0.0, 0.0, 0.0}));
   EXPECT_EQ(v.calibration.drive_friction.coulomb_Nm, (std::array<double, 3>{0.6, 0.6, 0.6}));
+  EXPECT_TRUE(d.calibration.drive_friction.fit_scale);  // default: the scale from the model test
+  EXPECT_TRUE(v.calibration.drive_friction.fit_scale);
+  EXPECT_FALSE(parse_run_spec(kHead + "calibration: {drive_friction: {fit_scale: false}}\n", "s.yaml", kBase)
+                   .calibration.drive_friction.fit_scale);
+  EXPECT_NE(error_of(kHead + "calibration: {drive_friction: {fit_scale: maybe}}\n").find("calibration.drive_friction.fit_scale"),
+            std::string::npos);
   EXPECT_EQ(error_of(kHead + "calibration: {drive_friction: {coulomb_Nm: -0.3}}\n"),
             "s.yaml:3: calibration.drive_friction.coulomb_Nm: -0.3 is out of range (valid: 0 to 20 N m)");
   EXPECT_NE(error_of(kHead + "calibration: {drive_friction: {viscous_Nm_s: [0.1, 0.2]}}\n")
