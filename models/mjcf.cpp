@@ -99,17 +99,19 @@ std::string mjcf_from_robot(const Robot& actual, const MjcfOptions& o) {
         fx.coulomb_Nm[static_cast<size_t>(i)] > 0.0
             ? fmt::format(" frictionloss=\"{}\"", num(fx.coulomb_Nm[static_cast<size_t>(i)]))
             : std::string();
-    // A loose passive joint: one limited slide along the passive link
-    // (docs/ARCHITECTURE.md: clearance). The passive link is a two-force
+    // Loose passive joints: one limited slide along the passive link, range
+    // +-2c (docs/ARCHITECTURE.md: clearance). The passive link is a two-force
     // member, so only the axial part of a pin's radial play changes the
-    // closure (the transverse part turns the link, which its hinge already
-    // allows: second order, c^2 / lb): a radial clearance c is an axial
-    // play of +-c at each end, exactly to first order.
+    // closure (the transverse part turns the link, which its hinges already
+    // allow: second order, c^2 / lb): a radial clearance c at the elbow and at
+    // the hub is an axial play of +-c at each end, and the closure sees only
+    // their sum, +-2c along the link, exactly to first order. One slide per
+    // link instead of one per pin: 3 degrees of freedom and no pin bodies.
     const auto slide = [&](const std::string& name, const std::string& indent) {
       return fmt::format("{}<joint name=\"{}\" type=\"slide\" axis=\"1 0 0\" limited=\"true\" "
                          "range=\"{} {}\" stiffness=\"{}\" damping=\"{}\" solreflimit=\"{} 1\" "
                          "solimplimit=\"{} {} {}\"/>\n",
-                         indent, name, num(-c), num(c), num(fx.clearance_stiffness_N_per_m),
+                         indent, name, num(-2.0 * c), num(2.0 * c), num(fx.clearance_stiffness_N_per_m),
                          num(fx.clearance_damping_N_s_per_m), num(fx.clearance_solref_s), num(fx.clearance_solimp),
                          num(fx.clearance_solimp), num(o.solimp_width_m));
     };
@@ -150,19 +152,9 @@ std::string mjcf_from_robot(const Robot& actual, const MjcfOptions& o) {
     x += inb + rod_inertial(o.passive_link_mass_kg, lb_m, 0.8 * r) + "\n";
     x += fmt::format("{}<geom name=\"geom_b{}\" type=\"capsule\" fromto=\"0 0 0 {} 0 0\" "
                      "size=\"{}\" rgba=\"0.9 0.6 0.2 1\"/>\n", inb, n, num(lb_m), num(0.8 * r));
-    if (c > 0.0 && i > 0) {
-      x += fmt::format("{}<body name=\"pin_b{}\" pos=\"{} 0 0\">\n", inb, n, num(lb_m));
-      x += slide(fmt::format("clear_e{}x", n), inb + "  ");
-      x += fmt::format("{}  <inertial pos=\"0 0 0\" mass=\"{}\" diaginertia=\"{} {} {}\"/>\n", inb,
-                       num(fx.pin_mass_kg), num(1e-7), num(1e-7), num(1e-7));
-      x += fmt::format("{}  <site name=\"tip_b{}\" pos=\"0 0 0\" size=\"0.005\"/>\n", inb, n);
-      x += inb + "</body>\n";
-    } else {
-      x += fmt::format("{}<site name=\"tip_b{}\" pos=\"{} 0 0\" size=\"0.005\"/>\n", inb, n, num(lb_m));
-    }
+    x += fmt::format("{}<site name=\"tip_b{}\" pos=\"{} 0 0\" size=\"0.005\"/>\n", inb, n, num(lb_m));
     if (i == 0) {
       x += fmt::format("{}<body name=\"ee\" pos=\"{} 0 0\">\n", inb, num(lb_m));
-      if (c > 0.0) x += slide("clear_e1x", inb + "  ");
       x += fmt::format("{}  <inertial pos=\"0 0 0\" mass=\"{}\" diaginertia=\"{} {} {}\"/>\n", inb,
                        num(o.ee_mass_kg), num(1e-5), num(1e-5), num(1e-5));
       x += inb + "  <geom name=\"geom_ee\" type=\"cylinder\" size=\"0.02 0.01\" pos=\"0 0 0.03\" "
@@ -177,13 +169,8 @@ std::string mjcf_from_robot(const Robot& actual, const MjcfOptions& o) {
   x += "  </worldbody>\n";
   x += "  <equality>\n";
   for (int i = 1; i < kNumChains; ++i) {
-    if (fx.clearance_m[static_cast<size_t>(i)] > 0.0) {
-      x += fmt::format("    <connect name=\"close_b{}\" body1=\"pin_b{}\" body2=\"ee\" anchor=\"0 0 0\"/>\n",
-                       i + 1, i + 1);
-    } else {
-      x += fmt::format("    <connect name=\"close_b{}\" body1=\"link_b{}\" body2=\"ee\" anchor=\"{} 0 0\"/>\n",
-                       i + 1, i + 1, num(g.lb_(i) * kMetresPerMm));
-    }
+    x += fmt::format("    <connect name=\"close_b{}\" body1=\"link_b{}\" body2=\"ee\" anchor=\"{} 0 0\"/>\n",
+                     i + 1, i + 1, num(g.lb_(i) * kMetresPerMm));
   }
   x += "  </equality>\n";
   x += "  <actuator>\n";

@@ -16,12 +16,12 @@
 //     stiffness 1/compliance: link angle theta_a = qpos(joint_m) +
 //     qpos(joint_a), motor angle = qpos(joint_m) + ta, twist = qpos(joint_a) - ta
 //     (docs/ARCHITECTURE.md: springref must be given; it defaults to 0, not to ref).
-//   clearance: a slide joint clear_b{i}x (range +-c) along the passive link
-//     after joint_b{i}; at the hub a slide clear_e1x in body ee and, for
-//     chains 2 and 3, a body pin_b{i} at the tip of link_b{i} (slide
-//     clear_e{i}x, site tip_b{i}) which the connect holds at its origin. Axial
-//     slides only: the passive link is a two-force member, so a pin's
-//     transverse play only turns it (mjcf.cpp).
+//   clearance: one slide joint clear_b{i}x in link_b{i} after joint_b{i},
+//     along the passive link, range +-2c: the axial play of the elbow pin and
+//     of the hub pin (c each) summed. The passive link is a two-force member,
+//     so a pin's transverse play only turns it and the closure sees only the
+//     sum of the two axial plays, to first order (mjcf.cpp). The connect and
+//     site tip_b{i} stay at the slid link's tip; no extra bodies.
 //   friction: frictionloss (Coulomb, N m) and extra damping on the actuated joint.
 // Bodies are laid out already assembled at the actual inverse kinematics of
 // robot.home (paper eq. 29-31), so <connect>, which takes its second anchor at
@@ -43,18 +43,18 @@ inline constexpr double kMetresPerMm = 1e-3;
 // Effects built into the MuJoCo model (per chain; 0 = off).
 struct MjcfEffects {
   std::array<double, 3> compliance_rad_per_Nm{};  // transmission, motor to link
-  std::array<double, 3> clearance_m{};            // radial, elbow B_i and hub joint of chain i
+  std::array<double, 3> clearance_m{};            // radial, elbow B_i and hub joint of chain i (each)
   std::array<double, 3> coulomb_Nm{};             // frictionloss at the actuated joint
   std::array<double, 3> viscous_Nm_s{};           // damping added to active_damping
   double rotor_mass_kg = 0.05;                    // rotor body (compliance only; inertia is the armature)
   double clearance_stiffness_N_per_m = 200.0;     // soft centring spring of the slides
   double clearance_damping_N_s_per_m = 2.0;       // damping of the slides
   double clearance_solref_s = 0.001;              // limit time constant (stiff, >= 2 timesteps)
-  // Limit impedance: MuJoCo's soft limits are mass-normalised, so on a light
-  // pin body the default 0.9-0.95 gives way by ~0.2 mm under the servos'
-  // preload; 0.9999 (as the loop constraints) holds them to well under 1 um.
+  // Limit impedance: MuJoCo's soft limits are mass-normalised, and the
+  // default 0.9-0.95 gave way by ~0.2 mm under the servos' preload (measured
+  // on light pin bodies); 0.9999 (as the loop constraints) holds the limits
+  // to well under 1 um.
   double clearance_solimp = 0.9999;
-  double pin_mass_kg = 0.01;                      // hub pin body of chains 2 and 3 (clearance)
 
   bool compliant() const;
   bool loose() const;

@@ -125,10 +125,10 @@ TwinModel::TwinModel(const Robot& actual, const TwinConfig& config)
     site_tip[i] = require_id(m, mjOBJ_SITE, name("tip_b", i).c_str());
     body_base[i] = require_id(m, mjOBJ_BODY, (compliant[i] ? name("rotor_a", i) : name("link_a", i)).c_str());
     body_elbow[i] = require_id(m, mjOBJ_BODY, name("link_b", i).c_str());
-    body_tip[i] = i == 0 ? require_id(m, mjOBJ_BODY, "ee") : optional_id(m, mjOBJ_BODY, name("pin_b", i));
     eq_close[i] = i == 0 ? -1 : require_id(m, mjOBJ_EQUALITY, name("close_b", i).c_str());
   }
   site_ee = require_id(m, mjOBJ_SITE, "ee");
+  body_ee = require_id(m, mjOBJ_BODY, "ee");
 }
 
 void apply_geometry(const TwinModel& model, TwinState& state, const Geometry& g) {
@@ -140,9 +140,9 @@ void apply_geometry(const TwinModel& model, TwinState& state, const Geometry& g)
     m->body_pos[3 * model.body_base[i] + 0] = g[xa(i)] * kMetresPerMm;
     m->body_pos[3 * model.body_base[i] + 1] = g[ya(i)] * kMetresPerMm;
     m->body_pos[3 * model.body_elbow[i] + 0] = la_m;
-    if (model.body_tip[i] >= 0) m->body_pos[3 * model.body_tip[i] + 0] = lb_m;  // ee or hub pin
-    if (model.body_tip[i] < 0 || i == 0) m->site_pos[3 * model.site_tip[i] + 0] = lb_m;
-    if (model.eq_close[i] >= 0 && model.body_tip[i] < 0) m->eq_data[model.eq_close[i] * mjNEQDATA + 0] = lb_m;
+    m->site_pos[3 * model.site_tip[i] + 0] = lb_m;
+    if (i == 0) m->body_pos[3 * model.body_ee + 0] = lb_m;  // the hub rides on link_b1
+    if (model.eq_close[i] >= 0) m->eq_data[model.eq_close[i] * mjNEQDATA + 0] = lb_m;
   }
 }
 

@@ -63,7 +63,8 @@ class TwinModel {
   std::array<double, 3> motor_zero{};  // motor angle at qpos(joint_m) = 0 (the home angle; 0 if rigid)
   int site_ee = -1;
   // Bodies and constraints whose placement a thermal edit changes.
-  std::array<int, 3> body_base{}, body_elbow{}, body_tip{}, eq_close{};  // -1 where none
+  std::array<int, 3> body_base{}, body_elbow{}, eq_close{};  // eq_close[0] = -1 (chain 1 carries the hub)
+  int body_ee = -1;
 
   // Largest stable transmission stiffness at a timestep: omega dt <= this.
   static constexpr double kMaxOmegaDt = 1.5;

@@ -130,11 +130,13 @@ TEST(Mjcf, EffectsOffLeaveTheIdealModelAndOnAddTheirParts) {
   EXPECT_NE(x.find(R"(<motor name="motor_a2" joint="joint_a2")"), std::string::npos);
   EXPECT_NE(x.find(R"(joint_a2" type="hinge" axis="0 0 1" ref=)"), std::string::npos);
   EXPECT_NE(x.find(R"(frictionloss="0.5")"), std::string::npos);
-  // Clearance on chain 3: elbow slides and a hub pin held by the connect, +-5 um.
-  EXPECT_NE(x.find(R"(<joint name="clear_b3x" type="slide" axis="1 0 0" limited="true" range="-5e-06 5e-06")"),
+  // Clearance 5 um on chain 3: one slide along the passive link with the
+  // play of both its pins, +-2c = +-10 um; the connect stays at the link's tip.
+  EXPECT_NE(x.find(R"(<joint name="clear_b3x" type="slide" axis="1 0 0" limited="true" range="-1e-05 1e-05")"),
             std::string::npos);
-  EXPECT_NE(x.find(R"(<connect name="close_b3" body1="pin_b3" body2="ee" anchor="0 0 0"/>)"), std::string::npos);
+  EXPECT_NE(x.find(R"(<connect name="close_b3" body1="link_b3" body2="ee" anchor="0.244 0 0"/>)"), std::string::npos);
   EXPECT_EQ(x.find("clear_b1"), std::string::npos);
+  EXPECT_EQ(x.find("pin_b"), std::string::npos);
 }
 
 TEST(Mjcf, TransmissionRateIsHookesLawOnTheTwoInertias) {
