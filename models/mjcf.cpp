@@ -87,6 +87,7 @@ std::string mjcf_from_robot(const Robot& actual, const MjcfOptions& o) {
   x += "  <worldbody>\n";
   x += "    <light pos=\"0.2165 0.25 1.5\" dir=\"0 0 -1\"/>\n";
   const MjcfEffects& fx = o.effects;
+  std::string tendons;  // loose hub pins of chains 2 and 3
   for (int i = 0; i < kNumChains; ++i) {
     const int n = i + 1;
     const double la_m = g.la_(i) * kMetresPerMm, lb_m = g.lb_(i) * kMetresPerMm;
@@ -99,22 +100,26 @@ std::string mjcf_from_robot(const Robot& actual, const MjcfOptions& o) {
         fx.coulomb_Nm[static_cast<size_t>(i)] > 0.0
             ? fmt::format(" frictionloss=\"{}\"", num(fx.coulomb_Nm[static_cast<size_t>(i)]))
             : std::string();
-    // Loose passive joints: one limited slide along the passive link, range
-    // +-2c (docs/ARCHITECTURE.md: clearance). The passive link is a two-force
-    // member, so only the axial part of a pin's radial play changes the
-    // closure (the transverse part turns the link, which its hinges already
-    // allow: second order, c^2 / lb): a radial clearance c at the elbow and at
-    // the hub is an axial play of +-c at each end, and the closure sees only
-    // their sum, +-2c along the link, exactly to first order. One slide per
-    // link instead of one per pin: 3 degrees of freedom and no pin bodies.
-    const auto slide = [&](const std::string& name, const std::string& indent) {
-      return fmt::format("{}<joint name=\"{}\" type=\"slide\" axis=\"1 0 0\" limited=\"true\" "
-                         "range=\"{} {}\" stiffness=\"{}\" damping=\"{}\" solreflimit=\"{} 1\" "
-                         "solimplimit=\"{} {} {}\"/>\n",
-                         indent, name, num(-2.0 * c), num(2.0 * c), num(fx.clearance_stiffness_N_per_m),
-                         num(fx.clearance_damping_N_s_per_m), num(fx.clearance_solref_s), num(fx.clearance_solimp),
-                         num(fx.clearance_solimp), num(o.solimp_width_m));
-    };
+    // Loose passive joints (docs/ARCHITECTURE.md: clearance). A radial
+    // clearance c at the elbow pin and at the hub pin lets the hub sit
+    // anywhere within 2c of the passive link's tip (the two pins' discs of
+    // radius c summed), so each passive link's length |O - B_i| gives by up
+    // to +-2c. Chains 2 and 3 need no degree of freedom for it: instead of
+    // the connect (3 rows), a spatial tendon clear_b{i} from site tip_b{i} to
+    // site ee, limited to length 2c (one row, only while the play is taken
+    // up). Chain 1 carries the hub body: a slide clear_b1x along the link
+    // after joint_b1, range +-2c; the passive link is a two-force member, so
+    // only the axial part of the play changes the closure (the transverse
+    // part turns the link, second order, c^2 / lb).
+    const std::string limit = fmt::format(
+        "limited=\"true\" range=\"{} {}\" stiffness=\"{}\" damping=\"{}\" solreflimit=\"{} 1\" "
+        "solimplimit=\"{} {} {}\"", num(i == 0 ? -2.0 * c : 0.0), num(2.0 * c), num(fx.clearance_stiffness_N_per_m),
+        num(fx.clearance_damping_N_s_per_m), num(fx.clearance_solref_s), num(fx.clearance_solimp),
+        num(fx.clearance_solimp), num(o.solimp_width_m));
+    if (c > 0.0 && i > 0) {
+      tendons += fmt::format("    <spatial name=\"clear_b{}\" {}>\n      <site site=\"tip_b{}\"/>\n"
+                             "      <site site=\"ee\"/>\n    </spatial>\n", n, limit, n);
+    }
     std::string in = "      ";  // indentation inside link_a
     if (compliance > 0.0) {
       // Rotor at zero rotation (qpos0 0): the link body carries the home
@@ -148,7 +153,9 @@ std::string mjcf_from_robot(const Robot& actual, const MjcfOptions& o) {
     x += fmt::format("{}<joint name=\"joint_b{}\" type=\"hinge\" axis=\"0 0 1\" ref=\"{}\" "
                      "damping=\"{}\"/>\n", inb, n, num(rel), num(o.passive_damping));
     // After the hinge: the slide turns with the passive link.
-    if (c > 0.0) x += slide(fmt::format("clear_b{}x", n), inb);
+    if (c > 0.0 && i == 0) {
+      x += fmt::format("{}<joint name=\"clear_b1x\" type=\"slide\" axis=\"1 0 0\" {}/>\n", inb, limit);
+    }
     x += inb + rod_inertial(o.passive_link_mass_kg, lb_m, 0.8 * r) + "\n";
     x += fmt::format("{}<geom name=\"geom_b{}\" type=\"capsule\" fromto=\"0 0 0 {} 0 0\" "
                      "size=\"{}\" rgba=\"0.9 0.6 0.2 1\"/>\n", inb, n, num(lb_m), num(0.8 * r));
@@ -167,12 +174,14 @@ std::string mjcf_from_robot(const Robot& actual, const MjcfOptions& o) {
     x += "    </body>\n";
   }
   x += "  </worldbody>\n";
-  x += "  <equality>\n";
+  std::string connects;
   for (int i = 1; i < kNumChains; ++i) {
-    x += fmt::format("    <connect name=\"close_b{}\" body1=\"link_b{}\" body2=\"ee\" anchor=\"{} 0 0\"/>\n",
-                     i + 1, i + 1, num(g.lb_(i) * kMetresPerMm));
+    if (fx.clearance_m[static_cast<size_t>(i)] > 0.0) continue;  // closed by its clearance tendon
+    connects += fmt::format("    <connect name=\"close_b{}\" body1=\"link_b{}\" body2=\"ee\" anchor=\"{} 0 0\"/>\n",
+                            i + 1, i + 1, num(g.lb_(i) * kMetresPerMm));
   }
-  x += "  </equality>\n";
+  if (!connects.empty()) x += "  <equality>\n" + connects + "  </equality>\n";
+  if (!tendons.empty()) x += "  <tendon>\n" + tendons + "  </tendon>\n";
   x += "  <actuator>\n";
   for (int i = 0; i < kNumChains; ++i) {
     const char* joint = fx.compliance_rad_per_Nm[static_cast<size_t>(i)] > 0.0 ? "joint_m" : "joint_a";

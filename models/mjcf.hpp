@@ -7,6 +7,7 @@
 //   body ee         welded to the tip of link_b1, site ee at the end-effector O
 //   site tip_b{i}   at the free end of link_b{i} (tip_b1 coincides with ee)
 //   equality close_b2, close_b3: <connect> tip of link_b2 / link_b3 to ee
+//     (absent for a chain with clearance, see below)
 //   actuator motor_a{i}: torque motor on joint_a{i} (gear 1, N m)
 // Physical effects (MjcfEffects, all off by default; off = the layout above,
 // byte for byte):
@@ -16,12 +17,13 @@
 //     stiffness 1/compliance: link angle theta_a = qpos(joint_m) +
 //     qpos(joint_a), motor angle = qpos(joint_m) + ta, twist = qpos(joint_a) - ta
 //     (docs/ARCHITECTURE.md: springref must be given; it defaults to 0, not to ref).
-//   clearance: one slide joint clear_b{i}x in link_b{i} after joint_b{i},
-//     along the passive link, range +-2c: the axial play of the elbow pin and
-//     of the hub pin (c each) summed. The passive link is a two-force member,
-//     so a pin's transverse play only turns it and the closure sees only the
-//     sum of the two axial plays, to first order (mjcf.cpp). The connect and
-//     site tip_b{i} stay at the slid link's tip; no extra bodies.
+//   clearance: each passive link's length |O - B_i| gives by up to +-2c
+//     (the elbow and hub pins' radial play c each, summed). Chain 1 (it
+//     carries ee): a slide clear_b1x in link_b1 after joint_b1, along the
+//     link, range +-2c. Chains 2 and 3: no connect close_b{i}; a spatial
+//     tendon clear_b{i} from site tip_b{i} to site ee limited to length 2c
+//     closes the loop (the hub anywhere within 2c of the link's tip: the
+//     two pins' discs summed). No extra bodies (mjcf.cpp).
 //   friction: frictionloss (Coulomb, N m) and extra damping on the actuated joint.
 // Bodies are laid out already assembled at the actual inverse kinematics of
 // robot.home (paper eq. 29-31), so <connect>, which takes its second anchor at
@@ -47,9 +49,12 @@ struct MjcfEffects {
   std::array<double, 3> coulomb_Nm{};             // frictionloss at the actuated joint
   std::array<double, 3> viscous_Nm_s{};           // damping added to active_damping
   double rotor_mass_kg = 0.05;                    // rotor body (compliance only; inertia is the armature)
-  double clearance_stiffness_N_per_m = 200.0;     // soft centring spring of the slides
-  double clearance_damping_N_s_per_m = 2.0;       // damping of the slides
-  double clearance_solref_s = 0.001;              // limit time constant (stiff, >= 2 timesteps)
+  double clearance_stiffness_N_per_m = 200.0;     // soft centring spring of the slide and tendons
+  double clearance_damping_N_s_per_m = 2.0;       // damping of the slide and tendons
+  // Limit time constant: 2 steps at 0.25 ms (MuJoCo raises it to 2 timesteps
+  // at longer steps). The tendon limits' effective mass is light, so at
+  // 1 ms the hub gave 0.2-0.6 um beyond 2c under the drives' loads.
+  double clearance_solref_s = 0.0005;
   // Limit impedance: MuJoCo's soft limits are mass-normalised, and the
   // default 0.9-0.95 gave way by ~0.2 mm under the servos' preload (measured
   // on light pin bodies); 0.9999 (as the loop constraints) holds the limits

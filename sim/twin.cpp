@@ -125,7 +125,11 @@ TwinModel::TwinModel(const Robot& actual, const TwinConfig& config)
     site_tip[i] = require_id(m, mjOBJ_SITE, name("tip_b", i).c_str());
     body_base[i] = require_id(m, mjOBJ_BODY, (compliant[i] ? name("rotor_a", i) : name("link_a", i)).c_str());
     body_elbow[i] = require_id(m, mjOBJ_BODY, name("link_b", i).c_str());
-    eq_close[i] = i == 0 ? -1 : require_id(m, mjOBJ_EQUALITY, name("close_b", i).c_str());
+    // Chains 2 and 3 close by a connect, or with clearance by a limited tendon.
+    eq_close[i] = i == 0 ? -1 : optional_id(m, mjOBJ_EQUALITY, name("close_b", i));
+    const int loose = i == 0 ? -1 : optional_id(m, mjOBJ_TENDON, name("clear_b", i));
+    hub_play_m[i] = loose >= 0 ? m->tendon_range[2 * loose + 1] : 0.0;
+    if (i > 0 && eq_close[i] < 0 && loose < 0) throw SimError(fmt::format("MuJoCo model: chain {} is not closed", i + 1));
   }
   site_ee = require_id(m, mjOBJ_SITE, "ee");
   body_ee = require_id(m, mjOBJ_BODY, "ee");
@@ -172,7 +176,8 @@ TwinState::TwinState(const TwinModel& model, unsigned long long seed)
 double constraint_violation_m(const TwinModel& model, const mjData* d) {
   const Eigen::Vector3d ee = site_pos(d, model.site_ee);
   double worst = 0.0;
-  for (int i = 1; i < 3; ++i) worst = std::max(worst, (site_pos(d, model.site_tip[i]) - ee).norm());
+  for (int i = 1; i < 3; ++i)
+    worst = std::max(worst, (site_pos(d, model.site_tip[i]) - ee).norm() - model.hub_play_m[i]);
   return worst;
 }
 

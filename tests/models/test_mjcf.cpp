@@ -130,13 +130,23 @@ TEST(Mjcf, EffectsOffLeaveTheIdealModelAndOnAddTheirParts) {
   EXPECT_NE(x.find(R"(<motor name="motor_a2" joint="joint_a2")"), std::string::npos);
   EXPECT_NE(x.find(R"(joint_a2" type="hinge" axis="0 0 1" ref=)"), std::string::npos);
   EXPECT_NE(x.find(R"(frictionloss="0.5")"), std::string::npos);
-  // Clearance 5 um on chain 3: one slide along the passive link with the
-  // play of both its pins, +-2c = +-10 um; the connect stays at the link's tip.
-  EXPECT_NE(x.find(R"(<joint name="clear_b3x" type="slide" axis="1 0 0" limited="true" range="-1e-05 1e-05")"),
-            std::string::npos);
-  EXPECT_NE(x.find(R"(<connect name="close_b3" body1="link_b3" body2="ee" anchor="0.244 0 0"/>)"), std::string::npos);
+  // Clearance 5 um on chain 3: its hub pin may sit anywhere within 2c = 10 um
+  // of the passive link's tip (both pins' play): a tendon limited to that
+  // length closes the loop instead of the connect; chain 2 keeps its connect.
+  EXPECT_TRUE(std::regex_search(x, std::regex(R"re(<spatial name="clear_b3" limited="true" range="0 1e-05"[^>]*>\s*<site site="tip_b3"/>\s*<site site="ee"/>)re")));
+  EXPECT_EQ(x.find("close_b3"), std::string::npos);
+  EXPECT_NE(x.find(R"(<connect name="close_b2" body1="link_b2" body2="ee" anchor="0.244 0 0"/>)"), std::string::npos);
   EXPECT_EQ(x.find("clear_b1"), std::string::npos);
+  EXPECT_EQ(x.find("clear_b2"), std::string::npos);
   EXPECT_EQ(x.find("pin_b"), std::string::npos);
+  // Clearance on chain 1, which carries the hub: a slide along its passive
+  // link with the play of both pins, +-2c.
+  o.effects.clearance_m = {5e-6, 0.0, 0.0};
+  const std::string x1 = mjcf_from_robot(Robot{}, o);
+  EXPECT_NE(x1.find(R"(<joint name="clear_b1x" type="slide" axis="1 0 0" limited="true" range="-1e-05 1e-05")"),
+            std::string::npos);
+  EXPECT_NE(x1.find("<connect name=\"close_b3\""), std::string::npos);
+  EXPECT_EQ(x1.find("<tendon>"), std::string::npos);
 }
 
 TEST(Mjcf, TransmissionRateIsHookesLawOnTheTwoInertias) {
