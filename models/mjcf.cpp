@@ -87,7 +87,7 @@ std::string mjcf_from_robot(const Robot& actual, const MjcfOptions& o) {
   x += "  <worldbody>\n";
   x += "    <light pos=\"0.2165 0.25 1.5\" dir=\"0 0 -1\"/>\n";
   const MjcfEffects& fx = o.effects;
-  std::string tendons;  // loose hub pins of chains 2 and 3
+  std::string tendons;  // compliant transmissions, loose hub pins of chains 2 and 3
   for (int i = 0; i < kNumChains; ++i) {
     const int n = i + 1;
     const double la_m = g.la_(i) * kMetresPerMm, lb_m = g.lb_(i) * kMetresPerMm;
@@ -120,22 +120,31 @@ std::string mjcf_from_robot(const Robot& actual, const MjcfOptions& o) {
       tendons += fmt::format("    <spatial name=\"clear_b{}\" {}>\n      <site site=\"tip_b{}\"/>\n"
                              "      <site site=\"ee\"/>\n    </spatial>\n", n, limit, n);
     }
-    std::string in = "      ";  // indentation inside link_a
+    const std::string in = "      ";  // indentation inside link_a
     if (compliance > 0.0) {
-      // Rotor at zero rotation (qpos0 0): the link body carries the home
-      // angle, so a viewer that poses joint_a with the absolute link angle
-      // and leaves joint_m at qpos0 still draws the link where it is.
+      // Transmission compliance: a rotor body of its own at A_i (hinge
+      // joint_m with the armature, the damping and friction; the actuator)
+      // and the link on its usual absolute hinge joint_a, joined by a fixed
+      // tendon twist_a{i} = qpos(joint_m) - qpos(joint_a) of stiffness
+      // 1 / compliance, at rest at zero twist (both joints have ref =
+      // springref = home angle; springref defaults to 0, not to ref,
+      // docs/ARCHITECTURE.md). Two trees instead of the rotor carrying the
+      // link: the same dynamics, a shallower mass matrix (cheaper per step).
       x += fmt::format("    <body name=\"rotor_a{}\" pos=\"{} {} 0\">\n", n,
                        num(g[xa(i)] * kMetresPerMm), num(g[ya(i)] * kMetresPerMm));
-      x += fmt::format("      <joint name=\"joint_m{}\" type=\"hinge\" axis=\"0 0 1\" "
+      x += fmt::format("      <joint name=\"joint_m{}\" type=\"hinge\" axis=\"0 0 1\" ref=\"{}\" springref=\"{}\" "
                        "damping=\"{}\" armature=\"{}\"{}/>\n",
-                       n, damping, num(o.armature_kg_m2), friction);
+                       n, num(ta), num(ta), damping, num(o.armature_kg_m2), friction);
       x += fmt::format("      <inertial pos=\"0 0 0\" mass=\"{}\" diaginertia=\"{} {} {}\"/>\n",
                        num(fx.rotor_mass_kg), num(1e-6), num(1e-6), num(1e-6));
-      x += fmt::format("      <body name=\"link_a{}\" pos=\"0 0 0\" euler=\"0 0 {}\">\n", n, num(ta));
-      x += fmt::format("        <joint name=\"joint_a{}\" type=\"hinge\" axis=\"0 0 1\" ref=\"{}\" "
-                       "stiffness=\"{}\" springref=\"{}\"/>\n", n, num(ta), num(1.0 / compliance), num(ta));
-      in = "        ";
+      x += "    </body>\n";
+      x += fmt::format("    <body name=\"link_a{}\" pos=\"{} {} 0\" euler=\"0 0 {}\">\n", n,
+                       num(g[xa(i)] * kMetresPerMm), num(g[ya(i)] * kMetresPerMm), num(ta));
+      x += fmt::format("      <joint name=\"joint_a{}\" type=\"hinge\" axis=\"0 0 1\" ref=\"{}\" springref=\"{}\"/>\n",
+                       n, num(ta), num(ta));
+      tendons += fmt::format("    <fixed name=\"twist_a{}\" stiffness=\"{}\">\n      <joint joint=\"joint_m{}\" coef=\"1\"/>\n"
+                             "      <joint joint=\"joint_a{}\" coef=\"-1\"/>\n    </fixed>\n",
+                             n, num(1.0 / compliance), n, n);
     } else {
       x += fmt::format("    <body name=\"link_a{}\" pos=\"{} {} 0\" euler=\"0 0 {}\">\n", n,
                        num(g[xa(i)] * kMetresPerMm), num(g[ya(i)] * kMetresPerMm), num(ta));
@@ -170,7 +179,6 @@ std::string mjcf_from_robot(const Robot& actual, const MjcfOptions& o) {
       x += inb + "</body>\n";
     }
     x += in + "</body>\n";
-    if (compliance > 0.0) x += "      </body>\n";
     x += "    </body>\n";
   }
   x += "  </worldbody>\n";

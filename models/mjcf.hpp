@@ -11,12 +11,14 @@
 //   actuator motor_a{i}: torque motor on joint_a{i} (gear 1, N m)
 // Physical effects (MjcfEffects, all off by default; off = the layout above,
 // byte for byte):
-//   compliance: body rotor_a{i} at A_i (no rotation at qpos0) with hinge
-//     joint_m{i} (the rotor armature, the actuator) holds link_a{i} (euler =
-//     home angle ta) on hinge joint_a{i} with ref = springref = ta and
-//     stiffness 1/compliance: link angle theta_a = qpos(joint_m) +
-//     qpos(joint_a), motor angle = qpos(joint_m) + ta, twist = qpos(joint_a) - ta
-//     (docs/ARCHITECTURE.md: springref must be given; it defaults to 0, not to ref).
+//   compliance: body rotor_a{i} at A_i (a tree of its own) with hinge
+//     joint_m{i} (the rotor armature, damping, friction; the actuator), and
+//     link_a{i} on its absolute hinge joint_a{i} as without compliance; a
+//     fixed tendon twist_a{i} = joint_m{i} - joint_a{i} of stiffness
+//     1/compliance joins them. Both joints have ref = springref = home
+//     angle: qpos(joint_m) = motor angle, qpos(joint_a) = link angle,
+//     twist = motor - link (docs/ARCHITECTURE.md: springref must be given;
+//     it defaults to 0, not to ref).
 //   clearance: each passive link's length |O - B_i| gives by up to +-2c
 //     (the elbow and hub pins' radial play c each, summed). Chain 1 (it
 //     carries ee): a slide clear_b1x in link_b1 after joint_b1, along the

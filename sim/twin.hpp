@@ -60,10 +60,10 @@ class TwinModel {
   // qpos_m == qpos_a and dof_m == dof_a.
   std::array<int, 3> qpos_a{}, qpos_b{}, dof_a{}, qpos_m{}, dof_m{}, actuator{}, site_tip{};
   std::array<bool, 3> compliant{};
-  std::array<double, 3> motor_zero{};  // motor angle at qpos(joint_m) = 0 (the home angle; 0 if rigid)
   int site_ee = -1;
   // Bodies and constraints whose placement a thermal edit changes.
   std::array<int, 3> body_base{}, body_elbow{}, eq_close{};  // eq_close[0] = -1 (chain 1 carries the hub)
+  std::array<int, 3> body_rotor{};  // rotor_a{i} with compliance (at A_i too), else -1
   int body_ee = -1;
   // Distance the hub may keep from site tip_b{i} (chains 2 and 3 closed by
   // their clearance tendon: 2c; 0 where a connect closes the loop).
