@@ -2,14 +2,15 @@
 // included) against bare mj_step on the same compiled model, and optionally
 // writes that model's MJCF for mujoco-testspeed (bench/sim_vs_testspeed.sh).
 //   bench_sim [--steps N] [--write-model FILE] [--timestep S] [--rate HZ]
-//             [--effects ideal|realistic|compliance|clearance|friction|thermal|encoder]
+//             [--effects ideal|realistic|compliance|clearance|friction|thermal|encoder] [--profile]
 // Prints "name steps_per_second" lines and "sim_seconds_per_wall_second"
 // of the twin (steps/s x timestep: the figure that compares runs at
 // different timesteps; effects: realistic needs 0.25 ms, see SCHEMA.md).
 // With effects, the ideal twin at the same timestep and rate is timed in
 // interleaved rounds (so that load from other processes hits both alike) and
 // "effects_vs_ideal_per_step" is their ratio of best rates (goal for
-// realistic: at most 1.5).
+// realistic: at most 1.5). --profile prints MuJoCo's stage timers per step
+// of both twins (where a step's time goes).
 #include <algorithm>
 #include <chrono>
 #include <cstdio>
