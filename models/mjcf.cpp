@@ -111,10 +111,12 @@ std::string mjcf_from_robot(const Robot& actual, const MjcfOptions& o) {
     // after joint_b1, range +-2c; the passive link is a two-force member, so
     // only the axial part of the play changes the closure (the transverse
     // part turns the link, second order, c^2 / lb).
+    // The slide or tendon stands for both pins, so their centring springs
+    // and dampers act in series: half the stiffness and half the damping.
     const std::string limit = fmt::format(
         "limited=\"true\" range=\"{} {}\" stiffness=\"{}\" damping=\"{}\" solreflimit=\"{} 1\" "
-        "solimplimit=\"{} {} {}\"", num(i == 0 ? -2.0 * c : 0.0), num(2.0 * c), num(fx.clearance_stiffness_N_per_m),
-        num(fx.clearance_damping_N_s_per_m), num(fx.clearance_solref_s), num(fx.clearance_solimp),
+        "solimplimit=\"{} {} {}\"", num(i == 0 ? -2.0 * c : 0.0), num(2.0 * c), num(0.5 * fx.clearance_stiffness_N_per_m),
+        num(0.5 * fx.clearance_damping_N_s_per_m), num(fx.clearance_solref_s), num(fx.clearance_solimp),
         num(fx.clearance_solimp), num(o.solimp_width_m));
     if (c > 0.0 && i > 0) {
       tendons += fmt::format("    <spatial name=\"clear_b{}\" {}>\n      <site site=\"tip_b{}\"/>\n"

@@ -51,8 +51,8 @@ struct MjcfEffects {
   std::array<double, 3> coulomb_Nm{};             // frictionloss at the actuated joint
   std::array<double, 3> viscous_Nm_s{};           // damping added to active_damping
   double rotor_mass_kg = 0.05;                    // rotor body (compliance only; inertia is the armature)
-  double clearance_stiffness_N_per_m = 200.0;     // soft centring spring of the slide and tendons
-  double clearance_damping_N_s_per_m = 2.0;       // damping of the slide and tendons
+  double clearance_stiffness_N_per_m = 200.0;     // soft centring spring of each loose pin
+  double clearance_damping_N_s_per_m = 2.0;       // damping of each loose pin (two pins in series per link)
   // Limit time constant: 2 steps at 0.25 ms (MuJoCo raises it to 2 timesteps
   // at longer steps). The tendon limits' effective mass is light, so at
   // 1 ms the hub gave 0.2-0.6 um beyond 2c under the drives' loads.
