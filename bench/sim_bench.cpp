@@ -2,14 +2,15 @@
 // included) against bare mj_step on the same compiled model, and optionally
 // writes that model's MJCF for mujoco-testspeed (bench/sim_vs_testspeed.sh).
 //   bench_sim [--steps N] [--write-model FILE] [--timestep S] [--rate HZ]
-//             [--effects ideal|realistic|compliance|clearance|friction|thermal|encoder]
+//             [--effects ideal|realistic|compliance|clearance|friction|thermal|encoder] [--profile]
 // Prints "name steps_per_second" lines and "sim_seconds_per_wall_second"
 // of the twin (steps/s x timestep: the figure that compares runs at
 // different timesteps; effects: realistic needs 0.25 ms, see SCHEMA.md).
 // With effects, the ideal twin at the same timestep and rate is timed in
 // interleaved rounds (so that load from other processes hits both alike) and
 // "effects_vs_ideal_per_step" is their ratio of best rates (goal for
-// realistic: at most 1.5).
+// realistic: at most 1.5). --profile prints MuJoCo's stage timers per step
+// of both twins (where a step's time goes).
 #include <algorithm>
 #include <chrono>
 #include <cstdio>
@@ -49,21 +50,46 @@ double best_rate(long n, int trials, F&& fn) {
   return best;
 }
 
+// MuJoCo's own timers (mjData.timer, clocked by mjcb_time) per twin step over
+// n steps, in microseconds, beside the whole twin step's time: where a step's
+// time goes (the twin's own part is the step minus MuJoCo's stages).
+void print_profile(const char* name, const gpm::sim::TwinModel& model, gpm::sim::TwinState& state, long n) {
+  mjData* d = state.data.get();
+  // Monotonic clock (vDSO, tens of ns a call; the thread CPU clock is a system call).
+  mjcb_time = [] {
+    return static_cast<mjtNum>(1e-3 * std::chrono::duration<double, std::nano>(Clock::now().time_since_epoch()).count());
+  };  // microseconds
+  for (int t = 0; t < mjNTIMER; ++t) d->timer[t].duration = 0.0, d->timer[t].number = 0;
+  const auto t0 = Clock::now();
+  for (long k = 0; k < n; ++k) gpm::sim::twin_step(model, state);
+  const double step_us = 1e6 * seconds_since(t0) / static_cast<double>(n);
+  mjcb_time = nullptr;
+  static const char* const kNames[mjNTIMER] = {"step", "forward", "inverse", "position", "velocity", "actuation",
+                                               "acceleration", "constraint", "pos_kinematics", "pos_inertia",
+                                               "pos_collision", "pos_make", "pos_project"};
+  std::printf("%s_profile_us_per_step twin_step %.3f", name, step_us);
+  for (int t = mjTIMER_POSITION; t < mjNTIMER; ++t)
+    if (t != mjTIMER_POS_COLLISION) std::printf(" %s %.3f", kNames[t], d->timer[t].duration / static_cast<double>(n));
+  std::printf("\n");
+}
+
 }  // namespace
 
 int main(int argc, char** argv) {
   long steps = 200000;
   std::string model_out, effects = "ideal";
   double timestep = 0.0005, rate = 2000.0;
+  bool profile = false;
   for (int i = 1; i < argc; ++i) {
     if (!std::strcmp(argv[i], "--steps") && i + 1 < argc) steps = std::stol(argv[++i]);
     else if (!std::strcmp(argv[i], "--write-model") && i + 1 < argc) model_out = argv[++i];
     else if (!std::strcmp(argv[i], "--effects") && i + 1 < argc) effects = argv[++i];
     else if (!std::strcmp(argv[i], "--timestep") && i + 1 < argc) timestep = std::stod(argv[++i]);
     else if (!std::strcmp(argv[i], "--rate") && i + 1 < argc) rate = std::stod(argv[++i]);
+    else if (!std::strcmp(argv[i], "--profile")) profile = true;
     else {
       std::fprintf(stderr, "usage: bench_sim [--steps N] [--write-model FILE] [--effects ideal|realistic] "
-                           "[--timestep S] [--rate HZ]\n");
+                           "[--timestep S] [--rate HZ] [--profile]\n");
       return 2;
     }
   }
@@ -152,6 +178,10 @@ int main(int argc, char** argv) {
       }
       std::printf("%s_nv %d solver_iterations_per_step %.2f constraint_rows %.2f\n", name, m->mj()->nv, iter / n,
                   rows / n);
+    }
+    if (profile) {
+      for (auto [name, m, st] : {std::tuple{"ideal", &ideal, &si}, std::tuple{"effects", &model, &se}})
+        print_profile(name, *m, *st, n);
     }
   }
 

@@ -87,6 +87,7 @@ std::string mjcf_from_robot(const Robot& actual, const MjcfOptions& o) {
   x += "  <worldbody>\n";
   x += "    <light pos=\"0.2165 0.25 1.5\" dir=\"0 0 -1\"/>\n";
   const MjcfEffects& fx = o.effects;
+  std::string tendons;  // compliant transmissions, loose hub pins of chains 2 and 3
   for (int i = 0; i < kNumChains; ++i) {
     const int n = i + 1;
     const double la_m = g.la_(i) * kMetresPerMm, lb_m = g.lb_(i) * kMetresPerMm;
@@ -99,36 +100,53 @@ std::string mjcf_from_robot(const Robot& actual, const MjcfOptions& o) {
         fx.coulomb_Nm[static_cast<size_t>(i)] > 0.0
             ? fmt::format(" frictionloss=\"{}\"", num(fx.coulomb_Nm[static_cast<size_t>(i)]))
             : std::string();
-    // A loose passive joint: one limited slide along the passive link
-    // (docs/ARCHITECTURE.md: clearance). The passive link is a two-force
-    // member, so only the axial part of a pin's radial play changes the
-    // closure (the transverse part turns the link, which its hinge already
-    // allows: second order, c^2 / lb): a radial clearance c is an axial
-    // play of +-c at each end, exactly to first order.
-    const auto slide = [&](const std::string& name, const std::string& indent) {
-      return fmt::format("{}<joint name=\"{}\" type=\"slide\" axis=\"1 0 0\" limited=\"true\" "
-                         "range=\"{} {}\" stiffness=\"{}\" damping=\"{}\" solreflimit=\"{} 1\" "
-                         "solimplimit=\"{} {} {}\"/>\n",
-                         indent, name, num(-c), num(c), num(fx.clearance_stiffness_N_per_m),
-                         num(fx.clearance_damping_N_s_per_m), num(fx.clearance_solref_s), num(fx.clearance_solimp),
-                         num(fx.clearance_solimp), num(o.solimp_width_m));
-    };
-    std::string in = "      ";  // indentation inside link_a
+    // Loose passive joints (docs/ARCHITECTURE.md: clearance). A radial
+    // clearance c at the elbow pin and at the hub pin lets the hub sit
+    // anywhere within 2c of the passive link's tip (the two pins' discs of
+    // radius c summed), so each passive link's length |O - B_i| gives by up
+    // to +-2c. Chains 2 and 3 need no degree of freedom for it: instead of
+    // the connect (3 rows), a spatial tendon clear_b{i} from site tip_b{i} to
+    // site ee, limited to length 2c (one row, only while the play is taken
+    // up). Chain 1 carries the hub body: a slide clear_b1x along the link
+    // after joint_b1, range +-2c; the passive link is a two-force member, so
+    // only the axial part of the play changes the closure (the transverse
+    // part turns the link, second order, c^2 / lb).
+    // The slide or tendon stands for both pins, so their centring springs
+    // and dampers act in series: half the stiffness and half the damping.
+    const std::string limit = fmt::format(
+        "limited=\"true\" range=\"{} {}\" stiffness=\"{}\" damping=\"{}\" solreflimit=\"{} 1\" "
+        "solimplimit=\"{} {} {}\"", num(i == 0 ? -2.0 * c : 0.0), num(2.0 * c), num(0.5 * fx.clearance_stiffness_N_per_m),
+        num(0.5 * fx.clearance_damping_N_s_per_m), num(fx.clearance_solref_s), num(fx.clearance_solimp),
+        num(fx.clearance_solimp), num(o.solimp_width_m));
+    if (c > 0.0 && i > 0) {
+      tendons += fmt::format("    <spatial name=\"clear_b{}\" {}>\n      <site site=\"tip_b{}\"/>\n"
+                             "      <site site=\"ee\"/>\n    </spatial>\n", n, limit, n);
+    }
+    const std::string in = "      ";  // indentation inside link_a
     if (compliance > 0.0) {
-      // Rotor at zero rotation (qpos0 0): the link body carries the home
-      // angle, so a viewer that poses joint_a with the absolute link angle
-      // and leaves joint_m at qpos0 still draws the link where it is.
+      // Transmission compliance: a rotor body of its own at A_i (hinge
+      // joint_m with the armature, the damping and friction; the actuator)
+      // and the link on its usual absolute hinge joint_a, joined by a fixed
+      // tendon twist_a{i} = qpos(joint_m) - qpos(joint_a) of stiffness
+      // 1 / compliance, at rest at zero twist (both joints have ref =
+      // springref = home angle; springref defaults to 0, not to ref,
+      // docs/ARCHITECTURE.md). Two trees instead of the rotor carrying the
+      // link: the same dynamics, a shallower mass matrix (cheaper per step).
       x += fmt::format("    <body name=\"rotor_a{}\" pos=\"{} {} 0\">\n", n,
                        num(g[xa(i)] * kMetresPerMm), num(g[ya(i)] * kMetresPerMm));
-      x += fmt::format("      <joint name=\"joint_m{}\" type=\"hinge\" axis=\"0 0 1\" "
+      x += fmt::format("      <joint name=\"joint_m{}\" type=\"hinge\" axis=\"0 0 1\" ref=\"{}\" springref=\"{}\" "
                        "damping=\"{}\" armature=\"{}\"{}/>\n",
-                       n, damping, num(o.armature_kg_m2), friction);
+                       n, num(ta), num(ta), damping, num(o.armature_kg_m2), friction);
       x += fmt::format("      <inertial pos=\"0 0 0\" mass=\"{}\" diaginertia=\"{} {} {}\"/>\n",
                        num(fx.rotor_mass_kg), num(1e-6), num(1e-6), num(1e-6));
-      x += fmt::format("      <body name=\"link_a{}\" pos=\"0 0 0\" euler=\"0 0 {}\">\n", n, num(ta));
-      x += fmt::format("        <joint name=\"joint_a{}\" type=\"hinge\" axis=\"0 0 1\" ref=\"{}\" "
-                       "stiffness=\"{}\" springref=\"{}\"/>\n", n, num(ta), num(1.0 / compliance), num(ta));
-      in = "        ";
+      x += "    </body>\n";
+      x += fmt::format("    <body name=\"link_a{}\" pos=\"{} {} 0\" euler=\"0 0 {}\">\n", n,
+                       num(g[xa(i)] * kMetresPerMm), num(g[ya(i)] * kMetresPerMm), num(ta));
+      x += fmt::format("      <joint name=\"joint_a{}\" type=\"hinge\" axis=\"0 0 1\" ref=\"{}\" springref=\"{}\"/>\n",
+                       n, num(ta), num(ta));
+      tendons += fmt::format("    <fixed name=\"twist_a{}\" stiffness=\"{}\">\n      <joint joint=\"joint_m{}\" coef=\"1\"/>\n"
+                             "      <joint joint=\"joint_a{}\" coef=\"-1\"/>\n    </fixed>\n",
+                             n, num(1.0 / compliance), n, n);
     } else {
       x += fmt::format("    <body name=\"link_a{}\" pos=\"{} {} 0\" euler=\"0 0 {}\">\n", n,
                        num(g[xa(i)] * kMetresPerMm), num(g[ya(i)] * kMetresPerMm), num(ta));
@@ -146,23 +164,15 @@ std::string mjcf_from_robot(const Robot& actual, const MjcfOptions& o) {
     x += fmt::format("{}<joint name=\"joint_b{}\" type=\"hinge\" axis=\"0 0 1\" ref=\"{}\" "
                      "damping=\"{}\"/>\n", inb, n, num(rel), num(o.passive_damping));
     // After the hinge: the slide turns with the passive link.
-    if (c > 0.0) x += slide(fmt::format("clear_b{}x", n), inb);
+    if (c > 0.0 && i == 0) {
+      x += fmt::format("{}<joint name=\"clear_b1x\" type=\"slide\" axis=\"1 0 0\" {}/>\n", inb, limit);
+    }
     x += inb + rod_inertial(o.passive_link_mass_kg, lb_m, 0.8 * r) + "\n";
     x += fmt::format("{}<geom name=\"geom_b{}\" type=\"capsule\" fromto=\"0 0 0 {} 0 0\" "
                      "size=\"{}\" rgba=\"0.9 0.6 0.2 1\"/>\n", inb, n, num(lb_m), num(0.8 * r));
-    if (c > 0.0 && i > 0) {
-      x += fmt::format("{}<body name=\"pin_b{}\" pos=\"{} 0 0\">\n", inb, n, num(lb_m));
-      x += slide(fmt::format("clear_e{}x", n), inb + "  ");
-      x += fmt::format("{}  <inertial pos=\"0 0 0\" mass=\"{}\" diaginertia=\"{} {} {}\"/>\n", inb,
-                       num(fx.pin_mass_kg), num(1e-7), num(1e-7), num(1e-7));
-      x += fmt::format("{}  <site name=\"tip_b{}\" pos=\"0 0 0\" size=\"0.005\"/>\n", inb, n);
-      x += inb + "</body>\n";
-    } else {
-      x += fmt::format("{}<site name=\"tip_b{}\" pos=\"{} 0 0\" size=\"0.005\"/>\n", inb, n, num(lb_m));
-    }
+    x += fmt::format("{}<site name=\"tip_b{}\" pos=\"{} 0 0\" size=\"0.005\"/>\n", inb, n, num(lb_m));
     if (i == 0) {
       x += fmt::format("{}<body name=\"ee\" pos=\"{} 0 0\">\n", inb, num(lb_m));
-      if (c > 0.0) x += slide("clear_e1x", inb + "  ");
       x += fmt::format("{}  <inertial pos=\"0 0 0\" mass=\"{}\" diaginertia=\"{} {} {}\"/>\n", inb,
                        num(o.ee_mass_kg), num(1e-5), num(1e-5), num(1e-5));
       x += inb + "  <geom name=\"geom_ee\" type=\"cylinder\" size=\"0.02 0.01\" pos=\"0 0 0.03\" "
@@ -171,21 +181,17 @@ std::string mjcf_from_robot(const Robot& actual, const MjcfOptions& o) {
       x += inb + "</body>\n";
     }
     x += in + "</body>\n";
-    if (compliance > 0.0) x += "      </body>\n";
     x += "    </body>\n";
   }
   x += "  </worldbody>\n";
-  x += "  <equality>\n";
+  std::string connects;
   for (int i = 1; i < kNumChains; ++i) {
-    if (fx.clearance_m[static_cast<size_t>(i)] > 0.0) {
-      x += fmt::format("    <connect name=\"close_b{}\" body1=\"pin_b{}\" body2=\"ee\" anchor=\"0 0 0\"/>\n",
-                       i + 1, i + 1);
-    } else {
-      x += fmt::format("    <connect name=\"close_b{}\" body1=\"link_b{}\" body2=\"ee\" anchor=\"{} 0 0\"/>\n",
-                       i + 1, i + 1, num(g.lb_(i) * kMetresPerMm));
-    }
+    if (fx.clearance_m[static_cast<size_t>(i)] > 0.0) continue;  // closed by its clearance tendon
+    connects += fmt::format("    <connect name=\"close_b{}\" body1=\"link_b{}\" body2=\"ee\" anchor=\"{} 0 0\"/>\n",
+                            i + 1, i + 1, num(g.lb_(i) * kMetresPerMm));
   }
-  x += "  </equality>\n";
+  if (!connects.empty()) x += "  <equality>\n" + connects + "  </equality>\n";
+  if (!tendons.empty()) x += "  <tendon>\n" + tendons + "  </tendon>\n";
   x += "  <actuator>\n";
   for (int i = 0; i < kNumChains; ++i) {
     const char* joint = fx.compliance_rad_per_Nm[static_cast<size_t>(i)] > 0.0 ? "joint_m" : "joint_a";

@@ -7,21 +7,25 @@
 //   body ee         welded to the tip of link_b1, site ee at the end-effector O
 //   site tip_b{i}   at the free end of link_b{i} (tip_b1 coincides with ee)
 //   equality close_b2, close_b3: <connect> tip of link_b2 / link_b3 to ee
+//     (absent for a chain with clearance, see below)
 //   actuator motor_a{i}: torque motor on joint_a{i} (gear 1, N m)
 // Physical effects (MjcfEffects, all off by default; off = the layout above,
 // byte for byte):
-//   compliance: body rotor_a{i} at A_i (no rotation at qpos0) with hinge
-//     joint_m{i} (the rotor armature, the actuator) holds link_a{i} (euler =
-//     home angle ta) on hinge joint_a{i} with ref = springref = ta and
-//     stiffness 1/compliance: link angle theta_a = qpos(joint_m) +
-//     qpos(joint_a), motor angle = qpos(joint_m) + ta, twist = qpos(joint_a) - ta
-//     (docs/ARCHITECTURE.md: springref must be given; it defaults to 0, not to ref).
-//   clearance: a slide joint clear_b{i}x (range +-c) along the passive link
-//     after joint_b{i}; at the hub a slide clear_e1x in body ee and, for
-//     chains 2 and 3, a body pin_b{i} at the tip of link_b{i} (slide
-//     clear_e{i}x, site tip_b{i}) which the connect holds at its origin. Axial
-//     slides only: the passive link is a two-force member, so a pin's
-//     transverse play only turns it (mjcf.cpp).
+//   compliance: body rotor_a{i} at A_i (a tree of its own) with hinge
+//     joint_m{i} (the rotor armature, damping, friction; the actuator), and
+//     link_a{i} on its absolute hinge joint_a{i} as without compliance; a
+//     fixed tendon twist_a{i} = joint_m{i} - joint_a{i} of stiffness
+//     1/compliance joins them. Both joints have ref = springref = home
+//     angle: qpos(joint_m) = motor angle, qpos(joint_a) = link angle,
+//     twist = motor - link (docs/ARCHITECTURE.md: springref must be given;
+//     it defaults to 0, not to ref).
+//   clearance: each passive link's length |O - B_i| gives by up to +-2c
+//     (the elbow and hub pins' radial play c each, summed). Chain 1 (it
+//     carries ee): a slide clear_b1x in link_b1 after joint_b1, along the
+//     link, range +-2c. Chains 2 and 3: no connect close_b{i}; a spatial
+//     tendon clear_b{i} from site tip_b{i} to site ee limited to length 2c
+//     closes the loop (the hub anywhere within 2c of the link's tip: the
+//     two pins' discs summed). No extra bodies (mjcf.cpp).
 //   friction: frictionloss (Coulomb, N m) and extra damping on the actuated joint.
 // Bodies are laid out already assembled at the actual inverse kinematics of
 // robot.home (paper eq. 29-31), so <connect>, which takes its second anchor at
@@ -43,18 +47,21 @@ inline constexpr double kMetresPerMm = 1e-3;
 // Effects built into the MuJoCo model (per chain; 0 = off).
 struct MjcfEffects {
   std::array<double, 3> compliance_rad_per_Nm{};  // transmission, motor to link
-  std::array<double, 3> clearance_m{};            // radial, elbow B_i and hub joint of chain i
+  std::array<double, 3> clearance_m{};            // radial, elbow B_i and hub joint of chain i (each)
   std::array<double, 3> coulomb_Nm{};             // frictionloss at the actuated joint
   std::array<double, 3> viscous_Nm_s{};           // damping added to active_damping
   double rotor_mass_kg = 0.05;                    // rotor body (compliance only; inertia is the armature)
-  double clearance_stiffness_N_per_m = 200.0;     // soft centring spring of the slides
-  double clearance_damping_N_s_per_m = 2.0;       // damping of the slides
-  double clearance_solref_s = 0.001;              // limit time constant (stiff, >= 2 timesteps)
-  // Limit impedance: MuJoCo's soft limits are mass-normalised, so on a light
-  // pin body the default 0.9-0.95 gives way by ~0.2 mm under the servos'
-  // preload; 0.9999 (as the loop constraints) holds them to well under 1 um.
+  double clearance_stiffness_N_per_m = 200.0;     // soft centring spring of each loose pin
+  double clearance_damping_N_s_per_m = 2.0;       // damping of each loose pin (two pins in series per link)
+  // Limit time constant: 2 steps at 0.25 ms (MuJoCo raises it to 2 timesteps
+  // at longer steps). The tendon limits' effective mass is light, so at
+  // 1 ms the hub gave 0.2-0.6 um beyond 2c under the drives' loads.
+  double clearance_solref_s = 0.0005;
+  // Limit impedance: MuJoCo's soft limits are mass-normalised, and the
+  // default 0.9-0.95 gave way by ~0.2 mm under the servos' preload (measured
+  // on light pin bodies); 0.9999 (as the loop constraints) holds the limits
+  // to well under 1 um.
   double clearance_solimp = 0.9999;
-  double pin_mass_kg = 0.01;                      // hub pin body of chains 2 and 3 (clearance)
 
   bool compliant() const;
   bool loose() const;

@@ -19,15 +19,11 @@ Eigen::Vector3d site_pos(const mjData* d, int site) {
 void sense_kinematics(const TwinModel& model, const mjData* d, TwinSnapshot& s) {
   s.time_s = d->time;
   for (int i = 0; i < 3; ++i) {
-    s.theta_motor[i] = d->qpos[model.qpos_m[i]] + model.motor_zero[i];
+    // Absolute angles (with compliance, joint_m is the rotor and joint_a the link).
+    s.theta_motor[i] = d->qpos[model.qpos_m[i]];
     s.motor_velocity[i] = d->qvel[model.dof_m[i]];
-    if (model.compliant[i]) {  // joint_a is relative to the rotor
-      s.theta_a[i] = d->qpos[model.qpos_m[i]] + d->qpos[model.qpos_a[i]];
-      s.velocity[i] = s.motor_velocity[i] + d->qvel[model.dof_a[i]];
-    } else {
-      s.theta_a[i] = s.theta_motor[i];
-      s.velocity[i] = s.motor_velocity[i];
-    }
+    s.theta_a[i] = d->qpos[model.qpos_a[i]];
+    s.velocity[i] = d->qvel[model.dof_a[i]];
     s.theta_b[i] = s.theta_a[i] + d->qpos[model.qpos_b[i]];
   }
   const Eigen::Vector3d ee = site_pos(d, model.site_ee);
@@ -120,15 +116,19 @@ TwinModel::TwinModel(const Robot& actual, const TwinConfig& config)
     compliant[i] = jm >= 0;
     qpos_m[i] = compliant[i] ? m->jnt_qposadr[jm] : qpos_a[i];
     dof_m[i] = compliant[i] ? m->jnt_dofadr[jm] : dof_a[i];
-    motor_zero[i] = compliant[i] ? m->qpos0[qpos_a[i]] : 0.0;
     actuator[i] = require_id(m, mjOBJ_ACTUATOR, name("motor_a", i).c_str());
     site_tip[i] = require_id(m, mjOBJ_SITE, name("tip_b", i).c_str());
-    body_base[i] = require_id(m, mjOBJ_BODY, (compliant[i] ? name("rotor_a", i) : name("link_a", i)).c_str());
+    body_base[i] = require_id(m, mjOBJ_BODY, name("link_a", i).c_str());
+    body_rotor[i] = compliant[i] ? require_id(m, mjOBJ_BODY, name("rotor_a", i).c_str()) : -1;
     body_elbow[i] = require_id(m, mjOBJ_BODY, name("link_b", i).c_str());
-    body_tip[i] = i == 0 ? require_id(m, mjOBJ_BODY, "ee") : optional_id(m, mjOBJ_BODY, name("pin_b", i));
-    eq_close[i] = i == 0 ? -1 : require_id(m, mjOBJ_EQUALITY, name("close_b", i).c_str());
+    // Chains 2 and 3 close by a connect, or with clearance by a limited tendon.
+    eq_close[i] = i == 0 ? -1 : optional_id(m, mjOBJ_EQUALITY, name("close_b", i));
+    const int loose = i == 0 ? -1 : optional_id(m, mjOBJ_TENDON, name("clear_b", i));
+    hub_play_m[i] = loose >= 0 ? m->tendon_range[2 * loose + 1] : 0.0;
+    if (i > 0 && eq_close[i] < 0 && loose < 0) throw SimError(fmt::format("MuJoCo model: chain {} is not closed", i + 1));
   }
   site_ee = require_id(m, mjOBJ_SITE, "ee");
+  body_ee = require_id(m, mjOBJ_BODY, "ee");
 }
 
 void apply_geometry(const TwinModel& model, TwinState& state, const Geometry& g) {
@@ -137,12 +137,15 @@ void apply_geometry(const TwinModel& model, TwinState& state, const Geometry& g)
   if (!m) return;
   for (int i = 0; i < 3; ++i) {
     const double la_m = g.la_(i) * kMetresPerMm, lb_m = g.lb_(i) * kMetresPerMm;
-    m->body_pos[3 * model.body_base[i] + 0] = g[xa(i)] * kMetresPerMm;
-    m->body_pos[3 * model.body_base[i] + 1] = g[ya(i)] * kMetresPerMm;
+    for (const int body : {model.body_base[i], model.body_rotor[i]}) {
+      if (body < 0) continue;
+      m->body_pos[3 * body + 0] = g[xa(i)] * kMetresPerMm;
+      m->body_pos[3 * body + 1] = g[ya(i)] * kMetresPerMm;
+    }
     m->body_pos[3 * model.body_elbow[i] + 0] = la_m;
-    if (model.body_tip[i] >= 0) m->body_pos[3 * model.body_tip[i] + 0] = lb_m;  // ee or hub pin
-    if (model.body_tip[i] < 0 || i == 0) m->site_pos[3 * model.site_tip[i] + 0] = lb_m;
-    if (model.eq_close[i] >= 0 && model.body_tip[i] < 0) m->eq_data[model.eq_close[i] * mjNEQDATA + 0] = lb_m;
+    m->site_pos[3 * model.site_tip[i] + 0] = lb_m;
+    if (i == 0) m->body_pos[3 * model.body_ee + 0] = lb_m;  // the hub rides on link_b1
+    if (model.eq_close[i] >= 0) m->eq_data[model.eq_close[i] * mjNEQDATA + 0] = lb_m;
   }
 }
 
@@ -172,7 +175,8 @@ TwinState::TwinState(const TwinModel& model, unsigned long long seed)
 double constraint_violation_m(const TwinModel& model, const mjData* d) {
   const Eigen::Vector3d ee = site_pos(d, model.site_ee);
   double worst = 0.0;
-  for (int i = 1; i < 3; ++i) worst = std::max(worst, (site_pos(d, model.site_tip[i]) - ee).norm());
+  for (int i = 1; i < 3; ++i)
+    worst = std::max(worst, (site_pos(d, model.site_tip[i]) - ee).norm() - model.hub_play_m[i]);
   return worst;
 }
 

@@ -60,10 +60,14 @@ class TwinModel {
   // qpos_m == qpos_a and dof_m == dof_a.
   std::array<int, 3> qpos_a{}, qpos_b{}, dof_a{}, qpos_m{}, dof_m{}, actuator{}, site_tip{};
   std::array<bool, 3> compliant{};
-  std::array<double, 3> motor_zero{};  // motor angle at qpos(joint_m) = 0 (the home angle; 0 if rigid)
   int site_ee = -1;
   // Bodies and constraints whose placement a thermal edit changes.
-  std::array<int, 3> body_base{}, body_elbow{}, body_tip{}, eq_close{};  // -1 where none
+  std::array<int, 3> body_base{}, body_elbow{}, eq_close{};  // eq_close[0] = -1 (chain 1 carries the hub)
+  std::array<int, 3> body_rotor{};  // rotor_a{i} with compliance (at A_i too), else -1
+  int body_ee = -1;
+  // Distance the hub may keep from site tip_b{i} (chains 2 and 3 closed by
+  // their clearance tendon: 2c; 0 where a connect closes the loop).
+  std::array<double, 3> hub_play_m{};
 
   // Largest stable transmission stiffness at a timestep: omega dt <= this.
   static constexpr double kMaxOmegaDt = 1.5;
@@ -89,7 +93,7 @@ struct TwinSnapshot {
   Eigen::Vector3d readings = Eigen::Vector3d::Zero();  // encoder readings (rad, [0, 2 pi)), per drive loop
   Eigen::Vector3d torque = Eigen::Vector3d::Zero();    // drive torques applied (N m)
   Eigen::Vector2d ee_mm = Eigen::Vector2d::Zero();     // true end-effector (site ee), mm
-  double violation_m = 0.0;  // largest loop-closure gap |tip_b2 - ee|, |tip_b3 - ee| (m)
+  double violation_m = 0.0;  // largest loop-closure gap |tip_b2 - ee|, |tip_b3 - ee| beyond the clearance (m)
   double growth = 0.0;       // thermal: relative length growth in effect (0 without thermal)
 };
 
@@ -154,7 +158,8 @@ MjcfOptions mjcf_with_effects(const TwinConfig& config);
 void check_transmission(const Robot& actual, const TwinConfig& config);
 
 // Loop-closure gap (m) of the current mjData kinematics (after mj_forward or
-// mj_step1): the largest distance between tip_b2 / tip_b3 and the ee site.
+// mj_step1): the largest distance between tip_b2 / tip_b3 and the ee site
+// beyond the play the clearance allows there (hub_play_m; 0 within it).
 double constraint_violation_m(const TwinModel& model, const mjData* d);
 
 }  // namespace gpm::sim

@@ -120,21 +120,36 @@ TEST(Mjcf, EffectsOffLeaveTheIdealModelAndOnAddTheirParts) {
   o.effects.coulomb_Nm = {0.0, 0.5, 0.0};
   o.effects.clearance_m = {0.0, 0.0, 5e-6};
   const std::string x = mjcf_from_robot(Robot{}, o);
-  // Compliance on chain 1 only: the rotor carries the armature and the motor,
-  // the link hinge is a spring of stiffness 1 / compliance about the home angle.
+  // Compliance on chain 1 only: the rotor (own body, the armature, the motor)
+  // and the link, both absolute hinges at rest at the home angle, joined by a
+  // twist tendon of stiffness 1 / compliance.
   EXPECT_NE(x.find("<body name=\"rotor_a1\""), std::string::npos);
   EXPECT_EQ(x.find("rotor_a2"), std::string::npos);
-  EXPECT_TRUE(std::regex_search(x, std::regex(R"re(joint_m1" type="hinge" axis="0 0 1" damping="0.05" armature="0.0026")re")));
-  EXPECT_TRUE(std::regex_search(x, std::regex(R"re(joint_a1" type="hinge" axis="0 0 1" ref="([-0-9.e]+)" stiffness="10000" springref="\1")re")));
+  EXPECT_TRUE(std::regex_search(x, std::regex(R"re(joint_m1" type="hinge" axis="0 0 1" ref="([-0-9.e]+)" springref="\1" damping="0.05" armature="0.0026")re")));
+  EXPECT_TRUE(std::regex_search(x, std::regex(R"re(joint_a1" type="hinge" axis="0 0 1" ref="([-0-9.e]+)" springref="\1"/>)re")));
+  EXPECT_TRUE(std::regex_search(x, std::regex(R"re(<fixed name="twist_a1" stiffness="10000">\s*<joint joint="joint_m1" coef="1"/>\s*<joint joint="joint_a1" coef="-1"/>)re")));
+  EXPECT_EQ(x.find("twist_a2"), std::string::npos);
   EXPECT_NE(x.find(R"(<motor name="motor_a1" joint="joint_m1")"), std::string::npos);
   EXPECT_NE(x.find(R"(<motor name="motor_a2" joint="joint_a2")"), std::string::npos);
   EXPECT_NE(x.find(R"(joint_a2" type="hinge" axis="0 0 1" ref=)"), std::string::npos);
   EXPECT_NE(x.find(R"(frictionloss="0.5")"), std::string::npos);
-  // Clearance on chain 3: elbow slides and a hub pin held by the connect, +-5 um.
-  EXPECT_NE(x.find(R"(<joint name="clear_b3x" type="slide" axis="1 0 0" limited="true" range="-5e-06 5e-06")"),
-            std::string::npos);
-  EXPECT_NE(x.find(R"(<connect name="close_b3" body1="pin_b3" body2="ee" anchor="0 0 0"/>)"), std::string::npos);
+  // Clearance 5 um on chain 3: its hub pin may sit anywhere within 2c = 10 um
+  // of the passive link's tip (both pins' play): a tendon limited to that
+  // length closes the loop instead of the connect; chain 2 keeps its connect.
+  EXPECT_TRUE(std::regex_search(x, std::regex(R"re(<spatial name="clear_b3" limited="true" range="0 1e-05"[^>]*>\s*<site site="tip_b3"/>\s*<site site="ee"/>)re")));
+  EXPECT_EQ(x.find("close_b3"), std::string::npos);
+  EXPECT_NE(x.find(R"(<connect name="close_b2" body1="link_b2" body2="ee" anchor="0.244 0 0"/>)"), std::string::npos);
   EXPECT_EQ(x.find("clear_b1"), std::string::npos);
+  EXPECT_EQ(x.find("clear_b2"), std::string::npos);
+  EXPECT_EQ(x.find("pin_b"), std::string::npos);
+  // Clearance on chain 1, which carries the hub: a slide along its passive
+  // link with the play of both pins, +-2c.
+  o.effects.clearance_m = {5e-6, 0.0, 0.0};
+  const std::string x1 = mjcf_from_robot(Robot{}, o);
+  EXPECT_NE(x1.find(R"(<joint name="clear_b1x" type="slide" axis="1 0 0" limited="true" range="-1e-05 1e-05")"),
+            std::string::npos);
+  EXPECT_NE(x1.find("<connect name=\"close_b3\""), std::string::npos);
+  EXPECT_EQ(x1.find("<spatial"), std::string::npos);
 }
 
 TEST(Mjcf, TransmissionRateIsHookesLawOnTheTwoInertias) {

@@ -8,6 +8,7 @@
 //   band of about the clearance only when every chain is loose (the redundant
 //   closure pins a single loose chain), and each passive link, a two-force
 //   member, gives axially by the play of its two pins, 2c, under a preload;
+//   the tips of chains 2 and 3 (closed by their play) stay within 2c of the hub;
 // - friction: by power balance over whole revolutions of a circle, the
 //   drives' extra mean power is c sum |w_i| (Coulomb) and b sum w_i^2 (viscous);
 // - cyclic error: the reading error fitted over many angles is A sin(theta + phase);
@@ -195,6 +196,29 @@ TEST(Effects, ClearanceLetsEachPassiveLinkGiveTwiceTheClearanceAxially) {
       if (c > 0.0) EXPECT_GT(d, 1.9 * c) << "chain " << i + 1 << ", clearance " << c << " mm";
     }
   }
+}
+
+// Chains 2 and 3 close with clearance through the play itself: their tips
+// keep within 2c of the hub (the two pins' play summed) and, under the
+// fighting drives' preload, take all of it; the loop-closure gap counts only
+// what lies beyond the play, so it stays at the limits' own give.
+TEST(Effects, ClearanceKeepsTheHubWithinTwiceTheClearanceOfEachTip) {
+  const double c = 0.05e-3;  // m
+  TwinConfig config;
+  config.encoder.bits = 0;
+  config.effects.mjcf.clearance_m.fill(c);
+  const TwinModel m(Robot{}, config);
+  TwinState s(m, 1);
+  twin_command(s, s.last.readings + Eigen::Vector3d(0.02, -0.02, 0.01), Eigen::Vector3d::Zero());
+  run_for(m, s, 0.5);
+  const mjData* d = s.data.get();
+  const Eigen::Vector3d ee(d->site_xpos + 3 * m.site_ee);
+  for (int i = 1; i < 3; ++i) {
+    const double gap = (Eigen::Vector3d(d->site_xpos + 3 * m.site_tip[i]) - ee).norm();
+    EXPECT_LT(gap, 2.0 * c + 1e-6) << "chain " << i + 1;
+    EXPECT_GT(gap, 1.9 * c) << "chain " << i + 1;
+  }
+  EXPECT_LT(s.last.violation_m, 1e-6);
 }
 
 // Mean drive power sum tau_i w_i and mean sum |w_i|, sum w_i^2 over whole revolutions of a circle.
