@@ -119,7 +119,12 @@ std::string mjcf_from_robot(const Robot& actual, const MjcfOptions& o) {
         num(0.5 * fx.clearance_damping_N_s_per_m), num(fx.clearance_solref_s), num(fx.clearance_solimp),
         num(fx.clearance_solimp), num(o.solimp_width_m));
     if (c > 0.0 && i > 0) {
-      tendons += fmt::format("    <spatial name=\"clear_b{}\" {}>\n      <site site=\"tip_b{}\"/>\n"
+      // springlength must be given: MuJoCo 2.2 takes a tendon's rest length
+      // (-1, the default) at qpos_spring, where every joint sits at its
+      // springref (0 unless given), not at qpos0: there tip_b{i} is 0.72 m
+      // from ee, so the "centring" spring pushed the pins apart with ~70 N
+      // and held the hub on the rim of the play whatever the load.
+      tendons += fmt::format("    <spatial name=\"clear_b{}\" {} springlength=\"0\">\n      <site site=\"tip_b{}\"/>\n"
                              "      <site site=\"ee\"/>\n    </spatial>\n", n, limit, n);
     }
     const std::string in = "      ";  // indentation inside link_a
