@@ -31,6 +31,11 @@ namespace {
 // Exact decimal text of a number (MJCF reads it back to the same double).
 std::string num(double x) { return format_exact(x); }
 
+// Arm of the sites side_b2, side_b3 across the passive link from its tip
+// (clearance): the tendon to ee measures the hub's transverse offset, with
+// the axial play's second-order share (1e-5 m)^2 / (2 arm) = 5e-10 m.
+constexpr double kSideArm_m = 0.1;
+
 // Inertial element of a slender rod of length L (m) along +x from the body origin.
 std::string rod_inertial(double mass, double length, double radius) {
   const double i_axial = 0.5 * mass * radius * radius;
@@ -126,6 +131,17 @@ std::string mjcf_from_robot(const Robot& actual, const MjcfOptions& o) {
       // and held the hub on the rim of the play whatever the load.
       tendons += fmt::format("    <spatial name=\"clear_b{}\" {} springlength=\"0\">\n      <site site=\"tip_b{}\"/>\n"
                              "      <site site=\"ee\"/>\n    </spatial>\n", n, limit, n);
+      // The transverse part of the play is held at 0, as chain 1's slide
+      // holds it (second order in the closure, c^2 / lb): tendon side_b{i}
+      // from site side_b{i}, kSideArm_m across the link from its tip, to ee
+      // is kept at its home length by a tendon equality (its length is the
+      // arm minus the hub's transverse offset, plus axial^2 / (2 arm)). Left
+      // free, the hub slid round the rim of a 10 um disc whenever the light
+      // passive link lagged the hub's direction, and at 0.25 ms steps the
+      // limit, linearised on so tight a curve, gave up to 0.1 mm near
+      // singular poses (seed 11).
+      tendons += fmt::format("    <spatial name=\"side_b{}\">\n      <site site=\"side_b{}\"/>\n"
+                             "      <site site=\"ee\"/>\n    </spatial>\n", n, n);
     }
     const std::string in = "      ";  // indentation inside link_a
     if (compliance > 0.0) {
@@ -176,6 +192,9 @@ std::string mjcf_from_robot(const Robot& actual, const MjcfOptions& o) {
     x += fmt::format("{}<geom name=\"geom_b{}\" type=\"capsule\" fromto=\"0 0 0 {} 0 0\" "
                      "size=\"{}\" rgba=\"0.9 0.6 0.2 1\"/>\n", inb, n, num(lb_m), num(0.8 * r));
     x += fmt::format("{}<site name=\"tip_b{}\" pos=\"{} 0 0\" size=\"0.005\"/>\n", inb, n, num(lb_m));
+    if (c > 0.0 && i > 0)
+      x += fmt::format("{}<site name=\"side_b{}\" pos=\"{} {} 0\" size=\"0.002\"/>\n", inb, n, num(lb_m),
+                       num(kSideArm_m));
     if (i == 0) {
       x += fmt::format("{}<body name=\"ee\" pos=\"{} 0 0\">\n", inb, num(lb_m));
       x += fmt::format("{}  <inertial pos=\"0 0 0\" mass=\"{}\" diaginertia=\"{} {} {}\"/>\n", inb,
@@ -191,7 +210,10 @@ std::string mjcf_from_robot(const Robot& actual, const MjcfOptions& o) {
   x += "  </worldbody>\n";
   std::string connects;
   for (int i = 1; i < kNumChains; ++i) {
-    if (fx.clearance_m[static_cast<size_t>(i)] > 0.0) continue;  // closed by its clearance tendon
+    if (fx.clearance_m[static_cast<size_t>(i)] > 0.0) {  // closed by its clearance tendon, held across
+      connects += fmt::format("    <tendon name=\"hold_b{}\" tendon1=\"side_b{}\"/>\n", i + 1, i + 1);
+      continue;
+    }
     connects += fmt::format("    <connect name=\"close_b{}\" body1=\"link_b{}\" body2=\"ee\" anchor=\"{} 0 0\"/>\n",
                             i + 1, i + 1, num(g.lb_(i) * kMetresPerMm));
   }

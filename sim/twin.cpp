@@ -118,6 +118,7 @@ TwinModel::TwinModel(const Robot& actual, const TwinConfig& config)
     dof_m[i] = compliant[i] ? m->jnt_dofadr[jm] : dof_a[i];
     actuator[i] = require_id(m, mjOBJ_ACTUATOR, name("motor_a", i).c_str());
     site_tip[i] = require_id(m, mjOBJ_SITE, name("tip_b", i).c_str());
+    site_side[i] = optional_id(m, mjOBJ_SITE, name("side_b", i));
     body_base[i] = require_id(m, mjOBJ_BODY, name("link_a", i).c_str());
     body_rotor[i] = compliant[i] ? require_id(m, mjOBJ_BODY, name("rotor_a", i).c_str()) : -1;
     body_elbow[i] = require_id(m, mjOBJ_BODY, name("link_b", i).c_str());
@@ -144,6 +145,7 @@ void apply_geometry(const TwinModel& model, TwinState& state, const Geometry& g)
     }
     m->body_pos[3 * model.body_elbow[i] + 0] = la_m;
     m->site_pos[3 * model.site_tip[i] + 0] = lb_m;
+    if (model.site_side[i] >= 0) m->site_pos[3 * model.site_side[i] + 0] = lb_m;
     if (i == 0) m->body_pos[3 * model.body_ee + 0] = lb_m;  // the hub rides on link_b1
     if (model.eq_close[i] >= 0) m->eq_data[model.eq_close[i] * mjNEQDATA + 0] = lb_m;
   }

@@ -59,6 +59,7 @@ class TwinModel {
   // joint_a (link) and, with compliance, joint_m (motor); without compliance
   // qpos_m == qpos_a and dof_m == dof_a.
   std::array<int, 3> qpos_a{}, qpos_b{}, dof_a{}, qpos_m{}, dof_m{}, actuator{}, site_tip{};
+  std::array<int, 3> site_side{-1, -1, -1};  // side_b{i} across the tip (clearance, chains 2 and 3), -1 if none
   std::array<bool, 3> compliant{};
   int site_ee = -1;
   // Bodies and constraints whose placement a thermal edit changes.
