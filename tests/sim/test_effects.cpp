@@ -9,6 +9,8 @@
 //   closure pins a single loose chain), and each passive link, a two-force
 //   member, gives axially by the play of its two pins, 2c, under a preload;
 //   the tips of chains 2 and 3 (closed by their play) stay within 2c of the hub;
+//   at home the centring springs exert nothing, and the hub stays on each
+//   passive link's line (the play is axial);
 // - friction: by power balance over whole revolutions of a circle, the
 //   drives' extra mean power is c sum |w_i| (Coulomb) and b sum w_i^2 (viscous);
 // - cyclic error: the reading error fitted over many angles is A sin(theta + phase);
@@ -219,6 +221,30 @@ TEST(Effects, ClearanceKeepsTheHubWithinTwiceTheClearanceOfEachTip) {
     EXPECT_GT(gap, 1.9 * c) << "chain " << i + 1;
   }
   EXPECT_LT(s.last.violation_m, 1e-6);
+}
+
+// The pins' centring springs rest with the hub centred: at the assembled home,
+// at rest, the clearance exerts no force on any joint (a tendon's default
+// rest length is taken at qpos_spring, not at home: 0.72 m away, 70 N).
+// Under the preload each passive link stays a two-force member: the hub
+// sits on its link's line, not round the rim of the play.
+TEST(Effects, ClearanceRestsCentredAndGivesOnlyAlongTheLink) {
+  const double c = 0.05e-3;  // m
+  TwinConfig config;
+  config.encoder.bits = 0;
+  config.effects.mjcf.clearance_m.fill(c);
+  const TwinModel m(Robot{}, config);
+  TwinState s(m, 1);
+  const mjData* d = s.data.get();
+  for (int k = 0; k < m.mj()->nv; ++k) EXPECT_NEAR(d->qfrc_passive[k], 0.0, 1e-9) << "dof " << k;
+  twin_command(s, s.last.readings + Eigen::Vector3d(0.02, -0.02, 0.01), Eigen::Vector3d::Zero());
+  run_for(m, s, 0.5);
+  const Eigen::Vector3d ee(d->site_xpos + 3 * m.site_ee);
+  for (int i = 1; i < 3; ++i) {
+    const Eigen::Vector3d tip(d->site_xpos + 3 * m.site_tip[i]);
+    const Eigen::Vector3d across(d->xmat[9 * m.body_elbow[i] + 1], d->xmat[9 * m.body_elbow[i] + 4], 0.0);
+    EXPECT_LT(std::abs((ee - tip).dot(across)), 0.01 * c) << "chain " << i + 1;
+  }
 }
 
 // Mean drive power sum tau_i w_i and mean sum |w_i|, sum w_i^2 over whole revolutions of a circle.
