@@ -25,7 +25,10 @@
 //     link, range +-2c. Chains 2 and 3: no connect close_b{i}; a spatial
 //     tendon clear_b{i} from site tip_b{i} to site ee limited to length 2c
 //     closes the loop (the hub anywhere within 2c of the link's tip: the
-//     two pins' discs summed). No extra bodies (mjcf.cpp).
+//     two pins' discs summed); site side_b{i} 0.1 m across the tip, tendon
+//     side_b{i} from it to ee and the tendon equality hold_b{i} keep the hub
+//     on the link's line (the play is axial, as chain 1's slide). No extra
+//     bodies (mjcf.cpp).
 //   friction: frictionloss (Coulomb, N m) and extra damping on the actuated joint.
 // Bodies are laid out already assembled at the actual inverse kinematics of
 // robot.home (paper eq. 29-31), so <connect>, which takes its second anchor at

@@ -138,6 +138,14 @@ TEST(Mjcf, EffectsOffLeaveTheIdealModelAndOnAddTheirParts) {
   // length closes the loop instead of the connect; chain 2 keeps its connect.
   EXPECT_TRUE(std::regex_search(x, std::regex(R"re(<spatial name="clear_b3" limited="true" range="0 1e-05"[^>]*>\s*<site site="tip_b3"/>\s*<site site="ee"/>)re")));
   EXPECT_EQ(x.find("close_b3"), std::string::npos);
+  // Its centring spring rests at length 0 (MuJoCo's default rest length is
+  // not the home length), and the hub is held on the link's line by a tendon
+  // equality on the tendon from a site 0.1 m across the tip to ee.
+  EXPECT_TRUE(std::regex_search(x, std::regex(R"re(<spatial name="clear_b3"[^>]* springlength="0">)re")));
+  EXPECT_NE(x.find(R"(<site name="side_b3" pos="0.244 0.1 0")"), std::string::npos);
+  EXPECT_TRUE(std::regex_search(x, std::regex(R"re(<spatial name="side_b3">\s*<site site="side_b3"/>\s*<site site="ee"/>)re")));
+  EXPECT_NE(x.find(R"(<tendon name="hold_b3" tendon1="side_b3"/>)"), std::string::npos);
+  EXPECT_EQ(x.find("side_b2"), std::string::npos);
   EXPECT_NE(x.find(R"(<connect name="close_b2" body1="link_b2" body2="ee" anchor="0.244 0 0"/>)"), std::string::npos);
   EXPECT_EQ(x.find("clear_b1"), std::string::npos);
   EXPECT_EQ(x.find("clear_b2"), std::string::npos);
