@@ -24,11 +24,20 @@ DriveBackend::~DriveBackend() { disable_all(); }
 
 void DriveBackend::read_axes(double time_s, HardwareState& s) {
   s.time_s = time_s;
+  // With a latch, every drive copies its position at one instant; the
+  // readings below are those copies, checked to be of this latch.
+  std::uint16_t id = 0;
+  if (map_.latch) {
+    id = ++latch_id_;
+    if (id == 0) id = ++latch_id_;  // 0 is what a drive holds before its first latch
+    transport_->write(map_.latch->unit_id, map_.latch->address, 1, &id);
+  }
   for (int i = 0; i < 3; ++i) {
     const AxisRegisters& a = map_.axes[i];
+    const int position = map_.latch ? a.latched_position : a.actual_position;
     // One request for the span of everything read from this axis.
-    std::vector<int> addrs{a.actual_position, a.actual_position + 1, a.status_word,
-                           a.enabled.address, a.fault.address};
+    std::vector<int> addrs{position, position + 1, a.status_word, a.enabled.address, a.fault.address};
+    if (map_.latch) addrs.push_back(a.latch_id);
     if (a.actual_velocity >= 0) addrs.insert(addrs.end(), {a.actual_velocity, a.actual_velocity + 1});
     if (a.actual_torque >= 0) addrs.push_back(a.actual_torque);
     if (a.fault_code >= 0) addrs.push_back(a.fault_code);
@@ -41,8 +50,12 @@ void DriveBackend::read_axes(double time_s, HardwareState& s) {
       for (int addr : addrs) transport_->read(a.unit_id, addr, 1, &r[static_cast<size_t>(addr - lo)]);
     }
     auto at = [&](int addr) { return r[static_cast<size_t>(addr - lo)]; };
-    s.theta_m[i] = counts_to_theta(a, join32(&r[static_cast<size_t>(a.actual_position - lo)],
-                                             map_.word_order));
+    if (map_.latch && at(a.latch_id) != id) {
+      throw HardwareError(fmt::format("{}: drive {} (unit {}) holds latch {} where latch {} was just "
+                                      "triggered: its reading is not of this cycle's instant",
+                                      describe(), i + 1, a.unit_id, at(a.latch_id), id));
+    }
+    s.theta_m[i] = counts_to_theta(a, join32(&r[static_cast<size_t>(position - lo)], map_.word_order));
     DriveStatus& d = s.drive[i];
     d.status_word = at(a.status_word);
     d.enabled = bit_set(at(a.enabled.address), a.enabled.bit);

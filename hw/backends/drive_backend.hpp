@@ -1,7 +1,9 @@
 // Backend over servo drives reached through any RegisterTransport, with the
 // register map naming where each value lives. With a ModbusTransport it is
 // the `modbus` backend; the drive logic (enable, command, status, faults)
-// does not depend on the protocol. Time is the wall clock.
+// does not depend on the protocol. Time is the wall clock. With a latch in
+// the map (register_map.hpp) each read first triggers it, so the three
+// readings are of one instant although the drives are read one by one.
 #pragma once
 
 #include <memory>
@@ -41,6 +43,7 @@ class DriveBackend final : public RobotHardware {
   double period_s_;
   std::array<std::uint16_t, 3> control_{};   // last control word written per axis
   std::array<bool, 3> enable_{};             // enable bit requested per axis
+  std::uint16_t latch_id_ = 0;              // id of the last latch triggered (map with a latch)
   bool have_previous_ = false;
   HardwareState previous_;
 };

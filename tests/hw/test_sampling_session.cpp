@@ -138,8 +138,9 @@ void expect_fault_handled(const std::string& name, const EmulatorFaults& f, cons
   std::printf("%s: %zu samples kept; error: %s\n", name.c_str(), s.size(), message.c_str());
 }
 
-// About 300 cycles (2 writes each) reach the first sample.
-constexpr long kAfterFirstSample = 900;
+// Four writes a cycle (three position commands, the latch): 1500 writes fall
+// after the first sample (move, settle, dither figure) and before the second.
+constexpr long kAfterFirstSample = 1500;
 
 TEST(SamplingSession, FaultConnectionDropped) {
   EmulatorFaults f;
