@@ -110,7 +110,7 @@ HardwareConfig load_hardware_config(const std::string& path) {
   return c;
 }
 
-std::unique_ptr<SafetySupervisor> make_hardware(const HardwareConfig& c) {
+std::unique_ptr<SafetySupervisor> make_hardware(const HardwareConfig& c, Clock& clock) {
   const double period = 1.0 / c.rate_hz;
   std::unique_ptr<RobotHardware> backend;
   if (c.backend == "twin") {
@@ -118,9 +118,9 @@ std::unique_ptr<SafetySupervisor> make_hardware(const HardwareConfig& c) {
   } else {
     const RegisterMap& m = *c.register_map;
     backend = std::make_unique<DriveBackend>(
-        m, std::make_unique<ModbusTransport>(m.host, m.port, m.response_timeout_s), period);
+        m, std::make_unique<ModbusTransport>(m.host, m.port, m.response_timeout_s), period, clock);
   }
-  return std::make_unique<SafetySupervisor>(std::move(backend), c.controller, c.safety);
+  return std::make_unique<SafetySupervisor>(std::move(backend), c.controller, c.safety, clock);
 }
 
 }  // namespace gpm::hw

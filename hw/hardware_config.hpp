@@ -46,7 +46,8 @@ HardwareConfig load_hardware_config(const std::string& path);
 // encoder settings, and the encoder noise seed.
 TwinBackendConfig twin_config_from_scenario(const std::string& scenario_path, double period_s);
 
-// The configured backend behind a safety supervisor (not yet configured).
-std::unique_ptr<SafetySupervisor> make_hardware(const HardwareConfig& config);
+// The configured backend behind a safety supervisor (not yet configured);
+// clock is real time for both (tests inject one).
+std::unique_ptr<SafetySupervisor> make_hardware(const HardwareConfig& config, Clock& clock = steady_clock());
 
 }  // namespace gpm::hw

@@ -1,8 +1,6 @@
 #include "hw/backends/drive_backend.hpp"
 
 #include <algorithm>
-#include <chrono>
-#include <thread>
 
 #include <fmt/format.h>
 
@@ -14,11 +12,13 @@ namespace {
 
 bool bit_set(std::uint16_t word, int bit) { return (word >> bit) & 1u; }
 
+constexpr double kEnableTimeoutS = 1.0;  // power stages must report enabled within this
+
 }  // namespace
 
 DriveBackend::DriveBackend(const RegisterMap& map, std::unique_ptr<RegisterTransport> transport,
-                           double period_s)
-    : map_(map), transport_(std::move(transport)), period_s_(period_s) {}
+                           double period_s, Clock& clock)
+    : map_(map), transport_(std::move(transport)), period_s_(period_s), clock_(clock) {}
 
 DriveBackend::~DriveBackend() { disable_all(); }
 
@@ -131,8 +131,8 @@ void DriveBackend::on_activate(const HardwareState& current) {
     transport_->write(a.unit_id, a.position_command, 2, regs.data());
     set_enable(i, true);
   }
-  // Wait (at most 1 s) until every power stage reports enabled.
-  const auto deadline = std::chrono::steady_clock::now() + std::chrono::seconds(1);
+  // Wait (at most 1 s on the clock) until every power stage reports enabled.
+  const double deadline = clock_.now() + kEnableTimeoutS;
   HardwareState s = current;
   for (;;) {
     read_axes(current.time_s, s);
@@ -145,10 +145,10 @@ void DriveBackend::on_activate(const HardwareState& current) {
       all = all && s.drive[i].enabled;
     }
     if (all) break;
-    if (std::chrono::steady_clock::now() > deadline) {
-      throw HardwareError(fmt::format("{}: drives did not report enabled within 1 s", describe()));
+    if (clock_.now() > deadline) {
+      throw HardwareError(fmt::format("{}: drives did not report enabled within {} s", describe(), kEnableTimeoutS));
     }
-    std::this_thread::sleep_for(std::chrono::milliseconds(2));
+    clock_.sleep_until(clock_.now() + 0.002);
   }
 }
 

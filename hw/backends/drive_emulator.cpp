@@ -92,6 +92,8 @@ void validate_emulator_options(const EmulatorOptions& o) {
     throw InputError(fmt::format("--slip-counts: {} is outside +-1000000 counts", f.slip_counts));
 }
 
+constexpr double kSendTimeoutS = 0.05;  // longest wait to send one reply
+
 struct DriveEmulator::Impl {
   modbus_t* ctx = nullptr;
   std::map<int, modbus_mapping_t*> units;
@@ -318,10 +320,18 @@ void DriveEmulator::handle_request(int fd) {
   }
   modbus_set_socket(s.ctx, fd);
   const auto it = s.units.find(unit);
+  auto drop = [&] {  // the reply could not be sent (the client does not read): drop it
+    ::close(fd);
+    s.clients.erase(std::remove(s.clients.begin(), s.clients.end(), fd), s.clients.end());
+    if (s.clients.empty()) clients_gone_.notify_all();
+  };
   if (it == s.units.end()) {
-    modbus_reply_exception(s.ctx, q, MODBUS_EXCEPTION_GATEWAY_PATH);
+    if (modbus_reply_exception(s.ctx, q, MODBUS_EXCEPTION_GATEWAY_PATH) < 0) drop();
   } else {
-    modbus_reply(s.ctx, q, rc, it->second);
+    if (modbus_reply(s.ctx, q, rc, it->second) < 0) {
+      drop();
+      return;
+    }
     // A write that covers the latch register (its value is in the mapping now).
     const int addr = (q[8] << 8) | q[9];
     const int count = function == MODBUS_FC_WRITE_SINGLE_REGISTER ? 1
@@ -402,7 +412,14 @@ void DriveEmulator::serve() {
       if (n > 0) {
         if (listen_fd_ >= 0 && FD_ISSET(listen_fd_, &set)) {
           const int fd = ::accept(listen_fd_, nullptr, nullptr);
-          if (fd >= 0) s.clients.push_back(fd);
+          if (fd >= 0) {
+            // A client that never reads its replies fills the socket: a reply
+            // that cannot be sent within kSendTimeoutS drops that client
+            // instead of stalling the server (and every other client).
+            const timeval limit{0, static_cast<suseconds_t>(kSendTimeoutS * 1e6)};
+            ::setsockopt(fd, SOL_SOCKET, SO_SNDTIMEO, &limit, sizeof limit);
+            s.clients.push_back(fd);
+          }
         }
         const std::vector<int> ready = s.clients;
         for (int fd : ready) {

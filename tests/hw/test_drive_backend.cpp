@@ -7,6 +7,7 @@
 #include <gtest/gtest.h>
 
 #include "hw/backends/drive_backend.hpp"
+#include "hw/clock.hpp"
 #include "hw/hw_errors.hpp"
 #include "hw_test_util.hpp"
 
@@ -23,6 +24,7 @@ struct MemoryTransport final : RegisterTransport {
   const RegisterMap* map;
   bool broken = false;
   bool latching = true;
+  bool powers_on = true;  // false: a power stage that never reports enabled
   MemoryTransport(std::map<std::pair<int, int>, std::uint16_t>* r, const RegisterMap* m) : regs(r), map(m) {}
   void connect() override {}
   void close() noexcept override {}
@@ -42,7 +44,7 @@ struct MemoryTransport final : RegisterTransport {
       (*regs)[{a.unit_id, a.latch_id}] = v[map->latch->address - address];
     }
     for (const AxisRegisters& a : map->axes) {  // the drive: enabled follows enable
-      const bool on = ((*regs)[{a.unit_id, a.enable.address}] >> a.enable.bit) & 1u;
+      const bool on = powers_on && (((*regs)[{a.unit_id, a.enable.address}] >> a.enable.bit) & 1u);
       auto& st = (*regs)[{a.unit_id, a.enabled.address}];
       st = on ? (st | (1u << a.enabled.bit)) : (st & ~(1u << a.enabled.bit));
     }
@@ -97,6 +99,28 @@ TEST(DriveBackend, TransportFailureEntersError) {
   EXPECT_THROW(drives.read(0.0), HardwareError);
   EXPECT_EQ(drives.state(), LifecycleState::kError);
   EXPECT_EQ(drives.error_message(), "memory: broken");
+}
+
+// Power stages that never report enabled: activation gives up after 1 s on
+// the injected clock (no wall-clock wait) with one error naming it.
+TEST(DriveBackend, EnableTimeoutRunsOnTheInjectedClock) {
+  const RegisterMap map = load_register_map(kSrc + "/hw/examples/register_map_emulator.yaml");
+  std::map<std::pair<int, int>, std::uint16_t> regs;
+  auto t = std::make_unique<MemoryTransport>(&regs, &map);
+  t->powers_on = false;
+  ManualClock clock;
+  DriveBackend drives(map, std::move(t), 0.004, clock);
+  drives.configure();
+  const double t0 = clock.now();
+  try {
+    drives.activate();
+    ADD_FAILURE() << "activated without enabled drives";
+  } catch (const HardwareError& e) {
+    EXPECT_NE(std::string(e.what()).find("did not report enabled within 1 s"), std::string::npos) << e.what();
+  }
+  EXPECT_GE(clock.now() - t0, 1.0);
+  EXPECT_LT(clock.now() - t0, 1.01);
+  EXPECT_GT(clock.waits(), 100);  // it polled on the clock, 2 ms apart
 }
 
 // With a latch the readings are the positions of the latch instant: a drive
