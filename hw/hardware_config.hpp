@@ -8,6 +8,7 @@
 //   controller: ../models/gpm2002.yaml
 //   calibration: result.yaml          # optional
 //   joint_modes: [position, position, position]   # optional
+//   dither_mm: 0.25                   # optional: sampling's dither figure (0: hold still)
 //   twin: {scenario: ../scenarios/simulate_disc.yaml}   # backend twin
 //   modbus: {register_map: drives.yaml}                 # backend modbus
 //   safety: {...}                                       # hw/safety_limits.hpp
@@ -32,6 +33,9 @@ struct HardwareConfig {
   double rate_hz = 250.0;
   Robot controller;
   std::array<JointMode, 3> modes{JointMode::kPosition, JointMode::kPosition, JointMode::kPosition};
+  // Size (mm) of the figure each calibration sample is averaged along
+  // (hw/procedures/sampling_session.hpp); unset: the session's default.
+  std::optional<double> dither_mm;
   SafetyLimits safety;
   std::optional<TwinBackendConfig> twin;   // backend twin
   std::optional<RegisterMap> register_map; // backend modbus
