@@ -145,8 +145,11 @@ SessionResult run_sampling_session(SafetySupervisor& hw, const SessionPlan& plan
       if (why.empty()) why = hw.check_pose(readings_from_active(c.geometry, reach.q.theta_a));
     }
     if (!why.empty()) {
-      throw InputError(fmt::format("pose {} ({}, {}) mm is outside the safety limits: {}", k,
-                                   plan.poses[k].x(), plan.poses[k].y(), why));
+      const std::string figure =
+          plan.dither_mm > 0.0 ? fmt::format(" with its {} mm dither figure (dither_mm: 0 holds still)", plan.dither_mm)
+                               : "";
+      throw InputError(fmt::format("pose {} ({}, {}) mm{} is outside the safety limits: {}", k,
+                                   plan.poses[k].x(), plan.poses[k].y(), figure, why));
     }
   }
   check_resumed_plan(hw.controller(), plan, log);
