@@ -390,6 +390,16 @@ std::string DriveEmulator::serve_bytes(std::string_view bytes, double t_s) {
   return reply;
 }
 
+bool DriveEmulator::request_waiting() const {
+  fd_set set;
+  FD_ZERO(&set);
+  int maxfd = -1;
+  for (int fd : impl_->clients) FD_SET(fd, &set), maxfd = std::max(maxfd, fd);
+  if (maxfd < 0) return false;
+  timeval none{0, 0};
+  return ::select(maxfd + 1, &set, nullptr, nullptr, &none) > 0;
+}
+
 void DriveEmulator::serve() {
   Impl& s = *impl_;
   double next_tick = clock_.now();
@@ -428,6 +438,13 @@ void DriveEmulator::serve() {
         }
       }
       const double now = clock_.now();
+      // A request already waiting in a socket is not a lost connection: when
+      // the watchdog would trip (e.g. this thread was not scheduled for a
+      // while), serve what is waiting first.
+      if (now >= next_tick && s.seen_request && now - s.last_request > options_.comms_watchdog_s &&
+          request_waiting()) {
+        continue;
+      }
       if (now >= next_tick) {
         tick(now - s.start);
         next_tick += options_.tick_s;

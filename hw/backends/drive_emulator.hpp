@@ -110,6 +110,8 @@ class DriveEmulator {
   void serve();
   void tick(double t);
   void handle_request(int fd);
+  // Whether a client has a request waiting to be read (no wait).
+  bool request_waiting() const;
   void close_clients();
 
   RegisterMap map_;
