@@ -30,6 +30,7 @@ void run_sample(const SampleArgs& a) {
   const hw::HardwareConfig config = hw::load_hardware_config(a.hardware);
   hw::SessionPlan plan = a.poses.empty() ? hw::plan_from_scenario(a.scenario) : hw::load_poses_plan(a.poses);
   plan.modes = config.modes;
+  if (config.dither_mm) plan.dither_mm = *config.dither_mm;
   auto robot = hw::make_hardware(config);
   const hw::StopOnSignal signals;
   hw::SampleLog log(a.out, a.resume);

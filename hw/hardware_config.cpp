@@ -36,7 +36,7 @@ HardwareConfig load_hardware_config(const std::string& path) {
   const std::string dir = std::filesystem::path(path).parent_path().string();
   if (!root.IsMap()) throw InputError(path + ": expected a map with keys backend, rate_hz, controller, safety, ...");
   yaml_check_keys(root, path, "",
-                  {"backend", "rate_hz", "controller", "calibration", "joint_modes", "twin",
+                  {"backend", "rate_hz", "controller", "calibration", "joint_modes", "dither_mm", "twin",
                    "modbus", "safety"});
   HardwareConfig c;
   c.file = path;
@@ -45,6 +45,15 @@ HardwareConfig load_hardware_config(const std::string& path) {
   if (c.backend != "twin" && c.backend != "modbus") {
     throw InputError(yaml_where(path, root["backend"], "backend") +
                      fmt::format("'{}' is not a backend (valid: twin, modbus)", c.backend));
+  }
+  if (const YAML::Node d = root["dither_mm"]) {
+    const double v = yaml_number(d, path, "dither_mm");
+    if (!(v >= 0.0 && v <= 5.0)) {
+      throw InputError(yaml_where(path, d, "dither_mm") +
+                       fmt::format("{} mm is outside [0, 5] mm (the figure each sample is averaged along; "
+                                   "0: hold still)", v));
+    }
+    c.dither_mm = v;
   }
   if (root["rate_hz"]) {
     c.rate_hz = yaml_positive(root["rate_hz"], path, "rate_hz");
@@ -110,7 +119,7 @@ HardwareConfig load_hardware_config(const std::string& path) {
   return c;
 }
 
-std::unique_ptr<SafetySupervisor> make_hardware(const HardwareConfig& c) {
+std::unique_ptr<SafetySupervisor> make_hardware(const HardwareConfig& c, Clock& clock) {
   const double period = 1.0 / c.rate_hz;
   std::unique_ptr<RobotHardware> backend;
   if (c.backend == "twin") {
@@ -118,9 +127,9 @@ std::unique_ptr<SafetySupervisor> make_hardware(const HardwareConfig& c) {
   } else {
     const RegisterMap& m = *c.register_map;
     backend = std::make_unique<DriveBackend>(
-        m, std::make_unique<ModbusTransport>(m.host, m.port, m.response_timeout_s), period);
+        m, std::make_unique<ModbusTransport>(m.host, m.port, m.response_timeout_s), period, clock);
   }
-  return std::make_unique<SafetySupervisor>(std::move(backend), c.controller, c.safety);
+  return std::make_unique<SafetySupervisor>(std::move(backend), c.controller, c.safety, clock);
 }
 
 }  // namespace gpm::hw

@@ -8,6 +8,7 @@
 //   controller: ../models/gpm2002.yaml
 //   calibration: result.yaml          # optional
 //   joint_modes: [position, position, position]   # optional
+//   dither_mm: 0.25                   # optional: sampling's dither figure (0: hold still)
 //   twin: {scenario: ../scenarios/simulate_disc.yaml}   # backend twin
 //   modbus: {register_map: drives.yaml}                 # backend modbus
 //   safety: {...}                                       # hw/safety_limits.hpp
@@ -32,6 +33,9 @@ struct HardwareConfig {
   double rate_hz = 250.0;
   Robot controller;
   std::array<JointMode, 3> modes{JointMode::kPosition, JointMode::kPosition, JointMode::kPosition};
+  // Size (mm) of the figure each calibration sample is averaged along
+  // (hw/procedures/sampling_session.hpp); unset: the session's default.
+  std::optional<double> dither_mm;
   SafetyLimits safety;
   std::optional<TwinBackendConfig> twin;   // backend twin
   std::optional<RegisterMap> register_map; // backend modbus
@@ -46,7 +50,8 @@ HardwareConfig load_hardware_config(const std::string& path);
 // encoder settings, and the encoder noise seed.
 TwinBackendConfig twin_config_from_scenario(const std::string& scenario_path, double period_s);
 
-// The configured backend behind a safety supervisor (not yet configured).
-std::unique_ptr<SafetySupervisor> make_hardware(const HardwareConfig& config);
+// The configured backend behind a safety supervisor (not yet configured);
+// clock is real time for both (tests inject one).
+std::unique_ptr<SafetySupervisor> make_hardware(const HardwareConfig& config, Clock& clock = steady_clock());
 
 }  // namespace gpm::hw

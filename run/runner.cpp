@@ -68,6 +68,7 @@ sim::SimulationResult sample_on_hardware(const RunSpec& spec, const std::string&
   plan.poses = sim::plan_poses(*spec.sim.sampling, spec.sim.seed);
   plan.options = spec.sim.sampling->options;
   plan.modes = cfg.modes;
+  if (cfg.dither_mm) plan.dither_mm = *cfg.dither_mm;
   sim::SimulationResult r;
   r.actual = sim::make_actual(spec.sim);
   {

@@ -1,8 +1,6 @@
 #include "hw/backends/drive_backend.hpp"
 
 #include <algorithm>
-#include <chrono>
-#include <thread>
 
 #include <fmt/format.h>
 
@@ -14,21 +12,32 @@ namespace {
 
 bool bit_set(std::uint16_t word, int bit) { return (word >> bit) & 1u; }
 
+constexpr double kEnableTimeoutS = 1.0;  // power stages must report enabled within this
+
 }  // namespace
 
 DriveBackend::DriveBackend(const RegisterMap& map, std::unique_ptr<RegisterTransport> transport,
-                           double period_s)
-    : map_(map), transport_(std::move(transport)), period_s_(period_s) {}
+                           double period_s, Clock& clock)
+    : map_(map), transport_(std::move(transport)), period_s_(period_s), clock_(clock) {}
 
 DriveBackend::~DriveBackend() { disable_all(); }
 
 void DriveBackend::read_axes(double time_s, HardwareState& s) {
   s.time_s = time_s;
+  // With a latch, every drive copies its position at one instant; the
+  // readings below are those copies, checked to be of this latch.
+  std::uint16_t id = 0;
+  if (map_.latch) {
+    id = ++latch_id_;
+    if (id == 0) id = ++latch_id_;  // 0 is what a drive holds before its first latch
+    transport_->write(map_.latch->unit_id, map_.latch->address, 1, &id);
+  }
   for (int i = 0; i < 3; ++i) {
     const AxisRegisters& a = map_.axes[i];
+    const int position = map_.latch ? a.latched_position : a.actual_position;
     // One request for the span of everything read from this axis.
-    std::vector<int> addrs{a.actual_position, a.actual_position + 1, a.status_word,
-                           a.enabled.address, a.fault.address};
+    std::vector<int> addrs{position, position + 1, a.status_word, a.enabled.address, a.fault.address};
+    if (map_.latch) addrs.push_back(a.latch_id);
     if (a.actual_velocity >= 0) addrs.insert(addrs.end(), {a.actual_velocity, a.actual_velocity + 1});
     if (a.actual_torque >= 0) addrs.push_back(a.actual_torque);
     if (a.fault_code >= 0) addrs.push_back(a.fault_code);
@@ -41,8 +50,12 @@ void DriveBackend::read_axes(double time_s, HardwareState& s) {
       for (int addr : addrs) transport_->read(a.unit_id, addr, 1, &r[static_cast<size_t>(addr - lo)]);
     }
     auto at = [&](int addr) { return r[static_cast<size_t>(addr - lo)]; };
-    s.theta_m[i] = counts_to_theta(a, join32(&r[static_cast<size_t>(a.actual_position - lo)],
-                                             map_.word_order));
+    if (map_.latch && at(a.latch_id) != id) {
+      throw HardwareError(fmt::format("{}: drive {} (unit {}) holds latch {} where latch {} was just "
+                                      "triggered: its reading is not of this cycle's instant",
+                                      describe(), i + 1, a.unit_id, at(a.latch_id), id));
+    }
+    s.theta_m[i] = counts_to_theta(a, join32(&r[static_cast<size_t>(position - lo)], map_.word_order));
     DriveStatus& d = s.drive[i];
     d.status_word = at(a.status_word);
     d.enabled = bit_set(at(a.enabled.address), a.enabled.bit);
@@ -118,8 +131,8 @@ void DriveBackend::on_activate(const HardwareState& current) {
     transport_->write(a.unit_id, a.position_command, 2, regs.data());
     set_enable(i, true);
   }
-  // Wait (at most 1 s) until every power stage reports enabled.
-  const auto deadline = std::chrono::steady_clock::now() + std::chrono::seconds(1);
+  // Wait (at most 1 s on the clock) until every power stage reports enabled.
+  const double deadline = clock_.now() + kEnableTimeoutS;
   HardwareState s = current;
   for (;;) {
     read_axes(current.time_s, s);
@@ -132,10 +145,10 @@ void DriveBackend::on_activate(const HardwareState& current) {
       all = all && s.drive[i].enabled;
     }
     if (all) break;
-    if (std::chrono::steady_clock::now() > deadline) {
-      throw HardwareError(fmt::format("{}: drives did not report enabled within 1 s", describe()));
+    if (clock_.now() > deadline) {
+      throw HardwareError(fmt::format("{}: drives did not report enabled within {} s", describe(), kEnableTimeoutS));
     }
-    std::this_thread::sleep_for(std::chrono::milliseconds(2));
+    clock_.sleep_until(clock_.now() + 0.002);
   }
 }
 

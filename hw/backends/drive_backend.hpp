@@ -1,22 +1,26 @@
 // Backend over servo drives reached through any RegisterTransport, with the
 // register map naming where each value lives. With a ModbusTransport it is
 // the `modbus` backend; the drive logic (enable, command, status, faults)
-// does not depend on the protocol. Time is the wall clock.
+// does not depend on the protocol. Time is the injected clock (the wall clock). With a latch in
+// the map (register_map.hpp) each read first triggers it, so the three
+// readings are of one instant although the drives are read one by one.
 #pragma once
 
 #include <memory>
 
 #include "hw/backends/register_map.hpp"
 #include "hw/backends/register_transport.hpp"
+#include "hw/clock.hpp"
 #include "hw/robot_hardware.hpp"
 
 namespace gpm::hw {
 
 class DriveBackend final : public RobotHardware {
  public:
-  // Drives described by map, reached through transport (owned), cycled every period_s.
+  // Drives described by map, reached through transport (owned), cycled every
+  // period_s; clock times the wait for the power stages (tests inject one).
   DriveBackend(const RegisterMap& map, std::unique_ptr<RegisterTransport> transport,
-               double period_s);
+               double period_s, Clock& clock = steady_clock());
   ~DriveBackend() override;
 
   double period_s() const override { return period_s_; }
@@ -39,8 +43,10 @@ class DriveBackend final : public RobotHardware {
   RegisterMap map_;
   std::unique_ptr<RegisterTransport> transport_;
   double period_s_;
+  Clock& clock_;
   std::array<std::uint16_t, 3> control_{};   // last control word written per axis
   std::array<bool, 3> enable_{};             // enable bit requested per axis
+  std::uint16_t latch_id_ = 0;              // id of the last latch triggered (map with a latch)
   bool have_previous_ = false;
   HardwareState previous_;
 };

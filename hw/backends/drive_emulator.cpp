@@ -79,20 +79,26 @@ void validate_emulator_options(const EmulatorOptions& o) {
   for (const auto& [flag, n] : {std::pair{"--drop-after-writes", f.drop_after_writes},
                                 std::pair{"--delay-after-writes", f.delay_after_writes},
                                 std::pair{"--fault-after-writes", f.fault_after_writes},
-                                std::pair{"--garbage-after-writes", f.garbage_after_writes}}) {
+                                std::pair{"--garbage-after-writes", f.garbage_after_writes},
+                                std::pair{"--slip-after-writes", f.slip_after_writes}}) {
     if (n < -1) throw InputError(fmt::format("{}: {} is not a count of writes (>= 0, or -1: never)", flag, n));
   }
   if (!(f.delay_s >= 0 && f.delay_s <= 60))
     throw InputError(fmt::format("--delay: {} s is outside [0, 60] s", f.delay_s));
-  if (f.fault_axis < 0 || f.fault_axis > 2 || f.garbage_axis < 0 || f.garbage_axis > 2)
-    throw InputError("--fault-axis, --garbage-axis: an axis is 0, 1 or 2");
+  if (f.fault_axis < 0 || f.fault_axis > 2 || f.garbage_axis < 0 || f.garbage_axis > 2 || f.slip_axis < 0 ||
+      f.slip_axis > 2)
+    throw InputError("--fault-axis, --garbage-axis, --slip-axis: an axis is 0, 1 or 2");
+  if (std::abs(f.slip_counts) > 1000000)
+    throw InputError(fmt::format("--slip-counts: {} is outside +-1000000 counts", f.slip_counts));
 }
+
+constexpr double kSendTimeoutS = 0.05;  // longest wait to send one reply
 
 struct DriveEmulator::Impl {
   modbus_t* ctx = nullptr;
   std::map<int, modbus_mapping_t*> units;
   std::vector<int> clients;
-  std::array<bool, 3> power{}, armed{true, true, true}, fault{}, garbage{};
+  std::array<bool, 3> power{}, armed{true, true, true}, fault{}, garbage{}, slipped{};
   Eigen::Vector3d command_theta = Eigen::Vector3d::Zero();
   std::array<JointMode, 3> command_mode{};
   double command_time = 0.0;
@@ -139,9 +145,11 @@ void DriveEmulator::prepare() {
   for (const AxisRegisters& a : map_.axes) {
     int hi = std::max({a.position_command + 1, a.actual_position + 1, a.status_word,
                        a.control_word, a.enable.address, a.enabled.address, a.fault.address,
-                       a.actual_velocity + 1, a.actual_torque, a.fault_code});
+                       a.actual_velocity + 1, a.actual_torque, a.fault_code, a.latched_position + 1,
+                       a.latch_id});
     size[a.unit_id] = std::max(size[a.unit_id], hi + 1);
   }
+  if (map_.latch) size[map_.latch->unit_id] = std::max(size[map_.latch->unit_id], map_.latch->address + 1);
   for (auto [unit, n] : size) s.units[unit] = modbus_mapping_new(0, 0, n, 0);
   twin_.configure();
   twin_.activate();
@@ -232,7 +240,10 @@ void DriveEmulator::tick(double t) {
     }
     if (s.fault[i] || comms_lost) s.power[i] = false;
     cmd.mode[i] = s.power[i] ? JointMode::kPosition : JointMode::kTorqueOff;
-    cmd.theta_m[i] = counts_to_theta(a, join32(r + a.position_command, map_.word_order));
+    // A slipped encoder: the drive servoes its shifted reading onto the command.
+    const long slip = s.slipped[i] ? options_.faults.slip_counts : 0;
+    cmd.theta_m[i] = counts_to_theta(a, static_cast<std::int64_t>(join32(r + a.position_command, map_.word_order)) -
+                                            a.sign * slip);
   }
   if (cmd.theta_m != s.command_theta || cmd.mode != s.command_mode) {
     twin_.write(cmd, t);
@@ -250,7 +261,9 @@ void DriveEmulator::tick(double t) {
   for (int i = 0; i < 3; ++i) {
     const AxisRegisters& a = map_.axes[i];
     std::uint16_t* r = s.regs(a.unit_id);
-    std::array<std::uint16_t, 2> pos = split32(theta_to_counts(a, st.theta_m[i]), map_.word_order);
+    const long slip = s.slipped[i] ? options_.faults.slip_counts : 0;
+    std::array<std::uint16_t, 2> pos =
+        split32(static_cast<std::int32_t>(theta_to_counts(a, st.theta_m[i]) + a.sign * slip), map_.word_order);
     if (s.garbage[i]) pos = {static_cast<std::uint16_t>(s.rng.bits()), static_cast<std::uint16_t>(s.rng.bits())};
     std::copy(pos.begin(), pos.end(), r + a.actual_position);
     if (a.actual_velocity >= 0) {
@@ -298,6 +311,7 @@ void DriveEmulator::handle_request(int fd) {
     if (hit(f.delay_after_writes)) s.delaying = true;
     if (hit(f.fault_after_writes)) s.fault[static_cast<size_t>(f.fault_axis)] = true;
     if (hit(f.garbage_after_writes)) s.garbage[static_cast<size_t>(f.garbage_axis)] = true;
+    if (hit(f.slip_after_writes)) s.slipped[static_cast<size_t>(f.slip_axis)] = true;
   }
   if (s.delaying) {
     mutex_.unlock();
@@ -306,10 +320,33 @@ void DriveEmulator::handle_request(int fd) {
   }
   modbus_set_socket(s.ctx, fd);
   const auto it = s.units.find(unit);
+  auto drop = [&] {  // the reply could not be sent (the client does not read): drop it
+    ::close(fd);
+    s.clients.erase(std::remove(s.clients.begin(), s.clients.end(), fd), s.clients.end());
+    if (s.clients.empty()) clients_gone_.notify_all();
+  };
   if (it == s.units.end()) {
-    modbus_reply_exception(s.ctx, q, MODBUS_EXCEPTION_GATEWAY_PATH);
+    if (modbus_reply_exception(s.ctx, q, MODBUS_EXCEPTION_GATEWAY_PATH) < 0) drop();
   } else {
-    modbus_reply(s.ctx, q, rc, it->second);
+    if (modbus_reply(s.ctx, q, rc, it->second) < 0) {
+      drop();
+      return;
+    }
+    // A write that covers the latch register (its value is in the mapping now).
+    const int addr = (q[8] << 8) | q[9];
+    const int count = function == MODBUS_FC_WRITE_SINGLE_REGISTER ? 1
+                      : function == MODBUS_FC_WRITE_MULTIPLE_REGISTERS ? ((q[10] << 8) | q[11])
+                                                                       : 0;
+    if (map_.latch && unit == map_.latch->unit_id && addr <= map_.latch->address &&
+        map_.latch->address < addr + count && map_.latch->address < it->second->nb_registers) {
+      const std::uint16_t id = it->second->tab_registers[map_.latch->address];
+      for (const AxisRegisters& a : map_.axes) {  // every axis at once, from the same plant tick
+        std::uint16_t* r = s.regs(a.unit_id);
+        r[a.latched_position] = r[a.actual_position];
+        r[a.latched_position + 1] = r[a.actual_position + 1];
+        r[a.latch_id] = id;
+      }
+    }
   }
 }
 
@@ -353,6 +390,16 @@ std::string DriveEmulator::serve_bytes(std::string_view bytes, double t_s) {
   return reply;
 }
 
+bool DriveEmulator::request_waiting() const {
+  fd_set set;
+  FD_ZERO(&set);
+  int maxfd = -1;
+  for (int fd : impl_->clients) FD_SET(fd, &set), maxfd = std::max(maxfd, fd);
+  if (maxfd < 0) return false;
+  timeval none{0, 0};
+  return ::select(maxfd + 1, &set, nullptr, nullptr, &none) > 0;
+}
+
 void DriveEmulator::serve() {
   Impl& s = *impl_;
   double next_tick = clock_.now();
@@ -375,7 +422,14 @@ void DriveEmulator::serve() {
       if (n > 0) {
         if (listen_fd_ >= 0 && FD_ISSET(listen_fd_, &set)) {
           const int fd = ::accept(listen_fd_, nullptr, nullptr);
-          if (fd >= 0) s.clients.push_back(fd);
+          if (fd >= 0) {
+            // A client that never reads its replies fills the socket: a reply
+            // that cannot be sent within kSendTimeoutS drops that client
+            // instead of stalling the server (and every other client).
+            const timeval limit{0, static_cast<suseconds_t>(kSendTimeoutS * 1e6)};
+            ::setsockopt(fd, SOL_SOCKET, SO_SNDTIMEO, &limit, sizeof limit);
+            s.clients.push_back(fd);
+          }
         }
         const std::vector<int> ready = s.clients;
         for (int fd : ready) {
@@ -384,6 +438,13 @@ void DriveEmulator::serve() {
         }
       }
       const double now = clock_.now();
+      // A request already waiting in a socket is not a lost connection: when
+      // the watchdog would trip (e.g. this thread was not scheduled for a
+      // while), serve what is waiting first.
+      if (now >= next_tick && s.seen_request && now - s.last_request > options_.comms_watchdog_s &&
+          request_waiting()) {
+        continue;
+      }
       if (now >= next_tick) {
         tick(now - s.start);
         next_tick += options_.tick_s;

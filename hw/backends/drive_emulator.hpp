@@ -1,5 +1,8 @@
 // Drive emulator: serves a register map over Modbus TCP, backed by the MuJoCo
 // twin in real time, so the `modbus` backend's whole protocol path runs in CI.
+// With a latch in the map, a write of an id to the latch register copies
+// every axis's actual position (of the same plant tick) to its
+// latched_position and the id to its latch_id.
 // Each axis behaves like a simple servo drive: the power stage comes on at a
 // rising edge of its enable bit (not while faulted), follows the position
 // command, and goes off when the enable bit clears, on a fault, or when no
@@ -33,6 +36,12 @@ struct EmulatorFaults {
   std::uint16_t fault_code = 0x2310;
   long garbage_after_writes = -1;  // actual position registers of garbage_axis turn to noise
   int garbage_axis = 0;
+  // The encoder of slip_axis slips by slip_counts: the drive reads (and
+  // servoes on) its angle shifted by that much, an encoder offset jump
+  // (dth of that joint changes by -slip_counts counts).
+  long slip_after_writes = -1;
+  int slip_axis = 0;
+  long slip_counts = 0;
 };
 
 // Settings of the emulator.
@@ -101,6 +110,8 @@ class DriveEmulator {
   void serve();
   void tick(double t);
   void handle_request(int fd);
+  // Whether a client has a request waiting to be read (no wait).
+  bool request_waiting() const;
   void close_clients();
 
   RegisterMap map_;

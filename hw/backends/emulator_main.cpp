@@ -42,6 +42,9 @@ int main(int argc, char** argv) {
   app.add_option("--fault-axis", opt.faults.fault_axis, "axis of the fault (0..2)")->check(CLI::Range(0, 2));
   app.add_option("--garbage-after-writes", opt.faults.garbage_after_writes, "fault: garbage positions");
   app.add_option("--garbage-axis", opt.faults.garbage_axis, "axis of the garbage (0..2)")->check(CLI::Range(0, 2));
+  app.add_option("--slip-after-writes", opt.faults.slip_after_writes, "fault: an encoder slips (offset jump)");
+  app.add_option("--slip-axis", opt.faults.slip_axis, "axis of the slip (0..2)")->check(CLI::Range(0, 2));
+  app.add_option("--slip-counts", opt.faults.slip_counts, "size of the slip (counts)");
   try {
     app.parse(argc, argv);
   } catch (const CLI::CallForHelp& e) {

@@ -2,6 +2,7 @@
 
 #include <arpa/inet.h>
 
+#include <algorithm>
 #include <cmath>
 #include <vector>
 #include <numbers>
@@ -41,7 +42,8 @@ AxisRegisters axis_from_yaml(const YAML::Node& n, const std::string& file, const
   yaml_check_keys(n, file, kp,
                   {"unit_id", "position_command", "actual_position", "actual_velocity",
                    "actual_torque", "torque_unit", "status_word", "control_word", "fault_code",
-                   "enable", "enabled", "fault", "counts_per_rev", "sign", "offset"});
+                   "enable", "enabled", "fault", "counts_per_rev", "sign", "offset", "latched_position",
+                   "latch_id"});
   AxisRegisters a;
   if (!n["unit_id"]) throw InputError(yaml_where(file, n, kp) + "missing key 'unit_id' (1..247)");
   a.unit_id = static_cast<int>(yaml_integer(n["unit_id"], file, kp + ".unit_id", 0, 247));
@@ -58,6 +60,8 @@ AxisRegisters axis_from_yaml(const YAML::Node& n, const std::string& file, const
   a.status_word = reg(n["status_word"], file, kp + ".status_word", false);
   a.control_word = reg(n["control_word"], file, kp + ".control_word", false);
   a.fault_code = reg(n["fault_code"], file, kp + ".fault_code", true);
+  a.latched_position = reg(n["latched_position"], file, kp + ".latched_position", true);
+  a.latch_id = reg(n["latch_id"], file, kp + ".latch_id", true);
   a.enable = bit(n["enable"], file, kp + ".enable");
   a.enabled = bit(n["enabled"], file, kp + ".enabled");
   a.fault = bit(n["fault"], file, kp + ".fault");
@@ -72,7 +76,10 @@ AxisRegisters axis_from_yaml(const YAML::Node& n, const std::string& file, const
   a.offset_counts = yaml_integer(n["offset"], file, kp + ".offset", -(1LL << 31), (1LL << 31) - 1);
   // Written registers must not overlap anything read back.
   const int pc = a.position_command;
-  for (int r : {a.actual_position, a.actual_position + 1, a.status_word, a.control_word}) {
+  std::vector<int> read_back{a.actual_position, a.actual_position + 1, a.status_word, a.control_word};
+  if (a.latched_position >= 0) read_back.insert(read_back.end(), {a.latched_position, a.latched_position + 1});
+  if (a.latch_id >= 0) read_back.push_back(a.latch_id);
+  for (int r : read_back) {
     if (r == pc || r == pc + 1) {
       throw InputError(yaml_where(file, n["position_command"], kp + ".position_command") +
                        fmt::format("registers {}..{} overlap register {} (give each value its own "
@@ -92,7 +99,7 @@ AxisRegisters axis_from_yaml(const YAML::Node& n, const std::string& file, const
 RegisterMap parse_register_map(const std::string& text, const std::string& file) {
   const YAML::Node root = load_yaml_string(text, file);
   if (!root.IsMap()) throw InputError(file + ": expected a map with keys connection, word_order, axes");
-  yaml_check_keys(root, file, "", {"connection", "word_order", "axes"});
+  yaml_check_keys(root, file, "", {"connection", "word_order", "axes", "latch"});
   RegisterMap m;
   const YAML::Node c = root["connection"];
   if (!c) throw InputError(file + ": missing key 'connection' (host, port, response_timeout)");
@@ -135,6 +142,35 @@ RegisterMap parse_register_map(const std::string& text, const std::string& file)
                      "expected a list of three axes (joints 1, 2, 3)");
   }
   for (size_t i = 0; i < 3; ++i) m.axes[i] = axis_from_yaml(axes[i], file, fmt::format("axes[{}]", i));
+  if (const YAML::Node l = root["latch"]) {
+    yaml_check_keys(l, file, "latch", {"unit_id", "register"});
+    if (!l["unit_id"] || !l["register"])
+      throw InputError(yaml_where(file, l, "latch") + "expected {unit_id: 1..247, register: ADDRESS}");
+    LatchRegister latch;
+    latch.unit_id = static_cast<int>(yaml_integer(l["unit_id"], file, "latch.unit_id", 1, 247));
+    latch.address = reg(l["register"], file, "latch.register", false);
+    m.latch = latch;
+  }
+  for (size_t i = 0; i < 3; ++i) {
+    const AxisRegisters& a = m.axes[i];
+    const bool has = a.latched_position >= 0 && a.latch_id >= 0;
+    if (has != m.latch.has_value() || (a.latched_position >= 0) != (a.latch_id >= 0)) {
+      throw InputError(yaml_where(file, axes[i], fmt::format("axes[{}]", i)) +
+                       "a latch needs the top-level key latch: {unit_id, register} and latched_position "
+                       "and latch_id on every axis (or none of the three)");
+    }
+    if (m.latch && m.latch->unit_id == a.unit_id) {
+      std::vector<int> r{a.position_command, a.position_command + 1, a.actual_position, a.actual_position + 1,
+                         a.status_word, a.control_word, a.latched_position, a.latched_position + 1, a.latch_id};
+      if (a.actual_velocity >= 0) r.insert(r.end(), {a.actual_velocity, a.actual_velocity + 1});
+      if (a.actual_torque >= 0) r.push_back(a.actual_torque);
+      if (a.fault_code >= 0) r.push_back(a.fault_code);
+      if (std::find(r.begin(), r.end(), m.latch->address) != r.end())
+        throw InputError(yaml_where(file, root["latch"]["register"], "latch.register") +
+                         fmt::format("register {} of unit {} is already used by axes[{}]", m.latch->address,
+                                     a.unit_id, i));
+    }
+  }
   // Axes on one unit id (one drive serving several axes) must use distinct registers.
   for (size_t i = 0; i < 3; ++i) {
     for (size_t j = 0; j < i; ++j) {
@@ -145,6 +181,7 @@ RegisterMap parse_register_map(const std::string& text, const std::string& file)
         if (a.actual_velocity >= 0) r.insert(r.end(), {a.actual_velocity, a.actual_velocity + 1});
         if (a.actual_torque >= 0) r.push_back(a.actual_torque);
         if (a.fault_code >= 0) r.push_back(a.fault_code);
+        if (a.latched_position >= 0) r.insert(r.end(), {a.latched_position, a.latched_position + 1, a.latch_id});
         return r;
       };
       for (int ri : used(m.axes[i])) {
@@ -187,7 +224,10 @@ std::string register_map_to_yaml(const RegisterMap& m) {
                        b(a.enabled), b(a.fault));
     out += fmt::format("    counts_per_rev: {}\n    sign: {}\n    offset: {}\n", a.counts_per_rev,
                        a.sign, a.offset_counts);
+    if (a.latched_position >= 0)
+      out += fmt::format("    latched_position: {}\n    latch_id: {}\n", a.latched_position, a.latch_id);
   }
+  if (m.latch) out += fmt::format("latch: {{unit_id: {}, register: {}}}\n", m.latch->unit_id, m.latch->address);
   return out;
 }
 

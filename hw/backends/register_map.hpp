@@ -9,6 +9,7 @@
 
 #include <array>
 #include <cstdint>
+#include <optional>
 #include <string>
 
 #include "models/parameters.hpp"
@@ -33,6 +34,8 @@ struct AxisRegisters {
   int status_word = 0;         // one register
   int control_word = 0;        // one register
   int fault_code = -1;         // one register; -1: not reported
+  int latched_position = -1;   // two registers: the actual position at the last latch; -1: no latch
+  int latch_id = -1;           // one register: the id written by the latch that filled latched_position
   RegisterBit enable;          // set to enable the power stage (usually in the control word)
   RegisterBit enabled;         // set while the power stage is on (usually in the status word)
   RegisterBit fault;           // set while the drive is faulted (usually in the status word)
@@ -40,6 +43,17 @@ struct AxisRegisters {
   int sign = 1;                // +1: counts grow with theta_m; -1: they fall
   long long offset_counts = 0; // counts at theta_m = 0
   bool operator==(const AxisRegisters&) const = default;
+};
+
+// A common latch (optional): writing an id to this register of this unit makes
+// every drive copy its actual position, at that one instant, to its
+// latched_position and the id to its latch_id (drives whose touch-probe
+// inputs share one trigger, or the emulator). The three readings of a cycle
+// are then of one instant even though the drives are read one after another.
+struct LatchRegister {
+  int unit_id = 1;
+  int address = 0;
+  bool operator==(const LatchRegister&) const = default;
 };
 
 // Word order of 32-bit values in two registers.
@@ -52,6 +66,7 @@ struct RegisterMap {
   double response_timeout_s = 0.05;
   WordOrder word_order = WordOrder::kHighFirst;
   std::array<AxisRegisters, kNumChains> axes{};
+  std::optional<LatchRegister> latch;  // with it every axis has latched_position and latch_id
   bool operator==(const RegisterMap&) const = default;
 };
 

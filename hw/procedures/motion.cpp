@@ -105,15 +105,19 @@ void Motion::settle(const sim::SettleCriterion& c, const std::string& what) {
 }
 
 Eigen::Vector3d Motion::average(double seconds) {
-  const long n = std::max(1L, std::lround(seconds / hw_.period_s()));
   const Eigen::Vector3d q = command_;
-  Eigen::Vector3d first = Eigen::Vector3d::Zero(), sum = Eigen::Vector3d::Zero();
+  return average_along([&q](double) { return q; }, seconds);
+}
+
+Eigen::Vector3d Motion::average_along(const std::function<Eigen::Vector3d(double)>& path, double seconds) {
+  const long n = std::max(1L, std::lround(seconds / hw_.period_s()));
+  Eigen::Vector3d gap = Eigen::Vector3d::Zero();
   for (long k = 0; k < n; ++k) {
-    cycle(q);
-    if (k == 0) first = state_.theta_m;
-    for (int i = 0; i < 3; ++i) sum[i] += first[i] + wrap_pi(state_.theta_m[i] - first[i]);
+    const Eigen::Vector3d before = command_;  // what the joints followed when they were read
+    cycle(path(static_cast<double>(k + 1) / n));
+    for (int i = 0; i < 3; ++i) gap[i] += wrap_pi(state_.theta_m[i] - before[i]);
   }
-  Eigen::Vector3d mean = sum / static_cast<double>(n);
+  Eigen::Vector3d mean = path(1.0) + gap / static_cast<double>(n);
   for (int i = 0; i < 3; ++i) mean[i] = wrap_2pi(mean[i]);
   return mean;
 }

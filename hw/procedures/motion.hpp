@@ -55,6 +55,15 @@ class Motion {
   void settle(const sim::SettleCriterion& c, const std::string& what);
   // Holds the command for seconds and returns the mean reading (in [0, 2 pi)).
   Eigen::Vector3d average(double seconds);
+  // Commands path(u), u = k / n for k = 1..n (n = seconds / period, at least
+  // one) and returns path(1) plus the mean gap between each reading and the
+  // command of the cycle before it (in [0, 2 pi)): the reading the joints
+  // would give held at path(1). With a closed path around the current
+  // command the encoders cross many counts, so the rounding errors of the
+  // readings average out; the path's own shape (its curvature too) is
+  // subtracted exactly; the joint speeds average to zero over the loop, so
+  // lags (servo lag, readings not taken at one instant) cancel to first order.
+  Eigen::Vector3d average_along(const std::function<Eigen::Vector3d(double)>& path, double seconds);
 
   // q with each component taken within pi of the current command.
   Eigen::Vector3d wrap_near(const Eigen::Vector3d& q) const;

@@ -51,6 +51,20 @@ class Runner {
     pose_ = p1;
   }
 
+  // Mean readings along the dither figure around p (the robot stands at p),
+  // run in average_s or longer, within the limits as the moves are.
+  Eigen::Vector3d average_around(const Eigen::Vector2d& p) {
+    const Eigen::Vector3d at = motion_.command();
+    const auto figure = [&](double s) { return ik_readings(c_, p + dither_offset(s, plan_.dither_mm), at); };
+    double T = plan_.options.average_s;
+    if (plan_.dither_mm > 0.0) {
+      std::vector<Eigen::Vector3d> q;
+      for (int k = 0; k <= 40; ++k) q.push_back(figure(k / 40.0));
+      T = motion_.path_time(q, T);
+    }
+    return motion_.average_along([&](double u) { return figure(motion_profile(u)); }, T);
+  }
+
   SessionResult run(SampleLog& log) {
     SessionResult r;
     motion_.start();
@@ -65,7 +79,7 @@ class Runner {
       }
       move(plan_.poses[k]);
       motion_.settle(plan_.options.settle, fmt::format("sample {}: ", id));
-      log.append(id, motion_.average(plan_.options.average_s), plan_.poses[k]);
+      log.append(id, average_around(plan_.poses[k]), plan_.poses[k]);
       ++r.taken;
     }
     motion_.finish();
@@ -81,6 +95,10 @@ class Runner {
 };
 
 }  // namespace
+
+Eigen::Vector2d dither_offset(double s, double radius_mm) {
+  return radius_mm * Eigen::Vector2d(std::sin(2 * std::numbers::pi * s), 0.5 * std::sin(4 * std::numbers::pi * s));
+}
 
 void check_resumed_plan(const Robot& controller, const SessionPlan& plan, const SampleLog& log) {
   for (const auto& [id, row] : log.recorded()) {
@@ -115,15 +133,23 @@ void check_resumed_plan(const Robot& controller, const SessionPlan& plan, const 
 
 SessionResult run_sampling_session(SafetySupervisor& hw, const SessionPlan& plan, SampleLog& log,
                                    const std::atomic<bool>* stop) {
-  // Every pose must be allowed before anything moves.
+  if (!(plan.dither_mm >= 0.0 && plan.dither_mm <= 5.0))
+    throw InputError(fmt::format("sampling dither {} mm: expected 0 to 5 mm", plan.dither_mm));
+  // Every pose, with its dither figure, must be allowed before anything moves.
   for (size_t k = 0; k < plan.poses.size(); ++k) {
     const Robot& c = hw.controller();
-    const Reach reach = check_reach(c, plan.poses[k]);
-    std::string why = reach.ok ? "" : reach.reason;
-    if (why.empty()) why = hw.check_pose(readings_from_active(c.geometry, reach.q.theta_a));
+    std::string why;
+    for (int j = 0; j < 8 && why.empty(); ++j) {
+      const Reach reach = check_reach(c, plan.poses[k] + dither_offset(j / 8.0, plan.dither_mm));
+      why = reach.ok ? "" : reach.reason;
+      if (why.empty()) why = hw.check_pose(readings_from_active(c.geometry, reach.q.theta_a));
+    }
     if (!why.empty()) {
-      throw InputError(fmt::format("pose {} ({}, {}) mm is outside the safety limits: {}", k,
-                                   plan.poses[k].x(), plan.poses[k].y(), why));
+      const std::string figure =
+          plan.dither_mm > 0.0 ? fmt::format(" with its {} mm dither figure (dither_mm: 0 holds still)", plan.dither_mm)
+                               : "";
+      throw InputError(fmt::format("pose {} ({}, {}) mm{} is outside the safety limits: {}", k,
+                                   plan.poses[k].x(), plan.poses[k].y(), figure, why));
     }
   }
   check_resumed_plan(hw.controller(), plan, log);

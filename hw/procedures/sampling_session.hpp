@@ -2,8 +2,9 @@
 // chosen by config only): for each pose not yet in the samples file, move
 // along a straight line with a smooth profile inside the velocity and
 // acceleration limits (IK of the controller model, never the twin's actual
-// parameters), wait until the joints settle, average the readings, append
-// the sample to disk. Any failure stops the robot and keeps what was recorded.
+// parameters), wait until the joints settle, average the readings along a
+// small closed figure around the pose (dither: the encoders cross many
+// counts, so their rounding averages out), append the sample to disk. Any failure stops the robot and keeps what was recorded.
 #pragma once
 
 #include <atomic>
@@ -22,12 +23,24 @@
 
 namespace gpm::hw {
 
+// Default size of the dither figure (mm): 0.25 mm at a 244 mm link is about
+// 1e-3 rad, some 20 counts of a 17-bit encoder, while the figure's own
+// curvature is subtracted exactly (Motion::average_along).
+inline constexpr double kDitherMm = 0.25;
+
+// Offset (mm) of the dither figure at s in [0, 1]: a figure of eight
+// radius * (sin 2 pi s, sin(4 pi s) / 2). Run with s = motion_profile(t / T)
+// it starts and ends at rest at 0 and its time average is 0.
+Eigen::Vector2d dither_offset(double s, double radius_mm);
+
 // What to sample and how (constant).
 struct SessionPlan {
   std::vector<Eigen::Vector2d> poses;  // mm; sample k is poses[k]
   sim::SamplingOptions options;        // move speed, settle criterion, averaging window
   std::array<JointMode, 3> modes{JointMode::kPosition, JointMode::kPosition, JointMode::kPosition};
   double profile_headroom = 0.5;       // fraction of the velocity/acceleration limits the moves use
+  double dither_mm = kDitherMm;        // size of the figure averaged along at each pose (0: hold still);
+                                       // averaging lasts options.average_s, longer if the limits need it
 };
 
 // What a session did.

@@ -1,11 +1,13 @@
 // Tests of hw/backends/drive_backend.cpp over an in-memory RegisterTransport (the
 // drive layer does not depend on Modbus): enable bits, scaled position
-// commands, readings, faults, disable on error.
+// commands, readings, faults, disable on error, readings latched at one instant.
+#include <functional>
 #include <map>
 
 #include <gtest/gtest.h>
 
 #include "hw/backends/drive_backend.hpp"
+#include "hw/clock.hpp"
 #include "hw/hw_errors.hpp"
 #include "hw_test_util.hpp"
 
@@ -14,11 +16,15 @@ namespace {
 
 const std::string kSrc = GPM_SOURCE_DIR;
 
-// Registers in memory; a power stage turns on as soon as its enable bit is set.
+// Registers in memory; a power stage turns on as soon as its enable bit is
+// set; a write to the map's latch register copies every actual position to
+// its latched position (unless latching is off: a drive that misses it).
 struct MemoryTransport final : RegisterTransport {
   std::map<std::pair<int, int>, std::uint16_t>* regs;
   const RegisterMap* map;
   bool broken = false;
+  bool latching = true;
+  bool powers_on = true;  // false: a power stage that never reports enabled
   MemoryTransport(std::map<std::pair<int, int>, std::uint16_t>* r, const RegisterMap* m) : regs(r), map(m) {}
   void connect() override {}
   void close() noexcept override {}
@@ -29,8 +35,16 @@ struct MemoryTransport final : RegisterTransport {
   void write(int unit, int address, int count, const std::uint16_t* v) override {
     if (broken) throw HardwareError("memory: broken");
     for (int k = 0; k < count; ++k) (*regs)[{unit, address + k}] = v[k];
+    const bool latch = map->latch && unit == map->latch->unit_id && address <= map->latch->address &&
+                       map->latch->address < address + count;
+    for (const AxisRegisters& a : map->axes) {
+      if (!latch || !latching) continue;
+      (*regs)[{a.unit_id, a.latched_position}] = (*regs)[{a.unit_id, a.actual_position}];
+      (*regs)[{a.unit_id, a.latched_position + 1}] = (*regs)[{a.unit_id, a.actual_position + 1}];
+      (*regs)[{a.unit_id, a.latch_id}] = v[map->latch->address - address];
+    }
     for (const AxisRegisters& a : map->axes) {  // the drive: enabled follows enable
-      const bool on = ((*regs)[{a.unit_id, a.enable.address}] >> a.enable.bit) & 1u;
+      const bool on = powers_on && (((*regs)[{a.unit_id, a.enable.address}] >> a.enable.bit) & 1u);
       auto& st = (*regs)[{a.unit_id, a.enabled.address}];
       st = on ? (st | (1u << a.enabled.bit)) : (st & ~(1u << a.enabled.bit));
     }
@@ -85,6 +99,74 @@ TEST(DriveBackend, TransportFailureEntersError) {
   EXPECT_THROW(drives.read(0.0), HardwareError);
   EXPECT_EQ(drives.state(), LifecycleState::kError);
   EXPECT_EQ(drives.error_message(), "memory: broken");
+}
+
+// Power stages that never report enabled: activation gives up after 1 s on
+// the injected clock (no wall-clock wait) with one error naming it.
+TEST(DriveBackend, EnableTimeoutRunsOnTheInjectedClock) {
+  const RegisterMap map = load_register_map(kSrc + "/hw/examples/register_map_emulator.yaml");
+  std::map<std::pair<int, int>, std::uint16_t> regs;
+  auto t = std::make_unique<MemoryTransport>(&regs, &map);
+  t->powers_on = false;
+  ManualClock clock;
+  DriveBackend drives(map, std::move(t), 0.004, clock);
+  drives.configure();
+  const double t0 = clock.now();
+  try {
+    drives.activate();
+    ADD_FAILURE() << "activated without enabled drives";
+  } catch (const HardwareError& e) {
+    EXPECT_NE(std::string(e.what()).find("did not report enabled within 1 s"), std::string::npos) << e.what();
+  }
+  EXPECT_GE(clock.now() - t0, 1.0);
+  EXPECT_LT(clock.now() - t0, 1.01);
+  EXPECT_GT(clock.waits(), 100);  // it polled on the clock, 2 ms apart
+}
+
+// With a latch the readings are the positions of the latch instant: a drive
+// whose position changes after the latch (the robot moves on while the
+// drives are read one by one) still reads the latched value; a drive that
+// missed the latch (its latch id is not this cycle's) is an error, not a
+// reading of another instant.
+TEST(DriveBackend, ReadsTheLatchedPositionsOfOneInstant) {
+  const RegisterMap map = load_register_map(kSrc + "/hw/examples/register_map_emulator.yaml");
+  ASSERT_TRUE(map.latch.has_value());
+  std::map<std::pair<int, int>, std::uint16_t> regs;
+  auto set_position = [&](int axis, double theta) {
+    const auto c = split32(theta_to_counts(map.axes[axis], theta), map.word_order);
+    regs[{map.axes[axis].unit_id, map.axes[axis].actual_position}] = c[0];
+    regs[{map.axes[axis].unit_id, map.axes[axis].actual_position + 1}] = c[1];
+  };
+  for (int i = 0; i < 3; ++i) set_position(i, 1.0 + i);
+  auto t = std::make_unique<MemoryTransport>(&regs, &map);
+  MemoryTransport* raw = t.get();
+  DriveBackend drives(map, std::move(t), 0.004);
+  drives.configure();
+  EXPECT_NEAR(drives.last_state().theta_m[2], 3.0, 1e-4);
+  // The robot moves on between the latch and the reads: the reads give the latch instant.
+  struct MovingTransport final : RegisterTransport {
+    MemoryTransport* inner;
+    std::function<void()> after_latch;
+    explicit MovingTransport(MemoryTransport* m) : inner(m) {}
+    void connect() override {}
+    void close() noexcept override {}
+    void read(int u, int a, int n, std::uint16_t* out) override { inner->read(u, a, n, out); }
+    void write(int u, int a, int n, const std::uint16_t* v) override {
+      inner->write(u, a, n, v);
+      const LatchRegister& l = *inner->map->latch;
+      if (u == l.unit_id && a <= l.address && l.address < a + n) after_latch();
+    }
+    std::string describe() const override { return "moving"; }
+  };
+  auto moving = std::make_unique<MovingTransport>(raw);
+  moving->after_latch = [&] { for (int i = 0; i < 3; ++i) set_position(i, 1.5 + i); };
+  DriveBackend latched(map, std::move(moving), 0.004);
+  for (int i = 0; i < 3; ++i) set_position(i, 1.0 + i);
+  latched.configure();
+  for (int i = 0; i < 3; ++i) EXPECT_NEAR(latched.last_state().theta_m[i], 1.0 + i, 1e-4) << i;
+  // A drive that misses the latch: its old latch id is refused.
+  raw->latching = false;
+  EXPECT_THROW(drives.read(0.004), HardwareError);
 }
 
 }  // namespace

@@ -1,8 +1,11 @@
 // Tests of hw/backends/drive_emulator.cpp: loopback-only ephemeral ports, power stage
-// on a rising enable edge, off on the drive-side comms watchdog and on a fault.
+// on a rising enable edge, off on the drive-side comms watchdog and on a fault;
+// a malformed request or a client that never reads stalls no other client.
+#include <cerrno>
 #include <functional>
 
 #include <arpa/inet.h>
+#include <poll.h>
 #include <sys/socket.h>
 #include <unistd.h>
 #include <netinet/in.h>
@@ -91,6 +94,43 @@ TEST(DriveEmulator, AMalformedRequestDoesNotStallTheServer) {
   ASSERT_EQ(::recv(fd, reply, sizeof reply, 0), 9);  // the exception reply
   EXPECT_EQ(reply[7], 0x55 | 0x80);
   EXPECT_EQ(reply[8], 1);  // illegal function
+  ::close(fd);
+}
+
+// A client that sends requests but never reads the replies (its receive
+// buffer small, so it fills at once): the server drops it once a reply cannot
+// be sent, and another client is still served within its response timeout.
+TEST(DriveEmulator, AClientThatNeverReadsDoesNotStallTheServer) {
+  auto emu = make();
+  const int port = emu->start();
+  const int fd = ::socket(AF_INET, SOCK_STREAM, 0);
+  const int small = 1024;
+  ::setsockopt(fd, SOL_SOCKET, SO_RCVBUF, &small, sizeof small);
+  sockaddr_in a{};
+  a.sin_family = AF_INET;
+  a.sin_port = htons(static_cast<std::uint16_t>(port));
+  a.sin_addr.s_addr = htonl(INADDR_LOOPBACK);
+  ASSERT_EQ(::connect(fd, reinterpret_cast<sockaddr*>(&a), sizeof a), 0);
+  // Read 21 registers of unit 1 (a 51-byte reply each), over and over,
+  // never reading: until the server takes no more for 1 s (its replies fill
+  // every buffer: without a send timeout it would now be stuck) or drops us.
+  const std::uint8_t read21[] = {0, 1, 0, 0, 0, 6, 1, 3, 0, 0, 0, 21};
+  long sent = 0;
+  for (; sent < 2000000; ++sent) {
+    if (::send(fd, read21, sizeof read21, MSG_DONTWAIT | MSG_NOSIGNAL) == static_cast<ssize_t>(sizeof read21))
+      continue;
+    if (errno != EAGAIN && errno != EWOULDBLOCK) break;  // dropped by the server
+    pollfd p{fd, POLLOUT, 0};
+    if (::poll(&p, 1, 1000) <= 0) break;  // the server stopped reading
+    --sent;
+  }
+  std::printf("sent %ld requests without reading a reply\n", sent);
+  EXPECT_GT(sent, 100);
+  ModbusTransport t("127.0.0.1", port, 2.0);
+  t.connect();
+  std::uint16_t st = 0;
+  EXPECT_NO_THROW(t.read(1, 10, 1, &st));
+  EXPECT_EQ(emu->error(), "");
   ::close(fd);
 }
 

@@ -29,6 +29,20 @@ TEST(HardwareConfig, ExamplesLoad) {
   EXPECT_EQ(m.backend, "modbus");
   EXPECT_EQ(m.register_map->port, 1502);
   EXPECT_EQ(make_hardware(m)->describe(), "supervised modbus-tcp 127.0.0.1:1502");
+  EXPECT_EQ(t.dither_mm, 0.25);
+  EXPECT_EQ(m.dither_mm, 0.25);
+}
+
+TEST(HardwareConfig, DitherOutsideZeroToFiveMmIsRefused) {
+  const test::TempDir dir("cfg4");
+  std::string text = test::read_text(kSrc + "/hw/examples/twin.yaml");
+  for (const char* mm : {"-0.1", "5.5", "nan"}) {
+    std::string t = text;
+    t.replace(t.find("dither_mm: 0.25"), 15, std::string("dither_mm: ") + mm);
+    test::write_text(dir / "hw.yaml", t);
+    const std::string e = error_of((dir / "hw.yaml").string());
+    EXPECT_NE(e.find("dither_mm"), std::string::npos) << mm << ": " << e;
+  }
 }
 
 TEST(HardwareConfig, MissingSafetyIsRefused) {

@@ -25,6 +25,10 @@ TEST(RegisterMap, ExamplesLoadAndRoundTrip) {
   EXPECT_EQ(m.axes[2].unit_id, 3);
   EXPECT_EQ(m.axes[0].actual_position, 12);
   EXPECT_EQ(m.axes[1].fault.bit, 3);
+  ASSERT_TRUE(m.latch.has_value());
+  EXPECT_EQ(m.latch->address, 30);
+  EXPECT_EQ(m.axes[2].latched_position, 18);
+  EXPECT_EQ(m.axes[2].latch_id, 20);
   EXPECT_EQ(parse_register_map(register_map_to_yaml(m), "x"), m);
   EXPECT_NO_THROW(load_register_map(kSrc + "/hw/examples/register_map_example_drive.yaml"));
 }
@@ -88,6 +92,22 @@ TEST(RegisterMap, BroadcastAddressesAndSharedRegistersAreRefused) {
   const std::string shared = error_of(replaced("unit_id: 2", "unit_id: 1"));
   EXPECT_NE(shared.find("shares unit_id 1 and register"), std::string::npos) << shared;
   EXPECT_NE(shared.find("axes[0]"), std::string::npos) << shared;
+}
+
+// A latch needs its trigger and, on every axis, the latched position and its
+// id; a trigger register already used on that unit is refused.
+TEST(RegisterMap, LatchNeedsAllItsPartsAndItsOwnRegister) {
+  const std::string text = test::read_text(kSrc + "/hw/examples/register_map_emulator.yaml");
+  std::string no_trigger = text;
+  no_trigger.erase(no_trigger.find("latch: {unit_id: 1, register: 30}"), 33);
+  EXPECT_NE(error_of(no_trigger).find("latch"), std::string::npos) << error_of(no_trigger);
+  std::string one_axis_missing = text;
+  one_axis_missing.erase(one_axis_missing.rfind("    latch_id: 20"), 16);
+  EXPECT_NE(error_of(one_axis_missing).find("axes[2]"), std::string::npos) << error_of(one_axis_missing);
+  std::string taken = text;
+  taken.replace(taken.find("register: 30}"), 12, "register: 12");
+  EXPECT_NE(error_of(taken).find("latch.register"), std::string::npos) << error_of(taken);
+  EXPECT_EQ(error_of(text), "");
 }
 
 }  // namespace

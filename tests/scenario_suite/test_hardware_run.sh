@@ -1,8 +1,8 @@
 #!/usr/bin/env bash
 # gpm run with --hardware: the hardware_twin scenario sampled through Modbus
 # TCP and gpm-drive-emulator (loopback, ephemeral port) gives the same
-# verdict as on the in-process twin backend, and samples within two encoder
-# counts of it (17-bit). A run whose connection drops keeps its samples and
+# verdict as on the in-process twin backend, and samples within one encoder
+# count of it (17-bit; measured 0.27). A run whose connection drops keeps its samples and
 # says the command that goes on (--resume); that command finishes the run. A
 # signal disables the drives, keeps the samples and exits 130. A
 # bad-input run leaves no samples.csv. Everything happens in a fresh temporary
@@ -41,7 +41,8 @@ grep -q "through modbus backend" "$tmp/modbus.out" && ok || bad "modbus run says
 grep -q "verdict    PASSED" "$tmp/modbus.out" && ok || bad "modbus verdict"
 [[ -f "$tmp/modbus/report.html" && -f "$tmp/modbus/calibration.yaml" ]] && ok || bad "modbus outputs"
 
-# Same poses, same twin behind both: readings agree within two counts.
+# Same poses, same twin behind both: readings agree within one count (each sample
+# is averaged along its dither figure: measured 0.27 counts).
 count=$(python3 - "$tmp/twin/samples.csv" "$tmp/modbus/samples.csv" <<'PY'
 import csv, math, sys
 a = list(csv.DictReader(open(sys.argv[1]))); b = list(csv.DictReader(open(sys.argv[2])))
@@ -56,7 +57,7 @@ print(f"{worst:.3f}")
 PY
 )
 echo "largest twin/modbus difference: $count counts"
-awk -v c="$count" 'BEGIN { exit !(c != "" && c <= 2.0) }' && ok || bad "samples differ by $count counts"
+awk -v c="$count" 'BEGIN { exit !(c != "" && c <= 1.0) }' && ok || bad "samples differ by $count counts"
 stop_emulator
 
 # The connection drops after a few samples: exit 1, samples kept, the command that goes on.
