@@ -19,21 +19,30 @@ bad() { echo "FAIL $1"; fail=$((fail+1)); }
 
 # Starts the emulator (extra flags: faults) and writes $tmp/map.yaml for its port.
 start_emulator() {
+  local flags=("$@")  # the drive-side comms watchdog at 2 s unless given (see the hardware file below)
+  [[ " $* " == *" --comms-watchdog "* ]] || flags+=(--comms-watchdog 2)
   rm -f "$tmp/emu.fifo"; mkfifo "$tmp/emu.fifo"
   "$EMU" --map "$SRC/hw/examples/register_map_emulator.yaml" --scenario "$SRC/tests/fixtures/twin_disc.yaml" \
-    --port 0 "$@" >"$tmp/emu.fifo" 2>"$tmp/emu.err" &
+    --port 0 "${flags[@]}" >"$tmp/emu.fifo" 2>"$tmp/emu.err" &
   emu_pid=$!
   local line=""
   read -r -t 60 line <"$tmp/emu.fifo" || { bad "emulator did not start"; cat "$tmp/emu.err"; }
   port=${line##*:}
-  sed "s/port: 1502/port: $port/" "$SRC/hw/examples/register_map_emulator.yaml" >"$tmp/map.yaml"
+  sed -e "s/port: 1502/port: $port/" -e "s/response_timeout: [0-9.]*/response_timeout: 0.5/" \
+    "$SRC/hw/examples/register_map_emulator.yaml" >"$tmp/map.yaml"
 }
 
 "$GPM" run "$SRC/scenarios/hardware_twin.yaml" -o "$tmp/twin" --quiet >"$tmp/twin.out" 2>&1 && ok || { bad "twin run"; cat "$tmp/twin.out"; }
 
 start_emulator
+# The example's real-time limits (50-100 ms) are for a machine that schedules
+# the control loop; a CI host shares its cores with other tests and stalls a
+# process for a few hundred ms at times, so this copy allows 0.5-2 s (what is
+# tested here is the function, not the host's latency).
 sed -e "s|^controller: .*|controller: $SRC/models/gpm2002.yaml|" \
-    -e "s|^  register_map: .*|  register_map: $tmp/map.yaml|" "$SRC/hw/examples/modbus_emulator.yaml" >"$tmp/modbus.yaml"
+    -e "s|^  register_map: .*|  register_map: $tmp/map.yaml|" \
+    -e "s|^  watchdog_hold: [0-9.]*|  watchdog_hold: 0.5|" -e "s|^  watchdog_disable: [0-9.]*|  watchdog_disable: 2|" \
+    -e "s|^  comms_timeout: [0-9.]*|  comms_timeout: 1|" "$SRC/hw/examples/modbus_emulator.yaml" >"$tmp/modbus.yaml"
 
 "$GPM" run "$SRC/scenarios/hardware_twin.yaml" --hardware "$tmp/modbus.yaml" -o "$tmp/modbus" --quiet \
   >"$tmp/modbus.out" 2>&1 && ok || { bad "modbus run"; cat "$tmp/modbus.out"; }
