@@ -5,6 +5,7 @@
 #include <cmath>
 #include <functional>
 #include <limits>
+#include <optional>
 
 #include <Eigen/Dense>
 #include <fmt/format.h>
@@ -39,23 +40,46 @@ std::vector<int> nuisance_columns(const MotionModel& m) {
   return cols;
 }
 
-// Clearance regressors (calib/motion_correction.hpp): per sample and chain,
-// sign(T_i) / (la_i sin(theta_b_i - theta_a_i)) (rad/mm), 0 where |T_i| is
-// below tension_min_N (its sign uncertain), at geometry g with the readings
-// corrected by the current nuisance values (corrected); tau_t: the torques
-// transmitted to the active links (calib/passive_tension.hpp).
-std::vector<Eigen::Vector3d> clearance_regressors(const Geometry& g, const std::vector<Eigen::Vector3d>& corrected,
-                                                  const std::vector<Eigen::Vector3d>& tau_t, double tension_min_N) {
-  std::vector<Eigen::Vector3d> out(corrected.size(), Eigen::Vector3d::Zero());
-  for (std::size_t j = 0; j < corrected.size(); ++j) {
+// What the clearance needs of one sample (calib/passive_tension.hpp): the
+// axial force T_i of each passive link (N) and the reading change per mm of
+// its length, 1 / (la_i sin(theta_b_i - theta_a_i)) (rad/mm).
+struct PassiveForces {
+  Eigen::Vector3d tension, per_mm;
+};
+
+// PassiveForces of each sample at geometry g with readings theta_m (rad) and
+// the torques tau_t transmitted to the active links; nullopt where the
+// forward kinematics fails.
+std::vector<std::optional<PassiveForces>> passive_forces(const Geometry& g, const std::vector<Eigen::Vector3d>& theta_m,
+                                                         const std::vector<Eigen::Vector3d>& tau_t) {
+  std::vector<std::optional<PassiveForces>> out(theta_m.size());
+  for (std::size_t j = 0; j < theta_m.size(); ++j) {
     Eigen::Vector3d theta_a;
-    for (int i = 0; i < 3; ++i) theta_a[i] = corrected[j][i] + g.dth_(i);
+    for (int i = 0; i < 3; ++i) theta_a[i] = theta_m[j][i] + g.dth_(i);
     const std::optional<ForwardResult> fk = forward_kinematics(g, theta_a);
     if (!fk) continue;
+    PassiveForces f;
     for (int i = 0; i < 3; ++i) {
-      const double tension = passive_link_tension(g, i, theta_a[i], fk->theta_b[i], tau_t[j][i]);
+      f.tension[i] = passive_link_tension(g, i, theta_a[i], fk->theta_b[i], tau_t[j][i]);
+      f.per_mm[i] = reading_per_passive_length(g, i, theta_a[i], fk->theta_b[i]);
+    }
+    out[j] = f;
+  }
+  return out;
+}
+
+// Clearance regressors (calib/motion_correction.hpp): per sample and chain,
+// sign(T_i) / (la_i sin(theta_b_i - theta_a_i)) (rad/mm), 0 where |T_i| is
+// below tension_min_N (its sign uncertain) or the sample's forces are unknown.
+std::vector<Eigen::Vector3d> clearance_regressors(const std::vector<std::optional<PassiveForces>>& forces,
+                                                  double tension_min_N) {
+  std::vector<Eigen::Vector3d> out(forces.size(), Eigen::Vector3d::Zero());
+  for (std::size_t j = 0; j < forces.size(); ++j) {
+    if (!forces[j]) continue;
+    for (int i = 0; i < 3; ++i) {
+      const double tension = forces[j]->tension[i];
       if (!(std::abs(tension) >= tension_min_N)) continue;
-      out[j][i] = (tension > 0.0 ? 1.0 : -1.0) * reading_per_passive_length(g, i, theta_a[i], fk->theta_b[i]);
+      out[j][i] = (tension > 0.0 ? 1.0 : -1.0) * forces[j]->per_mm[i];
     }
   }
   return out;
@@ -63,20 +87,17 @@ std::vector<Eigen::Vector3d> clearance_regressors(const Geometry& g, const std::
 
 // The force threshold calibrate_in_motion uses (MotionModel::min_kept_share):
 // model.tension_min_N, or the weakest force of the min_kept_share strongest
-// samples when fewer samples clear it; at geometry g, readings theta_m.
-double effective_tension_min(const MotionModel& model, const Geometry& g, const std::vector<Eigen::Vector3d>& theta_m,
-                             const std::vector<Eigen::Vector3d>& tau_t) {
-  if (!model.clearance || !model.drop_uncertain || theta_m.empty()) return model.tension_min_N;
-  std::vector<double> weakest(theta_m.size(), 0.0);  // min_i |T_i| per sample
-  for (std::size_t j = 0; j < theta_m.size(); ++j) {
-    Eigen::Vector3d theta_a;
-    for (int i = 0; i < 3; ++i) theta_a[i] = theta_m[j][i] + g.dth_(i);
-    const std::optional<ForwardResult> fk = forward_kinematics(g, theta_a);
-    if (!fk) continue;
-    double w = std::numeric_limits<double>::infinity();
-    for (int i = 0; i < 3; ++i) w = std::min(w, std::abs(passive_link_tension(g, i, theta_a[i], fk->theta_b[i], tau_t[j][i])));
-    weakest[j] = w;
-  }
+// samples when fewer samples clear it; from the samples' forces (none: the
+// model's threshold).
+double effective_tension_min(const MotionModel& model, const std::vector<std::optional<PassiveForces>>& forces) {
+  if (!model.clearance || !model.drop_uncertain || forces.empty()) return model.tension_min_N;
+  std::vector<double> weakest(forces.size(), 0.0);  // min_i |T_i| per sample
+  for (std::size_t j = 0; j < forces.size(); ++j)
+    if (forces[j]) {
+      double w = std::numeric_limits<double>::infinity();
+      for (int i = 0; i < 3; ++i) w = std::min(w, std::abs(forces[j]->tension[i]));
+      weakest[j] = w;
+    }
   const auto want = static_cast<std::size_t>(std::ceil(std::clamp(model.min_kept_share, 0.0, 1.0) * static_cast<double>(weakest.size())));
   const auto above = static_cast<std::size_t>(std::count_if(weakest.begin(), weakest.end(), [&](double w) { return w >= model.tension_min_N; }));
   if (want == 0 || above >= want) return model.tension_min_N;
@@ -199,9 +220,11 @@ MotionFit calibrate_in_motion(const Problem& problem, const std::vector<Eigen::V
     throw InputError(fmt::format("calibration in motion: {} readings but {} joint accelerations", n, alpha.size()));
   // Clearance regressors at the start geometry, recomputed at every pass.
   const std::vector<Eigen::Vector3d> tau_t = transmitted_torques(model, omega, tau, alpha);
-  const double tension_min = effective_tension_min(model, problem.start, problem.theta_m, tau_t);
+  std::vector<std::optional<PassiveForces>> forces;
+  if (model.clearance) forces = passive_forces(problem.start, problem.theta_m, tau_t);
+  const double tension_min = effective_tension_min(model, forces);
   std::vector<Eigen::Vector3d> clr(n, Eigen::Vector3d::Zero());
-  if (model.clearance) clr = clearance_regressors(problem.start, problem.theta_m, tau_t, tension_min);
+  if (model.clearance) clr = clearance_regressors(forces, tension_min);
   // Samples left out: the leading ones, and (with the clearance) those in
   // which some chain's force sign is uncertain; the fit runs on the rest.
   std::vector<std::size_t> kept = kept_samples(model, clr);
@@ -278,7 +301,7 @@ MotionFit calibrate_in_motion(const Problem& problem, const std::vector<Eigen::V
   };
   for (fit.passes = 1; fit.passes <= std::max(1, model.max_passes); ++fit.passes) {
     if (model.clearance && fit.passes > 1)
-      clr = clearance_regressors(p.start, twist_corrected(), tau_t, tension_min);
+      clr = clearance_regressors(passive_forces(p.start, twist_corrected(), tau_t), tension_min);
     p.theta_m = corrected();
     fit.result = calibrate_lm(p, lm);
     keep_iterations(fit.result.lm_iterations);
@@ -362,8 +385,10 @@ std::array<double, kNumParams> motion_crb(const Geometry& truth, const FreeMask&
                                  omega.size(), tau.size(), alpha.size()));
   const std::vector<Eigen::Vector3d> tau_t = transmitted_torques(model, omega, tau, alpha);
   std::vector<Eigen::Vector3d> clr(n, Eigen::Vector3d::Zero());
-  if (model.clearance)
-    clr = clearance_regressors(truth, theta_m, tau_t, effective_tension_min(model, truth, theta_m, tau_t));
+  if (model.clearance) {
+    const std::vector<std::optional<PassiveForces>> forces = passive_forces(truth, theta_m, tau_t);
+    clr = clearance_regressors(forces, effective_tension_min(model, forces));
+  }
   std::vector<Eigen::Vector3d> th, w, t, c;
   for (std::size_t j : kept_samples(model, clr)) {
     th.push_back(theta_m[j]);
