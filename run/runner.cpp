@@ -54,6 +54,21 @@ double effective_sigma(const sim::Scenario& s) {
   return std::sqrt(noise * noise / n_avg + q * q / 12.0);
 }
 
+// A Cramer-Rao bound that bound() computes at unit reading noise, scaled to
+// sigma (rad; 0 for ideal encoders); NaN in every slot when the information
+// is singular (reported as unidentifiable).
+template <class Bound>
+std::array<double, kNumParams> scaled_bound(Bound&& bound, double sigma) {
+  std::array<double, kNumParams> out;
+  try {
+    out = bound();
+    for (double& v : out) v *= sigma;
+  } catch (const std::exception&) {
+    out.fill(NAN);
+  }
+  return out;
+}
+
 }  // namespace
 
 namespace {
@@ -201,13 +216,8 @@ RunOutcome run_scenario(const RunSpec& spec_in, const std::string& scenario_file
 
   out.crb_sigma_rad = spec.calibration.sigma.value_or(effective_sigma(spec.sim));
   if (problem.free.count() <= noiseless.size()) {
-    try {
-      // The bound scales with sigma: computed at 1 rad and scaled (0 for ideal encoders).
-      out.crb = calib::crb_sigma(actual.geometry, problem.free, noiseless, 1.0);
-      for (double& v : out.crb) v *= out.crb_sigma_rad;
-    } catch (const std::exception&) {
-      out.crb.fill(NAN);  // singular information: reported as unidentifiable below
-    }
+    out.crb = scaled_bound([&] { return calib::crb_sigma(actual.geometry, problem.free, noiseless, 1.0); },
+                           out.crb_sigma_rad);
   } else {
     out.crb.fill(NAN);
   }
@@ -293,22 +303,15 @@ RunOutcome run_scenario(const RunSpec& spec_in, const std::string& scenario_file
       if (motion.clearance) {
         // With the clearance, the bound of the joint estimation (geometry and
         // nuisance values, the samples the procedure keeps at the truth).
-        try {
-          out.crb = calib::motion_crb(actual.geometry, problem.free, noiseless, omega, tau, motion, alpha, 1.0);
-          for (double& v : out.crb) v *= out.crb_sigma_rad;
-        } catch (const std::exception&) {
-          out.crb.fill(NAN);
-        }
+        out.crb = scaled_bound(
+            [&] { return calib::motion_crb(actual.geometry, problem.free, noiseless, omega, tau, motion, alpha, 1.0); },
+            out.crb_sigma_rad);
       } else if (fit.kept.size() < noiseless.size()) {
         // The bound of the samples the fit used.
         std::vector<Eigen::Vector3d> kept_noiseless;
         for (std::size_t j : fit.kept) kept_noiseless.push_back(noiseless[j]);
-        try {
-          out.crb = calib::crb_sigma(actual.geometry, problem.free, kept_noiseless, 1.0);
-          for (double& v : out.crb) v *= out.crb_sigma_rad;
-        } catch (const std::exception&) {
-          out.crb.fill(NAN);
-        }
+        out.crb = scaled_bound([&] { return calib::crb_sigma(actual.geometry, problem.free, kept_noiseless, 1.0); },
+                               out.crb_sigma_rad);
       }
       if (!friction_note.empty() && motion.clearance) out.calibration->notes.push_back(friction_note);
       if (!clearance_dropped.empty()) out.calibration->notes.push_back(clearance_dropped);
