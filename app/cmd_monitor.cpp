@@ -59,6 +59,9 @@ void add_monitor(CLI::App& app) {
       }
     scenario::MonitorOutcome o;
     const scenario::MonitorExpect expect = scenario::load_monitor_expect(opt->scenario);  // bad keys before moving
+    // What the monitor assumes of the readings: the scenario's statement
+    // (`monitor:`; a calibration result file carries no reading model).
+    const scenario::MonitorReadingModel reading = scenario::load_monitor_reading_model(opt->scenario);
     // Progress on a terminal only (a log file gets the summary alone).
     const bool tty = isatty(STDERR_FILENO) != 0;
     const auto progress = [tty](double t, double T) {
@@ -66,12 +69,12 @@ void add_monitor(CLI::App& app) {
     };
     try {
       if (opt->hardware.empty()) {
-        o = scenario::run_monitor(s, controller, prior, progress);
+        o = scenario::run_monitor(s, controller, prior, reading, progress);
       } else {
         // A robot that moves: drives disabled on SIGINT/SIGTERM/SIGHUP (exit 130).
         const hw::StopOnSignal signals;
         try {
-          o = scenario::run_monitor_hardware(s, opt->hardware, controller, prior, progress, signals.flag());
+          o = scenario::run_monitor_hardware(s, opt->hardware, controller, prior, reading, progress, signals.flag());
         } catch (const hw::Interrupted& e) {
           if (tty) std::fprintf(stderr, "\n");
           std::fprintf(stderr, "gpm monitor: %s: %s (drives disabled; nothing written)\n", hw::StopOnSignal::signal_name(), e.what());

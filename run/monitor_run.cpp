@@ -1,6 +1,7 @@
 // `gpm monitor` (run/monitor_run.hpp).
 #include "run/monitor_run.hpp"
 
+#include <algorithm>
 #include <chrono>
 #include <memory>
 #include <numbers>
@@ -82,29 +83,25 @@ std::string csv_field(const std::string& s) {
 
 }  // namespace
 
-void apply_reading_model(calib::monitor::MonitorSettings& ms, const sim::TwinConfig& twin,
-                         const std::optional<std::array<double, 5>>& motion_nu) {
-  const sim::Effects& fx = twin.effects;
-  for (std::size_t i = 0; i < 3; ++i) {
-    ms.skew_s[i] = fx.encoder_skew_s[i];
-    ms.compliance_rad_per_Nm[i] = fx.mjcf.compliance_rad_per_Nm[i];
-    // The reducer's friction and damping sit on the rotor, ahead of the
-    // compliance (models/mjcf.cpp): only with a compliance does it matter.
-    ms.coulomb_Nm[i] = fx.mjcf.coulomb_Nm[i];
-    ms.viscous_Nm_s[i] = twin.mjcf.active_damping + fx.mjcf.viscous_Nm_s[i];
-    ms.cyclic_rad[i] = fx.encoder_cyclic_rad[i];
-    ms.clearance_mm[i] = fx.mjcf.clearance_m[i] / kMetresPerMm;
-  }
-  if (motion_nu) {
-    // s2, s3 relative to encoder 1, then c1..c3 (calib/motion_correction.hpp).
-    ms.skew_s = {0.0, (*motion_nu)[0], (*motion_nu)[1]};
-    ms.compliance_rad_per_Nm = {(*motion_nu)[2], (*motion_nu)[3], (*motion_nu)[4]};
-  }
+void apply_reading_model(calib::monitor::MonitorSettings& ms, const MonitorReadingModel& reading) {
+  ms.skew_s = reading.skew_s;
+  ms.compliance_rad_per_Nm = reading.compliance_rad_per_Nm;
+  // The reducer's friction and damping sit on the rotor, ahead of the
+  // compliance: only with a compliance does it matter.
+  ms.coulomb_Nm = reading.drive_friction.coulomb_Nm;
+  ms.viscous_Nm_s = reading.drive_friction.viscous_Nm_s;
+  ms.cyclic_rad = reading.encoder_cyclic_rad;
+  ms.clearance_mm = reading.clearance_mm;
+  // A uniform expansion of links and base plate is a similarity, which the
+  // encoders cannot see (and the monitor need not track); what they see is
+  // the links growing relative to the base, which the monitor's growth state
+  // follows on this time constant.
+  ms.thermal_tau_s = reading.thermal_time_constant_s;
 }
 
 MonitorOutcome run_monitor(const sim::Scenario& s, const Robot& controller,
-                           const std::array<double, kNumParams>& prior_sigma, const MonitorProgress& progress,
-                           const std::optional<std::array<double, 5>>& motion_nu) {
+                           const std::array<double, kNumParams>& prior_sigma, const MonitorReadingModel& reading,
+                           const MonitorProgress& progress) {
   namespace mon = calib::monitor;
   const auto wall0 = std::chrono::steady_clock::now();
   if (!s.operation)
@@ -136,12 +133,8 @@ MonitorOutcome run_monitor(const sim::Scenario& s, const Robot& controller,
   // At most 200 samples per second whatever the servo rate (the independence
   // gate of calib/monitor/README.md: closer samples share quantisation errors).
   ms.decimation = std::max(1, static_cast<int>(std::lround(ms.cycle_hz / 200.0)));
-  // A uniform expansion of links and base plate is a similarity, which the
-  // encoders cannot see (and the monitor need not track); what they see is
-  // the links growing relative to the base, which the monitor's growth state
-  // follows on its own time constant.
-  if (s.twin.effects.thermal.on()) ms.thermal_tau_s = s.twin.effects.thermal.time_constant_s;
-  apply_reading_model(ms, s.twin, motion_nu);
+  apply_reading_model(ms, reading);
+  out.reading = reading;
   out.model = mon::make_monitor_model(ms);
   mon::MonitorData md = mon::make_monitor_data(out.model);
 
@@ -208,6 +201,30 @@ MonitorOutcome run_monitor(const sim::Scenario& s, const Robot& controller,
   return out;
 }
 
+MonitorReadingModel reading_model_after_calibration(const RunOutcome& run) {
+  MonitorReadingModel m = run.spec.monitor;  // the statement
+  if (!run.calibration) return m;
+  // An estimate has a positive, finite 1-sigma (0: no motion corrections were
+  // fitted; NaN: not estimated, e.g. the compliance of a torque-off joint).
+  const auto estimated = [&](std::size_t k) {
+    const double sd = run.motion_nu_sigma[k];
+    return std::isfinite(sd) && sd > 0.0;
+  };
+  // s2, s3 relative to encoder 1, then c1..c3 (calib/motion_correction.hpp).
+  if (estimated(0) || estimated(1)) m.skew_s = {0.0, run.motion_nu[0], run.motion_nu[1]};
+  for (std::size_t i = 0; i < 3; ++i)
+    if (estimated(2 + i)) m.compliance_rad_per_Nm[i] = run.motion_nu[2 + i];
+  // The passive link acts as lb_i + d_i sign(T_i) in the calibration and as
+  // lb_i + 2 c_i sign(T_i) in the monitor (a play fitted below 0 is none).
+  if (run.joint_play_mm)
+    for (std::size_t i = 0; i < 3; ++i) m.clearance_mm[i] = std::max(0.0, 0.5 * (*run.joint_play_mm)[i]);
+  if (run.drive_friction_fitted) {
+    m.drive_friction.coulomb_Nm = run.drive_friction_fitted->coulomb_Nm;
+    m.drive_friction.viscous_Nm_s = run.drive_friction_fitted->viscous_Nm_s;
+  }
+  return m;
+}
+
 std::optional<MonitorOutcome> monitor_after_calibration(const RunOutcome& run) {
   const sim::Scenario& s = run.spec.sim;
   if (!s.operation || run.spec.hardware) return std::nullopt;
@@ -218,14 +235,12 @@ std::optional<MonitorOutcome> monitor_after_calibration(const RunOutcome& run) {
       const double sd = run.calibration->sigma[static_cast<std::size_t>(k)];
       if (std::isfinite(sd) && sd > 0.0) prior[static_cast<std::size_t>(k)] = sd;
     }
-  std::optional<std::array<double, 5>> nu;
-  if (run.calibration && run.in_motion) nu = run.motion_nu;
-  return run_monitor(s, run.calibrated, prior, {}, nu);
+  return run_monitor(s, run.calibrated, prior, reading_model_after_calibration(run));
 }
 
 MonitorOutcome run_monitor_hardware(const sim::Scenario& s, const std::string& hardware_file, const Robot& controller,
-                                    const std::array<double, kNumParams>& prior_sigma, const MonitorProgress& progress,
-                                    const std::atomic<bool>* stop) {
+                                    const std::array<double, kNumParams>& prior_sigma, const MonitorReadingModel& reading,
+                                    const MonitorProgress& progress, const std::atomic<bool>* stop) {
   namespace mon = calib::monitor;
   const auto wall0 = std::chrono::steady_clock::now();
   if (!s.operation)
@@ -266,8 +281,8 @@ MonitorOutcome run_monitor_hardware(const sim::Scenario& s, const std::string& h
   ms.noise_rad = s.twin.encoder.noise_rad;
   ms.cycle_hz = config.rate_hz;
   ms.decimation = std::max(1, static_cast<int>(std::lround(ms.cycle_hz / 200.0)));
-  if (s.twin.effects.thermal.on()) ms.thermal_tau_s = s.twin.effects.thermal.time_constant_s;
-  apply_reading_model(ms, s.twin, std::nullopt);
+  apply_reading_model(ms, reading);
+  out.reading = reading;
   out.model = mon::make_monitor_model(ms);
   auto md = std::make_unique<mon::MonitorData>(mon::make_monitor_data(out.model));
 

@@ -16,6 +16,7 @@
 #include "calib/monitor/monitor.hpp"
 #include "models/robot.hpp"
 #include "report/report_document.hpp"
+#include "run/run_spec.hpp"
 #include "sim/scenario.hpp"
 
 namespace gpm::scenario {
@@ -50,6 +51,7 @@ struct MonitorOutcome {
   sim::Scenario scenario;
   Robot controller;  // the model the monitor starts from
   Robot actual;      // the actual mechanism at t = 0
+  MonitorReadingModel reading;  // what the monitor assumed of the readings
   calib::monitor::MonitorModel model;
   std::vector<MonitorAlarm> alarms;
   std::vector<MonitorEstimateRow> estimates;
@@ -75,21 +77,22 @@ using MonitorProgress = std::function<void(double t_s, double duration_s)>;
 
 // Runs the scenario's operation on the twin with the monitor in the loop.
 // controller: the model the robot runs (and the monitor starts from);
-// prior_sigma: its 1-sigma per parameter (NaN: the monitor's defaults).
+// prior_sigma: its 1-sigma per parameter (NaN: the monitor's defaults);
+// reading: what the monitor assumes of the readings (the scenario's
+// `monitor:` statement, or reading_model_after_calibration); the twin's
+// `effects:` are the simulated truth and are not read for it.
 // Throws InputError when the scenario has no operation, or when an event
 // leaves a mechanism that cannot reach the operation path.
-// motion_nu: latch skew s2, s3 (s) and compliance c1..c3 (rad/N m) estimated
-// by a calibration in motion (calib/motion_correction.hpp); without it the
-// monitor takes the values the scenario's effects state.
 MonitorOutcome run_monitor(const sim::Scenario& scenario, const Robot& controller,
-                           const std::array<double, kNumParams>& prior_sigma, const MonitorProgress& progress = {},
-                           const std::optional<std::array<double, 5>>& motion_nu = std::nullopt);
+                           const std::array<double, kNumParams>& prior_sigma, const MonitorReadingModel& reading,
+                           const MonitorProgress& progress = {});
 
 // The same through hardware (hw/: the twin backend, or the drives): the file
 // hardware_file (hw/hardware_config.hpp) chooses the backend and its rate;
 // the robot moves to the start of the operation path, then follows it for
 // duration_s under the hardware's safety supervisor while the monitor reads
-// every cycle (readings, speeds and torques as the drives report them). The
+// every cycle (readings, speeds and torques as the drives report them) with
+// the reading model `reading`. The
 // actual mechanism is unknown here: detections and final errors are left
 // out (truth_known false). stop (optional) is polled every cycle: a request
 // disables the drives and throws hw::Interrupted with what was monitored so far
@@ -97,14 +100,12 @@ MonitorOutcome run_monitor(const sim::Scenario& scenario, const Robot& controlle
 // or a path outside the safety limits, before anything moves.
 MonitorOutcome run_monitor_hardware(const sim::Scenario& scenario, const std::string& hardware_file,
                                     const Robot& controller, const std::array<double, kNumParams>& prior_sigma,
-                                    const MonitorProgress& progress = {}, const std::atomic<bool>* stop = nullptr);
+                                    const MonitorReadingModel& reading, const MonitorProgress& progress = {},
+                                    const std::atomic<bool>* stop = nullptr);
 
-// The monitor's reading model from the twin's stated effects: the motion
-// corrections (skew, compliance; from motion_nu when given; the friction on
-// the rotor) and the stated magnitudes of the cyclic encoder error and the
-// joint clearance.
-void apply_reading_model(calib::monitor::MonitorSettings& settings, const sim::TwinConfig& twin,
-                         const std::optional<std::array<double, 5>>& motion_nu);
+// Sets the monitor's reading model (skew, compliance, motor-side friction,
+// cyclic encoder error, pin clearance, thermal time constant) from `reading`.
+void apply_reading_model(calib::monitor::MonitorSettings& settings, const MonitorReadingModel& reading);
 
 // The scenario's `expect:` for gpm monitor (every key optional).
 struct MonitorExpect {
@@ -144,11 +145,20 @@ void add_monitor_section(report::ReportDocument& doc, const MonitorOutcome& outc
 
 struct RunOutcome;  // run/runner.hpp
 
+// The reading model of gpm run's monitor: what the calibration estimated
+// where it made an estimate (latch skew s2, s3 and the compliance of each
+// driven joint from a calibration with motion corrections; the joint play d_i
+// of the passive links, as pin clearance d_i / 2, zero when the calibration
+// looked for it and found none; the drives' friction times the factor the
+// model test chose, when it chose one), the scenario's `monitor:` statement
+// for the rest.
+MonitorReadingModel reading_model_after_calibration(const RunOutcome& run);
+
 // gpm run's hook: when the scenario has `operation:`, the calibrated model
 // (the calibration's geometry, its 1-sigma as the monitor's prior, and the
-// compliance and skew it estimated when the samples were taken in motion)
-// monitors the operation on the twin; none without operation, or when the
-// run went through hardware (gpm monitor --hardware does that).
+// reading model of reading_model_after_calibration) monitors the operation
+// on the twin; none without operation, or when the run went through
+// hardware (gpm monitor --hardware does that).
 std::optional<MonitorOutcome> monitor_after_calibration(const RunOutcome& run);
 
 }  // namespace gpm::scenario

@@ -2,6 +2,7 @@
 
 #include "calib/calibrate.hpp"
 
+#include <cmath>
 #include <filesystem>
 
 #include <fmt/format.h>
@@ -43,16 +44,50 @@ std::array<double, 3> per_joint(const YAML::Node& n, const std::string& file, co
   return out;
 }
 
-DriveFriction parse_drive_friction(const YAML::Node& n, const std::string& file) {
-  const std::string key = "calibration.drive_friction";
+// calibration.drive_friction, or (with_scale false: no fit_scale key) monitor.drive_friction;
+// a key left out keeps its value in f.
+DriveFriction parse_drive_friction(const YAML::Node& n, const std::string& file, const std::string& key,
+                                   DriveFriction f, bool with_scale) {
   if (!n.IsMap())
-    throw InputError(yaml_where(file, n, key) + "expected {coulomb_Nm: N m, viscous_Nm_s: N m s/rad, fit_scale: bool} (each friction a number or a list of three)");
-  yaml_check_keys(n, file, key, {"coulomb_Nm", "viscous_Nm_s", "fit_scale"});
-  DriveFriction f = gpm2002_drive_friction();  // a key left out keeps its default
+    throw InputError(yaml_where(file, n, key) +
+                     (with_scale ? "expected {coulomb_Nm: N m, viscous_Nm_s: N m s/rad, fit_scale: bool} (each friction a number or a list of three)"
+                                 : "expected {coulomb_Nm: N m, viscous_Nm_s: N m s/rad} (each a number or a list of three)"));
+  if (with_scale)
+    yaml_check_keys(n, file, key, {"coulomb_Nm", "viscous_Nm_s", "fit_scale"});
+  else
+    yaml_check_keys(n, file, key, {"coulomb_Nm", "viscous_Nm_s"});
   if (n["coulomb_Nm"]) f.coulomb_Nm = per_joint(n["coulomb_Nm"], file, key + ".coulomb_Nm", 20.0, "N m");
-  if (n["fit_scale"]) f.fit_scale = yaml_bool(n["fit_scale"], file, key + ".fit_scale");
+  if (with_scale && n["fit_scale"]) f.fit_scale = yaml_bool(n["fit_scale"], file, key + ".fit_scale");
   if (n["viscous_Nm_s"]) f.viscous_Nm_s = per_joint(n["viscous_Nm_s"], file, key + ".viscous_Nm_s", 100.0, "N m s/rad");
   return f;
+}
+
+// Latch skew: a number (encoders 2 and 3; encoder 1 is the reference) or a
+// list of three, each within +-0.01 s (sim/effects_yaml.cpp's encoder_skew_s).
+std::array<double, 3> skew_list(const YAML::Node& n, const std::string& file, const std::string& key) {
+  const auto one = [&](const YAML::Node& v, const std::string& k) {
+    const double x = yaml_number(v, file, k);
+    if (!(std::abs(x) <= 0.01))
+      throw InputError(yaml_where(file, v, k) + fmt::format("{} s is out of range (valid: -0.01 to 0.01 s)", x));
+    return x;
+  };
+  if (!n.IsSequence()) {
+    const double s = one(n, key);
+    return {0.0, s, s};
+  }
+  if (n.size() != 3)
+    throw InputError(yaml_where(file, n, key) +
+                     fmt::format("expected a number (encoders 2 and 3) or a list of three, got a list of {}", n.size()));
+  std::array<double, 3> out{};
+  for (std::size_t i = 0; i < 3; ++i) out[i] = one(n[i], fmt::format("{}[{}]", key, i));
+  return out;
+}
+
+MonitorReadingModel reading_model_preset(const YAML::Node& n, const std::string& file, const std::string& key) {
+  const std::string name = yaml_string(n, file, key);
+  if (name == "ideal") return ideal_reading_model();
+  if (name == "data_sheet") return data_sheet_reading_model();
+  throw InputError(yaml_where(file, n, key) + fmt::format("'{}' is not a reading model preset (valid: ideal, data_sheet)", name));
 }
 
 CalibrationSpec parse_calibration(const YAML::Node& n, const std::string& file) {
@@ -99,7 +134,9 @@ CalibrationSpec parse_calibration(const YAML::Node& n, const std::string& file) 
       throw InputError(yaml_where(file, n["tension_min_N"], "calibration.tension_min_N") +
                        fmt::format("{} N leaves no sample of a GPM2002 (valid: 0 < N <= 100)", *c.tension_min_N));
   }
-  if (n["drive_friction"]) c.drive_friction = parse_drive_friction(n["drive_friction"], file);
+  if (n["drive_friction"])
+    c.drive_friction = parse_drive_friction(n["drive_friction"], file, "calibration.drive_friction",
+                                            gpm2002_drive_friction(), true);
   if (const YAML::Node est = n["estimate"]) {
     if (!est.IsSequence())
       throw InputError(yaml_where(file, est, "calibration.estimate") + "expected a list of compliance, skew, friction, clearance (or [])");
@@ -228,6 +265,7 @@ RunSpec from_root(const YAML::Node& root, const std::string& file, const std::st
   RunSpec spec;
   spec.sim = sim::scenario_from_yaml(root, file, base_dir);
   spec.calibration = parse_calibration(root["calibration"], file);
+  spec.monitor = parse_monitor_reading_model(root["monitor"], file);
   if (const YAML::Node hw = root["hardware"]) {
     const std::string h = yaml_string(hw, file, "hardware");
     spec.hardware = (std::filesystem::path(h).is_absolute() ? std::filesystem::path(h)
@@ -254,6 +292,51 @@ DriveFriction gpm2002_drive_friction() {
   f.coulomb_Nm = realistic.mjcf.coulomb_Nm;
   for (std::size_t i = 0; i < 3; ++i) f.viscous_Nm_s[i] = MjcfOptions{}.active_damping + realistic.mjcf.viscous_Nm_s[i];
   return f;
+}
+
+MonitorReadingModel ideal_reading_model() { return MonitorReadingModel{}; }
+
+MonitorReadingModel data_sheet_reading_model() {
+  const sim::Effects realistic = sim::realistic_effects();
+  MonitorReadingModel m;
+  m.encoder_cyclic_rad = realistic.encoder_cyclic_rad;
+  for (std::size_t i = 0; i < 3; ++i) m.clearance_mm[i] = realistic.mjcf.clearance_m[i] / kMetresPerMm;
+  m.drive_friction = gpm2002_drive_friction();
+  m.skew_s = realistic.encoder_skew_s;
+  m.compliance_rad_per_Nm = realistic.mjcf.compliance_rad_per_Nm;
+  m.thermal_time_constant_s = realistic.thermal.time_constant_s;
+  return m;
+}
+
+MonitorReadingModel parse_monitor_reading_model(const YAML::Node& n, const std::string& file) {
+  if (!n) return data_sheet_reading_model();
+  if (n.IsScalar()) return reading_model_preset(n, file, "monitor");
+  if (!n.IsMap())
+    throw InputError(yaml_where(file, n, "monitor") +
+                     "expected a preset (ideal, data_sheet) or a map of the monitor's reading model (see scenarios/SCHEMA.md)");
+  yaml_check_keys(n, file, "monitor",
+                  {"preset", "encoder_cyclic_rad", "clearance_mm", "drive_friction", "skew_s", "compliance_rad_per_Nm",
+                   "thermal_time_constant_s"});
+  MonitorReadingModel m = n["preset"] ? reading_model_preset(n["preset"], file, "monitor.preset") : data_sheet_reading_model();
+  if (n["encoder_cyclic_rad"]) m.encoder_cyclic_rad = per_joint(n["encoder_cyclic_rad"], file, "monitor.encoder_cyclic_rad", 0.01, "rad");
+  if (n["clearance_mm"]) m.clearance_mm = per_joint(n["clearance_mm"], file, "monitor.clearance_mm", 1.0, "mm");
+  if (n["drive_friction"])
+    m.drive_friction = parse_drive_friction(n["drive_friction"], file, "monitor.drive_friction", m.drive_friction, false);
+  if (n["skew_s"]) m.skew_s = skew_list(n["skew_s"], file, "monitor.skew_s");
+  if (n["compliance_rad_per_Nm"])
+    m.compliance_rad_per_Nm = per_joint(n["compliance_rad_per_Nm"], file, "monitor.compliance_rad_per_Nm", 1.0, "rad/N m");
+  if (const YAML::Node t = n["thermal_time_constant_s"]) {
+    const double tau = yaml_number(t, file, "monitor.thermal_time_constant_s");
+    if (!(tau >= 1.0 && tau <= 1e6))
+      throw InputError(yaml_where(file, t, "monitor.thermal_time_constant_s") +
+                       fmt::format("{} s is out of range (valid: 1 to 1e6 s)", tau));
+    m.thermal_time_constant_s = tau;
+  }
+  return m;
+}
+
+MonitorReadingModel load_monitor_reading_model(const std::string& scenario_file) {
+  return parse_monitor_reading_model(load_yaml_file(scenario_file)["monitor"], scenario_file);
 }
 
 RunSpec parse_run_spec(const std::string& text, const std::string& file, const std::string& base_dir) {

@@ -10,6 +10,7 @@
 
 #include <Eigen/Core>
 
+#include "calib/monitor/monitor.hpp"
 #include "calib/problem.hpp"
 #include "calib/robust_loss.hpp"
 #include "run/compensation.hpp"
@@ -37,6 +38,41 @@ struct DriveFriction {
 // friction of the realistic effects preset (sim::realistic_effects) plus the
 // gearbox's design damping (MjcfOptions::active_damping): 0.3 N m, 0.15 N m s/rad.
 DriveFriction gpm2002_drive_friction();
+
+// What the drift monitor assumes of the robot's readings (scenario
+// `monitor:`, scenarios/SCHEMA.md): the reading errors it models or corrects
+// (calib/monitor/monitor.hpp MonitorSettings). A statement of the user, as of
+// a real robot, like calibration.drive_friction: the twin's `effects:` (the
+// simulated machine's truth) are never read for it. gpm run replaces a value
+// by the calibration's estimate where the calibration made one
+// (run/monitor_run.hpp reading_model_after_calibration).
+struct MonitorReadingModel {
+  std::array<double, 3> encoder_cyclic_rad{};     // once-per-revolution error amplitude of each encoder (rad)
+  std::array<double, 3> clearance_mm{};           // radial clearance of each passive link's two pins (mm):
+                                                  // the link acts as lb_i + 2 c_i sign(T_i)
+  DriveFriction drive_friction{};                 // motor-side friction of each drive (fit_scale unused)
+  std::array<double, 3> skew_s{};                 // latch skew of each encoder (s)
+  std::array<double, 3> compliance_rad_per_Nm{};  // transmission compliance of each chain
+  // Time constant of the slow drift the monitor tracks (s); ideal: the monitor's own default.
+  double thermal_time_constant_s = calib::monitor::MonitorSettings{}.thermal_tau_s;
+};
+
+// `monitor: ideal`: no reading error modelled; drift tracked on the
+// monitor's own 60 s time constant (calib/monitor MonitorSettings).
+MonitorReadingModel ideal_reading_model();
+
+// `monitor: data_sheet` (the default): the GPM2002 data-sheet class, the
+// values of the realistic effects preset (sim::realistic_effects: cyclic
+// error, pin clearance, latch skew, compliance, thermal time constant) and
+// the drives' friction of gpm2002_drive_friction().
+MonitorReadingModel data_sheet_reading_model();
+
+// Parses the scenario's `monitor:` section (node n, absent: the default);
+// throws InputError naming the file, line and key.
+MonitorReadingModel parse_monitor_reading_model(const YAML::Node& n, const std::string& file);
+
+// The `monitor:` section of a scenario file (for gpm monitor).
+MonitorReadingModel load_monitor_reading_model(const std::string& scenario_file);
 
 struct CalibrationSpec {
   calib::Cost cost = calib::Cost::kML;
@@ -99,6 +135,7 @@ struct RunSpec {
   std::optional<std::string> hardware;
   bool hardware_resume = false;  // continue DIR/samples.csv (`gpm run --hardware ... --resume`)
   CalibrationSpec calibration;
+  MonitorReadingModel monitor = data_sheet_reading_model();  // what the monitor of `operation:` assumes
   std::optional<CompensationPlan> compensation;  // set when outputs.compensation
   Expectations expect;
   Outputs outputs;

@@ -314,6 +314,10 @@ RunOutcome run_scenario(const RunSpec& spec_in, const std::string& scenario_file
                                out.crb_sigma_rad);
       }
       if (!friction_note.empty() && motion.clearance) out.calibration->notes.push_back(friction_note);
+      // For the monitor of the operation (run/monitor_run.hpp reading_model_after_calibration).
+      if (motion.clearance || !clearance_dropped.empty()) out.joint_play_mm = fit.clearance;
+      if (!friction_note.empty() && motion.clearance)
+        out.drive_friction_fitted = DriveFriction{motion.load.coulomb_Nm, motion.load.viscous_Nm_s, false};
       if (!clearance_dropped.empty()) out.calibration->notes.push_back(clearance_dropped);
       if (fit.kept.size() < noiseless.size()) {
         const std::size_t weak = noiseless.size() - fit.kept.size() - static_cast<std::size_t>(motion.skip_first);

@@ -381,7 +381,7 @@ Scenario scenario_from_yaml(const YAML::Node& root, const std::string& file, con
   yaml_check_keys(root, file, "",
                   {"name", "description", "robot", "seed", "actual", "physics", "servo", "encoder",
                    "sampling", "path", "log", "effects", "operation", "events", "calibration", "compensation", "expect",
-                   "hardware", "outputs", "render"});
+                   "hardware", "outputs", "render", "monitor"});
   Scenario s;
   s.file = file;
   s.name = root["name"] ? yaml_string(root["name"], file, "name")

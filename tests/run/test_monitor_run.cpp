@@ -1,6 +1,7 @@
 // Tests of run/monitor_run.cpp: gpm run's monitoring hook (the calibrated
 // model monitors `operation:` after the calibration), the monitor's reading
-// model taken from the scenario's effects, and monitoring through hw/ (the
+// model stated by the scenario (`monitor:`, never its effects) or estimated
+// by the calibration, and monitoring through hw/ (the
 // twin backend, and the drive emulator over Modbus as the hw tests run it).
 #include "run/monitor_run.hpp"
 
@@ -21,13 +22,16 @@ namespace gpm::scenario {
 namespace {
 
 const std::string kBase = gpm::scenarios_dir();
+// The twin fixtures below are ideal (no reading errors): so is what their monitor assumes.
+const MonitorReadingModel kIdeal = ideal_reading_model();
 
 std::string run_yaml(const std::string& operation) {
   return "robot: robots/table5_frame.yaml\nseed: 3\n"
          "actual: {geometry: {xa3: 433.5, ya3: 499.4, la1: 244.1, lb2: 244.2, dth1: 0.01, dth3: -0.01}}\n"
          "encoder: {bits: 20}\n"
          "sampling: {pattern: disc, radius: 130, count: 20, move_speed_mm_s: 250}\n"
-         "calibration: {cost: ml}\n" +
+         "calibration: {cost: ml}\n"
+         "monitor: ideal\n" +
          operation;
 }
 
@@ -84,24 +88,98 @@ TEST(MonitorRun, GpmRunWithoutOperationDoesNotMonitor) {
   EXPECT_EQ(summary_json(o).find("\"monitor\""), std::string::npos);
 }
 
-// The reading model follows the twin's stated effects; a calibration in
-// motion replaces the skew and compliance with its estimates.
-TEST(MonitorRun, ReadingModelComesFromTheEffectsOrTheCalibration) {
-  sim::TwinConfig twin;
-  twin.effects = sim::realistic_effects();
-  calib::monitor::MonitorSettings ms;
-  apply_reading_model(ms, twin, std::nullopt);
-  for (size_t i = 0; i < 3; ++i) {
-    EXPECT_EQ(ms.skew_s[i], twin.effects.encoder_skew_s[i]);
-    EXPECT_EQ(ms.compliance_rad_per_Nm[i], twin.effects.mjcf.compliance_rad_per_Nm[i]);
-    EXPECT_EQ(ms.coulomb_Nm[i], twin.effects.mjcf.coulomb_Nm[i]);
-    EXPECT_DOUBLE_EQ(ms.viscous_Nm_s[i], twin.mjcf.active_damping + twin.effects.mjcf.viscous_Nm_s[i]);
-    EXPECT_EQ(ms.cyclic_rad[i], twin.effects.encoder_cyclic_rad[i]);
-    EXPECT_DOUBLE_EQ(ms.clearance_mm[i], 1e3 * twin.effects.mjcf.clearance_m[i]);
+// The monitor reads what the scenario states (`monitor:`), never the twin's
+// effects: two twins whose effects differ (ideal, and realistic with other
+// clearance, friction, cyclic error, skew and warm-up) under one statement
+// give the same monitor model; the statement itself reaches the settings.
+TEST(MonitorRun, ReadingModelIsTheStatementNotTheTwinsEffects) {
+  const std::string head =
+      "robot: ../models/gpm2002.yaml\nphysics: {timestep_s: 0.00025}\nservo: {rate_hz: 4000}\nencoder: {bits: 17}\n"
+      "operation: {path: {shape: circle, centre: [216.5, 250], radius: 60, period_s: 4}, duration_s: 0.2}\n";
+  const auto scenario = [&](const std::string& effects) {
+    return sim::scenario_from_yaml(YAML::Load(head + effects), "t.yaml", kBase);
+  };
+  const sim::Scenario ideal_twin = scenario("");
+  const sim::Scenario other_twin = scenario(
+      "effects: {preset: realistic, passive_clearance_mm: 0.02, coulomb_friction_Nm: 1, encoder_cyclic_rad: 5.0e-5, "
+      "encoder_skew_s: 0.0003, thermal: {time_constant_s: 30}}\n");
+  std::array<double, kNumParams> prior;
+  prior.fill(std::numeric_limits<double>::quiet_NaN());
+  MonitorReadingModel stated = data_sheet_reading_model();
+  stated.clearance_mm = {0.001, 0.002, 0.003};
+  stated.skew_s = {0.0, 1e-5, -2e-5};
+  const MonitorOutcome a = run_monitor(ideal_twin, ideal_twin.controller, prior, stated);
+  const MonitorOutcome b = run_monitor(other_twin, other_twin.controller, prior, stated);
+  for (const MonitorOutcome* o : {&a, &b}) {
+    const calib::monitor::MonitorSettings& ms = o->model.settings;
+    EXPECT_EQ(ms.clearance_mm, stated.clearance_mm);
+    EXPECT_EQ(ms.skew_s, stated.skew_s);
+    EXPECT_EQ(ms.compliance_rad_per_Nm, stated.compliance_rad_per_Nm);
+    EXPECT_EQ(ms.coulomb_Nm, stated.drive_friction.coulomb_Nm);
+    EXPECT_EQ(ms.viscous_Nm_s, stated.drive_friction.viscous_Nm_s);
+    EXPECT_EQ(ms.cyclic_rad, stated.encoder_cyclic_rad);
+    EXPECT_EQ(ms.thermal_tau_s, stated.thermal_time_constant_s);
+    EXPECT_EQ(o->reading.clearance_mm, stated.clearance_mm);
   }
-  apply_reading_model(ms, twin, std::array<double, 5>{1e-5, 2e-5, 3e-4, 4e-4, 5e-4});
-  EXPECT_EQ(ms.skew_s, (std::array<double, 3>{0.0, 1e-5, 2e-5}));
-  EXPECT_EQ(ms.compliance_rad_per_Nm, (std::array<double, 3>{3e-4, 4e-4, 5e-4}));
+  // The whole derived model is the same (noise, thresholds, priors, scales).
+  EXPECT_EQ(a.model.n_state, b.model.n_state);
+  EXPECT_EQ(a.model.threshold, b.model.threshold);
+  EXPECT_EQ(a.model.prior_variance, b.model.prior_variance);
+  EXPECT_EQ(a.model.drift_rate, b.model.drift_rate);
+  EXPECT_EQ(a.model.rate_noise, b.model.rate_noise);
+  // ... and the statement decides it: ideal has no cyclic or clearance state.
+  const MonitorOutcome c = run_monitor(other_twin, other_twin.controller, prior, ideal_reading_model());
+  EXPECT_EQ(c.model.cyclic_index, -1);
+  EXPECT_FALSE(c.model.has_clearance);
+  EXPECT_GE(b.model.cyclic_index, 0);
+  EXPECT_TRUE(b.model.has_clearance);
+}
+
+// gpm run's monitor: the statement, with the calibration's estimates where it
+// made them (skew and compliance with a positive 1-sigma, the joint play d_i
+// as pin clearance d_i / 2, the friction times the fitted factor).
+TEST(MonitorRun, ReadingModelAfterCalibrationTakesTheEstimatesWhereMade) {
+  RunOutcome run;
+  run.spec.monitor = data_sheet_reading_model();
+  run.spec.monitor.skew_s = {0.0, 7e-6, 8e-6};
+  const MonitorReadingModel stated = run.spec.monitor;
+  // No calibration (refused): the statement as it is.
+  {
+    const MonitorReadingModel m = reading_model_after_calibration(run);
+    EXPECT_EQ(m.skew_s, stated.skew_s);
+    EXPECT_EQ(m.clearance_mm, stated.clearance_mm);
+    EXPECT_EQ(m.compliance_rad_per_Nm, stated.compliance_rad_per_Nm);
+  }
+  // A stop-and-go calibration (no motion corrections: 1-sigma 0): the statement.
+  run.calibration = calib::Result{};
+  run.motion_nu = {1e-4, 2e-4, 3e-4, 4e-4, 5e-4};
+  {
+    const MonitorReadingModel m = reading_model_after_calibration(run);
+    EXPECT_EQ(m.skew_s, stated.skew_s);
+    EXPECT_EQ(m.compliance_rad_per_Nm, stated.compliance_rad_per_Nm);
+    EXPECT_EQ(m.drive_friction.coulomb_Nm, stated.drive_friction.coulomb_Nm);
+  }
+  // In motion: skew and the compliance of joints 2 and 3 estimated; joint 1
+  // torque-off (not estimated, NaN) keeps the statement; the play of chain 3
+  // fitted below 0 is none; the friction is the stated one times 0.5.
+  const double nan = std::numeric_limits<double>::quiet_NaN();
+  run.motion_nu_sigma = {1e-6, 1e-6, nan, 1e-5, 1e-5};
+  run.joint_play_mm = std::array<double, 3>{0.010, 0.008, -0.001};
+  DriveFriction half = stated.drive_friction;
+  for (std::size_t i = 0; i < 3; ++i) half.coulomb_Nm[i] *= 0.5, half.viscous_Nm_s[i] *= 0.5;
+  run.drive_friction_fitted = half;
+  const MonitorReadingModel m = reading_model_after_calibration(run);
+  EXPECT_EQ(m.skew_s, (std::array<double, 3>{0.0, 1e-4, 2e-4}));
+  EXPECT_EQ(m.compliance_rad_per_Nm, (std::array<double, 3>{stated.compliance_rad_per_Nm[0], 4e-4, 5e-4}));
+  EXPECT_EQ(m.clearance_mm, (std::array<double, 3>{0.005, 0.004, 0.0}));
+  EXPECT_EQ(m.drive_friction.coulomb_Nm, half.coulomb_Nm);
+  EXPECT_EQ(m.drive_friction.viscous_Nm_s, half.viscous_Nm_s);
+  // Not estimated: the statement.
+  EXPECT_EQ(m.encoder_cyclic_rad, stated.encoder_cyclic_rad);
+  EXPECT_EQ(m.thermal_time_constant_s, stated.thermal_time_constant_s);
+  // The clearance looked for and not found: none (zeros), not the statement's 5 um.
+  run.joint_play_mm = std::array<double, 3>{};
+  EXPECT_EQ(reading_model_after_calibration(run).clearance_mm, (std::array<double, 3>{}));
 }
 
 // Through hardware: the twin backend's actual robot (the fixture's perturbed
@@ -142,7 +220,7 @@ TEST(MonitorRun, MonitorsThroughTheTwinBackend) {
                                              (rig.dir.path() / "actual.yaml").string());
   std::array<double, kNumParams> prior;
   prior.fill(std::numeric_limits<double>::quiet_NaN());
-  const MonitorOutcome good = run_monitor_hardware(rig.scenario(), hw_actual, rig.actual, prior);
+  const MonitorOutcome good = run_monitor_hardware(rig.scenario(), hw_actual, rig.actual, prior, kIdeal);
   EXPECT_FALSE(good.truth_known);
   EXPECT_FALSE(good.hardware.empty());
   EXPECT_GT(good.cycles, 1500);  // 7 s at 250 Hz
@@ -150,13 +228,27 @@ TEST(MonitorRun, MonitorsThroughTheTwinBackend) {
   EXPECT_TRUE(good.alarms.empty()) << good.alarms.front().explanation;
   EXPECT_TRUE(monitor_summary(good)["false_alarms"].is_null());
   EXPECT_TRUE(monitor_summary(good)["final_error"].empty());
+  // Through hardware too the monitor assumes what it is told (here: ideal, like the backend's twin).
+  EXPECT_EQ(good.model.settings.clearance_mm, kIdeal.clearance_mm);
+  EXPECT_EQ(good.model.cyclic_index, -1);
+  EXPECT_EQ(good.model.settings.thermal_tau_s, kIdeal.thermal_time_constant_s);
 
   const std::string hw_nominal = rig.hardware("twin", "twin: {scenario: " + kTwinScenario + "}\n", kSrc + "/models/gpm2002.yaml");
-  const MonitorOutcome bad = run_monitor_hardware(rig.scenario(), hw_nominal, Robot{}, prior);
+  const MonitorOutcome bad = run_monitor_hardware(rig.scenario(), hw_nominal, Robot{}, prior, kIdeal);
   ASSERT_FALSE(bad.alarms.empty());
   // as soon as the monitor may alarm (one window learnt), with a parameter named
   EXPECT_LT(bad.alarms.front().t_s, 4.0);
   EXPECT_GE(bad.alarms.front().param, 0) << bad.alarms.front().explanation;
+
+  // A stated model reaches the hardware monitor as it is (the backend's twin is not read for it).
+  MonitorReadingModel stated = data_sheet_reading_model();
+  stated.clearance_mm = {0.001, 0.002, 0.003};
+  const MonitorOutcome told = run_monitor_hardware(rig.scenario(), hw_actual, rig.actual, prior, stated);
+  EXPECT_EQ(told.model.settings.clearance_mm, stated.clearance_mm);
+  EXPECT_EQ(told.model.settings.skew_s, stated.skew_s);
+  EXPECT_EQ(told.model.settings.coulomb_Nm, stated.drive_friction.coulomb_Nm);
+  EXPECT_EQ(told.model.settings.thermal_tau_s, stated.thermal_time_constant_s);
+  EXPECT_EQ(told.reading.compliance_rad_per_Nm, stated.compliance_rad_per_Nm);
 }
 
 // Monitors the rig's operation through the drive emulator (Modbus/TCP on
@@ -188,7 +280,7 @@ MonitorOutcome monitor_through_emulator(HardwareRig& rig, const hw::EmulatorFaul
   const std::string file = rig.hardware("modbus", "modbus: {register_map: map.yaml}\n", (rig.dir.path() / "actual.yaml").string());
   std::array<double, kNumParams> prior;
   prior.fill(std::numeric_limits<double>::quiet_NaN());
-  MonitorOutcome out = run_monitor_hardware(rig.scenario(), file, rig.actual, prior);
+  MonitorOutcome out = run_monitor_hardware(rig.scenario(), file, rig.actual, prior, kIdeal);
   EXPECT_NE(out.hardware.find("modbus"), std::string::npos) << out.hardware;
   EXPECT_GT(out.cycles, 1500);
   EXPECT_GT(out.accepted, 500);  // every joint moving: most cycles give a sample
@@ -239,7 +331,7 @@ TEST(MonitorRun, HardwareRefusesEventsBeforeMoving) {
   const std::string hw_file = rig.hardware("twin", "twin: {scenario: " + kTwinScenario + "}\n", (rig.dir.path() / "actual.yaml").string());
   std::array<double, kNumParams> prior;
   prior.fill(std::numeric_limits<double>::quiet_NaN());
-  EXPECT_THROW(run_monitor_hardware(sim::load_scenario((rig.dir.path() / "ev.yaml").string()), hw_file, rig.actual, prior),
+  EXPECT_THROW(run_monitor_hardware(sim::load_scenario((rig.dir.path() / "ev.yaml").string()), hw_file, rig.actual, prior, kIdeal),
                InputError);
 }
 

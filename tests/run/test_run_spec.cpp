@@ -132,6 +132,89 @@ TEST(RunSpec, DriveFrictionStatedByTheCalibration) {
             std::string::npos);
 }
 
+// monitor: what the drift monitor assumes of the readings. Default the
+// data-sheet class (the realistic preset's reading errors and the drives'
+// friction calibration.drive_friction defaults to), whatever the twin's
+// effects; `ideal` models none; keys override the preset.
+TEST(RunSpec, MonitorReadingModelIsStatedNotTakenFromTheTwin) {
+  const RunSpec d = parse_run_spec(kHead, "s.yaml", kBase);
+  const sim::Effects realistic = sim::realistic_effects();
+  const DriveFriction friction = gpm2002_drive_friction();
+  EXPECT_EQ(d.monitor.encoder_cyclic_rad, realistic.encoder_cyclic_rad);
+  EXPECT_EQ(d.monitor.skew_s, realistic.encoder_skew_s);
+  EXPECT_EQ(d.monitor.compliance_rad_per_Nm, realistic.mjcf.compliance_rad_per_Nm);
+  EXPECT_EQ(d.monitor.drive_friction.coulomb_Nm, friction.coulomb_Nm);
+  EXPECT_EQ(d.monitor.drive_friction.viscous_Nm_s, friction.viscous_Nm_s);
+  EXPECT_EQ(d.monitor.thermal_time_constant_s, realistic.thermal.time_constant_s);
+  for (std::size_t i = 0; i < 3; ++i) EXPECT_DOUBLE_EQ(d.monitor.clearance_mm[i], 1e3 * realistic.mjcf.clearance_m[i]);
+  // The twin's effects are the simulated machine: they do not change what the monitor assumes.
+  const RunSpec fx = parse_run_spec(kHead + "physics: {timestep_s: 0.00025}\nservo: {rate_hz: 4000}\n"
+                                            "effects: {preset: realistic, passive_clearance_mm: 0.02, encoder_cyclic_rad: 0, "
+                                            "coulomb_friction_Nm: 2, encoder_skew_s: 0.001, thermal: {time_constant_s: 30}}\n",
+                                    "s.yaml", kBase);
+  EXPECT_EQ(fx.monitor.clearance_mm, d.monitor.clearance_mm);
+  EXPECT_EQ(fx.monitor.encoder_cyclic_rad, d.monitor.encoder_cyclic_rad);
+  EXPECT_EQ(fx.monitor.drive_friction.coulomb_Nm, d.monitor.drive_friction.coulomb_Nm);
+  EXPECT_EQ(fx.monitor.skew_s, d.monitor.skew_s);
+  EXPECT_EQ(fx.monitor.thermal_time_constant_s, d.monitor.thermal_time_constant_s);
+  EXPECT_EQ(parse_run_spec(kHead + "monitor: data_sheet\n", "s.yaml", kBase).monitor.skew_s, d.monitor.skew_s);
+
+  // ideal: no reading error; the drift time constant is the monitor's own default.
+  const MonitorReadingModel ideal = parse_run_spec(kHead + "monitor: ideal\n", "s.yaml", kBase).monitor;
+  const std::array<double, 3> zero{};
+  EXPECT_EQ(ideal.encoder_cyclic_rad, zero);
+  EXPECT_EQ(ideal.clearance_mm, zero);
+  EXPECT_EQ(ideal.skew_s, zero);
+  EXPECT_EQ(ideal.compliance_rad_per_Nm, zero);
+  EXPECT_EQ(ideal.drive_friction.coulomb_Nm, zero);
+  EXPECT_EQ(ideal.drive_friction.viscous_Nm_s, zero);
+  EXPECT_EQ(ideal.thermal_time_constant_s, calib::monitor::MonitorSettings{}.thermal_tau_s);
+
+  // Keys override the preset (default data_sheet); a skew number is encoders 2 and 3 (1 is the reference).
+  const MonitorReadingModel m =
+      parse_run_spec(kHead + "monitor: {preset: ideal, clearance_mm: [0.001, 0.002, 0.003], skew_s: 2.0e-5, "
+                             "drive_friction: {coulomb_Nm: 0.5}, compliance_rad_per_Nm: 2.0e-4, "
+                             "encoder_cyclic_rad: 1.0e-5, thermal_time_constant_s: 900}\n",
+                     "s.yaml", kBase)
+          .monitor;
+  EXPECT_EQ(m.clearance_mm, (std::array<double, 3>{0.001, 0.002, 0.003}));
+  EXPECT_EQ(m.skew_s, (std::array<double, 3>{0.0, 2e-5, 2e-5}));
+  EXPECT_EQ(m.drive_friction.coulomb_Nm, (std::array<double, 3>{0.5, 0.5, 0.5}));
+  EXPECT_EQ(m.drive_friction.viscous_Nm_s, zero);  // kept from the preset
+  EXPECT_EQ(m.compliance_rad_per_Nm, (std::array<double, 3>{2e-4, 2e-4, 2e-4}));
+  EXPECT_EQ(m.encoder_cyclic_rad, (std::array<double, 3>{1e-5, 1e-5, 1e-5}));
+  EXPECT_EQ(m.thermal_time_constant_s, 900.0);
+  const MonitorReadingModel k = parse_run_spec(kHead + "monitor: {clearance_mm: 0}\n", "s.yaml", kBase).monitor;
+  EXPECT_EQ(k.clearance_mm, zero);
+  EXPECT_EQ(k.skew_s, d.monitor.skew_s);  // the rest: data_sheet
+
+  // Bad values: one line naming the key and what would be valid.
+  EXPECT_EQ(error_of(kHead + "monitor: datasheet\n"),
+            "s.yaml:3: monitor: 'datasheet' is not a reading model preset (valid: ideal, data_sheet)");
+  EXPECT_EQ(error_of(kHead + "monitor: {preset: real}\n"),
+            "s.yaml:3: monitor.preset: 'real' is not a reading model preset (valid: ideal, data_sheet)");
+  EXPECT_EQ(error_of(kHead + "monitor: {clearance_mm: -0.005}\n"),
+            "s.yaml:3: monitor.clearance_mm: -0.005 is out of range (valid: 0 to 1 mm)");
+  EXPECT_EQ(error_of(kHead + "monitor: {encoder_cyclic_rad: [0, 0, 0.02]}\n"),
+            "s.yaml:3: monitor.encoder_cyclic_rad[2]: 0.02 is out of range (valid: 0 to 0.01 rad)");
+  EXPECT_EQ(error_of(kHead + "monitor: {skew_s: [0, 0.02, 0]}\n"),
+            "s.yaml:3: monitor.skew_s[1]: 0.02 s is out of range (valid: -0.01 to 0.01 s)");
+  EXPECT_NE(error_of(kHead + "monitor: {skew_s: [0, 0.001]}\n").find("monitor.skew_s: expected a number (encoders 2 and 3) or a list of three"),
+            std::string::npos);
+  EXPECT_EQ(error_of(kHead + "monitor: {compliance_rad_per_Nm: 2}\n"),
+            "s.yaml:3: monitor.compliance_rad_per_Nm: 2 is out of range (valid: 0 to 1 rad/N m)");
+  EXPECT_EQ(error_of(kHead + "monitor: {thermal_time_constant_s: 0.5}\n"),
+            "s.yaml:3: monitor.thermal_time_constant_s: 0.5 s is out of range (valid: 1 to 1e6 s)");
+  EXPECT_EQ(error_of(kHead + "monitor: {drive_friction: {coulomb_Nm: 30}}\n"),
+            "s.yaml:3: monitor.drive_friction.coulomb_Nm: 30 is out of range (valid: 0 to 20 N m)");
+  // The monitor cannot fit the friction's scale: only the calibration can.
+  EXPECT_NE(error_of(kHead + "monitor: {drive_friction: {fit_scale: true}}\n").find("monitor.drive_friction"),
+            std::string::npos);
+  EXPECT_NE(error_of(kHead + "monitor: {clearance: 0.005}\n").find("monitor"), std::string::npos);
+  EXPECT_NE(error_of(kHead + "monitor: [ideal]\n").find("monitor: expected a preset (ideal, data_sheet) or a map"),
+            std::string::npos);
+}
+
 TEST(RunSpec, ReferenceReadingsTakenWhereTheRobotStands) {
   const RunSpec s = parse_run_spec(kHead + "calibration: {start: reference, reference_at: [210, 245]}\n", "s.yaml", kBase);
   EXPECT_TRUE(s.calibration.start_reference);
