@@ -14,6 +14,7 @@
 #include "models/errors.hpp"
 #include "models/robot_yaml.hpp"
 #include "tests/hw/hw_test_util.hpp"
+#include "calib/friction_profile.hpp"
 #include "run/runner.hpp"
 #include "run/summary_json.hpp"
 #include "sim/scenario.hpp"
@@ -180,6 +181,57 @@ TEST(MonitorRun, ReadingModelAfterCalibrationTakesTheEstimatesWhereMade) {
   // The clearance looked for and not found: none (zeros), not the statement's 5 um.
   run.joint_play_mm = std::array<double, 3>{};
   EXPECT_EQ(reading_model_after_calibration(run).clearance_mm, (std::array<double, 3>{}));
+}
+
+// End to end on the realistic twin, samples on the fly (the main job's
+// procedure): the calibration's estimates reach the monitor of the operation
+// (skew, the compliance of the driven joints 2 and 3, the joint play d_i as
+// pin clearance d_i / 2, the stated friction times the fitted factor), the
+// statement the rest (joint 1 torque-off: its compliance is not estimated).
+TEST(MonitorRun, GpmRunMonitorUsesWhatTheCalibrationEstimated) {
+  const RunSpec spec = parse_run_spec(
+      "robot: ../models/gpm2002.yaml\nseed: 2026\n"
+      "actual: {perturb: {base_mm: 0.5, link_mm: 0.5, offset_rad: 0.01, keep: [xa1, ya1, xa2, ya2]}}\n"
+      "physics: {timestep_s: 0.00025}\neffects: realistic\n"
+      "servo: {rate_hz: 4000, modes: [torque_off, position, position]}\nencoder: {bits: 17, noise_rad: 0}\n"
+      "sampling: {pattern: trajectory, count: 40, max_speed_mm_s: 150, sample_every: 4}\n"
+      "calibration: {cost: ml, method: lm, fix: [xa1, ya1, xa2, ya2]}\n"
+      "outputs: {compensation: false, report: false}\n"
+      "monitor: {preset: data_sheet, skew_s: 0, compliance_rad_per_Nm: [3.0e-4, 0, 0], clearance_mm: 0.05}\n"
+      "operation: {path: {shape: circle, centre: [216.5, 250], radius: 60, period_s: 4}, duration_s: 1}\n",
+      "t.yaml", kBase);
+  const RunOutcome o = run_scenario(spec, "t.yaml");
+  ASSERT_TRUE(o.calibration && o.monitor);
+  ASSERT_TRUE(o.joint_play_mm) << "the clearance was not looked for";
+  const MonitorReadingModel& r = o.monitor->reading;
+  const calib::monitor::MonitorSettings& ms = o.monitor->model.settings;
+  // The twin's latch skew is 50 and 100 us, its compliance 1e-4 rad/N m (sim::realistic_effects):
+  // the estimates, not the statement's 0.
+  EXPECT_NEAR(ms.skew_s[1], 5e-5, 1e-5);
+  EXPECT_NEAR(ms.skew_s[2], 1e-4, 2e-5);
+  EXPECT_NEAR(ms.compliance_rad_per_Nm[1], 1e-4, 2e-5);
+  EXPECT_NEAR(ms.compliance_rad_per_Nm[2], 1e-4, 2e-5);
+  EXPECT_EQ(ms.compliance_rad_per_Nm[0], 3e-4);  // joint 1 torque-off: the statement
+  // 5 um radial clearance at each pin: d_i about 10 um, the monitor's c_i about 5 um (not the stated 50).
+  for (std::size_t i = 0; i < 3; ++i) {
+    EXPECT_DOUBLE_EQ(ms.clearance_mm[i], std::max(0.0, 0.5 * (*o.joint_play_mm)[i]));
+    EXPECT_GT(ms.clearance_mm[i], 0.002);
+    EXPECT_LT(ms.clearance_mm[i], 0.008);
+  }
+  // The friction: the stated one (data_sheet) times one factor the model test chose.
+  ASSERT_TRUE(o.drive_friction_fitted);
+  const DriveFriction stated = gpm2002_drive_friction();
+  const double k = ms.coulomb_Nm[0] / stated.coulomb_Nm[0];
+  bool tried = false;
+  for (double f : calib::default_friction_scales()) tried = tried || std::abs(f - k) < 1e-12;
+  EXPECT_TRUE(tried) << k;
+  for (std::size_t i = 0; i < 3; ++i) {
+    EXPECT_DOUBLE_EQ(ms.coulomb_Nm[i], k * stated.coulomb_Nm[i]);
+    EXPECT_DOUBLE_EQ(ms.viscous_Nm_s[i], k * stated.viscous_Nm_s[i]);
+  }
+  // Not estimated: the statement.
+  EXPECT_EQ(r.encoder_cyclic_rad, data_sheet_reading_model().encoder_cyclic_rad);
+  EXPECT_EQ(ms.thermal_tau_s, data_sheet_reading_model().thermal_time_constant_s);
 }
 
 // Through hardware: the twin backend's actual robot (the fixture's perturbed
