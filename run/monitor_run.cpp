@@ -449,6 +449,15 @@ nlohmann::json monitor_summary(const MonitorOutcome& o) {
   j["false_alarms"] = o.truth_known ? nlohmann::json(o.false_alarms) : nlohmann::json(nullptr);
   if (!o.hardware.empty()) j["hardware"] = o.hardware;
   j["false_alarm_rate_per_hour"] = o.model.settings.false_alarms_per_hour;
+  // What the monitor assumed of the readings (the statement, or the calibration's estimates).
+  const MonitorReadingModel& r = o.reading;
+  j["reading_model"] = {{"encoder_cyclic_rad", r.encoder_cyclic_rad},
+                        {"clearance_mm", r.clearance_mm},
+                        {"coulomb_Nm", r.drive_friction.coulomb_Nm},
+                        {"viscous_Nm_s", r.drive_friction.viscous_Nm_s},
+                        {"skew_s", r.skew_s},
+                        {"compliance_rad_per_Nm", r.compliance_rad_per_Nm},
+                        {"thermal_time_constant_s", r.thermal_time_constant_s}};
   j["detections"] = nlohmann::json::array();
   for (const MonitorDetection& d : o.detections) {
     nlohmann::json dj = {{"event", d.event}, {"at_s", d.at_s}};
@@ -473,6 +482,18 @@ void add_monitor_section(report::ReportDocument& doc, const MonitorOutcome& o, i
                             o.hardware.empty() ? "" : " through " + o.hardware, o.alarms.size(),
                             o.truth_known ? fmt::format(" ({} false)", o.false_alarms) : "",
                             o.model.settings.false_alarms_per_hour, o.model.threshold, o.model.settings.window));
+  {
+    const MonitorReadingModel& r = o.reading;
+    const auto three = [](const std::array<double, 3>& v, double scale) {
+      return fmt::format("{:.3g}, {:.3g}, {:.3g}", v[0] * scale, v[1] * scale, v[2] * scale);
+    };
+    doc.paragraph(fmt::format(
+        "Reading model assumed (joints 1, 2, 3): latch skew {} us; compliance {} rad/N m; drive friction {} N m "
+        "and {} N m s/rad; cyclic encoder error {} urad; pin clearance {} um; drift time constant {:.0f} s.",
+        three(r.skew_s, 1e6), three(r.compliance_rad_per_Nm, 1.0), three(r.drive_friction.coulomb_Nm, 1.0),
+        three(r.drive_friction.viscous_Nm_s, 1.0), three(r.encoder_cyclic_rad, 1e6), three(r.clearance_mm, 1e3),
+        r.thermal_time_constant_s));
+  }
   if (!o.detections.empty()) {
     std::vector<std::vector<std::string>> rows;
     for (const MonitorDetection& d : o.detections)

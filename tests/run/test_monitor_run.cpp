@@ -121,6 +121,16 @@ TEST(MonitorRun, ReadingModelIsTheStatementNotTheTwinsEffects) {
     EXPECT_EQ(ms.cyclic_rad, stated.encoder_cyclic_rad);
     EXPECT_EQ(ms.thermal_tau_s, stated.thermal_time_constant_s);
     EXPECT_EQ(o->reading.clearance_mm, stated.clearance_mm);
+    // summary.json says what the monitor assumed.
+    const nlohmann::json j = monitor_summary(*o)["reading_model"];
+    using Three = std::array<double, 3>;
+    EXPECT_EQ(j["clearance_mm"].get<Three>(), stated.clearance_mm);
+    EXPECT_EQ(j["skew_s"].get<Three>(), stated.skew_s);
+    EXPECT_EQ(j["coulomb_Nm"].get<Three>(), stated.drive_friction.coulomb_Nm);
+    EXPECT_EQ(j["viscous_Nm_s"].get<Three>(), stated.drive_friction.viscous_Nm_s);
+    EXPECT_EQ(j["compliance_rad_per_Nm"].get<Three>(), stated.compliance_rad_per_Nm);
+    EXPECT_EQ(j["encoder_cyclic_rad"].get<Three>(), stated.encoder_cyclic_rad);
+    EXPECT_EQ(j["thermal_time_constant_s"].get<double>(), stated.thermal_time_constant_s);
   }
   // The whole derived model is the same (noise, thresholds, priors, scales).
   EXPECT_EQ(a.model.n_state, b.model.n_state);
