@@ -7,8 +7,9 @@ namespace gpm::calib {
 
 double transmitted_torque(const TransmissionLoad& load, int i, double tau, double omega, double alpha) {
   const auto k = static_cast<std::size_t>(i);
-  return tau - load.coulomb_Nm[k] * std::tanh(omega / kFrictionSpeed) - load.viscous_Nm_s[k] * omega -
-         load.inertia_kg_m2[k] * alpha;
+  const double v = load.friction_speed_rad_s;
+  const double sign = v > 0.0 ? std::tanh(omega / v) : (omega > 0.0 ? 1.0 : (omega < 0.0 ? -1.0 : 0.0));
+  return tau - load.coulomb_Nm[k] * sign - load.viscous_Nm_s[k] * omega - load.inertia_kg_m2[k] * alpha;
 }
 
 double passive_link_tension(const Geometry& g, int i, double theta_a, double theta_b, double tau_t) {

@@ -19,9 +19,12 @@
 //
 // The torque transmitted to the active link, as far as the moment balance
 // needs it: the drive torque tau_i less the motor-side Coulomb friction
-// F_i sign(omega_i) (smoothed over kFrictionSpeed), the viscous friction
-// b_i omega_i and the inertia I_i alpha_i of rotor and link about A_i:
-//   tau_t_i = tau_i - F_i tanh(omega_i / kFrictionSpeed) - b_i omega_i - I_i alpha_i.
+// F_i sign(omega_i) (smoothed over v = TransmissionLoad::friction_speed_rad_s,
+// kFrictionSpeed for the calibration), the viscous friction b_i omega_i and
+// the inertia I_i alpha_i of rotor and link about A_i:
+//   tau_t_i = tau_i - F_i tanh(omega_i / v) - b_i omega_i - I_i alpha_i.
+// One formula for the calibration (calib/motion_correction.hpp) and the drift
+// monitor (calib/monitor/monitor.hpp: v = 0.1 rad/s, no inertia).
 #pragma once
 
 #include <array>
@@ -39,6 +42,7 @@ struct TransmissionLoad {
   std::array<double, 3> coulomb_Nm{};     // motor-side Coulomb friction F_i
   std::array<double, 3> viscous_Nm_s{};   // viscous friction b_i (per rad/s)
   std::array<double, 3> inertia_kg_m2{};  // rotor (reflected) plus active link about A_i
+  double friction_speed_rad_s = kFrictionSpeed;  // Coulomb friction as F tanh(omega / this); 0: F sign(omega)
 };
 
 // The torque transmitted to active link i (N m) at drive torque tau (N m),

@@ -95,6 +95,9 @@ MonitorModel make_monitor_model(const MonitorSettings& s) {
 
   MonitorModel m;
   m.settings = s;
+  m.load.coulomb_Nm = s.coulomb_Nm;
+  m.load.viscous_Nm_s = s.viscous_Nm_s;
+  m.load.friction_speed_rad_s = s.friction_speed_rad_s;
   const double count = s.encoder_bits > 0 ? 2.0 * std::numbers::pi / std::ldexp(1.0, s.encoder_bits) : 0.0;
   m.sigma_rad = std::sqrt(count * count / 12.0 + s.noise_rad * s.noise_rad);
   m.motion_gate_rad = s.min_motion_counts * (count > 0.0 ? count : s.noise_rad);
@@ -193,9 +196,7 @@ StepResult monitor_step(const MonitorModel& m, MonitorData& d, double t_s, const
   Eigen::Vector3d theta_m = theta_raw, carried;
   for (int i = 0; i < 3; ++i) {
     const auto k = static_cast<size_t>(i);
-    const double vs = m.settings.friction_speed_rad_s;
-    const double sign = vs > 0.0 ? std::clamp(omega[i] / vs, -1.0, 1.0) : (omega[i] > 0.0 ? 1.0 : (omega[i] < 0.0 ? -1.0 : 0.0));
-    carried[i] = tau[i] - m.settings.coulomb_Nm[k] * sign - m.settings.viscous_Nm_s[k] * omega[i];
+    carried[i] = transmitted_torque(m.load, i, tau[i], omega[i], 0.0);  // no acceleration given: no inertia term
     theta_m[i] += m.settings.skew_s[k] * omega[i] - m.settings.compliance_rad_per_Nm[k] * carried[i];
   }
   ++d.cycles;

@@ -30,6 +30,7 @@
 #include <Eigen/Core>
 
 #include "calib/monitor/ml_sensitivity.hpp"
+#include "calib/passive_tension.hpp"
 #include "models/parameters.hpp"
 
 namespace gpm::calib::monitor {
@@ -80,15 +81,17 @@ struct MonitorSettings {
   // link angles theta_m_i + skew_s_i omega_i - compliance_i tau_t_i, omega the
   // joint (motor) speed passed to monitor_step() and tau_t the torque the
   // transmission carries: the drive torque tau minus the friction on the
-  // motor side of the compliance, tau_t = tau - coulomb sign(omega) -
-  // viscous omega (the reducer's friction acts on the rotor; a torque-off
-  // joint's link still drags its rotor through the twist).
+  // motor side of the compliance, tau_t = tau - coulomb tanh(omega /
+  // friction_speed_rad_s) - viscous omega, calib::transmitted_torque without
+  // the inertia term (the monitor is given no acceleration; the reducer's
+  // friction acts on the rotor; a torque-off joint's link still drags its
+  // rotor through the twist).
   std::array<double, 3> skew_s{};                  // latch skew of each encoder (s)
   std::array<double, 3> compliance_rad_per_Nm{};  // transmission compliance of each chain
   std::array<double, 3> coulomb_Nm{};             // Coulomb friction on the motor side (N m)
   std::array<double, 3> viscous_Nm_s{};           // viscous friction on the motor side (N m s/rad)
-  // The Coulomb friction develops over joint speeds up to friction_speed_rad_s
-  // (taken as coulomb x speed / friction_speed below it); under
+  // The Coulomb friction develops over joint speeds of about friction_speed_rad_s
+  // (coulomb tanh(speed / friction_speed); 0: coulomb sign(speed)); under
   // friction_stick_rad_s it lies anywhere in +-coulomb, and a sample is used
   // only when every joint whose friction twist compliance x coulomb exceeds
   // half the reading noise moves faster (measured on the twin's MuJoCo
@@ -123,6 +126,7 @@ struct MonitorSettings {
 // Constant model of the monitor (derived once from the settings).
 struct MonitorModel {
   MonitorSettings settings;
+  TransmissionLoad load;         // coulomb_Nm, viscous_Nm_s, friction_speed_rad_s of the settings, no inertia
   double sigma_rad = 0.0;        // reading noise: sqrt(q^2 / 12 + noise_rad^2), q = 2 pi / 2^bits
   double motion_gate_rad = 0.0;  // min_motion_counts * count (or * noise_rad when ideal)
   double tests_per_hour = 0.0;   // 3600 * cycle_hz / decimation: the most window tests per hour

@@ -80,6 +80,13 @@ TEST(PassiveTension, TransmittedTorqueByHand) {
   EXPECT_NEAR(transmitted_torque(load, 0, 5.0, 1.0, 10.0), 5.0 - 0.3 - 0.1 - 0.2, 1e-12);
   EXPECT_NEAR(transmitted_torque(load, 0, 5.0, -1.0, 0.0), 5.0 + 0.3 + 0.1, 1e-12);
   EXPECT_EQ(transmitted_torque(load, 1, 5.0, 1.0, 10.0), 5.0);
+  // The smoothing speed is the load's (the drift monitor's 0.1 rad/s): at
+  // that speed tanh(1) of the Coulomb friction; 0: the sign alone.
+  load.friction_speed_rad_s = 0.1;
+  EXPECT_NEAR(transmitted_torque(load, 0, 5.0, 0.1, 0.0), 5.0 - 0.3 * 0.76159415595576 - 0.01, 1e-12);
+  load.friction_speed_rad_s = 0.0;
+  EXPECT_NEAR(transmitted_torque(load, 0, 5.0, 0.001, 0.0), 5.0 - 0.3 - 1e-4, 1e-12);
+  EXPECT_EQ(transmitted_torque(load, 0, 5.0, 0.0, 0.0), 5.0);
 }
 
 }  // namespace
