@@ -155,11 +155,11 @@ std::vector<int> excited_columns(const MotionModel& model, const std::vector<Eig
   return cols;
 }
 
-// The motor-side friction regressors tanh(omega / kFrictionSpeed) (0 without model.friction).
+// The motor-side friction regressors tanh(omega / v_F) (v_F = model.load.friction_speed_rad_s; 0 without model.friction).
 std::vector<Eigen::Vector3d> friction_regressors(const MotionModel& model, const std::vector<Eigen::Vector3d>& omega) {
   std::vector<Eigen::Vector3d> fric(omega.size(), Eigen::Vector3d::Zero());
   if (model.friction)
-    for (std::size_t j = 0; j < omega.size(); ++j) fric[j] = (omega[j] / kFrictionSpeed).array().tanh();
+    for (std::size_t j = 0; j < omega.size(); ++j) fric[j] = (omega[j] / model.load.friction_speed_rad_s).array().tanh();
   return fric;
 }
 
@@ -214,7 +214,7 @@ MotionFit calibrate_in_motion(const Problem& problem, const std::vector<Eigen::V
   // Coulomb friction F_i on the motor side of the transmission: the
   // transmitted torque is tau_i - F_i sign(omega_i), so the link twists by
   // c_i F_i sign(omega_i) less than c_i tau_i says (the sign smoothed over
-  // 0.01 rad/s, inside which the friction is static and unknown).
+  // model.load.friction_speed_rad_s, within which the friction builds up).
   const std::vector<Eigen::Vector3d> fric = friction_regressors(model, omega);
   if (!alpha.empty() && alpha.size() != n)
     throw InputError(fmt::format("calibration in motion: {} readings but {} joint accelerations", n, alpha.size()));

@@ -7,7 +7,7 @@ namespace gpm::calib {
 
 double transmitted_torque(const TransmissionLoad& load, int i, double tau, double omega, double alpha) {
   const auto k = static_cast<std::size_t>(i);
-  return tau - load.coulomb_Nm[k] * std::tanh(omega / kFrictionSpeed) - load.viscous_Nm_s[k] * omega -
+  return tau - load.coulomb_Nm[k] * std::tanh(omega / load.friction_speed_rad_s) - load.viscous_Nm_s[k] * omega -
          load.inertia_kg_m2[k] * alpha;
 }
 

@@ -266,7 +266,22 @@ RunOutcome run_scenario(const RunSpec& spec_in, const std::string& scenario_file
       if (lo.loss.active() && !(lo.loss.scale > 0.0))
         lo.loss.scale = calib::default_tuning(lo.loss.kind) * out.crb_sigma_rad;
       calib::MotionFit fit;
-      std::string friction_note;
+      std::string friction_note, speed_note;
+      if (in_motion && motion.friction && out.crb_sigma_rad > 0.0) {
+        // The speed over which the drives' friction builds up, chosen by the
+        // model test at the stated friction (calib/friction_profile.hpp).
+        const calib::FrictionProfile speeds = calib::friction_speed_profile(
+            problem, omega, tau, lo, motion, alpha, calib::default_friction_speeds(), out.crb_sigma_rad);
+        motion = speeds.model;
+        fit = speeds.fit;
+        std::string tried;
+        for (std::size_t k = 0; k < speeds.scales.size(); ++k)
+          tried += fmt::format("{}{:.3g}: {:.3g}", k ? ", " : "", speeds.scales[k], speeds.chi2_per_dof[k]);
+        speed_note = fmt::format(
+            "drive friction builds up over {:.3g} rad/s (F tanh(omega / v)), the smallest chi2/dof of the speeds "
+            "tried in rad/s ({})",
+            speeds.scale, tried);
+      }
       if (motion.clearance && spec.calibration.drive_friction.fit_scale && out.crb_sigma_rad > 0.0) {
         // The stated friction times the factor the model test prefers.
         calib::FrictionProfile profile = calib::calibrate_friction_profile(
@@ -280,7 +295,7 @@ RunOutcome run_scenario(const RunSpec& spec_in, const std::string& scenario_file
             "drive friction for the force signs: the stated values x{:.2f} (Coulomb {:.3g}, {:.3g}, {:.3g} N m), the "
             "smallest chi2/dof of the factors tried ({})",
             profile.scale, motion.load.coulomb_Nm[0], motion.load.coulomb_Nm[1], motion.load.coulomb_Nm[2], tried);
-      } else {
+      } else if (speed_note.empty()) {
         fit = calib::calibrate_in_motion(problem, omega, tau, lo, motion, alpha);
       }
       std::string clearance_dropped;
@@ -313,6 +328,7 @@ RunOutcome run_scenario(const RunSpec& spec_in, const std::string& scenario_file
         out.crb = scaled_bound([&] { return calib::crb_sigma(actual.geometry, problem.free, kept_noiseless, 1.0); },
                                out.crb_sigma_rad);
       }
+      if (!speed_note.empty()) out.calibration->notes.push_back(speed_note);
       if (!friction_note.empty() && motion.clearance) out.calibration->notes.push_back(friction_note);
       if (!clearance_dropped.empty()) out.calibration->notes.push_back(clearance_dropped);
       if (fit.kept.size() < noiseless.size()) {
