@@ -41,6 +41,12 @@ namespace {
 // Samples on the fly left out at the start with a compliant transmission (s).
 constexpr double kStartTransient_s = 0.05;
 
+// The data sheet's accuracy of the GPM2002's 17-bit absolute encoders, +-4
+// arcsec (A = 2e-5 rad), as the prior 1-sigma of each component of the
+// once-per-turn error A sin(theta + phase) the calibration on the fly
+// carries: A / sqrt 2, the spread of A cos(phase) over a phase unknown.
+const double kEncoderCyclicPrior_rad = 2e-5 / std::sqrt(2.0);
+
 // Encoder noise of one averaged sample: white reading noise over the
 // averaging window (one reading per drive period) plus quantisation
 // (uniform, step^2 / 12). An a-priori figure for the bound.
@@ -145,6 +151,14 @@ RunOutcome run_scenario(const RunSpec& spec_in, const std::string& scenario_file
   motion.compliance = spec.calibration.estimate_compliance.value_or(in_motion);
   motion.skew = spec.calibration.estimate_skew.value_or(in_motion);
   motion.friction = motion.compliance && spec.calibration.estimate_friction.value_or(in_motion);
+  // On the fly the samples are consecutive: the transmission's ringing twist
+  // is a response to the torque of the sample before too (calib/motion_correction.hpp).
+  motion.torque_before = in_motion && motion.compliance;
+  // On the fly each encoder's once-per-turn error is carried in the 1-sigma
+  // and the bound with the data sheet's accuracy as its prior
+  // (kEncoderCyclicPrior_rad; calib/motion_correction.hpp: considered, not estimated).
+  // (Ideal encoders, bits 0, have none.)
+  if (in_motion && spec.sim.twin.encoder.bits > 0) motion.cyclic_prior_rad = kEncoderCyclicPrior_rad;
   if (spec.calibration.tension_min_N) motion.tension_min_N = *spec.calibration.tension_min_N;
   // What the calibration assumes is what its user states (calibration:), as
   // on a real robot: the twin's effects (the simulated truth) are not read.
@@ -311,6 +325,18 @@ RunOutcome run_scenario(const RunSpec& spec_in, const std::string& scenario_file
         motion.clearance = false;
         fit = calib::calibrate_in_motion(problem, omega, tau, lo, motion, alpha);
       }
+      std::string before_dropped;
+      if (motion.torque_before && !calib::torque_before_detected(fit)) {
+        // Likewise the response to the torque before: kept only where the
+        // data show it (some h_i 3 sigma from 0; a rigid or slow transmission has none).
+        before_dropped = fmt::format(
+            "no response of the twist to the torque before detected (h = {:.3g}, {:.3g}, {:.3g} rad/N m, 1-sigma "
+            "{:.2g}, {:.2g}, {:.2g}): calibrated without it",
+            fit.torque_before[0], fit.torque_before[1], fit.torque_before[2], fit.torque_before_sigma[0],
+            fit.torque_before_sigma[1], fit.torque_before_sigma[2]);
+        motion.torque_before = false;
+        fit = calib::calibrate_in_motion(problem, omega, tau, lo, motion, alpha);
+      }
       out.calibration = fit.result;
       out.motion_nu = fit.nu;
       out.motion_nu_sigma = fit.nu_sigma;
@@ -318,8 +344,14 @@ RunOutcome run_scenario(const RunSpec& spec_in, const std::string& scenario_file
       if (motion.clearance) {
         // With the clearance, the bound of the joint estimation (geometry and
         // nuisance values, the samples the procedure keeps at the truth).
+        // (At the reading noise itself: the cyclic error's prior does not scale with it.)
         out.crb = scaled_bound(
-            [&] { return calib::motion_crb(actual.geometry, problem.free, noiseless, omega, tau, motion, alpha, 1.0); },
+            [&] {
+              std::array<double, kNumParams> b =
+                  calib::motion_crb(actual.geometry, problem.free, noiseless, omega, tau, motion, alpha, out.crb_sigma_rad);
+              for (double& v : b) v /= out.crb_sigma_rad;
+              return b;
+            },
             out.crb_sigma_rad);
       } else if (fit.kept.size() < noiseless.size()) {
         // The bound of the samples the fit used.
@@ -331,6 +363,7 @@ RunOutcome run_scenario(const RunSpec& spec_in, const std::string& scenario_file
       if (!speed_note.empty()) out.calibration->notes.push_back(speed_note);
       if (!friction_note.empty() && motion.clearance) out.calibration->notes.push_back(friction_note);
       if (!clearance_dropped.empty()) out.calibration->notes.push_back(clearance_dropped);
+      if (!before_dropped.empty()) out.calibration->notes.push_back(before_dropped);
       if (fit.kept.size() < noiseless.size()) {
         const std::size_t weak = noiseless.size() - fit.kept.size() - static_cast<std::size_t>(motion.skip_first);
         out.calibration->notes.push_back(
@@ -345,6 +378,18 @@ RunOutcome run_scenario(const RunSpec& spec_in, const std::string& scenario_file
           "c1 {:.3g}, c2 {:.3g}, c3 {:.3g} rad/N m (0: not excited, e.g. a torque-off joint); friction twist "
           "c F {:.3g}, {:.3g}, {:.3g} rad",
           fit.nu[0], fit.nu[1], fit.nu[2], fit.nu[3], fit.nu[4], fit.friction[0], fit.friction[1], fit.friction[2]));
+      if (motion.torque_before)
+        out.calibration->notes.push_back(fmt::format(
+            "the transmissions' twist also responds to the torque of the sample before: h {:.3g}, {:.3g}, {:.3g} "
+            "rad/N m (1-sigma {:.2g}, {:.2g}, {:.2g}); the static compliance c + h {:.3g}, {:.3g}, {:.3g} rad/N m",
+            fit.torque_before[0], fit.torque_before[1], fit.torque_before[2], fit.torque_before_sigma[0],
+            fit.torque_before_sigma[1], fit.torque_before_sigma[2], fit.nu[2] + fit.torque_before[0],
+            fit.nu[3] + fit.torque_before[1], fit.nu[4] + fit.torque_before[2]));
+      if (motion.cyclic_prior_rad > 0.0)
+        out.calibration->notes.push_back(fmt::format(
+            "the encoders' once-per-turn error (data sheet +-{:.2g} rad, random phase) is carried in the 1-sigma and "
+            "the Cramer-Rao bound, not estimated",
+            motion.cyclic_prior_rad * std::sqrt(2.0)));
       if (motion.clearance)
         out.calibration->notes.push_back(fmt::format(
             "joint clearance estimated with the geometry: passive links act as lb_i +- d_i by the sign of their axial "
