@@ -281,9 +281,10 @@ RunOutcome run_scenario(const RunSpec& spec_in, const std::string& scenario_file
         lo.loss.scale = calib::default_tuning(lo.loss.kind) * out.crb_sigma_rad;
       calib::MotionFit fit;
       std::string friction_note, speed_note;
-      if (in_motion && motion.friction && out.crb_sigma_rad > 0.0) {
-        // The speed over which the drives' friction builds up, chosen by the
-        // model test at the stated friction (calib/friction_profile.hpp).
+      // The speed over which the drives' friction builds up, chosen by the
+      // model test (calib/friction_profile.hpp) at the friction of motion.load.
+      const bool fit_speed = in_motion && motion.friction && out.crb_sigma_rad > 0.0;
+      const auto choose_speed = [&](const char* at) {
         const calib::FrictionProfile speeds = calib::friction_speed_profile(
             problem, omega, tau, lo, motion, alpha, calib::default_friction_speeds(), out.crb_sigma_rad);
         motion = speeds.model;
@@ -293,9 +294,10 @@ RunOutcome run_scenario(const RunSpec& spec_in, const std::string& scenario_file
           tried += fmt::format("{}{:.3g}: {:.3g}", k ? ", " : "", speeds.scales[k], speeds.chi2_per_dof[k]);
         speed_note = fmt::format(
             "drive friction builds up over {:.3g} rad/s (F tanh(omega / v)), the smallest chi2/dof of the speeds "
-            "tried in rad/s ({})",
-            speeds.scale, tried);
-      }
+            "tried in rad/s at {} ({})",
+            speeds.scale, at, tried);
+      };
+      if (fit_speed) choose_speed("the stated friction");
       if (motion.clearance && spec.calibration.drive_friction.fit_scale && out.crb_sigma_rad > 0.0) {
         // The stated friction times the factor the model test prefers.
         calib::FrictionProfile profile = calib::calibrate_friction_profile(
@@ -309,7 +311,9 @@ RunOutcome run_scenario(const RunSpec& spec_in, const std::string& scenario_file
             "drive friction for the force signs: the stated values x{:.2f} (Coulomb {:.3g}, {:.3g}, {:.3g} N m), the "
             "smallest chi2/dof of the factors tried ({})",
             profile.scale, motion.load.coulomb_Nm[0], motion.load.coulomb_Nm[1], motion.load.coulomb_Nm[2], tried);
-      } else if (speed_note.empty()) {
+        // A speed chosen at a wrong friction stands in for it: chosen again at the factor's.
+        if (fit_speed && profile.scale != 1.0) choose_speed("that friction");
+      } else if (!fit_speed) {
         fit = calib::calibrate_in_motion(problem, omega, tau, lo, motion, alpha);
       }
       std::string clearance_dropped;
