@@ -348,9 +348,10 @@ RunOutcome run_scenario(const RunSpec& spec_in, const std::string& scenario_file
       out.motion_nu = fit.nu;
       out.motion_nu_sigma = fit.nu_sigma;
       used = fit.corrected;
-      if (motion.clearance) {
-        // With the clearance, the bound of the joint estimation (geometry and
-        // nuisance values, the samples the procedure keeps at the truth).
+      if ((motion.clearance || motion.cyclic_prior_rad > 0.0) && out.crb_sigma_rad > 0.0) {
+        // With the clearance or the cyclic error carried, the bound of the
+        // joint estimation (geometry and nuisance values, the samples the
+        // procedure keeps at the truth, the cyclic error's prior).
         // (At the reading noise itself: the cyclic error's prior does not scale with it.)
         out.crb = scaled_bound(
             [&] {
