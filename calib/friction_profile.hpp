@@ -22,7 +22,7 @@ namespace gpm::calib {
 
 struct FrictionProfile {
   MotionFit fit;                      // the fit at the chosen factor
-  double scale = 1.0;                 // the chosen factor k
+  double scale = 1.0;                 // the chosen factor k (or speed v_F, friction_speed_profile)
   MotionModel model;                  // the model with the friction times k (for motion_crb)
   std::vector<double> scales;         // the factors tried
   std::vector<double> chi2_per_dof;   // the model test's chi2 / dof of each (inf where the fit failed)
@@ -39,5 +39,23 @@ FrictionProfile calibrate_friction_profile(const Problem& problem, const std::ve
                                            const std::vector<Eigen::Vector3d>& tau, const LmOptions& options,
                                            const MotionModel& model, const std::vector<Eigen::Vector3d>& alpha,
                                            const std::vector<double>& scales, double sigma);
+
+// The speed v_F over which the drives' friction builds up
+// (TransmissionLoad::friction_speed_rad_s), chosen by the model test as the
+// factor is: calibrate_in_motion at each speed of speeds (> 0) in
+// model.load, the fit of the smallest chi2/dof taken (FrictionProfile::scale
+// is then the speed). A real drive's friction is not a step at zero speed
+// (lubricant film, compliant seals): with the step (v_F 0.01 rad/s) the
+// friction twist c_i F_i is taken in full at speeds where it is still
+// building up. On the realistic twin the twist's mean against the link
+// speed follows tanh(omega / 0.13 rad/s). Throws as calibrate_friction_profile
+// (a speed <= 0 too).
+FrictionProfile friction_speed_profile(const Problem& problem, const std::vector<Eigen::Vector3d>& omega,
+                                       const std::vector<Eigen::Vector3d>& tau, const LmOptions& options,
+                                       const MotionModel& model, const std::vector<Eigen::Vector3d>& alpha,
+                                       const std::vector<double>& speeds, double sigma);
+
+// The speeds 0.01 * 10^(m/2) rad/s, m = 0..4 (0.01 to 1 rad/s).
+std::vector<double> default_friction_speeds();
 
 }  // namespace gpm::calib

@@ -27,17 +27,47 @@ double ml_residual(const ParamVector& x, const Eigen::Vector3d& theta) {
   return r;
 }
 
+// Number of nuisance columns (nuisance_columns).
+constexpr std::size_t kNuisance = 20;
+constexpr int kFirstCyclic = 14;
+
+// The drive torques of the sample before each one (consecutive samples on
+// the fly; the first repeats its own), or an empty vector without
+// model.torque_before.
+std::vector<Eigen::Vector3d> torques_before(const MotionModel& model, const std::vector<Eigen::Vector3d>& tau) {
+  std::vector<Eigen::Vector3d> nb;
+  if (!(model.compliance && model.torque_before)) return nb;
+  for (std::size_t j = 0; j < tau.size(); ++j) nb.push_back(tau[j > 0 ? j - 1 : 0]);
+  return nb;
+}
+
 // Share of the samples each sign of a passive link's force must hold for its play to be estimated.
 constexpr double kMinSignShare = 0.02;
 
-// Columns of the nuisance Jacobian that model estimates (0..4 = s2 s3 c1 c2 c3, 5..7 = c1 F1, c2 F2, c3 F3).
+// Columns of the nuisance Jacobian that model estimates (0..4 = s2 s3 c1 c2 c3, 5..7 = c1 F1, c2 F2, c3 F3,
+// 8..10 = d1 d2 d3, 11..13 = h1 h2 h3, 14..16 = a1 a2 a3, 17..19 = b1 b2 b3).
 std::vector<int> nuisance_columns(const MotionModel& m) {
   std::vector<int> cols;
   if (m.skew) cols.insert(cols.end(), {0, 1});
   if (m.compliance) cols.insert(cols.end(), {2, 3, 4});
   if (m.compliance && m.friction) cols.insert(cols.end(), {5, 6, 7});
   if (m.clearance) cols.insert(cols.end(), {8, 9, 10});
+  if (m.compliance && m.torque_before) cols.insert(cols.end(), {11, 12, 13});
+  if (m.cyclic_prior_rad > 0.0 && m.estimate_cyclic) cols.insert(cols.end(), {14, 15, 16, 17, 18, 19});
   return cols;
+}
+
+// True when model carries the cyclic error unestimated in the covariance.
+bool considers_cyclic(const MotionModel& m) { return m.cyclic_prior_rad > 0.0 && !m.estimate_cyclic; }
+
+// The covariance C (of the estimated columns of J) of an estimator that
+// leaves out the columns Jc whose coefficients are N(0, prior^2): C plus
+// prior^2 G G' with G = (J' J)^-1 J' Jc, the estimate's response to them
+// (a "consider" covariance). A is (J' J)^-1.
+void add_considered(const Eigen::MatrixXd& A, const Eigen::MatrixXd& J, const Eigen::MatrixXd& Jc, double prior,
+                    Eigen::MatrixXd& C) {
+  const Eigen::MatrixXd G = A * (J.topRows(Jc.rows()).transpose() * Jc);
+  C += prior * prior * G * G.transpose();
 }
 
 // What the clearance needs of one sample (calib/passive_tension.hpp): the
@@ -118,30 +148,74 @@ Eigen::Vector3d reading_sensitivity(const ParamVector& x, const Eigen::Vector3d&
   return u;
 }
 
-// One row of the nuisance Jacobian, every column (0..10), from the reading
-// sensitivities u and the sample's regressors.
-std::array<double, 11> nuisance_row(const Eigen::Vector3d& u, const Eigen::Vector3d& omega, const Eigen::Vector3d& tau,
-                                    const Eigen::Vector3d& fric, const Eigen::Vector3d& clr) {
-  return {u[1] * omega[1], u[2] * omega[2], -u[0] * tau[0], -u[1] * tau[1], -u[2] * tau[2], u[0] * fric[0],
-          u[1] * fric[1],  u[2] * fric[2],  u[0] * clr[0],  u[1] * clr[1],  u[2] * clr[2]};
+// One row of the nuisance Jacobian, every column (0..19), from the reading
+// sensitivities u and the sample's regressors (nb: the torques of the sample
+// before; reading: the raw readings, for the cyclic error;
+// calib/motion_correction.hpp).
+std::array<double, kNuisance> nuisance_row(const Eigen::Vector3d& u, const Eigen::Vector3d& omega, const Eigen::Vector3d& tau,
+                                           const Eigen::Vector3d& fric, const Eigen::Vector3d& clr, const Eigen::Vector3d& nb,
+                                           const Eigen::Vector3d& reading) {
+  return {u[1] * omega[1],
+          u[2] * omega[2],
+          -u[0] * tau[0],
+          -u[1] * tau[1],
+          -u[2] * tau[2],
+          u[0] * fric[0],
+          u[1] * fric[1],
+          u[2] * fric[2],
+          u[0] * clr[0],
+          u[1] * clr[1],
+          u[2] * clr[2],
+          -u[0] * nb[0],
+          -u[1] * nb[1],
+          -u[2] * nb[2],
+          -u[0] * std::sin(reading[0]),
+          -u[1] * std::sin(reading[1]),
+          -u[2] * std::sin(reading[2]),
+          -u[0] * std::cos(reading[0]),
+          -u[1] * std::cos(reading[1]),
+          -u[2] * std::cos(reading[2])};
+}
+
+// The rows of the cyclic error's prior (MotionModel::cyclic_prior_rad) for
+// the columns cols after `first` others: each coefficient a_k, b_k ~ N(0,
+// prior^2) is one more residual (sigma / prior) (value - 0) at noise sigma.
+// Appends them to J (rows) and, with values, to r.
+void append_cyclic_prior(const std::vector<int>& cols, Eigen::Index first, double weight, Eigen::MatrixXd& J,
+                         Eigen::VectorXd* r, const std::array<double, kNuisance>* values) {
+  std::vector<int> at;
+  for (std::size_t c = 0; c < cols.size(); ++c)
+    if (cols[c] >= kFirstCyclic) at.push_back(static_cast<int>(c));
+  if (at.empty()) return;
+  const Eigen::Index n = J.rows(), extra = static_cast<Eigen::Index>(at.size());
+  J.conservativeResize(n + extra, Eigen::NoChange);
+  J.bottomRows(extra).setZero();
+  if (r) r->conservativeResize(n + extra);
+  for (Eigen::Index k = 0; k < extra; ++k) {
+    const Eigen::Index col = first + at[static_cast<std::size_t>(k)];
+    J(n + k, col) = weight;
+    if (r) (*r)[n + k] = weight * (*values)[static_cast<std::size_t>(cols[static_cast<std::size_t>(at[static_cast<std::size_t>(k)])])];
+  }
 }
 
 // The nuisance columns of model that the samples excite (calibrate_in_motion).
 std::vector<int> excited_columns(const MotionModel& model, const std::vector<Eigen::Vector3d>& omega,
                                  const std::vector<Eigen::Vector3d>& tau, const std::vector<Eigen::Vector3d>& fric,
-                                 const std::vector<Eigen::Vector3d>& clr) {
+                                 const std::vector<Eigen::Vector3d>& clr, const std::vector<Eigen::Vector3d>& nb) {
   const std::size_t n = omega.size();
   auto regressor = [&](int c, std::size_t j) {
     if (c < 2) return omega[j][c + 1];
     if (c < 5) return tau[j][c - 2] - tau[0][c - 2];
     if (c < 8) return model.friction ? fric[j][c - 5] : 0.0;
-    return clr[j][c - 8];
+    if (c < 11) return clr[j][c - 8];
+    if (c < kFirstCyclic) return nb.empty() ? 0.0 : nb[j][c - 11] - nb[0][c - 11];
+    return 1.0;  // the cyclic error: held by its prior
   };
   std::vector<int> cols;
   for (int c : nuisance_columns(model)) {
     double excitation = 0.0;
     for (std::size_t j = 0; j < n; ++j) excitation += std::abs(regressor(c, j));
-    if (c >= 8) {
+    if (c >= 8 && c < 11) {
       // A passive link whose force keeps one sign stays at one end of its
       // play: a constant length change, part of lb_i (chain 1 held at a
       // constant torque). Its play is estimated when each sign holds in at
@@ -155,11 +229,11 @@ std::vector<int> excited_columns(const MotionModel& model, const std::vector<Eig
   return cols;
 }
 
-// The motor-side friction regressors tanh(omega / kFrictionSpeed) (0 without model.friction).
+// The motor-side friction regressors tanh(omega / v_F) (v_F = model.load.friction_speed_rad_s; 0 without model.friction).
 std::vector<Eigen::Vector3d> friction_regressors(const MotionModel& model, const std::vector<Eigen::Vector3d>& omega) {
   std::vector<Eigen::Vector3d> fric(omega.size(), Eigen::Vector3d::Zero());
   if (model.friction)
-    for (std::size_t j = 0; j < omega.size(); ++j) fric[j] = (omega[j] / kFrictionSpeed).array().tanh();
+    for (std::size_t j = 0; j < omega.size(); ++j) fric[j] = (omega[j] / model.load.friction_speed_rad_s).array().tanh();
   return fric;
 }
 
@@ -198,9 +272,13 @@ std::vector<Eigen::Vector3d> correct_readings(const std::vector<Eigen::Vector3d>
   return out;
 }
 
-MotionFit calibrate_in_motion(const Problem& problem, const std::vector<Eigen::Vector3d>& omega,
-                              const std::vector<Eigen::Vector3d>& tau, const LmOptions& options,
-                              const MotionModel& model, const std::vector<Eigen::Vector3d>& alpha) {
+namespace {
+
+// calibrate_in_motion with the torques before nb (torques_before of the
+// whole sequence; empty without model.torque_before) given.
+MotionFit fit_in_motion(const Problem& problem, const std::vector<Eigen::Vector3d>& omega,
+                        const std::vector<Eigen::Vector3d>& tau, const std::vector<Eigen::Vector3d>& nb,
+                        const LmOptions& options, const MotionModel& model, const std::vector<Eigen::Vector3d>& alpha) {
   const std::size_t n = problem.theta_m.size();
   if (omega.size() != n || tau.size() != n)
     throw InputError(fmt::format("calibration in motion: {} readings but {} joint speeds and {} torques", n,
@@ -214,7 +292,7 @@ MotionFit calibrate_in_motion(const Problem& problem, const std::vector<Eigen::V
   // Coulomb friction F_i on the motor side of the transmission: the
   // transmitted torque is tau_i - F_i sign(omega_i), so the link twists by
   // c_i F_i sign(omega_i) less than c_i tau_i says (the sign smoothed over
-  // 0.01 rad/s, inside which the friction is static and unknown).
+  // model.load.friction_speed_rad_s, within which the friction builds up).
   const std::vector<Eigen::Vector3d> fric = friction_regressors(model, omega);
   if (!alpha.empty() && alpha.size() != n)
     throw InputError(fmt::format("calibration in motion: {} readings but {} joint accelerations", n, alpha.size()));
@@ -232,8 +310,10 @@ MotionFit calibrate_in_motion(const Problem& problem, const std::vector<Eigen::V
     Problem sub = problem;
     sub.theta_m.clear();
     std::vector<Eigen::Vector3d> sub_omega, sub_tau, sub_alpha;
+    std::vector<Eigen::Vector3d> sub_nb;
     std::vector<Eigen::Vector2d> sub_xy;
     for (std::size_t j : kept) {
+      if (!nb.empty()) sub_nb.push_back(nb[j]);
       sub.theta_m.push_back(problem.theta_m[j]);
       sub_omega.push_back(omega[j]);
       sub_tau.push_back(tau[j]);
@@ -246,7 +326,7 @@ MotionFit calibrate_in_motion(const Problem& problem, const std::vector<Eigen::V
     sub_model.skip_first = 0;
     sub_model.drop_uncertain = false;
     sub_model.tension_min_N = tension_min;
-    MotionFit fit = calibrate_in_motion(sub, sub_omega, sub_tau, sub_options, sub_model, sub_alpha);
+    MotionFit fit = fit_in_motion(sub, sub_omega, sub_tau, sub_nb, sub_options, sub_model, sub_alpha);
     for (std::size_t& j : fit.kept) j = kept[j];
     for (int k = 0; k < 3; ++k) {
       double certain = 0.0;
@@ -255,32 +335,46 @@ MotionFit calibrate_in_motion(const Problem& problem, const std::vector<Eigen::V
     }
     return fit;
   }
-  const std::vector<int> cols = excited_columns(model, omega, tau, fric, clr);
+  // The cyclic error is estimated under its prior, which needs the reading noise.
+  MotionModel with_prior = model;
+  if (!options.encoder_sigma) with_prior.cyclic_prior_rad = 0.0;
+  const double prior_weight = with_prior.cyclic_prior_rad > 0.0 ? *options.encoder_sigma / with_prior.cyclic_prior_rad : 0.0;
+  const std::vector<int> cols = excited_columns(with_prior, omega, tau, fric, clr, nb);
   const int q = static_cast<int>(cols.size());
 
   MotionFit fit;
   fit.nu_sigma.fill(std::numeric_limits<double>::quiet_NaN());
   fit.friction_sigma.fill(std::numeric_limits<double>::quiet_NaN());
   fit.clearance_sigma.fill(std::numeric_limits<double>::quiet_NaN());
+  fit.torque_before_sigma.fill(std::numeric_limits<double>::quiet_NaN());
+  fit.cyclic_sigma.fill(std::numeric_limits<double>::quiet_NaN());
   Problem p = problem;
   LmOptions lm = options;
   const bool want_covariance = options.compute_covariance;
   lm.compute_covariance = false;
-  Eigen::MatrixXd Jg_free, Jn;
+  Eigen::MatrixXd Jg_free, Jn, Jc;  // Jc: the cyclic error's columns (considered, not estimated)
   Eigen::VectorXd r;
   std::vector<int> free_index;
   for (int k = 0; k < kNumParams; ++k)
     if (problem.free[k]) free_index.push_back(k);
 
-  std::array<double, 11> nu_all{};  // nu, then c_i F_i, then the clearances d_i
+  std::array<double, kNuisance> nu_all{};  // nu, then c_i F_i, the clearances d_i, h_i, the cyclic a_i, b_i
   // The readings corrected for the twist, skew and friction (without the clearance).
   auto twist_corrected = [&]() {
     std::copy_n(nu_all.begin(), 5, fit.nu.begin());
     std::copy_n(nu_all.begin() + 5, 3, fit.friction.begin());
     std::copy_n(nu_all.begin() + 8, 3, fit.clearance.begin());
+    std::copy_n(nu_all.begin() + 11, 3, fit.torque_before.begin());
+    std::copy_n(nu_all.begin() + kFirstCyclic, 6, fit.cyclic.begin());
     std::vector<Eigen::Vector3d> out = correct_readings(problem.theta_m, omega, tau, fit.nu);
     for (std::size_t j = 0; j < n; ++j)
-      for (int k = 0; k < 3; ++k) out[j][k] += fit.friction[static_cast<std::size_t>(k)] * fric[j][k];
+      for (int k = 0; k < 3; ++k) {
+        out[j][k] += fit.friction[static_cast<std::size_t>(k)] * fric[j][k];
+        if (!nb.empty()) out[j][k] -= fit.torque_before[static_cast<std::size_t>(k)] * nb[j][k];
+        const double raw = problem.theta_m[j][k];
+        out[j][k] -= fit.cyclic[static_cast<std::size_t>(k)] * std::sin(raw) +
+                     fit.cyclic[static_cast<std::size_t>(k) + 3] * std::cos(raw);
+      }
     return out;
   };
   auto corrected = [&]() {
@@ -312,21 +406,26 @@ MotionFit calibrate_in_motion(const Problem& problem, const std::vector<Eigen::V
     Jg_free.resize(static_cast<Eigen::Index>(n), static_cast<Eigen::Index>(free_index.size()));
     for (std::size_t k = 0; k < free_index.size(); ++k) Jg_free.col(static_cast<Eigen::Index>(k)) = J_all.col(free_index[k]);
     Jn.resize(static_cast<Eigen::Index>(n), q);
+    Jc.resize(static_cast<Eigen::Index>(n), 6);
     r.resize(static_cast<Eigen::Index>(n));
     for (std::size_t j = 0; j < n; ++j) {
       const Eigen::Vector3d& th = p.theta_m[j];
       r[static_cast<Eigen::Index>(j)] = ml_residual(x, th);
-      const std::array<double, 11> all = nuisance_row(reading_sensitivity(x, th), omega[j], tau[j], fric[j], clr[j]);
+      const std::array<double, kNuisance> all = nuisance_row(reading_sensitivity(x, th), omega[j], tau[j], fric[j], clr[j],
+                                                             nb.empty() ? Eigen::Vector3d::Zero() : nb[j], problem.theta_m[j]);
       for (int c = 0; c < q; ++c) Jn(static_cast<Eigen::Index>(j), c) = all[static_cast<std::size_t>(cols[static_cast<std::size_t>(c)])];
+      for (int c = 0; c < 6; ++c) Jc(static_cast<Eigen::Index>(j), c) = all[static_cast<std::size_t>(kFirstCyclic + c)];
     }
     if (q == 0) break;
     // Joint Gauss-Newton step, column-scaled (seconds, rad/N m and mm differ by orders).
     Eigen::MatrixXd J(static_cast<Eigen::Index>(n), Jg_free.cols() + q);
     J << Jg_free, Jn;
+    Eigen::VectorXd rp = r;
+    append_cyclic_prior(cols, Jg_free.cols(), prior_weight, J, &rp, &nu_all);
     Eigen::VectorXd scale = J.colwise().norm().transpose();
     for (Eigen::Index c = 0; c < scale.size(); ++c) scale[c] = scale[c] > 0.0 ? scale[c] : 1.0;
     const Eigen::MatrixXd Js = J * scale.cwiseInverse().asDiagonal();
-    const Eigen::VectorXd step = scale.cwiseInverse().asDiagonal() * Js.colPivHouseholderQr().solve(-r);
+    const Eigen::VectorXd step = scale.cwiseInverse().asDiagonal() * Js.colPivHouseholderQr().solve(-rp);
     double change = 0.0;
     for (int c = 0; c < q; ++c) {
       const double d = step[Jg_free.cols() + c];
@@ -353,11 +452,14 @@ MotionFit calibrate_in_motion(const Problem& problem, const std::vector<Eigen::V
     // replaces the geometry-only one, its nuisance diagonal gives nu_sigma.
     Eigen::MatrixXd J(static_cast<Eigen::Index>(n), Jg_free.cols() + q);
     J << Jg_free, Jn;
+    append_cyclic_prior(cols, Jg_free.cols(), prior_weight, J, nullptr, nullptr);
     const Eigen::Index m = J.cols();
     const double dof = static_cast<double>(n) - static_cast<double>(m);
     const double s2 = options.encoder_sigma ? (*options.encoder_sigma) * (*options.encoder_sigma)
                                             : (dof > 0 ? r.squaredNorm() / dof : std::numeric_limits<double>::quiet_NaN());
-    const Eigen::MatrixXd C = s2 * (J.transpose() * J).ldlt().solve(Eigen::MatrixXd::Identity(m, m));
+    const Eigen::MatrixXd A = (J.transpose() * J).ldlt().solve(Eigen::MatrixXd::Identity(m, m));
+    Eigen::MatrixXd C = s2 * A;
+    if (considers_cyclic(model)) add_considered(A, J, Jc, model.cyclic_prior_rad, C);
     auto& cov = *fit.result.covariance;
     cov.setZero();
     for (std::size_t a = 0; a < free_index.size(); ++a)
@@ -368,10 +470,19 @@ MotionFit calibrate_in_motion(const Problem& problem, const std::vector<Eigen::V
     for (int c = 0; c < q; ++c) {
       const Eigen::Index i = Jg_free.cols() + c;
       const std::size_t k = static_cast<std::size_t>(cols[static_cast<std::size_t>(c)]);
-      (k < 5 ? fit.nu_sigma[k] : k < 8 ? fit.friction_sigma[k - 5] : fit.clearance_sigma[k - 8]) = std::sqrt(C(i, i));
+      (k < 5 ? fit.nu_sigma[k] : k < 8 ? fit.friction_sigma[k - 5] : k < 11 ? fit.clearance_sigma[k - 8]
+                                       : k < 14 ? fit.torque_before_sigma[k - 11] : fit.cyclic_sigma[k - 14]) = std::sqrt(C(i, i));
     }
   }
   return fit;
+}
+
+}  // namespace
+
+MotionFit calibrate_in_motion(const Problem& problem, const std::vector<Eigen::Vector3d>& omega,
+                              const std::vector<Eigen::Vector3d>& tau, const LmOptions& options,
+                              const MotionModel& model, const std::vector<Eigen::Vector3d>& alpha) {
+  return fit_in_motion(problem, omega, tau, torques_before(model, tau), options, model, alpha);
 }
 
 std::array<double, kNumParams> motion_crb(const Geometry& truth, const FreeMask& free,
@@ -389,39 +500,48 @@ std::array<double, kNumParams> motion_crb(const Geometry& truth, const FreeMask&
     const std::vector<std::optional<PassiveForces>> forces = passive_forces(truth, theta_m, tau_t);
     clr = clearance_regressors(forces, effective_tension_min(model, forces));
   }
-  std::vector<Eigen::Vector3d> th, w, t, c;
+  const std::vector<Eigen::Vector3d> nb_all = torques_before(model, tau);
+  std::vector<Eigen::Vector3d> th, w, t, c, nb;
   for (std::size_t j : kept_samples(model, clr)) {
+    if (!nb_all.empty()) nb.push_back(nb_all[j]);
     th.push_back(theta_m[j]);
     w.push_back(omega[j]);
     t.push_back(tau[j]);
     c.push_back(clr[j]);
   }
   const std::vector<Eigen::Vector3d> fric = friction_regressors(model, w);
-  const std::vector<int> cols = excited_columns(model, w, t, fric, c);
+  const std::vector<int> cols = excited_columns(model, w, t, fric, c, nb);
   std::vector<int> free_index;
   for (int k = 0; k < kNumParams; ++k)
     if (free[k]) free_index.push_back(k);
   const Eigen::MatrixXd J_all = ml_jacobian(th, truth);
   const auto m = static_cast<Eigen::Index>(free_index.size() + cols.size());
-  Eigen::MatrixXd J(static_cast<Eigen::Index>(th.size()), m);
+  Eigen::MatrixXd J(static_cast<Eigen::Index>(th.size()), m), Jc(static_cast<Eigen::Index>(th.size()), 6);
   const ParamVector x = to_solver(truth, Cost::kML);
   for (std::size_t j = 0; j < th.size(); ++j) {
     const auto row = static_cast<Eigen::Index>(j);
     for (std::size_t k = 0; k < free_index.size(); ++k) J(row, static_cast<Eigen::Index>(k)) = J_all(row, free_index[k]);
-    const std::array<double, 11> all = nuisance_row(reading_sensitivity(x, th[j]), w[j], t[j], fric[j], c[j]);
+    const std::array<double, kNuisance> all =
+        nuisance_row(reading_sensitivity(x, th[j]), w[j], t[j], fric[j], c[j], nb.empty() ? Eigen::Vector3d::Zero() : nb[j], th[j]);
     for (std::size_t k = 0; k < cols.size(); ++k)
       J(row, static_cast<Eigen::Index>(free_index.size() + k)) = all[static_cast<std::size_t>(cols[k])];
+    for (int c = 0; c < 6; ++c) Jc(row, c) = all[static_cast<std::size_t>(kFirstCyclic + c)];
   }
+  if (model.cyclic_prior_rad > 0.0 && sigma > 0.0)
+    append_cyclic_prior(cols, static_cast<Eigen::Index>(free_index.size()), sigma / model.cyclic_prior_rad, J, nullptr,
+                        nullptr);
   // Column-scaled inverse (seconds, rad/N m and mm differ by orders).
   Eigen::VectorXd scale = J.colwise().norm().transpose();
   for (Eigen::Index k = 0; k < scale.size(); ++k) scale[k] = scale[k] > 0.0 ? scale[k] : 1.0;
   const Eigen::MatrixXd Js = J * scale.cwiseInverse().asDiagonal();
-  const Eigen::MatrixXd C = (Js.transpose() * Js).ldlt().solve(Eigen::MatrixXd::Identity(m, m));
+  const Eigen::MatrixXd A = (Js.transpose() * Js).ldlt().solve(Eigen::MatrixXd::Identity(m, m));
+  Eigen::MatrixXd C = sigma * sigma * A;  // of the scaled coefficients
+  if (considers_cyclic(model)) add_considered(A, Js, Jc, model.cyclic_prior_rad, C);
   std::array<double, kNumParams> out;
   out.fill(std::numeric_limits<double>::quiet_NaN());
   for (std::size_t k = 0; k < free_index.size(); ++k) {
     const auto i = static_cast<Eigen::Index>(k);
-    out[static_cast<std::size_t>(free_index[k])] = sigma * std::sqrt(C(i, i)) / scale[i];
+    out[static_cast<std::size_t>(free_index[k])] = std::sqrt(C(i, i)) / scale[i];
   }
   return out;
 }
@@ -429,6 +549,13 @@ std::array<double, kNumParams> motion_crb(const Geometry& truth, const FreeMask&
 bool clearance_detected(const MotionFit& fit, double k) {
   for (std::size_t i = 0; i < 3; ++i)
     if (std::isfinite(fit.clearance_sigma[i]) && std::abs(fit.clearance[i]) >= k * fit.clearance_sigma[i]) return true;
+  return false;
+}
+
+bool torque_before_detected(const MotionFit& fit, double k) {
+  for (std::size_t i = 0; i < 3; ++i)
+    if (std::isfinite(fit.torque_before_sigma[i]) && std::abs(fit.torque_before[i]) >= k * fit.torque_before_sigma[i])
+      return true;
   return false;
 }
 

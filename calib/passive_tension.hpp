@@ -19,12 +19,13 @@
 //
 // The torque transmitted to the active link, as far as the moment balance
 // needs it: the drive torque tau_i less the motor-side Coulomb friction
-// F_i sign(omega_i) (smoothed over v = TransmissionLoad::friction_speed_rad_s,
-// kFrictionSpeed for the calibration), the viscous friction b_i omega_i and
-// the inertia I_i alpha_i of rotor and link about A_i:
-//   tau_t_i = tau_i - F_i tanh(omega_i / v) - b_i omega_i - I_i alpha_i.
-// One formula for the calibration (calib/motion_correction.hpp) and the drift
-// monitor (calib/monitor/monitor.hpp: v = 0.1 rad/s, no inertia).
+// F_i sign(omega_i) (smoothed over the speed v_F, TransmissionLoad::
+// friction_speed_rad_s; v_F = 0: a sign step), the viscous friction b_i omega_i
+// and the inertia I_i alpha_i of rotor and link about A_i:
+//   tau_t_i = tau_i - F_i tanh(omega_i / v_F) - b_i omega_i - I_i alpha_i.
+// One formula for the calibration (calib/motion_correction.hpp: v_F chosen by
+// the model test) and the drift monitor (calib/monitor/monitor.hpp: v_F =
+// 0.1 rad/s, no inertia).
 #pragma once
 
 #include <array>
@@ -33,7 +34,8 @@
 
 namespace gpm::calib {
 
-// Joint speed below which Coulomb friction is treated as static (rad/s).
+// Joint speed below which Coulomb friction is treated as static (rad/s): the
+// default of TransmissionLoad::friction_speed_rad_s.
 inline constexpr double kFrictionSpeed = 0.01;
 
 // What a transmission takes off the drive torque before it reaches the
@@ -42,7 +44,10 @@ struct TransmissionLoad {
   std::array<double, 3> coulomb_Nm{};     // motor-side Coulomb friction F_i
   std::array<double, 3> viscous_Nm_s{};   // viscous friction b_i (per rad/s)
   std::array<double, 3> inertia_kg_m2{};  // rotor (reflected) plus active link about A_i
-  double friction_speed_rad_s = kFrictionSpeed;  // Coulomb friction as F tanh(omega / this); 0: F sign(omega)
+  double friction_speed_rad_s = kFrictionSpeed;  // v_F: the friction reaches tanh(1) = 76 % of F_i at this
+                                                 // speed (a drive's friction builds up over a speed range:
+                                                 // lubricant film, the seal's and the reducer's compliance);
+                                                 // 0: F_i sign(omega_i)
 };
 
 // The torque transmitted to active link i (N m) at drive torque tau (N m),

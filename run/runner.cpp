@@ -41,6 +41,12 @@ namespace {
 // Samples on the fly left out at the start with a compliant transmission (s).
 constexpr double kStartTransient_s = 0.05;
 
+// The data sheet's accuracy of the GPM2002's 17-bit absolute encoders, +-4
+// arcsec (A = 2e-5 rad), as the prior 1-sigma of each component of the
+// once-per-turn error A sin(theta + phase) the calibration on the fly
+// carries: A / sqrt 2, the spread of A cos(phase) over a phase unknown.
+const double kEncoderCyclicPrior_rad = 2e-5 / std::sqrt(2.0);
+
 // Encoder noise of one averaged sample: white reading noise over the
 // averaging window (one reading per drive period) plus quantisation
 // (uniform, step^2 / 12). An a-priori figure for the bound.
@@ -145,6 +151,17 @@ RunOutcome run_scenario(const RunSpec& spec_in, const std::string& scenario_file
   motion.compliance = spec.calibration.estimate_compliance.value_or(in_motion);
   motion.skew = spec.calibration.estimate_skew.value_or(in_motion);
   motion.friction = motion.compliance && spec.calibration.estimate_friction.value_or(in_motion);
+  // On the fly the samples are consecutive: the transmission's ringing twist
+  // is a response to the torque of the sample before too (calib/motion_correction.hpp).
+  // Only with a reading noise to judge it by: from noiseless readings (ideal
+  // encoders) the twin's soft loop closure, which follows the forces, showed
+  // as h at 30 sigma and moved dth3 by 4e-5 rad.
+  motion.torque_before = in_motion && motion.compliance && spec.calibration.sigma.value_or(effective_sigma(spec.sim)) > 0.0;
+  // On the fly each encoder's once-per-turn error is carried in the 1-sigma
+  // and the bound with the data sheet's accuracy as its prior
+  // (kEncoderCyclicPrior_rad; calib/motion_correction.hpp: considered, not estimated).
+  // (Ideal encoders, bits 0, have none.)
+  if (in_motion && spec.sim.twin.encoder.bits > 0) motion.cyclic_prior_rad = kEncoderCyclicPrior_rad;
   if (spec.calibration.tension_min_N) motion.tension_min_N = *spec.calibration.tension_min_N;
   // What the calibration assumes is what its user states (calibration:), as
   // on a real robot: the twin's effects (the simulated truth) are not read.
@@ -266,7 +283,24 @@ RunOutcome run_scenario(const RunSpec& spec_in, const std::string& scenario_file
       if (lo.loss.active() && !(lo.loss.scale > 0.0))
         lo.loss.scale = calib::default_tuning(lo.loss.kind) * out.crb_sigma_rad;
       calib::MotionFit fit;
-      std::string friction_note;
+      std::string friction_note, speed_note;
+      // The speed over which the drives' friction builds up, chosen by the
+      // model test (calib/friction_profile.hpp) at the friction of motion.load.
+      const bool fit_speed = in_motion && motion.friction && out.crb_sigma_rad > 0.0;
+      const auto choose_speed = [&](const char* at) {
+        const calib::FrictionProfile speeds = calib::friction_speed_profile(
+            problem, omega, tau, lo, motion, alpha, calib::default_friction_speeds(), out.crb_sigma_rad);
+        motion = speeds.model;
+        fit = speeds.fit;
+        std::string tried;
+        for (std::size_t k = 0; k < speeds.scales.size(); ++k)
+          tried += fmt::format("{}{:.3g}: {:.3g}", k ? ", " : "", speeds.scales[k], speeds.chi2_per_dof[k]);
+        speed_note = fmt::format(
+            "drive friction builds up over {:.3g} rad/s (F tanh(omega / v)), the smallest chi2/dof of the speeds "
+            "tried in rad/s at {} ({})",
+            speeds.scale, at, tried);
+      };
+      if (fit_speed) choose_speed("the stated friction");
       if (motion.clearance && spec.calibration.drive_friction.fit_scale && out.crb_sigma_rad > 0.0) {
         // The stated friction times the factor the model test prefers.
         calib::FrictionProfile profile = calib::calibrate_friction_profile(
@@ -280,7 +314,9 @@ RunOutcome run_scenario(const RunSpec& spec_in, const std::string& scenario_file
             "drive friction for the force signs: the stated values x{:.2f} (Coulomb {:.3g}, {:.3g}, {:.3g} N m), the "
             "smallest chi2/dof of the factors tried ({})",
             profile.scale, motion.load.coulomb_Nm[0], motion.load.coulomb_Nm[1], motion.load.coulomb_Nm[2], tried);
-      } else {
+        // A speed chosen at a wrong friction stands in for it: chosen again at the factor's.
+        if (fit_speed && profile.scale != 1.0) choose_speed("that friction");
+      } else if (!fit_speed) {
         fit = calib::calibrate_in_motion(problem, omega, tau, lo, motion, alpha);
       }
       std::string clearance_dropped;
@@ -296,15 +332,34 @@ RunOutcome run_scenario(const RunSpec& spec_in, const std::string& scenario_file
         motion.clearance = false;
         fit = calib::calibrate_in_motion(problem, omega, tau, lo, motion, alpha);
       }
+      std::string before_dropped;
+      if (motion.torque_before && !calib::torque_before_detected(fit)) {
+        // Likewise the response to the torque before: kept only where the
+        // data show it (some h_i 3 sigma from 0; a rigid or slow transmission has none).
+        before_dropped = fmt::format(
+            "no response of the twist to the torque before detected (h = {:.3g}, {:.3g}, {:.3g} rad/N m, 1-sigma "
+            "{:.2g}, {:.2g}, {:.2g}): calibrated without it",
+            fit.torque_before[0], fit.torque_before[1], fit.torque_before[2], fit.torque_before_sigma[0],
+            fit.torque_before_sigma[1], fit.torque_before_sigma[2]);
+        motion.torque_before = false;
+        fit = calib::calibrate_in_motion(problem, omega, tau, lo, motion, alpha);
+      }
       out.calibration = fit.result;
       out.motion_nu = fit.nu;
       out.motion_nu_sigma = fit.nu_sigma;
       used = fit.corrected;
-      if (motion.clearance) {
-        // With the clearance, the bound of the joint estimation (geometry and
-        // nuisance values, the samples the procedure keeps at the truth).
+      if ((motion.clearance || motion.cyclic_prior_rad > 0.0) && out.crb_sigma_rad > 0.0) {
+        // With the clearance or the cyclic error carried, the bound of the
+        // joint estimation (geometry and nuisance values, the samples the
+        // procedure keeps at the truth, the cyclic error's prior).
+        // (At the reading noise itself: the cyclic error's prior does not scale with it.)
         out.crb = scaled_bound(
-            [&] { return calib::motion_crb(actual.geometry, problem.free, noiseless, omega, tau, motion, alpha, 1.0); },
+            [&] {
+              std::array<double, kNumParams> b =
+                  calib::motion_crb(actual.geometry, problem.free, noiseless, omega, tau, motion, alpha, out.crb_sigma_rad);
+              for (double& v : b) v /= out.crb_sigma_rad;
+              return b;
+            },
             out.crb_sigma_rad);
       } else if (fit.kept.size() < noiseless.size()) {
         // The bound of the samples the fit used.
@@ -313,12 +368,14 @@ RunOutcome run_scenario(const RunSpec& spec_in, const std::string& scenario_file
         out.crb = scaled_bound([&] { return calib::crb_sigma(actual.geometry, problem.free, kept_noiseless, 1.0); },
                                out.crb_sigma_rad);
       }
+      if (!speed_note.empty()) out.calibration->notes.push_back(speed_note);
       if (!friction_note.empty() && motion.clearance) out.calibration->notes.push_back(friction_note);
       // For the monitor of the operation (run/monitor_run.hpp reading_model_after_calibration).
       if (motion.clearance || !clearance_dropped.empty()) out.joint_play_mm = fit.clearance;
       if (!friction_note.empty() && motion.clearance)
         out.drive_friction_fitted = DriveFriction{motion.load.coulomb_Nm, motion.load.viscous_Nm_s, false};
       if (!clearance_dropped.empty()) out.calibration->notes.push_back(clearance_dropped);
+      if (!before_dropped.empty()) out.calibration->notes.push_back(before_dropped);
       if (fit.kept.size() < noiseless.size()) {
         const std::size_t weak = noiseless.size() - fit.kept.size() - static_cast<std::size_t>(motion.skip_first);
         out.calibration->notes.push_back(
@@ -333,6 +390,18 @@ RunOutcome run_scenario(const RunSpec& spec_in, const std::string& scenario_file
           "c1 {:.3g}, c2 {:.3g}, c3 {:.3g} rad/N m (0: not excited, e.g. a torque-off joint); friction twist "
           "c F {:.3g}, {:.3g}, {:.3g} rad",
           fit.nu[0], fit.nu[1], fit.nu[2], fit.nu[3], fit.nu[4], fit.friction[0], fit.friction[1], fit.friction[2]));
+      if (motion.torque_before)
+        out.calibration->notes.push_back(fmt::format(
+            "the transmissions' twist also responds to the torque of the sample before: h {:.3g}, {:.3g}, {:.3g} "
+            "rad/N m (1-sigma {:.2g}, {:.2g}, {:.2g}); the static compliance c + h {:.3g}, {:.3g}, {:.3g} rad/N m",
+            fit.torque_before[0], fit.torque_before[1], fit.torque_before[2], fit.torque_before_sigma[0],
+            fit.torque_before_sigma[1], fit.torque_before_sigma[2], fit.nu[2] + fit.torque_before[0],
+            fit.nu[3] + fit.torque_before[1], fit.nu[4] + fit.torque_before[2]));
+      if (motion.cyclic_prior_rad > 0.0)
+        out.calibration->notes.push_back(fmt::format(
+            "the encoders' once-per-turn error (data sheet +-{:.2g} rad, random phase) is carried in the 1-sigma and "
+            "the Cramer-Rao bound, not estimated",
+            motion.cyclic_prior_rad * std::sqrt(2.0)));
       if (motion.clearance)
         out.calibration->notes.push_back(fmt::format(
             "joint clearance estimated with the geometry: passive links act as lb_i +- d_i by the sign of their axial "

@@ -3,7 +3,8 @@
 // torque less a Coulomb friction F (virtual work, independent of the
 // calibration's formula); a calibration told 2F or F/2 picks the factor that
 // gives back F (the smallest chi2/dof), and there recovers the plays within
-// 4 sigma; bad arguments are refused.
+// 4 sigma; a friction that builds up over 0.3 rad/s is found by the speed
+// profile; bad arguments are refused.
 #include "calib/friction_profile.hpp"
 
 #include <algorithm>
@@ -33,9 +34,9 @@ struct PlayData {
 
 // 800 samples of the Table-5 robot, drive torques ~ N(0, 1.5 N m) and speeds
 // ~ N(0, 1 rad/s); link i is lb_i + d_i sign(T_i), T_i from the transmitted
-// torque tau_i - F tanh(omega_i / kFrictionSpeed); readings by IK of that
+// torque tau_i - F tanh(omega_i / speed); readings by IK of that
 // geometry, twisted by c_i (tau_i - F tanh(...)), plus noise.
-PlayData make_play_data() {
+PlayData make_play_data(double speed = kFrictionSpeed) {
   Robot a;
   a.geometry = table5_actual();
   const std::vector<Eigen::Vector2d> poses = disc_poses(a, 800, a.home, 100.0, 41);
@@ -52,7 +53,7 @@ PlayData make_play_data() {
     Geometry gj = a.geometry;
     Eigen::Vector3d carried;
     for (int i = 0; i < 3; ++i) {
-      carried[i] = t[i] - kFriction_Nm * std::tanh(w[i] / kFrictionSpeed);
+      carried[i] = t[i] - kFriction_Nm * std::tanh(w[i] / speed);
       const Eigen::Vector2d A(a.geometry[xa(i)], a.geometry[ya(i)]);
       const auto dist = [&](double th) {
         return (p - A - a.geometry.la_(i) * Eigen::Vector2d(std::cos(th), std::sin(th))).norm();
@@ -101,6 +102,30 @@ TEST(FrictionProfile, PicksTheFactorThatGivesBackTheFriction) {
   EXPECT_GT(truth.chi2_per_dof[4], 1.5 * truth.chi2_per_dof[2]);  // 4x the friction
 }
 
+TEST(FrictionProfile, SpeedProfilePicksTheSpeedOverWhichTheFrictionBuildsUp) {
+  constexpr double kSpeed = 0.3;  // rad/s; the joint speeds are ~ N(0, 1 rad/s): a third of the samples within it
+  const PlayData d = make_play_data(kSpeed);
+  LmOptions o;
+  o.encoder_sigma = kSigma;
+  const std::vector<double> speeds = {0.01, 0.1, kSpeed, 1.0};
+  MotionModel m = stated(kFriction_Nm);
+  const FrictionProfile p = friction_speed_profile(d.problem, d.omega, d.tau, o, m, {}, speeds, kSigma);
+  EXPECT_EQ(p.scale, kSpeed);
+  EXPECT_EQ(p.model.load.friction_speed_rad_s, kSpeed);
+  EXPECT_EQ(p.model.load.coulomb_Nm[0], kFriction_Nm);  // the friction itself untouched
+  ASSERT_EQ(p.chi2_per_dof.size(), speeds.size());
+  // The step of the old default fits worse by a margin, and the true speed's fit passes for noise.
+  EXPECT_GT(p.chi2_per_dof[0], 1.2 * p.chi2_per_dof[2]);
+  EXPECT_LT(p.chi2_per_dof[2], 1.15);
+  // There the friction twist c_i F comes back within 4 sigma.
+  for (std::size_t i = 0; i < 3; ++i) {
+    ASSERT_TRUE(std::isfinite(p.fit.friction_sigma[i]));
+    EXPECT_LT(std::abs(p.fit.friction[i] - kCompliance[static_cast<Eigen::Index>(i)] * kFriction_Nm),
+              4.0 * p.fit.friction_sigma[i])
+        << "friction twist of joint " << i + 1;
+  }
+}
+
 TEST(FrictionProfile, RefusesBadArguments) {
   const PlayData d = make_play_data();
   LmOptions o;
@@ -108,6 +133,14 @@ TEST(FrictionProfile, RefusesBadArguments) {
   EXPECT_THROW(calibrate_friction_profile(d.problem, d.omega, d.tau, o, stated(1.0), {}, {}, kSigma), InputError);
   EXPECT_THROW(calibrate_friction_profile(d.problem, d.omega, d.tau, o, stated(1.0), {}, {1.0, -0.5}, kSigma), InputError);
   EXPECT_THROW(calibrate_friction_profile(d.problem, d.omega, d.tau, o, stated(1.0), {}, {1.0}, 0.0), InputError);
+  EXPECT_THROW(friction_speed_profile(d.problem, d.omega, d.tau, o, stated(1.0), {}, {}, kSigma), InputError);
+  EXPECT_THROW(friction_speed_profile(d.problem, d.omega, d.tau, o, stated(1.0), {}, {0.1, 0.0}, kSigma), InputError);
+  EXPECT_THROW(friction_speed_profile(d.problem, d.omega, d.tau, o, stated(1.0), {}, {0.1}, 0.0), InputError);
+  const std::vector<double> v = default_friction_speeds();
+  ASSERT_EQ(v.size(), 5u);
+  EXPECT_DOUBLE_EQ(v.front(), 0.01);
+  EXPECT_DOUBLE_EQ(v.back(), 1.0);
+  EXPECT_DOUBLE_EQ(v[1] / v[0], std::sqrt(10.0));
   const std::vector<double> g = default_friction_scales();
   ASSERT_EQ(g.size(), 10u);
   EXPECT_EQ(g.front(), 0.0);

@@ -6,7 +6,10 @@
 // of the motor-side friction is recovered the same way (and ignoring it
 // biases the fit); a joint at constant torque leaves its compliance to dth;
 // readings of passive links that sit at the end of their axial play by the
-// sign of their force give back the play, and ignoring it biases the fit.
+// sign of their force give back the play, and ignoring it biases the fit;
+// a twist that responds to the torque of the sample before is recovered
+// (and ignoring it biases the fit); the cyclic encoder error carried in the
+// covariance adds what finite-difference responses of the fit to it say.
 #include "calib/motion_correction.hpp"
 
 #include <cmath>
@@ -332,6 +335,84 @@ TEST(MotionCorrection, JointBoundCrossChecks) {
     EXPECT_NEAR(fit.result.sigma[K], joint[K], 0.05 * joint[K]) << param_name(k);
   }
   EXPECT_THROW(motion_crb(d.truth, d.problem.free, smp.theta_m, d.omega, {}, none, {}, kSigma), InputError);
+}
+
+// Consecutive samples whose twist is c_i tau_i(j) + h_i tau_i(j-1): with
+// MotionModel::torque_before h_i and the geometry come back within 4 sigma;
+// the model without it is biased beyond 4 of its sigmas.
+TEST(MotionCorrection, RecoversTheTwistOfTheTorqueBefore) {
+  MotionData d = make_data(600, 19);
+  const Eigen::Vector3d h(-0.5e-4, 0.6e-4, -0.4e-4);
+  for (std::size_t j = 1; j < d.tau.size(); ++j) d.problem.theta_m[j] += h.cwiseProduct(d.tau[j - 1]);
+  d.problem.theta_m[0] += h.cwiseProduct(d.tau[0]);  // the first sample's "before" is itself
+  LmOptions o;
+  o.encoder_sigma = kSigma;
+  auto worst = [&](const Result& r) {
+    double w = 0.0;
+    for (int k = 0; k < kNumParams; ++k)
+      if (d.problem.free[k]) w = std::max(w, std::abs(r.geometry.values[k] - d.truth.values[k]) / r.sigma[k]);
+    return w;
+  };
+  MotionModel before;
+  before.torque_before = true;
+  const MotionFit fit = calibrate_in_motion(d.problem, d.omega, d.tau, o, before);
+  for (std::size_t k = 0; k < 3; ++k) {
+    ASSERT_TRUE(std::isfinite(fit.torque_before_sigma[k]));
+    EXPECT_LT(std::abs(fit.torque_before[k] - h[static_cast<Eigen::Index>(k)]), 4.0 * fit.torque_before_sigma[k])
+        << "h of joint " << k + 1;
+  }
+  for (int k = 0; k < 5; ++k) EXPECT_LT(std::abs(fit.nu[k] - kNu[k]), 4.0 * fit.nu_sigma[k]) << "nuisance " << k;
+  EXPECT_LT(worst(fit.result), 4.0);
+  const MotionFit biased = calibrate_in_motion(d.problem, d.omega, d.tau, o);
+  EXPECT_EQ(biased.torque_before[0], 0.0);
+  EXPECT_TRUE(std::isnan(biased.torque_before_sigma[0]));
+  EXPECT_GT(worst(biased.result), 4.0);
+}
+
+// The cyclic error considered (MotionModel::cyclic_prior_rad p, not
+// estimated): the fit's geometry is that of the model without it, and its
+// variance is the plain one plus p^2 times the squared responses of the fit
+// to each coefficient a_i, b_i, here by finite differences (readings with
+// eps sin(theta_m_i) or eps cos(theta_m_i) added, refitted): to 5 %. The
+// joint bound of calib/motion_correction.hpp widens by the same term.
+TEST(MotionCorrection, ConsideredCyclicErrorAddsTheFitsResponseToIt) {
+  const MotionData d = make_data(400, 23);
+  LmOptions o;
+  o.encoder_sigma = kSigma;
+  MotionModel plain, considered;
+  considered.cyclic_prior_rad = 2e-5;
+  const MotionFit fit0 = calibrate_in_motion(d.problem, d.omega, d.tau, o, plain);
+  const MotionFit fit = calibrate_in_motion(d.problem, d.omega, d.tau, o, considered);
+  constexpr double kEps = 1e-4;
+  std::array<double, kNumParams> added{};
+  for (int c = 0; c < 6; ++c) {
+    Problem p = d.problem;
+    const int i = c % 3;
+    for (Eigen::Vector3d& th : p.theta_m) th[i] += kEps * (c < 3 ? std::sin(th[i]) : std::cos(th[i]));
+    const MotionFit shifted = calibrate_in_motion(p, d.omega, d.tau, o, plain);
+    for (int k = 0; k < kNumParams; ++k) {
+      const double g = (shifted.result.geometry.values[k] - fit0.result.geometry.values[k]) / kEps;
+      added[static_cast<std::size_t>(k)] += g * g * considered.cyclic_prior_rad * considered.cyclic_prior_rad;
+    }
+  }
+  Robot a;
+  a.geometry = d.truth;
+  const Samples smp = samples_at(a, disc_poses(a, 400, a.home, 100.0, 23), 0.0, 24);
+  const auto bound0 = motion_crb(d.truth, d.problem.free, smp.theta_m, d.omega, d.tau, plain, {}, kSigma);
+  const auto bound = motion_crb(d.truth, d.problem.free, smp.theta_m, d.omega, d.tau, considered, {}, kSigma);
+  int widened = 0;
+  for (int k = 0; k < kNumParams; ++k) {
+    if (!d.problem.free[k]) continue;
+    const auto K = static_cast<std::size_t>(k);
+    EXPECT_NEAR(fit.result.geometry.values[k], fit0.result.geometry.values[k], 1e-6 * fit0.result.sigma[K]) << param_name(k);
+    const double expected = std::sqrt(fit0.result.sigma[K] * fit0.result.sigma[K] + added[K]);
+    EXPECT_NEAR(fit.result.sigma[K], expected, 0.05 * expected) << param_name(k);
+    EXPECT_GE(bound[K], bound0[K] * (1.0 - 1e-9)) << param_name(k);
+    EXPECT_NEAR(bound[K], fit.result.sigma[K], 0.05 * fit.result.sigma[K]) << param_name(k);
+    widened += fit.result.sigma[K] > 1.1 * fit0.result.sigma[K] ? 1 : 0;
+  }
+  EXPECT_GT(widened, 0);  // the test has something to check
+  for (double v : fit.cyclic) EXPECT_EQ(v, 0.0);  // considered, not estimated
 }
 
 TEST(MotionCorrection, RefusesMismatchedSizesAndOtherCosts) {
