@@ -31,13 +31,13 @@ double ml_residual(const ParamVector& x, const Eigen::Vector3d& theta) {
 constexpr std::size_t kNuisance = 20;
 constexpr int kFirstCyclic = 14;
 
-// The drive torques of the sample before each one (consecutive samples on
-// the fly; the first repeats its own), or an empty vector without
-// model.torque_before.
+// The change of the drive torques from the sample before to each one,
+// tau(j-1) - tau(j) (consecutive samples on the fly; 0 for the first), or an
+// empty vector without model.torque_before.
 std::vector<Eigen::Vector3d> torques_before(const MotionModel& model, const std::vector<Eigen::Vector3d>& tau) {
   std::vector<Eigen::Vector3d> nb;
   if (!(model.compliance && model.torque_before)) return nb;
-  for (std::size_t j = 0; j < tau.size(); ++j) nb.push_back(tau[j > 0 ? j - 1 : 0]);
+  for (std::size_t j = 0; j < tau.size(); ++j) nb.push_back(tau[j > 0 ? j - 1 : 0] - tau[j]);
   return nb;
 }
 
@@ -48,12 +48,15 @@ constexpr double kMinSignShare = 0.02;
 // 8..10 = d1 d2 d3, 11..13 = h1 h2 h3, 14..16 = a1 a2 a3, 17..19 = b1 b2 b3).
 std::vector<int> nuisance_columns(const MotionModel& m) {
   std::vector<int> cols;
-  if (m.skew) cols.insert(cols.end(), {0, 1});
-  if (m.compliance) cols.insert(cols.end(), {2, 3, 4});
-  if (m.compliance && m.friction) cols.insert(cols.end(), {5, 6, 7});
-  if (m.clearance) cols.insert(cols.end(), {8, 9, 10});
-  if (m.compliance && m.torque_before) cols.insert(cols.end(), {11, 12, 13});
-  if (m.cyclic_prior_rad > 0.0 && m.estimate_cyclic) cols.insert(cols.end(), {14, 15, 16, 17, 18, 19});
+  const auto add = [&](int first, int count) {  // (a loop: GCC 12 warns wrongly on insert of a list)
+    for (int c = first; c < first + count; ++c) cols.push_back(c);
+  };
+  if (m.skew) add(0, 2);
+  if (m.compliance) add(2, 3);
+  if (m.compliance && m.friction) add(5, 3);
+  if (m.clearance) add(8, 3);
+  if (m.compliance && m.torque_before) add(11, 3);
+  if (m.cyclic_prior_rad > 0.0 && m.estimate_cyclic) add(kFirstCyclic, 6);
   return cols;
 }
 
@@ -149,8 +152,8 @@ Eigen::Vector3d reading_sensitivity(const ParamVector& x, const Eigen::Vector3d&
 }
 
 // One row of the nuisance Jacobian, every column (0..19), from the reading
-// sensitivities u and the sample's regressors (nb: the torques of the sample
-// before; reading: the raw readings, for the cyclic error;
+// sensitivities u and the sample's regressors (nb: the change of torque
+// from the sample before; reading: the raw readings, for the cyclic error;
 // calib/motion_correction.hpp).
 std::array<double, kNuisance> nuisance_row(const Eigen::Vector3d& u, const Eigen::Vector3d& omega, const Eigen::Vector3d& tau,
                                            const Eigen::Vector3d& fric, const Eigen::Vector3d& clr, const Eigen::Vector3d& nb,
@@ -274,7 +277,7 @@ std::vector<Eigen::Vector3d> correct_readings(const std::vector<Eigen::Vector3d>
 
 namespace {
 
-// calibrate_in_motion with the torques before nb (torques_before of the
+// calibrate_in_motion with the torque changes nb (torques_before of the
 // whole sequence; empty without model.torque_before) given.
 MotionFit fit_in_motion(const Problem& problem, const std::vector<Eigen::Vector3d>& omega,
                         const std::vector<Eigen::Vector3d>& tau, const std::vector<Eigen::Vector3d>& nb,

@@ -20,9 +20,9 @@
 // the periods before, less the rotor's inertia times its acceleration). With
 // MotionModel::torque_before (consecutive samples on the fly) the twist is
 // the short response
-//   c_i tau_i(j) + h_i tau_i(j-1),
-// one more column -u_ji tau_i(j-1) per joint (the static twist is c_i + h_i
-// times a constant torque). On the realistic twin (4 kHz drives, a sample
+//   c_i tau_i(j) + h_i (tau_i(j-1) - tau_i(j)),
+// one more column -u_ji (tau_i(j-1) - tau_i(j)) per joint; c_i stays the
+// static compliance (the twist under a constant torque), h_i the lag. On the realistic twin (4 kHz drives, a sample
 // every 4th period) the twist's residual against the twin's truth falls from
 // 1.21 to 1.13 quantisation sigmas with it. The torque of the sample after
 // would take it to 1.03, but the drive's later torques react to the reading's
@@ -96,7 +96,7 @@ struct MotionFit {
   std::array<double, 3> friction_sigma{};   // their 1-sigma (NaN where not estimated)
   std::array<double, 3> clearance{};        // axial play d_i of each passive link (mm); 0 where not estimated
   std::array<double, 3> clearance_sigma{};  // their 1-sigma (NaN where not estimated)
-  std::array<double, 3> torque_before{};    // h1 h2 h3 (rad/N m); 0 where not estimated
+  std::array<double, 3> torque_before{};    // h1 h2 h3 (rad/N m; response to tau(j-1) - tau(j)); 0 where not estimated
   std::array<double, 3> torque_before_sigma{};  // their 1-sigma (NaN where not estimated)
   std::array<double, 6> cyclic{};           // a1 a2 a3 b1 b2 b3 (rad); 0 where not estimated
   std::array<double, 6> cyclic_sigma{};     // their 1-sigma, prior included (NaN where not estimated)

@@ -392,11 +392,10 @@ RunOutcome run_scenario(const RunSpec& spec_in, const std::string& scenario_file
           fit.nu[0], fit.nu[1], fit.nu[2], fit.nu[3], fit.nu[4], fit.friction[0], fit.friction[1], fit.friction[2]));
       if (motion.torque_before)
         out.calibration->notes.push_back(fmt::format(
-            "the transmissions' twist also responds to the torque of the sample before: h {:.3g}, {:.3g}, {:.3g} "
-            "rad/N m (1-sigma {:.2g}, {:.2g}, {:.2g}); the static compliance c + h {:.3g}, {:.3g}, {:.3g} rad/N m",
+            "the transmissions' twist also responds to the change of torque since the sample before: h {:.3g}, "
+            "{:.3g}, {:.3g} rad/N m (1-sigma {:.2g}, {:.2g}, {:.2g})",
             fit.torque_before[0], fit.torque_before[1], fit.torque_before[2], fit.torque_before_sigma[0],
-            fit.torque_before_sigma[1], fit.torque_before_sigma[2], fit.nu[2] + fit.torque_before[0],
-            fit.nu[3] + fit.torque_before[1], fit.nu[4] + fit.torque_before[2]));
+            fit.torque_before_sigma[1], fit.torque_before_sigma[2]));
       if (motion.cyclic_prior_rad > 0.0)
         out.calibration->notes.push_back(fmt::format(
             "the encoders' once-per-turn error (data sheet +-{:.2g} rad, random phase) is carried in the 1-sigma and "

@@ -337,14 +337,14 @@ TEST(MotionCorrection, JointBoundCrossChecks) {
   EXPECT_THROW(motion_crb(d.truth, d.problem.free, smp.theta_m, d.omega, {}, none, {}, kSigma), InputError);
 }
 
-// Consecutive samples whose twist is c_i tau_i(j) + h_i tau_i(j-1): with
-// MotionModel::torque_before h_i and the geometry come back within 4 sigma;
-// the model without it is biased beyond 4 of its sigmas.
+// Consecutive samples whose twist is c_i tau_i(j) + h_i (tau_i(j-1) - tau_i(j)):
+// with MotionModel::torque_before h_i, the static compliance c_i and the
+// geometry come back within 4 sigma; the model without it is biased beyond 4
+// of its sigmas.
 TEST(MotionCorrection, RecoversTheTwistOfTheTorqueBefore) {
   MotionData d = make_data(600, 19);
   const Eigen::Vector3d h(-0.5e-4, 0.6e-4, -0.4e-4);
-  for (std::size_t j = 1; j < d.tau.size(); ++j) d.problem.theta_m[j] += h.cwiseProduct(d.tau[j - 1]);
-  d.problem.theta_m[0] += h.cwiseProduct(d.tau[0]);  // the first sample's "before" is itself
+  for (std::size_t j = 1; j < d.tau.size(); ++j) d.problem.theta_m[j] += h.cwiseProduct(d.tau[j - 1] - d.tau[j]);
   LmOptions o;
   o.encoder_sigma = kSigma;
   auto worst = [&](const Result& r) {

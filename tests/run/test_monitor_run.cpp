@@ -348,7 +348,9 @@ MonitorOutcome monitor_through_emulator(HardwareRig& rig, const hw::EmulatorFaul
   EXPECT_GT(out.accepted, 500);  // every joint moving: most cycles give a sample
   for (const MonitorEstimateRow& r : out.estimates)
     for (int k = 0; k < kNumParams; ++k)
-      if (out.model.settings.estimate[static_cast<size_t>(k)]) EXPECT_TRUE(std::isfinite(r.value[static_cast<size_t>(k)]));
+      if (out.model.settings.estimate[static_cast<size_t>(k)]) {
+        EXPECT_TRUE(std::isfinite(r.value[static_cast<size_t>(k)]));
+      }
   for (const MonitorAlarm& a : out.alarms) EXPECT_FALSE(a.explanation.empty());
   return out;
 }
