@@ -57,7 +57,8 @@ ReadingRates reading_rates(const std::vector<double>& t, const std::vector<Eigen
                            const RateOptions& options) {
   if (t.size() != theta_m.size())
     throw std::invalid_argument("reading_rates: as many times as readings needed");
-  if (options.span < 1) throw std::invalid_argument("reading_rates: span must be >= 1");
+  if (options.span < 1 || options.alpha_span < 0)
+    throw std::invalid_argument("reading_rates: span must be >= 1 and alpha_span >= 0");
   const std::size_t n = t.size();
   ReadingRates out;
   if (n == 0) return out;
@@ -89,7 +90,7 @@ ReadingRates reading_rates(const std::vector<double>& t, const std::vector<Eigen
     }
   }
   out.omega = slopes(t, u, segment_start, options.span);
-  out.alpha = slopes(t, out.omega, segment_start, options.span);
+  out.alpha = slopes(t, out.omega, segment_start, options.alpha_span > 0 ? options.alpha_span : options.span);
   return out;
 }
 

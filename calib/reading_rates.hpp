@@ -36,7 +36,8 @@
 namespace gpm::calib {
 
 struct RateOptions {
-  int span = 1;            // k: the secant spans +-k samples (>= 1)
+  int span = 1;            // k: the speed's differences span +-k samples (>= 1)
+  int alpha_span = 0;      // the acceleration's (differences of the speeds); 0: span
   double max_step_s = 0.0; // intervals longer than this are gaps; <= 0: 1.5x the median interval
 };
 
