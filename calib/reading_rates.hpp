@@ -9,7 +9,9 @@
 // uniform series the k = 1 secant is the central difference, truncation error
 // h^2 / 6 omega'' (O(h^2)) and no lag; its noise from readings quantised to q
 // (uniform, independent: q / sqrt(12) each) is q / (sqrt(6) 2 k h), and alpha's
-// (u_{j+2k} - 2 u_j + u_{j-2k}) / (2 k h)^2 has sqrt(6) q / (sqrt(12) (2 k h)^2).
+// (u_{j+2k} - 2 u_j + u_{j-2k}) / (2 k h)^2 has sqrt(6) q / (sqrt(12) (2 k h)^2);
+// with the acceleration's own span m != k, (u_{j+m+k} - u_{j+m-k} - u_{j-m+k}
+// + u_{j-m-k}) / (4 m k h^2) has q / (sqrt(12) 2 m k h^2).
 // A local quadratic fit over 2k + 1 samples (Savitzky-Golay) has the same
 // centre (no lag); its slope's noise sigma / (h sqrt(k (k+1) (2k+1) / 3)) is
 // the central difference's at k = 1 and only 1.1x smaller at k = 2; a

@@ -45,8 +45,8 @@ constexpr double kStartTransient_s = 0.05;
 // On the fly, the joint accelerations are differences of the reading
 // speeds over +-this (s; calib/reading_rates.hpp: the speeds are central
 // differences over +-1 sample). Noise of 17-bit readings (q = 4.8e-5 rad)
-// at a 1 ms sample interval: q / (4 sqrt 2 w^2) = 0.13 rad/s^2 at w = 8 ms,
-// against 8.5 rad/s^2 at w = 1 ms, which made the main job's chi2/dof 1.44
+// at a 1 ms sample interval h: q / (sqrt 12 2 h w) = 0.86 rad/s^2 at w = 8 ms,
+// against q / (4 sqrt 2 h^2) = 8.5 rad/s^2 at w = h, which made the main job's chi2/dof 1.44
 // (8 ms: 1.08; 4 and 12 ms alike; 16 ms failed its 3 CRB sigmas, 4.7).
 constexpr double kAccelerationHalfWindow_s = 8e-3;
 

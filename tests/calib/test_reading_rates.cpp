@@ -4,7 +4,8 @@
 // h halves; the ends are one-sided, within their
 // second-order bound (h^2 / 3 f'''); the
 // noise of readings quantised to q is q / (sqrt(6) 2 k h) for the speed and
-// q / (4 sqrt(2) (k h)^2) for the acceleration; a 2 pi wrap and a gap in time
+// q / (4 sqrt(2) (k h)^2) for the acceleration
+// (q / (sqrt(12) 2 m h^2) over a span m of its own); a 2 pi wrap and a gap in time
 // are not differenced across; bad arguments are refused.
 #include "calib/reading_rates.hpp"
 
@@ -142,6 +143,35 @@ TEST(ReadingRates, QuantisedReadingsNoiseFollowsTheFormula) {
   }
 }
 
+TEST(ReadingRates, AccelerationSpanOfItsOwnFollowsItsNoiseFormula) {
+  // Speeds over +-1 sample, accelerations over +-m of them: four independent
+  // readings, (u_{j+m+1} - u_{j+m-1} - u_{j-m+1} + u_{j-m-1}) / (4 m h^2),
+  // noise q / (sqrt(12) 2 m h^2); the speeds' noise is unchanged.
+  const double q = 2.0 * kPi / (1 << 17);
+  const double h = 1e-3;
+  const int n = 40000, m = 8;
+  const Eigen::Vector3d ramp(1.37, -2.11, 0.73);
+  const Sinusoid f;
+  std::vector<double> t;
+  std::vector<Eigen::Vector3d> x;
+  for (int j = 0; j < n; ++j) {
+    Eigen::Vector3d v = f.at(j * h) + ramp * (j * h);
+    for (int i = 0; i < 3; ++i) v[i] = q * std::floor(v[i] / q);
+    t.push_back(j * h), x.push_back(v);
+  }
+  const auto r = reading_rates(t, x, RateOptions{.span = 1, .alpha_span = m});
+  Eigen::Array3d sw = Eigen::Array3d::Zero(), sa = Eigen::Array3d::Zero();
+  int count = 0;
+  for (int j = m + 1; j < n - m - 1; ++j, ++count) {
+    sw += (r.omega[j] - f.speed(t[j]) - ramp).array().square();
+    sa += (r.alpha[j] - f.accel(t[j])).array().square();
+  }
+  for (int i = 0; i < 3; ++i) {
+    EXPECT_NEAR(std::sqrt(sw[i] / count) / (q / (std::sqrt(6.0) * 2.0 * h)), 1.0, 0.03) << i;
+    EXPECT_NEAR(std::sqrt(sa[i] / count) / (q / (std::sqrt(12.0) * 2.0 * m * h * h)), 1.0, 0.03) << i;
+  }
+}
+
 TEST(ReadingRates, TwoPiWrapIsNotASpeed) {
   // A ramp through the wrap of [0, 2 pi): the rates are those of the unwrapped ramp.
   const double h = 1e-3;
@@ -201,6 +231,7 @@ TEST(ReadingRates, BadArgumentsAreRefused) {
   EXPECT_THROW(reading_rates({0.0, 1.0}, x), std::invalid_argument);
   EXPECT_THROW(reading_rates({0.0, 1.0, 1.0}, x), std::invalid_argument);
   EXPECT_THROW(reading_rates({0.0, 1.0, 2.0}, x, RateOptions{.span = 0}), std::invalid_argument);
+  EXPECT_THROW(reading_rates({0.0, 1.0, 2.0}, x, RateOptions{.alpha_span = -1}), std::invalid_argument);
   EXPECT_TRUE(reading_rates({}, {}).omega.empty());
 }
 
