@@ -11,6 +11,7 @@
 #include "calib/friction_profile.hpp"
 #include "calib/model_test.hpp"
 #include "calib/motion_correction.hpp"
+#include "calib/reading_rates.hpp"
 #include "calib/residuals.hpp"
 #include "calib/result_yaml.hpp"
 #include "models/errors.hpp"
@@ -40,6 +41,14 @@ namespace {
 
 // Samples on the fly left out at the start with a compliant transmission (s).
 constexpr double kStartTransient_s = 0.05;
+
+// On the fly, the joint accelerations are differences of the reading
+// speeds over +-this (s; calib/reading_rates.hpp: the speeds are central
+// differences over +-1 sample). Noise of 17-bit readings (q = 4.8e-5 rad)
+// at a 1 ms sample interval h: q / (sqrt 12 2 h w) = 0.86 rad/s^2 at w = 8 ms,
+// against q / (4 sqrt 2 h^2) = 8.5 rad/s^2 at w = h, which made the main job's chi2/dof 1.44
+// (8 ms: 1.08; 4 and 12 ms alike; 16 ms failed its 3 CRB sigmas, 4.7).
+constexpr double kAccelerationHalfWindow_s = 8e-3;
 
 // The data sheet's accuracy of the GPM2002's 17-bit absolute encoders, +-4
 // arcsec (A = 2e-5 rad), as the prior 1-sigma of each component of the
@@ -256,17 +265,24 @@ RunOutcome run_scenario(const RunSpec& spec_in, const std::string& scenario_file
       // Transmission compliance (readings follow the motors, links lag by
       // compliance x torque) and latch skew are estimated jointly with the
       // geometry (calib/motion_correction.hpp).
-      std::vector<Eigen::Vector3d> omega, tau;
-      for (const sim::SampleRecord& r : out.sim.samples) omega.push_back(r.omega), tau.push_back(r.tau);
-      // Joint accelerations of samples on the fly (consecutive, sample_every
-      // drive periods apart): central differences of the speeds.
-      std::vector<Eigen::Vector3d> alpha;
-      if (in_motion && omega.size() >= 2) {
+      // The joints' speeds and accelerations: on the fly from the readings
+      // themselves (calib/reading_rates.hpp: centred differences over the
+      // consecutive samples, sample_every drive periods apart: speeds central
+      // over +-1 sample, accelerations over +-kAccelerationHalfWindow_s; a real robot
+      // has no link-speed truth and its drives' motor speed rings with the
+      // transmission); stop-and-go samples are taken at rest (the settle
+      // criterion held): speed and acceleration 0.
+      std::vector<Eigen::Vector3d> omega(out.sim.samples.size(), Eigen::Vector3d::Zero()), tau, alpha;
+      for (const sim::SampleRecord& r : out.sim.samples) tau.push_back(r.tau);
+      if (in_motion) {
         const double dt = spec.sim.sampling->sample_every / spec.sim.twin.servo_rate_hz;
-        const std::size_t n = omega.size();
-        for (std::size_t j = 0; j < n; ++j)
-          alpha.push_back((omega[std::min(j + 1, n - 1)] - omega[j > 0 ? j - 1 : 0]) /
-                          (dt * static_cast<double>(std::min(j + 1, n - 1) - (j > 0 ? j - 1 : 0))));
+        std::vector<double> t;
+        for (const sim::SampleRecord& r : out.sim.samples) t.push_back(static_cast<double>(r.id) * dt);
+        calib::RateOptions ro;
+        ro.alpha_span = std::max(1, static_cast<int>(std::lround(kAccelerationHalfWindow_s / dt)));
+        calib::ReadingRates rates = calib::reading_rates(t, problem.theta_m, ro);
+        omega = std::move(rates.omega);
+        alpha = std::move(rates.alpha);
       }
       // A compliant transmission rings after the drives' start step (the
       // first command jumps from the readings where the robot stands to the

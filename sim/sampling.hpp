@@ -67,7 +67,7 @@ struct SampleRecord {
   Eigen::Vector3d theta_a = Eigen::Vector3d::Zero();  // rad, averaged true active angles
   Eigen::Vector2d xy_mm = Eigen::Vector2d::Zero();    // mm, averaged true end-effector
   Eigen::Vector3d tau = Eigen::Vector3d::Zero();      // N m, mean drive torque over the window
-  Eigen::Vector3d omega = Eigen::Vector3d::Zero();    // rad/s, mean joint speed over the window (drive feedback)
+  Eigen::Vector3d omega = Eigen::Vector3d::Zero();    // rad/s, true link speed (window mean; on the fly at the instant)
   bool settled = false;
   double settle_time_s = 0.0;  // from the end of the move until the criterion held
 };
