@@ -316,7 +316,7 @@ MonitorOutcome run_monitor_hardware(const sim::Scenario& s, const std::string& h
     }
     if (t >= next_estimate) {
       const mon::Estimate e = mon::monitor_estimate(out.model, *md);
-      out.estimates.push_back({t, e.value, e.sigma});
+      out.estimates.push_back({t, e.value, e.sigma, std::nullopt});  // no truth through hardware
       next_estimate += estimate_every;
     }
     if (progress && t >= next_progress) {
@@ -333,7 +333,7 @@ MonitorOutcome run_monitor_hardware(const sim::Scenario& s, const std::string& h
   out.accepted = md->accepted;
   (void)t_path;
   out.final_estimate = mon::monitor_estimate(out.model, *md);
-  out.estimates.push_back({out.simulated_s, out.final_estimate.value, out.final_estimate.sigma});
+  out.estimates.push_back({out.simulated_s, out.final_estimate.value, out.final_estimate.sigma, std::nullopt});
   out.final_truth = controller.geometry;
   out.false_alarms = -1;  // unknown: which alarms are real is for the user to find out
   out.wall_s = std::chrono::duration<double>(std::chrono::steady_clock::now() - wall0).count();
