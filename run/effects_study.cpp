@@ -72,6 +72,7 @@ EffectsRow row_of(const RunOutcome& o) {
   r.motion_estimated = o.in_motion || o.spec.calibration.estimate_compliance.value_or(false) ||
                        o.spec.calibration.estimate_skew.value_or(false);
   r.motion_nu = o.motion_nu;
+  r.motion_nu_sigma = o.motion_nu_sigma;
   if (!o.calibration) {
     r.failure = o.refused.value_or("no calibration");
     return r;

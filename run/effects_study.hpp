@@ -74,6 +74,7 @@ struct EffectsRow {
   double floor_ratio = 0.0;                       // calibrated / floor
   std::optional<bool> model_test_passed;
   std::array<double, 5> motion_nu{};              // skew s2, s3 (s), compliance c1..c3 (rad/N m) when estimated
+  std::array<double, 5> motion_nu_sigma{};        // their 1-sigma (NaN where not estimated)
   bool motion_estimated = false;
   double seconds = 0.0;
 };
