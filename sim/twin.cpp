@@ -156,10 +156,19 @@ void apply_thermal_growth(const TwinModel& model, TwinState& state, double growt
   state.last.growth = growth;
 }
 
-Geometry geometry_at_time(const TwinModel& model, double t_s) {
+namespace {
+
+// geometry_at_time with the thermal growth at t_s already computed.
+Geometry geometry_with_growth(const TwinModel& model, double t_s, double growth) {
   const TwinConfig& c = model.config();
   const Geometry g = c.events.empty() ? model.actual().geometry : geometry_at(model.actual().geometry, c.events, t_s);
-  return c.effects.thermal.on() ? thermal_geometry(g, c.effects.thermal.growth(t_s)) : g;
+  return c.effects.thermal.on() ? thermal_geometry(g, growth) : g;
+}
+
+}  // namespace
+
+Geometry geometry_at_time(const TwinModel& model, double t_s) {
+  return geometry_with_growth(model, t_s, model.config().effects.thermal.growth(t_s));
 }
 
 TwinState::TwinState(const TwinModel& model, unsigned long long seed)
@@ -199,8 +208,9 @@ void twin_step(const TwinModel& model, TwinState& state) {
   // Thermal growth follows the (slow, smooth) first-order rise every step and
   // events ramp in (sim/events.hpp): nanometres per step, never a jump.
   if (state.thermal_model) {
-    apply_geometry(model, state, geometry_at_time(model, d->time));
-    state.last.growth = model.config().effects.thermal.growth(d->time);
+    const double growth = model.config().effects.thermal.growth(d->time);  // one exp a step, not two
+    apply_geometry(model, state, geometry_with_growth(model, d->time, growth));
+    state.last.growth = growth;
   }
   mj_step1(m, d);  // positions, velocities and kinematics at the current time
   sense_kinematics(model, d, state.last);
