@@ -195,7 +195,9 @@ TEST(Effects, ClearanceLetsEachPassiveLinkGiveTwiceTheClearanceAxially) {
       // Never more than the two pins' play (1 um for the limits' own give) ...
       EXPECT_LT(d, 2.0 * c + 1e-3) << "chain " << i + 1 << ", clearance " << c << " mm";
       // ... and under the preload all of it (both pins at their limits).
-      if (c > 0.0) EXPECT_GT(d, 1.9 * c) << "chain " << i + 1 << ", clearance " << c << " mm";
+      if (c > 0.0) {
+        EXPECT_GT(d, 1.9 * c) << "chain " << i + 1 << ", clearance " << c << " mm";
+      }
     }
   }
 }
