@@ -308,7 +308,9 @@ report::ReportDocument effects_report(const EffectsStudy& s) {
       "(ideal), on the same actual robot (the scenario's seed) for each procedure. Errors are estimated minus "
       "actual; offsets are counted in um at the 244 mm link. The floor is the static RMS error of the controller "
       "given the actual parameters on the same twin; calibrated / floor is what the calibration leaves on the "
-      "table. CRB sigma: the Cramer-Rao bound of the parameter for the encoder quantisation and noise alone.",
+      "table. CRB sigma: the Cramer-Rao bound the run reports (on the fly: jointly with the nuisance values it "
+      "estimates, and carrying the encoders' cyclic error with its data-sheet prior; stop-and-go: for the encoder "
+      "quantisation and noise alone).",
       fx.mjcf.compliance_rad_per_Nm[0], fx.mjcf.clearance_m[0] * 1e6, fx.mjcf.coulomb_Nm[0], fx.mjcf.viscous_Nm_s[0],
       fx.thermal.expansion_per_K, fx.thermal.rise_K, fx.thermal.time_constant_s, fx.encoder_cyclic_rad[0],
       fx.encoder_skew_s[1], fx.encoder_skew_s[2]));
