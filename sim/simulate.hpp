@@ -39,8 +39,9 @@ SimulationResult run_simulation(const Scenario& s, std::function<void(const LogR
 
 // samples.csv text: the docs/FORMATS.md contract (sample,theta_m1..3,x,y) followed by
 // extra columns theta_a1..3 (true link angles), target_x, target_y, settled,
-// tau1..3 (mean drive torque over the averaging window, N m), omega1..3 (mean
-// joint speed, rad/s; nonzero for samples taken on the fly).
+// tau1..3 (mean drive torque over the averaging window, N m), omega1..3 (the
+// twin's true link speed, rad/s; nonzero for samples taken on the fly; the
+// calibration differentiates the readings instead, calib/reading_rates.hpp).
 std::string samples_csv(const std::vector<SampleRecord>& samples);
 
 // trajectory.csv header: t,x_des,y_des,x,y,theta_m1..3,tau1..3,violation_m,
