@@ -141,9 +141,9 @@ std::string trajectory_line(const LogRow& r, const Geometry* thermal_reference) 
                                 x(r.torque[2]), x(r.violation_m));
   if (thermal_reference) {
     const Geometry g = thermal_geometry(*thermal_reference, r.growth);
-    out += "," + x(r.growth);
+    out += fmt::format(",{}", x(r.growth));  // (fmt: GCC 12 warns wrongly on "," + std::string)
     for (int i = 0; i < kNumParams; ++i)
-      if (!is_offset(i)) out += "," + x(g[i]);
+      if (!is_offset(i)) out += fmt::format(",{}", x(g[i]));
   }
   return out + "\n";
 }
