@@ -31,12 +31,20 @@ double ml_residual(const ParamVector& x, const Eigen::Vector3d& theta) {
 constexpr std::size_t kNuisance = 20;
 constexpr int kFirstCyclic = 14;
 
-// The change of the drive torques from the sample before to each one,
-// tau(j-1) - tau(j) (consecutive samples on the fly; 0 for the first), or an
+// The change of the drive torques from the sample before to each one:
+// model.torque_between(j) - tau(j) where recorded (one per sample), else
+// tau(j-1) - tau(j) (consecutive samples on the fly; 0 for the first); an
 // empty vector without model.torque_before.
 std::vector<Eigen::Vector3d> torques_before(const MotionModel& model, const std::vector<Eigen::Vector3d>& tau) {
   std::vector<Eigen::Vector3d> nb;
   if (!(model.compliance && model.torque_before)) return nb;
+  if (!model.torque_between.empty()) {
+    if (model.torque_between.size() != tau.size())
+      throw InputError(fmt::format("calibration in motion: {} torques but {} torques between samples", tau.size(),
+                                   model.torque_between.size()));
+    for (std::size_t j = 0; j < tau.size(); ++j) nb.push_back(model.torque_between[j] - tau[j]);
+    return nb;
+  }
   for (std::size_t j = 0; j < tau.size(); ++j) nb.push_back(tau[j > 0 ? j - 1 : 0] - tau[j]);
   return nb;
 }

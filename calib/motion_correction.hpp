@@ -22,12 +22,19 @@
 // the short response
 //   c_i tau_i(j) + h_i (tau_i(j-1) - tau_i(j)),
 // one more column -u_ji (tau_i(j-1) - tau_i(j)) per joint; c_i stays the
-// static compliance (the twist under a constant torque), h_i the lag. On the realistic twin (4 kHz drives, a sample
-// every 4th period) the twist's residual against the twin's truth falls from
-// 1.21 to 1.13 quantisation sigmas with it. The torque of the sample after
-// would take it to 1.03, but the drive's later torques react to the reading's
-// own quantisation error: on the ideal twin chi2/dof fell to 0.85 (the model
-// test's noise fitted), so only the torque before is used. An encoder's once-per-turn
+// static compliance (the twist under a constant torque), h_i the lag. With
+// the drives' torque history recorded (MotionModel::torque_between, on the
+// fly: sim/sampling.hpp SampleRecord) tau is the torque of the drive period
+// just before the reading instant and the lag's regressor the mean torque
+// over the periods since the sample before less it: the torque computed from
+// the reading itself (and, in the lag, from the readings just before it) reacts
+// to its quantisation error, which the columns then fit (on the ideal, rigid
+// twin the residual of joints 2 and 3's readings against the truth, 1.00
+// quantisation sigmas, fell to 0.95 and 0.91 with the sample's own torque and
+// the sample before's; it stays at 1.00 with the torques before the instant;
+// on the realistic twin the twist's residual against the truth falls from
+// 0.37, 0.35 to 0.36, 0.33 sigmas). The torque of the
+// sample after would fit it more (chi2/dof 0.85 on the ideal twin). An encoder's once-per-turn
 // error a_i sin(theta_m_i) + b_i cos(theta_m_i) (MotionModel::cyclic_prior_rad)
 // is taken off the reading, columns -u_ji sin(theta_m_ji), -u_ji cos(theta_m_ji);
 // over the joints' range of motion it is hard to tell from the geometry, so
@@ -78,6 +85,10 @@ struct MotionModel {
                                  // (a robot of little friction: its links carry small forces)
   bool torque_before = false;  // with compliance: the twist responds to the torque of the sample before too
                                // (h_i tau_i(j-1); consecutive samples, on the fly)
+  std::vector<Eigen::Vector3d> torque_between;  // with torque_before, the samples' record of the drives (N m, one per
+                                                // sample, or empty): the mean drive torque over the periods since the
+                                                // sample before; the lag's regressor is then torque_between(j) - tau(j)
+                                                // (tau: the last period's), else tau(j-1) - tau(j)
   double cyclic_prior_rad = 0.0;  // > 0: each encoder's once-per-turn error a_i sin(theta_m_i) + b_i cos(theta_m_i),
                                   // a_i and b_i ~ N(0, this^2) a priori (the data sheet's accuracy), carried in the
                                   // covariance and the bound (considered) or estimated (estimate_cyclic)

@@ -12,11 +12,20 @@ std::vector<SampleRecord> sample_along(Session& s, const WaypointPath& path, int
   const long ticks = std::max(1L, std::lround(waypoint_duration(path) / period));
   std::vector<SampleRecord> out;
   out.reserve(static_cast<std::size_t>(ticks / every + 1));
+  // Drive torques of the periods since the last sample (applied before the next sample's instant).
+  Eigen::Vector3d sum_between = Eigen::Vector3d::Zero();
+  Eigen::Vector3d last_torque = Eigen::Vector3d::Zero();
+  long periods_between = 0;
   for (long k = 0; k <= ticks; ++k) {
     PathPoint desired;
     waypoint_at(path, k * period, desired.p, desired.v);
     const TwinSnapshot snap = advance(s, desired);
-    if (k % every != 0) continue;
+    if (k % every != 0) {
+      sum_between += snap.torque;
+      last_torque = snap.torque;
+      ++periods_between;
+      continue;
+    }
     SampleRecord rec;
     rec.id = first_id + static_cast<long>(out.size());
     rec.target = desired.p;
@@ -25,8 +34,13 @@ std::vector<SampleRecord> sample_along(Session& s, const WaypointPath& path, int
     rec.xy_mm = snap.ee_mm;
     rec.tau = snap.torque;
     rec.omega = snap.velocity;
+    rec.tau_last = periods_between > 0 ? last_torque : snap.torque;
+    rec.tau_between = periods_between > 0 ? Eigen::Vector3d(sum_between / static_cast<double>(periods_between)) : snap.torque;
     rec.settled = false;
     out.push_back(rec);
+    sum_between = snap.torque;  // the sample's own period is the first of the next interval
+    periods_between = 1;
+    last_torque = snap.torque;
   }
   return out;
 }

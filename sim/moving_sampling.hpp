@@ -1,7 +1,8 @@
 // Samples taken on the fly: the twin follows a continuous excitation path
 // (sim/waypoint_path.hpp) at the drive loop rate, and every `every`-th loop
 // instant becomes one sample: the three readings latched at that instant with
-// the true state, drive torques and joint speeds of the same instant. No
+// the true state, drive torques and joint speeds of the same instant, and the
+// torques the drives applied before it (SampleRecord::tau_last, tau_between). No
 // averaging: the motion dithers the encoders' quantisation, so thousands of
 // instantaneous readings at distinct configurations carry more information
 // than a few averaged ones at rest.

@@ -89,6 +89,8 @@ SampleRecord take_sample(Session& s, const Eigen::Vector2d& target, long id,
   for (int i = 0; i < 3; ++i) rec.theta_m[i] = wrap_2pi(first[i] + sum_m[i] / n);
   rec.theta_a = sum_a / n;
   rec.tau = sum_tau / n;
+  rec.tau_last = rec.tau;
+  rec.tau_between = rec.tau;
   rec.omega = sum_w / n;
   rec.xy_mm = sum_xy / n;
   return rec;

@@ -68,6 +68,10 @@ struct SampleRecord {
   Eigen::Vector2d xy_mm = Eigen::Vector2d::Zero();    // mm, averaged true end-effector
   Eigen::Vector3d tau = Eigen::Vector3d::Zero();      // N m, mean drive torque over the window
   Eigen::Vector3d omega = Eigen::Vector3d::Zero();    // rad/s, true link speed (window mean; on the fly at the instant)
+  // On the fly, the torques the drives applied before the reading instant (tau is the one computed from the
+  // reading itself, applied after it): at rest both equal tau.
+  Eigen::Vector3d tau_last = Eigen::Vector3d::Zero();     // N m, drive torque of the period just before the instant
+  Eigen::Vector3d tau_between = Eigen::Vector3d::Zero();  // N m, mean drive torque over the periods since the sample before
   bool settled = false;
   double settle_time_s = 0.0;  // from the end of the move until the criterion held
 };

@@ -41,7 +41,11 @@ SimulationResult run_simulation(const Scenario& s, std::function<void(const LogR
 // extra columns theta_a1..3 (true link angles), target_x, target_y, settled,
 // tau1..3 (mean drive torque over the averaging window, N m), omega1..3 (the
 // twin's true link speed, rad/s; nonzero for samples taken on the fly; the
-// calibration differentiates the readings instead, calib/reading_rates.hpp).
+// calibration differentiates the readings instead, calib/reading_rates.hpp),
+// tau_last1..3 (the drive torque of the period just before the sample's
+// instant, N m) and tau_between1..3 (the mean drive torque over the periods
+// since the sample before, N m): on the fly the torques applied before the
+// reading (tau1..3 is computed from it); at rest both equal tau1..3.
 std::string samples_csv(const std::vector<SampleRecord>& samples);
 
 // trajectory.csv header: t,x_des,y_des,x,y,theta_m1..3,tau1..3,violation_m,

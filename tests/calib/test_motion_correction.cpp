@@ -369,6 +369,53 @@ TEST(MotionCorrection, RecoversTheTwistOfTheTorqueBefore) {
   EXPECT_GT(worst(biased.result), 4.0);
 }
 
+// With the drives' record of the torques between samples
+// (MotionModel::torque_between, here the torque of the sample before and an
+// independent swing of the periods between), a twist c_i tau_i(j) +
+// h_i (between_i(j) - tau_i(j)) comes back within 4 sigma (h, c and the
+// geometry); the lag on the sample before's torque instead misses the
+// swing: its residuals are far above the noise. A record of the wrong
+// length is refused.
+TEST(MotionCorrection, RecoversTheTwistOfTheTorquesBetweenSamples) {
+  MotionData d = make_data(600, 23);
+  const Eigen::Vector3d h(0.6e-4, -0.5e-4, 0.7e-4);
+  std::vector<Eigen::Vector3d> between(d.tau.size());
+  for (std::size_t j = 0; j < d.tau.size(); ++j) {
+    const double t = static_cast<double>(j);
+    between[j] = d.tau[j > 0 ? j - 1 : 0] + 0.8 * Eigen::Vector3d(std::sin(0.9 * t), std::cos(1.7 * t), std::sin(2.3 * t + 0.4));
+    d.problem.theta_m[j] += h.cwiseProduct(between[j] - d.tau[j]);
+  }
+  LmOptions o;
+  o.encoder_sigma = kSigma;
+  auto worst = [&](const Result& r) {
+    double w = 0.0;
+    for (int k = 0; k < kNumParams; ++k)
+      if (d.problem.free[k]) w = std::max(w, std::abs(r.geometry.values[k] - d.truth.values[k]) / r.sigma[k]);
+    return w;
+  };
+  MotionModel recorded;
+  recorded.torque_before = true;
+  recorded.torque_between = between;
+  const MotionFit fit = calibrate_in_motion(d.problem, d.omega, d.tau, o, recorded);
+  for (std::size_t k = 0; k < 3; ++k) {
+    ASSERT_TRUE(std::isfinite(fit.torque_before_sigma[k]));
+    EXPECT_LT(std::abs(fit.torque_before[k] - h[static_cast<Eigen::Index>(k)]), 4.0 * fit.torque_before_sigma[k])
+        << "h of joint " << k + 1;
+  }
+  for (int k = 0; k < 5; ++k) EXPECT_LT(std::abs(fit.nu[k] - kNu[k]), 4.0 * fit.nu_sigma[k]) << "nuisance " << k;
+  EXPECT_LT(worst(fit.result), 4.0);
+  MotionModel sample_before;
+  sample_before.torque_before = true;
+  const MotionFit missed = calibrate_in_motion(d.problem, d.omega, d.tau, o, sample_before);
+  // The ML residuals' squares over n sigma^2: about 1 for the right model
+  // (580 degrees of freedom: 1 +- 0.06), far above for the lag that misses the swing.
+  const double n_sigma2 = static_cast<double>(d.tau.size()) * kSigma * kSigma;
+  EXPECT_NEAR(fit.result.final_cost / n_sigma2, 1.0, 0.25);
+  EXPECT_GT(missed.result.final_cost / n_sigma2, 3.0);
+  recorded.torque_between.pop_back();
+  EXPECT_THROW(calibrate_in_motion(d.problem, d.omega, d.tau, o, recorded), InputError);
+}
+
 // The cyclic error considered (MotionModel::cyclic_prior_rad p, not
 // estimated): the fit's geometry is that of the model without it, and its
 // variance is the plain one plus p^2 times the squared responses of the fit
