@@ -69,6 +69,15 @@ double effective_sigma(const sim::Scenario& s) {
   return std::sqrt(noise * noise / n_avg + q * q / 12.0);
 }
 
+// "value: chi2/dof" of each value a model-test profile tried (the run's
+// notes), the values formatted with value_format.
+std::string profile_tried(const calib::FrictionProfile& p, std::string_view value_format) {
+  std::string out;
+  for (std::size_t k = 0; k < p.scales.size(); ++k)
+    out += fmt::format("{}{}: {:.3g}", k ? ", " : "", fmt::format(fmt::runtime(value_format), p.scales[k]), p.chi2_per_dof[k]);
+  return out;
+}
+
 // A Cramer-Rao bound that bound() computes at unit reading noise, scaled to
 // sigma (rad; 0 for ideal encoders); NaN in every slot when the information
 // is singular (reported as unidentifiable).
@@ -319,9 +328,7 @@ RunOutcome run_scenario(const RunSpec& spec_in, const std::string& scenario_file
             problem, omega, tau, lo, motion, alpha, calib::default_friction_speeds(), out.crb_sigma_rad);
         motion = speeds.model;
         fit = speeds.fit;
-        std::string tried;
-        for (std::size_t k = 0; k < speeds.scales.size(); ++k)
-          tried += fmt::format("{}{:.3g}: {:.3g}", k ? ", " : "", speeds.scales[k], speeds.chi2_per_dof[k]);
+        const std::string tried = profile_tried(speeds, "{:.3g}");
         speed_note = fmt::format(
             "drive friction builds up over {:.3g} rad/s (F tanh(omega / v)), the smallest chi2/dof of the speeds "
             "tried in rad/s at {} ({})",
@@ -334,9 +341,7 @@ RunOutcome run_scenario(const RunSpec& spec_in, const std::string& scenario_file
             problem, omega, tau, lo, motion, alpha, calib::default_friction_scales(), out.crb_sigma_rad);
         fit = std::move(profile.fit);
         motion = profile.model;
-        std::string tried;
-        for (std::size_t k = 0; k < profile.scales.size(); ++k)
-          tried += fmt::format("{}{:.2f}: {:.3g}", k ? ", " : "", profile.scales[k], profile.chi2_per_dof[k]);
+        const std::string tried = profile_tried(profile, "{:.2f}");
         friction_note = fmt::format(
             "drive friction for the force signs: the stated values x{:.2f} (Coulomb {:.3g}, {:.3g}, {:.3g} N m), the "
             "smallest chi2/dof of the factors tried ({})",

@@ -90,7 +90,9 @@ TEST(FrictionProfile, PicksTheFactorThatGivesBackTheFriction) {
     ASSERT_EQ(p.chi2_per_dof.size(), scales.size());
     const double best = *std::min_element(p.chi2_per_dof.begin(), p.chi2_per_dof.end());
     for (std::size_t k = 0; k < scales.size(); ++k)
-      if (scales[k] != p.scale) EXPECT_GT(p.chi2_per_dof[k], best) << "factor " << scales[k];
+      if (scales[k] != p.scale) {
+        EXPECT_GT(p.chi2_per_dof[k], best) << "factor " << scales[k];
+      }
     for (std::size_t i = 0; i < 3; ++i) {
       ASSERT_TRUE(std::isfinite(p.fit.clearance_sigma[i]));
       EXPECT_LT(std::abs(p.fit.clearance[i] - kPlay[i]), 4.0 * p.fit.clearance_sigma[i]) << "play of chain " << i + 1;
