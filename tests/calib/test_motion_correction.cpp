@@ -58,6 +58,14 @@ MotionData make_data(int n, std::uint64_t seed) {
   return d;
 }
 
+// The largest error of the free parameters of fit r against d's truth, in r's 1-sigma.
+double worst_in_sigmas(const MotionData& d, const Result& r) {
+  double w = 0.0;
+  for (int k = 0; k < kNumParams; ++k)
+    if (d.problem.free[k]) w = std::max(w, std::abs(r.geometry.values[k] - d.truth.values[k]) / r.sigma[k]);
+  return w;
+}
+
 TEST(MotionCorrection, CorrectionInvertsTheGeneratingModel) {
   const std::vector<Eigen::Vector3d> th{{1.0, 2.0, 3.0}}, w{{0.5, -1.0, 2.0}}, t{{3.0, -2.0, 1.0}};
   const auto out = correct_readings(th, w, t, kNu);
@@ -83,10 +91,7 @@ TEST(MotionCorrection, RecoversGeometryComplianceAndSkewWithinTheirSigma) {
   }
   // The rigid fit of the same readings is biased far beyond its own 1-sigma.
   const Result rigid = calibrate_lm(d.problem, o);
-  double worst = 0.0;
-  for (int k = 0; k < kNumParams; ++k)
-    if (d.problem.free[k]) worst = std::max(worst, std::abs(rigid.geometry.values[k] - d.truth.values[k]) / rigid.sigma[k]);
-  EXPECT_GT(worst, 10.0);
+  EXPECT_GT(worst_in_sigmas(d, rigid), 10.0);
 }
 
 TEST(MotionCorrection, WithoutNuisanceItIsTheRigidCalibration) {
@@ -128,12 +133,7 @@ TEST(MotionCorrection, RecoversTheFrictionTwistAndIgnoringItBiasesTheFit) {
   LmOptions o;
   o.encoder_sigma = kSigma;
   const MotionFit fit = calibrate_in_motion(d.problem, d.omega, d.tau, o);
-  auto worst = [&](const Result& r) {
-    double w = 0.0;
-    for (int k = 0; k < kNumParams; ++k)
-      if (d.problem.free[k]) w = std::max(w, std::abs(r.geometry.values[k] - d.truth.values[k]) / r.sigma[k]);
-    return w;
-  };
+  auto worst = [&](const Result& r) { return worst_in_sigmas(d, r); };
   for (std::size_t k = 0; k < 3; ++k) {
     ASSERT_TRUE(std::isfinite(fit.friction_sigma[k]));
     EXPECT_LT(std::abs(fit.friction[k] - cf[k]), 4.0 * fit.friction_sigma[k]) << "c F of joint " << k + 1;
@@ -226,12 +226,7 @@ TEST(MotionCorrection, RecoversTheJointClearanceAndIgnoringItBiasesTheFit) {
       EXPECT_FALSE(kept[j]) << "sample " << j << " min |T| " << weakest[j];
     }
   }
-  auto worst = [&](const Result& r) {
-    double w = 0.0;
-    for (int k = 0; k < kNumParams; ++k)
-      if (d.problem.free[k]) w = std::max(w, std::abs(r.geometry.values[k] - d.truth.values[k]) / r.sigma[k]);
-    return w;
-  };
+  auto worst = [&](const Result& r) { return worst_in_sigmas(d, r); };
   for (std::size_t k = 0; k < 3; ++k) {
     ASSERT_TRUE(std::isfinite(fit.clearance_sigma[k]));
     EXPECT_LT(std::abs(fit.clearance[k] - play[k]), 4.0 * fit.clearance_sigma[k]) << "play of chain " << k + 1;
@@ -347,12 +342,7 @@ TEST(MotionCorrection, RecoversTheTwistOfTheTorqueBefore) {
   for (std::size_t j = 1; j < d.tau.size(); ++j) d.problem.theta_m[j] += h.cwiseProduct(d.tau[j - 1] - d.tau[j]);
   LmOptions o;
   o.encoder_sigma = kSigma;
-  auto worst = [&](const Result& r) {
-    double w = 0.0;
-    for (int k = 0; k < kNumParams; ++k)
-      if (d.problem.free[k]) w = std::max(w, std::abs(r.geometry.values[k] - d.truth.values[k]) / r.sigma[k]);
-    return w;
-  };
+  auto worst = [&](const Result& r) { return worst_in_sigmas(d, r); };
   MotionModel before;
   before.torque_before = true;
   const MotionFit fit = calibrate_in_motion(d.problem, d.omega, d.tau, o, before);
@@ -387,12 +377,7 @@ TEST(MotionCorrection, RecoversTheTwistOfTheTorquesBetweenSamples) {
   }
   LmOptions o;
   o.encoder_sigma = kSigma;
-  auto worst = [&](const Result& r) {
-    double w = 0.0;
-    for (int k = 0; k < kNumParams; ++k)
-      if (d.problem.free[k]) w = std::max(w, std::abs(r.geometry.values[k] - d.truth.values[k]) / r.sigma[k]);
-    return w;
-  };
+  auto worst = [&](const Result& r) { return worst_in_sigmas(d, r); };
   MotionModel recorded;
   recorded.torque_before = true;
   recorded.torque_between = between;
