@@ -247,6 +247,19 @@ std::string yaml_text(const YAML::Node& node, const std::string& file, std::stri
   return s;
 }
 
+std::array<double, 3> yaml_number_or_three(
+    const YAML::Node& node, const std::string& file, const std::string& keypath, std::string_view list_expected,
+    const std::function<double(const YAML::Node&, const std::string&)>& element,
+    const std::function<std::array<double, 3>(double)>& number_gives) {
+  if (!node.IsSequence()) return number_gives(element(node, keypath));
+  if (node.size() != 3)
+    throw InputError(yaml_where(file, node, keypath) +
+                     fmt::format("expected {}, got a list of {}", list_expected, node.size()));
+  std::array<double, 3> out{};
+  for (std::size_t i = 0; i < 3; ++i) out[i] = element(node[i], fmt::format("{}[{}]", keypath, i));
+  return out;
+}
+
 void yaml_check_keys(const YAML::Node& node, const std::string& file, std::string_view keypath,
                      std::initializer_list<std::string_view> allowed) {
   if (!node.IsMap()) {

@@ -2,6 +2,8 @@
 // the line and the key path (docs/ARCHITECTURE.md: one clear line, exit 2).
 #pragma once
 
+#include <array>
+#include <functional>
 #include <initializer_list>
 #include <string>
 #include <string_view>
@@ -46,6 +48,17 @@ std::string yaml_text(const YAML::Node& node, const std::string& file, std::stri
 // reported with the nearest allowed name.
 void yaml_check_keys(const YAML::Node& node, const std::string& file, std::string_view keypath,
                      std::initializer_list<std::string_view> allowed);
+
+// Three values from a number or a list of three at keypath: each element is
+// read by element(element node, its key path: keypath or keypath[i]); a number
+// gives number_gives(that value) (by default the value three times). A list
+// of another length is an error "expected LIST_EXPECTED, got a list of N".
+std::array<double, 3> yaml_number_or_three(
+    const YAML::Node& node, const std::string& file, const std::string& keypath, std::string_view list_expected,
+    const std::function<double(const YAML::Node&, const std::string&)>& element,
+    const std::function<std::array<double, 3>(double)>& number_gives = [](double x) {
+      return std::array<double, 3>{x, x, x};
+    });
 
 // Shortest decimal text that reads back to exactly x (lossless round trip).
 std::string format_exact(double x);

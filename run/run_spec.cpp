@@ -26,22 +26,14 @@ Eigen::Vector2d point(const YAML::Node& n, const std::string& file, const std::s
 // A number or a list of three (one per joint), each in [0, hi] (unit: what it is in).
 std::array<double, 3> per_joint(const YAML::Node& n, const std::string& file, const std::string& key, double hi,
                                 const char* unit) {
-  const auto one = [&](const YAML::Node& v, const std::string& k) {
-    const double x = yaml_number(v, file, k);
-    if (!(x >= 0.0 && x <= hi))
-      throw InputError(yaml_where(file, v, k) + fmt::format("{} is out of range (valid: 0 to {} {})", x, hi, unit));
-    return x;
-  };
-  std::array<double, 3> out{};
-  if (n.IsSequence()) {
-    if (n.size() != 3)
-      throw InputError(yaml_where(file, n, key) +
-                       fmt::format("expected a number or a list of three (one per joint), got a list of {}", n.size()));
-    for (std::size_t i = 0; i < 3; ++i) out[i] = one(n[i], fmt::format("{}[{}]", key, i));
-  } else {
-    out.fill(one(n, key));
-  }
-  return out;
+  return yaml_number_or_three(n, file, key, "a number or a list of three (one per joint)",
+                              [&](const YAML::Node& v, const std::string& k) {
+                                const double x = yaml_number(v, file, k);
+                                if (!(x >= 0.0 && x <= hi))
+                                  throw InputError(yaml_where(file, v, k) +
+                                                   fmt::format("{} is out of range (valid: 0 to {} {})", x, hi, unit));
+                                return x;
+                              });
 }
 
 // calibration.drive_friction, or (with_scale false: no fit_scale key) monitor.drive_friction;
@@ -65,22 +57,15 @@ DriveFriction parse_drive_friction(const YAML::Node& n, const std::string& file,
 // Latch skew: a number (encoders 2 and 3; encoder 1 is the reference) or a
 // list of three, each within +-0.01 s (sim/effects_yaml.cpp's encoder_skew_s).
 std::array<double, 3> skew_list(const YAML::Node& n, const std::string& file, const std::string& key) {
-  const auto one = [&](const YAML::Node& v, const std::string& k) {
-    const double x = yaml_number(v, file, k);
-    if (!(std::abs(x) <= 0.01))
-      throw InputError(yaml_where(file, v, k) + fmt::format("{} s is out of range (valid: -0.01 to 0.01 s)", x));
-    return x;
-  };
-  if (!n.IsSequence()) {
-    const double s = one(n, key);
-    return {0.0, s, s};
-  }
-  if (n.size() != 3)
-    throw InputError(yaml_where(file, n, key) +
-                     fmt::format("expected a number (encoders 2 and 3) or a list of three, got a list of {}", n.size()));
-  std::array<double, 3> out{};
-  for (std::size_t i = 0; i < 3; ++i) out[i] = one(n[i], fmt::format("{}[{}]", key, i));
-  return out;
+  return yaml_number_or_three(
+      n, file, key, "a number (encoders 2 and 3) or a list of three",
+      [&](const YAML::Node& v, const std::string& k) {
+        const double x = yaml_number(v, file, k);
+        if (!(std::abs(x) <= 0.01))
+          throw InputError(yaml_where(file, v, k) + fmt::format("{} s is out of range (valid: -0.01 to 0.01 s)", x));
+        return x;
+      },
+      [](double s) { return std::array<double, 3>{0.0, s, s}; });
 }
 
 MonitorReadingModel reading_model_preset(const YAML::Node& n, const std::string& file, const std::string& key) {

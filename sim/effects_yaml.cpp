@@ -25,19 +25,13 @@ double bounded(const YAML::Node& n, const std::string& file, const std::string& 
   return v;
 }
 
+constexpr std::string_view kPerChain = "a number or a list of three (one per chain)";
+
 // A scalar (all three chains) or a list of three, each in range; scale converts units.
 std::array<double, 3> per_chain(const YAML::Node& n, const std::string& file, const std::string& key,
                                 const Range& r, double scale = 1.0) {
-  std::array<double, 3> out{};
-  if (n.IsSequence()) {
-    if (n.size() != 3)
-      throw InputError(yaml_where(file, n, key) +
-                       fmt::format("expected a number or a list of three (one per chain), got a list of {}", n.size()));
-    for (size_t i = 0; i < 3; ++i) out[i] = scale * bounded(n[i], file, fmt::format("{}[{}]", key, i), r);
-  } else {
-    out.fill(scale * bounded(n, file, key, r));
-  }
-  return out;
+  return yaml_number_or_three(n, file, key, kPerChain,
+                              [&](const YAML::Node& v, const std::string& k) { return scale * bounded(v, file, k, r); });
 }
 
 Effects preset(const YAML::Node& n, const std::string& file, const std::string& key) {
@@ -75,12 +69,11 @@ Effects parse_effects(const YAML::Node& n, const std::string& file, std::uint64_
       e.encoder_cyclic_rad = per_chain(v, file, key("encoder_cyclic_rad"), {0.0, 0.01, "0 to 0.01 rad"});
     if (const YAML::Node v = n["encoder_skew_s"]) {
       const Range r{-0.01, 0.01, "-0.01 to 0.01 s"};
-      if (v.IsSequence()) {
-        e.encoder_skew_s = per_chain(v, file, key("encoder_skew_s"), r);
-      } else {  // encoders 2 and 3 latched this long after encoder 1
-        const double s = bounded(v, file, key("encoder_skew_s"), r);
-        e.encoder_skew_s = {0.0, s, s};
-      }
+      // A number: encoders 2 and 3 latched this long after encoder 1.
+      e.encoder_skew_s = yaml_number_or_three(
+          v, file, key("encoder_skew_s"), kPerChain,
+          [&](const YAML::Node& x, const std::string& k) { return bounded(x, file, k, r); },
+          [](double s) { return std::array<double, 3>{0.0, s, s}; });
     }
     if (const YAML::Node t = n["thermal"]) {
       const std::string ct = key("thermal");
