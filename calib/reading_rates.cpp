@@ -3,8 +3,9 @@
 
 #include <algorithm>
 #include <cmath>
-#include <numbers>
 #include <stdexcept>
+
+#include "models/kinematics.hpp"
 
 namespace gpm::calib {
 namespace {
@@ -74,7 +75,6 @@ ReadingRates reading_rates(const std::vector<double>& t, const std::vector<Eigen
     max_step = 1.5 * sorted[sorted.size() / 2];
   }
   // Segments between gaps; readings unwrapped by 2 pi within each.
-  constexpr double kTwoPi = 2.0 * std::numbers::pi;
   std::vector<std::size_t> segment_start{0};
   std::vector<Eigen::Vector3d> u(n);
   u[0] = theta_m[0];
@@ -85,8 +85,7 @@ ReadingRates reading_rates(const std::vector<double>& t, const std::vector<Eigen
       continue;
     }
     for (int i = 0; i < 3; ++i) {
-      const double step = std::remainder(theta_m[j][i] - theta_m[j - 1][i], kTwoPi);  // in [-pi, pi]
-      u[j][i] = u[j - 1][i] + step;
+      u[j][i] = u[j - 1][i] + wrap_pi(theta_m[j][i] - theta_m[j - 1][i]);
     }
   }
   out.omega = slopes(t, u, segment_start, options.span);
