@@ -146,7 +146,9 @@ std::string mjcf_from_robot(const Robot& actual, const MjcfOptions& o) {
     const std::string in = "      ";  // indentation inside link_a
     if (compliance > 0.0) {
       // Transmission compliance: a rotor body of its own at A_i (hinge
-      // joint_m with the armature, the damping and friction; the actuator)
+      // joint_m with the armature, the damping and friction, whose
+      // frictionloss the twin takes over in closed form: sim/rotor_friction.hpp;
+      // the actuator)
       // and the link on its usual absolute hinge joint_a, joined by a fixed
       // tendon twist_a{i} = qpos(joint_m) - qpos(joint_a) of stiffness
       // 1 / compliance, at rest at zero twist (both joints have ref =

@@ -128,6 +128,11 @@ TwinModel::TwinModel(const Robot& actual, const TwinConfig& config)
     hub_play_m[i] = loose >= 0 ? m->tendon_range[2 * loose + 1] : 0.0;
     if (i > 0 && eq_close[i] < 0 && loose < 0) throw SimError(fmt::format("MuJoCo model: chain {} is not closed", i + 1));
   }
+  // A compliant drive's rotor is a one-dof tree no other constraint row
+  // touches: its frictionloss row is solved in closed form by twin_step.
+  for (int i = 0; i < 3; ++i)
+    if (compliant[i] && model_->dof_frictionloss[dof_m[i]] > 0.0)
+      rotor_friction[i] = take_rotor_friction(model_.get(), dof_m[i], actuator[i]);
   site_ee = require_id(m, mjOBJ_SITE, "ee");
   body_ee = require_id(m, mjOBJ_BODY, "ee");
 }
@@ -224,6 +229,8 @@ void twin_step(const TwinModel& model, TwinState& state) {
       state.last.torque[i] = state.servo[i].torque;
     }
   }
+  for (const RotorFriction& r : model.rotor_friction)
+    if (r.dof >= 0) d->qfrc_applied[r.dof] = rotor_friction_torque(m, d, r);
   mj_step2(m, d);
   ++state.steps;
   if (d->warning[mjWARN_BADQACC].number > 0 || !std::isfinite(d->qpos[0])) {

@@ -22,6 +22,7 @@
 #include "sim/effects.hpp"
 #include "sim/encoder_model.hpp"
 #include "sim/mujoco_util.hpp"
+#include "sim/rotor_friction.hpp"
 #include "sim/events.hpp"
 #include "sim/servo_drive.hpp"
 
@@ -69,6 +70,11 @@ class TwinModel {
   // Distance the hub may keep from site tip_b{i} (chains 2 and 3 closed by
   // their clearance tendon: 2c; 0 where a connect closes the loop).
   std::array<double, 3> hub_play_m{};
+  // Friction of each drive whose rotor is a tree of its own (compliant
+  // transmission), solved by twin_step in closed form (sim/rotor_friction.hpp;
+  // the compiled model's frictionloss of joint_m is 0); dof -1 where MuJoCo's
+  // frictionloss row acts (a rigid drive: joint_a in the closed chain).
+  std::array<RotorFriction, 3> rotor_friction{};
 
   // Largest stable transmission stiffness at a timestep: omega dt <= this.
   static constexpr double kMaxOmegaDt = 1.5;

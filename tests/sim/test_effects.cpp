@@ -12,7 +12,9 @@
 //   at home the centring springs exert nothing, and the hub stays on each
 //   passive link's line (the play is axial);
 // - friction: by power balance over whole revolutions of a circle, the
-//   drives' extra mean power is c sum |w_i| (Coulomb) and b sum w_i^2 (viscous);
+//   drives' extra mean power is c sum |w_i| (Coulomb) and b sum w_i^2 (viscous),
+//   on rigid drives (MuJoCo's frictionloss rows) and on compliant ones (the
+//   rotor's friction solved by the twin, sim/rotor_friction.cpp);
 // - cyclic error: the reading error fitted over many angles is A sin(theta + phase);
 // - skew: the reading of encoder i equals the true motor angle skew_i earlier.
 #include "sim/effects.hpp"
@@ -254,8 +256,7 @@ struct Power {
   double tau_w = 0, abs_w = 0, w2 = 0;
 };
 
-Power circle_power(const MjcfEffects& fx) {
-  TwinConfig c;
+Power circle_power(const MjcfEffects& fx, TwinConfig c = {}) {
   c.encoder.bits = 0;
   c.effects.mjcf = fx;
   const Robot robot;
@@ -288,6 +289,36 @@ TEST(Effects, CoulombAndViscousFrictionCostTheirPower) {
   viscous.viscous_Nm_s.fill(0.5);
   const Power pv = circle_power(viscous);
   EXPECT_NEAR((pv.tau_w - base.tau_w) / (0.5 * base.w2), 1.0, 0.05);
+}
+
+// On a compliant drive the rotor's friction is solved by the twin in closed
+// form (sim/rotor_friction.hpp) instead of by MuJoCo's frictionloss row: the
+// same power balance holds, measured on the rotors' velocities.
+TEST(Effects, CoulombFrictionOnCompliantDrivesCostsItsPower) {
+  MjcfEffects compliant;
+  compliant.compliance_rad_per_Nm.fill(1e-4);
+  MjcfEffects coulomb = compliant;
+  coulomb.coulomb_Nm.fill(0.5);
+  {
+    TwinConfig c = fast_config();
+    c.effects.mjcf = coulomb;
+    const TwinModel m(Robot{}, c);
+    for (int i = 0; i < 3; ++i) {
+      ASSERT_TRUE(m.compliant[i]);
+      EXPECT_EQ(m.rotor_friction[i].dof, m.dof_m[i]);
+      EXPECT_EQ(m.rotor_friction[i].coulomb_Nm, 0.5);
+      EXPECT_EQ(m.mj()->dof_frictionloss[m.dof_m[i]], 0.0) << "MuJoCo's row would act twice";
+    }
+    c.effects.mjcf.compliance_rad_per_Nm.fill(0.0);
+    const TwinModel rigid(Robot{}, c);
+    for (int i = 0; i < 3; ++i) {
+      EXPECT_EQ(rigid.rotor_friction[i].dof, -1);
+      EXPECT_EQ(rigid.mj()->dof_frictionloss[rigid.dof_a[i]], 0.5);
+    }
+  }
+  const Power base = circle_power(compliant, fast_config());
+  const Power pc = circle_power(coulomb, fast_config());
+  EXPECT_NEAR((pc.tau_w - base.tau_w) / (0.5 * base.abs_w), 1.0, 0.05);
 }
 
 TEST(Effects, CyclicErrorIsASineOfTheReadingWithItsPhase) {
