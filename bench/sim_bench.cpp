@@ -7,8 +7,9 @@
 // of the twin (steps/s x timestep: the figure that compares runs at
 // different timesteps; effects: realistic needs 0.25 ms, see SCHEMA.md).
 // With effects, the ideal twin at the same timestep and rate is timed in
-// interleaved rounds (so that load from other processes hits both alike) and
-// "effects_vs_ideal_per_step" is their ratio of best rates (goal for
+// fifteen interleaved rounds of steps / 10 (so that load from other processes
+// hits both alike) and "effects_vs_ideal_per_step" is their ratio of best
+// rates in thread CPU time (goal for
 // realistic: at most 1.5). --profile prints MuJoCo's stage timers per step
 // of both twins (where a step's time goes).
 #include <algorithm>
@@ -155,8 +156,8 @@ int main(int argc, char** argv) {
     TwinState si(ideal, 1), se(model, 1);
     for (TwinState* st : {&si, &se})
       twin_command(*st, st->last.readings + Eigen::Vector3d(0.001, -0.001, 0.0005), Eigen::Vector3d::Zero());
-    const long n = std::max(1L, steps / 5);
-    for (int round = 0; round < 5; ++round) {
+    const long n = std::max(1L, steps / 10);
+    for (int round = 0; round < 15; ++round) {
       double c0 = thread_cpu_s();
       ideal_rate = std::max(ideal_rate, best_rate(n, 1, [&](long m) {
         for (long k = 0; k < m; ++k) twin_step(ideal, si);
