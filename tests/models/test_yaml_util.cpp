@@ -79,7 +79,7 @@ TEST(YamlUtil, FormatExactRoundTripsRandomDoubles) {
 
 TEST(YamlUtil, PrintableUtf8) {
   EXPECT_TRUE(is_printable_utf8("GPM2002 #3: caf\xc3\xa9 \xe2\x82\xac"));
-  EXPECT_FALSE(is_printable_utf8("a\x10b"));          // control character (found by fuzzing)
+  EXPECT_FALSE(is_printable_utf8("a\x10" "b"));       // control character (found by fuzzing)
   EXPECT_FALSE(is_printable_utf8("\xff\xff"));        // not UTF-8
   EXPECT_FALSE(is_printable_utf8("\xc0\xaf"));        // overlong
   EXPECT_FALSE(is_printable_utf8("\xe2\x82"));        // truncated

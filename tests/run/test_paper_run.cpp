@@ -68,7 +68,9 @@ TEST_F(PaperRunTest, EveryTableAndFigureIsThereWithBothColumns) {
       if (r.paper && r.ours) ++printed;
     }
     EXPECT_GT(printed, 0) << t.id << " compares no printed number";
-    if (t.id.rfind("figure", 0) == 0) EXPECT_NE(t.figure_svg.find("<svg"), std::string::npos) << t.id;
+    if (t.id.rfind("figure", 0) == 0) {
+      EXPECT_NE(t.figure_svg.find("<svg"), std::string::npos) << t.id;
+    }
   }
 }
 
@@ -77,9 +79,10 @@ TEST_F(PaperRunTest, EveryDifferenceHasItsSentence) {
     for (const Row& r : t.rows) {
       if (r.reason == Reason::kAgrees) {
         // Agreeing rows really agree with the printed digits.
-        if (r.paper && r.ours)
+        if (r.paper && r.ours) {
           EXPECT_LE(std::fabs(*r.ours - *r.paper), printed_half_unit(r.paper_text) * (1 + 1e-9))
               << t.id << " " << r.quantity;
+        }
         continue;
       }
       EXPECT_GT(r.why.size(), 20u) << t.id << " " << r.quantity;
@@ -152,8 +155,9 @@ TEST_F(PaperRunTest, JsonParsesAndAgreesWithTheMarkdown) {
     for (size_t i = 0; i < t.rows.size(); ++i) {
       const auto& jr = jt["rows"][i];
       const std::string ours = jr["ours_text"].get<std::string>();
-      if (!jr["ours"].is_null()) EXPECT_NEAR(std::stod(ours), jr["ours"].get<double>(),
-                                            1e-5 * std::fabs(jr["ours"].get<double>()) + 1e-300);
+      if (!jr["ours"].is_null()) {
+        EXPECT_NEAR(std::stod(ours), jr["ours"].get<double>(), 1e-5 * std::fabs(jr["ours"].get<double>()) + 1e-300);
+      }
       // The row's line in paper.md carries the same quantity, printed value, value and reason.
       const std::string line = "| " + jr["quantity"].get<std::string>() + " | " + jr["unit"].get<std::string>() +
                                " | " + jr["paper_text"].get<std::string>() + " | " + ours + " |";
