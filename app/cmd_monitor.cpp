@@ -18,6 +18,7 @@
 #include "calib/result_yaml.hpp"
 #include "models/errors.hpp"
 #include "models/robot_yaml.hpp"
+#include "models/yaml_util.hpp"
 #include "hw/hw_errors.hpp"
 #include "hw/procedures/stop_on_signal.hpp"
 #include "run/monitor_run.hpp"
@@ -59,9 +60,18 @@ void add_monitor(CLI::App& app) {
       }
     scenario::MonitorOutcome o;
     const scenario::MonitorExpect expect = scenario::load_monitor_expect(opt->scenario);  // bad keys before moving
-    // What the monitor assumes of the readings: the scenario's statement
-    // (`monitor:`; a calibration result file carries no reading model).
-    const scenario::MonitorReadingModel reading = scenario::load_monitor_reading_model(opt->scenario);
+    // What the monitor assumes of the readings: a calibration result's
+    // `monitor:` (gpm run writes the calibration's estimates there), else the
+    // scenario's statement (`monitor:`).
+    scenario::MonitorReadingModel reading = scenario::load_monitor_reading_model(opt->scenario);
+    std::string reading_from = load_yaml_file(opt->scenario)["monitor"]
+                                   ? fmt::format("the scenario's monitor: ({})", opt->scenario)
+                                   : "data_sheet (the default; a scenario states its own with monitor:)";
+    if (!opt->model.empty())
+      if (const YAML::Node n = load_yaml_file(opt->model)["monitor"]) {
+        reading = scenario::parse_monitor_reading_model(n, opt->model);
+        reading_from = fmt::format("the calibration result's monitor: ({})", opt->model);
+      }
     // Progress on a terminal only (a log file gets the summary alone).
     const bool tty = isatty(STDERR_FILENO) != 0;
     const auto progress = [tty](double t, double T) {
@@ -93,6 +103,7 @@ void add_monitor(CLI::App& app) {
     fmt::print("scenario   {} ({})\n", s.name, opt->scenario);
     fmt::print("operation  {:.1f} s, {} servo cycles, {:.1f} s wall\n", o.simulated_s, o.cycles, o.wall_s);
     if (!o.hardware.empty()) fmt::print("hardware   {}\n", o.hardware);
+    fmt::print("readings   {}\n", reading_from);
     if (o.truth_known)
       fmt::print("alarms     {} ({} false; stated rate {} per hour)\n", o.alarms.size(), o.false_alarms,
                  o.model.settings.false_alarms_per_hour);

@@ -168,9 +168,11 @@ Robot robot_from_yaml(const YAML::Node& root, const std::string& file, const std
     throw InputError(yaml_where(file, root, keypath) +
                      "expected a map with keys name, geometry (and optionally home, elbow, limits)");
   }
-  // A calibration result file is also a robot file (its std, fixed, diagnostics kept).
+  // A calibration result file is also a robot file (its std, fixed, diagnostics
+  // kept; the drift monitor's reading model that gpm run adds, `monitor:`, is
+  // read by gpm monitor alone: run/run_spec.hpp).
   yaml_check_keys(root, file, keypath,
-                  {"name", "geometry", "home", "elbow", "limits", "std", "fixed", "diagnostics"});
+                  {"name", "geometry", "home", "elbow", "limits", "std", "fixed", "diagnostics", "monitor"});
   Robot r;
   if (root["name"]) r.name = yaml_text(root["name"], file, join(keypath, "name"));
   r.geometry = geometry_from_yaml(root["geometry"], file, join(keypath, "geometry"));

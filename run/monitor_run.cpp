@@ -212,8 +212,9 @@ MonitorReadingModel reading_model_after_calibration(const RunOutcome& run) {
   };
   // s2, s3 relative to encoder 1, then c1..c3 (calib/motion_correction.hpp).
   if (estimated(0) || estimated(1)) m.skew_s = {0.0, run.motion_nu[0], run.motion_nu[1]};
+  // A compliance fitted below 0 (within its noise of a stiff transmission) is none.
   for (std::size_t i = 0; i < 3; ++i)
-    if (estimated(2 + i)) m.compliance_rad_per_Nm[i] = run.motion_nu[2 + i];
+    if (estimated(2 + i)) m.compliance_rad_per_Nm[i] = std::max(0.0, run.motion_nu[2 + i]);
   // The passive link acts as lb_i + d_i sign(T_i) in the calibration and as
   // lb_i + 2 c_i sign(T_i) in the monitor (a play fitted below 0 is none).
   if (run.joint_play_mm)

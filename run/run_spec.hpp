@@ -74,6 +74,13 @@ MonitorReadingModel parse_monitor_reading_model(const YAML::Node& n, const std::
 // The `monitor:` section of a scenario file (for gpm monitor).
 MonitorReadingModel load_monitor_reading_model(const std::string& scenario_file);
 
+// m as a top-level `monitor:` section of YAML text, every key explicit, each
+// number in its shortest exact form: parse_monitor_reading_model reads it
+// back to the last bit. gpm run appends it to DIR/calibration.yaml (the
+// reading model its own monitor used), so that `gpm monitor --model
+// DIR/calibration.yaml` starts from the calibration's estimates too.
+std::string monitor_reading_model_yaml(const MonitorReadingModel& m);
+
 struct CalibrationSpec {
   calib::Cost cost = calib::Cost::kML;
   calib::Method method = calib::Method::kLM;

@@ -517,7 +517,11 @@ void write_run(const RunOutcome& o, const std::string& dir) {
     out.add("model.xml", o.sim.model_xml);
   }
   out.add("actual.yaml", robot_to_yaml(o.sim.actual));
-  if (o.calibration) out.add("calibration.yaml", calib::result_to_yaml(*o.calibration, o.nominal.name));
+  // The result, and the reading model the monitor of this robot assumes (the
+  // calibration's estimates where it made them, the statement for the rest).
+  if (o.calibration)
+    out.add("calibration.yaml", calib::result_to_yaml(*o.calibration, o.nominal.name) +
+                                    monitor_reading_model_yaml(reading_model_after_calibration(o)));
   out.add("summary.json", summary_json(o));
   if (o.monitor) {
     out.add("alarms.csv", monitor_alarms_csv(*o.monitor));

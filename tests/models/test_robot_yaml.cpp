@@ -97,6 +97,11 @@ TEST(RobotYaml, ResultFileIsARobotFileAndKeepsItsRecord) {
   const Robot back = parse_robot(robot_to_yaml(r), "again.yaml");
   EXPECT_EQ(back, r) << robot_to_yaml(r);
   EXPECT_EQ(robot_to_yaml(back), robot_to_yaml(r));
+  // The drift monitor's reading model that gpm run adds is accepted (gpm
+  // monitor reads it; the robot is the same without it).
+  const Robot with_monitor =
+      parse_robot(result_text() + "monitor: {skew_s: [0, 5.0e-5, 1.0e-4], clearance_mm: 0.005}\n", "result.yaml");
+  EXPECT_EQ(with_monitor, r);
   // A plain robot file has no record, and writes none.
   EXPECT_FALSE(parse_robot(nominal_text(), "r.yaml").calibration.has_value());
   EXPECT_EQ(robot_to_yaml(Robot{}).find("diagnostics"), std::string::npos);

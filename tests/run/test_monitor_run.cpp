@@ -188,6 +188,9 @@ TEST(MonitorRun, ReadingModelAfterCalibrationTakesTheEstimatesWhereMade) {
   // Not estimated: the statement.
   EXPECT_EQ(m.encoder_cyclic_rad, stated.encoder_cyclic_rad);
   EXPECT_EQ(m.thermal_time_constant_s, stated.thermal_time_constant_s);
+  // A compliance fitted below 0 (a stiff transmission within its noise) is none.
+  run.motion_nu[3] = -6e-6;
+  EXPECT_EQ(reading_model_after_calibration(run).compliance_rad_per_Nm[1], 0.0);
   // The clearance looked for and not found: none (zeros), not the statement's 5 um.
   run.joint_play_mm = std::array<double, 3>{};
   EXPECT_EQ(reading_model_after_calibration(run).clearance_mm, (std::array<double, 3>{}));

@@ -7,6 +7,7 @@
 
 #include "models/errors.hpp"
 #include "models/mjcf.hpp"
+#include "models/yaml_util.hpp"
 #include "sim/effects.hpp"
 
 namespace gpm::scenario {
@@ -136,6 +137,31 @@ TEST(RunSpec, DriveFrictionStatedByTheCalibration) {
 // data-sheet class (the realistic preset's reading errors and the drives'
 // friction calibration.drive_friction defaults to), whatever the twin's
 // effects; `ideal` models none; keys override the preset.
+// The reading model gpm run appends to calibration.yaml reads back to the
+// last bit through the scenario's own parser (awkward numbers: the shortest
+// exact form is written), and is the same section a scenario states.
+TEST(RunSpec, MonitorReadingModelYamlRoundTripsBitExact) {
+  MonitorReadingModel m = data_sheet_reading_model();
+  m.clearance_mm = {0.005644814301912167, 1.0 / 3.0 * 1e-2, 0.0};
+  m.skew_s = {0.0, 5.556675527672076e-05, -8.164314423058782e-05};
+  m.compliance_rad_per_Nm = {0.0001, 0.000103386928736235, 0.0};
+  m.drive_friction.viscous_Nm_s = {0.15000000000000002, 0.1, 0.2};
+  m.thermal_time_constant_s = 612.5;
+  for (const MonitorReadingModel& want : {m, ideal_reading_model(), data_sheet_reading_model()}) {
+    const std::string text = monitor_reading_model_yaml(want);
+    const MonitorReadingModel got = parse_monitor_reading_model(load_yaml_string(text, "r.yaml")["monitor"], "r.yaml");
+    EXPECT_EQ(got.encoder_cyclic_rad, want.encoder_cyclic_rad) << text;
+    EXPECT_EQ(got.clearance_mm, want.clearance_mm) << text;
+    EXPECT_EQ(got.drive_friction.coulomb_Nm, want.drive_friction.coulomb_Nm) << text;
+    EXPECT_EQ(got.drive_friction.viscous_Nm_s, want.drive_friction.viscous_Nm_s) << text;
+    EXPECT_EQ(got.skew_s, want.skew_s) << text;
+    EXPECT_EQ(got.compliance_rad_per_Nm, want.compliance_rad_per_Nm) << text;
+    EXPECT_EQ(got.thermal_time_constant_s, want.thermal_time_constant_s) << text;
+    // The same text is a scenario's monitor: section.
+    EXPECT_EQ(parse_run_spec(kHead + text, "s.yaml", kBase).monitor.skew_s, want.skew_s);
+  }
+}
+
 TEST(RunSpec, MonitorReadingModelIsStatedNotTakenFromTheTwin) {
   const RunSpec d = parse_run_spec(kHead, "s.yaml", kBase);
   const sim::Effects realistic = sim::realistic_effects();
