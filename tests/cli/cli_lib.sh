@@ -3,6 +3,7 @@
 #   check NAME EXIT CMD...   runs CMD, stdout -> $tmp/out, stderr -> $tmp/err;
 #                            wants exit code EXIT, and for exit 2 exactly one stderr line
 #   expect_out NAME REGEX / expect_err NAME REGEX   grep -E in $tmp/out / $tmp/err
+#   holds NAME CMD...        CMD succeeds (a test, cmp, grep...)
 #   finish                   prints "N passed, M failed" and returns non-zero on failures
 fail=0; passed=0
 tmp=$(mktemp -d); trap 'rm -rf "$tmp"' EXIT
@@ -23,6 +24,10 @@ expect_out() {
 }
 expect_err() {
   if grep -qE -- "$2" "$tmp/err"; then passed=$((passed+1)); else echo "FAIL $1: no '$2' in:"; cat "$tmp/err"; fail=$((fail+1)); fi
+}
+holds() {
+  local name=$1; shift
+  if "$@"; then passed=$((passed+1)); else echo "FAIL $name"; fail=$((fail+1)); fi
 }
 finish() {
   echo "$passed passed, $fail failed"

@@ -9,10 +9,6 @@ set -u
 GPM="$1"
 SCEN="$(cd "$(dirname "$0")/../../scenarios" && pwd)"
 source "$(dirname "$0")/cli_lib.sh"
-expect() {  # name, condition...
-  local name=$1; shift
-  if "$@"; then passed=$((passed+1)); else echo "FAIL $name"; fail=$((fail+1)); fi
-}
 
 # A short calibration on the ideal twin (stated reading model: ideal), and a
 # short operation whose scenario states the data sheet's reading model.
@@ -38,8 +34,8 @@ operation:
 YAML
 
 check "run" 0 "$GPM" run "$tmp/cal.yaml" -o "$tmp/cal"
-expect "result carries monitor:" grep -q '^monitor:' "$tmp/cal/calibration.yaml"
-expect "ideal statement kept" grep -q '^  skew_s: \[0, 0, 0\]$' "$tmp/cal/calibration.yaml"
+holds "result carries monitor:" grep -q '^monitor:' "$tmp/cal/calibration.yaml"
+holds "ideal statement kept" grep -q '^  skew_s: \[0, 0, 0\]$' "$tmp/cal/calibration.yaml"
 check "result is a robot file" 0 "$GPM" kin home --model "$tmp/cal/calibration.yaml"
 
 # The result's reading model wins over the scenario's statement (data_sheet
@@ -48,14 +44,14 @@ sed 's/^  skew_s: .*/  skew_s: [0, 3.25e-05, -1.5e-05]/' "$tmp/cal/calibration.y
 check "monitor --model" 0 "$GPM" monitor "$tmp/op.yaml" --model "$tmp/result.yaml" -o "$tmp/mon"
 expect_out "names the result" "readings   the calibration result's monitor: \(.*result.yaml\)"
 flat() { tr -d ' \n' <"$1"; }
-expect "summary has the result's skew" grep -q '"skew_s":\[0.0,3.25e-05,-1.5e-05\]' <(flat "$tmp/mon/summary.json")
+holds "summary has the result's skew" grep -q '"skew_s":\[0.0,3.25e-05,-1.5e-05\]' <(flat "$tmp/mon/summary.json")
 check "monitor, robot file as model" 0 "$GPM" monitor "$tmp/op.yaml" --model "$SCEN/../models/gpm2002.yaml" -o "$tmp/mon2"
 expect_out "names the scenario" "readings   the scenario's monitor: \(.*op.yaml\)"
-expect "summary has the statement's skew" grep -q '"skew_s":\[0.0,5e-05,0.0001\]' <(flat "$tmp/mon2/summary.json")
+holds "summary has the statement's skew" grep -q '"skew_s":\[0.0,5e-05,0.0001\]' <(flat "$tmp/mon2/summary.json")
 
 # A bad value in the result: exit 2, one line with the file and key, nothing written.
 sed 's/^  skew_s: .*/  skew_s: [0, 0.5, 0]/' "$tmp/cal/calibration.yaml" >"$tmp/bad.yaml"
 check "bad skew in result" 2 "$GPM" monitor "$tmp/op.yaml" --model "$tmp/bad.yaml" -o "$tmp/bad"
 expect_err "file and key" "bad.yaml.*monitor.skew_s.*out of range"
-expect "nothing written" test ! -e "$tmp/bad"
+holds "nothing written" test ! -e "$tmp/bad"
 finish

@@ -6,10 +6,6 @@ set -u
 GPM="$1"
 SCEN="$(cd "$(dirname "$0")/../../scenarios" && pwd)"
 source "$(dirname "$0")/cli_lib.sh"
-expect() {  # name, condition...
-  local name=$1; shift
-  if "$@"; then passed=$((passed+1)); else echo "FAIL $name"; fail=$((fail+1)); fi
-}
 
 # A short scenario next to a copy of the robot file (relative robot path).
 cp "$SCEN/../models/gpm2002.yaml" "$tmp/robot.yaml"
@@ -24,13 +20,13 @@ path: {shape: circle, radius: 30, period_s: 0.5}
 YAML
 
 check "simulate" 0 "$GPM" simulate "$tmp/short.yaml" -o "$tmp/a"
-for f in samples.csv trajectory.csv actual.yaml model.xml; do expect "writes $f" test -s "$tmp/a/$f"; done
-expect "samples header" grep -q '^sample,theta_m1,theta_m2,theta_m3,x,y' "$tmp/a/samples.csv"
-expect "5 samples" test "$(wc -l <"$tmp/a/samples.csv")" -eq 6
-expect "trajectory header" grep -q '^t,x_des,y_des,x,y,theta_m1,theta_m2,theta_m3,tau1,tau2,tau3,violation_m$' "$tmp/a/trajectory.csv"
-expect "no temporary files" test -z "$(ls -A "$tmp/a" | grep '^\.')"
+for f in samples.csv trajectory.csv actual.yaml model.xml; do holds "writes $f" test -s "$tmp/a/$f"; done
+holds "samples header" grep -q '^sample,theta_m1,theta_m2,theta_m3,x,y' "$tmp/a/samples.csv"
+holds "5 samples" test "$(wc -l <"$tmp/a/samples.csv")" -eq 6
+holds "trajectory header" grep -q '^t,x_des,y_des,x,y,theta_m1,theta_m2,theta_m3,tau1,tau2,tau3,violation_m$' "$tmp/a/trajectory.csv"
+holds "no temporary files" test -z "$(ls -A "$tmp/a" | grep '^\.')"
 check "simulate again" 0 "$GPM" simulate "$tmp/short.yaml" -o "$tmp/b"
-for f in samples.csv trajectory.csv actual.yaml model.xml; do expect "same seed, same $f" cmp -s "$tmp/a/$f" "$tmp/b/$f"; done
+for f in samples.csv trajectory.csv actual.yaml model.xml; do holds "same seed, same $f" cmp -s "$tmp/a/$f" "$tmp/b/$f"; done
 # The actual robot file and samples feed the other commands.
 check "actual.yaml loads" 0 "$GPM" kin home --model "$tmp/a/actual.yaml"
 check "example disc scenario" 0 "$GPM" simulate "$SCEN/simulate_disc.yaml" -o "$tmp/disc"
@@ -39,14 +35,14 @@ check "example disc scenario" 0 "$GPM" simulate "$SCEN/simulate_disc.yaml" -o "$
 sed 's/radius: 50/radius: -50/' "$tmp/short.yaml" >"$tmp/neg.yaml"
 check "negative radius" 2 "$GPM" simulate "$tmp/neg.yaml" -o "$tmp/neg"
 expect_err "key path" "neg.yaml:6: sampling.radius: must be positive"
-expect "nothing written" test ! -e "$tmp/neg"
+holds "nothing written" test ! -e "$tmp/neg"
 printf 'sampeling: {}\n' >"$tmp/typo.yaml"
 check "unknown key" 2 "$GPM" simulate "$tmp/typo.yaml" -o "$tmp/typo"
 expect_err "suggestion" "did you mean sampling\?"
 sed 's/sampling: .*/sampling: {pattern: list, poses: [[216.5, 250], [216.5, 720]]}/' "$tmp/short.yaml" >"$tmp/far.yaml"
 check "unreachable pose" 2 "$GPM" simulate "$tmp/far.yaml" -o "$tmp/far"
 expect_err "pose and reach" "sampling: pose 1 \(216.5000, 720.0000\): chain [0-9]: .* outside its reach"
-expect "nothing written" test ! -e "$tmp/far"
+holds "nothing written" test ! -e "$tmp/far"
 sed 's/min_transmission: 0.15/min_transmission: 0.9/' "$tmp/robot.yaml" >"$tmp/strict.yaml"
 sed 's/robot: robot.yaml/robot: strict.yaml/; s/sampling: .*/sampling: {pattern: list, poses: [[216.5, 250], [300, 250]]}/' "$tmp/short.yaml" >"$tmp/sing.yaml"
 check "pose near a singularity" 2 "$GPM" simulate "$tmp/sing.yaml" -o "$tmp/sing"
@@ -59,6 +55,6 @@ expect_err "missing file" "none.yaml: cannot open file"
 check "missing -o" 2 "$GPM" simulate "$tmp/short.yaml"
 mkdir -p "$tmp/keep" && echo old >"$tmp/keep/samples.csv"
 check "bad run keeps old output" 2 "$GPM" simulate "$tmp/far.yaml" -o "$tmp/keep"
-expect "old file untouched" grep -qx old "$tmp/keep/samples.csv"
+holds "old file untouched" grep -qx old "$tmp/keep/samples.csv"
 
 finish
