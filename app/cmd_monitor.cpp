@@ -63,10 +63,10 @@ void add_monitor(CLI::App& app) {
     // What the monitor assumes of the readings: a calibration result's
     // `monitor:` (gpm run writes the calibration's estimates there), else the
     // scenario's statement (`monitor:`).
-    scenario::MonitorReadingModel reading = scenario::load_monitor_reading_model(opt->scenario);
-    std::string reading_from = load_yaml_file(opt->scenario)["monitor"]
-                                   ? fmt::format("the scenario's monitor: ({})", opt->scenario)
-                                   : "data_sheet (the default; a scenario states its own with monitor:)";
+    const YAML::Node stated = load_yaml_file(opt->scenario)["monitor"];
+    scenario::MonitorReadingModel reading = scenario::parse_monitor_reading_model(stated, opt->scenario);
+    std::string reading_from = stated ? fmt::format("the scenario's monitor: ({})", opt->scenario)
+                                      : "data_sheet (the default; a scenario states its own with monitor:)";
     if (!opt->model.empty())
       if (const YAML::Node n = load_yaml_file(opt->model)["monitor"]) {
         reading = scenario::parse_monitor_reading_model(n, opt->model);

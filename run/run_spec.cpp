@@ -320,19 +320,18 @@ MonitorReadingModel parse_monitor_reading_model(const YAML::Node& n, const std::
   return m;
 }
 
-MonitorReadingModel load_monitor_reading_model(const std::string& scenario_file) {
-  return parse_monitor_reading_model(load_yaml_file(scenario_file)["monitor"], scenario_file);
-}
-
 std::string monitor_reading_model_yaml(const MonitorReadingModel& m) {
-  const auto three = [](const std::array<double, 3>& v) { return fmt::format("[{}, {}, {}]", v[0], v[1], v[2]); };
+  const auto three = [](const std::array<double, 3>& v) {
+    return fmt::format("[{}, {}, {}]", format_exact(v[0]), format_exact(v[1]), format_exact(v[2]));
+  };
   return fmt::format(
       "monitor:             # the drift monitor's reading model (gpm monitor --model reads it; scenario key monitor:)\n"
       "  encoder_cyclic_rad: {}\n  clearance_mm: {}\n"
       "  drive_friction: {{coulomb_Nm: {}, viscous_Nm_s: {}}}\n"
       "  skew_s: {}\n  compliance_rad_per_Nm: {}\n  thermal_time_constant_s: {}\n",
       three(m.encoder_cyclic_rad), three(m.clearance_mm), three(m.drive_friction.coulomb_Nm),
-      three(m.drive_friction.viscous_Nm_s), three(m.skew_s), three(m.compliance_rad_per_Nm), m.thermal_time_constant_s);
+      three(m.drive_friction.viscous_Nm_s), three(m.skew_s), three(m.compliance_rad_per_Nm),
+      format_exact(m.thermal_time_constant_s));
 }
 
 RunSpec parse_run_spec(const std::string& text, const std::string& file, const std::string& base_dir) {

@@ -71,9 +71,6 @@ MonitorReadingModel data_sheet_reading_model();
 // throws InputError naming the file, line and key.
 MonitorReadingModel parse_monitor_reading_model(const YAML::Node& n, const std::string& file);
 
-// The `monitor:` section of a scenario file (for gpm monitor).
-MonitorReadingModel load_monitor_reading_model(const std::string& scenario_file);
-
 // m as a top-level `monitor:` section of YAML text, every key explicit, each
 // number in its shortest exact form: parse_monitor_reading_model reads it
 // back to the last bit. gpm run appends it to DIR/calibration.yaml (the

@@ -133,10 +133,6 @@ TEST(RunSpec, DriveFrictionStatedByTheCalibration) {
             std::string::npos);
 }
 
-// monitor: what the drift monitor assumes of the readings. Default the
-// data-sheet class (the realistic preset's reading errors and the drives'
-// friction calibration.drive_friction defaults to), whatever the twin's
-// effects; `ideal` models none; keys override the preset.
 // The reading model gpm run appends to calibration.yaml reads back to the
 // last bit through the scenario's own parser (awkward numbers: the shortest
 // exact form is written), and is the same section a scenario states.
@@ -162,6 +158,10 @@ TEST(RunSpec, MonitorReadingModelYamlRoundTripsBitExact) {
   }
 }
 
+// monitor: what the drift monitor assumes of the readings. Default the
+// data-sheet class (the realistic preset's reading errors and the drives'
+// friction calibration.drive_friction defaults to), whatever the twin's
+// effects; `ideal` models none; keys override the preset.
 TEST(RunSpec, MonitorReadingModelIsStatedNotTakenFromTheTwin) {
   const RunSpec d = parse_run_spec(kHead, "s.yaml", kBase);
   const sim::Effects realistic = sim::realistic_effects();
