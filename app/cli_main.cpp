@@ -9,6 +9,7 @@
 
 #include <fmt/format.h>
 #include <fmt/ranges.h>
+#include <glog/logging.h>
 
 #include "app/commands.hpp"
 #include "models/data_dir.hpp"
@@ -35,6 +36,11 @@ void not_available(const std::string& name, const std::string& issue) {
 
 int run_app(CLI::App& app, int argc, char** argv) {
   install_output_signal_cleanup();
+  // Ceres logs through glog; the toolkit reports solver problems itself
+  // (result notes), so only fatal glog messages reach the terminal.
+  FLAGS_minloglevel = google::GLOG_FATAL;
+  FLAGS_logtostderr = true;
+  if (!google::IsGoogleLoggingInitialized()) google::InitGoogleLogging(argv[0]);
   if (argc >= 2 && argv[1][0] != '-') {
     std::vector<std::string> names;
     bool known = false;

@@ -11,7 +11,6 @@
 #include <string>
 
 #include <fmt/format.h>
-#include <glog/logging.h>
 #include <unistd.h>
 
 #include "app/cli_main.hpp"
@@ -41,11 +40,6 @@ void add_render_entry(CLI::App& app) {
 
 int main(int argc, char** argv) {
   if (argc >= 2 && std::strcmp(argv[1], "render") == 0) return exec_renderer(argv);
-  // Ceres logs through glog; gpm reports solver problems itself (result notes),
-  // so only fatal glog messages reach the terminal.
-  FLAGS_minloglevel = google::GLOG_FATAL;
-  FLAGS_logtostderr = true;
-  google::InitGoogleLogging(argv[0]);
   CLI::App app{"gpm: digital twin and auto-calibration toolkit for the GPM2002 planar 3-RRR manipulator"};
   gpm::cli::add_commands(app, add_render_entry);
   return gpm::cli::run_app(app, argc, argv);

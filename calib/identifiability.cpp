@@ -10,6 +10,7 @@
 #include <fmt/format.h>
 
 #include "calib/residuals.hpp"
+#include "models/errors.hpp"
 
 namespace gpm::calib {
 
@@ -166,6 +167,15 @@ Identifiability analyse_identifiability(const std::vector<Eigen::Vector3d>& thet
   }
   out.diagnosis = fmt::format("rank {} of {}: {}; {}", out.rank, p, out.description, out.advice);
   return out;
+}
+
+void require_identifiable(const Identifiability& id, const FreeMask& free) {
+  const int p = static_cast<int>(free.count());
+  if (id.rank >= p) return;
+  throw InputError(fmt::format(
+      "--fix: the {} free parameters ({}) are not identifiable from encoder angles (rank {} of "
+      "{}): {}; {}, or pass --allow-rank-deficient for a minimum-norm solution",
+      p, format_param_list(free), id.rank, p, id.description, id.advice));
 }
 
 }  // namespace gpm::calib

@@ -64,4 +64,8 @@ Eigen::MatrixXd ml_jacobian(const std::vector<Eigen::Vector3d>& theta_m, const G
 Identifiability analyse_identifiability(const std::vector<Eigen::Vector3d>& theta_m,
                                         const Geometry& g, const FreeMask& free);
 
+// Throws InputError (naming --fix, the free set, the unobservable directions
+// and the advice) when id shows fewer identifiable directions than free has.
+void require_identifiable(const Identifiability& id, const FreeMask& free);
+
 }  // namespace gpm::calib

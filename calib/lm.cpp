@@ -217,12 +217,7 @@ Result calibrate_lm(const Problem& problem, const LmOptions& opt) {
   res.rank = id.rank;
   res.condition_number = id.condition_number;
   if (id.rank < p) {
-    if (!opt.allow_rank_deficient) {
-      throw InputError(fmt::format(
-          "--fix: the {} free parameters ({}) are not identifiable from encoder angles (rank {} of "
-          "{}): {}; {}, or pass --allow-rank-deficient for a minimum-norm solution",
-          p, format_param_list(problem.free), id.rank, p, id.description, id.advice));
-    }
+    if (!opt.allow_rank_deficient) require_identifiable(id, problem.free);
     res.rank_deficient = true;
     res.notes.push_back(fmt::format(
         "rank-deficient free set (rank {} of {}): {}; solved anyway with a minimum-norm "

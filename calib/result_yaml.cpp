@@ -46,7 +46,7 @@ std::string result_to_yaml(const Result& r, const std::string& robot_name) {
   std::string sd;
   for (int i = 0; i < kNumParams; ++i) {
     if (!r.free.test(static_cast<size_t>(i))) continue;
-    sd += fmt::format("  {}: {}\n", param_name(i), number(r.sigma[static_cast<size_t>(i)]));
+    sd += fmt::format("  {}: {}\n", param_name(i), number(sigma_for_file(r.sigma[static_cast<size_t>(i)], i)));
   }
   out += sd.empty() ? "std: {}\n" : "std:                 # 1-sigma of each estimated parameter\n" + sd;
   out += "fixed: [";
@@ -120,7 +120,7 @@ Result result_from_yaml(const YAML::Node& root, const std::string& file) {
       const auto i = param_index(name);
       if (!i) throw InputError(yaml_where(file, kv.first, "std." + name) + fmt::format("unknown parameter (did you mean {}?)", nearest_param_name(name)));
       if (!r.free.test(static_cast<size_t>(*i))) throw InputError(yaml_where(file, kv.first, "std." + name) + "a fixed parameter has no 1-sigma (remove it from std or from fixed)");
-      r.sigma[static_cast<size_t>(*i)] = number_or_special(kv.second, file, "std." + name);
+      r.sigma[static_cast<size_t>(*i)] = sigma_from_yaml(kv.second, file, "std." + name, *i);
     }
   }
   if (const YAML::Node d = root["diagnostics"]) {

@@ -34,7 +34,7 @@ std::optional<ChainAngles> try_chain_ik(const Geometry& g, int i, const Vector2d
   const Vector2d A_p = p - g.A(i);
   const double d = A_p.norm();
   const double la_i = g.la_(i), lb_i = g.lb_(i);
-  if (d > la_i + lb_i || d < std::abs(la_i - lb_i) || d == 0.0) return std::nullopt;
+  if (!std::isfinite(d) || d > la_i + lb_i || d < std::abs(la_i - lb_i) || d == 0.0) return std::nullopt;
   const double phi = std::atan2(A_p.y(), A_p.x());
   const double c = std::clamp((la_i * la_i + d * d - lb_i * lb_i) / (2.0 * la_i * d), -1.0, 1.0);
   const double alpha = std::acos(c);
@@ -48,6 +48,9 @@ std::optional<ChainAngles> try_chain_ik(const Geometry& g, int i, const Vector2d
 
 ChainAngles chain_ik(const Geometry& g, int i, const Vector2d& p, int branch) {
   if (auto r = try_chain_ik(g, i, p, branch)) return *r;
+  if (!p.allFinite())
+    throw ReachError(fmt::format("target ({}, {}) is not a position: x and y must be finite numbers in mm", p.x(), p.y()),
+                     i, std::numeric_limits<double>::infinity());
   const double d = (p - g.A(i)).norm();
   const double outer = g.la_(i) + g.lb_(i);
   const double inner = std::abs(g.la_(i) - g.lb_(i));
@@ -161,6 +164,10 @@ Reach check_reach(const Robot& robot, const Vector2d& p) {
   Reach r;
   const Geometry& g = robot.geometry;
   const double m = robot.limits.reach_margin;
+  if (!p.allFinite()) {
+    r.reason = fmt::format("target ({}, {}) is not a position: x and y must be finite numbers in mm", p.x(), p.y());
+    return r;
+  }
   for (int i = 0; i < kNumChains; ++i) {
     const double d = (p - g.A(i)).norm();
     const double outer = g.la_(i) + g.lb_(i) - m;

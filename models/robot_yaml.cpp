@@ -44,6 +44,30 @@ std::string flow_text(const YAML::Node& n) {
   return e.c_str();
 }
 
+}  // namespace
+
+// Beyond these a 1-sigma says nothing of the robot (its links are 244 mm),
+// and its square would overflow the monitor's filter.
+double sigma_max(int param) { return is_offset(param) ? 1.0 : 100.0; }
+
+double sigma_for_file(double sigma, int param) {
+  return sigma >= 0.0 && sigma <= sigma_max(param) ? sigma : std::numeric_limits<double>::quiet_NaN();
+}
+
+double sigma_from_yaml(const YAML::Node& value, const std::string& file, const std::string& key, int param) {
+  const bool angle = is_offset(param);
+  const double max = sigma_max(param);
+  const double v = number_or_special(value, file, key);
+  if (std::isnan(v)) return v;
+  if (!(v >= 0.0 && v <= max))
+    throw InputError(yaml_where(file, value, key) +
+                     fmt::format("a 1-sigma must be .nan (not determined) or from 0 to {} {}, got {}", max,
+                                 angle ? "rad" : "mm", v));
+  return v;
+}
+
+namespace {
+
 // The `std`, `fixed` and `diagnostics` sections of a calibration result file
 // (calib/result_yaml.hpp writes them), validated and kept.
 CalibrationRecord calibration_from_yaml(const YAML::Node& root, const std::string& file,
@@ -71,9 +95,7 @@ CalibrationRecord calibration_from_yaml(const YAML::Node& root, const std::strin
       if (!i) throw InputError(yaml_where(file, kv.first, key) + fmt::format("unknown parameter (did you mean {}?)", nearest_param_name(name)));
       if (c.fixed.test(static_cast<size_t>(*i)))
         throw InputError(yaml_where(file, kv.first, key) + "a fixed parameter has no 1-sigma (remove it from std or from fixed)");
-      const double v = number_or_special(kv.second, file, key);
-      if (v < 0.0) throw InputError(yaml_where(file, kv.second, key) + fmt::format("a 1-sigma must be >= 0, got {}", v));
-      c.sigma[static_cast<size_t>(*i)] = v;
+      c.sigma[static_cast<size_t>(*i)] = sigma_from_yaml(kv.second, file, key, *i);
     }
   }
   if (const YAML::Node d = root["diagnostics"]) {
@@ -258,7 +280,7 @@ std::string robot_to_yaml(const Robot& r) {
     const CalibrationRecord& c = *r.calibration;
     std::string sd;
     for (int i = 0; i < kNumParams; ++i) {
-      if (const auto& v = c.sigma[static_cast<size_t>(i)]) sd += fmt::format("  {}: {}\n", param_name(i), number_text(*v));
+      if (const auto& v = c.sigma[static_cast<size_t>(i)]) sd += fmt::format("  {}: {}\n", param_name(i), number_text(sigma_for_file(*v, i)));
     }
     out += sd.empty() ? "std: {}\n" : "std:                 # 1-sigma of each estimated parameter\n" + sd;
     std::string fixed;

@@ -25,6 +25,14 @@ Robot robot_from_yaml(const YAML::Node& root, const std::string& file, const std
 Geometry geometry_from_yaml(const YAML::Node& node, const std::string& file,
                             const std::string& keypath);
 
+// One parameter's 1-sigma in a result's `std:` map: .nan (not determined) or
+// a finite value in [0, 100] mm or [0, 1] rad; throws InputError naming key.
+double sigma_from_yaml(const YAML::Node& value, const std::string& file, const std::string& key, int param);
+
+// What a result file holds for a computed 1-sigma: itself within the bounds
+// sigma_from_yaml accepts, else NaN (written .nan: not determined).
+double sigma_for_file(double sigma, int param);
+
 // Checks a whole robot: positive lengths and a reachable home on its branches.
 // Throws InputError prefixed with where.
 void validate_robot(const Robot& robot, const std::string& where);

@@ -155,7 +155,7 @@ result file by `gpm calibrate` (docs/FORMATS.md file contracts).
       .def(
           "save",
           [](const CalibrationResult& c, const py::object& path) {
-            calib::save_result(c.result, c.base.name, py::str(path).cast<std::string>());
+            calib::save_result(c.result, c.base.name, path_arg(path, "path"));
           },
           py::arg("path"), "Writes the result file (YAML) atomically; it can serve as a robot model.")
       .def("__repr__", [](const CalibrationResult& c) {
@@ -195,7 +195,7 @@ warnings are issued as RuntimeWarning. The GIL is released while solving.
   m.def(
       "load_result",
       [](const py::object& path, const py::object& robot) {
-        CalibrationResult c{calib::load_result(py::str(path).cast<std::string>()), Robot{}};
+        CalibrationResult c{calib::load_result(path_arg(path, "path")), Robot{}};
         if (!robot.is_none()) c.base = robot.cast<Robot>();
         return c;
       },

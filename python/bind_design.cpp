@@ -93,7 +93,7 @@ nominal geometry (calib/excitation/excitation.hpp).
       .def(
           "save",
           [](const PyDesign& d, const py::object& path, const std::string& comment) {
-            write_file_atomic(py::str(path).cast<std::string>(), ex::pose_list_yaml(d.design.poses, comment));
+            write_file_atomic(path_arg(path, "path"), ex::pose_list_yaml(d.design.poses, comment));
           },
           py::arg("path"), py::arg("comment") = "gpm.design",
           "Writes the pose list atomically; the file is a scenario: gpm.simulate(path) samples the poses.");

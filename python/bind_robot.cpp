@@ -176,7 +176,7 @@ Use gpm.load_robot(path) for a robot file.
           "to_yaml", [](const Robot& r) { return robot_to_yaml(r); },
           "The robot file text (YAML, every number written exactly).")
       .def(
-          "save", [](const Robot& r, const py::object& path) { save_robot(r, py::str(path).cast<std::string>()); }, py::arg("path"),
+          "save", [](const Robot& r, const py::object& path) { save_robot(r, path_arg(path, "path")); }, py::arg("path"),
           "Writes the robot file atomically.")
       .def(py::self == py::self)
       .def("__repr__", [](const Robot& r) {
@@ -187,7 +187,7 @@ Use gpm.load_robot(path) for a robot file.
   m.def(
       "load_robot",
       [](const py::object& path) {
-        return load_robot(path.is_none() ? models_dir() + "/gpm2002.yaml" : py::str(path).cast<std::string>());
+        return load_robot(path.is_none() ? models_dir() + "/gpm2002.yaml" : path_arg(path, "path"));
       },
       py::arg("path") = py::none(),
       "Loads and validates a robot file (YAML); without a path, the nominal GPM2002 (models/gpm2002.yaml). "
@@ -196,7 +196,7 @@ Use gpm.load_robot(path) for a robot file.
   m.def(
       "read_samples",
       [](const py::object& path, bool with_xy) -> py::object {
-        auto s = std::make_unique<Samples>(read_samples_csv(py::str(path).cast<std::string>()));
+        auto s = std::make_unique<Samples>(read_samples_csv(path_arg(path, "path")));
         const Samples* raw = s.get();
         // The arrays view the vectors of s in place; the capsule owns s.
         py::capsule owner(s.release(), [](void* p) { delete static_cast<Samples*>(p); });

@@ -111,7 +111,7 @@ of them or this object lives.
           "simulated_s", [](const Simulation& s) { return s.result.simulated_s; }, "Simulated time (s).")
       .def(
           "save", [](const Simulation& s, const py::object& dir) {
-            sim::write_simulation(s.result, py::str(dir).cast<std::string>());
+            sim::write_simulation(s.result, path_arg(dir, "dir"));
           },
           py::arg("dir"),
           "Writes samples.csv, trajectory.csv, actual.yaml and model.xml into dir, all or nothing (as `gpm "
@@ -121,7 +121,7 @@ of them or this object lives.
       "simulate",
       [](const py::object& path) {
         auto out = std::make_shared<Simulation>();
-        out->scenario = sim::load_scenario(py::str(path).cast<std::string>());
+        out->scenario = sim::load_scenario(path_arg(path, "scenario_path"));
         py::gil_scoped_release unlocked;
         out->result = sim::run_simulation(out->scenario);
         return out;

@@ -1,5 +1,8 @@
 #include "python/convert.hpp"
 
+#include <cmath>
+#include <string_view>
+
 #include <fmt/format.h>
 
 #include "models/errors.hpp"
@@ -22,7 +25,12 @@ Geometry geometry_from_dict(const py::dict& d, const Geometry& base, const std::
                                    "ya3 la1 la2 la3 lb1 lb2 lb3 dth1 dth2 dth3",
                                    what, name, nearest_param_name(name)));
     }
-    g[*idx] = value.cast<double>();
+    if (!py::isinstance<py::float_>(value) && !py::isinstance<py::int_>(value) &&
+        !py::hasattr(value, "__float__"))
+      throw InputError(fmt::format("{}: {} must be a number in mm or rad", what, name));
+    const double v = value.cast<double>();
+    if (!std::isfinite(v)) throw InputError(fmt::format("{}: {} must be a finite number, got {}", what, name, v));
+    g[*idx] = v;
   }
   return g;
 }
@@ -65,10 +73,33 @@ py::array_t<double, py::array::c_style> rows_array(const py::handle& a, size_t c
     shape += arr.ndim() == 1 ? ",)" : ")";
     throw InputError(fmt::format("{}: expected shape (n, {}), got {}", what, cols, shape));
   }
+  const double* p = arr.data();
+  for (py::ssize_t k = 0; k < arr.size(); ++k)
+    if (!std::isfinite(p[k]))
+      throw InputError(fmt::format("{}: row {} column {} is {}; expected finite numbers", what,
+                                   k / static_cast<py::ssize_t>(cols), k % static_cast<py::ssize_t>(cols), p[k]));
   return arr;
 }
 
 }  // namespace
+
+std::string path_arg(const py::object& path, const std::string& what) {
+  const py::object fspath = py::module_::import("os").attr("fspath");
+  py::object s;
+  try {
+    s = fspath(path);
+  } catch (const py::error_already_set&) {
+    throw InputError(fmt::format("{}: expected a path (str or os.PathLike), got {}", what,
+                                 std::string(py::str(py::type::of(path).attr("__name__")))));
+  }
+  if (!py::isinstance<py::str>(s)) throw InputError(fmt::format("{}: expected a text path, got bytes", what));
+  const std::string text = s.cast<std::string>();
+  if (text.empty()) throw InputError(fmt::format("{}: the path is empty", what));
+  if (text.find('\0') != std::string::npos)
+    throw InputError(fmt::format("{}: the path holds a NUL character at byte {}; a file name cannot", what,
+                                 text.find('\0')));
+  return text;
+}
 
 std::vector<Eigen::Vector3d> readings_from_array(const py::handle& a, const std::string& what) {
   const auto arr = rows_array(a, 3, what, "gpm.read_samples(path)");

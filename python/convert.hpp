@@ -32,11 +32,15 @@ FreeMask param_set(const py::object& names, const std::string& what);
 // Names of the set bits of mask, in index order.
 py::list param_names(const FreeMask& mask);
 
+// A file path from a str or os.PathLike; throws InputError naming `what` for
+// an empty path or one holding a NUL character (the C library would cut it there).
+std::string path_arg(const py::object& path, const std::string& what);
+
 // (n, 3) float64 readings from any array-like; throws InputError naming
-// `what` unless it has shape (n, 3) (or (3,) for a single row).
+// `what` unless it has shape (n, 3) (or (3,) for a single row) of finite numbers.
 std::vector<Eigen::Vector3d> readings_from_array(const py::handle& a, const std::string& what);
 
-// (n, 2) float64 points from any array-like; throws InputError unless (n, 2).
+// (n, 2) float64 points from any array-like; throws InputError unless (n, 2) of finite numbers.
 std::vector<Eigen::Vector2d> points_from_array(const py::handle& a, const std::string& what);
 
 // An (n, cols) float64 array viewing vectors of fixed size in place (rows

@@ -1,7 +1,8 @@
 // The gpm Python module: the toolkit's library (robot model, kinematics,
 // calibration, excitation design, Cramer-Rao bounds, the MuJoCo twin) on
 // NumPy arrays. Errors: gpm::InputError -> gpm.InputError (a ValueError) with
-// the command line's message; sim::SimError -> gpm.SimError (a RuntimeError).
+// the command line's message; sim::SimError -> gpm.SimError (a RuntimeError);
+// any other gpm::Error -> gpm.Error (a RuntimeError).
 #include <string>
 
 #include <pybind11/pybind11.h>
@@ -27,6 +28,8 @@ Also: gpm.simulate(scenario) (MuJoCo twin), gpm.design (calibration poses),
 gpm.crb and gpm.pose_bounds (Cramer-Rao bounds), Robot.ik / fk / jacobian /
 conditioning. Bad input raises gpm.InputError (a ValueError).
 )doc";
+  // Registered base first: pybind11 tries the most recent translator first.
+  py::register_exception<gpm::Error>(m, "Error", PyExc_RuntimeError);
   py::register_exception<gpm::InputError>(m, "InputError", PyExc_ValueError);
   py::register_exception<gpm::sim::SimError>(m, "SimError", PyExc_RuntimeError);
 

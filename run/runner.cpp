@@ -6,6 +6,7 @@
 
 #include <fmt/format.h>
 
+#include "calib/identifiability.hpp"
 #include "calib/calibrate.hpp"
 #include "calib/crb.hpp"
 #include "calib/friction_profile.hpp"
@@ -14,6 +15,7 @@
 #include "calib/reading_rates.hpp"
 #include "calib/residuals.hpp"
 #include "calib/result_yaml.hpp"
+#include "models/pose_layouts.hpp"
 #include "models/errors.hpp"
 #include "models/kinematics.hpp"
 #include "models/output_file.hpp"
@@ -144,6 +146,29 @@ RunOutcome run_scenario(const RunSpec& spec_in, const std::string& scenario_file
   // calibration's sampling and accuracy tests run on the mechanism before them.
   const std::vector<sim::GeometryEvent> operation_events = std::move(spec.sim.twin.events);
   spec.sim.twin.events.clear();
+  if (spec.compensation) {  // the accuracy test's targets, before anything moves
+    const Robot actual = sim::make_actual(spec.sim);
+    sim::check_poses_reach(spec.sim, actual, spec.compensation->poses, "compensation.poses");
+    sim::check_path_reach(spec.sim, actual, spec.compensation->path, "compensation.path");
+  }
+  const bool lm_refuses_rank = spec.calibration.method == calib::Method::kLM ||
+                               (spec.calibration.method == calib::Method::kDELM && spec.calibration.cost == calib::Cost::kML);
+  if (lm_refuses_rank && !spec.calibration.allow_rank_deficient && !spec.expect.refused_contains) {
+    // A free set that encoder angles cannot identify at all (the similarity
+    // gauge), which the LM stage refuses, is bad input: refused before
+    // anything moves, from noiseless readings on two circles round home.
+    const Robot& c = spec.sim.controller;
+    std::vector<Eigen::Vector3d> theta;
+    for (double radius : {40.0, 80.0})
+      for (const Eigen::Vector2d& p : circle_points(c.home, radius, 12))
+        if (const Reach r = check_reach(c, p); r.ok) theta.push_back(readings_from_active(c.geometry, r.q.theta_a));
+    if (theta.size() >= (~spec.calibration.fixed).count())
+      calib::require_identifiable(calib::analyse_identifiability(theta, c.geometry, ~spec.calibration.fixed),
+                                ~spec.calibration.fixed);
+  }
+  if (spec.calibration.reference_at)
+    sim::check_poses_reach(spec.sim, sim::make_actual(spec.sim), {*spec.calibration.reference_at},
+                           "calibration.reference_at");
   if (spec.sim.sampling && !spec.sim.sampling->needs_design())
     design_sampling(spec.sim, ~spec.calibration.fixed, 0.0);  // given poses: only their number is checked
   if (spec.sim.sampling && spec.sim.sampling->needs_design()) {
@@ -447,7 +472,10 @@ RunOutcome run_scenario(const RunSpec& spec_in, const std::string& scenario_file
     }
     out.calibrated.geometry = out.calibration->geometry;
   } catch (const InputError& e) {
-    if (!spec.expect.refused_contains) throw;
+    // The scenario was valid and the robot ran: samples that cannot be
+    // calibrated are the run's outcome (exit 1), not bad input.
+    if (!spec.expect.refused_contains)
+      throw Error(fmt::format("{}: the calibration cannot use this run's samples: {}", scenario_file, e.what()));
     out.refused = e.what();
   }
 
@@ -467,7 +495,6 @@ RunOutcome run_scenario(const RunSpec& spec_in, const std::string& scenario_file
   }
 
   if (spec.compensation) {
-    sim::check_targets(spec.sim, actual, spec.compensation->poses);
     // A constant-torque joint preloads the chain for the sampling only; the
     // accuracy test runs the robot as in operation (that joint torque-off).
     sim::TwinConfig test_twin = spec.sim.twin;

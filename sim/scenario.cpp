@@ -73,14 +73,27 @@ void require(const YAML::Node& map, const char* key, const Ctx& c, const std::st
   if (!map[key]) fail(c, map, fmt::format("missing key '{}' ({})", key, why));
 }
 
+// The robot (or calibration result) file a scenario key names, relative to
+// the scenario's folder; a missing file is named with the key that gave it.
+Robot robot_file_at(const YAML::Node& n, const std::string& file, const std::string& key, const std::string& base_dir) {
+  std::filesystem::path p = yaml_string(n, file, key);
+  if (p.is_relative()) p = std::filesystem::path(base_dir) / p;
+  p = p.lexically_normal();
+  std::error_code ec;
+  if (!std::filesystem::is_regular_file(p, ec))
+    throw InputError(yaml_where(file, n, key) +
+                     fmt::format("no robot file {} (expected a robot or calibration result file, relative to the "
+                                 "scenario, or a map with geometry)",
+                                 p.string()));
+  return load_robot(p.string());
+}
+
 ActualSpec parse_actual(const YAML::Node& n, const Ctx& c, const std::string& base_dir) {
   ActualSpec a;
   a.keep = FreeMask{}.set(kXa1).set(kYa1).set(kXa2).set(kYa2);
   if (n.IsScalar()) {
     // A robot (or calibration result) file: all 15 parameters, none perturbed.
-    std::filesystem::path p = yaml_string(n, c.file, c.path);
-    if (p.is_relative()) p = std::filesystem::path(base_dir) / p;
-    const Robot r = load_robot(p.lexically_normal().string());
+    const Robot r = robot_file_at(n, c.file, c.path, base_dir);
     for (int i = 0; i < kNumParams; ++i) a.explicit_values[static_cast<size_t>(i)] = r.geometry[i];
     return a;
   }
@@ -390,9 +403,7 @@ Scenario scenario_from_yaml(const YAML::Node& root, const std::string& file, con
     if (r.IsMap()) {
       s.controller = robot_from_yaml(r, file, "robot");
     } else {
-      std::filesystem::path p = yaml_string(r, file, "robot");
-      if (p.is_relative()) p = std::filesystem::path(base_dir) / p;
-      s.controller = load_robot(p.lexically_normal().string());
+      s.controller = robot_file_at(r, file, "robot", base_dir);
     }
   } else {
     s.controller = load_robot(gpm::models_dir() + "/gpm2002.yaml");

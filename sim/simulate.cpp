@@ -39,11 +39,25 @@ std::vector<Eigen::Vector2d> path_points(const Path& path) {
 
 }  // namespace
 
-void check_targets(const Scenario& s, const Robot& actual, const std::vector<Eigen::Vector2d>& poses) {
+void check_poses_reach(const Scenario& s, const Robot& actual, const std::vector<Eigen::Vector2d>& poses,
+                       const std::string& key) {
   for (size_t k = 0; k < poses.size(); ++k) {
     check_point(s.controller, actual, poses[k],
-                fmt::format("{}: sampling: pose {} ({:.4f}, {:.4f})", s.file, k, poses[k].x(), poses[k].y()));
+                fmt::format("{}: {}: pose {} ({:.4f}, {:.4f})", s.file, key, k, poses[k].x(), poses[k].y()));
   }
+}
+
+void check_path_reach(const Scenario& s, const Robot& actual, const Path& path, const std::string& key) {
+  const auto pts = path_points(path);
+  for (size_t k = 0; k < pts.size(); ++k) {
+    check_point(s.controller, actual, pts[k],
+                fmt::format("{}: {}: point at t = {:.3f} s ({:.4f}, {:.4f})", s.file, key,
+                            path_duration(path) * static_cast<double>(k) / (pts.size() - 1), pts[k].x(), pts[k].y()));
+  }
+}
+
+void check_targets(const Scenario& s, const Robot& actual, const std::vector<Eigen::Vector2d>& poses) {
+  check_poses_reach(s, actual, poses, "sampling");
   if (s.sampling && s.sampling->pattern == PosePattern::kTrajectory && !poses.empty()) {
     // Every millimetre of the excitation path, before anything moves.
     const WaypointPath path = excitation_path(s.controller.home, poses, s.sampling->path_limits);
@@ -57,15 +71,7 @@ void check_targets(const Scenario& s, const Robot& actual, const std::vector<Eig
                               path.p[k].x(), path.p[k].y()));
     }
   }
-  if (s.path) {
-    const auto pts = path_points(*s.path);
-    for (size_t k = 0; k < pts.size(); ++k) {
-      check_point(s.controller, actual, pts[k],
-                  fmt::format("{}: path: point at t = {:.3f} s ({:.4f}, {:.4f})", s.file,
-                              path_duration(*s.path) * static_cast<double>(k) / (pts.size() - 1),
-                              pts[k].x(), pts[k].y()));
-    }
-  }
+  if (s.path) check_path_reach(s, actual, *s.path, "path");
 }
 
 SimulationResult run_simulation(const Scenario& s, std::function<void(const LogRow&)> sink, Progress* progress) {

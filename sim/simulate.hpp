@@ -30,6 +30,14 @@ struct SimulationResult {
 // controller's robot or of the actual mechanism.
 void check_targets(const Scenario& s, const Robot& actual, const std::vector<Eigen::Vector2d>& poses);
 
+// The same check for poses that the scenario key `key` names (error text
+// "FILE: KEY: pose K (x, y): reason").
+void check_poses_reach(const Scenario& s, const Robot& actual, const std::vector<Eigen::Vector2d>& poses,
+                       const std::string& key);
+
+// The same check at 201 points along a path that the scenario key `key` names.
+void check_path_reach(const Scenario& s, const Robot& actual, const Path& path, const std::string& key);
+
 // Runs the scenario in memory; throws InputError for bad targets or
 // parameters, SimError if the physics diverges. With a sink the trajectory
 // rows are handed to it as they are produced and not kept (log.rows empty).

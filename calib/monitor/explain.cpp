@@ -25,6 +25,9 @@ void explain_window(const MonitorModel& model, const MonitorData& data, Alarm& a
       const int i = model.free_index[ks];
       s_zh[ks] += dz[i] * z;
       s_hh[ks] += dz[i] * dz[i];
+      // The change that raised the alarm began at or before it: later onsets
+      // only add their samples to the sums.
+      if (data.t[static_cast<size_t>(slot)] > alarm.t_s) continue;
       const double denom = s_hh[ks] + inv_d0_sq[ks];
       const double fit = s_zh[ks] * s_zh[ks] / denom;
       if (fit <= alarm.score) continue;  // the log term is >= 0: cannot win

@@ -18,7 +18,7 @@ namespace gpm::calib::monitor {
 // the sensitivity columns are nearly collinear; the prior keeps a column
 // that needs an implausibly large change (a base joint moved by millimetres)
 // from winning over one that fits with a plausible one. Fills param, delta,
-// onset_s, explained and score of `alarm`. Allocation-free.
+// onset_s (never after alarm.t_s), explained and score of `alarm`. Allocation-free.
 void explain_window(const MonitorModel& model, const MonitorData& data, Alarm& alarm);
 
 // The step test's statistic: the generalised likelihood ratio of a step in

@@ -5,6 +5,7 @@
 
 #include <cmath>
 #include <filesystem>
+#include <limits>
 #include <random>
 
 #include <gtest/gtest.h>
@@ -116,7 +117,15 @@ TEST(RobotYaml, ResultSectionsAreValidated) {
   };
   EXPECT_NE(with("  la1: 0.0021", "  lx1: 0.0021").find("std.lx1: unknown parameter (did you mean la1?)"), std::string::npos);
   EXPECT_NE(with("  la1: 0.0021", "  xa1: 0.0021").find("std.xa1: a fixed parameter has no 1-sigma"), std::string::npos);
-  EXPECT_NE(with("  la1: 0.0021", "  la1: -1").find("std.la1: a 1-sigma must be >= 0"), std::string::npos);
+  EXPECT_NE(with("  la1: 0.0021", "  la1: -1").find("std.la1: a 1-sigma must be .nan (not determined) or from 0 to 100 mm, got -1"),
+            std::string::npos);
+  // A 1-sigma too large to mean anything (its square overflows a filter) or
+  // infinite is refused, not replaced by a default (issue 36.6).
+  EXPECT_NE(with("  la1: 0.0021", "  la1: 1e300").find("std.la1: a 1-sigma must be"), std::string::npos);
+  EXPECT_NE(with("  la1: 0.0021", "  la1: .inf").find("std.la1: a 1-sigma must be"), std::string::npos);
+  EXPECT_NE(with("  dth1: 1.5e-05", "  dth1: 2").find("std.dth1: a 1-sigma must be .nan (not determined) or from 0 to 1 rad"),
+            std::string::npos);
+  EXPECT_EQ(with("  la1: 0.0021", "  la1: 100"), "");
   EXPECT_NE(with("fixed: [xa1,", "fixed: [xq1,").find("fixed[0]: unknown parameter 'xq1'"), std::string::npos);
   EXPECT_NE(with("  iterations: 12", "  iterations: many").find("diagnostics.iterations"), std::string::npos);
   EXPECT_NE(with("  converged: true", "  converged: 3").find("diagnostics.converged: expected true or false"),
@@ -124,6 +133,20 @@ TEST(RobotYaml, ResultSectionsAreValidated) {
   EXPECT_NE(with("fixed: [xa1, ya1, xa2, ya2]", "fixed: xa1").find("fixed: expected a list"), std::string::npos);
   // Keys another version may add are kept, not refused.
   EXPECT_EQ(with("  seconds: 0.25", "  seconds: 0.25\n  threads: 2"), "");
+}
+
+TEST(RobotYaml, SigmaBeyondItsBoundIsWrittenAsNotDetermined) {
+  // A computed 1-sigma the reader would refuse (a rank-deficient fit's 1e6
+  // mm) is written .nan, so every written result reads back.
+  Robot r = parse_robot(result_text(), "result.yaml");
+  r.calibration->sigma[kLa1] = 1e6;
+  r.calibration->sigma[kDth1] = std::numeric_limits<double>::infinity();
+  const Robot back = parse_robot(robot_to_yaml(r), "again.yaml");
+  EXPECT_TRUE(std::isnan(*back.calibration->sigma[kLa1]));
+  EXPECT_TRUE(std::isnan(*back.calibration->sigma[kDth1]));
+  EXPECT_EQ(sigma_for_file(0.5, kDth1), 0.5);
+  EXPECT_TRUE(std::isnan(sigma_for_file(1.5, kDth1)));
+  EXPECT_EQ(sigma_for_file(1.5, kLa1), 1.5);
 }
 
 TEST(RobotYaml, UnknownKeySuggestsNearest) {

@@ -135,7 +135,7 @@ TEST(Scenario, ErrorsNameTheKeyPath) {
   EXPECT_NE(error_of("seed: 1\n").find("nothing to simulate"), std::string::npos);
   EXPECT_NE(error_of("sampling: {pattern: list, poses: [[1, 2], [3]]}").find("sampling.poses[1]"), std::string::npos);
   EXPECT_NE(error_of("path: {shape: circle, radius: 5}").find("missing key 'period_s'"), std::string::npos);
-  EXPECT_NE(error_of(std::string(kMinimal) + "robot: nowhere.yaml").find("nowhere.yaml: cannot open file"),
+  EXPECT_NE(error_of(std::string(kMinimal) + "robot: nowhere.yaml").find("s.yaml:2: robot: no robot file " + kModels + "/nowhere.yaml"),
             std::string::npos);
   // File and line come first.
   EXPECT_EQ(error_of("seed: 1\nsampling: {pattern: disc, radius: -5, count: 3}").rfind("s.yaml:2: ", 0), 0u);
@@ -240,7 +240,7 @@ TEST(Scenario, ActualFromARobotFile) {
   EXPECT_EQ(make_actual(s).geometry, make_actual(m).geometry);
   EXPECT_EQ(make_actual(s).geometry, file.geometry);  // no perturbation
   // A missing file or a wrong type names the key.
-  EXPECT_NE(error_of(std::string(kMinimal) + "actual: nowhere.yaml").find("nowhere.yaml: cannot open file"),
+  EXPECT_NE(error_of(std::string(kMinimal) + "actual: nowhere.yaml").find("s.yaml:2: actual: no robot file " + kModels + "/nowhere.yaml"),
             std::string::npos);
   EXPECT_NE(error_of(std::string(kMinimal) + "actual: [1, 2]").find("s.yaml:2: actual: expected a robot file"),
             std::string::npos);

@@ -30,6 +30,7 @@ TEST(Explain, FindsTheParameterOnsetAndChangeOfAHandBuiltWindow) {
     d.head = n;
     d.count = n;
     Alarm a;
+    a.t_s = 0.01 * (n - 1);  // raised at the window's last sample
     explain_window(m, d, a);
     EXPECT_EQ(a.param, truth);
     EXPECT_DOUBLE_EQ(a.onset_s, 0.01 * onset);
@@ -38,6 +39,32 @@ TEST(Explain, FindsTheParameterOnsetAndChangeOfAHandBuiltWindow) {
     // the prior shrinks the fit: S_zh^2 / (S_hh + d0^-2) of S_zz = delta^2 S_hh
     EXPECT_NEAR(a.explained, s_hh / (s_hh + 1.0 / (d0 * d0)), 1e-9);
   }
+}
+
+TEST(Explain, OnsetIsNeverAfterTheAlarm) {
+  // Samples after the alarm (explain_samples of them) are in the window; a
+  // change they alone carry must not place the onset after the alarm.
+  const MonitorModel m = make_monitor_model(MonitorSettings{});
+  MonitorData d = make_monitor_data(m);
+  Rng rng(3);
+  const int n = 60, alarm_at = 20, onset = 40;
+  for (int j = 0; j < n; ++j) {
+    ParamRow dz;
+    for (int i = 0; i < kNumParams; ++i) dz[i] = rng.normal() * (is_offset(i) ? 5e3 : 30.0);
+    d.dz[static_cast<size_t>(j)] = dz;
+    d.t[static_cast<size_t>(j)] = 0.01 * j;
+    d.z[static_cast<size_t>(j)] = j >= onset ? -dz[kLa2] * 0.02 : 0.0;
+  }
+  d.head = n;
+  d.count = n;
+  Alarm a;
+  a.t_s = 0.01 * alarm_at;
+  explain_window(m, d, a);
+  EXPECT_LE(a.onset_s, a.t_s);
+  a = Alarm{};
+  a.t_s = 0.01 * (n - 1);
+  explain_window(m, d, a);  // the same window explained at its end finds the onset
+  EXPECT_DOUBLE_EQ(a.onset_s, 0.01 * onset);
 }
 
 }  // namespace
