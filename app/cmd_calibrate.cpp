@@ -206,11 +206,11 @@ void add_calibrate(CLI::App& app) {
                   "de+lm (DE then LM; with --cost ml, DE runs on j3)")
       ->capture_default_str();
   cmd->add_option("--seed", o->seed, "Random seed of the global methods (LM is deterministic)")
-      ->check(number_in(limits::kSeed));
+      ->transform(number_in(limits::kSeed));
   // The bound depends on --method (checked in run); here only the widest.
   cmd->add_option("--budget", o->budget, "lm: maximum iterations (default 200, at most 1e6); ga, pso, de, de+lm: "
                                          "error-function evaluations of the global stage (default 1500000, at most 1e10)")
-      ->check(number_in(limits::kEvaluations))
+      ->transform(number_in(limits::kEvaluations))
       ->each([o](const std::string&) { o->budget_given = true; });
   cmd->add_option("--sigma", o->sigma, "Encoder noise 1-sigma (rad, 1e-12 to 1) for the uncertainty; default: "
                                        "estimated from the residuals")

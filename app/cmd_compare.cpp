@@ -97,15 +97,15 @@ void add_compare(CLI::App& app) {
   cmd->add_option("--budget", args->budget,
                   "Evaluations of the error function per run (the paper used 5e7)")
       ->capture_default_str()
-      ->check(number_in(limits::kEvaluations));
+      ->transform(number_in(limits::kEvaluations));
   cmd->add_option("--seeds", args->seeds, "Comma-separated seeds; each method and cost runs once per seed")
       ->capture_default_str();
   cmd->add_option("--gauge", args->gauge,
                   "12: the paper's free set (xa1, ya1, xa2 fixed; rank-deficient), "
                   "11: xa1, ya1, xa2, ya2 fixed (identifiable)")
       ->capture_default_str();
-  cmd->add_option("--samples", args->samples, "Random workspace samples")->capture_default_str()->check(number_in(limits::kSamples));
-  cmd->add_option("--data-seed", args->data_seed, "Seed of the sample points")->capture_default_str()->check(number_in(limits::kSeed));
+  cmd->add_option("--samples", args->samples, "Random workspace samples")->capture_default_str()->transform(number_in(limits::kSamples));
+  cmd->add_option("--data-seed", args->data_seed, "Seed of the sample points")->capture_default_str()->transform(number_in(limits::kSeed));
   cmd->add_option("--methods", args->methods, "Subset of ga,pso,de")->capture_default_str();
   cmd->add_option("--costs", args->costs, "Subset of j1,j2,j3")->capture_default_str();
   cmd->add_option("-j,--jobs", args->jobs, "Runs at once (0 = all cores); results do not depend on it")

@@ -68,8 +68,8 @@ void add_paper(CLI::App& app) {
   cmd->add_option("--budget", args->budget,
                   "Evaluations of the error function per GA/PSO/DE run (the paper's: 5e7)")
       ->capture_default_str()
-      ->check(number_in(limits::kEvaluations));
-  cmd->add_option("--seed", args->seed, "Seed of every stochastic run")->capture_default_str()->check(number_in(limits::kSeed));
+      ->transform(number_in(limits::kEvaluations));
+  cmd->add_option("--seed", args->seed, "Seed of every stochastic run")->capture_default_str()->transform(number_in(limits::kSeed));
   cmd->add_option("-j,--jobs", args->jobs, "GA/PSO/DE runs at once (0 = all cores); results do not depend on it")
       ->capture_default_str();
   cmd->callback([args] { run_paper_command(*args); });

@@ -201,9 +201,9 @@ void add_study(CLI::App& app) {
 
   auto* samples = study->add_subcommand("samples", "Write synthetic encoder samples (with true x,y) of a known robot");
   samples->add_option("--actual", o->actual, "table5, section3 (paper values) or a robot file")->capture_default_str();
-  samples->add_option("--n", o->n, "Number of samples")->capture_default_str()->check(number_in(limits::kSamples));
+  samples->add_option("--n", o->n, "Number of samples")->capture_default_str()->transform(number_in(limits::kSamples));
   samples->add_option("--radius", o->radius, "Disc radius around home (mm)")->capture_default_str();
-  samples->add_option("--seed", o->seed, "Random seed")->capture_default_str()->check(number_in(limits::kSeed));
+  samples->add_option("--seed", o->seed, "Random seed")->capture_default_str()->transform(number_in(limits::kSeed));
   samples->add_option("--sigma", o->sigma, "Encoder noise 1-sigma (rad)")->capture_default_str();
   samples->add_option("-o,--output", o->out, "Samples CSV")->required();
   samples->callback([o] { run_samples(*o); });
@@ -218,11 +218,11 @@ void add_study(CLI::App& app) {
   auto* mc = study->add_subcommand("montecarlo", "Noisy trials: empirical RMS error over the Cramer-Rao bound");
   mc->add_option("--actual", o->actual, "The true robot: table5, section3 or a robot file")->capture_default_str();
   mc->add_option("--fix", o->fix, "Fixed parameters (held at their true values)")->capture_default_str();
-  mc->add_option("--trials", o->trials, "Number of noisy trials")->capture_default_str()->check(number_in(limits::kTrials));
-  mc->add_option("--n", o->n, "Samples per trial")->capture_default_str()->check(number_in(limits::kSamples));
+  mc->add_option("--trials", o->trials, "Number of noisy trials")->capture_default_str()->transform(number_in(limits::kTrials));
+  mc->add_option("--n", o->n, "Samples per trial")->capture_default_str()->transform(number_in(limits::kSamples));
   mc->add_option("--radius", o->radius, "Disc radius around home (mm)")->capture_default_str();
   mc->add_option("--sigma", o->sigma, "Encoder noise 1-sigma (rad); default 1e-4");
-  mc->add_option("--seed", o->seed, "Random seed")->capture_default_str()->check(number_in(limits::kSeed));
+  mc->add_option("--seed", o->seed, "Random seed")->capture_default_str()->transform(number_in(limits::kSeed));
   mc->add_option("--costs", o->costs, "Error functions to compare")->capture_default_str();
   mc->add_flag("--check", o->check, "Exit 1 unless the rms ratio is within the goals (ml 1.05, j3 1.2)");
   mc->add_flag("--check-each", o->check_each,

@@ -12,7 +12,8 @@
 namespace gpm::cli {
 
 // Validator: the text is a number within b; a whole bound's text is rewritten
-// in plain decimal digits (1e6 -> 1000000) for CLI11's integer conversion.
+// in plain decimal digits (1e6 -> 1000000) for CLI11's integer conversion, so
+// add it with Option::transform (CLI11's check() may not rewrite).
 CLI::Validator number_in(const Bound& b);
 
 // Adds the check above (empty text, non-finite, negative unsigned) to every
