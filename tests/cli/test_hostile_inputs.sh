@@ -106,6 +106,8 @@ row "paper seed -1" 2 "--seed: must be a whole number from 0 to 9007199254740992
   "$GPM" paper -o "$tmp/paper" --seed -1
 row "calibrate seed -1" 2 "--seed: must be a whole number from 0 to 9007199254740992, got '-1'" \
   "${cal[@]}" --method de --cost j3 --seed -1
+row "design seed -1" 2 "--seed: must be a whole number from 0 to 9007199254740992, got '-1'" \
+  "$GPM" design --compare --seed -1 -o "$tmp/design"
 row "compare seeds repeated" 2 "--seeds: '1' is given twice (items 1 and 3); give each once" \
   "$GPM" compare -o "$tmp/cmp" --seeds 1,2,1
 row "fix repeated" 2 "--fix[4]: 'xa1' is given twice; give each parameter once" \
@@ -121,7 +123,7 @@ row "scenario estimate repeated" 2 "calibration.estimate[1]: 'skew' is listed tw
   "$GPM" run "$tmp/sc.yaml" -o "$tmp/run"
 
 # Nothing a refused command could have made is left.
-for f in r.yaml run cmp n.csv eff mon paper; do
+for f in r.yaml run cmp n.csv eff mon paper design; do
   holds "nothing left: $f" test ! -e "$tmp/$f"
 done
 finish
