@@ -16,6 +16,7 @@
 #include <CLI/CLI.hpp>
 
 #include "app/commands.hpp"
+#include "app/number_options.hpp"
 #include "models/errors.hpp"
 
 extern "C" int LLVMFuzzerTestOneInput(const uint8_t* data, size_t size) {
@@ -25,16 +26,17 @@ extern "C" int LLVMFuzzerTestOneInput(const uint8_t* data, size_t size) {
     else texts.back() += static_cast<char>(data[i]);
   }
   if (texts.size() > 4) return 0;
-  std::vector<std::string> args = {"gpm",        "calibrate", "--data", GPM_SOURCE_DIR "/tests/fixtures/samples_table5_noisy.csv",
-                                   "-o",         "/dev/null", "--method", "lm"};
+  std::vector<std::string> args = {"gpm", "calibrate", "--data", GPM_SOURCE_DIR "/tests/fixtures/samples_table5_noisy.csv",
+                                   "-o",  "/dev/null", "--method", "lm"};
   static const char* const kFlags[] = {"--loss", "--sigma", "--budget", "--cost"};
   for (size_t k = 0; k < texts.size(); ++k) {
     args.push_back(kFlags[k]);
     args.push_back(texts[k]);
   }
   std::vector<std::string> reversed(args.rbegin(), args.rend() - 1);  // CLI11 takes them reversed, without argv[0]
-  CLI::App app{"gpm"};
-  gpm::cli::add_commands(app, [](CLI::App&) {});
+  CLI::App app{"gpm"};  // the calibrate subcommand registered as gpm registers it (app/commands.cpp)
+  gpm::cli::add_calibrate(app);
+  gpm::cli::check_number_options(app);
   gpm::cli::set_exit(0);
   try {
     app.parse(reversed);
