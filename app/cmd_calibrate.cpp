@@ -2,7 +2,9 @@
 // section 3; docs/ARCHITECTURE.md command line). Parses, calls calib/, prints, writes the
 // result YAML atomically (with --json, prints the result file's content as one
 // JSON document instead of the text). Bad input: exit 2 with one line; LM not
-// converged: the result is written (diagnostics.converged: false), exit code 1.
+// converged: the result is written (diagnostics.converged: false), exit code 1;
+// a cost that is not finite or a result that is not a usable robot: one line,
+// exit 1, nothing written (issue 36.1, 36.5).
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
@@ -15,11 +17,13 @@
 
 #include "app/commands.hpp"
 #include "app/json_output.hpp"
+#include "app/number_options.hpp"
 #include "calib/calibrate.hpp"
 #include "calib/initial.hpp"
 #include "calib/lm.hpp"
 #include "calib/result_yaml.hpp"
 #include "calib/sample_check.hpp"
+#include "models/bounds.hpp"
 #include "models/errors.hpp"
 #include "models/progress.hpp"
 #include "models/output_file.hpp"
@@ -99,7 +103,11 @@ void run(const CalibrateOptions& o) {
   if (!cost) throw InputError(fmt::format("--cost: '{}' is not one of j1, j2, j3, ml", o.cost));
   const calib::Method method = calib::parse_method(o.method, "--method");
   const calib::RobustLoss loss = calib::parse_loss(o.loss, "--loss");
-  if (o.budget_given && o.budget < 1) throw InputError(fmt::format("--budget: must be at least 1, got {}", o.budget));
+  // --budget counts iterations for lm, evaluations for the global methods:
+  // each has its own bound (README, Limits), checked before any work.
+  if (o.budget_given)
+    check_bound(static_cast<double>(o.budget), method == calib::Method::kLM ? limits::kLmIterations : limits::kEvaluations,
+                "--budget");
   const std::string model_path = o.model.empty() ? default_model_path() : o.model;
   const Robot robot = load_robot(model_path);
   const Samples samples = read_samples_csv(o.data);
@@ -140,14 +148,12 @@ void run(const CalibrateOptions& o) {
   mo.allow_rank_deficient = o.allow_rank_deficient;
   mo.loss = loss;
   if (o.budget_given) {
-    if (method == calib::Method::kLM) mo.lm_max_iterations = static_cast<int>(std::min<long>(o.budget, 1000000));
+    if (method == calib::Method::kLM) mo.lm_max_iterations = static_cast<int>(o.budget);
     else mo.budget = o.budget;
   }
-  if (o.sigma_given) {
-    if (!(o.sigma > 0.0) || !std::isfinite(o.sigma))
-      throw InputError(fmt::format("--sigma: encoder noise must be a positive number of radians, got {}", o.sigma));
-    mo.encoder_sigma = o.sigma;
-  }
+  // Checked here, not by a CLI11 validator: the message is the Python
+  // binding's too (python/bind_calibrate.cpp).
+  if (o.sigma_given) mo.encoder_sigma = check_bound(o.sigma, limits::kEncoderSigma, "--sigma");
   if (samples.has_xy) mo.true_xy = &samples.xy;
   // A global method's budget on a terminal (models/progress.hpp): evaluations, rate, ETA.
   gpm::Progress progress = method == calib::Method::kLM
@@ -157,6 +163,7 @@ void run(const CalibrateOptions& o) {
   if (progress.active()) mo.progress = [&progress](long done, long, double) { progress.update(static_cast<double>(done)); };
   const calib::Result r = calib::calibrate(problem, mo);
   progress.finish();
+  calib::usable_robot(robot, r.geometry);  // else exit 1, nothing written
 
   for (const auto& note : r.notes) std::fprintf(stderr, "gpm: warning: %s\n", note.c_str());
   calib::save_result(r, robot.name, o.out);
@@ -198,11 +205,15 @@ void add_calibrate(CLI::App& app) {
                   "Solver: lm (Ceres Levenberg-Marquardt), ga, pso, de (paper section 4, box of Table 5), "
                   "de+lm (DE then LM; with --cost ml, DE runs on j3)")
       ->capture_default_str();
-  cmd->add_option("--seed", o->seed, "Random seed of the global methods (LM is deterministic)");
-  cmd->add_option("--budget", o->budget, "lm: maximum iterations (default 200); ga, pso, de, de+lm: error-function "
-                                         "evaluations of the global stage (default 1500000)")
+  cmd->add_option("--seed", o->seed, "Random seed of the global methods (LM is deterministic)")
+      ->transform(number_in(limits::kSeed));
+  // The bound depends on --method (checked in run); here only the widest.
+  cmd->add_option("--budget", o->budget, "lm: maximum iterations (default 200, at most 1e6); ga, pso, de, de+lm: "
+                                         "error-function evaluations of the global stage (default 1500000, at most 1e10)")
+      ->transform(number_in(limits::kEvaluations))
       ->each([o](const std::string&) { o->budget_given = true; });
-  cmd->add_option("--sigma", o->sigma, "Encoder noise 1-sigma (rad) for the uncertainty; default: estimated from the residuals")
+  cmd->add_option("--sigma", o->sigma, "Encoder noise 1-sigma (rad, 1e-12 to 1) for the uncertainty; default: "
+                                       "estimated from the residuals")
       ->each([o](const std::string&) { o->sigma_given = true; });
   cmd->add_option("--loss", o->loss,
                   "Loss per sample: plain (least squares), cauchy or huber (robust to outlier samples), "

@@ -11,8 +11,10 @@
 
 #include "app/commands.hpp"
 #include "app/compare_report.hpp"
+#include "app/number_options.hpp"
 #include "calib/global/comparison.hpp"
 #include "calib/paper_values.hpp"
+#include "models/bounds.hpp"
 #include "models/errors.hpp"
 #include "models/output_file.hpp"
 #include "models/robot_yaml.hpp"
@@ -23,7 +25,7 @@ namespace {
 
 struct CompareArgs {
   std::string out_dir;
-  long budget = 1'500'000;
+  long budget = 1'500'000;  // bounded by its validator (limits::kEvaluations)
   std::string seeds = "1,2,3";
   int gauge = 12;
   int samples = 50;
@@ -33,21 +35,8 @@ struct CompareArgs {
   int jobs = 0;
 };
 
-std::vector<std::string> split(const std::string& s) {
-  std::vector<std::string> out;
-  size_t start = 0;
-  while (start <= s.size()) {
-    const size_t comma = s.find(',', start);
-    const size_t end = comma == std::string::npos ? s.size() : comma;
-    out.push_back(s.substr(start, end - start));
-    start = end + 1;
-  }
-  return out;
-}
-
 void run_compare(const CompareArgs& a) {
   calib::global::ComparisonSettings st;
-  if (a.budget < 1) throw InputError("--budget: must be at least 1 evaluation");
   st.budget = a.budget;
   st.samples = a.samples;
   st.data_seed = a.data_seed;
@@ -56,25 +45,17 @@ void run_compare(const CompareArgs& a) {
   else if (a.gauge == 11) st.free = default_free_mask();
   else throw InputError(fmt::format("--gauge: {} is not 11 or 12", a.gauge));
   st.seeds.clear();
-  for (const auto& s : split(a.seeds)) {
-    try {
-      size_t used = 0;
-      const long long v = std::stoll(s, &used);
-      if (used != s.size() || v < 0) throw std::invalid_argument(s);
-      st.seeds.push_back(static_cast<uint64_t>(v));
-    } catch (const std::exception&) {
-      throw InputError(fmt::format("--seeds: '{}' is not a non-negative integer", s));
-    }
-  }
+  for (const auto& s : split_unique_list(a.seeds, "--seeds"))
+    st.seeds.push_back(static_cast<uint64_t>(parse_bounded(s, limits::kSeed, "--seeds")));
   st.methods.clear();
-  for (const auto& s : split(a.methods)) {
+  for (const auto& s : split_unique_list(a.methods, "--methods")) {
     const calib::Method m = calib::parse_method(s, "--methods");
     if (m == calib::Method::kLM || m == calib::Method::kDELM)
       throw InputError(fmt::format("--methods: '{}' is not ga, pso or de", s));
     st.methods.push_back(m);
   }
   st.costs.clear();
-  for (const auto& s : split(a.costs)) {
+  for (const auto& s : split_unique_list(a.costs, "--costs")) {
     const auto c = calib::parse_cost(s);
     if (!c || *c == calib::Cost::kML) throw InputError(fmt::format("--costs: '{}' is not j1, j2 or j3", s));
     st.costs.push_back(*c);
@@ -115,15 +96,16 @@ void add_compare(CLI::App& app) {
   cmd->add_option("-o,--out", args->out_dir, "Output directory")->required();
   cmd->add_option("--budget", args->budget,
                   "Evaluations of the error function per run (the paper used 5e7)")
-      ->capture_default_str();
+      ->capture_default_str()
+      ->transform(number_in(limits::kEvaluations));
   cmd->add_option("--seeds", args->seeds, "Comma-separated seeds; each method and cost runs once per seed")
       ->capture_default_str();
   cmd->add_option("--gauge", args->gauge,
                   "12: the paper's free set (xa1, ya1, xa2 fixed; rank-deficient), "
                   "11: xa1, ya1, xa2, ya2 fixed (identifiable)")
       ->capture_default_str();
-  cmd->add_option("--samples", args->samples, "Random workspace samples")->capture_default_str();
-  cmd->add_option("--data-seed", args->data_seed, "Seed of the sample points")->capture_default_str();
+  cmd->add_option("--samples", args->samples, "Random workspace samples")->capture_default_str()->transform(number_in(limits::kSamples));
+  cmd->add_option("--data-seed", args->data_seed, "Seed of the sample points")->capture_default_str()->transform(number_in(limits::kSeed));
   cmd->add_option("--methods", args->methods, "Subset of ga,pso,de")->capture_default_str();
   cmd->add_option("--costs", args->costs, "Subset of j1,j2,j3")->capture_default_str();
   cmd->add_option("-j,--jobs", args->jobs, "Runs at once (0 = all cores); results do not depend on it")

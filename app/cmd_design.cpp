@@ -15,6 +15,7 @@
 
 #include "app/commands.hpp"
 #include "app/json_output.hpp"
+#include "app/number_options.hpp"
 #include "calib/excitation/excitation.hpp"
 #include "calib/excitation/layouts.hpp"
 #include "calib/excitation/pose_list.hpp"
@@ -292,7 +293,7 @@ void add_design(CLI::App& app) {
   cmd->add_flag("--compare", opt->compare, "Compare line, circle, discs and the optimised set; -o is a folder");
   cmd->add_option("--radius", opt->radius, "--compare: circle/disc radius and line half-length, mm")->capture_default_str();
   cmd->add_option("--wide-radius", opt->wide_radius, "--compare: radius of the wide disc, mm")->capture_default_str();
-  cmd->add_option("--seed", opt->seed, "--compare: seed of the random discs")->capture_default_str();
+  cmd->add_option("--seed", opt->seed, "--compare: seed of the random discs")->capture_default_str()->transform(number_in(limits::kSeed));
   cmd->add_option("-o,--out", opt->out, "Pose list YAML (or folder with --compare)")->required();
   cmd->add_flag("--json", opt->json,
                 "Print one JSON document on stdout instead of the text: the pose list file's content and the "

@@ -5,7 +5,6 @@
 // With --json: one JSON document on stdout with the same content as the text.
 #include <cmath>
 #include <cstdio>
-#include <cstdlib>
 #include <optional>
 #include <string>
 #include <vector>
@@ -27,17 +26,6 @@ struct KinOptions {
   bool readings = false;
   bool json = false;
 };
-
-// Refuses a number argument that is not finite (nan, inf, 1e999): issue 14.14.
-// Text that is not a number at all is left to CLI11's own conversion message.
-const CLI::Validator kFinite(
-    [](std::string& s) -> std::string {
-      char* end = nullptr;
-      const double v = std::strtod(s.c_str(), &end);
-      if (end == s.c_str()) return "";
-      return std::isfinite(v) ? "" : fmt::format("must be a finite number, got '{}'", s);
-    },
-    "FINITE");
 
 // The configuration as one JSON document (the keys mirror the text output;
 // numbers are exact, non-finite ones null).
@@ -102,7 +90,7 @@ void add_kin(CLI::App& app) {
   });
 
   auto* ik = kin->add_subcommand("ik", "Inverse kinematics: active and passive angles for X Y (mm)");
-  ik->add_option("xy", opt->xy, "End-effector X Y in mm")->required()->expected(2)->check(kFinite);
+  ik->add_option("xy", opt->xy, "End-effector X Y in mm")->required()->expected(2);
   ik->add_option("--model", opt->model, "Robot file (YAML); default: the nominal GPM2002");
   ik->add_flag("--json", opt->json, "One JSON document on stdout instead of the text");
   ik->callback([opt] {
@@ -114,7 +102,7 @@ void add_kin(CLI::App& app) {
   });
 
   auto* fk = kin->add_subcommand("fk", "Forward kinematics from three active angles T1 T2 T3 (rad)");
-  fk->add_option("angles", opt->angles, "Active angles in rad")->required()->expected(3)->check(kFinite);
+  fk->add_option("angles", opt->angles, "Active angles in rad")->required()->expected(3);
   fk->add_flag("--readings", opt->readings, "The angles are encoder readings (theta_a = theta_m + dth)");
   fk->add_option("--model", opt->model, "Robot file (YAML); default: the nominal GPM2002");
   fk->add_flag("--json", opt->json, "One JSON document on stdout instead of the text");

@@ -10,6 +10,7 @@
 #include <fmt/format.h>
 
 #include "app/commands.hpp"
+#include "app/number_options.hpp"
 #include "models/errors.hpp"
 #include "models/output_file.hpp"
 #include "run/paper/paper_document.hpp"
@@ -27,10 +28,6 @@ struct PaperArgs {
 };
 
 void run_paper_command(const PaperArgs& a) {
-  if (!std::isfinite(a.budget) || a.budget < 1 || a.budget > 1e10 || a.budget != std::floor(a.budget)) {
-    throw InputError(fmt::format("--budget: {} is not a whole number of evaluations from 1 to 1e10 (the paper's "
-                                 "is 5e7)", a.budget));
-  }
   if (a.jobs < 0) throw InputError(fmt::format("--jobs: {} is negative (0 = all cores)", a.jobs));
   paper::PaperSettings s;
   s.budget = static_cast<long>(a.budget);
@@ -70,8 +67,9 @@ void add_paper(CLI::App& app) {
   cmd->add_option("-o,--out", args->out_dir, "Output directory (paper.md, paper.html, paper.json)")->required();
   cmd->add_option("--budget", args->budget,
                   "Evaluations of the error function per GA/PSO/DE run (the paper's: 5e7)")
-      ->capture_default_str();
-  cmd->add_option("--seed", args->seed, "Seed of every stochastic run")->capture_default_str();
+      ->capture_default_str()
+      ->transform(number_in(limits::kEvaluations));
+  cmd->add_option("--seed", args->seed, "Seed of every stochastic run")->capture_default_str()->transform(number_in(limits::kSeed));
   cmd->add_option("-j,--jobs", args->jobs, "GA/PSO/DE runs at once (0 = all cores); results do not depend on it")
       ->capture_default_str();
   cmd->callback([args] { run_paper_command(*args); });

@@ -23,6 +23,7 @@
 #include "models/mjcf.hpp"
 #include "models/output_file.hpp"
 #include "models/progress.hpp"
+#include "models/yaml_util.hpp"
 #include "render/render_options.hpp"
 #include "render/scene_renderer.hpp"
 #include "render/video_job.hpp"
@@ -57,7 +58,7 @@ sim::SimulationResult run(const sim::Scenario& s, const std::string& file) {
 
 // A scenario for `gpm run`: it calibrates or compensates.
 bool is_run_scenario(const std::string& file) {
-  const YAML::Node root = YAML::LoadFile(file);
+  const YAML::Node root = load_yaml_file(file);  // the same bounded, checked reading as every input
   return root.IsMap() && (root["calibration"] || root["compensation"]);
 }
 

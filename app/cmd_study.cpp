@@ -12,12 +12,14 @@
 #include <fmt/format.h>
 
 #include "app/commands.hpp"
+#include "app/number_options.hpp"
 #include "calib/crb.hpp"
 #include "calib/identifiability.hpp"
 #include "calib/montecarlo.hpp"
 #include "calib/paper_values.hpp"
 #include "calib/sample_check.hpp"
 #include "calib/synthetic.hpp"
+#include "models/bounds.hpp"
 #include "models/errors.hpp"
 #include "models/output_file.hpp"
 #include "models/robot_yaml.hpp"
@@ -55,8 +57,7 @@ void positive(double v, const char* flag) {
 
 void run_samples(const StudyOptions& o) {
   positive(o.radius, "--radius");
-  if (o.n < 1) throw InputError(fmt::format("--n: must be at least 1, got {}", o.n));
-  if (o.sigma < 0.0 || !std::isfinite(o.sigma)) throw InputError(fmt::format("--sigma: must be >= 0, got {}", o.sigma));
+  check_bound(o.sigma, limits::kNoiseSigma, "--sigma");
   const Robot r = actual_robot(o.actual);
   check_output_file(o.out, {o.actual});  // models/output_file.hpp: never over an input
   const auto poses = calib::disc_poses(r, o.n, r.home, o.radius, static_cast<std::uint64_t>(o.seed));
@@ -66,7 +67,7 @@ void run_samples(const StudyOptions& o) {
 }
 
 void run_crb(const StudyOptions& o) {
-  positive(o.sigma, "--sigma");
+  check_bound(o.sigma, limits::kEncoderSigma, "--sigma");
   const Robot r = actual_robot(o.actual);
   const Samples s = read_samples_csv(o.data);
   const FreeMask free = ~parse_param_list(o.fix, "--fix");
@@ -99,23 +100,17 @@ void run_montecarlo(const StudyOptions& o) {
   mc.free = ~parse_param_list(o.fix, "--fix");
   for (int i = 0; i < kNumParams; ++i)
     mc.start[i] = mc.free.test(static_cast<size_t>(i)) ? Geometry::gpm2002_nominal()[i] : mc.actual[i];
-  if (o.trials < 2) throw InputError(fmt::format("--trials: need at least 2, got {}", o.trials));
   mc.trials = o.trials;
   mc.samples = o.n;
   positive(o.radius, "--radius");
   mc.radius_mm = o.radius;
-  mc.sigma = o.sigma > 0.0 ? o.sigma : 1e-4;
+  mc.sigma = o.sigma > 0.0 ? check_bound(o.sigma, limits::kEncoderSigma, "--sigma") : 1e-4;
   mc.seed = static_cast<std::uint64_t>(o.seed);
   mc.costs.clear();
-  size_t start = 0;
-  while (start <= o.costs.size()) {
-    size_t end = o.costs.find(',', start);
-    if (end == std::string::npos) end = o.costs.size();
-    const std::string c = o.costs.substr(start, end - start);
+  for (const std::string& c : split_unique_list(o.costs, "--costs")) {
     const auto cost = calib::parse_cost(c);
     if (!cost) throw InputError(fmt::format("--costs: '{}' is not one of j1, j2, j3, ml", c));
     mc.costs.push_back(*cost);
-    start = end + 1;
   }
   const auto rows = calib::run_montecarlo(mc);
   fmt::print("Monte-Carlo: {} trials, {} samples in a disc of {} mm around home, sigma {} rad, {} free\n",
@@ -168,22 +163,17 @@ void run_effects(const StudyOptions& o) {
   scenario::EffectsStudyOptions so;
   if (!effects.empty()) {
     so.cases.clear();
-    size_t start = 0;
-    while (start <= effects.size()) {
-      size_t end = effects.find(',', start);
-      if (end == std::string::npos) end = effects.size();
-      const std::string name = effects.substr(start, end - start);
+    for (const std::string& name : split_unique_list(effects, "--effects")) {
       const auto c = scenario::parse_effect_case(name);
       if (!c)
         throw InputError(fmt::format("--effects: '{}' is not one of ideal, compliance, clearance, friction, thermal, "
                                      "encoder_cyclic, encoder_skew, all", name));
       so.cases.push_back(*c);
-      start = end + 1;
     }
   }
-  if (count < 0 || (count > 0 && count < 12))
-    throw InputError(fmt::format("--count: {} poses cannot identify 11 parameters (use at least 12, or 0 for each "
-                                 "procedure's own)", count));
+  if (count != 0 && !within(count, limits::kStudyPoses))
+    throw InputError(fmt::format("--count: must be {} (12 poses identify the 11 parameters), or 0 for each "
+                                 "procedure's own, got {}", describe(limits::kStudyPoses), count));
   if (count > 0) so.sample_count = count;
   if (threads < 1 || threads > 64) throw InputError(fmt::format("--threads: must be 1 to 64, got {}", threads));
   so.threads = threads;
@@ -211,9 +201,9 @@ void add_study(CLI::App& app) {
 
   auto* samples = study->add_subcommand("samples", "Write synthetic encoder samples (with true x,y) of a known robot");
   samples->add_option("--actual", o->actual, "table5, section3 (paper values) or a robot file")->capture_default_str();
-  samples->add_option("--n", o->n, "Number of samples")->capture_default_str();
+  samples->add_option("--n", o->n, "Number of samples")->capture_default_str()->transform(number_in(limits::kSamples));
   samples->add_option("--radius", o->radius, "Disc radius around home (mm)")->capture_default_str();
-  samples->add_option("--seed", o->seed, "Random seed")->capture_default_str();
+  samples->add_option("--seed", o->seed, "Random seed")->capture_default_str()->transform(number_in(limits::kSeed));
   samples->add_option("--sigma", o->sigma, "Encoder noise 1-sigma (rad)")->capture_default_str();
   samples->add_option("-o,--output", o->out, "Samples CSV")->required();
   samples->callback([o] { run_samples(*o); });
@@ -228,11 +218,11 @@ void add_study(CLI::App& app) {
   auto* mc = study->add_subcommand("montecarlo", "Noisy trials: empirical RMS error over the Cramer-Rao bound");
   mc->add_option("--actual", o->actual, "The true robot: table5, section3 or a robot file")->capture_default_str();
   mc->add_option("--fix", o->fix, "Fixed parameters (held at their true values)")->capture_default_str();
-  mc->add_option("--trials", o->trials, "Number of noisy trials")->capture_default_str();
-  mc->add_option("--n", o->n, "Samples per trial")->capture_default_str();
+  mc->add_option("--trials", o->trials, "Number of noisy trials")->capture_default_str()->transform(number_in(limits::kTrials));
+  mc->add_option("--n", o->n, "Samples per trial")->capture_default_str()->transform(number_in(limits::kSamples));
   mc->add_option("--radius", o->radius, "Disc radius around home (mm)")->capture_default_str();
   mc->add_option("--sigma", o->sigma, "Encoder noise 1-sigma (rad); default 1e-4");
-  mc->add_option("--seed", o->seed, "Random seed")->capture_default_str();
+  mc->add_option("--seed", o->seed, "Random seed")->capture_default_str()->transform(number_in(limits::kSeed));
   mc->add_option("--costs", o->costs, "Error functions to compare")->capture_default_str();
   mc->add_flag("--check", o->check, "Exit 1 unless the rms ratio is within the goals (ml 1.05, j3 1.2)");
   mc->add_flag("--check-each", o->check_each,
@@ -247,7 +237,7 @@ void add_study(CLI::App& app) {
   effects->add_option("--effects", o->effects,
                       "Comma-separated cases (default every one: ideal, compliance, clearance, friction, thermal, "
                       "encoder_cyclic, encoder_skew, all)");
-  effects->add_option("--count", o->effects_count, "Poses per calibration (default: each procedure's own)");
+  effects->add_option("--count", o->effects_count, "Poses per calibration, 12 to 2000 (default: each procedure's own)");
   effects->add_option("--threads", o->threads, "Runs in parallel")->capture_default_str();
   effects->callback([o] { run_effects(*o); });
 }

@@ -19,6 +19,7 @@
 #include <fmt/format.h>
 
 #include "app/commands.hpp"
+#include "app/number_options.hpp"
 #include "models/output_file.hpp"
 #include "report/report_document.hpp"
 #include "models/pose_layouts.hpp"
@@ -251,8 +252,9 @@ void add_zero(CLI::App& app) {
   cmd->add_option("--method", args->method, "grid (paper steps 5-7) or direct (least squares on E)");
   cmd->add_flag("--compare", args->compare, "also run the other method and the section-3 calibration (ML, offsets only)");
   cmd->add_option("--radius", args->radius, "circle radius (mm)");
-  cmd->add_option("--points", args->points, "interpolation points recorded per circle");
-  cmd->add_option("--dwell", args->dwell, "s: stop at each interpolation point and average this long (0: record on the fly)");
+  cmd->add_option("--points", args->points, "interpolation points recorded per circle")->transform(number_in(limits::kCirclePoints));
+  cmd->add_option("--dwell", args->dwell, "s: stop at each interpolation point and average this long (0: record on the fly)")
+      ->transform(number_in(limits::kDwell));
   cmd->add_option("--sensor-joint", args->sensor_joint, "joint read only, torque off (1..3)");
   cmd->add_option("-o,--output", args->out, "report folder: report.md, offsets.yaml, trace.csv");
   cmd->callback([args] { run_zero(*args); });

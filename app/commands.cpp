@@ -1,6 +1,8 @@
 // The subcommands of gpm in the order of `gpm --help` (app/commands.hpp).
 #include "app/commands.hpp"
 
+#include "app/number_options.hpp"
+
 namespace gpm::cli {
 
 void add_commands(CLI::App& app, const std::function<void(CLI::App&)>& add_render_command) {
@@ -18,6 +20,7 @@ void add_commands(CLI::App& app, const std::function<void(CLI::App&)>& add_rende
   add_zero(app);
   add_monitor(app);
   add_paper(app);
+  check_number_options(app);  // every number option: no empty text, NaN, infinity (issue 36.12)
 }
 
 }  // namespace gpm::cli

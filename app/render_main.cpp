@@ -4,10 +4,12 @@
 // gpm (app/cli_main.hpp).
 #include "app/cli_main.hpp"
 #include "app/commands.hpp"
+#include "app/number_options.hpp"
 
 int main(int argc, char** argv) {
   CLI::App app{"gpm: digital twin and auto-calibration toolkit for the GPM2002 planar 3-RRR manipulator"};
   app.require_subcommand(1);
   gpm::cli::add_render(app);
+  gpm::cli::check_number_options(app);
   return gpm::cli::run_app(app, argc, argv);
 }

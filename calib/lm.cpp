@@ -1,5 +1,6 @@
 #include "calib/lm.hpp"
 
+#include <algorithm>
 #include <chrono>
 #include <cmath>
 #include <limits>
@@ -14,6 +15,7 @@
 #include "calib/parameterization.hpp"
 #include "calib/residuals.hpp"
 #include "calib/sample_check.hpp"
+#include "models/bounds.hpp"
 #include "models/errors.hpp"
 
 namespace gpm::calib {
@@ -200,9 +202,7 @@ Result calibrate_lm(const Problem& problem, const LmOptions& opt) {
   check_samples(problem);
   check_free_set(problem.free, opt.cost);
   if (opt.max_iterations < 1) throw InputError("--budget: LM needs at least one iteration");
-  if (opt.encoder_sigma && !(*opt.encoder_sigma > 0.0 && std::isfinite(*opt.encoder_sigma)))
-    throw InputError(fmt::format("--sigma: encoder noise must be a positive number of radians, got {}",
-                                 *opt.encoder_sigma));
+  if (opt.encoder_sigma) check_bound(*opt.encoder_sigma, limits::kEncoderSigma, "--sigma");
 
   Result res;
   res.method = "lm";
@@ -271,6 +271,12 @@ Result calibrate_lm(const Problem& problem, const LmOptions& opt) {
     so.logging_type = ceres::SILENT;
     ceres::Solver::Summary summary;
     ceres::Solve(so, &cp, &summary);
+    // A cost that cannot be evaluated (NaN or infinite: a loss scale or noise
+    // far outside the residuals, issue 36.1) is a failed calibration, said in
+    // one line, not a result.
+    if (summary.termination_type == ceres::FAILURE || !std::isfinite(summary.final_cost))
+      throw Error(fmt::format("the calibration failed: {} (cost function {}, loss {})", summary.message,
+                              cost_name(opt.cost), loss_name(opt.loss)));
     for (const ceres::IterationSummary& it : summary.iterations)  // Ceres' cost is half the sum of squares
       res.lm_iterations.push_back({it.iteration, paper_cost(opt.cost, 2.0 * it.cost), it.step_norm,
                                    it.step_is_successful || it.iteration == 0});
@@ -292,6 +298,10 @@ Result calibrate_lm(const Problem& problem, const LmOptions& opt) {
   res.geometry = from_solver(x, opt.cost);
   Evaluation fin = evaluate(functions, x, rows, opt.compute_covariance && !res.rank_deficient);
   res.final_cost = paper_cost(opt.cost, fin.ok ? fin.r.squaredNorm() : kNaN);
+  const auto finite = [](double v) { return std::isfinite(v); };
+  if (!std::all_of(res.geometry.values.begin(), res.geometry.values.end(), finite) || !std::isfinite(res.final_cost))
+    throw Error(fmt::format("the calibration failed: the {} cost is not a finite number at the solution (loss {})",
+                            cost_name(opt.cost), loss_name(opt.loss)));
   std::vector<Eigen::MatrixXd> W;  // robust loss: per-sample factors W_j (calib/robust_loss.hpp)
   for (size_t j = 0; rho && fin.ok && j < n; ++j) {
     const auto g = static_cast<Eigen::Index>(j) * rows;

@@ -27,6 +27,8 @@ std::string quoted(const std::string& s) {
 
 // A number that may also be .nan / .inf (diagnostics and std may carry them).
 double number_or_special(const YAML::Node& n, const std::string& file, const std::string& key) {
+  // null: JSON's not-a-number (gpm calibrate --json, docs/FORMATS.md).
+  if (n.IsNull()) return std::numeric_limits<double>::quiet_NaN();
   if (n.IsScalar()) {
     const std::string s = n.Scalar();
     if (s == ".nan" || s == ".NaN" || s == ".NAN") return std::numeric_limits<double>::quiet_NaN();
@@ -45,8 +47,12 @@ std::string result_to_yaml(const Result& r, const std::string& robot_name) {
   out += geometry_to_yaml(r.geometry, 2);
   std::string sd;
   for (int i = 0; i < kNumParams; ++i) {
-    if (!r.free.test(static_cast<size_t>(i))) continue;
-    sd += fmt::format("  {}: {}\n", param_name(i), number(sigma_for_file(r.sigma[static_cast<size_t>(i)], i)));
+    // A parameter without a usable 1-sigma (too few samples, a singular
+    // Jacobian: the notes say why; or one beyond the bounds a reader accepts)
+    // is left out, so that the file, and its JSON, stays a robot file (issue 36.5).
+    const double sd_i = sigma_for_file(r.sigma[static_cast<size_t>(i)], i);
+    if (!r.free.test(static_cast<size_t>(i)) || !std::isfinite(sd_i)) continue;
+    sd += fmt::format("  {}: {}\n", param_name(i), number(sd_i));
   }
   out += sd.empty() ? "std: {}\n" : "std:                 # 1-sigma of each estimated parameter\n" + sd;
   out += "fixed: [";
@@ -151,6 +157,19 @@ Result result_from_yaml(const YAML::Node& root, const std::string& file) {
 }  // namespace
 
 Result load_result(const std::string& path) { return result_from_yaml(load_yaml_file(path), path); }
+
+Robot usable_robot(const Robot& base, const Geometry& calibrated) {
+  Robot r = base;
+  r.geometry = calibrated;
+  try {
+    validate_robot(r, "the calibrated geometry");
+  } catch (const InputError& e) {
+    throw Error(fmt::format("{}; it is not a usable robot, so the calibration failed (do the samples determine "
+                            "every free parameter? spread them over the workspace)",
+                            e.what()));
+  }
+  return r;
+}
 
 Robot robot_from_result(const std::string& path, const Robot& base) {
   Robot r = base;

@@ -26,6 +26,11 @@ Result parse_result(const std::string& text, const std::string& file);
 // Loads a result file (see parse_result).
 Result load_result(const std::string& path);
 
+// The robot `base` (home, branches, limits) with a calibrated geometry;
+// throws gpm::Error (the run worked, its result is not a robot: exit 1) when
+// a link length is not positive or home is out of reach (issue 36.5).
+Robot usable_robot(const Robot& base, const Geometry& calibrated);
+
 // The robot `base` (home, branches, limits) with the calibrated geometry of
 // the result file at path: a controller model after calibration.
 Robot robot_from_result(const std::string& path, const Robot& base);

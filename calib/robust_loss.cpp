@@ -7,6 +7,7 @@
 #include <ceres/ceres.h>
 #include <fmt/format.h>
 
+#include "models/bounds.hpp"
 #include "models/errors.hpp"
 
 namespace gpm::calib {
@@ -32,7 +33,14 @@ class RobustResidual final : public ceres::CostFunction {
   }
 
   bool Evaluate(double const* const* parameters, double* residuals, double** jacobians) const override {
-    if (!inner_->Evaluate(parameters, residuals, jacobians)) return false;
+    return inner_->Evaluate(parameters, residuals, jacobians) && make_robust(residuals, jacobians);
+  }
+
+ private:
+  // r~ and W_j J in place; false when any is not finite (a loss that
+  // overflows or underflows, issue 36.1): Ceres then takes the point as one
+  // where the cost cannot be evaluated instead of stepping on NaN.
+  bool make_robust(double* residuals, double** jacobians) const {
     const int n = num_residuals();
     const int groups = n / rows_;
     Eigen::Map<Eigen::VectorXd> r(residuals, n);
@@ -49,10 +57,15 @@ class RobustResidual final : public ceres::CostFunction {
       }
       r.segment(g * rows_, rows_) = robust_residual(*rho_, rj);
     }
+    if (!r.allFinite()) return false;
+    for (std::size_t b = 0; jacobians && b < parameter_block_sizes().size(); ++b) {
+      if (!jacobians[b]) continue;
+      const Eigen::Map<const Eigen::VectorXd> J(jacobians[b], n * parameter_block_sizes()[b]);
+      if (!J.allFinite()) return false;
+    }
     return true;
   }
 
- private:
   ceres::CostFunction* inner_;
   int rows_;
   const ceres::LossFunction* rho_;
@@ -82,7 +95,8 @@ RobustLoss parse_loss(std::string_view text, std::string_view where) {
     }
     if (loss.kind == LossKind::kPlain || used == 0 || used != num.size() || !std::isfinite(v) || !(v > 0.0))
       throw InputError(fmt::format("{}: '{}' has no valid scale ({})", where, t, valid));
-    loss.scale = v;
+    // A scale whose square underflows or overflows breaks the loss (issue 36.1).
+    loss.scale = check_bound(v, limits::kLossScale, fmt::format("{}: scale of '{}'", where, t), num);
   }
   return loss;
 }

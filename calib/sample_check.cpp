@@ -21,6 +21,24 @@ void check_samples(const Problem& problem, const std::vector<std::string>& label
                                  "(fix more parameters or record more samples)",
                                  n, n == 1 ? "" : "s", p, p));
   }
+  // A joint whose reading never changes while another one moves (issue 36.5:
+  // a stuck encoder, a column copied over another) leaves its chain's
+  // parameters to the other chains' noise: the fit "converged" to a robot
+  // that is not one. (All three constant is one pose repeated: the
+  // identifiability analysis names that, rank 1.)
+  int stuck = -1, moving = 0;
+  for (int k = 0; k < kNumChains; ++k) {
+    bool moved = false;
+    for (size_t j = 1; j < n && !moved; ++j) moved = problem.theta_m[j][k] != problem.theta_m[0][k];
+    if (moved) ++moving;
+    else if (stuck < 0) stuck = k;
+  }
+  if (stuck >= 0 && moving > 0) {
+    throw InputError(fmt::format(
+        "samples: theta_m{} is {} rad in all {} samples: joint {} never moved, so the samples cannot determine its "
+        "chain (a stuck encoder or a wrong column? record samples over the workspace)",
+        stuck + 1, problem.theta_m[0][stuck], n, stuck + 1));
+  }
   const Geometry& g = problem.start;
   auto name = [&](size_t j) {
     return j < labels.size() ? labels[j] : fmt::format("sample {}", j);

@@ -87,6 +87,9 @@ FreeMask parse_param_list(std::string_view list, std::string_view what) {
             "ya3 la1 la2 la3 lb1 lb2 lb3 dth1 dth2 dth3",
             what, position, item, nearest_param_name(item)));
       }
+      if (mask.test(static_cast<size_t>(*idx))) {
+        throw InputError(fmt::format("{}[{}]: '{}' is given twice; give each parameter once", what, position, item));
+      }
       mask.set(static_cast<size_t>(*idx));
     }
     ++position;

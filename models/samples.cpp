@@ -2,11 +2,11 @@
 
 #include <charconv>
 #include <cmath>
-#include <fstream>
 #include <sstream>
 
 #include <fmt/format.h>
 
+#include "models/bounds.hpp"
 #include "models/errors.hpp"
 #include "models/robot_yaml.hpp"
 #include "models/yaml_util.hpp"
@@ -54,6 +54,17 @@ Samples parse_samples_csv(const std::string& text, const std::string& file) {
                                  "sample,theta_m1,theta_m2,theta_m3[,x,y])", file));
   }
   const int header_line = line_no;
+  // A column named twice is refused (issue 36.5): which of the two a reader
+  // takes would otherwise decide the data silently.
+  for (size_t i = 0; i < header.size(); ++i) {
+    for (size_t k = 0; k < i; ++k) {
+      if (!header[i].empty() && header[i] == header[k]) {
+        throw InputError(fmt::format("{}:{}: column '{}' appears twice in the header (fields {} and {}); a column "
+                                     "may appear once: keep one of the two",
+                                     file, header_line, header[i], k + 1, i + 1));
+      }
+    }
+  }
   auto find = [&](const char* name) -> int {
     for (size_t i = 0; i < header.size(); ++i)
       if (header[i] == name) return static_cast<int>(i);
@@ -129,11 +140,7 @@ Samples parse_samples_csv(const std::string& text, const std::string& file) {
 }
 
 Samples read_samples_csv(const std::string& path) {
-  std::ifstream in(path, std::ios::binary);
-  if (!in) throw InputError(fmt::format("{}: cannot open file (does it exist and is it readable?)", path));
-  std::stringstream ss;
-  ss << in.rdbuf();
-  return parse_samples_csv(ss.str(), path);
+  return parse_samples_csv(read_input_file(path, limits::kMaxCsvBytes), path);
 }
 
 std::string samples_to_csv(const Samples& s) {

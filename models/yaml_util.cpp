@@ -2,7 +2,6 @@
 
 #include <charconv>
 #include <cmath>
-#include <fstream>
 #include <map>
 #include <sstream>
 #include <vector>
@@ -10,6 +9,7 @@
 #include <fmt/format.h>
 #include <yaml-cpp/eventhandler.h>
 
+#include "models/bounds.hpp"
 #include "models/errors.hpp"
 #include "models/parameters.hpp"
 
@@ -143,11 +143,7 @@ YAML::Node load_yaml_string(const std::string& text, const std::string& file) {
 }
 
 YAML::Node load_yaml_file(const std::string& file) {
-  std::ifstream in(file, std::ios::binary);
-  if (!in) throw InputError(fmt::format("{}: cannot open file (does it exist and is it readable?)", file));
-  std::stringstream ss;
-  ss << in.rdbuf();
-  return load_yaml_string(ss.str(), file);
+  return load_yaml_string(read_input_file(file, limits::kMaxYamlBytes), file);
 }
 
 double yaml_number(const YAML::Node& node, const std::string& file, std::string_view keypath) {

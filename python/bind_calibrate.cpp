@@ -12,6 +12,7 @@
 #include "calib/lm.hpp"
 #include "calib/result_yaml.hpp"
 #include "calib/sample_check.hpp"
+#include "models/bounds.hpp"
 #include "models/errors.hpp"
 #include "python/bindings.hpp"
 #include "python/convert.hpp"
@@ -57,8 +58,10 @@ CalibrationResult calibrate(const py::handle& readings, const Robot& robot, cons
   std::optional<long> budget_value;
   if (!budget.is_none()) {
     budget_value = budget.cast<long>();
-    if (*budget_value < 1) throw InputError(fmt::format("budget: must be at least 1, got {}", *budget_value));
+    check_bound(static_cast<double>(*budget_value),
+                method_value == calib::Method::kLM ? limits::kLmIterations : limits::kEvaluations, "budget");
   }
+  check_bound(static_cast<double>(seed), limits::kSeed, "seed");
   calib::Problem problem;
   problem.theta_m = readings_from_array(readings, "readings");
   problem.free = ~param_set(fix, "fix");
@@ -76,14 +79,11 @@ CalibrationResult calibrate(const py::handle& readings, const Robot& robot, cons
   mo.seed = static_cast<std::uint64_t>(seed);
   mo.allow_rank_deficient = allow_rank_deficient;
   if (budget_value) {
-    if (method_value == calib::Method::kLM) mo.lm_max_iterations = static_cast<int>(std::min<long>(*budget_value, 1000000));
+    if (method_value == calib::Method::kLM) mo.lm_max_iterations = static_cast<int>(*budget_value);
     else mo.budget = *budget_value;
   }
   if (!sigma.is_none()) {
-    const double s = sigma.cast<double>();
-    if (!(s > 0.0) || !std::isfinite(s))
-      throw InputError(fmt::format("sigma: encoder noise must be a positive number of radians, got {}", s));
-    mo.encoder_sigma = s;
+    mo.encoder_sigma = check_bound(sigma.cast<double>(), limits::kEncoderSigma, "sigma");
   }
   if (!xy.empty()) mo.true_xy = &xy;
 

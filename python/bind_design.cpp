@@ -11,6 +11,7 @@
 #include "calib/crb.hpp"
 #include "calib/excitation/excitation.hpp"
 #include "calib/excitation/pose_list.hpp"
+#include "models/bounds.hpp"
 #include "models/errors.hpp"
 #include "models/kinematics.hpp"
 #include "models/robot_yaml.hpp"
@@ -106,7 +107,7 @@ nominal geometry (calib/excitation/excitation.hpp).
         ex::DesignOptions& d = out->options;
         if (count < 1) throw InputError(fmt::format("count: must be a positive number of poses, got {}", count));
         d.count = count;
-        d.sigma = positive(sigma, "sigma", "encoder noise in rad");
+        d.sigma = check_bound(sigma, limits::kEncoderSigma, "sigma");
         d.free = ~param_set(fix, "fix");
         const auto c = ex::parse_criterion(criterion);
         if (!c) throw InputError(fmt::format("criterion: '{}' is not d or worst", criterion));
@@ -141,7 +142,7 @@ Returns a gpm.Design. Raises gpm.InputError for bad options.
       [](const Robot& robot, const py::handle& poses, double sigma, const py::object& fix) {
         const auto p = points_from_array(poses, "poses");
         const FreeMask free = ~param_set(fix, "fix");
-        return bounds_dict(ex::pose_bounds(robot, free, p, positive(sigma, "sigma", "encoder noise in rad")));
+        return bounds_dict(ex::pose_bounds(robot, free, p, check_bound(sigma, limits::kEncoderSigma, "sigma")));
       },
       py::arg("robot"), py::arg("poses"), py::arg("sigma") = 1e-4,
       py::arg("fix") = std::vector<std::string>{"xa1", "ya1", "xa2", "ya2"},
@@ -154,7 +155,7 @@ Returns a gpm.Design. Raises gpm.InputError for bad options.
          const py::object& poses) {
         if (readings.is_none() == poses.is_none())
           throw InputError("crb: give exactly one of readings= (n, 3) rad or poses= (n, 2) mm");
-        positive(sigma, "sigma", "encoder noise in rad");
+        check_bound(sigma, limits::kEncoderSigma, "sigma");
         const FreeMask free = ~param_set(fix, "fix");
         std::vector<Eigen::Vector3d> theta;
         if (!readings.is_none()) {

@@ -7,6 +7,7 @@
 
 #include <fmt/format.h>
 
+#include "models/bounds.hpp"
 #include "models/errors.hpp"
 #include "models/mjcf.hpp"
 #include "models/rng.hpp"
@@ -107,12 +108,18 @@ CalibrationSpec parse_calibration(const YAML::Node& n, const std::string& file) 
         throw InputError(yaml_where(file, fix[k], key) +
                          fmt::format("unknown parameter '{}' (did you mean {}?)", name, nearest_param_name(name)));
       }
+      if (c.fixed.test(static_cast<size_t>(*idx)))
+        throw InputError(yaml_where(file, fix[k], key) + fmt::format("'{}' is listed twice; list each parameter once", name));
       c.fixed.set(static_cast<size_t>(*idx));
     }
   }
-  if (n["budget"]) c.budget = yaml_integer(n["budget"], file, "calibration.budget", 1, 1000000000000LL);
-  if (n["seed"]) c.seed = static_cast<std::uint64_t>(yaml_integer(n["seed"], file, "calibration.seed", 0, (1LL << 53)));
-  if (n["sigma"]) c.sigma = yaml_positive(n["sigma"], file, "calibration.sigma");
+  // The budget counts LM iterations or a global method's evaluations, each
+  // with its bound (README, Limits; issue 36.8).
+  if (n["budget"])
+    c.budget = static_cast<long>(yaml_within(n["budget"], file, "calibration.budget",
+                                             c.method == calib::Method::kLM ? limits::kLmIterations : limits::kEvaluations));
+  if (n["seed"]) c.seed = static_cast<std::uint64_t>(yaml_within(n["seed"], file, "calibration.seed", limits::kSeed));
+  if (n["sigma"]) c.sigma = yaml_within(n["sigma"], file, "calibration.sigma", limits::kEncoderSigma);
   if (n["tension_min_N"]) {
     c.tension_min_N = yaml_positive(n["tension_min_N"], file, "calibration.tension_min_N");
     if (*c.tension_min_N > 100.0)
@@ -132,6 +139,10 @@ CalibrationSpec parse_calibration(const YAML::Node& n, const std::string& file) 
     for (size_t k = 0; k < est.size(); ++k) {
       const std::string key = fmt::format("calibration.estimate[{}]", k);
       const std::string what = yaml_string(est[k], file, key);
+      for (size_t e = 0; e < k; ++e)
+        if (est[e].IsScalar() && est[e].Scalar() == what)
+          throw InputError(yaml_where(file, est[k], key) +
+                           fmt::format("'{}' is listed twice (also calibration.estimate[{}]); list each effect once", what, e));
       if (what == "compliance") c.estimate_compliance = true;
       else if (what == "skew") c.estimate_skew = true;
       else if (what == "friction") c.estimate_friction = true;

@@ -470,7 +470,9 @@ RunOutcome run_scenario(const RunSpec& spec_in, const std::string& scenario_file
     } else {
       out.calibration = calib::calibrate(problem, mo);
     }
-    out.calibrated.geometry = out.calibration->geometry;
+    // A result that is not a robot (a link of no length, home out of reach)
+    // fails the run (gpm::Error, exit 1) instead of becoming the controller.
+    out.calibrated = calib::usable_robot(out.calibrated, out.calibration->geometry);
   } catch (const InputError& e) {
     // The scenario was valid and the robot ran: samples that cannot be
     // calibrated are the run's outcome (exit 1), not bad input.

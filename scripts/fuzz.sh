@@ -14,7 +14,7 @@ for p in clang libclang-rt-14-dev; do
     DEBIAN_FRONTEND=noninteractive $SUDO apt-get install -y -qq --no-install-recommends "$p"
 done
 seconds=${1:-600}; shift || true
-targets=("$@"); ((${#targets[@]})) || targets=(robot_yaml samples_csv scenario_yaml cli modbus_server)
+targets=("$@"); ((${#targets[@]})) || targets=(robot_yaml samples_csv scenario_yaml cli modbus_server calibrate_options)
 san="-fsanitize=address,undefined -fno-sanitize-recover=undefined -fno-omit-frame-pointer -g"
 CC=clang CXX=clang++ cmake -S . -B build-fuzz -G Ninja -DCMAKE_BUILD_TYPE=RelWithDebInfo \
   -DGPM_FUZZ=ON -DGPM_BUILD_BENCH=OFF -DGPM_PORTABLE=ON \

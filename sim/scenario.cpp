@@ -6,6 +6,7 @@
 
 #include <fmt/format.h>
 
+#include "models/bounds.hpp"
 #include "models/errors.hpp"
 #include "models/kinematics.hpp"
 #include "models/robot_yaml.hpp"
@@ -303,6 +304,9 @@ Operation parse_operation(const YAML::Node& n, const Ctx& c) {
 // events: [{at_s, change: {PARAM: DELTA}} | {at_s, ramp: {PARAM: DELTA}, over_s}].
 std::vector<GeometryEvent> parse_events(const YAML::Node& n, const Ctx& c, double duration_s) {
   if (!n.IsSequence()) fail(c, n, "expected a list of {at_s, change: {...}} or {at_s, ramp: {...}, over_s}");
+  // Each event is checked every servo cycle: their count is bounded (issue 36.8).
+  if (n.size() > limits::kMaxEvents)
+    fail(c, n, fmt::format("{} events; at most {} in one scenario", n.size(), limits::kMaxEvents));
   std::vector<GeometryEvent> out;
   for (std::size_t k = 0; k < n.size(); ++k) {
     const Ctx ce{c.file, fmt::format("{}[{}]", c.path, k)};

@@ -11,6 +11,7 @@
 #include "calib/projected_error.hpp"
 #include "hw/procedures/motion.hpp"
 #include "hw/hw_errors.hpp"
+#include "models/bounds.hpp"
 #include "models/errors.hpp"
 #include "models/kinematics.hpp"
 
@@ -40,9 +41,11 @@ std::array<JointMode, 3> sensor_modes(int sensor_joint) {
 void validate(const ZeroSearchOptions& o) {  // see validate_zero_search_options
   auto bad = [](const std::string& s) { throw InputError("zero-offset search: " + s); };
   if (!(o.circle_radius_mm > 0)) bad("circle radius must be > 0 mm");
-  if (o.circle_points < 6) bad("at least 6 interpolation points per circle are needed");
+  if (!within(o.circle_points, limits::kCirclePoints))
+    bad("interpolation points per circle must be " + describe(limits::kCirclePoints));
   if (!(o.circle_speed_mm_s > 0) || !(o.move_speed_mm_s > 0)) bad("speeds must be > 0 mm/s");
-  if (!(o.circle_dwell_s >= 0)) bad("the dwell at each interpolation point must be >= 0 s");
+  if (!within(o.circle_dwell_s, limits::kDwell))
+    bad("the dwell at each interpolation point must be " + describe(limits::kDwell));
   if (!(o.d_min_mm > 0) || !(o.d_initial_mm >= o.d_min_mm)) bad("need 0 < d_min <= d_initial (mm)");
   const double levels = std::log2(o.d_initial_mm / o.d_min_mm);
   if (std::abs(levels - std::round(levels)) > 1e-9) bad("d_initial / d_min must be a power of 2");

@@ -109,6 +109,40 @@ TEST(RobustLoss, NamesParseAndBadValuesAreOneLineNamingTheValidForms) {
   }
 }
 
+TEST(RobustLoss, ScaleOutsideItsDocumentedRangeIsRefusedNamingTheRange) {
+  // Issue 36.1: cauchy:1e-200 squared underflows to 0 and ended in SIGSEGV.
+  for (const char* bad : {"cauchy:1e-200", "huber:1e-13", "cauchy:1e7"}) {
+    try {
+      parse_loss(bad, "--loss");
+      FAIL() << bad << " accepted";
+    } catch (const InputError& e) {
+      const std::string what = e.what();
+      EXPECT_EQ(what.rfind(std::string("--loss: scale of '") + bad + "': must be a number from 1e-12 to 1e6", 0), 0u)
+          << what;
+    }
+  }
+  EXPECT_EQ(parse_loss("cauchy:1e-12").scale, 1e-12);
+}
+
+TEST(RobustLoss, ALossThatCannotBeEvaluatedFailsInOneLineNotASignal) {
+  // A scale that reaches the solver anyway (a library caller): Ceres' Cauchy
+  // loss of scale 1e-200 is NaN everywhere; the calibration fails with
+  // gpm::Error (exit 1 on the command line), not InputError, never a crash.
+  const Problem p = exact_problem();
+  Problem noisy = p;
+  for (size_t j = 0; j < noisy.theta_m.size(); ++j) noisy.theta_m[j][j % 3] += 1e-4 * (j % 2 ? 1.0 : -1.0);
+  MethodOptions o;
+  o.loss = {LossKind::kCauchy, 1e-200};
+  try {
+    calibrate(noisy, o);
+    FAIL() << "a NaN loss gave a result";
+  } catch (const InputError& e) {
+    FAIL() << "not an input error: " << e.what();
+  } catch (const Error& e) {
+    EXPECT_NE(std::string(e.what()).find("the calibration failed"), std::string::npos) << e.what();
+  }
+}
+
 // Hand-worked: Ceres' CauchyLoss(a) is rho(s) = a^2 log(1 + s / a^2), so the
 // robust residual of r = 3a is r~ = sqrt(a^2 log 10), and W = dr~/dr (finite
 // differences), for a 1-row and a 2-row group.

@@ -65,6 +65,33 @@ TEST(ResultYaml, RoundTripIsExact) {
     EXPECT_NE(text.find(key), std::string::npos) << key;
 }
 
+TEST(ResultYaml, AParameterWithoutA1SigmaIsLeftOutOfStd) {
+  // Issue 36.5: "std: {lb2: .nan}" became {"lb2": null} in --json, which no
+  // robot reader took. The parameter is left out; a null still reads as NaN.
+  const std::string text = result_to_yaml(sample_result(), "GPM2002");
+  EXPECT_EQ(text.find("lb2: .nan"), std::string::npos) << text;
+  EXPECT_NE(text.find("  lb1: "), std::string::npos);
+  EXPECT_TRUE(std::isnan(parse_result(text, "r.yaml").sigma[kLb2]));
+  std::string json_like = text;
+  json_like.replace(json_like.find("  cost: "), 8, "  cost: null #");
+  EXPECT_TRUE(std::isnan(parse_result(json_like, "r.json").final_cost));
+}
+
+TEST(ResultYaml, ACalibratedGeometryThatIsNoRobotFailsTheRunNotTheInput) {
+  Robot base;
+  Geometry g = table5_actual();
+  EXPECT_EQ(usable_robot(base, g).geometry, g);
+  g[kLa2] = 1.45e-10;  // what constant theta_m1 readings calibrated to (issue 36.5)
+  try {
+    usable_robot(base, g);
+    FAIL() << "accepted";
+  } catch (const InputError& e) {
+    FAIL() << "an input error: " << e.what();
+  } catch (const Error& e) {
+    EXPECT_NE(std::string(e.what()).find("not a usable robot"), std::string::npos) << e.what();
+  }
+}
+
 TEST(ResultYaml, SaveIsAtomicAndLoadsAsARobot) {
   const auto dir = std::filesystem::temp_directory_path() / "gpm_test_result_yaml";
   std::filesystem::create_directories(dir);

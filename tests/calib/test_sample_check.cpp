@@ -56,5 +56,13 @@ TEST(SampleCheck, CirclesThatDoNotMeetAreNamedByLabel) {
   EXPECT_NE(m.find("s.csv:14: the passive circles of chains 1 and"), std::string::npos) << m;
 }
 
+TEST(SampleCheck, ConstantReadingColumnRefused) {
+  // Issue 36.5: a joint that never moved calibrated to "converged" with la2 ~ 1e-10.
+  Problem p = problem(30);
+  for (auto& t : p.theta_m) t[0] = p.theta_m[0][0];
+  EXPECT_NE(message(p).find("theta_m1 is "), std::string::npos) << message(p);
+  EXPECT_NE(message(p).find("in all 30 samples: joint 1 never moved"), std::string::npos);
+}
+
 }  // namespace
 }  // namespace gpm::calib

@@ -13,7 +13,7 @@ expect_out "help names --budget" "--budget"
 expect_out "help names the paper's budget" "5e7"
 
 check "budget zero" 2 "$GPM" paper -o "$tmp/zero" --budget 0
-expect_err "budget zero message" "--budget: 0 is not a whole number of evaluations"
+expect_err "budget zero message" "--budget: must be a whole number from 1 to 1e10 evaluations, got '0'"
 [[ ! -e "$tmp/zero" ]] && passed=$((passed+1)) || { echo "FAIL budget zero left $tmp/zero"; fail=$((fail+1)); }
 check "budget fraction" 2 "$GPM" paper -o "$tmp/frac" --budget 1.5
 [[ ! -e "$tmp/frac" ]] && passed=$((passed+1)) || { echo "FAIL budget fraction left $tmp/frac"; fail=$((fail+1)); }

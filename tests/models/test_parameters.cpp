@@ -37,6 +37,16 @@ TEST(Parameters, ParseListAndDefaultGauge) {
   }
 }
 
+TEST(Parameters, ParseListRefusesAParameterGivenTwice) {
+  // Issue 36.12: --fix xa1,xa1 was taken as one fixed parameter.
+  try {
+    parse_param_list("xa1,ya1, xa1", "--fix");
+    FAIL();
+  } catch (const InputError& e) {
+    EXPECT_STREQ(e.what(), "--fix[2]: 'xa1' is given twice; give each parameter once");
+  }
+}
+
 TEST(Parameters, KindsAndNominal) {
   const Geometry g = Geometry::gpm2002_nominal();
   EXPECT_EQ(g.A(2), Eigen::Vector2d(433, 500));

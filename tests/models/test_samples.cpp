@@ -74,5 +74,15 @@ TEST(Samples, RowWithExtraFieldRefused) {
             "missing on this row)");
 }
 
+TEST(Samples, ColumnNamedTwiceRefused) {
+  // Issue 36.5: the first theta_m1 used to win silently.
+  EXPECT_EQ(error_of("sample,theta_m1,theta_m2,theta_m3,theta_m1\n0,1,2,3,4\n"),
+            "s.csv:1: column 'theta_m1' appears twice in the header (fields 2 and 5); a column may appear "
+            "once: keep one of the two");
+  // Also for a column the reader ignores.
+  EXPECT_NE(error_of("note,theta_m1,theta_m2,theta_m3,note\na,1,2,3,b\n").find("column 'note' appears twice"),
+            std::string::npos);
+}
+
 }  // namespace
 }  // namespace gpm

@@ -71,6 +71,28 @@ TEST(RunSpec, OtherSchemaErrors) {
             std::string::npos);
 }
 
+TEST(RunSpec, CalibrationNumbersHaveDocumentedBoundsAndListsNoRepeats) {
+  // Issue 36.1 and 36.8: checked when the scenario is read, before any work.
+  EXPECT_EQ(error_of(kHead + "calibration: {method: de, budget: 1e12}\n"),
+            "s.yaml:3: calibration.budget: must be a whole number from 1 to 1e10 evaluations, got 1e12");
+  EXPECT_EQ(error_of(kHead + "calibration: {budget: 2000000}\n"),
+            "s.yaml:3: calibration.budget: must be a whole number from 1 to 1e6 iterations, got 2000000");
+  EXPECT_EQ(error_of(kHead + "calibration: {sigma: 1e-300, loss: cauchy}\n"),
+            "s.yaml:3: calibration.sigma: must be a number from 1e-12 to 1 rad, got 1e-300");
+  EXPECT_NE(error_of(kHead + "calibration: {loss: 'cauchy:1e-200'}\n")
+                .find("calibration.loss: scale of 'cauchy:1e-200': must be a number from 1e-12 to 1e6"),
+            std::string::npos);
+  EXPECT_EQ(error_of(kHead + "calibration: {seed: -1}\n"),
+            "s.yaml:3: calibration.seed: must be a whole number from 0 to 9007199254740992, got -1");
+  // Issue 36.12: a list names each item once.
+  EXPECT_EQ(error_of(kHead + "calibration:\n  fix: [xa1, ya1, xa2, ya2, xa1]\n"),
+            "s.yaml:4: calibration.fix[4]: 'xa1' is listed twice; list each parameter once");
+  EXPECT_EQ(error_of(kHead + "calibration:\n  estimate: [skew, compliance, skew]\n"),
+            "s.yaml:4: calibration.estimate[2]: 'skew' is listed twice (also calibration.estimate[0]); list each "
+            "effect once");
+  EXPECT_EQ(error_of(kHead + "calibration: {method: de, budget: 1e10}\n"), "");
+}
+
 TEST(RunSpec, LossAndEstimatedEffects) {
   const RunSpec s = parse_run_spec(kHead + "calibration: {loss: 'cauchy:2e-4', estimate: [compliance, friction]}\n",
                                    "s.yaml", kBase);

@@ -9,6 +9,7 @@
 
 #include <gtest/gtest.h>
 
+#include "models/bounds.hpp"
 #include "models/data_dir.hpp"
 #include "models/errors.hpp"
 #include "models/kinematics.hpp"
@@ -108,6 +109,14 @@ TEST(Events, ScenarioEventsParseAndBadOnesAreOneLineErrors) {
   EXPECT_NE(error_of("sampling: {pattern: disc, radius: 10, count: 3}\nevents:\n  - {at_s: 1, change: {dth2: 1.0e-4}}\n")
                 .find("give an 'operation' section"),
             std::string::npos);
+}
+
+TEST(Events, AScenarioHoldsAtMostKMaxEvents) {
+  // Issue 36.8: each event is checked every servo cycle; 100,000 of them were accepted.
+  std::string many = std::string(kOperation) + "events:\n";
+  for (std::size_t k = 0; k <= limits::kMaxEvents; ++k) many += "  - {at_s: 30, change: {dth2: 1.0e-4}}\n";
+  EXPECT_NE(error_of(many).find("events: 1001 events; at most 1000 in one scenario"), std::string::npos)
+      << error_of(many);
 }
 
 }  // namespace

@@ -2,13 +2,16 @@
 // the safety supervisor): the 9-point grid converges from three different
 // initial estimates to the twin's actual offsets; the direct fit of E gets
 // there with far fewer motions; encoder noise does not move the result much
-// (eq. 28); a search that leaves the safe workspace stops and says where.
+// (eq. 28); a search that leaves the safe workspace stops and says where;
+// points and dwell outside their documented range are refused.
 #include "hw/procedures/zero_offset_search.hpp"
 
 #include <cstdio>
+#include <string>
 
 #include <gtest/gtest.h>
 
+#include "models/errors.hpp"
 #include "zero_test_util.hpp"
 
 namespace gpm::hw {
@@ -33,6 +36,25 @@ const Vector2d kStarts[3] = {{219.5, 252.5}, {213.0, 247.5}, {217.5, 245.0}};
 // Tolerance: the grid stops at d = 0.125 mm; an O error of 0.125 mm diagonal
 // moves the offsets by |J| * 0.18 mm, about 1e-3 rad at most on this robot.
 constexpr double kGridTol = 1.2e-3;
+
+TEST(ZeroOffsetSearch, PointsAndDwellOutsideTheirDocumentedRangeAreRefused) {
+  // Issue 36.8: gpm zero --points 1e9 --dwell 1e9 were accepted (models/bounds.hpp).
+  const auto message = [](const ZeroSearchOptions& o) {
+    try {
+      validate_zero_search_options(o);
+    } catch (const InputError& e) {
+      return std::string(e.what());
+    }
+    return std::string("accepted");
+  };
+  ZeroSearchOptions o;
+  EXPECT_EQ(message(o), "accepted");
+  o.circle_points = 1000000000;
+  EXPECT_EQ(message(o), "zero-offset search: interpolation points per circle must be a whole number from 6 to 3600 points");
+  o = ZeroSearchOptions{};
+  o.circle_dwell_s = 1e9;
+  EXPECT_EQ(message(o), "zero-offset search: the dwell at each interpolation point must be a number from 0 to 60 s");
+}
 
 TEST(ZeroOffsetSearch, GridConvergesFromThreeStartsToTheActualOffsets) {
   const test::TempDir dir("zero_grid");
