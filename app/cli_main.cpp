@@ -35,6 +35,7 @@ void not_available(const std::string& name, const std::string& issue) {
 
 int run_app(CLI::App& app, int argc, char** argv) {
   install_output_signal_cleanup();
+  track_command_files(true);  // every input against every output, by identity (models/output_file.hpp)
   if (argc >= 2 && argv[1][0] != '-') {
     std::vector<std::string> names;
     bool known = false;

@@ -8,6 +8,7 @@
 #include <fmt/format.h>
 
 #include "models/errors.hpp"
+#include "models/output_file.hpp"
 #include "models/robot_yaml.hpp"
 #include "models/yaml_util.hpp"
 
@@ -129,6 +130,7 @@ Samples parse_samples_csv(const std::string& text, const std::string& file) {
 }
 
 Samples read_samples_csv(const std::string& path) {
+  note_input(path);  // models/output_file.hpp: never also an output of the command
   std::ifstream in(path, std::ios::binary);
   if (!in) throw InputError(fmt::format("{}: cannot open file (does it exist and is it readable?)", path));
   std::stringstream ss;
