@@ -125,19 +125,6 @@ std::string offsets_yaml(const Robot& controller, const Eigen::Vector3d& offsets
 const std::vector<std::string> kZeroOutputs{"report.md", "report.html", "offsets.yaml", "trace.csv",
                                             "section3_samples.csv"};
 
-// Removes a file when it goes out of scope (the section-3 samples of a run
-// without -o, on every path: done, failed, interrupted); registered for the
-// signal handler of models/output_file.hpp meanwhile.
-struct RemovedAtEnd {
-  std::string path;
-  explicit RemovedAtEnd(std::string p) : path(std::move(p)) { register_temporary(path); }
-  ~RemovedAtEnd() {
-    std::error_code ec;
-    std::filesystem::remove(path, ec);
-    unregister_temporary(path);
-  }
-};
-
 void run_zero(const ZeroArgs& a) {
   // The output folder against every input (hardware file, model, the files
   // they name) and not a hardware session's folder, before anything is read.
@@ -228,13 +215,11 @@ void run_zero(const ZeroArgs& a) {
     row.method = "lm ml (offsets only)";
     try {
       auto robot = hw::make_hardware(config);
-      const std::string csv = a.out.empty()
-                                  ? (std::filesystem::temp_directory_path() /
-                                     fmt::format("gpm_zero_section3_{}.csv", ::getpid())).string()
-                                  : (std::filesystem::path(a.out) / "section3_samples.csv").string();
-      std::optional<RemovedAtEnd> temporary;
-      if (a.out.empty()) temporary.emplace(csv);
-      std::filesystem::remove(csv);
+      // Without -o the samples are kept in memory only (written in place to
+      // /dev/null): no temporary to leave behind on any path.
+      const std::string csv =
+          a.out.empty() ? std::string("/dev/null") : (std::filesystem::path(a.out) / "section3_samples.csv").string();
+      if (!a.out.empty()) std::filesystem::remove(csv);
       const hw::Section3Offsets s =
           hw::section3_offsets(*robot, section3_poses, base.sensor_joint, csv, signals.flag());
       row.offsets = s.offsets;
