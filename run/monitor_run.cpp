@@ -274,6 +274,18 @@ MonitorOutcome run_monitor_hardware(const sim::Scenario& s, const std::string& h
     if (!r.ok)
       throw InputError(fmt::format("{}: operation.path: point ({:.3f}, {:.3f}): {}", s.file, p.x(), p.y(), r.reason));
   }
+  mon::MonitorSettings ms;
+  ms.geometry = controller.geometry;
+  ms.prior_sigma = prior_sigma;
+  ms.encoder_bits = s.twin.encoder.bits;
+  ms.noise_rad = s.twin.encoder.noise_rad;
+  ms.cycle_hz = config.rate_hz;
+  ms.decimation = std::max(1, static_cast<int>(std::lround(ms.cycle_hz / 200.0)));
+  apply_reading_model(ms, reading);
+  out.reading = reading;
+  out.model = mon::make_monitor_model(ms);
+  auto md = std::make_unique<mon::MonitorData>(mon::make_monitor_data(out.model));
+
   std::unique_ptr<hw::SafetySupervisor> robot = hw::make_hardware(config);
   // Every command of the path (a loop and its return to the start, at full
   // speed, one per cycle) against the hardware's limits, before anything moves.
@@ -293,18 +305,6 @@ MonitorOutcome run_monitor_hardware(const sim::Scenario& s, const std::string& h
       throw InputError(fmt::format("{}: operation.path is outside the safety limits of {} (nothing moved): {}", s.file,
                                    hardware_file, why));
   }
-
-  mon::MonitorSettings ms;
-  ms.geometry = controller.geometry;
-  ms.prior_sigma = prior_sigma;
-  ms.encoder_bits = s.twin.encoder.bits;
-  ms.noise_rad = s.twin.encoder.noise_rad;
-  ms.cycle_hz = config.rate_hz;
-  ms.decimation = std::max(1, static_cast<int>(std::lround(ms.cycle_hz / 200.0)));
-  apply_reading_model(ms, reading);
-  out.reading = reading;
-  out.model = mon::make_monitor_model(ms);
-  auto md = std::make_unique<mon::MonitorData>(mon::make_monitor_data(out.model));
 
   out.hardware = robot->describe();
   hw::Motion motion(*robot, config.modes, 0.5, stop);
