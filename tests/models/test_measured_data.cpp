@@ -15,28 +15,16 @@
 
 #include "models/errors.hpp"
 #include "models/output_file.hpp"
+#include "temp_files.hpp"
 
 namespace gpm {
 namespace {
 
 namespace fs = std::filesystem;
 
-struct TempDir {
-  fs::path path;
-  explicit TempDir(const std::string& name)
-      : path(fs::temp_directory_path() / ("gpm_measured_test_" + name + "_" + std::to_string(::getpid()))) {
-    fs::remove_all(path);
-    fs::create_directories(path);
-  }
-  ~TempDir() { fs::remove_all(path); }
-  std::string operator/(const std::string& name) const { return (path / name).string(); }
-};
-
-void put(const std::string& p, const std::string& text) { std::ofstream(p, std::ios::binary) << text; }
-std::string slurp(const std::string& p) {
-  std::ifstream in(p, std::ios::binary);
-  return {std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>()};
-}
+using test::put;
+using test::slurp;
+using test::TempDir;
 
 // The InputError message of f (empty when it does not throw one).
 template <class F>

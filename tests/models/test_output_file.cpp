@@ -17,30 +17,16 @@
 #include <gtest/gtest.h>
 
 #include "models/errors.hpp"
+#include "temp_files.hpp"
 
 namespace gpm {
 namespace {
 
 namespace fs = std::filesystem;
 
-// A fresh folder removed at the end of the test.
-struct TempDir {
-  fs::path path;
-  explicit TempDir(const std::string& name)
-      : path(fs::temp_directory_path() / ("gpm_output_file_test_" + name + "_" + std::to_string(::getpid()))) {
-    fs::remove_all(path);
-    fs::create_directories(path);
-  }
-  ~TempDir() { fs::remove_all(path); }
-  std::string operator/(const std::string& name) const { return (path / name).string(); }
-};
-
-std::string slurp(const std::string& p) {
-  std::ifstream in(p, std::ios::binary);
-  return {std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>()};
-}
-
-void put(const std::string& p, const std::string& text) { std::ofstream(p, std::ios::binary) << text; }
+using test::put;
+using test::slurp;
+using test::TempDir;
 
 TEST(OutputFile, TemporaryNameIsHiddenInTheSameFolder) {
   const fs::path tmp = temporary_name_for("/some/folder/video.mp4");
