@@ -55,15 +55,6 @@ Marker parse_marker(const std::string& text) {
   return m;
 }
 
-// The marker of dir, when it has one.
-std::optional<Marker> read_marker(const std::string& dir) {
-  const int fd = ::open(marker_path(dir).c_str(), O_RDONLY | O_CLOEXEC);
-  if (fd < 0) return std::nullopt;
-  const Marker m = parse_marker(read_fd(fd));
-  ::close(fd);
-  return m;
-}
-
 // True while a session holds the marker's lock.
 bool marker_locked(const std::string& dir) {
   const int fd = ::open(marker_path(dir).c_str(), O_RDONLY | O_CLOEXEC);
@@ -71,6 +62,22 @@ bool marker_locked(const std::string& dir) {
   const bool locked = ::flock(fd, LOCK_SH | LOCK_NB) != 0 && errno == EWOULDBLOCK;
   ::close(fd);
   return locked;
+}
+
+// The marker of dir, when it guards something: a session holds it, or its
+// samples file exists. A marker left by a session killed before its first
+// sample (no samples, no lock) guards nothing and is removed.
+std::optional<Marker> read_marker(const std::string& dir) {
+  const int fd = ::open(marker_path(dir).c_str(), O_RDONLY | O_CLOEXEC);
+  if (fd < 0) return std::nullopt;
+  const Marker m = parse_marker(read_fd(fd));
+  ::close(fd);
+  std::error_code ec;
+  if (!fs::exists(fs::path(dir) / m.samples, ec) && !marker_locked(dir)) {
+    ::unlink(marker_path(dir).c_str());
+    return std::nullopt;
+  }
+  return m;
 }
 
 bool same_folder(const std::string& a, const std::string& b) {

@@ -45,6 +45,8 @@ class MeasuredFolder {
   bool created_dir_ = false, created_marker_ = false;
 };
 
+// A marker with neither samples nor a session holding it (a session killed
+// before its first sample) guards nothing: the checks below remove it.
 // Throws InputError when dir holds measured samples (its marker) and owner is
 // not the session holding dir: "DIR: holds the measured samples of a gpm run
 // --hardware session (DIR/.gpm-measured); ..." or, while that session runs,

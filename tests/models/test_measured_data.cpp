@@ -86,6 +86,13 @@ TEST(MeasuredFolder, OnlyItsSessionWritesTheFolder) {
   EXPECT_TRUE(fs::exists(dir + "/samples.csv"));
 }
 
+TEST(MeasuredFolder, AMarkerThatGuardsNothingIsRemoved) {
+  const TempDir d("stale");
+  put(d / ".gpm-measured", "kind: gpm run --hardware\nsamples: samples.csv\n");  // a session killed before sampling
+  EXPECT_NO_THROW(check_output_folder(d.path.string(), {"samples.csv"}));
+  EXPECT_FALSE(fs::exists(d / ".gpm-measured"));
+}
+
 TEST(MeasuredFolder, SamplesNoSessionRecordedAreNotContinued) {
   const TempDir d("unmarked");
   put(d / "samples.csv", "sample,theta_m1,theta_m2,theta_m3,x,y\n0,1,3,5,216.5,250\n");  // e.g. gpm simulate's
