@@ -36,6 +36,7 @@ void not_available(const std::string& name, const std::string& issue) {
 
 int run_app(CLI::App& app, int argc, char** argv) {
   install_output_signal_cleanup();
+  track_command_files(true);  // every input against every output, by identity (models/output_file.hpp)
   // Ceres logs through glog; the toolkit reports solver problems itself
   // (result notes), so only fatal glog messages reach the terminal.
   FLAGS_minloglevel = google::GLOG_FATAL;

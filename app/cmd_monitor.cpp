@@ -17,6 +17,7 @@
 #include "app/commands.hpp"
 #include "calib/result_yaml.hpp"
 #include "models/errors.hpp"
+#include "models/output_file.hpp"
 #include "models/robot_yaml.hpp"
 #include "models/yaml_util.hpp"
 #include "hw/hw_errors.hpp"
@@ -47,6 +48,9 @@ void add_monitor(CLI::App& app) {
   cmd->add_option("--hardware", opt->hardware,
                   "Hardware file (hw/): monitor the operation through the twin backend or the drives");
   cmd->callback([opt] {
+    // DIR's files against every input (scenario, the files it names, model,
+    // hardware file) and not a hardware session's folder: before anything is read.
+    check_output_folder(opt->out, scenario::monitor_output_names());
     sim::Scenario s = sim::load_scenario(opt->scenario);
     Robot controller = s.controller;
     if (!opt->model.empty()) controller = load_robot(opt->model);

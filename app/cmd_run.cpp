@@ -10,9 +10,12 @@
 #include <unistd.h>
 
 #include "app/commands.hpp"
+#include "hw/hardware_config.hpp"
 #include "hw/hw_errors.hpp"
 #include "hw/procedures/stop_on_signal.hpp"
 #include "models/errors.hpp"
+#include "models/measured_data.hpp"
+#include "models/output_file.hpp"
 #include "run/run_spec.hpp"
 #include "run/runner.hpp"
 
@@ -89,19 +92,29 @@ void add_run(CLI::App& app) {
   cmd->add_flag("-q,--quiet", opt->quiet, "No progress lines");
   cmd->add_flag("--resume", opt->resume, "With --hardware: continue DIR/samples.csv of a stopped run (same plan)");
   cmd->callback([opt] {
+    // Every file DIR gets, against every input the run reads (scenario, the
+    // files it names, hardware file): refused before anything is parsed.
+    for (const std::string& name : scenario::run_output_names())
+      declare_output((std::filesystem::path(opt->out) / name).string());
     scenario::RunSpec spec = scenario::load_run_spec(opt->scenario);
     if (!opt->hardware.empty()) spec.hardware = opt->hardware;
+    if (opt->resume && !spec.hardware)
+      throw InputError(fmt::format("--resume continues the measured samples of a hardware run: give --hardware "
+                                   "HW.yaml (or hardware: in {})",
+                                   opt->scenario));
     spec.hardware_resume = opt->resume;
-    std::string samples_path;
+    std::optional<MeasuredFolder> measured;  // models/measured_data.hpp
     if (spec.hardware) {
-      // Samples are appended to DIR/samples.csv as they are taken (nothing measured is lost).
-      std::error_code ec;
-      std::filesystem::create_directories(opt->out, ec);
-      if (ec || !std::filesystem::is_directory(opt->out))
-        throw InputError(fmt::format("{}: cannot create the output folder ({})", opt->out,
-                                     ec ? ec.message() : "exists and is not a folder"));
-      samples_path = (std::filesystem::path(opt->out) / "samples.csv").string();
+      // A bad hardware file is refused before the folder is made; then DIR is
+      // marked and locked for this session: samples are appended to
+      // DIR/samples.csv as they are taken (nothing measured is lost), and no
+      // other command writes DIR.
+      hw::load_hardware_config(*spec.hardware);
+      measured.emplace(opt->out, "gpm run --hardware", "samples.csv");
+    } else {
+      check_output_folder(opt->out, {});  // not a file, not a hardware session's folder
     }
+    const std::string samples_path = measured ? measured->samples_path() : std::string();
     const bool show = !opt->quiet && ::isatty(STDERR_FILENO);
     std::optional<scenario::RunOutcome> ran;
     try {  // a stopped hardware session: drives disabled, samples kept (hw/README.md)
@@ -117,7 +130,7 @@ void add_run(CLI::App& app) {
       return;
     }
     const scenario::RunOutcome& outcome = *ran;
-    scenario::write_run(outcome, opt->out);
+    scenario::write_run(outcome, opt->out, measured ? &*measured : nullptr);
     print_summary(outcome, opt->out);
     set_exit(outcome.passed() ? 0 : 1);
   });

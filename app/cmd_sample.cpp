@@ -14,6 +14,8 @@
 #include "hw/procedures/session_plan.hpp"
 #include "hw/procedures/stop_on_signal.hpp"
 #include "models/errors.hpp"
+#include "models/measured_data.hpp"
+#include "models/output_file.hpp"
 
 namespace gpm::cli {
 namespace {
@@ -27,6 +29,10 @@ void run_sample(const SampleArgs& a) {
   if (a.poses.empty() == a.scenario.empty()) {
     throw InputError("gpm sample: give exactly one of --poses POSES.yaml or --scenario S.yaml");
   }
+  // Never one of the inputs, nor the samples file of a gpm run --hardware
+  // folder (models/measured_data.hpp), before anything is read.
+  declare_output(a.out);
+  refuse_measured_file(a.out);
   const hw::HardwareConfig config = hw::load_hardware_config(a.hardware);
   hw::SessionPlan plan = a.poses.empty() ? hw::plan_from_scenario(a.scenario) : hw::load_poses_plan(a.poses);
   plan.modes = config.modes;

@@ -9,6 +9,7 @@
 
 #include "app/commands.hpp"
 #include "models/errors.hpp"
+#include "models/output_file.hpp"
 #include "calib/model_test.hpp"
 #include "run/sampling_design.hpp"
 #include "sim/simulate.hpp"
@@ -31,6 +32,9 @@ void add_simulate(CLI::App& app) {
   cmd->add_option("-o,--out", opt->out, "Output folder")->required();
   cmd->callback([opt] {
     const auto t0 = std::chrono::steady_clock::now();
+    // DIR's files against every input (the scenario and the files it names),
+    // and not a hardware session's folder: before anything is read.
+    check_output_folder(opt->out, sim::simulation_output_names());
     sim::Scenario s = sim::load_scenario(opt->scenario);
     // `designed` and `trajectory` plans: poses designed for the default gauge.
     scenario::design_sampling(s, default_free_mask(),

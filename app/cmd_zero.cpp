@@ -25,6 +25,7 @@
 #include "models/pose_layouts.hpp"
 #include "hw/hardware_config.hpp"
 #include "hw/hw_errors.hpp"
+#include "hw/procedures/sampling_session.hpp"
 #include "hw/procedures/section3_offsets.hpp"
 #include "hw/procedures/stop_on_signal.hpp"
 #include "hw/procedures/zero_offset_search.hpp"
@@ -121,7 +122,14 @@ std::string offsets_yaml(const Robot& controller, const Eigen::Vector3d& offsets
   return y;
 }
 
+// The files gpm zero writes into its output folder.
+const std::vector<std::string> kZeroOutputs{"report.md", "report.html", "offsets.yaml", "trace.csv",
+                                            "section3_samples.csv"};
+
 void run_zero(const ZeroArgs& a) {
+  // The output folder against every input (hardware file, model, the files
+  // they name) and not a hardware session's folder, before anything is read.
+  if (!a.out.empty()) check_output_folder(a.out, kZeroOutputs);
   const hw::ZeroMethod method = parse_method(a.method);
   std::vector<std::optional<Eigen::Vector2d>> starts;
   for (const std::string& s : a.starts) starts.emplace_back(parse_point(s));
@@ -141,6 +149,19 @@ void run_zero(const ZeroArgs& a) {
   base.circle_dwell_s = a.dwell;
   base.sensor_joint = a.sensor_joint - 1;
   hw::validate_zero_search_options(base);
+  // The poses known before the first motion, against the hardware's limits:
+  // every --start the runs jog to, and the comparison's section-3 poses.
+  const std::vector<Eigen::Vector2d> section3_poses = circle_points(base.reference, a.radius, 12);
+  {
+    const auto robot = hw::make_hardware(config);  // nothing moves
+    std::vector<Eigen::Vector2d> jogs;
+    for (const auto& s : starts)
+      if (s) jogs.push_back(*s);
+    hw::SessionPlan jog_plan = hw::section3_plan(jogs, base.sensor_joint);
+    jog_plan.dither_mm = 0.0;
+    hw::check_plan_poses(*robot, jog_plan);
+    if (a.compare) hw::check_plan_poses(*robot, hw::section3_plan(section3_poses, base.sensor_joint));
+  }
 
   std::ofstream trace;
   if (!a.out.empty()) {
@@ -195,14 +216,13 @@ void run_zero(const ZeroArgs& a) {
     row.method = "lm ml (offsets only)";
     try {
       auto robot = hw::make_hardware(config);
-      const std::string csv = a.out.empty()
-                                  ? (std::filesystem::temp_directory_path() /
-                                     fmt::format("gpm_zero_section3_{}.csv", ::getpid())).string()
-                                  : (std::filesystem::path(a.out) / "section3_samples.csv").string();
-      std::filesystem::remove(csv);
-      const hw::Section3Offsets s = hw::section3_offsets(
-          *robot, circle_points(base.reference, a.radius, 12), base.sensor_joint, csv, signals.flag());
-      if (a.out.empty()) std::filesystem::remove(csv);
+      // Without -o the samples are kept in memory only (written in place to
+      // /dev/null): no temporary to leave behind on any path.
+      const std::string csv =
+          a.out.empty() ? std::string("/dev/null") : (std::filesystem::path(a.out) / "section3_samples.csv").string();
+      if (!a.out.empty()) std::filesystem::remove(csv);
+      const hw::Section3Offsets s =
+          hw::section3_offsets(*robot, section3_poses, base.sensor_joint, csv, signals.flag());
       row.offsets = s.offsets;
       row.motions = s.motions;
       row.robot_s = s.robot_time_s;

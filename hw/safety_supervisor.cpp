@@ -88,6 +88,30 @@ std::string SafetySupervisor::check_pose(const Eigen::Vector3d& theta_m,
   return why;
 }
 
+std::string SafetySupervisor::check_path(const std::vector<Eigen::Vector3d>& q,
+                                         const std::array<JointMode, 3>& mode) const {
+  const double dt = period_s();
+  Eigen::Vector3d v_prev = Eigen::Vector3d::Zero();
+  for (std::size_t k = 0; k < q.size(); ++k) {
+    const std::string why = check_pose(q[k], mode);
+    if (!why.empty()) return fmt::format("point {} of the path: {}", k, why);
+    if (k == 0) continue;
+    const Eigen::Vector3d v = (q[k] - q[k - 1]) / dt;
+    for (int i = 0; i < 3; ++i) {
+      if (mode[i] != JointMode::kPosition) continue;
+      if (std::abs(v[i]) > limits_.max_velocity[i] * (1 + kRel))
+        return fmt::format("point {} of the path: joint {} at {:.4f} rad/s, above max_velocity {} rad/s", k, i + 1,
+                           v[i], limits_.max_velocity[i]);
+      const double a = (v[i] - v_prev[i]) / dt;
+      if (k >= 2 && std::abs(a) > limits_.max_acceleration[i] * (1 + kRel) + 1e-9)
+        return fmt::format("point {} of the path: joint {} at {:.4f} rad/s^2, above max_acceleration {} rad/s^2", k,
+                           i + 1, a, limits_.max_acceleration[i]);
+    }
+    v_prev = v;
+  }
+  return {};
+}
+
 std::string SafetySupervisor::check(const HardwareCommand& cmd) const {
   const int n = position_count(cmd.mode);
   if (n == 1) {

@@ -8,6 +8,7 @@
 
 #include <memory>
 #include <string>
+#include <vector>
 
 #include "hw/clock.hpp"
 #include "hw/robot_hardware.hpp"
@@ -33,6 +34,12 @@ class SafetySupervisor final : public RobotHardware {
   // they put it at; the others are free). The one pose check of every
   // procedure (sampling poses, zero-search points and circles).
   std::string check_pose(const Eigen::Vector3d& theta_m, const std::array<JointMode, 3>& mode) const;
+  // Why the joint path q (encoder space, one command per period_s()) would
+  // be refused, naming the first bad point (empty when every command is
+  // allowed): each point by check_pose for mode, the steps and their changes
+  // by the velocity and acceleration limits of the position joints. For a
+  // procedure that knows its path before the robot moves (gpm monitor).
+  std::string check_path(const std::vector<Eigen::Vector3d>& q, const std::array<JointMode, 3>& mode) const;
   // Number of commands refused so far.
   long rejected_count() const { return rejected_; }
   // True while the robot brakes or holds because no valid command came.

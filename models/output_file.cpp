@@ -6,6 +6,9 @@
 #include <cstring>
 #include <filesystem>
 #include <fstream>
+#include <mutex>
+#include <optional>
+#include <utility>
 
 #include <fcntl.h>
 #include <sys/stat.h>
@@ -14,6 +17,7 @@
 #include <fmt/format.h>
 
 #include "models/errors.hpp"
+#include "models/measured_data.hpp"
 
 namespace gpm {
 
@@ -57,6 +61,34 @@ bool same_file(const std::string& a, const std::string& b) {
   struct stat sa {}, sb {};
   if (::stat(a.c_str(), &sa) != 0 || ::stat(b.c_str(), &sb) != 0) return false;
   return sa.st_dev == sb.st_dev && sa.st_ino == sb.st_ino;
+}
+
+// ---- the files of one command (inputs and outputs), by identity ------------
+
+using Identity = std::pair<dev_t, ino_t>;
+
+// Device and inode of an existing regular file (links followed): only a
+// regular file is replaced by an output (a device or FIFO is written in place).
+std::optional<Identity> regular_identity(const std::string& path) {
+  struct stat st {};
+  if (::stat(path.c_str(), &st) != 0 || !S_ISREG(st.st_mode)) return std::nullopt;
+  return Identity{st.st_dev, st.st_ino};
+}
+
+struct CommandFiles {
+  std::mutex mutex;
+  bool on = false;
+  std::vector<std::pair<std::string, Identity>> inputs;  // as read
+  std::vector<std::string> outputs;                      // as declared
+};
+
+CommandFiles& command_files() {
+  static CommandFiles files;
+  return files;
+}
+
+std::string input_output_refusal(const std::string& output, const std::string& input) {
+  return fmt::format("{}: is also an input of this command ({}); choose another output", output, input);
 }
 
 void write_text(const std::string& file, const std::string& text, const std::string& given) {
@@ -134,9 +166,52 @@ void refuse_output_equal_to_input(const std::string& output, const std::vector<s
   }
 }
 
+void track_command_files(bool on) {
+  CommandFiles& c = command_files();
+  const std::lock_guard<std::mutex> lock(c.mutex);
+  c.on = on;
+  c.inputs.clear();
+  c.outputs.clear();
+}
+
+void note_input(const std::string& path) {
+  CommandFiles& c = command_files();
+  const std::lock_guard<std::mutex> lock(c.mutex);
+  if (!c.on) return;
+  const std::optional<Identity> id = regular_identity(path);
+  if (!id) return;  // missing (the reader says so) or not a regular file
+  for (const std::string& out : c.outputs)
+    if (regular_identity(out) == id) throw InputError(input_output_refusal(out, path));
+  for (const auto& [p, known] : c.inputs)
+    if (known == *id) return;
+  c.inputs.emplace_back(path, *id);
+}
+
+void declare_output(const std::string& path) {
+  CommandFiles& c = command_files();
+  const std::lock_guard<std::mutex> lock(c.mutex);
+  if (!c.on || path.empty()) return;
+  if (const std::optional<Identity> id = regular_identity(path))
+    for (const auto& [in, known] : c.inputs)
+      if (known == *id) throw InputError(input_output_refusal(path, in));
+  for (const std::string& out : c.outputs)
+    if (out == path) return;
+  c.outputs.push_back(path);
+}
+
+void check_output_folder(const std::string& dir, const std::vector<std::string>& names, const MeasuredFolder* owner) {
+  if (dir.empty()) throw InputError("output folder name is empty");
+  std::error_code ec;
+  if (fs::exists(dir, ec) && !fs::is_directory(dir, ec))
+    throw InputError(fmt::format("{}: exists and is not a folder", dir));
+  refuse_measured_folder(dir, owner);
+  for (const std::string& n : names) declare_output((fs::path(dir) / n).string());
+}
+
 OutputFile::OutputFile(const std::string& path, const std::vector<std::string>& inputs) : path_(path) {
   if (path.empty()) throw InputError("output file name is empty");
   refuse_output_equal_to_input(path, inputs);
+  declare_output(path);
   const fs::path target = resolve_links(fs::path(path), path);
   target_ = target.string();
   struct stat st {};
@@ -149,6 +224,7 @@ OutputFile::OutputFile(const std::string& path, const std::vector<std::string>& 
       return;
     }
   }
+  refuse_measured_file(target_);
   const fs::path dir = target.parent_path().empty() ? fs::path(".") : target.parent_path();
   std::error_code ec;
   if (!fs::is_directory(dir, ec))
@@ -223,14 +299,16 @@ void commit_output_file(const std::string& tmp, const std::string& path) {
 
 // ---- folders ----------------------------------------------------------------
 
-OutputFolder::OutputFolder(const std::string& dir, const std::vector<std::string>& inputs)
-    : dir_(dir), inputs_(inputs) {
+OutputFolder::OutputFolder(const std::string& dir, const std::vector<std::string>& inputs,
+                           const MeasuredFolder* owner)
+    : dir_(dir), inputs_(inputs), owner_(owner) {
   if (dir.empty()) throw InputError("output folder name is empty");
   const fs::path target = resolve_links(fs::path(dir), dir);
   target_ = target.string();
   std::error_code ec;
   if (fs::exists(target, ec) && !fs::is_directory(target, ec))
     throw InputError(fmt::format("{}: exists and is not a folder", dir));
+  refuse_measured_folder(target_, owner_);
   if (!fs::exists(target, ec)) {
     // Creates the missing folders; only the last one is removed again.
     fs::create_directories(target, ec);
@@ -272,6 +350,7 @@ std::string OutputFolder::staged_path(const std::string& name) {
   const std::string p = (fs::path(stage_) / name).string();
   for (const std::string& n : names_)
     if (n == name) return p;
+  declare_output((fs::path(dir_) / name).string());  // against the inputs tracked, before it is written
   names_.push_back(name);
   register_temporary(p);
   return p;
@@ -282,6 +361,7 @@ void OutputFolder::add(const std::string& name, const std::string& text) {
 }
 
 void OutputFolder::commit() {
+  refuse_measured_folder(target_, owner_);  // a hardware session may have begun meanwhile
   // Every file is checked before any is moved: a refusal leaves dir as it was.
   std::vector<OutputFile> targets;
   targets.reserve(names_.size());

@@ -6,7 +6,11 @@
 //   replaced; a folder or a socket is refused;
 // - a symbolic link is followed: its target is replaced, the link stays;
 // - an output that is also an input of the command (same device and inode)
-//   is refused;
+//   is refused, whichever the command meets first: the command line tracks
+//   every file a command reads (note_input, called by the readers) and every
+//   file it will write (declare_output, check_output_folder);
+// - a folder holding measured samples is written only by its hardware
+//   session (models/measured_data.hpp);
 // - temporaries are removed on every exit path: destructors on errors, and
 //   on SIGINT/SIGTERM/SIGHUP the handler of install_output_signal_cleanup().
 // Every refusal is an InputError naming the path.
@@ -17,12 +21,15 @@
 
 namespace gpm {
 
+class MeasuredFolder;
+
 // One output file being written.
 class OutputFile {
  public:
   // Prepares writing path: resolves symbolic links, refuses a folder, a
-  // socket, a missing folder and any of inputs (same file), and creates the
-  // temporary (so an unwritable folder fails here, before any work).
+  // socket, a missing folder, any of inputs or of the inputs tracked
+  // (same file), a measured samples file (refuse_measured_file), and creates
+  // the temporary (so an unwritable folder fails here, before any work).
   explicit OutputFile(const std::string& path, const std::vector<std::string>& inputs = {});
   // Removes the temporary unless committed.
   ~OutputFile();
@@ -61,16 +68,42 @@ void write_output_file(const std::string& path, const std::string& text,
 // output names an existing file that is one of inputs (device and inode).
 void refuse_output_equal_to_input(const std::string& output, const std::vector<std::string>& inputs);
 
+// ---- every input against every output of one command (file identity) ------
+// While tracking is on (the gpm command line turns it on for its command),
+// every file a reader opens (load_yaml_file, read_samples_csv: the files a
+// scenario or a hardware file names too) is noted, every output path is
+// declared, and an output that is the same regular file as an input (device
+// and inode, links followed) throws InputError "OUTPUT: is also an input of
+// this command (INPUT); choose another output", whichever of the two came
+// first: a command that declares its outputs before it reads is refused
+// before it parses anything. Off (the default, e.g. in the Python module):
+// nothing is kept.
+void track_command_files(bool on);
+// Notes an input the command reads (before reading it); throws as above.
+void note_input(const std::string& path);
+// Declares an output the command will write; throws as above.
+void declare_output(const std::string& path);
+
+// Checks an output folder before any work: refuses a path that exists and
+// is not a folder and a folder holding measured samples unless owner is its
+// session (models/measured_data.hpp), and declares dir/NAME for each of names
+// (the files the command writes there). Creates nothing.
+void check_output_folder(const std::string& dir, const std::vector<std::string>& names,
+                         const MeasuredFolder* owner = nullptr);
+
 // A folder of outputs written all or nothing: files are staged in a hidden
 // folder inside dir and moved into place by commit(), each by the policy of
 // OutputFile (a file of dir that is a symlink or a device is followed or
 // written in place). Other files of dir are kept. A folder created here is
-// removed again when nothing was committed.
+// removed again when nothing was committed. A folder holding measured
+// samples is refused (at construction and again at commit) unless owner is
+// its hardware session.
 class OutputFolder {
  public:
-  // Creates dir when missing; throws InputError when it is not a folder or
-  // cannot be written.
-  explicit OutputFolder(const std::string& dir, const std::vector<std::string>& inputs = {});
+  // Creates dir when missing; throws InputError when it is not a folder,
+  // cannot be written or holds another session's measured samples.
+  explicit OutputFolder(const std::string& dir, const std::vector<std::string>& inputs = {},
+                        const MeasuredFolder* owner = nullptr);
   // Removes the staging folder, and dir when it was created here and nothing
   // was committed.
   ~OutputFolder();
@@ -90,6 +123,7 @@ class OutputFolder {
  private:
   std::string dir_, target_, stage_;  // as given, links resolved, the staging folder
   std::vector<std::string> inputs_, names_;
+  const MeasuredFolder* owner_ = nullptr;
   bool created_ = false, committed_ = false;
 };
 

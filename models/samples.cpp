@@ -8,6 +8,7 @@
 
 #include "models/bounds.hpp"
 #include "models/errors.hpp"
+#include "models/output_file.hpp"
 #include "models/robot_yaml.hpp"
 #include "models/yaml_util.hpp"
 
@@ -140,6 +141,7 @@ Samples parse_samples_csv(const std::string& text, const std::string& file) {
 }
 
 Samples read_samples_csv(const std::string& path) {
+  note_input(path);  // models/output_file.hpp: never also an output of the command
   return parse_samples_csv(read_input_file(path, limits::kMaxCsvBytes), path);
 }
 

@@ -11,6 +11,7 @@
 
 #include "models/bounds.hpp"
 #include "models/errors.hpp"
+#include "models/output_file.hpp"
 #include "models/parameters.hpp"
 
 namespace gpm {
@@ -143,6 +144,7 @@ YAML::Node load_yaml_string(const std::string& text, const std::string& file) {
 }
 
 YAML::Node load_yaml_file(const std::string& file) {
+  note_input(file);  // models/output_file.hpp: never also an output of the command
   return load_yaml_string(read_input_file(file, limits::kMaxYamlBytes), file);
 }
 

@@ -274,7 +274,6 @@ MonitorOutcome run_monitor_hardware(const sim::Scenario& s, const std::string& h
     if (!r.ok)
       throw InputError(fmt::format("{}: operation.path: point ({:.3f}, {:.3f}): {}", s.file, p.x(), p.y(), r.reason));
   }
-
   mon::MonitorSettings ms;
   ms.geometry = controller.geometry;
   ms.prior_sigma = prior_sigma;
@@ -288,6 +287,25 @@ MonitorOutcome run_monitor_hardware(const sim::Scenario& s, const std::string& h
   auto md = std::make_unique<mon::MonitorData>(mon::make_monitor_data(out.model));
 
   std::unique_ptr<hw::SafetySupervisor> robot = hw::make_hardware(config);
+  // Every command of the path (a loop and its return to the start, at full
+  // speed, one per cycle) against the hardware's limits, before anything moves.
+  {
+    const double period = robot->period_s();
+    const long n = std::lround(std::min(loop, s.operation->duration_s) / period) + 3;
+    std::vector<Eigen::Vector3d> q;
+    q.reserve(static_cast<std::size_t>(n) + 1);
+    for (long k = 0; k <= n; ++k) {
+      Eigen::Vector3d m = target(static_cast<double>(k) * period);
+      if (!q.empty())
+        for (int i = 0; i < 3; ++i) m[i] = q.back()[i] + wrap_pi(m[i] - q.back()[i]);
+      q.push_back(m);
+    }
+    const std::string why = robot->check_path(q, config.modes);
+    if (!why.empty())
+      throw InputError(fmt::format("{}: operation.path is outside the safety limits of {} (nothing moved): {}", s.file,
+                                   hardware_file, why));
+  }
+
   out.hardware = robot->describe();
   hw::Motion motion(*robot, config.modes, 0.5, stop);
   motion.start();
@@ -547,6 +565,12 @@ void add_monitor_section(report::ReportDocument& doc, const MonitorOutcome& o, i
   po.x_label = "t (s)";
   po.y_label = "change since start (um at the link)";
   if (!series.empty()) doc.figure(figure, "Parameter tracks of the drift estimator", report::svg_plot(series, po));
+}
+
+const std::vector<std::string>& monitor_output_names() {
+  static const std::vector<std::string> names{"alarms.csv", "estimates.csv", "summary.json",
+                                              "report.md",  "report.html",   "tracks.svg"};
+  return names;
 }
 
 void write_monitor(const MonitorOutcome& o, const std::string& dir) {

@@ -131,6 +131,9 @@ std::vector<MonitorCheck> check_monitor(const MonitorOutcome& outcome, const Mon
 
 // Writes DIR/alarms.csv, estimates.csv, summary.json and report.md, all or nothing.
 void write_monitor(const MonitorOutcome& outcome, const std::string& dir);
+// The files write_monitor writes into DIR (for the check of DIR against
+// every input before the run: check_output_folder).
+const std::vector<std::string>& monitor_output_names();
 
 // The parts of write_monitor's output, for gpm run: alarms.csv
 // (t_s,kind,statistic,threshold,explanation), estimates.csv (t_s, then each

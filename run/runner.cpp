@@ -112,19 +112,19 @@ sim::SimulationResult sample_on_hardware(const RunSpec& spec, const std::string&
   if (cfg.dither_mm) plan.dither_mm = *cfg.dither_mm;
   sim::SimulationResult r;
   r.actual = sim::make_actual(spec.sim);
+  const hw::StopOnSignal signals;  // hw/procedures/stop_on_signal.hpp: drives off, exit 130
+  hw::SampleLog log(samples_path, spec.hardware_resume);
   {
-    const hw::StopOnSignal signals;  // hw/procedures/stop_on_signal.hpp: drives off, exit 130
-    hw::SampleLog log(samples_path, spec.hardware_resume);
     auto robot = hw::make_hardware(cfg);
     description = fmt::format("{} backend from {}", cfg.backend, *spec.hardware);
     hw::run_sampling_session(*robot, plan, log, signals.flag());
   }
-  const Samples s = read_samples_csv(samples_path);
-  for (size_t j = 0; j < s.size(); ++j) {
+  // Every sample of the file (those resumed and those just taken), in id order.
+  for (const auto& [id, row] : log.recorded()) {
     sim::SampleRecord rec;
-    rec.id = s.id[j];
-    rec.theta_m = s.theta_m[j];
-    rec.target = plan.poses[static_cast<size_t>(s.id[j])];
+    rec.id = id;
+    rec.theta_m = row.theta_m;
+    rec.target = plan.poses[static_cast<size_t>(id)];
     // Through the interface only the readings are known; the pose is the
     // target, and the true angles those of the scenario's actual robot there.
     rec.xy_mm = rec.target;
@@ -537,9 +537,17 @@ RunOutcome run_scenario(const RunSpec& spec_in, const std::string& scenario_file
   return out;
 }
 
-void write_run(const RunOutcome& o, const std::string& dir) {
+const std::vector<std::string>& run_output_names() {
+  static const std::vector<std::string> names{
+      "samples.csv", "trajectory.csv", "model.xml", "actual.yaml", "calibration.yaml", "summary.json",
+      "alarms.csv", "estimates.csv", "report.md", "report.html", "layout.svg", "residuals.svg",
+      "convergence.svg", "errors_mm.svg", "errors_offsets.svg", "tracking.svg", "monitor_tracks.svg"};
+  return names;
+}
+
+void write_run(const RunOutcome& o, const std::string& dir, const MeasuredFolder* measured) {
   // All or nothing (models/output_file.hpp); other files of the folder are kept.
-  OutputFolder out(dir, {o.scenario_file});
+  OutputFolder out(dir, {o.scenario_file}, measured);
   if (o.hardware_description.empty()) {  // with hardware the session already wrote samples.csv
     out.add("samples.csv", sim::samples_csv(o.sim.samples));
     out.add("trajectory.csv", sim::trajectory_csv(o.sim.log));

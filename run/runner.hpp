@@ -17,6 +17,10 @@
 #include "run/run_spec.hpp"
 #include "sim/simulate.hpp"
 
+namespace gpm {
+class MeasuredFolder;
+}
+
 namespace gpm::scenario {
 
 struct Check {
@@ -63,15 +67,22 @@ using Progress = std::function<void(const std::string& stage)>;
 // Runs the scenario. Throws InputError for bad input (including a
 // calibration refused as rank-deficient unless the scenario expects it).
 // With spec.hardware, the samples are taken through the robot interface and
-// appended, flushed, to samples_path as they are taken (which must not exist);
+// appended, flushed, to samples_path as they are taken (a new file, or with
+// spec.hardware_resume the stopped session's, continued);
 // the errors are then reported against the scenario's actual robot, which is
 // the truth only when that hardware simulates this scenario (twin, emulator).
 RunOutcome run_scenario(const RunSpec& spec, const std::string& scenario_file,
                         const Progress& progress = {}, const std::string& samples_path = "");
 
+// The files write_run may write into DIR (for the check of the output
+// folder against every input before the run: check_output_folder).
+const std::vector<std::string>& run_output_names();
+
 // Writes DIR/samples.csv, trajectory.csv, actual.yaml, model.xml,
 // calibration.yaml, summary.json, report.md, report.html and the figures,
-// all or nothing.
-void write_run(const RunOutcome& outcome, const std::string& dir);
+// all or nothing. With hardware the samples file is the session's (not
+// written here) and measured is the hardware session holding DIR
+// (models/measured_data.hpp), the only one that may write there.
+void write_run(const RunOutcome& outcome, const std::string& dir, const MeasuredFolder* measured = nullptr);
 
 }  // namespace gpm::scenario

@@ -162,6 +162,11 @@ std::string trajectory_csv(const TrajectoryLog& log) {
   return out;
 }
 
+const std::vector<std::string>& simulation_output_names() {
+  static const std::vector<std::string> names{"samples.csv", "trajectory.csv", "actual.yaml", "model.xml"};
+  return names;
+}
+
 void write_simulation(const SimulationResult& r, const std::string& dir) {
   OutputFolder out(dir);  // models/output_file.hpp: all files or none
   out.add("samples.csv", samples_csv(r.samples));

@@ -67,6 +67,9 @@ std::string trajectory_csv(const TrajectoryLog& log);
 // Writes the four files into dir (created if needed) all or nothing: they are
 // written to a temporary folder first, then renamed; on failure nothing is left.
 void write_simulation(const SimulationResult& r, const std::string& dir);
+// The files write_simulation writes into DIR (samples.csv, trajectory.csv,
+// actual.yaml, model.xml): for the check of DIR against every input.
+const std::vector<std::string>& simulation_output_names();
 
 // Runs the scenario and writes the same four files into dir, streaming
 // trajectory.csv into the staging folder as it is produced (memory does not

@@ -75,6 +75,9 @@ void validate_emulator_options(const EmulatorOptions& o) {
                                  "drives off before any request)",
                                  o.comms_watchdog_s));
   }
+  if (!(o.command_period_s >= 1e-4 && o.command_period_s <= 1.0))
+    throw InputError(fmt::format("--command-period: {} s is outside [0.0001, 1] s (the client's command period)",
+                                 o.command_period_s));
   const EmulatorFaults& f = o.faults;
   for (const auto& [flag, n] : {std::pair{"--drop-after-writes", f.drop_after_writes},
                                 std::pair{"--delay-after-writes", f.delay_after_writes},

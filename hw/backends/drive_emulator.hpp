@@ -50,6 +50,8 @@ struct EmulatorOptions {
   int port = 0;                            // 0: an ephemeral port (see port())
   double tick_s = 0.001;                   // plant update period (wall clock)
   double comms_watchdog_s = 0.3;           // no request this long: power stages off
+  double command_period_s = 0.004;         // the client's command period (feed-forward; gpm-drive-emulator
+                                           // gives it to the twin: twin_config_from_scenario)
   EmulatorFaults faults;
   Clock* clock = nullptr;                  // time of the plant and the watchdog (nullptr: wall clock)
 };
@@ -63,8 +65,10 @@ std::string emulator_bind_address(const std::string& name, bool allow_non_loopba
 
 // Throws InputError (one line naming the flag and the valid range) for
 // settings no drive would have: port outside 0..65535, tick or comms
-// watchdog not in (0, 60] s, negative fault counts or delay, fault axes
-// outside 0..2, a bind address that is not a numeric IPv4 address.
+// watchdog not in (0, 60] s, a command period not in [1e-4, 1] s, fault
+// counts below -1, a delay outside [0, 60] s, fault axes outside 0..2, slip
+// counts beyond +-1e6, a bind address that is not a numeric IPv4 address;
+// NaN is outside every range.
 void validate_emulator_options(const EmulatorOptions& options);
 
 class DriveEmulator {

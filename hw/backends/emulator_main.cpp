@@ -23,7 +23,6 @@ int main(int argc, char** argv) {
   CLI::App app{"gpm-drive-emulator: Modbus TCP servo-drive emulator backed by the GPM2002 twin"};
   std::string map_path, scenario;
   gpm::hw::EmulatorOptions opt;
-  double command_period = 0.004;
   app.add_option("--map", map_path, "register map YAML")->required();
   app.add_option("--scenario", scenario, "scenario YAML giving the twin's actual robot")->required();
   std::string bind = opt.bind_address;
@@ -32,8 +31,7 @@ int main(int argc, char** argv) {
   app.add_flag("--allow-non-loopback", allow_non_loopback,
                "allow --bind beyond this machine (0.0.0.0, a LAN address): no authentication");
   app.add_option("--port", opt.port, "port 0..65535 (0: ephemeral, printed)");
-  app.add_option("--command-period", command_period, "client's command period (s), for feed-forward")
-      ->check(CLI::Range(1e-4, 1.0));
+  app.add_option("--command-period", opt.command_period_s, "client's command period (s, 1e-4..1), for feed-forward");
   app.add_option("--comms-watchdog", opt.comms_watchdog_s, "drive-side comms watchdog (s)");
   app.add_option("--drop-after-writes", opt.faults.drop_after_writes, "fault: drop the connection");
   app.add_option("--delay-after-writes", opt.faults.delay_after_writes, "fault: delay replies");
@@ -58,7 +56,7 @@ int main(int argc, char** argv) {
     gpm::hw::validate_emulator_options(opt);
     const gpm::hw::RegisterMap map = gpm::hw::load_register_map(map_path);
     const gpm::hw::TwinBackendConfig twin =
-        gpm::hw::twin_config_from_scenario(scenario, command_period);
+        gpm::hw::twin_config_from_scenario(scenario, opt.command_period_s);
     gpm::hw::DriveEmulator emu(map, twin, opt);
     std::signal(SIGINT, on_signal);
     std::signal(SIGTERM, on_signal);

@@ -104,6 +104,20 @@ void Motion::settle(const sim::SettleCriterion& c, const std::string& what) {
   }
 }
 
+void Motion::check_followed(const Eigen::Vector3d& reading0, const Eigen::Vector3d& command0,
+                            const std::string& what) const {
+  for (int i = 0; i < 3; ++i) {
+    if (modes_[i] != JointMode::kPosition) continue;
+    const double commanded = std::abs(wrap_pi(command_[i] - command0[i]));
+    const double moved = std::abs(wrap_pi(state_.theta_m[i] - reading0[i]));
+    if (commanded > kFollowMinRad && !(moved >= 0.5 * commanded)) {
+      throw HardwareError(fmt::format("{}joint {} did not follow its command: commanded {:.4f} rad, its reading "
+                                      "moved {:.4f} rad (a drive that does not move, or readings that do not change)",
+                                      what, i + 1, commanded, moved));
+    }
+  }
+}
+
 Eigen::Vector3d Motion::average(double seconds) {
   const Eigen::Vector3d q = command_;
   return average_along([&q](double) { return q; }, seconds);

@@ -25,6 +25,11 @@ namespace gpm::hw {
 // d2s/du2 = pi^2 / 2.
 double motion_profile(double u);
 
+// Smallest commanded joint move (rad) that check_followed judges: 0.01 rad
+// is 2.4 mm at a 244 mm link, far beyond servo lag and the fight of drives
+// over a wrong model after settling.
+inline constexpr double kFollowMinRad = 0.01;
+
 class Motion {
  public:
   // Moves hw with the joints in modes (position or torque off), using
@@ -53,6 +58,12 @@ class Motion {
   // Holds the command until every joint is slower than c.velocity_rad_s for
   // c.hold_s; HardwareError (what, speeds) after c.timeout_s.
   void settle(const sim::SettleCriterion& c, const std::string& what);
+  // Throws HardwareError unless every position-mode joint whose command moved
+  // more than kFollowMinRad since command0 saw its reading move at least
+  // half as far since reading0: a drive that does not move, or readings that
+  // do not change, must not pass for samples. what prefixes the message.
+  void check_followed(const Eigen::Vector3d& reading0, const Eigen::Vector3d& command0,
+                      const std::string& what) const;
   // Holds the command for seconds and returns the mean reading (in [0, 2 pi)).
   Eigen::Vector3d average(double seconds);
   // Commands path(u), u = k / n for k = 1..n (n = seconds / period, at least

@@ -2,6 +2,7 @@
 
 #include <fcntl.h>
 #include <sys/file.h>
+#include <sys/stat.h>
 #include <unistd.h>
 
 #include <cerrno>
@@ -24,7 +25,9 @@ namespace {
 
 constexpr const char* kHeader = "sample,theta_m1,theta_m2,theta_m3,target_x,target_y\n";
 
-void write_all(int fd, const std::string& text, const std::string& path) {
+// Writes text whole; a regular file is then flushed to disk (fsync), a device
+// or FIFO written in place is not (it cannot be).
+void write_all(int fd, const std::string& text, const std::string& path, bool sync) {
   size_t done = 0;
   while (done < text.size()) {
     const ssize_t n = ::write(fd, text.data() + done, text.size() - done);
@@ -32,7 +35,7 @@ void write_all(int fd, const std::string& text, const std::string& path) {
     if (n <= 0) throw HardwareError(fmt::format("{}: write failed: {}", path, std::strerror(errno)));
     done += static_cast<size_t>(n);
   }
-  if (::fsync(fd) != 0) throw HardwareError(fmt::format("{}: fsync failed: {}", path, std::strerror(errno)));
+  if (sync && ::fsync(fd) != 0) throw HardwareError(fmt::format("{}: fsync failed: {}", path, std::strerror(errno)));
 }
 
 // Takes the exclusive lock of fd (one session appends to a file at a time).
@@ -51,6 +54,11 @@ void lock_or_refuse(int fd, const std::string& path) {
 }  // namespace
 
 SampleLog::SampleLog(const std::string& path, bool resume) : path_(path) {
+  struct stat st {};
+  if (::stat(path.c_str(), &st) == 0 && !S_ISREG(st.st_mode)) {
+    open_in_place(st, resume);
+    return;
+  }
   fd_ = ::open(path.c_str(), O_RDWR | O_APPEND | O_CLOEXEC);
   if (fd_ < 0) {
     if (errno != ENOENT) throw InputError(fmt::format("{}: cannot open: {}", path, std::strerror(errno)));
@@ -63,6 +71,36 @@ SampleLog::SampleLog(const std::string& path, bool resume) : path_(path) {
     ::close(fd_);
     fd_ = -1;
     throw;
+  }
+}
+
+void SampleLog::open_in_place(const struct stat& st, bool resume) {
+  if (S_ISDIR(st.st_mode)) throw InputError(fmt::format("{}: is a folder, not a samples file", path_));
+  if (S_ISSOCK(st.st_mode)) throw InputError(fmt::format("{}: is a socket, not a samples file", path_));
+  // A device or FIFO (the output policy, models/output_file.hpp): written in
+  // place, never read back, locked, truncated nor fsynced; the header is
+  // written now, so one that cannot be written is refused before anything moves.
+  if (resume) {
+    throw InputError(fmt::format("{}: is a device or FIFO: there are no recorded samples to resume; "
+                                 "give the samples file",
+                                 path_));
+  }
+  // A FIFO nobody reads fails at once (ENXIO) instead of blocking.
+  fd_ = ::open(path_.c_str(), O_WRONLY | O_NONBLOCK | O_CLOEXEC);
+  if (fd_ < 0) {
+    const int err = errno;
+    throw InputError(fmt::format("{}: cannot write: {}", path_,
+                                 err == ENXIO ? "no process reads this FIFO" : std::strerror(err)));
+  }
+  const int flags = ::fcntl(fd_, F_GETFL);
+  if (flags >= 0) ::fcntl(fd_, F_SETFL, flags & ~O_NONBLOCK);
+  in_place_ = true;
+  try {
+    write_all(fd_, kHeader, path_, false);
+  } catch (const HardwareError& e) {
+    ::close(fd_);
+    fd_ = -1;
+    throw InputError(e.what());
   }
 }
 
@@ -91,7 +129,7 @@ void SampleLog::read_existing(bool resume) {
       throw InputError(fmt::format("{}: cannot drop the torn last line: {}", path, std::strerror(errno)));
   }
   if (text.empty()) {
-    write_all(fd_, kHeader, path);  // a file without measurements: start it again
+    write_all(fd_, kHeader, path, true);  // a file without measurements: start it again
     return;
   }
   const Samples s = parse_samples_csv(text, path);
@@ -116,7 +154,11 @@ void SampleLog::read_existing(bool resume) {
     if (rows[0][k] == "target_y") cy = static_cast<int>(k);
   }
   for (size_t j = 0; j < s.size(); ++j) {
-    ids_.insert(s.id[j]);
+    if (!ids_.insert(s.id[j]).second) {
+      throw InputError(fmt::format("{}: sample {} appears twice (a session records each sample once): the file "
+                                   "was edited or joined from others; choose another output file",
+                                   path, s.id[j]));
+    }
     Recorded r;
     r.theta_m = s.theta_m[j];
     if (cx >= 0 && cy >= 0 && j + 1 < rows.size() &&
@@ -144,13 +186,14 @@ void SampleLog::append(long id, const Eigen::Vector3d& q, const Eigen::Vector2d&
     lock_or_refuse(fd, path_);  // closes fd when it throws
     fd_ = fd;
     created_ = true;
-    write_all(fd_, kHeader, path_);
+    write_all(fd_, kHeader, path_, true);
   }
   write_all(fd_,
             fmt::format("{},{},{},{},{},{}\n", id, format_exact(q[0]), format_exact(q[1]),
                         format_exact(q[2]), format_exact(target.x()), format_exact(target.y())),
-            path_);
+            path_, !in_place_);
   ids_.insert(id);
+  recorded_[id] = Recorded{q, true, target};
 }
 
 void SampleLog::close_and_discard_if_empty() {

@@ -11,6 +11,8 @@
 
 #include <Eigen/Core>
 
+struct stat;
+
 namespace gpm::hw {
 
 class SampleLog {
@@ -27,8 +29,11 @@ class SampleLog {
   // resume a file holding measurements is refused (InputError: never
   // overwrite them); a file without any row is started again. With resume its
   // complete rows are kept (a torn last line from a crash is dropped) and
-  // their ids skipped. A file that does not exist is created by the first
-  // append, so a session that records nothing leaves no file.
+  // their ids skipped; an id found twice is refused. A file that does not
+  // exist is created by the first append, so a session that records nothing
+  // leaves no file. An existing device or FIFO is written in place (the
+  // output policy): the header at once (a refusal here, before anything
+  // moves), no lock, no fsync, no resume; a folder or socket is refused.
   SampleLog(const std::string& path, bool resume);
   ~SampleLog();
   SampleLog(const SampleLog&) = delete;
@@ -43,17 +48,21 @@ class SampleLog {
   // Closes the file; removes it if this log created it and it holds no sample.
   void close_and_discard_if_empty();
   const std::string& path() const { return path_; }
-  // The rows found in the file when it was opened, by id.
+  // The rows of the file by id: those found when it was opened and those
+  // appended since.
   const std::map<long, Recorded>& recorded() const { return recorded_; }
 
  private:
   // Reads the rows of the file open on fd_ (locked), see the constructor.
   void read_existing(bool resume);
+  // Opens the device or FIFO st describes for writing in place.
+  void open_in_place(const struct stat& st, bool resume);
 
   std::string path_;
   int fd_ = -1;
   bool created_ = false;
   bool closed_ = false;
+  bool in_place_ = false;  // a device or FIFO
   std::set<long> ids_;
   std::map<long, Recorded> recorded_;
 };

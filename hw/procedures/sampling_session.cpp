@@ -77,8 +77,10 @@ class Runner {
         ++r.skipped;
         continue;
       }
+      const Eigen::Vector3d reading0 = motion_.state().theta_m, command0 = motion_.command();
       move(plan_.poses[k]);
       motion_.settle(plan_.options.settle, fmt::format("sample {}: ", id));
+      motion_.check_followed(reading0, command0, fmt::format("sample {}: ", id));
       log.append(id, average_around(plan_.poses[k]), plan_.poses[k]);
       ++r.taken;
     }
@@ -131,8 +133,7 @@ void check_resumed_plan(const Robot& controller, const SessionPlan& plan, const 
   }
 }
 
-SessionResult run_sampling_session(SafetySupervisor& hw, const SessionPlan& plan, SampleLog& log,
-                                   const std::atomic<bool>* stop) {
+void check_plan_poses(const SafetySupervisor& hw, const SessionPlan& plan) {
   if (!(plan.dither_mm >= 0.0 && plan.dither_mm <= 5.0))
     throw InputError(fmt::format("sampling dither {} mm: expected 0 to 5 mm", plan.dither_mm));
   // Every pose, with its dither figure, must be allowed before anything moves.
@@ -152,6 +153,11 @@ SessionResult run_sampling_session(SafetySupervisor& hw, const SessionPlan& plan
                                    plan.poses[k].x(), plan.poses[k].y(), figure, why));
     }
   }
+}
+
+SessionResult run_sampling_session(SafetySupervisor& hw, const SessionPlan& plan, SampleLog& log,
+                                   const std::atomic<bool>* stop) {
+  check_plan_poses(hw, plan);
   check_resumed_plan(hw.controller(), plan, log);
   Runner runner(hw, plan, stop);
   try {

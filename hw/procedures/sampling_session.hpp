@@ -61,12 +61,20 @@ inline constexpr double kSameRobotRad = 0.1;
 // kSameRobotRad of the controller's IK there (same robot). Nothing moves.
 void check_resumed_plan(const Robot& controller, const SessionPlan& plan, const SampleLog& log);
 
+// Throws InputError (naming the pose and the limit) unless every pose of
+// plan, with its dither figure, is reachable and passes hw.check_pose, and
+// for a dither outside [0, 5] mm. Nothing moves: a command that runs sessions
+// later checks their plans with this before its first motion.
+void check_plan_poses(const SafetySupervisor& hw, const SessionPlan& plan);
+
 // Runs the plan on hw (configured or not; left finalized). Samples go to log
 // as they are taken. stop (optional; StopOnSignal::flag) requests a stop.
 // Procedure convention (hw/README.md): returns what it did when it finished;
-// throws InputError before anything moves for a pose outside the limits,
+// throws InputError before anything moves for a pose outside the limits
+// (check_plan_poses) or a recorded file of another plan (check_resumed_plan),
 // HardwareError (drives disabled, samples so far on disk, the message says how
-// many and where) on a failure, Interrupted (a HardwareError) on a stop request.
+// many and where) on a failure (a position joint whose reading did not follow
+// a move is one: Motion::check_followed), Interrupted (a HardwareError) on a stop request.
 SessionResult run_sampling_session(SafetySupervisor& hw, const SessionPlan& plan, SampleLog& log,
                                    const std::atomic<bool>* stop = nullptr);
 

@@ -11,6 +11,7 @@
 
 #include <Eigen/Core>
 
+#include "hw/procedures/sampling_session.hpp"
 #include "hw/safety_supervisor.hpp"
 
 namespace gpm::hw {
@@ -23,6 +24,10 @@ struct Section3Offsets {
   double robot_time_s = 0.0;                          // session time (simulated or wall)
   bool converged = false;
 };
+
+// The sampling plan of the section-3 run: poses with sensor_joint torque-off
+// (check_plan_poses checks it before a command's first motion).
+SessionPlan section3_plan(const std::vector<Eigen::Vector2d>& poses, int sensor_joint);
 
 // Samples poses on hw (left finalized) into samples_csv (a new file) with
 // sensor_joint torque-off, then fits dth1..3 (ML cost). Throws HardwareError

@@ -50,6 +50,7 @@ class RecordingBackend final : public RobotHardware {
       : position_(start), period_(period) {}
   std::vector<HardwareCommand>* record = nullptr;  // where commands go (outlives this)
   bool fail_reads = false;
+  bool frozen = false;  // readings never change: drives that do not move
   bool wall_clock = false;  // report real (not simulated) time
   double read_delay_s = 0.0;  // each read takes this long on clock
   ManualClock* clock = nullptr;
@@ -74,7 +75,7 @@ class RecordingBackend final : public RobotHardware {
   void on_write(const HardwareCommand& c, double) override {
     if (record) record->push_back(c);
     for (int i = 0; i < 3; ++i)
-      if (c.mode[i] == JointMode::kPosition) position_[i] = c.theta_m[i];
+      if (c.mode[i] == JointMode::kPosition && !frozen) position_[i] = c.theta_m[i];
   }
 
  private:

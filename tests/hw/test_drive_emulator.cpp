@@ -12,6 +12,8 @@
 
 #include <gtest/gtest.h>
 
+#include <cmath>
+
 #include "hw/backends/drive_emulator.hpp"
 #include "hw/clock.hpp"
 #include "hw/hardware_config.hpp"
@@ -65,6 +67,12 @@ TEST(DriveEmulator, OptionsOutsideTheirRangesAreRefused) {
   refused([](EmulatorOptions& o) { o.faults.delay_s = -0.1; });
   refused([](EmulatorOptions& o) { o.faults.fault_axis = 3; });
   refused([](EmulatorOptions& o) { o.faults.drop_after_writes = -2; });
+  // NaN is outside every range (a NaN command period left the drives standing).
+  refused([](EmulatorOptions& o) { o.command_period_s = std::nan(""); });
+  refused([](EmulatorOptions& o) { o.command_period_s = 0; });
+  refused([](EmulatorOptions& o) { o.command_period_s = 2; });
+  refused([](EmulatorOptions& o) { o.comms_watchdog_s = std::nan(""); });
+  refused([](EmulatorOptions& o) { o.faults.delay_s = std::nan(""); });
   EmulatorOptions o;
   o.comms_watchdog_s = 0;
   auto emu = make(o);

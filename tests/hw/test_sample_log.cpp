@@ -1,6 +1,11 @@
 // Tests of hw/procedures/sample_log.cpp: appended rows are on disk at once, existing
-// files are never overwritten, resume keeps rows and drops a torn last line.
+// files are never overwritten, resume keeps rows and drops a torn last line and
+// refuses an id twice; a device or FIFO is written in place or refused at once.
 #include <gtest/gtest.h>
+
+#include <fcntl.h>
+#include <sys/stat.h>
+#include <unistd.h>
 
 #include "hw/procedures/sample_log.hpp"
 #include "hw_test_util.hpp"
@@ -85,7 +90,60 @@ TEST(SampleLog, NothingRecordedLeavesNoFileAndHeaderOnlyFilesAreReused) {
   SampleLog log(path.string(), false);
   log.append(0, {1, 2, 3}, {4, 5});
   EXPECT_EQ(read_samples_csv(path.string()).size(), 1u);
-  EXPECT_EQ(log.recorded().size(), 0u);
+  // recorded(): the rows found (none) and those appended since, as written.
+  ASSERT_EQ(log.recorded().size(), 1u);
+  EXPECT_EQ(log.recorded().at(0).theta_m, Eigen::Vector3d(1, 2, 3));
+  EXPECT_EQ(log.recorded().at(0).target, Eigen::Vector2d(4, 5));
+}
+
+TEST(SampleLog, ResumeRefusesAnIdTwice) {
+  const test::TempDir dir("log_dup");
+  const auto path = (dir / "s.csv").string();
+  const std::string text = "sample,theta_m1,theta_m2,theta_m3,target_x,target_y\n0,1,2,3,4,5\n1,1,2,3,4,5\n0,1,2,3,4,5\n";
+  test::write_text(path, text);
+  try {
+    SampleLog log(path, true);
+    ADD_FAILURE() << "an id twice was accepted";
+  } catch (const InputError& e) {
+    EXPECT_NE(std::string(e.what()).find("sample 0 appears twice"), std::string::npos) << e.what();
+  }
+  EXPECT_EQ(test::read_text(path), text);
+}
+
+// A device or FIFO: the header is written at once (a refusal, InputError,
+// comes before any session moves), samples in place, never fsynced, read
+// back, locked or resumed.
+TEST(SampleLog, DeviceOrFifoIsWrittenInPlaceOrRefusedAtOnce) {
+  {
+    SampleLog log("/dev/null", false);
+    EXPECT_NO_THROW(log.append(0, {1.0, 3.0, 4.5}, {216.5, 250}));
+    SampleLog second("/dev/null", false);  // not locked
+    log.close_and_discard_if_empty();
+  }
+  EXPECT_THROW(SampleLog("/dev/null", true), InputError);  // nothing to resume
+  EXPECT_THROW(SampleLog("/dev/full", false), InputError);  // the header cannot be written
+  const test::TempDir dir("log_fifo");
+  const auto fifo = (dir / "fifo").string();
+  ASSERT_EQ(::mkfifo(fifo.c_str(), 0600), 0);
+  try {
+    SampleLog log(fifo, false);
+    ADD_FAILURE() << "a FIFO nobody reads was accepted";
+  } catch (const InputError& e) {
+    EXPECT_NE(std::string(e.what()).find("no process reads this FIFO"), std::string::npos) << e.what();
+  }
+  const int reader = ::open(fifo.c_str(), O_RDONLY | O_NONBLOCK);
+  ASSERT_GE(reader, 0);
+  {
+    SampleLog log(fifo, false);
+    log.append(7, {1.0, 3.0, 4.5}, {216.5, 250});
+  }
+  char buf[256] = {};
+  const ssize_t n = ::read(reader, buf, sizeof buf - 1);
+  ::close(reader);
+  ASSERT_GT(n, 0);
+  EXPECT_EQ(std::string(buf), "sample,theta_m1,theta_m2,theta_m3,target_x,target_y\n7,1,3,4.5,216.5,250\n");
+  EXPECT_TRUE(std::filesystem::is_fifo(fifo));
+  EXPECT_THROW(SampleLog(dir.path().string(), false), InputError);  // a folder
 }
 
 }  // namespace

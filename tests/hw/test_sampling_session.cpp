@@ -15,10 +15,12 @@
 #include "hw/hardware_config.hpp"
 #include "hw/hw_errors.hpp"
 #include "hw/procedures/sampling_session.hpp"
+#include "hw/safety_supervisor.hpp"
 #include "hw_test_util.hpp"
 #include "calib/residuals.hpp"
 #include "hw/procedures/motion.hpp"  // motion_profile
 #include "models/errors.hpp"
+#include "models/kinematics.hpp"
 #include "models/samples.hpp"
 
 namespace gpm::hw {
@@ -201,6 +203,33 @@ TEST(SamplingSession, PoseOutsideTheLimitsIsRefusedBeforeMoving) {
   SampleLog log((dir / "s.csv").string(), false);
   EXPECT_THROW(run_sampling_session(*hw, p, log), InputError);
   EXPECT_EQ(hw->state(), LifecycleState::kUnconfigured);
+}
+
+// Drives that never move (e.g. the emulator given a NaN command period):
+// readings that do not change while the joints are commanded to move fail
+// the session (HardwareError, drives disabled) instead of being recorded.
+TEST(SamplingSession, ReadingsThatNeverChangeFailTheSession) {
+  const test::TempDir dir("frozen");
+  const Robot robot;
+  const Eigen::Vector3d home =
+      readings_from_active(robot.geometry, inverse_kinematics(robot.geometry, robot.home, robot.branch).theta_a);
+  auto backend = std::make_unique<test::RecordingBackend>(home);
+  backend->frozen = true;
+  SafetySupervisor hw(std::move(backend), robot, test::example_limits());
+  SessionPlan p = plan();
+  p.options.settle = {0.001, 0.02, 1.0};
+  SampleLog log((dir / "s.csv").string(), false);
+  try {
+    run_sampling_session(hw, p, log);
+    ADD_FAILURE() << "a session whose readings never changed succeeded";
+  } catch (const InputError& e) {
+    ADD_FAILURE() << e.what();
+  } catch (const HardwareError& e) {
+    EXPECT_NE(std::string(e.what()).find("sample 0: joint"), std::string::npos) << e.what();
+    EXPECT_NE(std::string(e.what()).find("did not follow its command"), std::string::npos) << e.what();
+  }
+  EXPECT_EQ(log.size(), 0u);
+  EXPECT_FALSE(fs::exists(dir / "s.csv"));
 }
 
 // Resume checks the recorded plan: another plan (poses, order) or another

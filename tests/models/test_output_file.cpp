@@ -17,30 +17,16 @@
 #include <gtest/gtest.h>
 
 #include "models/errors.hpp"
+#include "temp_files.hpp"
 
 namespace gpm {
 namespace {
 
 namespace fs = std::filesystem;
 
-// A fresh folder removed at the end of the test.
-struct TempDir {
-  fs::path path;
-  explicit TempDir(const std::string& name)
-      : path(fs::temp_directory_path() / ("gpm_output_file_test_" + name + "_" + std::to_string(::getpid()))) {
-    fs::remove_all(path);
-    fs::create_directories(path);
-  }
-  ~TempDir() { fs::remove_all(path); }
-  std::string operator/(const std::string& name) const { return (path / name).string(); }
-};
-
-std::string slurp(const std::string& p) {
-  std::ifstream in(p, std::ios::binary);
-  return {std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>()};
-}
-
-void put(const std::string& p, const std::string& text) { std::ofstream(p, std::ios::binary) << text; }
+using test::put;
+using test::slurp;
+using test::TempDir;
 
 TEST(OutputFile, TemporaryNameIsHiddenInTheSameFolder) {
   const fs::path tmp = temporary_name_for("/some/folder/video.mp4");
@@ -229,6 +215,42 @@ TEST(OutputFolder, NothingWhenNotCommittedOrRefused) {
   EXPECT_EQ(std::distance(fs::directory_iterator(d.path), fs::directory_iterator()), 1);
   put(d / "file", "x");
   EXPECT_THROW(OutputFolder(d / "file"), InputError);
+}
+
+// Every input against every output of one command, by identity, whichever
+// comes first (the command line turns tracking on; off, nothing is kept).
+TEST(CommandFiles, AnOutputThatIsAnInputIsRefusedInEitherOrder) {
+  const TempDir d("command_files");
+  put(d / "robot.yaml", "robot");
+  put(d / "summary.json", "summary");
+  fs::create_symlink(d.path / "robot.yaml", d.path / "alias.yaml");
+  track_command_files(true);
+  // Declared first (a command's output folder), read later (a file a scenario names).
+  declare_output(d / "summary.json");
+  declare_output(d / "missing.csv");  // not there yet: nothing to compare
+  try {
+    note_input(d / "summary.json");
+    ADD_FAILURE() << "not refused";
+  } catch (const InputError& e) {
+    EXPECT_NE(std::string(e.what()).find("summary.json: is also an input of this command"), std::string::npos)
+        << e.what();
+  }
+  // Read first, declared later: a link to the input is the same file.
+  note_input(d / "robot.yaml");
+  EXPECT_THROW(declare_output(d / "alias.yaml"), InputError);
+  EXPECT_NO_THROW(declare_output(d / "other.yaml"));
+  EXPECT_NO_THROW(note_input("/dev/null"));  // devices and FIFOs are written in place, never replaced
+  EXPECT_NO_THROW(declare_output("/dev/null"));
+  // OutputFile and OutputFolder declare their files.
+  EXPECT_THROW(write_output_file(d / "robot.yaml", "replaced"), InputError);
+  {
+    OutputFolder out(d.path.string());
+    EXPECT_THROW(out.add("alias.yaml", "replaced"), InputError);
+  }
+  EXPECT_EQ(slurp(d / "robot.yaml"), "robot");
+  track_command_files(false);  // off: nothing kept, nothing refused
+  EXPECT_NO_THROW(note_input(d / "summary.json"));
+  EXPECT_NO_THROW(declare_output(d / "robot.yaml"));
 }
 
 }  // namespace

@@ -1,0 +1,108 @@
+// Tests of models/measured_data.cpp, the measured-data guard: a hardware
+// session marks and locks its folder; no other writer (OutputFolder,
+// OutputFile) touches it; only a session of the same kind continues it, one
+// at a time; a session that records nothing leaves nothing behind.
+#include "models/measured_data.hpp"
+
+#include <filesystem>
+#include <fstream>
+#include <iterator>
+#include <string>
+
+#include <unistd.h>
+
+#include <gtest/gtest.h>
+
+#include "models/errors.hpp"
+#include "models/output_file.hpp"
+#include "temp_files.hpp"
+
+namespace gpm {
+namespace {
+
+namespace fs = std::filesystem;
+
+using test::put;
+using test::slurp;
+using test::TempDir;
+
+// The InputError message of f (empty when it does not throw one).
+template <class F>
+std::string refusal(F&& f) {
+  try {
+    f();
+  } catch (const InputError& e) {
+    return e.what();
+  }
+  return {};
+}
+
+constexpr const char* kKind = "gpm run --hardware";
+
+TEST(MeasuredFolder, NothingRecordedLeavesNothing) {
+  const TempDir d("nothing");
+  {
+    const MeasuredFolder m(d / "run", kKind, "samples.csv");
+    EXPECT_TRUE(fs::exists(d / "run/.gpm-measured"));
+    EXPECT_EQ(m.samples_path(), d / "run/samples.csv");
+  }
+  EXPECT_FALSE(fs::exists(d / "run"));  // made here, removed again
+  {
+    const MeasuredFolder m(d.path.string(), kKind, "samples.csv");
+  }
+  EXPECT_TRUE(fs::is_empty(d.path));  // an existing folder stays, without the marker
+}
+
+TEST(MeasuredFolder, OnlyItsSessionWritesTheFolder) {
+  const TempDir d("guard");
+  const std::string dir = d / "run";
+  {
+    const MeasuredFolder m(dir, kKind, "samples.csv");
+    put(m.samples_path(), "sample,theta_m1,theta_m2,theta_m3,target_x,target_y\n0,1,3,5,216.5,250\n");
+    // While the session runs: its lock refuses every other writer and session.
+    EXPECT_NE(refusal([&] { OutputFolder out(dir); }).find("is recording into this folder now"), std::string::npos);
+    EXPECT_NE(refusal([&] { MeasuredFolder again(dir, kKind, "samples.csv"); }).find("another hardware session"),
+              std::string::npos);
+    // The session itself writes its outputs.
+    OutputFolder out(dir, {}, &m);
+    out.add("summary.json", "{}");
+    out.commit();
+  }
+  EXPECT_TRUE(fs::exists(dir + "/.gpm-measured"));  // samples were recorded: the marker stays
+  const std::string held = refusal([&] { OutputFolder out(dir); });
+  EXPECT_NE(held.find("holds the measured samples of a gpm run --hardware session"), std::string::npos) << held;
+  EXPECT_EQ(held.find('\n'), std::string::npos);
+  EXPECT_NE(refusal([&] { check_output_folder(dir, {"samples.csv"}); }).find("holds the measured samples"),
+            std::string::npos);
+  EXPECT_NE(refusal([&] { write_output_file(dir + "/samples.csv", "replaced"); }).find("is the measured samples file"),
+            std::string::npos);
+  EXPECT_NE(refusal([&] { refuse_measured_file(dir + "/./samples.csv"); }), "");
+  EXPECT_EQ(refusal([&] { refuse_measured_file(dir + "/notes.txt"); }), "");  // other files are not measured
+  EXPECT_EQ(slurp(dir + "/samples.csv"), "sample,theta_m1,theta_m2,theta_m3,target_x,target_y\n0,1,3,5,216.5,250\n");
+  // The same kind of session continues it (a --resume); another kind does not.
+  EXPECT_NO_THROW(MeasuredFolder(dir, kKind, "samples.csv"));
+  EXPECT_NE(refusal([&] { MeasuredFolder other(dir, "gpm zero", "samples.csv"); }).find("does not continue it"),
+            std::string::npos);
+  EXPECT_TRUE(fs::exists(dir + "/samples.csv"));
+}
+
+TEST(MeasuredFolder, AMarkerThatGuardsNothingIsRemoved) {
+  const TempDir d("stale");
+  put(d / ".gpm-measured", "kind: gpm run --hardware\nsamples: samples.csv\n");  // a session killed before sampling
+  EXPECT_NO_THROW(check_output_folder(d.path.string(), {"samples.csv"}));
+  EXPECT_FALSE(fs::exists(d / ".gpm-measured"));
+}
+
+TEST(MeasuredFolder, SamplesNoSessionRecordedAreNotContinued) {
+  const TempDir d("unmarked");
+  put(d / "samples.csv", "sample,theta_m1,theta_m2,theta_m3,x,y\n0,1,3,5,216.5,250\n");  // e.g. gpm simulate's
+  const std::string why = refusal([&] { MeasuredFolder m(d.path.string(), kKind, "samples.csv"); });
+  EXPECT_NE(why.find("no hardware session recorded it"), std::string::npos) << why;
+  EXPECT_FALSE(fs::exists(d / ".gpm-measured"));
+  put(d / "file", "x");
+  EXPECT_NE(refusal([&] { MeasuredFolder m(d / "file", kKind, "samples.csv"); }).find("is not a folder"),
+            std::string::npos);
+}
+
+}  // namespace
+}  // namespace gpm
