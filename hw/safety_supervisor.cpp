@@ -2,6 +2,7 @@
 
 #include <chrono>
 #include <cmath>
+#include <optional>
 
 #include <fmt/format.h>
 
@@ -17,6 +18,37 @@ int position_count(const std::array<JointMode, 3>& mode) {
   int n = 0;
   for (JointMode m : mode) n += m == JointMode::kPosition;
   return n;
+}
+
+// Why the readings have left the plan (empty when they have not): the
+// end-effector from the three readings with the controller model (the
+// radical centre, eq. 32-35: the torque-off joints' readings too, so a
+// five-bar that changed assembly mode shows) against the point the command in
+// force puts it at (its position-mode joints; two: in their assembly mode at
+// home). Not watched with fewer than two joints in position mode.
+std::string tracking_violation(const Robot& controller, const SafetyLimits& limits, const HardwareCommand& command,
+                               const std::array<std::array<int, 3>, 3>& pair_mode, const Eigen::Vector3d& reading) {
+  const int n = position_count(command.mode);
+  if (n < 2) return {};
+  const Geometry& g = controller.geometry;
+  const auto here = forward_kinematics(g, active_from_readings(g, reading));
+  if (!here) return {};
+  const Eigen::Vector3d commanded = active_from_readings(g, command.theta_m);
+  std::optional<Eigen::Vector2d> plan;
+  if (n == 3) {
+    if (const auto fk = forward_kinematics(g, commanded)) plan = fk->p;
+  } else {
+    int i = -1, j = -1;
+    for (int k = 0; k < 3; ++k)
+      if (command.mode[k] == JointMode::kPosition) (i < 0 ? i : j) = k;
+    plan = forward_kinematics_two(g, commanded, i, j, pair_mode[i][j]);
+  }
+  if (!plan) return {};
+  const double d = (here->p - *plan).norm();
+  if (!(d > limits.max_tracking_mm)) return {};
+  return fmt::format("tracking: the end-effector from the readings ({:.3f}, {:.3f}) mm is {:.1f} mm from where the "
+                     "command puts it ({:.3f}, {:.3f}) mm (max_tracking {} mm): drives disabled",
+                     here->p.x(), here->p.y(), d, plan->x(), plan->y(), limits.max_tracking_mm);
 }
 
 }  // namespace
@@ -259,6 +291,9 @@ void SafetySupervisor::on_read(double time_s, HardwareState& state) {
                                   "(watchdog_disable {} s): drives disabled",
                                   since, limits_.watchdog_disable_s));
   }
+  if (const std::string why = tracking_violation(controller_, limits_, last_, pair_mode_, state.theta_m);
+      !why.empty())
+    throw SafetyError(why);
   if (since > limits_.watchdog_hold_s) {
     holding_ = true;
     forward(brake_command(), time_s);
