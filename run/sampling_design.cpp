@@ -77,8 +77,13 @@ void design_sampling(sim::Scenario& s, const FreeMask& free, double sigma_rad,
     o.guard.direct = 0.06;
     // Only poses of the region, joined to home, that keeps sampling.path_margin
     // for the drives in position mode (models/drive_margin.hpp).
+    // The poses keep a little more than the path needs (0.02 on the measures,
+    // 3 mm of reach), so that the path has room to turn at them.
+    PathMargin pose_margin = s.sampling->margin;
+    pose_margin.singularity += 0.02;
+    pose_margin.reach_mm += 3.0;
     const auto region = std::make_shared<const std::set<std::pair<long, long>>>(
-        safe_region(s.controller, sim::position_drives(s), s.sampling->margin, o.grid_step_mm));
+        safe_region(s.controller, sim::position_drives(s), pose_margin, o.grid_step_mm));
     const Eigen::Vector2d home = s.controller.home;
     const double step = o.grid_step_mm;
     o.admissible = [admissible, region, home, step](const Eigen::Vector2d& p) {

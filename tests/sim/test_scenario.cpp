@@ -148,7 +148,7 @@ TEST(Scenario, PathMarginAndTrackingBound) {
   const std::string fly = "sampling: {pattern: trajectory, count: 11";
   const Scenario d = parse(fly + "}\n");
   EXPECT_EQ(d.sampling->margin, PathMargin{});
-  EXPECT_DOUBLE_EQ(d.sampling->margin.singularity, 0.2);
+  EXPECT_DOUBLE_EQ(d.sampling->margin.singularity, 0.15);
   EXPECT_DOUBLE_EQ(d.sampling->margin.reach_mm, 10.0);
   EXPECT_EQ(d.sampling->margin.tolerance, (ModelTolerance{1.0, 1.0, 0.02}));
   EXPECT_DOUBLE_EQ(d.max_tracking_mm, 20.0);
