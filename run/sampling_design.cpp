@@ -84,6 +84,12 @@ void design_sampling(sim::Scenario& s, const FreeMask& free, double sigma_rad,
     pose_margin.reach_mm += 3.0;
     const auto region = std::make_shared<const std::set<std::pair<long, long>>>(
         safe_region(s.controller, sim::position_drives(s), pose_margin, o.grid_step_mm));
+    if (static_cast<int>(region->size()) < o.count)
+      throw InputError(fmt::format(
+          "{}: sampling.path_margin: only {} points of the {} mm grid joined to home keep the margin for the drives in "
+          "position mode (singularity {:.3g}, reach_mm {:.3g}, and 0.02, 3 mm more for poses), fewer than the {} "
+          "poses: nothing moved; state a smaller margin or count",
+          s.file, region->size(), o.grid_step_mm, s.sampling->margin.singularity, s.sampling->margin.reach_mm, o.count));
     const Eigen::Vector2d home = s.controller.home;
     const double step = o.grid_step_mm;
     o.admissible = [admissible, region, home, step](const Eigen::Vector2d& p) {

@@ -13,6 +13,7 @@
 #include "calib/model_test.hpp"
 #include "models/data_dir.hpp"
 #include "models/drive_margin.hpp"
+#include "models/errors.hpp"
 #include "run/run_spec.hpp"
 #include "sim/simulate.hpp"
 
@@ -55,6 +56,22 @@ TEST(SamplingDesign, MainJobPosesAndPathKeepTheMarginOfTheDrivenFiveBar) {
   for (const Eigen::Vector2d& p : path.p)
     ASSERT_EQ(margin_violation(s.controller, p, drives, s.sampling->margin), "") << p.transpose();
   EXPECT_LE(sim::waypoint_duration(path), 15.0);  // the robot time the main job expects
+}
+
+// A margin that too few poses keep is refused before anything moves (one
+// line, exit 2), naming the key.
+TEST(SamplingDesign, AMarginTooFewPosesKeepIsRefused) {
+  RunSpec spec = load_run_spec(gpm::scenarios_dir() + "/main.yaml");
+  spec.sim.sampling->margin.singularity = 0.85;
+  try {
+    design_sampling(spec.sim, ~spec.calibration.fixed, 1e-5);
+    FAIL() << "designed inside an impossible margin";
+  } catch (const InputError& e) {
+    const std::string what = e.what();
+    EXPECT_NE(what.find("sampling.path_margin: only 0 points of the 5 mm grid joined to home keep the margin"),
+              std::string::npos) << what;
+    EXPECT_EQ(what.find('\n'), std::string::npos);
+  }
 }
 
 TEST(SamplingDesign, MainJobTracksItsPathWithin20MmOnThreeRobots) {
