@@ -75,8 +75,13 @@ void design_sampling(sim::Scenario& s, const FreeMask& free, double sigma_rad,
     o.guard.reach_mm = 12.0;
     o.guard.transmission = 0.06;
     o.guard.direct = 0.06;
+  }
+  {
     // Only poses of the region, joined to home, that keeps sampling.path_margin
-    // for the drives in position mode (models/drive_margin.hpp).
+    // for the drives in position mode (models/drive_margin.hpp): on the fly
+    // the path between them is checked and repaired too; stop-and-go moves
+    // between poses of one region (the twin's tracking watch stops a move
+    // that leaves control anyway).
     // The poses keep a little more than the path needs (0.02 on the measures,
     // 3 mm of reach), so that the path has room to turn at them.
     PathMargin pose_margin = s.sampling->margin;

@@ -213,33 +213,35 @@ SamplingPlan parse_sampling(const YAML::Node& n, const Ctx& c) {
       for (size_t i = 0; i < n["poses"].size(); ++i)
         p.poses.push_back(point(n["poses"][i], Ctx{c.file, fmt::format("{}[{}]", cp.path, i)}));
     }
+    if (const YAML::Node m = n["path_margin"]) {
+      const Ctx cm = c.at("path_margin");
+      if (!m.IsMap()) fail(cm, m, "expected a map {singularity, reach_mm, tolerance: {base_mm, link_mm, offset_rad}}");
+      yaml_check_keys(m, c.file, cm.path, {"singularity", "reach_mm", "tolerance"});
+      opt_bounded(m, "singularity", cm, 0.0, 0.9, "(a normalised measure)", p.margin.singularity);
+      opt_bounded(m, "reach_mm", cm, 0.0, 100.0, "mm", p.margin.reach_mm);
+      if (const YAML::Node t = m["tolerance"]) {
+        const Ctx ct = cm.at("tolerance");
+        if (!t.IsMap()) fail(ct, t, "expected a map {base_mm, link_mm, offset_rad}");
+        yaml_check_keys(t, c.file, ct.path, {"base_mm", "link_mm", "offset_rad"});
+        opt_bounded(t, "base_mm", ct, 0.0, 20.0, "mm", p.margin.tolerance.base_mm);
+        opt_bounded(t, "link_mm", ct, 0.0, 20.0, "mm", p.margin.tolerance.link_mm);
+        opt_bounded(t, "offset_rad", ct, 0.0, 0.2, "rad", p.margin.tolerance.offset_rad);
+      }
+    }
     if (p.pattern == PosePattern::kTrajectory) {
       opt_bounded(n, "max_speed_mm_s", c, 1.0, 1000.0, "mm/s", p.path_limits.max_speed_mm_s);
       opt_bounded(n, "max_accel_mm_s2", c, 10.0, 20000.0, "mm/s^2", p.path_limits.max_accel_mm_s2);
       p.path_limits.max_normal_mm_s2 = p.path_limits.max_accel_mm_s2;
       if (n["sample_every"])
         p.sample_every = static_cast<int>(yaml_integer(n["sample_every"], c.file, c.at("sample_every").path, 1, 1000));
-      if (const YAML::Node m = n["path_margin"]) {
-        const Ctx cm = c.at("path_margin");
-        if (!m.IsMap()) fail(cm, m, "expected a map {singularity, reach_mm, tolerance: {base_mm, link_mm, offset_rad}}");
-        yaml_check_keys(m, c.file, cm.path, {"singularity", "reach_mm", "tolerance"});
-        opt_bounded(m, "singularity", cm, 0.0, 0.9, "(a normalised measure)", p.margin.singularity);
-        opt_bounded(m, "reach_mm", cm, 0.0, 100.0, "mm", p.margin.reach_mm);
-        if (const YAML::Node t = m["tolerance"]) {
-          const Ctx ct = cm.at("tolerance");
-          if (!t.IsMap()) fail(ct, t, "expected a map {base_mm, link_mm, offset_rad}");
-          yaml_check_keys(t, c.file, ct.path, {"base_mm", "link_mm", "offset_rad"});
-          opt_bounded(t, "base_mm", ct, 0.0, 20.0, "mm", p.margin.tolerance.base_mm);
-          opt_bounded(t, "link_mm", ct, 0.0, 20.0, "mm", p.margin.tolerance.link_mm);
-          opt_bounded(t, "offset_rad", ct, 0.0, 0.2, "rad", p.margin.tolerance.offset_rad);
-        }
-      }
     }
   } else {
     fail(c.at("pattern"), n["pattern"], fmt::format("'{}' is not disc, circle, line, list, designed or trajectory", pat));
   }
+  if (p.pattern != PosePattern::kTrajectory && p.pattern != PosePattern::kDesigned && n["path_margin"])
+    fail(c.at("path_margin"), n["path_margin"], "only for pattern: designed or trajectory");
   if (p.pattern != PosePattern::kTrajectory)
-    for (const char* key : {"max_speed_mm_s", "max_accel_mm_s2", "sample_every", "path_margin"})
+    for (const char* key : {"max_speed_mm_s", "max_accel_mm_s2", "sample_every"})
       if (n[key]) fail(c.at(key), n[key], "only for pattern: trajectory");
   if (p.pattern == PosePattern::kList && p.poses.size() > static_cast<size_t>(kMaxPoses)) {
     fail(c.at("poses"), n["poses"], fmt::format("at most {} poses, got {}", kMaxPoses, p.poses.size()));

@@ -163,7 +163,7 @@ TEST(Scenario, PathMarginAndTrackingBound) {
   EXPECT_NE(error_of(fly + ", path_margin: {tolerance: {offset: 1}}}").find("sampling.path_margin.tolerance.offset"),
             std::string::npos);
   EXPECT_NE(error_of(fly + ", path_margin: 3}").find("sampling.path_margin: expected a map"), std::string::npos);
-  EXPECT_NE(error_of("sampling: {pattern: disc, radius: 10, count: 3, path_margin: {}}").find("only for pattern: trajectory"),
+  EXPECT_NE(error_of("sampling: {pattern: disc, radius: 10, count: 3, path_margin: {}}").find("only for pattern: designed or trajectory"),
             std::string::npos);
   EXPECT_NE(error_of(std::string(kMinimal) + "servo: {max_tracking_mm: -1}").find("servo.max_tracking_mm: must be from 0"),
             std::string::npos);
