@@ -55,6 +55,8 @@ TEST(SamplingDesign, MainJobPosesAndPathKeepTheMarginOfTheDrivenFiveBar) {
   const sim::WaypointPath path = sim::excitation_plan(s, s.controller, s.sampling->poses, &repair);
   for (const Eigen::Vector2d& p : path.p)
     ASSERT_EQ(margin_violation(s.controller, p, drives, s.sampling->margin), "") << p.transpose();
+  std::printf("main job: excitation path of %.1f mm, %.2f s, %d via points\n", path.length_mm,
+              sim::waypoint_duration(path), repair.vias);
   EXPECT_LE(sim::waypoint_duration(path), 15.0);  // the robot time the main job expects
 }
 
