@@ -18,6 +18,7 @@
 #include "models/output_file.hpp"
 #include "run/run_spec.hpp"
 #include "run/runner.hpp"
+#include "sim/simulate.hpp"
 
 namespace gpm::cli {
 namespace {
@@ -127,6 +128,18 @@ void add_run(CLI::App& app) {
                    interrupted ? "" : "error: ", e.what(), opt->scenario.c_str(), opt->out.c_str(),
                    spec.hardware->c_str());
       set_exit(interrupted ? hw::kInterruptedExit : 1);
+      return;
+    } catch (const sim::TrackingStop& e) {
+      // The twin's tracking watch stopped the robot: what it measured is kept.
+      OutputFolder out(opt->out, {opt->scenario});
+      out.add("samples.csv", sim::samples_csv(e.samples));
+      sim::TrajectoryLog log;
+      log.rows = e.rows;
+      out.add("trajectory.csv", sim::trajectory_csv(log));
+      out.commit();
+      std::fprintf(stderr, "gpm: error: %s; %zu samples kept in %s/samples.csv\n", e.what(), e.samples.size(),
+                   opt->out.c_str());
+      set_exit(1);
       return;
     }
     const scenario::RunOutcome& outcome = *ran;

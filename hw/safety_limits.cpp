@@ -12,7 +12,7 @@ namespace {
 constexpr const char* kKeys =
     "joint_min, joint_max, max_velocity, max_acceleration, workspace_centre, workspace_radius, "
     "workspace_margin, reach_margin, min_transmission, min_direct, max_inconsistency, "
-    "watchdog_hold, watchdog_disable, comms_timeout";
+    "watchdog_hold, watchdog_disable, comms_timeout (and optionally max_tracking)";
 
 YAML::Node required(const YAML::Node& node, const char* key, const std::string& file,
                     const std::string& kp) {
@@ -66,7 +66,7 @@ SafetyLimits safety_limits_from_yaml(const YAML::Node& node, const std::string& 
                   {"joint_min", "joint_max", "max_velocity", "max_acceleration",
                    "workspace_centre", "workspace_radius", "workspace_margin", "reach_margin",
                    "min_transmission", "min_direct", "max_inconsistency", "watchdog_hold",
-                   "watchdog_disable", "comms_timeout"});
+                   "watchdog_disable", "comms_timeout", "max_tracking"});
   const std::string& kp = keypath;
   SafetyLimits s;
   s.joint_min = triple(node, "joint_min", file, kp, false);
@@ -132,6 +132,9 @@ SafetyLimits safety_limits_from_yaml(const YAML::Node& node, const std::string& 
                      fmt::format("must be longer than watchdog_hold ({} s)", s.watchdog_hold_s));
   }
   s.comms_timeout_s = scalar(node, "comms_timeout", file, kp, 1e-4, 10.0, "in [0.0001, 10] s");
+  // The one optional key: its default is itself a limit (hw/README.md).
+  if (node["max_tracking"])
+    s.max_tracking_mm = scalar(node, "max_tracking", file, kp, 0.01, kMaxWorkspaceRadiusMm, "in [0.01, 500] mm");
   return s;
 }
 
@@ -156,6 +159,7 @@ std::string safety_limits_to_yaml(const SafetyLimits& s, int indent) {
   out += fmt::format("{}watchdog_hold: {}\n", pad, format_exact(s.watchdog_hold_s));
   out += fmt::format("{}watchdog_disable: {}\n", pad, format_exact(s.watchdog_disable_s));
   out += fmt::format("{}comms_timeout: {}\n", pad, format_exact(s.comms_timeout_s));
+  out += fmt::format("{}max_tracking: {}\n", pad, format_exact(s.max_tracking_mm));
   return out;
 }
 

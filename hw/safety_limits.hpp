@@ -1,6 +1,7 @@
 // Safety limits (constant model) enforced by the SafetySupervisor, read from
-// the `safety:` section of a hardware file. Every key is required: a config
-// that would command motion without its limits is refused (InputError, exit 2).
+// the `safety:` section of a hardware file. Every key is required (but
+// max_tracking, whose default is itself a limit): a config that would command
+// motion without its limits is refused (InputError, exit 2).
 #pragma once
 
 #include <array>
@@ -51,6 +52,11 @@ struct SafetyLimits {
   double watchdog_disable_s = 0.0;
   // A backend read or write taking longer than this is a comms failure (s).
   double comms_timeout_s = 0.0;
+  // Tracking watch (optional key `max_tracking`, default 20 mm): while active,
+  // the end-effector computed from the three readings with the controller
+  // model (the radical centre, eq. 32-35) must stay within this of the one
+  // the command in force puts it at; beyond it the drives are disabled.
+  double max_tracking_mm = 20.0;
 
   bool operator==(const SafetyLimits&) const = default;
 };

@@ -2,6 +2,8 @@
 
 #include <chrono>
 #include <cmath>
+#include <optional>
+#include <utility>
 
 #include <fmt/format.h>
 
@@ -17,6 +19,54 @@ int position_count(const std::array<JointMode, 3>& mode) {
   int n = 0;
   for (JointMode m : mode) n += m == JointMode::kPosition;
   return n;
+}
+
+// The two joints in position mode (mode holds exactly two).
+std::pair<int, int> position_pair(const std::array<JointMode, 3>& mode) {
+  int i = -1, j = -1;
+  for (int k = 0; k < 3; ++k)
+    if (mode[k] == JointMode::kPosition) (i < 0 ? i : j) = k;
+  return {i, j};
+}
+
+// Where the position-mode joints of mode at readings q put the controller's
+// end-effector: three, forward kinematics (eq. 32-34); two, their passive
+// circles in the assembly mode at home. nullopt when they cannot (collinear
+// elbows, circles that do not meet) or fewer than two are in position.
+std::optional<Eigen::Vector2d> driven_point(const Geometry& g, const Eigen::Vector3d& q,
+                                            const std::array<JointMode, 3>& mode,
+                                            const std::array<std::array<int, 3>, 3>& pair_mode) {
+  const int n = position_count(mode);
+  const Eigen::Vector3d theta_a = active_from_readings(g, q);
+  if (n == 3) {
+    if (const auto fk = forward_kinematics(g, theta_a)) return fk->p;
+    return std::nullopt;
+  }
+  if (n != 2) return std::nullopt;
+  const auto [i, j] = position_pair(mode);
+  return forward_kinematics_two(g, theta_a, i, j, pair_mode[i][j]);
+}
+
+// Why the readings have left the plan (empty when they have not): the
+// end-effector from the three readings with the controller model (the
+// radical centre, eq. 32-35: the torque-off joints' readings too, so a
+// five-bar that changed assembly mode shows) against the point the command in
+// force puts it at (its position-mode joints; two: in their assembly mode at
+// home). Not watched with fewer than two joints in position mode.
+std::string tracking_violation(const Robot& controller, const SafetyLimits& limits, const HardwareCommand& command,
+                               const std::array<std::array<int, 3>, 3>& pair_mode, const Eigen::Vector3d& reading) {
+  const int n = position_count(command.mode);
+  if (n < 2) return {};
+  const Geometry& g = controller.geometry;
+  const auto here = forward_kinematics(g, active_from_readings(g, reading));
+  if (!here) return {};
+  const std::optional<Eigen::Vector2d> plan = driven_point(g, command.theta_m, command.mode, pair_mode);
+  if (!plan) return {};
+  const double d = (here->p - *plan).norm();
+  if (!(d > limits.max_tracking_mm)) return {};
+  return fmt::format("tracking: the end-effector from the readings ({:.3f}, {:.3f}) mm is {:.1f} mm from where the "
+                     "command puts it ({:.3f}, {:.3f}) mm (max_tracking {} mm): drives disabled",
+                     here->p.x(), here->p.y(), d, plan->x(), plan->y(), limits.max_tracking_mm);
 }
 
 }  // namespace
@@ -49,19 +99,13 @@ std::string SafetySupervisor::check_workspace(const Eigen::Vector3d& q,
   if (n < 2) return {};
   const Geometry& g = controller_.geometry;
   const Eigen::Vector3d theta_a = active_from_readings(g, q);
-  Eigen::Vector2d p;
-  if (n == 3) {
-    const auto fk = forward_kinematics(g, theta_a);
-    if (!fk) return fmt::format("{}: the elbows are collinear (no forward kinematics)", what);
-    p = fk->p;
-  } else {
-    int i = -1, j = -1;
-    for (int k = 0; k < 3; ++k)
-      if (mode[k] == JointMode::kPosition) (i < 0 ? i : j) = k;
-    const auto fk = forward_kinematics_two(g, theta_a, i, j, pair_mode_[i][j]);
-    if (!fk) return fmt::format("{}: passive links {} and {} cannot meet", what, i + 1, j + 1);
-    p = *fk;
+  const std::optional<Eigen::Vector2d> driven = driven_point(g, q, mode, pair_mode_);
+  if (!driven) {
+    if (n == 3) return fmt::format("{}: the elbows are collinear (no forward kinematics)", what);
+    const auto [i, j] = position_pair(mode);
+    return fmt::format("{}: passive links {} and {} cannot meet", what, i + 1, j + 1);
   }
+  const Eigen::Vector2d p = *driven;
   const std::string why = workspace_violation(limits_, controller_, p, what);
   if (!why.empty()) return why;
   const Reach reach = check_reach(controller_, p);
@@ -283,6 +327,9 @@ void SafetySupervisor::on_read(double time_s, HardwareState& state) {
                                   "(watchdog_disable {} s): drives disabled",
                                   since, limits_.watchdog_disable_s));
   }
+  if (const std::string why = tracking_violation(controller_, limits_, last_, pair_mode_, state.theta_m);
+      !why.empty())
+    throw SafetyError(why);
   if (since > limits_.watchdog_hold_s) {
     holding_ = true;
     forward(brake_command(), time_s);

@@ -3,7 +3,9 @@
 // joint limits, workspace disc with a margin, chain reach and singularity
 // margins of the controller model, velocity and acceleration limits (also for
 // the stopping point of every accepted command), command consistency, a
-// command watchdog (hold, then disable), comms timeouts, emergency stop.
+// command watchdog (hold, then disable), comms timeouts, emergency stop, and
+// a tracking watch (the end-effector from the readings within max_tracking of
+// where the command in force puts it, else the drives are disabled).
 #pragma once
 
 #include <memory>

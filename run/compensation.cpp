@@ -43,12 +43,14 @@ double internal_preload(const Geometry& g, const Eigen::Vector2d& p, const Eigen
 
 Accuracy measure_accuracy(const Robot& actual, const sim::TwinConfig& twin,
                           const Robot& controller, const CompensationPlan& plan,
-                          unsigned long long seed, const std::string& label, Progress* progress) {
+                          unsigned long long seed, const std::string& label, Progress* progress,
+                          double max_tracking_mm) {
   Accuracy acc;
   acc.label = label;
   const sim::TwinModel model(actual, twin);
   sim::TwinState state(model, seed);
   sim::Session session = sim::make_session(model, state, controller, nullptr);
+  session.max_tracking_mm = max_tracking_mm;
 
   std::vector<double> preload;
   long id = 0;

@@ -43,10 +43,13 @@ struct Accuracy {
 };
 
 // Runs the plan on a fresh twin of `actual` driven by `controller`; with
-// progress, reports the test poses done (then the path, one more step).
+// progress, reports the test poses done (then the path, one more step). With
+// max_tracking_mm > 0 the twin loop's tracking watch is on
+// (sim::Session::max_tracking_mm: sim::TrackingStop when it trips).
 Accuracy measure_accuracy(const Robot& actual, const sim::TwinConfig& twin,
                           const Robot& controller, const CompensationPlan& plan,
-                          unsigned long long seed, const std::string& label, Progress* progress = nullptr);
+                          unsigned long long seed, const std::string& label, Progress* progress = nullptr,
+                          double max_tracking_mm = 0.0);
 
 // |P tau| for torques tau at joint configuration q of geometry g (N m).
 double internal_preload(const Geometry& g, const Eigen::Vector2d& p, const Eigen::Vector3d& tau,

@@ -123,6 +123,7 @@ MonitorOutcome run_monitor(const sim::Scenario& s, const Robot& controller,
   Robot ctrl = controller;
   ctrl.home = actual_at_start.home;
   sim::Session session = sim::make_session(twin, state, ctrl, nullptr);
+  session.max_tracking_mm = s.max_tracking_mm;  // the twin loop's tracking watch (servo.max_tracking_mm)
 
   mon::MonitorSettings ms;
   ms.geometry = controller.geometry;

@@ -514,18 +514,18 @@ RunOutcome run_scenario(const RunSpec& spec_in, const std::string& scenario_file
       return *measuring;
     };
     out.before = measure_accuracy(actual, test_twin, out.nominal, *spec.compensation, seed, "nominal",
-                                 &steps("nominal model"));
+                                 &steps("nominal model"), spec.sim.max_tracking_mm);
     if (out.calibration) {
       stage("measuring accuracy with the calibrated model");
       out.after = measure_accuracy(actual, test_twin, out.calibrated, *spec.compensation, seed, "calibrated",
-                                 &steps("calibrated model"));
+                                 &steps("calibrated model"), spec.sim.max_tracking_mm);
     }
     if (!spec.hardware) {
       stage("measuring accuracy with the actual parameters (the floor)");
       Robot truth = out.nominal;
       truth.geometry = actual.geometry;
       out.floor = measure_accuracy(actual, test_twin, truth, *spec.compensation, seed, "actual",
-                                 &steps("actual parameters"));
+                                 &steps("actual parameters"), spec.sim.max_tracking_mm);
     }
   }
   if (spec.sim.operation) {

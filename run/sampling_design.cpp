@@ -1,12 +1,52 @@
 // Run-time pose design (run/sampling_design.hpp).
 #include "run/sampling_design.hpp"
 
+#include <cmath>
+#include <deque>
+#include <memory>
+#include <set>
+#include <utility>
+
 #include <fmt/format.h>
 
 #include "calib/excitation/excitation.hpp"
+#include "models/drive_margin.hpp"
 #include "models/errors.hpp"
+#include "models/kinematics.hpp"
+#include "sim/simulate.hpp"
 
 namespace gpm::scenario {
+namespace {
+
+// Grid points (step mm, one at the robot's home) that keep the path margin
+// and are joined to home through such points (4-neighbours): a path cannot
+// leave this region without crossing a singularity of the driven mechanism,
+// so poses elsewhere could not be visited on one controlled path.
+std::set<std::pair<long, long>> safe_region(const Robot& robot, const DriveMask& drives, const PathMargin& margin,
+                                            double step) {
+  std::set<std::pair<long, long>> region;
+  const auto ok = [&](long i, long j) {
+    const Eigen::Vector2d p = robot.home + step * Eigen::Vector2d(static_cast<double>(i), static_cast<double>(j));
+    return check_reach(robot, p).ok && margin_violation(robot, p, drives, margin).empty();
+  };
+  if (!ok(0, 0)) return region;
+  std::set<std::pair<long, long>> seen{{0, 0}};
+  std::deque<std::pair<long, long>> queue{{0, 0}};
+  const long bound = static_cast<long>(std::ceil(1000.0 / step));
+  while (!queue.empty()) {
+    const auto [i, j] = queue.front();
+    queue.pop_front();
+    region.insert({i, j});
+    for (const auto& [di, dj] : {std::pair<long, long>{1, 0}, {-1, 0}, {0, 1}, {0, -1}}) {
+      const std::pair<long, long> n{i + di, j + dj};
+      if (std::abs(n.first) > bound || std::abs(n.second) > bound || !seen.insert(n).second) continue;
+      if (ok(n.first, n.second)) queue.push_back(n);
+    }
+  }
+  return region;
+}
+
+}  // namespace
 
 void design_sampling(sim::Scenario& s, const FreeMask& free, double sigma_rad,
                      const std::function<bool(const Eigen::Vector2d&)>& admissible) {
@@ -35,6 +75,32 @@ void design_sampling(sim::Scenario& s, const FreeMask& free, double sigma_rad,
     o.guard.reach_mm = 12.0;
     o.guard.transmission = 0.06;
     o.guard.direct = 0.06;
+  }
+  {
+    // Only poses of the region, joined to home, that keeps sampling.path_margin
+    // for the drives in position mode (models/drive_margin.hpp): on the fly
+    // the path between them is checked and repaired too; stop-and-go moves
+    // between poses of one region (the twin's tracking watch stops a move
+    // that leaves control anyway).
+    // The poses keep a little more than the path needs (0.02 on the measures,
+    // 3 mm of reach), so that the path has room to turn at them.
+    PathMargin pose_margin = s.sampling->margin;
+    pose_margin.singularity += 0.02;
+    pose_margin.reach_mm += 3.0;
+    const auto region = std::make_shared<const std::set<std::pair<long, long>>>(
+        safe_region(s.controller, sim::position_drives(s), pose_margin, o.grid_step_mm));
+    if (static_cast<int>(region->size()) < o.count)
+      throw InputError(fmt::format(
+          "{}: sampling.path_margin: only {} points of the {} mm grid joined to home keep the margin for the drives in "
+          "position mode (singularity {:.3g}, reach_mm {:.3g}, and 0.02, 3 mm more for poses), fewer than the {} "
+          "poses: nothing moved; state a smaller margin or count",
+          s.file, region->size(), o.grid_step_mm, s.sampling->margin.singularity, s.sampling->margin.reach_mm, o.count));
+    const Eigen::Vector2d home = s.controller.home;
+    const double step = o.grid_step_mm;
+    o.admissible = [admissible, region, home, step](const Eigen::Vector2d& p) {
+      const Eigen::Vector2d ij = (p - home) / step;
+      return region->count({std::lround(ij.x()), std::lround(ij.y())}) > 0 && (!admissible || admissible(p));
+    };
   }
   s.sampling->poses = calib::excitation::design_poses(s.controller, o).poses;
 }

@@ -19,7 +19,13 @@ std::vector<SampleRecord> sample_along(Session& s, const WaypointPath& path, int
   for (long k = 0; k <= ticks; ++k) {
     PathPoint desired;
     waypoint_at(path, k * period, desired.p, desired.v);
-    const TwinSnapshot snap = advance(s, desired);
+    TwinSnapshot snap;
+    try {
+      snap = advance(s, desired);
+    } catch (TrackingStop& stop) {  // the samples taken so far are kept
+      stop.samples = std::move(out);
+      throw;
+    }
     if (k % every != 0) {
       sum_between += snap.torque;
       last_torque = snap.torque;

@@ -18,6 +18,7 @@ namespace gpm::sim {
 // Follows path from its start (the twin should be there, at rest) and returns
 // one sample per `every` drive loop periods (every >= 1), ids from first_id;
 // target is the desired point of that instant, settled is false (in motion).
+// A tracking stop (TrackingStop of advance()) carries the samples taken before it.
 std::vector<SampleRecord> sample_along(Session& s, const WaypointPath& path, int every, long first_id);
 
 }  // namespace gpm::sim

@@ -2,6 +2,8 @@
 
 #include <cmath>
 
+#include <fmt/format.h>
+
 #include "models/kinematics.hpp"
 
 namespace gpm::sim {
@@ -42,6 +44,17 @@ TwinSnapshot advance(Session& s, const PathPoint& desired) {
     if (tick % s.log->every == 0) {
       s.log->add(LogRow{snap.time_s, desired.p, snap.ee_mm, snap.readings, snap.torque, snap.violation_m,
                         snap.growth});
+    }
+  }
+  if (s.max_tracking_mm > 0.0) {
+    const Geometry& g = s.controller.geometry;
+    const auto fk = forward_kinematics(g, active_from_readings(g, snap.readings));  // eq. 32-35
+    if (fk && (fk->p - desired.p).norm() > s.max_tracking_mm) {
+      throw TrackingStop(fmt::format(
+          "tracking: at t = {:.3f} s the end-effector from the readings (controller's model) is at ({:.3f}, {:.3f}) mm, "
+          "{:.1f} mm from the plan ({:.3f}, {:.3f}), beyond servo.max_tracking_mm {:.4g} mm: drives stopped",
+          snap.time_s, fk->p.x(), fk->p.y(), (fk->p - desired.p).norm(), desired.p.x(), desired.p.y(),
+          s.max_tracking_mm));
     }
   }
   return snap;

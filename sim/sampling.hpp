@@ -10,6 +10,7 @@
 
 #include <Eigen/Core>
 
+#include "models/errors.hpp"
 #include "models/robot.hpp"
 #include "sim/controller.hpp"
 #include "sim/trajectory.hpp"
@@ -83,6 +84,23 @@ struct Session {
   const Robot& controller;
   TrajectoryLog* log = nullptr;  // optional
   Eigen::Vector2d desired;       // the last commanded end-effector position (mm)
+  // Tracking watch: every drive loop period the end-effector is computed
+  // from the three readings with the controller's model (the radical centre,
+  // eq. 32-35: the torque-off joint's reading too, so a five-bar that changed
+  // assembly mode shows) and compared with the desired point; beyond this
+  // (mm) advance() throws TrackingStop. 0: not watched.
+  double max_tracking_mm = 0.0;
+};
+
+// The end-effector left the plan by more than Session::max_tracking_mm: the
+// run stops there (a real machine's drives would be disabled). What was
+// measured before the stop is kept: sample_along() puts its samples here and
+// run_simulation() the logged rows.
+class TrackingStop : public Error {
+ public:
+  explicit TrackingStop(const std::string& what) : Error(what) {}
+  std::vector<SampleRecord> samples;
+  std::vector<LogRow> rows;
 };
 
 // A session starting at the twin's current state, the controller commanding
@@ -92,6 +110,7 @@ Session make_session(const TwinModel& model, TwinState& state, const Robot& cont
 
 // Runs one drive loop period with the given desired point; returns the
 // snapshot sensed at its start (encoders, torques and kinematics together).
+// Throws TrackingStop when the watch of s.max_tracking_mm trips.
 TwinSnapshot advance(Session& s, const PathPoint& desired);
 
 // Follows a path from its start to its end (the twin should already be at

@@ -138,7 +138,7 @@ ActualSpec parse_actual(const YAML::Node& n, const Ctx& c, const std::string& ba
 
 void parse_servo(const YAML::Node& n, const Ctx& c, TwinConfig& t) {
   yaml_check_keys(n, c.file, c.path,
-                  {"rate_hz", "kp", "kv", "ki", "feedforward", "torque_limit", "velocity_limit", "modes"});
+                  {"rate_hz", "kp", "kv", "ki", "feedforward", "torque_limit", "velocity_limit", "modes", "max_tracking_mm"});
   opt_positive(n, "rate_hz", c, t.servo_rate_hz);
   ServoDrive d = t.drives[0];
   opt_positive(n, "kp", c, d.kp);
@@ -188,7 +188,7 @@ void parse_encoder(const YAML::Node& n, const Ctx& c, EncoderModel& e) {
 SamplingPlan parse_sampling(const YAML::Node& n, const Ctx& c) {
   yaml_check_keys(n, c.file, c.path,
                   {"pattern", "centre", "radius", "count", "from", "to", "poses", "move_speed_mm_s",
-                   "settle", "average_s", "max_speed_mm_s", "max_accel_mm_s2", "sample_every"});
+                   "settle", "average_s", "max_speed_mm_s", "max_accel_mm_s2", "sample_every", "path_margin"});
   SamplingPlan p;
   require(n, "pattern", c, "disc, circle, line, list, designed or trajectory");
   const std::string pat = yaml_string(n["pattern"], c.file, c.at("pattern").path);
@@ -227,6 +227,21 @@ SamplingPlan parse_sampling(const YAML::Node& n, const Ctx& c) {
       for (size_t i = 0; i < n["poses"].size(); ++i)
         p.poses.push_back(point(n["poses"][i], Ctx{c.file, fmt::format("{}[{}]", cp.path, i)}));
     }
+    if (const YAML::Node m = n["path_margin"]) {
+      const Ctx cm = c.at("path_margin");
+      if (!m.IsMap()) fail(cm, m, "expected a map {singularity, reach_mm, tolerance: {base_mm, link_mm, offset_rad}}");
+      yaml_check_keys(m, c.file, cm.path, {"singularity", "reach_mm", "tolerance"});
+      opt_bounded(m, "singularity", cm, 0.0, 0.9, "(a normalised measure)", p.margin.singularity);
+      opt_bounded(m, "reach_mm", cm, 0.0, 100.0, "mm", p.margin.reach_mm);
+      if (const YAML::Node t = m["tolerance"]) {
+        const Ctx ct = cm.at("tolerance");
+        if (!t.IsMap()) fail(ct, t, "expected a map {base_mm, link_mm, offset_rad}");
+        yaml_check_keys(t, c.file, ct.path, {"base_mm", "link_mm", "offset_rad"});
+        opt_bounded(t, "base_mm", ct, 0.0, 20.0, "mm", p.margin.tolerance.base_mm);
+        opt_bounded(t, "link_mm", ct, 0.0, 20.0, "mm", p.margin.tolerance.link_mm);
+        opt_bounded(t, "offset_rad", ct, 0.0, 0.2, "rad", p.margin.tolerance.offset_rad);
+      }
+    }
     if (p.pattern == PosePattern::kTrajectory) {
       opt_bounded(n, "max_speed_mm_s", c, 1.0, 1000.0, "mm/s", p.path_limits.max_speed_mm_s);
       opt_bounded(n, "max_accel_mm_s2", c, 10.0, 20000.0, "mm/s^2", p.path_limits.max_accel_mm_s2);
@@ -237,6 +252,8 @@ SamplingPlan parse_sampling(const YAML::Node& n, const Ctx& c) {
   } else {
     fail(c.at("pattern"), n["pattern"], fmt::format("'{}' is not disc, circle, line, list, designed or trajectory", pat));
   }
+  if (p.pattern != PosePattern::kTrajectory && p.pattern != PosePattern::kDesigned && n["path_margin"])
+    fail(c.at("path_margin"), n["path_margin"], "only for pattern: designed or trajectory");
   if (p.pattern != PosePattern::kTrajectory)
     for (const char* key : {"max_speed_mm_s", "max_accel_mm_s2", "sample_every"})
       if (n[key]) fail(c.at(key), n[key], "only for pattern: trajectory");
@@ -420,7 +437,10 @@ Scenario scenario_from_yaml(const YAML::Node& root, const std::string& file, con
     opt_bounded(p, "timestep_s", c.at("physics"), 1e-5, 2e-3, "s", s.twin.mjcf.timestep_s);
     s.twin.mjcf.solref_timeconst_s = std::max(s.twin.mjcf.solref_timeconst_s, 2.0 * s.twin.mjcf.timestep_s);
   }
-  if (root["servo"]) parse_servo(root["servo"], c.at("servo"), s.twin);
+  if (root["servo"]) {
+    parse_servo(root["servo"], c.at("servo"), s.twin);
+    opt_bounded(root["servo"], "max_tracking_mm", c.at("servo"), 0.0, 1000.0, "mm (0: not watched)", s.max_tracking_mm);
+  }
   const double ratio = 1.0 / (s.twin.servo_rate_hz * s.twin.mjcf.timestep_s);
   if (std::abs(ratio - std::round(ratio)) > 1e-9 * ratio || std::round(ratio) < 1.0) {
     const YAML::Node at = root["servo"] && root["servo"]["rate_hz"] ? root["servo"]["rate_hz"] : root;

@@ -15,6 +15,7 @@
 #include <Eigen/Core>
 #include <yaml-cpp/yaml.h>
 
+#include "models/drive_margin.hpp"
 #include "models/parameters.hpp"
 #include "models/robot.hpp"
 #include "sim/sampling.hpp"
@@ -51,6 +52,9 @@ struct SamplingPlan {
   // periods separate two samples.
   WaypointLimits path_limits;
   int sample_every = 4;
+  // kTrajectory: what the excitation path keeps from losing control, for the
+  // drives in position mode (`sampling.path_margin`, models/drive_margin.hpp).
+  PathMargin margin;
   // True when the poses still have to be designed (kDesigned, kTrajectory with no poses).
   bool needs_design() const {
     return (pattern == PosePattern::kDesigned || pattern == PosePattern::kTrajectory) && poses.empty();
@@ -75,6 +79,10 @@ struct Scenario {
   std::optional<Operation> operation;  // normal operation (events: in twin.events)
   int log_every = 1;
   std::uint64_t seed = 1;
+  // The twin loop stops the run when the end-effector, from the readings in
+  // the controller's model, leaves the plan by more than this (mm;
+  // `servo.max_tracking_mm`; 0: not watched).
+  double max_tracking_mm = 20.0;
 };
 
 // Values a path map may leave out where a section gives defaults (the

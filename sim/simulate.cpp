@@ -3,10 +3,12 @@
 #include <filesystem>
 #include <fstream>
 #include <optional>
+#include <stdexcept>
 #include <unistd.h>
 
 #include <fmt/format.h>
 
+#include "models/drive_margin.hpp"
 #include "models/errors.hpp"
 #include "models/kinematics.hpp"
 #include "models/output_file.hpp"
@@ -58,20 +60,36 @@ void check_path_reach(const Scenario& s, const Robot& actual, const Path& path, 
 
 void check_targets(const Scenario& s, const Robot& actual, const std::vector<Eigen::Vector2d>& poses) {
   check_poses_reach(s, actual, poses, "sampling");
-  if (s.sampling && s.sampling->pattern == PosePattern::kTrajectory && !poses.empty()) {
-    // Every millimetre of the excitation path, before anything moves.
-    const WaypointPath path = excitation_path(s.controller.home, poses, s.sampling->path_limits);
-    double since = 1e9;
-    for (std::size_t k = 0; k < path.p.size(); ++k) {
-      since += k > 0 ? (path.p[k] - path.p[k - 1]).norm() : 0.0;
-      if (since < 1.0 && k + 1 < path.p.size()) continue;
-      since = 0.0;
-      check_point(s.controller, actual, path.p[k],
-                  fmt::format("{}: sampling: excitation path at t = {:.3f} s ({:.4f}, {:.4f})", s.file, path.t[k],
-                              path.p[k].x(), path.p[k].y()));
-    }
-  }
   if (s.path) check_path_reach(s, actual, *s.path, "path");
+}
+
+DriveMask position_drives(const Scenario& s) {
+  DriveMask m{};
+  for (std::size_t i = 0; i < m.size(); ++i) m[i] = s.twin.drives[i].mode == ServoMode::kPosition;
+  return m;
+}
+
+WaypointPath excitation_plan(const Scenario& s, const Robot& actual, const std::vector<Eigen::Vector2d>& poses,
+                             PathRepair* repair) {
+  if (!s.sampling || s.sampling->pattern != PosePattern::kTrajectory || poses.empty())
+    throw std::logic_error("excitation_plan: not a trajectory plan");
+  const DriveMask drives = position_drives(s);
+  const PathMargin& margin = s.sampling->margin;
+  // Every point: the robot's limits on the controller's model and the actual
+  // mechanism (check_reach), and the margin from losing control for the
+  // drives in position mode, widened by the model's tolerance.
+  const PointCheck check = [&](const Eigen::Vector2d& p) -> std::string {
+    if (const Reach rc = check_reach(s.controller, p); !rc.ok) return rc.reason;
+    if (const Reach ra = check_reach(actual, p); !ra.ok) return "on the actual mechanism: " + ra.reason;
+    return margin_violation(s.controller, p, drives, margin);
+  };
+  try {
+    return excitation_path(s.controller.home, poses, s.sampling->path_limits, check, repair);
+  } catch (const InputError& e) {
+    throw InputError(fmt::format("{}: sampling: excitation path refused before anything moves: {} (sampling.path_margin: "
+                                 "singularity {:.3g}, reach_mm {:.3g})",
+                                 s.file, e.what(), margin.singularity, margin.reach_mm));
+  }
 }
 
 SimulationResult run_simulation(const Scenario& s, std::function<void(const LogRow&)> sink, Progress* progress) {
@@ -90,23 +108,35 @@ SimulationResult run_simulation(const Scenario& s, std::function<void(const LogR
   const std::vector<Eigen::Vector2d> poses =
       s.sampling ? plan_poses(*s.sampling, s.seed) : std::vector<Eigen::Vector2d>{};
   check_targets(s, r.actual, poses);
+  const bool in_motion = s.sampling && s.sampling->pattern == PosePattern::kTrajectory;
+  // Planned and checked before anything moves.
+  const std::optional<WaypointPath> path =
+      in_motion ? std::optional<WaypointPath>(excitation_plan(s, r.actual, poses)) : std::nullopt;
   const TwinModel model(r.actual, s.twin);
   r.model_xml = model.xml();
   TwinState state(model, derive_seed(s.seed, 2));
   r.log.every = s.log_every;
   Session session = make_session(model, state, s.controller, &r.log);
-  if (s.sampling && s.sampling->pattern == PosePattern::kTrajectory) {
-    const WaypointPath path = excitation_path(s.controller.home, poses, s.sampling->path_limits);
-    r.samples = sample_along(session, path, s.sampling->sample_every, 0);
-  } else {
-    for (size_t k = 0; k < poses.size(); ++k)
-      r.samples.push_back(take_sample(session, poses[k], static_cast<long>(k), s.sampling->options));
-  }
-  r.sampling_s = state.data->time;
-  if (s.path) {
-    const double speed = s.sampling ? s.sampling->options.move_speed_mm_s : 100.0;
-    follow_path(session, make_move(session.desired, path_at(*s.path, 0.0).p, speed));
-    follow_path(session, *s.path);
+  session.max_tracking_mm = s.max_tracking_mm;
+  try {
+    if (path) {
+      r.samples = sample_along(session, *path, s.sampling->sample_every, 0);
+    } else {
+      for (size_t k = 0; k < poses.size(); ++k)
+        r.samples.push_back(take_sample(session, poses[k], static_cast<long>(k), s.sampling->options));
+    }
+    r.sampling_s = state.data->time;
+    if (s.path) {
+      const double speed = s.sampling ? s.sampling->options.move_speed_mm_s : 100.0;
+      follow_path(session, make_move(session.desired, path_at(*s.path, 0.0).p, speed));
+      follow_path(session, *s.path);
+    }
+  } catch (TrackingStop& stop) {  // what was measured is kept
+    if (stop.samples.empty()) stop.samples = std::move(r.samples);
+    stop.rows = std::move(r.log.rows);
+    r.log.sink = nullptr;
+    if (progress) progress->finish();
+    throw;
   }
   r.max_violation_m = r.log.max_violation_m;
   r.max_torque = r.log.max_torque;
@@ -184,8 +214,17 @@ SimulationResult simulate_to_folder(const Scenario& s, const std::string& dir, P
   std::optional<Geometry> ref;
   if (thermal) ref = make_actual(s).geometry;
   out << trajectory_header(thermal);
-  SimulationResult r = run_simulation(
-      s, [&](const LogRow& row) { out << trajectory_line(row, ref ? &*ref : nullptr); }, progress);
+  SimulationResult r;
+  try {
+    r = run_simulation(
+        s, [&](const LogRow& row) { out << trajectory_line(row, ref ? &*ref : nullptr); }, progress);
+  } catch (const TrackingStop& stop) {  // the robot was stopped: what it measured is kept
+    out.close();
+    folder.add("samples.csv", samples_csv(stop.samples));
+    folder.add("actual.yaml", robot_to_yaml(make_actual(s)));
+    folder.commit();
+    throw;
+  }
   out.flush();
   if (!out) throw InputError(fmt::format("{}/trajectory.csv: cannot write file (disk full or not writable?)", dir));
   out.close();

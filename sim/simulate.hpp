@@ -7,6 +7,7 @@
 #include <string>
 #include <vector>
 
+#include "models/drive_margin.hpp"
 #include "models/progress.hpp"
 #include "models/robot.hpp"
 #include "sim/sampling.hpp"
@@ -27,7 +28,9 @@ struct SimulationResult {
 
 // Throws InputError naming the pose (or path point) and the reason when a
 // target is out of reach or within the singularity margins of the
-// controller's robot or of the actual mechanism.
+// controller's robot or of the actual mechanism (the poses, and the points of
+// the scenario's path; the excitation path of a trajectory plan is
+// excitation_plan's).
 void check_targets(const Scenario& s, const Robot& actual, const std::vector<Eigen::Vector2d>& poses);
 
 // The same check for poses that the scenario key `key` names (error text
@@ -38,8 +41,23 @@ void check_poses_reach(const Scenario& s, const Robot& actual, const std::vector
 // The same check at 201 points along a path that the scenario key `key` names.
 void check_path_reach(const Scenario& s, const Robot& actual, const Path& path, const std::string& key);
 
+// The drives of the scenario in position mode (servo.modes).
+DriveMask position_drives(const Scenario& s);
+
+// The excitation path of a trajectory plan through poses, from the
+// controller's home (sim/waypoint_path.hpp), every point of it checked before
+// anything moves against the robot's limits on the controller's model and on
+// the actual mechanism, and against sampling.path_margin for the drives in
+// position mode (models/drive_margin.hpp); via points repair the segments
+// that break it. Throws InputError (one line naming the file, the pose or
+// segment and the reason) when the margin cannot be kept.
+WaypointPath excitation_plan(const Scenario& s, const Robot& actual, const std::vector<Eigen::Vector2d>& poses,
+                             PathRepair* repair = nullptr);
+
 // Runs the scenario in memory; throws InputError for bad targets or
-// parameters, SimError if the physics diverges. With a sink the trajectory
+// parameters, SimError if the physics diverges, TrackingStop (with the
+// samples and rows logged so far) if the tracking watch of
+// servo.max_tracking_mm stops the robot. With a sink the trajectory
 // rows are handed to it as they are produced and not kept (log.rows empty).
 // With progress, the simulated time of each logged row is reported to it.
 SimulationResult run_simulation(const Scenario& s, std::function<void(const LogRow&)> sink = nullptr,

@@ -4,7 +4,12 @@
 #include <algorithm>
 #include <cmath>
 #include <limits>
+#include <optional>
 #include <stdexcept>
+
+#include <fmt/format.h>
+
+#include "models/errors.hpp"
 
 namespace gpm::sim {
 namespace {
@@ -33,6 +38,18 @@ double curvature(const Eigen::Vector2d& a, const Eigen::Vector2d& b, const Eigen
   const double cross2 = std::abs(u.x() * w.y() - u.y() * w.x());  // twice the triangle area
   const double denom = ab * bc * ca;
   return denom > 0.0 ? 2.0 * cross2 / denom : 0.0;
+}
+
+// Why some point of the straight line a -> b (every step mm, ends included)
+// breaks check; empty when none does.
+std::string chord_violation(const PointCheck& check, const Eigen::Vector2d& a, const Eigen::Vector2d& b,
+                            double step) {
+  const int n = std::max(1, static_cast<int>(std::ceil((b - a).norm() / step)));
+  for (int s = 0; s <= n; ++s) {
+    std::string why = check(a + (b - a) * (static_cast<double>(s) / n));
+    if (!why.empty()) return why;
+  }
+  return {};
 }
 
 }  // namespace
@@ -135,6 +152,75 @@ WaypointPath excitation_path(const Eigen::Vector2d& start, const std::vector<Eig
   for (int k : tour_order(start, poses))
     if ((poses[static_cast<std::size_t>(k)] - points.back()).norm() > 1e-6) points.push_back(poses[static_cast<std::size_t>(k)]);
   return make_waypoint_path(points, limits);
+}
+
+WaypointPath excitation_path(const Eigen::Vector2d& start, const std::vector<Eigen::Vector2d>& poses,
+                             const WaypointLimits& limits, const PointCheck& check, PathRepair* repair,
+                             double check_mm) {
+  if (!check) return excitation_path(start, poses, limits);
+  if (const std::string why = check(start); !why.empty())
+    throw InputError(fmt::format("the path's start ({:.3f}, {:.3f}) breaks the margin: {}", start.x(), start.y(), why));
+  for (std::size_t k = 0; k < poses.size(); ++k)
+    if (const std::string why = check(poses[k]); !why.empty())
+      throw InputError(fmt::format("pose {} ({:.3f}, {:.3f}) breaks the margin: {}", k, poses[k].x(), poses[k].y(), why));
+  std::vector<Eigen::Vector2d> points{start};
+  for (int k : tour_order(start, poses))
+    if ((poses[static_cast<std::size_t>(k)] - points.back()).norm() > 1e-6) points.push_back(poses[static_cast<std::size_t>(k)]);
+  int vias = 0;
+  std::size_t from_point = 0;  // segments before this point are unchanged since they were checked
+  for (;;) {
+    WaypointPath path = make_waypoint_path(points, limits);
+    const double t_from = path.pose_times[from_point];
+    std::size_t bad = path.p.size();
+    std::string why;
+    double since = INFINITY;
+    for (std::size_t k = 0; k < path.p.size(); ++k) {
+      if (path.t[k] < t_from) continue;
+      since += k > 0 ? (path.p[k] - path.p[k - 1]).norm() : 0.0;
+      if (since < check_mm && k + 1 < path.p.size()) continue;
+      since = 0.0;
+      why = check(path.p[k]);
+      if (!why.empty()) {
+        bad = k;
+        break;
+      }
+    }
+    if (bad == path.p.size()) {
+      if (repair) repair->vias = vias, repair->points = points;
+      return path;
+    }
+    // The segment points[seg] -> points[seg + 1] holding the bad point.
+    const auto it = std::upper_bound(path.pose_times.begin(), path.pose_times.end(), path.t[bad]);
+    const std::size_t seg =
+        std::min(points.size() - 2, static_cast<std::size_t>(std::max<std::ptrdiff_t>(0, it - path.pose_times.begin() - 1)));
+    const Eigen::Vector2d a = points[seg], b = points[seg + 1];
+    const auto refuse = [&](const std::string& reason) {
+      return InputError(fmt::format("no path from ({:.3f}, {:.3f}) to ({:.3f}, {:.3f}) keeps the margin ({}): at "
+                                    "t = {:.3f} s {}",
+                                    a.x(), a.y(), b.x(), b.y(), reason, path.t[bad], why));
+    };
+    if ((b - a).norm() < 4.0 * check_mm || vias >= 20 * static_cast<int>(poses.size()) + 20)
+      throw refuse("via points do not help");
+    // A via point: the chord's midpoint, else points off the chord on either side.
+    const Eigen::Vector2d mid = 0.5 * (a + b);
+    const Eigen::Vector2d normal = Eigen::Vector2d(a.y() - b.y(), b.x() - a.x()).normalized();
+    std::optional<Eigen::Vector2d> via;
+    for (int step = 0; step <= 30 && !via; ++step) {
+      for (int side : {1, -1}) {
+        const Eigen::Vector2d v = mid + side * 5.0 * step * normal;
+        if (check(v).empty() && chord_violation(check, a, v, check_mm).empty() &&
+            chord_violation(check, v, b, check_mm).empty()) {
+          via = v;
+          break;
+        }
+        if (step == 0) break;
+      }
+    }
+    if (!via) throw refuse("no via point within 150 mm of the chord");
+    points.insert(points.begin() + static_cast<std::ptrdiff_t>(seg) + 1, *via);
+    ++vias;
+    from_point = seg > 0 ? seg - 1 : 0;
+  }
 }
 
 void waypoint_at(const WaypointPath& path, double t, Eigen::Vector2d& p, Eigen::Vector2d& v) {

@@ -7,6 +7,8 @@
 // at rest. Pure geometry (mm, s), like sim/trajectory.hpp.
 #pragma once
 
+#include <functional>
+#include <string>
 #include <vector>
 
 #include <Eigen/Core>
@@ -44,6 +46,27 @@ WaypointPath make_waypoint_path(const std::vector<Eigen::Vector2d>& points, cons
 // tour_order, under limits.
 WaypointPath excitation_path(const Eigen::Vector2d& start, const std::vector<Eigen::Vector2d>& poses,
                              const WaypointLimits& limits);
+
+// What every point of a planned path must keep: why p is not allowed (for
+// instance gpm::margin_violation of models/drive_margin.hpp), empty when it is.
+using PointCheck = std::function<std::string(const Eigen::Vector2d&)>;
+
+// How excitation_path kept the check.
+struct PathRepair {
+  int vias = 0;               // via points put between consecutive points
+  std::vector<Eigen::Vector2d> points;  // the points the spline passes, in order (start, poses and vias)
+};
+
+// The excitation path of excitation_path, with every point of it (checked
+// every check_mm of arc) passing check. Where the spline between two
+// consecutive points leaves it, a via point is put between them (the chord's
+// midpoint, or a point up to 150 mm off the chord whose two chords keep the
+// check) and the spline is made again, until the whole path keeps it.
+// Throws InputError, before anything moves, naming the pose and the reason
+// when a pose breaks it or no via point joins two poses.
+WaypointPath excitation_path(const Eigen::Vector2d& start, const std::vector<Eigen::Vector2d>& poses,
+                             const WaypointLimits& limits, const PointCheck& check, PathRepair* repair = nullptr,
+                             double check_mm = 0.5);
 
 // Position and velocity at time t (clamped to [0, duration]; zero velocity outside).
 void waypoint_at(const WaypointPath& path, double t, Eigen::Vector2d& p, Eigen::Vector2d& v);

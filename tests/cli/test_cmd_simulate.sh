@@ -1,7 +1,9 @@
 #!/usr/bin/env bash
 # Tests of app/cmd_simulate.cpp: gpm simulate writes the four files, the same
 # seed gives identical files, bad input exits 2 with one line on stderr and
-# leaves no output behind.
+# leaves no output behind, a run the tracking watch stops exits 1 with one
+# line and keeps its samples, a trajectory whose margin cannot be kept is
+# refused (exit 2) before anything moves.
 set -u
 GPM="$1"
 SCEN="$(cd "$(dirname "$0")/../../scenarios" && pwd)"
@@ -56,5 +58,22 @@ check "missing -o" 2 "$GPM" simulate "$tmp/short.yaml"
 mkdir -p "$tmp/keep" && echo old >"$tmp/keep/samples.csv"
 check "bad run keeps old output" 2 "$GPM" simulate "$tmp/far.yaml" -o "$tmp/keep"
 holds "old file untouched" grep -qx old "$tmp/keep/samples.csv"
+
+# The tracking watch (servo.max_tracking_mm): joint 1 torque-off and encoder 2
+# 0.1 rad off its zero: the five-bar puts the hub millimetres off the plan,
+# the torque-off joint's reading shows it, and 1 mm stops the run.
+sed 's/actual: .*/actual: {geometry: {dth2: 0.1}}/; s/path: .*/servo: {modes: [torque_off, position, position], max_tracking_mm: 1}/' \
+  "$tmp/short.yaml" >"$tmp/track.yaml"
+check "tracking stop" 1 "$GPM" simulate "$tmp/track.yaml" -o "$tmp/track"
+expect_err "tracking stop line" "^gpm: error: tracking: at t = .* beyond servo.max_tracking_mm 1 mm: drives stopped$"
+holds "one line" test "$(wc -l <"$tmp/err")" -eq 1
+holds "samples kept" grep -q '^sample,theta_m1' "$tmp/track/samples.csv"
+holds "trajectory kept" test -s "$tmp/track/trajectory.csv"
+# A trajectory plan whose margin cannot be kept: exit 2 before anything moves.
+sed 's/sampling: .*/sampling: {pattern: trajectory, count: 11, path_margin: {singularity: 0.85}}/; /^path:/d' \
+  "$tmp/short.yaml" >"$tmp/margin.yaml"
+check "margin refused" 2 "$GPM" simulate "$tmp/margin.yaml" -o "$tmp/margin"
+expect_err "names the key" "sampling.path_margin: only 0 points"
+holds "nothing written" test ! -e "$tmp/margin"
 
 finish

@@ -1,5 +1,6 @@
 // Tests of hw/safety_supervisor.cpp: no command that breaks a limit reaches
-// the backend (randomised), watchdog hold then disable, emergency stop.
+// the backend (randomised), watchdog hold then disable, emergency stop, the
+// tracking watch disables the drives when the readings leave the command.
 #include <random>
 
 #include <gtest/gtest.h>
@@ -232,6 +233,71 @@ TEST(SafetySupervisor, EmergencyStopDisablesTheBackend) {
   EXPECT_EQ(rig.sup->state(), LifecycleState::kError);
   EXPECT_EQ(rig.sup->backend().state(), LifecycleState::kError);
   EXPECT_THROW(rig.sup->write(hold_command(Eigen::Vector3d(1.1, 3.1, 4.8)), 0.0), LifecycleError);
+}
+
+// A backend whose joint 1 (torque-off) reads what the mechanism does: here it
+// turns away by `drift` rad, as when the five-bar of joints 2 and 3 changes
+// assembly mode and the free chain follows the hub elsewhere.
+class DriftingBackend final : public RobotHardware {
+ public:
+  explicit DriftingBackend(const Eigen::Vector3d& start) : position_(start) {}
+  double drift = 0.0;
+  double period_s() const override { return 0.004; }
+  bool simulated_time() const override { return true; }
+  std::string describe() const override { return "drifting"; }
+
+ protected:
+  void on_configure(HardwareState& s) override { s.theta_m = position_; }
+  void on_activate(const HardwareState&) override { enabled_ = true; }
+  void on_deactivate() override { enabled_ = false; }
+  void on_shutdown() noexcept override { enabled_ = false; }
+  void on_error() noexcept override { enabled_ = false; }
+  void on_read(double t, HardwareState& s) override {
+    s.time_s = t;
+    s.theta_m = position_;
+    s.theta_m[0] += drift;
+    for (auto& d : s.drive) d.enabled = enabled_;
+  }
+  void on_write(const HardwareCommand& c, double) override {
+    for (int i = 0; i < 3; ++i)
+      if (c.mode[i] == JointMode::kPosition) position_[i] = c.theta_m[i];
+  }
+
+ private:
+  Eigen::Vector3d position_;
+  bool enabled_ = false;
+};
+
+TEST(SafetySupervisor, TrackingWatchDisablesTheDrivesWhenTheReadingsLeaveTheCommand) {
+  const Robot robot;
+  const Eigen::Vector3d home = ik_m(robot, robot.home);
+  auto backend = std::make_unique<DriftingBackend>(home);
+  DriftingBackend* raw = backend.get();
+  SafetySupervisor sup(std::move(backend), robot, test::example_limits());
+  EXPECT_DOUBLE_EQ(sup.limits().max_tracking_mm, 20.0);  // the default of the optional key
+  sup.configure();
+  sup.read(0.0);
+  sup.activate();
+  HardwareCommand hold = hold_command(home);
+  hold.mode[0] = JointMode::kTorqueOff;
+  double t = 0.0;
+  double last_ok = 0.0;
+  try {
+    for (int k = 0; k <= 200; ++k) {
+      raw->drift = 0.002 * k;  // up to 0.4 rad
+      sup.read(t += 0.004);
+      sup.write(hold, t);
+      last_ok = raw->drift;
+    }
+    FAIL() << "no tracking stop";
+  } catch (const SafetyError& e) {
+    const std::string what = e.what();
+    EXPECT_EQ(what.rfind("tracking: the end-effector from the readings", 0), 0u) << what;
+    EXPECT_NE(what.find("(max_tracking 20 mm): drives disabled"), std::string::npos) << what;
+  }
+  EXPECT_GT(last_ok, 0.01);  // small differences pass
+  EXPECT_EQ(sup.state(), LifecycleState::kError);
+  EXPECT_EQ(sup.backend().state(), LifecycleState::kError);
 }
 
 TEST(SafetySupervisor, RefusesToEnableOutsideTheLimits) {

@@ -120,9 +120,21 @@ TEST(Runner, DesignOutputIsTheSamplingOfAScenarioAndAPosesFileOfGpmSample) {
   fs::remove(file);
   EXPECT_EQ(plan.poses, poses);
 
-  // As the sampling of a scenario: stop-and-go, and the same poses on the fly.
+  // As the sampling of a scenario: stop-and-go, and the same poses on the
+  // fly. gpm design knows the robot's limits, not the path margin: on the fly
+  // its poses are refused with the default margin (a pose within the
+  // model's tolerance of chain 1's reach), and run with a margin stated
+  // without the tolerance.
   std::string fly = text;
   fly.replace(fly.find("pattern: list"), 13, "pattern: trajectory\n  count: 14");
+  try {
+    run_scenario(parse_run_spec(with_design(fly), "t.yaml", kBase), "t.yaml");
+    ADD_FAILURE() << "the default margin accepted poses near the reach";
+  } catch (const InputError& e) {
+    EXPECT_NE(std::string(e.what()).find("breaks the margin"), std::string::npos) << e.what();
+  }
+  fly.replace(fly.find("count: 14"), 9,
+              "count: 14\n  path_margin: {reach_mm: 2, tolerance: {base_mm: 0, link_mm: 0, offset_rad: 0}}");
   for (const std::string& t : {text, fly}) {
     const RunSpec spec = parse_run_spec(with_design(t), "t.yaml", kBase);
     const RunOutcome o = run_scenario(spec, "t.yaml");
@@ -151,12 +163,12 @@ TEST(Runner, BadSamplingRequestsAreRefusedBeforeTheRobotMoves) {
   // Designed poses given, fewer than the free parameters.
   refused("sampling: {pattern: trajectory, count: 11, poses: [[216.5, 250], [236.5, 260], [196.5, 240], [230, 225]]}\n",
           "4 designed poses cannot determine 11 free parameters");
-  // Poses inside the limits whose excitation path is not: it bulges past
-  // chain 2's reach between the poses on an arc 484 mm from A2 (reach 488 less 2).
+  // Poses inside the robot's limits but not its path margin: on an arc 484 mm
+  // from A2 (reach 488), inside sampling.path_margin.reach_mm.
   refused("sampling: {pattern: trajectory, count: 11, poses: [[267.462, 454.811], [228.453, 438.653], [191.0, 419.156], "
           "[155.389, 396.47], [121.891, 370.766], [90.76, 342.24], [62.234, 311.109], [216.5, 250], [236.5, 260], "
           "[196.5, 240], [230, 225]]}\n",
-          "sampling: excitation path at t = ");
+          "sampling: excitation path refused before anything moves: pose 0 (267.462, 454.811) breaks the margin");
 }
 
 }  // namespace

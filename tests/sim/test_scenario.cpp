@@ -141,6 +141,34 @@ TEST(Scenario, ErrorsNameTheKeyPath) {
   EXPECT_EQ(error_of("seed: 1\nsampling: {pattern: disc, radius: -5, count: 3}").rfind("s.yaml:2: ", 0), 0u);
 }
 
+// The excitation path's margin (sampling.path_margin, trajectory only) and
+// the tracking bound (servo.max_tracking_mm): documented defaults, set
+// values land, bad ones name the key.
+TEST(Scenario, PathMarginAndTrackingBound) {
+  const std::string fly = "sampling: {pattern: trajectory, count: 11";
+  const Scenario d = parse(fly + "}\n");
+  EXPECT_EQ(d.sampling->margin, PathMargin{});
+  EXPECT_DOUBLE_EQ(d.sampling->margin.singularity, 0.15);
+  EXPECT_DOUBLE_EQ(d.sampling->margin.reach_mm, 10.0);
+  EXPECT_EQ(d.sampling->margin.tolerance, (ModelTolerance{1.0, 1.0, 0.02}));
+  EXPECT_DOUBLE_EQ(d.max_tracking_mm, 20.0);
+  const Scenario s = parse(fly + ", path_margin: {singularity: 0.3, reach_mm: 5, tolerance: {base_mm: 0.5, link_mm: 0.2, "
+                                 "offset_rad: 0.01}}}\nservo: {max_tracking_mm: 8}\n");
+  EXPECT_DOUBLE_EQ(s.sampling->margin.singularity, 0.3);
+  EXPECT_DOUBLE_EQ(s.sampling->margin.reach_mm, 5.0);
+  EXPECT_EQ(s.sampling->margin.tolerance, (ModelTolerance{0.5, 0.2, 0.01}));
+  EXPECT_DOUBLE_EQ(s.max_tracking_mm, 8.0);
+  EXPECT_NE(error_of(fly + ", path_margin: {singularity: 1.5}}").find("sampling.path_margin.singularity: must be from 0 to 0.9"),
+            std::string::npos);
+  EXPECT_NE(error_of(fly + ", path_margin: {tolerance: {offset: 1}}}").find("sampling.path_margin.tolerance.offset"),
+            std::string::npos);
+  EXPECT_NE(error_of(fly + ", path_margin: 3}").find("sampling.path_margin: expected a map"), std::string::npos);
+  EXPECT_NE(error_of("sampling: {pattern: disc, radius: 10, count: 3, path_margin: {}}").find("only for pattern: designed or trajectory"),
+            std::string::npos);
+  EXPECT_NE(error_of(std::string(kMinimal) + "servo: {max_tracking_mm: -1}").find("servo.max_tracking_mm: must be from 0"),
+            std::string::npos);
+}
+
 TEST(Scenario, UnknownTopLevelKeyIsAnErrorWithASuggestion) {
   EXPECT_NE(error_of(std::string(kMinimal) + "sampeling: {}").find("sampeling: unknown key (did you mean sampling?)"),
             std::string::npos);

@@ -1,6 +1,8 @@
 // Tests of sim/simulate.cpp: a run is bit-reproducible from its seed, bad
 // targets are refused with the pose and the reason, the output files follow
-// their contracts and are written all or nothing.
+// their contracts and are written all or nothing, the tracking watch stops a
+// run that leaves its plan (samples kept), and a trajectory plan keeps
+// sampling.path_margin or is refused before anything moves.
 #include "sim/simulate.hpp"
 #include "models/data_dir.hpp"
 
@@ -11,6 +13,7 @@
 #include <sstream>
 #include <unistd.h>
 
+#include <fmt/format.h>
 #include <gtest/gtest.h>
 
 #include "models/errors.hpp"
@@ -110,6 +113,68 @@ sampling: {pattern: list, poses: [[216.5, 250], [300, 250]]}
 TEST(Simulate, PathOutOfReachIsRefused) {
   const std::string e = error_of(parse("path: {shape: circle, radius: 400, period_s: 1}"));
   EXPECT_NE(e.find("path: point at t = 0.000 s"), std::string::npos) << e;
+}
+
+// Joint 1 torque-off, the actual mechanism the controller's: an encoder slip
+// of joint 2 at 0.6 s (0.08 rad over 0.05 s) moves the hub about 20 mm while
+// the drives still track their commands; the torque-off joint's reading shows
+// it, and the watch stops the run with the samples taken before.
+Scenario slipping_joint(double bound_mm) {
+  Scenario s = parse(fmt::format(R"(
+servo: {{modes: [torque_off, position, position], max_tracking_mm: {}}}
+sampling: {{pattern: list, poses: [[216.5, 250], [230, 260], [200, 240], [225, 235]], settle: {{hold_s: 0.01}},
+           average_s: 0.02}}
+)", bound_mm));
+  GeometryEvent slip;
+  slip.at_s = 0.6;
+  slip.over_s = 0.05;
+  slip.delta[kDth2] = 0.08;
+  s.twin.events.push_back(slip);
+  return s;
+}
+
+TEST(Simulate, TrackingWatchStopsTheRunOnAForcedDeviationAndKeepsTheSamples) {
+  Scenario calm = slipping_joint(5.0);
+  calm.twin.events.clear();
+  EXPECT_EQ(run_simulation(calm).samples.size(), 4u);  // no slip: no stop
+  try {
+    run_simulation(slipping_joint(5.0));
+    FAIL() << "no tracking stop";
+  } catch (const TrackingStop& e) {
+    const std::string what = e.what();
+    EXPECT_EQ(what.rfind("tracking: at t = 0.6", 0), 0u) << what;
+    EXPECT_NE(what.find("beyond servo.max_tracking_mm 5 mm: drives stopped"), std::string::npos) << what;
+    EXPECT_EQ(what.find('\n'), std::string::npos);
+    EXPECT_GE(e.samples.size(), 1u);
+    EXPECT_LT(e.samples.size(), 4u);
+    ASSERT_FALSE(e.rows.empty());
+    EXPECT_LT(e.rows.back().t, 0.7);
+  }
+  // gpm simulate keeps what was measured: samples.csv and the trajectory up to the stop.
+  const fs::path dir = temp_dir("stop");
+  EXPECT_THROW(simulate_to_folder(slipping_joint(5.0), dir.string()), TrackingStop);
+  EXPECT_GE(read_samples_csv((dir / "samples.csv").string()).theta_m.size(), 1u);
+  EXPECT_TRUE(fs::exists(dir / "trajectory.csv"));
+  fs::remove_all(dir);
+}
+
+// A trajectory plan whose margin cannot be kept is refused (InputError: one
+// line, exit 2) before the twin is built; the same poses with the default
+// margin run.
+TEST(Simulate, TrajectoryThatCannotKeepTheMarginIsRefusedBeforeAnythingMoves) {
+  const std::string plan = R"(
+servo: {modes: [torque_off, position, position]}
+sampling:
+  pattern: trajectory
+  count: 11
+  poses: [[216.5, 250], [236.5, 260], [196.5, 240], [230, 225], [200, 270], [250, 250], [180, 250], [216.5, 290],
+          [216.5, 210], [240, 280], [190, 220]]
+)";
+  EXPECT_GT(run_simulation(parse(plan)).samples.size(), 11u);
+  const std::string e = error_of(parse(plan + "  path_margin: {singularity: 0.8}\n"));
+  EXPECT_EQ(e.rfind("s.yaml: sampling: excitation path refused before anything moves: ", 0), 0u) << e;
+  EXPECT_NE(e.find("singularity"), std::string::npos) << e;
+  EXPECT_EQ(e.find('\n'), std::string::npos) << e;
 }
 
 TEST(Simulate, NothingIsWrittenWhenTheFolderCannotBeWritten) {

@@ -1,8 +1,9 @@
 // Tests of sim/waypoint_path.cpp: the path passes through every waypoint,
 // starts and ends at rest, respects its speed and acceleration limits
 // (checked by finite differences of the tabulated positions), matches the
-// closed-form trapezoidal time law on a straight segment, and the tour
-// visits points on a circle in angular order.
+// closed-form trapezoidal time law on a straight segment, the tour
+// visits points on a circle in angular order, and a checked path is repaired
+// with via points until every point of it passes the check (or refused).
 #include "sim/waypoint_path.hpp"
 
 #include <algorithm>
@@ -12,6 +13,8 @@
 #include <stdexcept>
 
 #include <gtest/gtest.h>
+
+#include "models/errors.hpp"
 
 namespace gpm::sim {
 namespace {
@@ -109,6 +112,50 @@ TEST(WaypointPath, RefusesDegenerateInput) {
   WaypointLimits bad;
   bad.max_speed_mm_s = 0.0;
   EXPECT_THROW(make_waypoint_path({{0.0, 0.0}, {1.0, 0.0}}, bad), std::invalid_argument);
+}
+
+// A forbidden disc astride the chord between two poses: via points take the
+// path round it, and every point of the result passes the check.
+TEST(WaypointPath, CheckedPathGoesRoundAForbiddenDiscThroughViaPoints) {
+  const Eigen::Vector2d start(0.0, 0.0), centre(100.0, 2.0);
+  const std::vector<Eigen::Vector2d> poses{{200.0, 0.0}, {200.0, 80.0}};
+  const PointCheck check = [&](const Eigen::Vector2d& p) {
+    return (p - centre).norm() < 20.0 ? std::string("inside the disc") : std::string();
+  };
+  const WaypointPath plain = excitation_path(start, poses, WaypointLimits{});
+  EXPECT_TRUE(std::any_of(plain.p.begin(), plain.p.end(), [&](const auto& p) { return !check(p).empty(); }));
+  PathRepair repair;
+  const WaypointPath path = excitation_path(start, poses, WaypointLimits{}, check, &repair, 0.5);
+  EXPECT_GE(repair.vias, 1);
+  EXPECT_EQ(repair.points.size(), poses.size() + 1 + static_cast<std::size_t>(repair.vias));
+  for (const Eigen::Vector2d& p : path.p) ASSERT_EQ(check(p), "") << p.transpose();
+  // Still through every pose, from the start, ending at rest.
+  EXPECT_LT((path.p.front() - start).norm(), 1e-9);
+  for (const Eigen::Vector2d& pose : poses)
+    EXPECT_TRUE(std::any_of(path.p.begin(), path.p.end(), [&](const auto& p) { return (p - pose).norm() < 1e-9; }));
+  EXPECT_EQ(path.v.back().norm(), 0.0);
+}
+
+// A pose that breaks the check, or a wall no via point gets round, is
+// refused (InputError, one line) before anything moves.
+TEST(WaypointPath, CheckedPathRefusesABadPoseAndAnImpassableWall) {
+  const Eigen::Vector2d start(0.0, 0.0);
+  const PointCheck wall = [](const Eigen::Vector2d& p) {
+    return std::abs(p.x() - 100.0) < 5.0 ? std::string("in the wall") : std::string();
+  };
+  try {
+    excitation_path(start, {{200.0, 0.0}}, WaypointLimits{}, wall);
+    FAIL() << "crossed the wall";
+  } catch (const InputError& e) {
+    EXPECT_NE(std::string(e.what()).find("keeps the margin"), std::string::npos) << e.what();
+  }
+  try {
+    excitation_path(start, {{50.0, 0.0}, {100.0, 0.0}}, WaypointLimits{}, wall);
+    FAIL() << "accepted a pose in the wall";
+  } catch (const InputError& e) {
+    EXPECT_NE(std::string(e.what()).find("pose 1 (100.000, 0.000) breaks the margin: in the wall"), std::string::npos)
+        << e.what();
+  }
 }
 
 }  // namespace
