@@ -215,7 +215,11 @@ TEST(SamplingSession, ReadingsThatNeverChangeFailTheSession) {
       readings_from_active(robot.geometry, inverse_kinematics(robot.geometry, robot.home, robot.branch).theta_a);
   auto backend = std::make_unique<test::RecordingBackend>(home);
   backend->frozen = true;
-  SafetySupervisor hw(std::move(backend), robot, test::example_limits());
+  // The tracking watch would stop it too (20 mm off the plan); widened here
+  // so that this test sees the followed-command check on its own.
+  SafetyLimits limits = test::example_limits();
+  limits.max_tracking_mm = 1000.0;
+  SafetySupervisor hw(std::move(backend), robot, limits);
   SessionPlan p = plan();
   p.options.settle = {0.001, 0.02, 1.0};
   SampleLog log((dir / "s.csv").string(), false);
