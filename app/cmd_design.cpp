@@ -49,23 +49,8 @@ struct DesignCliOptions {
 
 // Validated design options from the flags; throws InputError naming the flag.
 ex::DesignOptions design_options(const DesignCliOptions& o) {
-  ex::DesignOptions d;
-  if (o.count < 1) throw InputError(fmt::format("--count: must be a positive number of poses, got {}", o.count));
-  d.count = o.count;
-  if (!(o.sigma > 0.0) || !std::isfinite(o.sigma))
-    throw InputError(fmt::format("--sigma: must be a positive encoder noise in rad, got {}", o.sigma));
-  d.sigma = o.sigma;
-  d.free = ~parse_param_list(o.fix, "--fix");
-  const auto c = ex::parse_criterion(o.criterion);
-  if (!c) throw InputError(fmt::format("--criterion: '{}' is not d or worst", o.criterion));
-  d.criterion = *c;
-  if (!(o.grid_step > 0.0) || !std::isfinite(o.grid_step))
-    throw InputError(fmt::format("--grid-step: must be a positive number of mm, got {}", o.grid_step));
-  d.grid_step_mm = o.grid_step;
-  if (!(o.guard_mm >= 0.0) || !std::isfinite(o.guard_mm))
-    throw InputError(fmt::format("--guard: must be zero or a positive number of mm, got {}", o.guard_mm));
-  d.guard.reach_mm = o.guard_mm;
-  return d;
+  return ex::checked_design_options(o.count, o.sigma, ~parse_param_list(o.fix, "--fix"), o.criterion, o.grid_step,
+                                    o.guard_mm, true);
 }
 
 // Bounds as JSON: worst and mean (mm), the worst parameter, log det F, and

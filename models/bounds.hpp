@@ -46,6 +46,12 @@ inline constexpr Bound kCirclePoints{6, 3600, true, "points"};
 inline constexpr Bound kDwell{0.0, 60.0, false, "s"};
 // Random seeds (every --seed, calibration.seed): exact in a double.
 inline constexpr Bound kSeed{0, 9007199254740992.0, true, ""};
+// Poses of a designed calibration set (design --count, gpm.design count).
+inline constexpr Bound kDesignPoses{1, 1e4, true, "poses"};
+// Candidate grid spacing of the design (design --grid-step, gpm.design grid_step).
+inline constexpr Bound kGridStep{1.0, 100.0, false, "mm"};
+// Extra margin of the design's candidates (design --guard, gpm.design guard).
+inline constexpr Bound kDesignGuard{0.0, 100.0, false, "mm"};
 // Drift events of one monitoring scenario (events:).
 inline constexpr std::size_t kMaxEvents = 1000;
 // Bytes of a YAML file read (robot, result, scenario, poses, hardware file).

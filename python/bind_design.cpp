@@ -43,11 +43,6 @@ py::dict bounds_dict(const ex::Bounds& b) {
   return d;
 }
 
-double positive(double v, const char* what, const char* unit) {
-  if (!(v > 0.0) || !std::isfinite(v))
-    throw InputError(fmt::format("{}: must be a positive {}, got {}", what, unit, v));
-  return v;
-}
 
 struct PyDesign {
   ex::Design design;
@@ -101,24 +96,13 @@ nominal geometry (calib/excitation/excitation.hpp).
 
   m.def(
       "design",
-      [](const py::object& robot, int count, double sigma, const py::object& fix, const std::string& criterion,
+      [](const py::object& robot, double count, double sigma, const py::object& fix, const std::string& criterion,
          double grid_step, double guard) {
         auto out = std::make_shared<PyDesign>();
-        ex::DesignOptions& d = out->options;
-        if (count < 1) throw InputError(fmt::format("count: must be a positive number of poses, got {}", count));
-        d.count = count;
-        d.sigma = check_bound(sigma, limits::kEncoderSigma, "sigma");
-        d.free = ~param_set(fix, "fix");
-        const auto c = ex::parse_criterion(criterion);
-        if (!c) throw InputError(fmt::format("criterion: '{}' is not d or worst", criterion));
-        d.criterion = *c;
-        d.grid_step_mm = positive(grid_step, "grid_step", "number of mm");
-        if (!(guard >= 0.0) || !std::isfinite(guard))
-          throw InputError(fmt::format("guard: must be zero or a positive number of mm, got {}", guard));
-        d.guard.reach_mm = guard;
+        out->options = ex::checked_design_options(count, sigma, ~param_set(fix, "fix"), criterion, grid_step, guard, false);
         const Robot r = robot.is_none() ? Robot{} : robot.cast<Robot>();
         py::gil_scoped_release unlocked;
-        out->design = ex::design_poses(r, d);
+        out->design = ex::design_poses(r, out->options);
         return out;
       },
       py::arg("robot") = py::none(), py::arg("count") = 50, py::arg("sigma") = 1e-4,

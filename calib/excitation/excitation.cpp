@@ -7,6 +7,7 @@
 #include <Eigen/Cholesky>
 #include <fmt/format.h>
 
+#include "models/bounds.hpp"
 #include "models/errors.hpp"
 
 namespace gpm::calib::excitation {
@@ -145,6 +146,21 @@ int exchange_variances(const Eigen::MatrixXd& rows, std::vector<int>& chosen, in
     ++swaps;
   }
   return swaps;
+}
+
+DesignOptions checked_design_options(double count, double sigma, const FreeMask& free, std::string_view criterion,
+                                     double grid_step_mm, double guard_mm, bool cli) {
+  const auto name = [cli](const char* flag, const char* arg) { return cli ? std::string(flag) : std::string(arg); };
+  DesignOptions d;
+  d.count = static_cast<int>(check_bound(count, limits::kDesignPoses, name("--count", "count")));
+  d.sigma = check_bound(sigma, limits::kEncoderSigma, name("--sigma", "sigma"));
+  d.free = free;
+  const auto c = parse_criterion(criterion);
+  if (!c) throw InputError(fmt::format("{}: '{}' is not d or worst", name("--criterion", "criterion"), criterion));
+  d.criterion = *c;
+  d.grid_step_mm = check_bound(grid_step_mm, limits::kGridStep, name("--grid-step", "grid_step"));
+  d.guard.reach_mm = check_bound(guard_mm, limits::kDesignGuard, name("--guard", "guard"));
+  return d;
 }
 
 Design design_poses(const Robot& nominal, const DesignOptions& o) {

@@ -79,6 +79,13 @@ struct DesignOptions {
   std::function<void(int done, int stages)> progress;
 };
 
+// Design options from a caller's numbers, each within its documented range
+// (models/bounds.hpp) and the criterion by name; errors name the argument as
+// the caller spells it: "--grid-step" on the command line (cli), "grid_step"
+// in Python.
+DesignOptions checked_design_options(double count, double sigma, const FreeMask& free, std::string_view criterion,
+                                     double grid_step_mm, double guard_mm, bool cli);
+
 struct Design {
   std::vector<Eigen::Vector2d> poses;  // the chosen poses (mm)
   std::vector<Eigen::Vector2d> start;  // the greedy start

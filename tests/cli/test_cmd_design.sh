@@ -85,7 +85,7 @@ PY
 check "too few poses" 2 "$GPM" design --count 5 --grid-step 10 -o "$tmp/bad.yaml"
 expect_err "too few message" "5 poses cannot identify 11 free parameters"
 check "bad sigma" 2 "$GPM" design --sigma -1 -o "$tmp/bad.yaml"
-expect_err "sigma message" "^gpm: error: --sigma: must be a positive"
+expect_err "sigma message" "^gpm: error: --sigma: must be a number from 1e-12 to 1 rad, got"
 check "bad criterion" 2 "$GPM" design --criterion a -o "$tmp/bad.yaml"
 expect_err "criterion message" "--criterion: 'a' is not d or worst"
 check "bad fix" 2 "$GPM" design --fix xa1,bogus -o "$tmp/bad.yaml"
@@ -94,6 +94,13 @@ check "gauge not fixed" 2 "$GPM" design --fix xa1 --grid-step 10 -o "$tmp/bad.ya
 expect_err "gauge message" "cannot be identified from any poses"
 check "bad grid" 2 "$GPM" design --grid-step 0 -o "$tmp/bad.yaml"
 expect_err "grid message" "--grid-step"
+# Work and memory bounded before any work (issue 36.8): a grid of 1e-9 mm
+# would hold about 1e23 candidates, a count of 1e9 as many poses.
+check "tiny grid" 2 "$GPM" design --grid-step 1e-9 -o "$tmp/bad.yaml"
+expect_err "tiny grid message" "--grid-step: must be a number from 1 to 100 mm, got"
+check "huge count" 2 "$GPM" design --count 1000000000 -o "$tmp/bad.yaml"
+expect_err "huge count message" "--count: must be a whole number from 1 to"
+check "nan guard" 2 "$GPM" design --guard nan -o "$tmp/bad.yaml"
 check "missing model" 2 "$GPM" design --model /nonexistent.yaml -o "$tmp/bad.yaml"
 expect_err "model message" "/nonexistent.yaml: cannot open file"
 check "unwritable output" 2 "$GPM" design --count 12 --grid-step 10 -o /nonexistent/dir/poses.yaml

@@ -39,6 +39,11 @@ def test_check_reach_refuses_a_nan_target():
     lambda r: gpm.Robot(geometry=dict(la1=math.nan)),
     lambda r: gpm.Robot(geometry=dict(lb2=math.inf)),
     lambda r: gpm.Robot(geometry=dict(la1="244")),
+    lambda r: gpm.design(count=10**9),
+    lambda r: gpm.design(count=2.5),
+    lambda r: gpm.design(grid_step=1e-9),
+    lambda r: gpm.design(guard=math.nan),
+    lambda r: gpm.crb(r, poses=np.array([[216.5, 250.0]] * 12), sigma=1e-300),
 ])
 def test_non_finite_numbers_raise_input_error(call):
     robot = gpm.load_robot()
