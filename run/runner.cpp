@@ -135,6 +135,31 @@ sim::SimulationResult sample_on_hardware(const RunSpec& spec, const std::string&
   return r;
 }
 
+// What a run will command and estimate, checked before anything moves: the
+// accuracy test's targets and the reference pose (named by scenario key), and
+// a free set that the LM stage would refuse as unidentifiable (the similarity
+// gauge), from noiseless readings on two circles round home.
+void check_before_moving(const RunSpec& spec) {
+  const bool targets = spec.compensation || spec.calibration.reference_at;
+  const Robot actual = targets ? sim::make_actual(spec.sim) : Robot{};
+  if (spec.compensation) {
+    sim::check_poses_reach(spec.sim, actual, spec.compensation->poses, "compensation.poses");
+    sim::check_path_reach(spec.sim, actual, spec.compensation->path, "compensation.path");
+  }
+  if (spec.calibration.reference_at)
+    sim::check_poses_reach(spec.sim, actual, {*spec.calibration.reference_at}, "calibration.reference_at");
+  const bool lm_refuses_rank = spec.calibration.method == calib::Method::kLM ||
+                               (spec.calibration.method == calib::Method::kDELM && spec.calibration.cost == calib::Cost::kML);
+  if (!lm_refuses_rank || spec.calibration.allow_rank_deficient || spec.expect.refused_contains) return;
+  const Robot& c = spec.sim.controller;
+  const FreeMask free = ~spec.calibration.fixed;
+  std::vector<Eigen::Vector3d> theta;
+  for (double radius : {40.0, 80.0})
+    for (const Eigen::Vector2d& p : circle_points(c.home, radius, 12))
+      if (const Reach r = check_reach(c, p); r.ok) theta.push_back(readings_from_active(c.geometry, r.q.theta_a));
+  if (theta.size() >= free.count()) calib::require_identifiable(calib::analyse_identifiability(theta, c.geometry, free), free);
+}
+
 }  // namespace
 
 RunOutcome run_scenario(const RunSpec& spec_in, const std::string& scenario_file, const Progress& progress,
@@ -146,29 +171,7 @@ RunOutcome run_scenario(const RunSpec& spec_in, const std::string& scenario_file
   // calibration's sampling and accuracy tests run on the mechanism before them.
   const std::vector<sim::GeometryEvent> operation_events = std::move(spec.sim.twin.events);
   spec.sim.twin.events.clear();
-  if (spec.compensation) {  // the accuracy test's targets, before anything moves
-    const Robot actual = sim::make_actual(spec.sim);
-    sim::check_poses_reach(spec.sim, actual, spec.compensation->poses, "compensation.poses");
-    sim::check_path_reach(spec.sim, actual, spec.compensation->path, "compensation.path");
-  }
-  const bool lm_refuses_rank = spec.calibration.method == calib::Method::kLM ||
-                               (spec.calibration.method == calib::Method::kDELM && spec.calibration.cost == calib::Cost::kML);
-  if (lm_refuses_rank && !spec.calibration.allow_rank_deficient && !spec.expect.refused_contains) {
-    // A free set that encoder angles cannot identify at all (the similarity
-    // gauge), which the LM stage refuses, is bad input: refused before
-    // anything moves, from noiseless readings on two circles round home.
-    const Robot& c = spec.sim.controller;
-    std::vector<Eigen::Vector3d> theta;
-    for (double radius : {40.0, 80.0})
-      for (const Eigen::Vector2d& p : circle_points(c.home, radius, 12))
-        if (const Reach r = check_reach(c, p); r.ok) theta.push_back(readings_from_active(c.geometry, r.q.theta_a));
-    if (theta.size() >= (~spec.calibration.fixed).count())
-      calib::require_identifiable(calib::analyse_identifiability(theta, c.geometry, ~spec.calibration.fixed),
-                                ~spec.calibration.fixed);
-  }
-  if (spec.calibration.reference_at)
-    sim::check_poses_reach(spec.sim, sim::make_actual(spec.sim), {*spec.calibration.reference_at},
-                           "calibration.reference_at");
+  check_before_moving(spec);
   if (spec.sim.sampling && !spec.sim.sampling->needs_design())
     design_sampling(spec.sim, ~spec.calibration.fixed, 0.0);  // given poses: only their number is checked
   if (spec.sim.sampling && spec.sim.sampling->needs_design()) {
