@@ -35,6 +35,11 @@ struct Effects {
   std::array<double, 3> encoder_cyclic_rad{};  // amplitude of the once-per-revolution error
   std::array<double, 3> encoder_phase_rad{};   // its phase (seeded per encoder, see effects_yaml)
   std::array<double, 3> encoder_skew_s{};      // latch time offset (the reading is of t - skew)
+  // Motor revolutions per joint revolution: the encoder sits on the motor, so
+  // a joint revolution has 2^bits x gear_ratio counts and errors that repeat
+  // per motor revolution repeat gear_ratio times per joint revolution.
+  // 1 = direct drive (and the ideal twin).
+  double gear_ratio = 1.0;
 
   // True if anything differs from the ideal twin.
   bool any() const;

@@ -53,7 +53,7 @@ Effects parse_effects(const YAML::Node& n, const std::string& file, std::uint64_
       throw InputError(yaml_where(file, n, c) + "expected ideal, realistic or a map of effects (scenarios/SCHEMA.md)");
     yaml_check_keys(n, file, c,
                     {"preset", "transmission_compliance_rad_per_Nm", "passive_clearance_mm", "coulomb_friction_Nm",
-                     "viscous_friction_Nm_s", "thermal", "encoder_cyclic_rad", "encoder_skew_s"});
+                     "viscous_friction_Nm_s", "thermal", "encoder_cyclic_rad", "encoder_skew_s", "gear_ratio"});
     if (n["preset"]) e = preset(n["preset"], file, c + ".preset");
     const auto key = [&](const char* k) { return c + "." + k; };
     if (const YAML::Node v = n["transmission_compliance_rad_per_Nm"])
@@ -75,6 +75,8 @@ Effects parse_effects(const YAML::Node& n, const std::string& file, std::uint64_
           [&](const YAML::Node& x, const std::string& k) { return bounded(x, file, k, r); },
           [](double s) { return std::array<double, 3>{0.0, s, s}; });
     }
+    if (const YAML::Node v = n["gear_ratio"])
+      e.gear_ratio = bounded(v, file, key("gear_ratio"), {1.0, 200.0, "1 (direct drive) to 200"});
     if (const YAML::Node t = n["thermal"]) {
       const std::string ct = key("thermal");
       if (!t.IsMap()) throw InputError(yaml_where(file, t, ct) + "expected {expansion_per_K, rise_K, time_constant_s}");
