@@ -8,6 +8,7 @@
 #include "models/errors.hpp"
 #include "models/rng.hpp"
 #include "models/yaml_util.hpp"
+#include "sim/effects_random.hpp"
 #include "sim/scenario.hpp"
 
 namespace gpm::sim {
@@ -34,11 +35,18 @@ std::array<double, 3> per_chain(const YAML::Node& n, const std::string& file, co
                               [&](const YAML::Node& v, const std::string& k) { return scale * bounded(v, file, k, r); });
 }
 
-Effects preset(const YAML::Node& n, const std::string& file, const std::string& key) {
+// A preset by name; `randomized` draws one robot of the class from the
+// scenario seed (stream 6), so a seed names one robot.
+Effects preset(const YAML::Node& n, const std::string& file, const std::string& key, std::uint64_t seed) {
   const std::string name = yaml_string(n, file, key);
   if (name == "ideal") return Effects{};
   if (name == "realistic") return realistic_effects();
-  throw InputError(yaml_where(file, n, key) + fmt::format("'{}' is not a preset (valid: ideal, realistic)", name));
+  if (name == "randomized") {
+    Rng rng(derive_seed(seed, 6));
+    return randomized_effects(rng);
+  }
+  throw InputError(yaml_where(file, n, key) +
+                   fmt::format("'{}' is not a preset (valid: ideal, realistic, randomized)", name));
 }
 
 }  // namespace
@@ -47,14 +55,14 @@ Effects parse_effects(const YAML::Node& n, const std::string& file, std::uint64_
   const std::string c = "effects";
   Effects e;
   if (n.IsScalar()) {
-    e = preset(n, file, c);
+    e = preset(n, file, c, seed);
   } else {
     if (!n.IsMap())
-      throw InputError(yaml_where(file, n, c) + "expected ideal, realistic or a map of effects (scenarios/SCHEMA.md)");
+      throw InputError(yaml_where(file, n, c) + "expected ideal, realistic, randomized or a map of effects (scenarios/SCHEMA.md)");
     yaml_check_keys(n, file, c,
                     {"preset", "transmission_compliance_rad_per_Nm", "passive_clearance_mm", "coulomb_friction_Nm",
                      "viscous_friction_Nm_s", "thermal", "encoder_cyclic_rad", "encoder_skew_s", "gear_ratio"});
-    if (n["preset"]) e = preset(n["preset"], file, c + ".preset");
+    if (n["preset"]) e = preset(n["preset"], file, c + ".preset", seed);
     const auto key = [&](const char* k) { return c + "." + k; };
     if (const YAML::Node v = n["transmission_compliance_rad_per_Nm"])
       e.mjcf.compliance_rad_per_Nm =

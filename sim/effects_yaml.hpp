@@ -1,5 +1,5 @@
 // The `effects:` section of a scenario (scenarios/SCHEMA.md): a preset name
-// (ideal, realistic), or a map of keys with an optional `preset` to start
+// (ideal, realistic, randomized), or a map of keys with an optional `preset` to start
 // from. Per-chain keys take a scalar (all three chains) or a list of three.
 #pragma once
 

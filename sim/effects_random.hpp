@@ -1,0 +1,42 @@
+// The `randomized` effects preset: one robot of the GPM2002 class, every
+// effect drawn per chain from its plausible range (scenarios/SCHEMA.md,
+// section effects, "randomized": each range with its source). A real robot
+// is never the `realistic` preset; a population of these is what a
+// procedure is judged on (`gpm study population`).
+#pragma once
+
+#include "models/rng.hpp"
+#include "sim/effects.hpp"
+
+namespace gpm::sim {
+
+// Plausible range of one effect: drawn uniformly in [lo, hi], or uniformly in
+// log between them (log_uniform: for values known to a factor, lo > 0).
+struct EffectRange {
+  double lo = 0.0, hi = 0.0;
+  bool log_uniform = false;
+
+  // One draw from the range.
+  double draw(Rng& rng) const;
+};
+
+// The ranges the `randomized` preset draws from (output-side units, as the
+// effects keys): the numbers and their sources are in scenarios/SCHEMA.md.
+struct RandomizedRanges {
+  EffectRange stiffness_Nm_per_rad{0.7e4, 2.3e4, true};  // transmission; compliance = 1 / stiffness
+  EffectRange clearance_mm{0.0, 0.020};                  // passive joints' radial play
+  EffectRange coulomb_Nm{0.1, 0.8, true};                // drive friction at the output
+  EffectRange viscous_Nm_s{0.03, 0.3, true};
+  EffectRange expansion_per_K{21e-6, 24e-6};             // aluminium alloys
+  EffectRange rise_K{0.5, 5.0};                          // warm-up of the machine
+  EffectRange time_constant_s{300.0, 1800.0, true};
+  EffectRange encoder_cyclic_rad{5e-6, 1.5e-4, true};    // 1 to 30 arcsec in the joint reading
+  EffectRange skew_s{0.0, 200e-6};                       // latch time of each drive on the bus
+  double gear_ratio = 10.0;                              // the GPM2002's reducer (a data-sheet value, not drawn)
+};
+
+// One robot of the class: every effect drawn per chain from ranges (each
+// chain independently), encoder phases left at zero for the caller to seed.
+Effects randomized_effects(Rng& rng, const RandomizedRanges& ranges = {});
+
+}  // namespace gpm::sim
