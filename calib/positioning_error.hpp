@@ -1,0 +1,49 @@
+// What a user gets from a calibration: the noise-free positioning error of
+// the calibrated model over the workspace. At every point p of a grid over a
+// disc round the home pose the controller commands the readings its model
+// gives for p (inverse kinematics, eq. 31, and theta_m = theta_a - dth,
+// eq. 35); the actual robot, moved by two of its drives to those readings,
+// stands where the forward kinematics of those two chains (eq. 32-34) put
+// it with the actual geometry. The error is the distance to p, for each of
+// the three pairs of drives. With the calibration's covariance the same map
+// gives the positioning 1-sigma the result states, so the two can be
+// compared point by point.
+#pragma once
+
+#include <optional>
+
+#include <Eigen/Core>
+
+#include "models/parameters.hpp"
+#include "models/robot.hpp"
+
+namespace gpm::calib {
+
+// The grid: points step_mm apart within radius_mm of centre.
+struct WorkspaceDisc {
+  Eigen::Vector2d centre{216.5, 250.0};
+  double radius_mm = 80.0;
+  double step_mm = 10.0;
+};
+
+struct PositioningError {
+  int points = 0;            // grid points the model reaches (x 3 pairs of drives)
+  double rms_um = 0.0;       // RMS of |p_actual - p| over points and pairs
+  double max_um = 0.0;
+  // With a covariance: RMS over the same points of the stated 1-sigma of the
+  // position, sqrt(trace(J C J') / 2) per axis, and the RMS of the
+  // Mahalanobis distance e' (J C J')^-1 e / 2 (about 1 when the stated
+  // 1-sigma is honest: the squared distance is chi-square with 2 dof).
+  double stated_sigma_rms_um = 0.0;
+  double normalised_rms = 0.0;
+};
+
+// Positioning error of model (the calibrated robot) on actual over disc.
+// covariance (15 x 15, zero rows for fixed parameters), when given, is the
+// calibration's; the 1-sigma map is taken by central differences of the
+// commanded position in the model's parameters. Throws InputError if no
+// grid point is reachable.
+PositioningError positioning_error(const Robot& actual, const Robot& model, const WorkspaceDisc& disc,
+                                   const std::optional<Eigen::Matrix<double, kNumParams, kNumParams>>& covariance = {});
+
+}  // namespace gpm::calib

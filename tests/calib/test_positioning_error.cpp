@@ -1,0 +1,55 @@
+// Tests of calib/positioning_error.cpp: the model that is the robot positions
+// without error; a model whose base is shifted by d positions every point off
+// by exactly |d| (the mechanism is translation invariant); and parameter
+// errors drawn from a covariance give a normalised error of 1 on average
+// (the squared Mahalanobis distance of a 2-d Gaussian has mean 2).
+#include "calib/positioning_error.hpp"
+
+#include <cmath>
+
+#include <gtest/gtest.h>
+
+#include "models/rng.hpp"
+
+namespace gpm::calib {
+namespace {
+
+TEST(PositioningError, TheRobotItselfPositionsWithoutError) {
+  const Robot r;
+  const PositioningError e = positioning_error(r, r, WorkspaceDisc{});
+  EXPECT_GT(e.points, 3 * 150);  // 10 mm grid over an 80 mm disc, three pairs of drives
+  EXPECT_LT(e.max_um, 1e-6);
+}
+
+TEST(PositioningError, AShiftedBaseMissesEveryPointByTheShift) {
+  const Robot actual;
+  Robot model = actual;
+  const Eigen::Vector2d d(0.003, -0.004);  // 5 um
+  for (int i = 0; i < kNumChains; ++i) model.geometry[xa(i)] += d.x(), model.geometry[ya(i)] += d.y();
+  const PositioningError e = positioning_error(actual, model, WorkspaceDisc{});
+  EXPECT_NEAR(e.rms_um, 5.0, 1e-6);
+  EXPECT_NEAR(e.max_um, 5.0, 1e-6);
+}
+
+TEST(PositioningError, ErrorsDrawnFromTheCovarianceAreCoveredByIt) {
+  const Robot actual;
+  Eigen::Matrix<double, kNumParams, kNumParams> C = Eigen::Matrix<double, kNumParams, kNumParams>::Zero();
+  for (int k = 4; k < kNumParams; ++k) C(k, k) = is_offset(k) ? 1e-10 : 1e-6;  // 10 urad, 1 um; xa1..ya2 fixed
+  const WorkspaceDisc coarse{actual.home, 80.0, 40.0};
+  Rng rng(5);
+  double mean_sq = 0.0, sigma = 0.0;
+  const int draws = 200;
+  for (int n = 0; n < draws; ++n) {
+    Robot model = actual;
+    for (int k = 4; k < kNumParams; ++k) model.geometry[k] += std::sqrt(C(k, k)) * rng.normal();
+    const PositioningError e = positioning_error(actual, model, coarse, C);
+    mean_sq += e.normalised_rms * e.normalised_rms / draws;
+    sigma = e.stated_sigma_rms_um;
+  }
+  EXPECT_NEAR(mean_sq, 1.0, 0.15);
+  EXPECT_GT(sigma, 0.5);  // per-axis 1-sigma of a few um from 1 um / 10 urad parameters
+  EXPECT_LT(sigma, 10.0);
+}
+
+}  // namespace
+}  // namespace gpm::calib
