@@ -3,6 +3,7 @@
 //   gpm study crb          Cramer-Rao bound of the free parameters for given samples
 //   gpm study montecarlo   noisy trials: empirical RMS error over the bound, per cost
 //   gpm study effects      each physical effect of the realistic twin: its bias on calibration
+//   gpm study population   a scenario over N robots of the class: the accuracy a user gets, and its 1-sigma
 #include <cmath>
 #include <cstdio>
 #include <filesystem>
@@ -25,6 +26,7 @@
 #include "models/robot_yaml.hpp"
 #include "models/samples.hpp"
 #include "run/effects_study.hpp"
+#include "run/population_study.hpp"
 
 namespace gpm::cli {
 namespace {
@@ -40,6 +42,10 @@ struct StudyOptions {
   std::string effects;        // study effects: cases (empty: every one)
   int effects_count = 0;      // study effects: poses per calibration (0: each procedure's own)
   int threads = 2;
+  std::string scenario;         // study population: the scenario
+  int population_count = 30;    // study population: robots
+  std::string seeds;            // study population: these robots' seeds instead of --count
+  bool keep_effects = false;    // study population: the scenario's effects, not randomized
 };
 
 // "table5", "section3" (paper values, calib/paper_values.hpp) or a robot file.
@@ -192,6 +198,37 @@ void run_effects(const StudyOptions& o) {
              out);
 }
 
+// Population study (run/population_study.hpp): the scenario over N robots of the class.
+void run_population(const StudyOptions& o) {
+  if (std::filesystem::exists(o.out) && !std::filesystem::is_directory(o.out))
+    throw InputError(fmt::format("-o: '{}' exists and is not a folder", o.out));
+  scenario::PopulationOptions po;
+  po.count = o.population_count;
+  po.keep_effects = o.keep_effects;
+  po.threads = o.threads;
+  if (!o.seeds.empty())
+    for (const std::string& s : split_unique_list(o.seeds, "--seeds"))
+      po.seeds.push_back(static_cast<std::uint64_t>(parse_bounded(s, limits::kSeed, "--seeds")));
+  fmt::print("population study: {} robots of {} on {} thread(s){}\n", po.seeds.empty() ? po.count : static_cast<int>(po.seeds.size()),
+             o.scenario, po.threads, po.keep_effects ? " (the scenario's effects)" : " (every effect drawn per robot)");
+  std::fflush(stdout);
+  const auto study = scenario::run_population_study(
+      o.scenario, po, [](const scenario::PopulationRobot& r, int done, int total) {
+        if (r.failure)
+          fmt::print("  [{}/{}] robot {}: failed: {} ({:.0f} s)\n", done, total, r.seed, *r.failure, r.seconds);
+        else
+          fmt::print("  [{}/{}] robot {}: positioning {:.2f} um RMS (stated 1-sigma {:.2f}), worst parameter {:.1f} "
+                     "sigma ({}), model test {} ({:.0f} s)\n",
+                     done, total, r.seed, r.positioning.rms_um, r.positioning.stated_sigma_rms_um, r.worst_sigma_ratio,
+                     r.worst_param, r.model_test_passed ? (*r.model_test_passed ? "passes" : "fails") : "-", r.seconds);
+        std::fflush(stdout);
+      });
+  scenario::write_population_study(study, o.out);
+  fmt::print("{}", scenario::population_markdown(study));
+  fmt::print("{} robots in {:.0f} s -> {}/population.md, population.html, population.json, robot_SEED.yaml\n",
+             study.robots.size(), study.seconds, o.out);
+}
+
 }  // namespace
 
 void add_study(CLI::App& app) {
@@ -240,6 +277,21 @@ void add_study(CLI::App& app) {
   effects->add_option("--count", o->effects_count, "Poses per calibration, 12 to 2000 (default: each procedure's own)");
   effects->add_option("--threads", o->threads, "Runs in parallel")->capture_default_str();
   effects->callback([o] { run_effects(*o); });
+
+  auto* population = study->add_subcommand(
+      "population", "A scenario over N robots of the class (actual geometry and every effect drawn per robot): the "
+                    "positioning error of each calibrated model, and its parameter errors in their stated 1-sigma");
+  population->add_option("scenario", o->scenario, "Scenario file (e.g. scenarios/main.yaml)")->required();
+  population->add_option("-o,--output", o->out, "Output folder (population.md/.html/.json, figures, robot_SEED.yaml)")
+      ->required();
+  population->add_option("--count", o->population_count, "Robots (seeds: the scenario's seed + 0 .. count - 1)")
+      ->capture_default_str()
+      ->transform(number_in(limits::kPopulation));
+  population->add_option("--seeds", o->seeds, "Comma-separated seeds of the robots to run instead (re-run chosen ones)");
+  population->add_flag("--keep-effects", o->keep_effects,
+                       "Keep the scenario's effects (only the geometry differs between robots)");
+  population->add_option("--threads", o->threads, "Robots in parallel")->capture_default_str()->transform(number_in(limits::kThreads));
+  population->callback([o] { run_population(*o); });
 }
 
 }  // namespace gpm::cli

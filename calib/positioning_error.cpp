@@ -1,8 +1,6 @@
 #include "calib/positioning_error.hpp"
 
-#include <array>
 #include <cmath>
-#include <utility>
 #include <vector>
 
 #include <Eigen/Dense>
@@ -14,23 +12,48 @@
 namespace gpm::calib {
 namespace {
 
-constexpr std::array<std::pair<int, int>, 3> kPairs{{{0, 1}, {0, 2}, {1, 2}}};
-
-// Where the actual robot stands when drives i and j hold the readings the
-// model commands for p; nullopt if the model cannot reach p or the actual
-// chains do not close.
-std::optional<Eigen::Vector2d> reached(const Robot& actual, const Geometry& model, const Branches& branch,
-                                       const Eigen::Vector2d& p, int i, int j) {
+// The readings the model commands for p (eq. 31 and eq. 35); nullopt when the
+// model cannot reach p.
+std::optional<Eigen::Vector3d> commanded(const Geometry& model, const Branches& branch, const Eigen::Vector2d& p) {
   Eigen::Vector3d theta_a;
   for (int c = 0; c < kNumChains; ++c) {
     const auto q = try_chain_ik(model, c, p, branch[static_cast<size_t>(c)]);
     if (!q) return std::nullopt;
     theta_a[c] = q->theta_a;
   }
-  const Eigen::Vector3d theta_m = readings_from_active(model, theta_a);                  // eq. 35
-  const Eigen::Vector3d actual_theta_a = active_from_readings(actual.geometry, theta_m);  // eq. 35
-  const int mode = assembly_mode(actual.geometry, actual_theta_a, p, i, j);
-  return forward_kinematics_two(actual.geometry, actual_theta_a, i, j, mode);
+  return readings_from_active(model, theta_a);
+}
+
+// Where the actual robot stands when its three drives, equally stiff, hold
+// readings theta_m: the point whose actual joint angles are nearest to
+// theta_m + dth in the least-squares sense (the drives' springs balance),
+//   p <- p + (J'J)^-1 J' (theta_a* - theta_a(p)),  J = d theta_a / d p (eq. 11),
+// by Gauss-Newton from p0; nullopt when the actual robot cannot reach it.
+std::optional<Eigen::Vector2d> reached(const Robot& actual, const Eigen::Vector3d& theta_m, Eigen::Vector2d p) {
+  const Eigen::Vector3d target = active_from_readings(actual.geometry, theta_m);  // eq. 35
+  for (int it = 0; it < 8; ++it) {
+    JointAngles q;
+    for (int c = 0; c < kNumChains; ++c) {
+      const auto ch = try_chain_ik(actual.geometry, c, p, actual.branch[static_cast<size_t>(c)]);
+      if (!ch) return std::nullopt;
+      q.theta_a[c] = ch->theta_a, q.theta_b[c] = ch->theta_b;
+    }
+    Eigen::Vector3d r;
+    for (int c = 0; c < kNumChains; ++c) r[c] = wrap_pi(target[c] - q.theta_a[c]);
+    const Matrix32d J = active_jacobian(actual.geometry, q);
+    const Eigen::Vector2d dp = (J.transpose() * J).ldlt().solve(J.transpose() * r);
+    p += dp;
+    if (dp.norm() < 1e-12) break;
+  }
+  return p;
+}
+
+// Where the actual robot stands when the model commands p.
+std::optional<Eigen::Vector2d> position_for(const Robot& actual, const Geometry& model, const Branches& branch,
+                                            const Eigen::Vector2d& p) {
+  const auto theta_m = commanded(model, branch, p);
+  if (!theta_m) return std::nullopt;
+  return reached(actual, *theta_m, p);
 }
 
 std::vector<Eigen::Vector2d> grid(const WorkspaceDisc& d) {
@@ -46,13 +69,13 @@ std::vector<Eigen::Vector2d> grid(const WorkspaceDisc& d) {
 
 // d p_actual / d model parameter k by central differences (mm per mm or rad).
 std::optional<Eigen::Matrix<double, 2, kNumParams>> sensitivity(const Robot& actual, const Robot& model,
-                                                                const Eigen::Vector2d& p, int i, int j) {
+                                                                const Eigen::Vector2d& p) {
   Eigen::Matrix<double, 2, kNumParams> J;
   for (int k = 0; k < kNumParams; ++k) {
     const double h = is_offset(k) ? 1e-7 : 1e-5;
     Geometry up = model.geometry, down = model.geometry;
     up[k] += h, down[k] -= h;
-    const auto a = reached(actual, up, model.branch, p, i, j), b = reached(actual, down, model.branch, p, i, j);
+    const auto a = position_for(actual, up, model.branch, p), b = position_for(actual, down, model.branch, p);
     if (!a || !b) return std::nullopt;
     J.col(k) = (*a - *b) / (2.0 * h);
   }
@@ -66,20 +89,18 @@ PositioningError positioning_error(const Robot& actual, const Robot& model, cons
   PositioningError out;
   double sum2 = 0.0, sigma2 = 0.0, maha = 0.0;
   for (const Eigen::Vector2d& p : grid(disc)) {
-    for (const auto& [i, j] : kPairs) {
-      const auto at = reached(actual, model.geometry, model.branch, p, i, j);
-      if (!at) continue;
-      const Eigen::Vector2d e = *at - p;
-      ++out.points;
-      sum2 += e.squaredNorm();
-      out.max_um = std::max(out.max_um, e.norm() * 1e3);
-      if (!covariance) continue;
-      const auto J = sensitivity(actual, model, p, i, j);
-      if (!J) continue;
-      const Eigen::Matrix2d S = *J * *covariance * J->transpose();
-      sigma2 += S.trace() / 2.0;
-      maha += e.dot(S.ldlt().solve(e)) / 2.0;
-    }
+    const auto at = position_for(actual, model.geometry, model.branch, p);
+    if (!at) continue;
+    const Eigen::Vector2d e = *at - p;
+    ++out.points;
+    sum2 += e.squaredNorm();
+    out.max_um = std::max(out.max_um, e.norm() * 1e3);
+    if (!covariance) continue;
+    const auto J = sensitivity(actual, model, p);
+    if (!J) continue;
+    const Eigen::Matrix2d S = *J * *covariance * J->transpose();
+    sigma2 += S.trace() / 2.0;
+    maha += e.dot(S.ldlt().solve(e)) / 2.0;
   }
   if (out.points == 0)
     throw InputError(fmt::format("positioning error: no point of the {} mm disc round ({}, {}) is reachable",

@@ -2,10 +2,11 @@
 // the calibrated model over the workspace. At every point p of a grid over a
 // disc round the home pose the controller commands the readings its model
 // gives for p (inverse kinematics, eq. 31, and theta_m = theta_a - dth,
-// eq. 35); the actual robot, moved by two of its drives to those readings,
-// stands where the forward kinematics of those two chains (eq. 32-34) put
-// it with the actual geometry. The error is the distance to p, for each of
-// the three pairs of drives. With the calibration's covariance the same map
+// eq. 35); the actual robot, its three drives (equally stiff) holding those
+// readings, stands where its actual joint angles come nearest to them in the
+// least-squares sense (the drives' springs balance; with consistent readings
+// this is the forward kinematics, eq. 32-34). The error is the distance to
+// p. With the calibration's covariance the same map
 // gives the positioning 1-sigma the result states, so the two can be
 // compared point by point.
 #pragma once
@@ -27,8 +28,8 @@ struct WorkspaceDisc {
 };
 
 struct PositioningError {
-  int points = 0;            // grid points the model reaches (x 3 pairs of drives)
-  double rms_um = 0.0;       // RMS of |p_actual - p| over points and pairs
+  int points = 0;            // grid points the model reaches
+  double rms_um = 0.0;       // RMS of |p_actual - p| over the points
   double max_um = 0.0;
   // With a covariance: RMS over the same points of the stated 1-sigma of the
   // position, sqrt(trace(J C J') / 2) per axis, and the RMS of the

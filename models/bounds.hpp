@@ -40,6 +40,8 @@ inline constexpr Bound kSamples{1, 1e5, true, "samples"};
 inline constexpr Bound kTrials{2, 1e4, true, "trials"};
 // Poses per calibration of the effects study (study effects --count; 0: each procedure's own).
 inline constexpr Bound kStudyPoses{12, 2000, true, "poses"};
+inline constexpr Bound kPopulation{1, 1e4, true, "robots"};
+inline constexpr Bound kThreads{1, 64, true, "threads"};
 // Interpolation points per circle of the zero-offset search (zero --points).
 inline constexpr Bound kCirclePoints{6, 3600, true, "points"};
 // Dwell at each interpolation point (zero --dwell).

@@ -30,7 +30,7 @@ struct RandomizedRanges {
   EffectRange expansion_per_K{21e-6, 24e-6};             // aluminium alloys
   EffectRange rise_K{0.5, 5.0};                          // warm-up of the machine
   EffectRange time_constant_s{300.0, 1800.0, true};
-  EffectRange encoder_cyclic_rad{5e-6, 1.5e-4, true};    // 1 to 30 arcsec in the joint reading
+  EffectRange encoder_cyclic_rad{5e-6, 5e-5, true};      // 1 to 10 arcsec in the joint reading
   EffectRange skew_s{0.0, 200e-6};                       // latch time of each drive on the bus
   double gear_ratio = 10.0;                              // the GPM2002's reducer (a data-sheet value, not drawn)
 };

@@ -1,7 +1,8 @@
 #!/usr/bin/env bash
 # Tests of app/cmd_study.cpp (gpm study crb): the bound is refused, like gpm
 # calibrate refuses the data, when the samples cannot identify the free
-# parameters (never -nan); a good set gives finite positive bounds.
+# parameters (never -nan); a good set gives finite positive bounds. gpm study
+# population: bad input is one line and exit 2, with nothing written.
 set -u
 GPM="$1"
 source "$(dirname "$0")/cli_lib.sh"
@@ -25,5 +26,24 @@ expect_err "crb coincident message" "are not identifiable from encoder angles \(
 [[ ! -s "$tmp/out" ]] && passed=$((passed+1)) || { echo "FAIL crb coincident printed a table"; fail=$((fail+1)); }
 check "calibrate coincident" 2 "$GPM" calibrate --data "$tmp/same.csv" -o "$tmp/r.yaml"
 expect_err "calibrate coincident message" "are not identifiable from encoder angles \(rank 1 of 11\)"
+
+# gpm study population: bad input before any run, nothing written.
+SMALL="$(dirname "$0")/../fixtures/population_small.yaml"
+check "population count 0" 2 "$GPM" study population "$SMALL" -o "$tmp/pop" --count 0
+expect_err "population count 0 message" "--count"
+check "population missing scenario" 2 "$GPM" study population "$tmp/none.yaml" -o "$tmp/pop"
+expect_err "population missing scenario message" "none.yaml"
+check "population repeated seed" 2 "$GPM" study population "$SMALL" -o "$tmp/pop" --seeds 5,5
+expect_err "population repeated seed message" "--seeds"
+check "population bad seed" 2 "$GPM" study population "$SMALL" -o "$tmp/pop" --seeds 5,x
+expect_err "population bad seed message" "--seeds"
+check "population threads 0" 2 "$GPM" study population "$SMALL" -o "$tmp/pop" --threads 0
+: >"$tmp/file"
+check "population output is a file" 2 "$GPM" study population "$SMALL" -o "$tmp/file"
+expect_err "population output is a file message" "not a folder"
+printf 'name: x\nseed: 1\nhardware: twin.yaml\n' >"$tmp/hw.yaml"
+check "population hardware scenario" 2 "$GPM" study population "$tmp/hw.yaml" -o "$tmp/pop"
+expect_err "population hardware scenario message" "runs twins"
+[[ ! -e "$tmp/pop" ]] && passed=$((passed+1)) || { echo "FAIL population left $tmp/pop"; fail=$((fail+1)); }
 
 finish

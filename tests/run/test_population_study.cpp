@@ -1,0 +1,77 @@
+// Tests of run/population_study.cpp: a robot's scenario text is that robot
+// alone (its seed, the randomized effects, no expectations, a robot path that
+// works from anywhere); a robot re-run alone by its seed gives the numbers it
+// had in the population, bit for bit; the summary is the robots' figures.
+#include "run/population_study.hpp"
+
+#include <cmath>
+#include <filesystem>
+
+#include <gtest/gtest.h>
+#include <nlohmann/json.hpp>
+
+#include "models/errors.hpp"
+#include "run/run_spec.hpp"
+
+namespace gpm::scenario {
+namespace {
+
+const std::string kSmall = std::string(GPM_SOURCE_DIR) + "/tests/fixtures/population_small.yaml";
+
+TEST(PopulationStudy, ARobotsScenarioIsThatRobotAlone) {
+  const std::string text = population_robot_scenario(kSmall, 77, false);
+  // Parsed from another folder: the robot path no longer depends on it.
+  const RunSpec a = parse_run_spec(text, "robot_77.yaml", std::filesystem::temp_directory_path().string());
+  const RunSpec b = parse_run_spec(population_robot_scenario(kSmall, 77, false), "r.yaml", ".");
+  const RunSpec c = parse_run_spec(population_robot_scenario(kSmall, 78, false), "r.yaml", ".");
+  EXPECT_EQ(a.sim.seed, 77u);
+  EXPECT_EQ(a.sim.twin.effects.mjcf.coulomb_Nm, b.sim.twin.effects.mjcf.coulomb_Nm);
+  EXPECT_NE(a.sim.twin.effects.mjcf.coulomb_Nm, c.sim.twin.effects.mjcf.coulomb_Nm);
+  EXPECT_NE(a.sim.twin.effects.mjcf.coulomb_Nm[0], a.sim.twin.effects.mjcf.coulomb_Nm[1]);  // drawn per chain
+  EXPECT_FALSE(a.expect.converged.has_value());
+  // --keep-effects: the scenario's own (the realistic preset: one value on every chain).
+  const RunSpec k = parse_run_spec(population_robot_scenario(kSmall, 77, true), "r.yaml", ".");
+  EXPECT_EQ(k.sim.twin.effects.mjcf.coulomb_Nm[0], k.sim.twin.effects.mjcf.coulomb_Nm[1]);
+}
+
+TEST(PopulationStudy, AHardwareScenarioIsRefused) {
+  const std::string hw = std::string(GPM_SOURCE_DIR) + "/scenarios/hardware_twin.yaml";
+  EXPECT_THROW(population_robot_scenario(hw, 1, false), InputError);
+}
+
+TEST(PopulationStudy, ARobotReRunAloneGivesItsNumbersAndTheSummaryIsTheRobots) {
+  PopulationOptions o;
+  o.count = 2;
+  o.disc_step_mm = 20.0;
+  const PopulationStudy study = run_population_study(kSmall, o);
+  ASSERT_EQ(study.robots.size(), 2u);
+  EXPECT_EQ(study.robots[0].seed, 500u);  // the scenario's seed, then the next
+  EXPECT_EQ(study.robots[1].seed, 501u);
+  for (const PopulationRobot& r : study.robots) {
+    ASSERT_FALSE(r.failure) << *r.failure;
+    EXPECT_GT(r.positioning.points, 40);
+    EXPECT_GT(r.positioning.rms_um, 0.0);
+    EXPECT_LE(r.positioning.rms_um, r.positioning.max_um);
+    EXPECT_GT(r.estimated, 0);
+  }
+  o.seeds = {501};
+  o.threads = 1;
+  const PopulationStudy alone = run_population_study(kSmall, o);
+  ASSERT_EQ(alone.robots.size(), 1u);
+  EXPECT_EQ(alone.robots[0].positioning.rms_um, study.robots[1].positioning.rms_um);
+  for (size_t k = 0; k < kNumParams; ++k) {
+    if (std::isfinite(study.robots[1].error[k])) EXPECT_EQ(alone.robots[0].error[k], study.robots[1].error[k]);
+  }
+  const PopulationSummary s = study.summary();
+  EXPECT_EQ(s.robots, 2);
+  EXPECT_DOUBLE_EQ(s.positioning_median_um,
+                   0.5 * (study.robots[0].positioning.rms_um + study.robots[1].positioning.rms_um));
+  EXPECT_DOUBLE_EQ(s.positioning_max_um,
+                   std::max(study.robots[0].positioning.rms_um, study.robots[1].positioning.rms_um));
+  const auto j = nlohmann::json::parse(population_json(study));
+  EXPECT_EQ(j["robots"].size(), 2u);
+  EXPECT_EQ(j["robots"][1]["seed"], 501);
+}
+
+}  // namespace
+}  // namespace gpm::scenario
