@@ -50,6 +50,12 @@ void print_summary(const scenario::RunOutcome& o, const std::string& dir) {
     fmt::print("errors     largest {}: {:.4f} mm (offsets counted as mm at the 244 mm link)\n", worst_name, worst);
   }
   if (o.refused) fmt::print("refused    {}\n", *o.refused);
+  if (o.positioning) {
+    fmt::print("position   calibrated model over the 80 mm disc: RMS {:.2f} um, max {:.2f} um (stated 1-sigma {:.2f} "
+               "um per axis; error / 1-sigma {:.2f}, 1 when honest)\n",
+               o.positioning->rms_um, o.positioning->max_um, o.positioning->stated_sigma_rms_um,
+               o.positioning->normalised_rms);
+  }
   if (o.before) {
     fmt::print("accuracy   nominal model:    static RMS {:9.2f} um, max {:9.2f} um; path RMS {:9.2f} um\n",
                o.before->static_rms_um, o.before->static_max_um, o.before->path_rms_um);

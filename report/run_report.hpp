@@ -86,6 +86,9 @@ struct RunReport {
   std::optional<RunAccuracy> before, after;
   std::optional<RunAccuracy> floor;         // the controller given the actual parameters
   std::optional<RunModelTest> model_test;
+  // The calibrated model's positioning error over the workspace (um): RMS,
+  // max, the stated 1-sigma per axis and error / 1-sigma (1 when honest).
+  std::optional<std::array<double, 4>> positioning_um;
   double robot_time_s = 0.0;                // robot time of the sampling
   std::vector<RunCheck> checks;
 };

@@ -64,7 +64,7 @@ void judge_parameters(const calib::Result& c, const Geometry& actual, Population
   }
 }
 
-PopulationRobot robot_of(const RunOutcome& o, PopulationRobot r, const PopulationOptions& opt) {
+PopulationRobot robot_of(const RunOutcome& o, PopulationRobot r) {
   if (!o.calibration) return failed_robot(r, o.refused.value_or("no calibration"));
   if (!o.calibration->converged) return failed_robot(r, "calibration did not converge");
   r.calibrated_static_um = o.after ? o.after->static_rms_um : NAN;
@@ -76,20 +76,19 @@ PopulationRobot robot_of(const RunOutcome& o, PopulationRobot r, const Populatio
   } else {
     r.chi2_per_dof = NAN;
   }
-  const calib::WorkspaceDisc disc{o.nominal.home, opt.disc_radius_mm, opt.disc_step_mm};
-  r.positioning = calib::positioning_error(o.sim.actual, o.calibrated, disc, o.calibration->covariance);
+  if (!o.positioning) return failed_robot(r, "the calibrated model reaches no point of the workspace disc");
+  r.positioning = *o.positioning;
   judge_parameters(*o.calibration, o.sim.actual.geometry, r);
   return r;
 }
 
 // One robot through the runner; a failed run is a row of the study.
-PopulationRobot run_robot(const RunSpec& spec, const std::string& file, PopulationRobot r,
-                          const PopulationOptions& opt) {
+PopulationRobot run_robot(const RunSpec& spec, const std::string& file, PopulationRobot r) {
   r.error.fill(NAN);
   r.sigma.fill(NAN);
   r.effects = spec.sim.twin.effects;
   try {
-    return robot_of(run_scenario(spec, file), r, opt);
+    return robot_of(run_scenario(spec, file), r);
   } catch (const Error& e) {  // refused, diverged, stopped: a result of the study, not a stop
     return failed_robot(r, e.what());
   }
@@ -148,7 +147,7 @@ PopulationStudy run_population_study(const std::string& scenario_file, const Pop
       const auto c0 = std::chrono::steady_clock::now();
       PopulationRobot r;
       try {
-        r = run_robot(specs[k], scenario_file, study.robots[k], options);
+        r = run_robot(specs[k], scenario_file, study.robots[k]);
       } catch (...) {
         const std::lock_guard lock(mutex);
         if (!bug) bug = std::current_exception();

@@ -27,8 +27,6 @@ struct PopulationOptions {
   std::vector<std::uint64_t> seeds;    // these robots instead (re-run chosen ones)
   bool keep_effects = false;           // the scenario's own effects (only the geometry varies)
   int threads = 2;                     // robots in parallel
-  double disc_radius_mm = 80.0;        // the positioning error's disc round the home pose
-  double disc_step_mm = 10.0;
 };
 
 // One robot of the population.
@@ -37,7 +35,7 @@ struct PopulationRobot {
   std::string scenario_text;            // the scenario that is this robot alone (gpm run re-runs it)
   sim::Effects effects;                 // its drawn effects
   std::optional<std::string> failure;   // refused, diverged, stopped or not converged: why
-  calib::PositioningError positioning;  // of the calibrated model (zero when failed)
+  calib::PositioningError positioning;  // of the calibrated model (RunOutcome::positioning; zero when failed)
   double calibrated_static_um = 0.0, floor_um = 0.0, floor_ratio = 0.0;  // NaN if not measured
   std::optional<bool> model_test_passed;
   double chi2_per_dof = 0.0;

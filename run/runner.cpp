@@ -41,6 +41,17 @@ bool RunOutcome::passed() const {
 
 namespace {
 
+// The calibrated model's positioning error over the workspace (nullopt when
+// no point of the disc is reachable by it).
+std::optional<calib::PositioningError> calibrated_positioning(const RunOutcome& o) {
+  try {
+    return calib::positioning_error(o.sim.actual, o.calibrated, calib::WorkspaceDisc{o.nominal.home},
+                                    o.calibration->covariance);
+  } catch (const InputError&) {
+    return std::nullopt;
+  }
+}
+
 // Samples on the fly left out at the start with a compliant transmission (s).
 constexpr double kStartTransient_s = 0.05;
 
@@ -531,6 +542,7 @@ RunOutcome run_scenario(const RunSpec& spec_in, const std::string& scenario_file
                                  &steps("actual parameters"), spec.sim.max_tracking_mm);
     }
   }
+  if (out.calibration && !spec.hardware) out.positioning = calibrated_positioning(out);
   if (spec.sim.operation) {
     stage("monitoring the operation with the calibrated model");
     out.monitor = monitor_after_calibration(out);

@@ -10,6 +10,7 @@
 #include <vector>
 
 #include "calib/model_test.hpp"
+#include "calib/positioning_error.hpp"
 #include "calib/problem.hpp"
 #include "models/robot.hpp"
 #include "run/compensation.hpp"
@@ -44,6 +45,10 @@ struct RunOutcome {
   std::optional<Accuracy> before, after;
   // The floor: the controller given the actual parameters.
   std::optional<Accuracy> floor;
+  // What a user gets: the calibrated model's noise-free positioning error
+  // over an 80 mm disc round home, with the 1-sigma its covariance states
+  // (calib/positioning_error.hpp; simulation only: the truth is known).
+  std::optional<calib::PositioningError> positioning;
   // Chi-square test of the ML residuals against the encoder noise (ML cost).
   std::optional<calib::ModelTest> model_test;
   // Samples taken on the fly: compliance and skew estimated with the geometry.

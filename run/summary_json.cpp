@@ -26,6 +26,14 @@ std::string summary_json(const RunOutcome& o) {
   nlohmann::json j;
   j["verdict"] = o.passed() ? "passed" : "failed";
   j["robot_time_s"] = number(o.sim.sampling_s);
+  if (o.positioning)
+    j["positioning_um"] = {{"rms", number(o.positioning->rms_um)},
+                           {"max", number(o.positioning->max_um)},
+                           {"stated_sigma_rms", number(o.positioning->stated_sigma_rms_um)},
+                           {"normalised_rms", number(o.positioning->normalised_rms)},
+                           {"points", o.positioning->points}};
+  else
+    j["positioning_um"] = nullptr;
   j["accuracy"] = {{"nominal", accuracy(o.before)}, {"calibrated", accuracy(o.after)}, {"actual", accuracy(o.floor)}};
   nlohmann::json params = nlohmann::json::object();
   if (o.calibration) {
