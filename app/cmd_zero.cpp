@@ -20,6 +20,7 @@
 
 #include "app/commands.hpp"
 #include "app/number_options.hpp"
+#include "models/measured_data.hpp"
 #include "models/output_file.hpp"
 #include "report/report_document.hpp"
 #include "models/pose_layouts.hpp"
@@ -163,10 +164,13 @@ void run_zero(const ZeroArgs& a) {
     if (a.compare) hw::check_plan_poses(*robot, hw::section3_plan(section3_poses, base.sensor_joint));
   }
 
+  // trace.csv and section3_samples.csv are measured data: the folder is this
+  // session's (models/measured_data.hpp) and no later command overwrites them.
+  std::optional<MeasuredFolder> measured;
   std::ofstream trace;
   if (!a.out.empty()) {
-    std::filesystem::create_directories(a.out);
-    trace.open(std::filesystem::path(a.out) / "trace.csv");
+    measured.emplace(a.out, "gpm zero", "trace.csv");
+    trace.open(measured->samples_path());
     trace << "run,method,index,round,d_mm,shift_x,shift_y,theta_m1,theta_m2,theta_m3,dth1,dth2,dth3,E\n";
   }
   std::vector<Row> rows;
@@ -246,7 +250,7 @@ void run_zero(const ZeroArgs& a) {
   if (!a.out.empty()) {
     // report.md, report.html and offsets.yaml all or none (models/output_file.hpp);
     // trace.csv was written as the robot moved and stays.
-    OutputFolder out(a.out);
+    OutputFolder out(a.out, {}, measured ? &*measured : nullptr);
     doc.stage(out, "report", "gpm zero: zero-offset auto-calibration");
     if (n > 0) out.add("offsets.yaml", offsets_yaml(config.controller, sum / n, rows));
     out.commit();

@@ -61,6 +61,14 @@ expect "trace rows" "$tmp/rep/trace.csv" "^start 2,grid,"
 if awk -F'|' '/^\| (start|other|section)/ { if ($7+0 > 1.2e-3) bad=1 } END { exit bad }' "$tmp/rep/report.md"; then
   passed=$((passed+1)); else echo "FAIL errors above 1.2e-3 rad:"; cat "$tmp/rep/report.md"; fail=$((fail+1)); fi
 
+# The trace and section-3 samples are measured data: a second run into the
+# folder is refused and leaves them as they were (models/measured_data.hpp).
+cp "$tmp/rep/trace.csv" "$tmp/trace_before.csv"
+check "second run into a measured folder" 2 "$GPM" zero --hardware "$tmp/twin.yaml" --start 219.5,252.5 -o "$tmp/rep"
+expect "second run refusal named" "$tmp/err" "holds the measured samples of a gpm zero session"
+cmp -s "$tmp/rep/trace.csv" "$tmp/trace_before.csv" && [[ -s "$tmp/rep/section3_samples.csv" ]] &&
+  passed=$((passed+1)) || { echo "FAIL a second gpm zero changed the measured trace"; fail=$((fail+1)); }
+
 check bad-start 2 "$GPM" zero --hardware "$tmp/twin.yaml" --start 219.5 -o "$tmp/bad"
 expect "bad start named" "$tmp/err" "--start: '219.5' is not X,Y"
 [[ ! -e "$tmp/bad" ]] && passed=$((passed+1)) || { echo "FAIL bad input created $tmp/bad"; fail=$((fail+1)); }
