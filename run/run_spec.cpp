@@ -115,9 +115,11 @@ CalibrationSpec parse_calibration(const YAML::Node& n, const std::string& file) 
   }
   // The budget counts LM iterations or a global method's evaluations, each
   // with its bound (README, Limits; issue 36.8).
-  if (n["budget"])
+  if (n["budget"]) {
     c.budget = static_cast<long>(yaml_within(n["budget"], file, "calibration.budget",
                                              c.method == calib::Method::kLM ? limits::kLmIterations : limits::kEvaluations));
+    if (c.method == calib::Method::kLM) c.lm_iterations = static_cast<int>(c.budget);
+  }
   if (n["seed"]) c.seed = static_cast<std::uint64_t>(yaml_within(n["seed"], file, "calibration.seed", limits::kSeed));
   if (n["sigma"]) c.sigma = yaml_within(n["sigma"], file, "calibration.sigma", limits::kEncoderSigma);
   if (n["tension_min_N"]) {

@@ -83,6 +83,7 @@ struct CalibrationSpec {
   calib::Method method = calib::Method::kLM;
   FreeMask fixed;                       // default xa1 ya1 xa2 ya2
   long budget = 200000;                 // evaluations (global methods)
+  std::optional<int> lm_iterations;     // method lm: calibration.budget, the LM iterations (default 200)
   std::uint64_t seed = 1;
   std::optional<double> sigma;          // encoder sigma for the covariance; default: encoder noise if > 0
   bool allow_rank_deficient = false;

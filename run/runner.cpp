@@ -302,6 +302,7 @@ RunOutcome run_scenario(const RunSpec& spec_in, const std::string& scenario_file
   mo.method = spec.calibration.method;
   mo.cost = spec.calibration.cost;
   mo.budget = spec.calibration.budget;
+  if (spec.calibration.lm_iterations) mo.lm_max_iterations = *spec.calibration.lm_iterations;
   mo.seed = spec.calibration.seed;
   mo.encoder_sigma = spec.calibration.sigma;
   if (!mo.encoder_sigma && spec.sim.twin.encoder.noise_rad > 0) mo.encoder_sigma = out.crb_sigma_rad;
@@ -352,6 +353,7 @@ RunOutcome run_scenario(const RunSpec& spec_in, const std::string& scenario_file
         motion.skip_first = static_cast<int>(std::ceil(kStartTransient_s * spec.sim.twin.servo_rate_hz /
                                                        spec.sim.sampling->sample_every));
       calib::LmOptions lo;
+      if (spec.calibration.lm_iterations) lo.max_iterations = *spec.calibration.lm_iterations;
       lo.encoder_sigma = out.crb_sigma_rad > 0.0 ? std::optional<double>(out.crb_sigma_rad) : std::nullopt;
       lo.true_xy = &true_xy;
       lo.loss = spec.calibration.loss;

@@ -61,6 +61,21 @@ TEST(Runner, CalibratesCompensatesAndPasses) {
   fs::remove_all(dir);
 }
 
+TEST(Runner, TheBudgetOfLmIsItsIterations) {
+  // From the nominal start LM needs several iterations on this robot; a
+  // budget of one stops it after one (and says so), the default does not.
+  const auto run = [](const std::string& calibration) {
+    return run_scenario(parse_run_spec(scenario(calibration, ""), "t.yaml", kBase), "t.yaml");
+  };
+  const RunOutcome one = run("calibration: {cost: ml, method: lm, budget: 1}\n");
+  const RunOutcome free = run("calibration: {cost: ml, method: lm}\n");
+  ASSERT_TRUE(one.calibration && free.calibration);
+  EXPECT_LE(one.calibration->iterations, 2);  // Ceres counts its one step and the check that ends the solve
+  EXPECT_FALSE(one.calibration->converged);
+  EXPECT_GT(free.calibration->iterations, 1);
+  EXPECT_TRUE(free.calibration->converged);
+}
+
 TEST(Runner, FailedExpectationIsReported) {
   const RunSpec spec = parse_run_spec(scenario("outputs: {compensation: false}\n", "expect: {kmrmse_mm_max: 1.0e-12, cost_max: 1.0e-40}\n"),
                                       "t.yaml", kBase);
