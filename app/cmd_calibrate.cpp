@@ -104,7 +104,7 @@ void run(const CalibrateOptions& o) {
   const calib::Method method = calib::parse_method(o.method, "--method");
   const calib::RobustLoss loss = calib::parse_loss(o.loss, "--loss");
   // --budget counts iterations for lm, evaluations for the global methods:
-  // each has its own bound (README, Limits), checked before any work.
+  // each has its own bound (docs/CLI.md, Limits), checked before any work.
   if (o.budget_given)
     check_bound(static_cast<double>(o.budget), method == calib::Method::kLM ? limits::kLmIterations : limits::kEvaluations,
                 "--budget");

@@ -1,5 +1,5 @@
 // gpm: the command line of the GPM2002 digital twin and calibration toolkit.
-// Thin: parses, calls the libraries, prints. Exit codes (README): 0 success,
+// Thin: parses, calls the libraries, prints. Exit codes (docs/CLI.md): 0 success,
 // 1 the run worked but failed its expectations, 2 bad input (one line on
 // stderr), 3 a bug, 130 interrupted. `gpm render` runs the renderer, a
 // separate executable (gpm-render, next to gpm), so that gpm itself loads

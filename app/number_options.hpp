@@ -1,5 +1,5 @@
 // Numbers on the command line (issue 36.8, 36.12): one validator for the
-// documented range of a flag (models/bounds.hpp, README "Limits") and one
+// documented range of a flag (models/bounds.hpp, docs/CLI.md "Limits") and one
 // check every number option gets (no empty text, no NaN or infinity, no minus
 // sign on an unsigned one), so that a refusal is one line naming the flag,
 // the value and the valid range (exit 2), before any work.

@@ -1,5 +1,5 @@
 // Documented ranges of the numbers a user gives (command-line flags, scenario
-// keys) and the sizes of the files the toolkit reads (README, "Limits"): every
+// keys) and the sizes of the files the toolkit reads (docs/CLI.md, "Limits"): every
 // count that sizes work or memory has an upper bound, checked before any work,
 // and a refusal names the flag or key, the value and the valid range (exit 2).
 #pragma once

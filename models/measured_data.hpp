@@ -1,4 +1,4 @@
-// The measured-data guard (README, "Output files"): measured samples cannot be
+// The measured-data guard (docs/CLI.md, "Output files"): measured samples cannot be
 // taken again, so a folder a hardware session records into is never written
 // by anything else.
 // - A hardware session that records into an output folder (gpm run

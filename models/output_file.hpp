@@ -1,5 +1,5 @@
-// The output policy of every file the toolkit writes (README, "Output
-// files"), in one place:
+// The output policy of every file the toolkit writes (docs/CLI.md,
+// "Output files"), in one place:
 // - a regular file (or a new one) is staged as a hidden temporary in the same
 //   folder and renamed over the target when complete: all or nothing;
 // - an existing device or FIFO (e.g. /dev/null) is written in place, never

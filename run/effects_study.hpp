@@ -99,7 +99,7 @@ EffectsStudy run_effects_study(const std::vector<StudyProcedure>& procedures, co
 std::vector<std::string> effects_table_header();
 std::vector<std::vector<std::string>> effects_table_rows(const EffectsStudy& study);
 
-// The summary table in Markdown (the README's section is this text).
+// The summary table in Markdown (docs/EFFECTS.md's table is this text).
 std::string effects_markdown_table(const EffectsStudy& study);
 
 // DIR/effects.json: procedures, cases, and per row every number of EffectsRow.

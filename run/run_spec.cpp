@@ -114,7 +114,7 @@ CalibrationSpec parse_calibration(const YAML::Node& n, const std::string& file) 
     }
   }
   // The budget counts LM iterations or a global method's evaluations, each
-  // with its bound (README, Limits; issue 36.8).
+  // with its bound (docs/CLI.md, Limits; issue 36.8).
   if (n["budget"]) {
     c.budget = static_cast<long>(yaml_within(n["budget"], file, "calibration.budget",
                                              c.method == calib::Method::kLM ? limits::kLmIterations : limits::kEvaluations));

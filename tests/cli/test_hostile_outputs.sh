@@ -1,5 +1,5 @@
 #!/usr/bin/env bash
-# Hostile outputs against the output policy (README "Output files"): the
+# Hostile outputs against the output policy (docs/CLI.md "Output files"): the
 # measured-data guard (models/measured_data.cpp, app/cmd_run.cpp), every input
 # against every output by file identity (models/output_file.cpp and the
 # commands: app/cmd_simulate.cpp, cmd_run.cpp, cmd_monitor.cpp, cmd_zero.cpp,

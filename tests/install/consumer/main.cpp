@@ -31,7 +31,7 @@ int main() {
   actual.geometry[gpm::kXa3] += 0.5;
   const gpm::Samples samples = gpm::calib::workspace_samples(actual, 40, 7);
 
-  // As in the README's "Installing" section.
+  // As in docs/INSTALL.md's "Installing" section.
   const gpm::calib::Problem problem{samples.theta_m, nominal.geometry, gpm::default_free_mask()};
   const gpm::calib::Result r = gpm::calib::calibrate_lm(problem, {});
   double worst = 0.0;
