@@ -31,7 +31,8 @@ struct Stated {
 // The GPM2002's data sheet by default: a 400 W low-inertia AC servo (rotor
 // 0.26e-4 kg m^2, 17-bit absolute encoder) behind a 10:1 precision planetary
 // reducer, aluminium links; each drive alike. Torques, friction and stiffness
-// are at the reducer's output (the joint), as MjcfOptions states them.
+// are referred to the reducer's output (joint units, as MjcfOptions states
+// them); the friction acts on the motor side of the transmission's compliance.
 struct DataSheet {
   double gear_ratio = 10.0;  // N: motor revolutions per joint revolution (exact)
   int encoder_bits = 17;     // 2^bits counts per motor revolution (exact)
@@ -41,7 +42,7 @@ struct DataSheet {
   Stated active_link_mass_kg{0.40, 0.95, 1.05};   // aluminium bar 244 x 40 x 15 mm, +-5 %
   Stated passive_link_mass_kg{0.25, 0.95, 1.05};  // aluminium bar 244 x 30 x 12 mm, +-5 %
   Stated end_effector_mass_kg{0.10, 0.8, 1.2};    // hub and tool, +-20 %
-  // Drive friction at the output (reducer, seals, bearings): Coulomb F (N m)
+  // Drive friction (reducer, seals, bearings) in joint units: Coulomb F (N m)
   // and viscous b (N m s/rad), each within half to twice its nominal.
   Stated coulomb_Nm{0.3, 0.5, 2.0};
   Stated viscous_Nm_s{0.15, 0.5, 2.0};
