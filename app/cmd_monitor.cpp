@@ -66,14 +66,19 @@ void add_monitor(CLI::App& app) {
     const scenario::MonitorExpect expect = scenario::load_monitor_expect(opt->scenario);  // bad keys before moving
     // What the monitor assumes of the readings: a calibration result's
     // `monitor:` (gpm run writes the calibration's estimates there), else the
-    // scenario's statement (`monitor:`).
+    // scenario's statement (`monitor:`), whose preset data_sheet is the
+    // robot's data sheet: the model's where it states one (a result file
+    // does not), else the scenario's robot's.
+    const DataSheet& sheet = !opt->model.empty() && load_yaml_file(opt->model)["data_sheet"]
+                                 ? controller.data_sheet
+                                 : s.controller.data_sheet;
     const YAML::Node stated = load_yaml_file(opt->scenario)["monitor"];
-    scenario::MonitorReadingModel reading = scenario::parse_monitor_reading_model(stated, opt->scenario);
+    scenario::MonitorReadingModel reading = scenario::parse_monitor_reading_model(stated, opt->scenario, sheet);
     std::string reading_from = stated ? fmt::format("the scenario's monitor: ({})", opt->scenario)
                                       : "data_sheet (the default; a scenario states its own with monitor:)";
     if (!opt->model.empty())
       if (const YAML::Node n = load_yaml_file(opt->model)["monitor"]) {
-        reading = scenario::parse_monitor_reading_model(n, opt->model);
+        reading = scenario::parse_monitor_reading_model(n, opt->model, sheet);
         reading_from = fmt::format("the calibration result's monitor: ({})", opt->model);
       }
     // Progress on a terminal only (a log file gets the summary alone).

@@ -11,6 +11,7 @@
 
 #include <Eigen/Core>
 
+#include "models/data_sheet.hpp"
 #include "models/parameters.hpp"
 
 namespace gpm {
@@ -61,6 +62,10 @@ struct Robot {
   Eigen::Vector2d home{216.5, 250.0};
   Branches branch{+1, +1, +1};
   Limits limits;
+  // What the robot's documents state of its drives, encoders and links
+  // (`data_sheet:`; the GPM2002's when the file has none): all the
+  // calibration and the monitor know of them (models/data_sheet.hpp).
+  DataSheet data_sheet;
   std::optional<CalibrationRecord> calibration;  // present when read from a result file
 
   bool operator==(const Robot&) const = default;

@@ -9,6 +9,7 @@
 
 #include <fmt/format.h>
 
+#include "models/data_sheet.hpp"
 #include "models/errors.hpp"
 #include "models/kinematics.hpp"
 #include "models/output_file.hpp"
@@ -188,13 +189,13 @@ void validate_robot(const Robot& robot, const std::string& where) {
 Robot robot_from_yaml(const YAML::Node& root, const std::string& file, const std::string& keypath) {
   if (!root.IsMap()) {
     throw InputError(yaml_where(file, root, keypath) +
-                     "expected a map with keys name, geometry (and optionally home, elbow, limits)");
+                     "expected a map with keys name, geometry (and optionally home, elbow, limits, data_sheet)");
   }
   // A calibration result file is also a robot file (its std, fixed, diagnostics
   // kept; the drift monitor's reading model that gpm run adds, `monitor:`, is
   // read by gpm monitor alone: run/run_spec.hpp).
   yaml_check_keys(root, file, keypath,
-                  {"name", "geometry", "home", "elbow", "limits", "std", "fixed", "diagnostics", "monitor"});
+                  {"name", "geometry", "home", "elbow", "limits", "data_sheet", "std", "fixed", "diagnostics", "monitor"});
   Robot r;
   if (root["name"]) r.name = yaml_text(root["name"], file, join(keypath, "name"));
   r.geometry = geometry_from_yaml(root["geometry"], file, join(keypath, "geometry"));
@@ -236,6 +237,7 @@ Robot robot_from_yaml(const YAML::Node& root, const std::string& file, const std
       (std::string_view(key) == "min_transmission" ? r.limits.min_transmission : r.limits.min_direct) = v;
     }
   }
+  if (const YAML::Node sheet = root["data_sheet"]) r.data_sheet = data_sheet_from_yaml(sheet, file, join(keypath, "data_sheet"));
   if (root["std"] || root["fixed"] || root["diagnostics"]) r.calibration = calibration_from_yaml(root, file, keypath);
   validate_robot(r, keypath.empty() ? file : file + ": " + keypath);
   return r;
@@ -276,6 +278,7 @@ std::string robot_to_yaml(const Robot& r) {
   out += fmt::format("  reach_margin: {}\n", format_exact(r.limits.reach_margin));
   out += fmt::format("  min_transmission: {}\n", format_exact(r.limits.min_transmission));
   out += fmt::format("  min_direct: {}\n", format_exact(r.limits.min_direct));
+  out += data_sheet_to_yaml(r.data_sheet);
   if (r.calibration) {
     const CalibrationRecord& c = *r.calibration;
     std::string sd;

@@ -44,6 +44,30 @@ py::array_t<double> vec(const Eigen::VectorXd& v) {
 
 }  // namespace
 
+// The robot's data sheet as a dict: gear_ratio, encoder_bits, and each stated
+// value as {nominal, min, max} (units in its key).
+py::dict data_sheet_dict(const Robot& r) {
+  const DataSheet& d = r.data_sheet;
+  py::dict out;
+  out["gear_ratio"] = d.gear_ratio;
+  out["encoder_bits"] = d.encoder_bits;
+  const std::pair<const char*, const Stated*> items[] = {
+      {"encoder_accuracy_rad", &d.encoder_accuracy_rad}, {"rotor_inertia_kg_m2", &d.rotor_inertia_kg_m2},
+      {"active_link_mass_kg", &d.active_link_mass_kg},   {"passive_link_mass_kg", &d.passive_link_mass_kg},
+      {"end_effector_mass_kg", &d.end_effector_mass_kg}, {"coulomb_Nm", &d.coulomb_Nm},
+      {"viscous_Nm_s", &d.viscous_Nm_s},                 {"stiffness_Nm_per_rad", &d.stiffness_Nm_per_rad},
+      {"clearance_mm", &d.clearance_mm},                 {"latch_skew_s", &d.latch_skew_s},
+      {"warm_up_time_constant_s", &d.warm_up_time_constant_s}};
+  for (const auto& [key, s] : items) {
+    py::dict v;
+    v["nominal"] = s->nominal;
+    v["min"] = s->min();
+    v["max"] = s->max();
+    out[key] = v;
+  }
+  return out;
+}
+
 void bind_robot(py::module_& m) {
   py::class_<Robot>(m, "Robot", R"doc(
 The robot model: 15 geometric parameters, home, elbow branches and workspace
@@ -88,6 +112,10 @@ Use gpm.load_robot(path) for a robot file.
             return d;
           },
           "Workspace margins: reach_margin (mm), min_transmission and min_direct (singularity measures).")
+      .def_property_readonly("data_sheet", &data_sheet_dict,
+                             "What the robot's documents state (models/data_sheet.hpp, docs/FORMATS.md): gear_ratio, "
+                             "encoder_bits, and for each stated value (coulomb_Nm, rotor_inertia_kg_m2, ...) a dict "
+                             "nominal, min, max (the tolerance). A copy; the calibration reads these, never the twin's truth.")
       .def(
           "ik",
           [](const Robot& r, double x, double y) {

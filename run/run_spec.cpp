@@ -9,10 +9,8 @@
 
 #include "models/bounds.hpp"
 #include "models/errors.hpp"
-#include "models/mjcf.hpp"
 #include "models/rng.hpp"
 #include "models/yaml_util.hpp"
-#include "sim/effects.hpp"
 
 namespace gpm::scenario {
 namespace {
@@ -69,15 +67,17 @@ std::array<double, 3> skew_list(const YAML::Node& n, const std::string& file, co
       [](double s) { return std::array<double, 3>{0.0, s, s}; });
 }
 
-MonitorReadingModel reading_model_preset(const YAML::Node& n, const std::string& file, const std::string& key) {
+MonitorReadingModel reading_model_preset(const YAML::Node& n, const std::string& file, const std::string& key,
+                                         const DataSheet& sheet) {
   const std::string name = yaml_string(n, file, key);
   if (name == "ideal") return ideal_reading_model();
-  if (name == "data_sheet") return data_sheet_reading_model();
+  if (name == "data_sheet") return data_sheet_reading_model(sheet);
   throw InputError(yaml_where(file, n, key) + fmt::format("'{}' is not a reading model preset (valid: ideal, data_sheet)", name));
 }
 
-CalibrationSpec parse_calibration(const YAML::Node& n, const std::string& file) {
+CalibrationSpec parse_calibration(const YAML::Node& n, const std::string& file, const DataSheet& sheet) {
   CalibrationSpec c;
+  c.drive_friction = stated_drive_friction(sheet);
   for (int i : {kXa1, kYa1, kXa2, kYa2}) c.fixed.set(static_cast<size_t>(i));
   if (!n) return c;
   yaml_check_keys(n, file, "calibration",
@@ -130,7 +130,7 @@ CalibrationSpec parse_calibration(const YAML::Node& n, const std::string& file) 
   }
   if (n["drive_friction"])
     c.drive_friction = parse_drive_friction(n["drive_friction"], file, "calibration.drive_friction",
-                                            gpm2002_drive_friction(), true);
+                                            c.drive_friction, true);
   if (const YAML::Node est = n["estimate"]) {
     if (!est.IsSequence())
       throw InputError(yaml_where(file, est, "calibration.estimate") + "expected a list of compliance, skew, friction, clearance (or [])");
@@ -262,8 +262,11 @@ Expectations parse_expect(const YAML::Node& n, const std::string& file) {
 RunSpec from_root(const YAML::Node& root, const std::string& file, const std::string& base_dir) {
   RunSpec spec;
   spec.sim = sim::scenario_from_yaml(root, file, base_dir);
-  spec.calibration = parse_calibration(root["calibration"], file);
-  spec.monitor = parse_monitor_reading_model(root["monitor"], file);
+  // What the procedures assume by default is the controller's robot's data
+  // sheet (models/data_sheet.hpp), never the twin's truth (spec.sim.twin).
+  const DataSheet& sheet = spec.sim.controller.data_sheet;
+  spec.calibration = parse_calibration(root["calibration"], file, sheet);
+  spec.monitor = parse_monitor_reading_model(root["monitor"], file, sheet);
   if (const YAML::Node hw = root["hardware"]) {
     const std::string h = yaml_string(hw, file, "hardware");
     spec.hardware = (std::filesystem::path(h).is_absolute() ? std::filesystem::path(h)
@@ -284,38 +287,38 @@ RunSpec from_root(const YAML::Node& root, const std::string& file, const std::st
 
 }  // namespace
 
-DriveFriction gpm2002_drive_friction() {
-  const sim::Effects realistic = sim::realistic_effects();
+DriveFriction stated_drive_friction(const DataSheet& sheet) {
   DriveFriction f;
-  f.coulomb_Nm = realistic.mjcf.coulomb_Nm;
-  for (std::size_t i = 0; i < 3; ++i) f.viscous_Nm_s[i] = MjcfOptions{}.active_damping + realistic.mjcf.viscous_Nm_s[i];
+  f.coulomb_Nm.fill(sheet.coulomb_Nm.nominal);
+  f.viscous_Nm_s.fill(sheet.viscous_Nm_s.nominal);
   return f;
 }
 
 MonitorReadingModel ideal_reading_model() { return MonitorReadingModel{}; }
 
-MonitorReadingModel data_sheet_reading_model() {
-  const sim::Effects realistic = sim::realistic_effects();
+MonitorReadingModel data_sheet_reading_model(const DataSheet& sheet) {
   MonitorReadingModel m;
-  m.encoder_cyclic_rad = realistic.encoder_cyclic_rad;
-  for (std::size_t i = 0; i < 3; ++i) m.clearance_mm[i] = realistic.mjcf.clearance_m[i] / kMetresPerMm;
-  m.drive_friction = gpm2002_drive_friction();
-  m.skew_s = realistic.encoder_skew_s;
-  m.compliance_rad_per_Nm = realistic.mjcf.compliance_rad_per_Nm;
-  m.thermal_time_constant_s = realistic.thermal.time_constant_s;
+  m.encoder_cyclic_rad.fill(sheet.encoder_accuracy_rad.nominal);
+  m.clearance_mm.fill(sheet.clearance_mm.nominal);
+  m.drive_friction = stated_drive_friction(sheet);
+  // Encoder 1 is the reference; drive i latches i - 1 bus slots after it.
+  for (std::size_t i = 0; i < 3; ++i) m.skew_s[i] = static_cast<double>(i) * sheet.latch_skew_s.nominal;
+  m.compliance_rad_per_Nm.fill(sheet.compliance_rad_per_Nm());
+  m.thermal_time_constant_s = sheet.warm_up_time_constant_s.nominal;
   return m;
 }
 
-MonitorReadingModel parse_monitor_reading_model(const YAML::Node& n, const std::string& file) {
-  if (!n) return data_sheet_reading_model();
-  if (n.IsScalar()) return reading_model_preset(n, file, "monitor");
+MonitorReadingModel parse_monitor_reading_model(const YAML::Node& n, const std::string& file, const DataSheet& sheet) {
+  if (!n) return data_sheet_reading_model(sheet);
+  if (n.IsScalar()) return reading_model_preset(n, file, "monitor", sheet);
   if (!n.IsMap())
     throw InputError(yaml_where(file, n, "monitor") +
                      "expected a preset (ideal, data_sheet) or a map of the monitor's reading model (see scenarios/SCHEMA.md)");
   yaml_check_keys(n, file, "monitor",
                   {"preset", "encoder_cyclic_rad", "clearance_mm", "drive_friction", "skew_s", "compliance_rad_per_Nm",
                    "thermal_time_constant_s"});
-  MonitorReadingModel m = n["preset"] ? reading_model_preset(n["preset"], file, "monitor.preset") : data_sheet_reading_model();
+  MonitorReadingModel m =
+      n["preset"] ? reading_model_preset(n["preset"], file, "monitor.preset", sheet) : data_sheet_reading_model(sheet);
   if (n["encoder_cyclic_rad"]) m.encoder_cyclic_rad = per_joint(n["encoder_cyclic_rad"], file, "monitor.encoder_cyclic_rad", 0.01, "rad");
   if (n["clearance_mm"]) m.clearance_mm = per_joint(n["clearance_mm"], file, "monitor.clearance_mm", 1.0, "mm");
   if (n["drive_friction"])

@@ -13,6 +13,7 @@
 #include "calib/monitor/monitor.hpp"
 #include "calib/problem.hpp"
 #include "calib/robust_loss.hpp"
+#include "models/data_sheet.hpp"
 #include "run/compensation.hpp"
 #include "sim/scenario.hpp"
 
@@ -34,10 +35,10 @@ struct DriveFriction {
   bool fit_scale = true;
 };
 
-// The GPM2002 data-sheet class (the default): the Coulomb and viscous
-// friction of the realistic effects preset (sim::realistic_effects) plus the
-// gearbox's design damping (MjcfOptions::active_damping): 0.3 N m, 0.15 N m s/rad.
-DriveFriction gpm2002_drive_friction();
+// The drives' friction a data sheet states (the default of
+// calibration.drive_friction): its nominal Coulomb and viscous friction at
+// each joint (the GPM2002's: 0.3 N m, 0.15 N m s/rad), its scale fitted.
+DriveFriction stated_drive_friction(const DataSheet& sheet);
 
 // What the drift monitor assumes of the robot's readings (scenario
 // `monitor:`, scenarios/SCHEMA.md): the reading errors it models or corrects
@@ -61,15 +62,16 @@ struct MonitorReadingModel {
 // monitor's own 60 s time constant (calib/monitor MonitorSettings).
 MonitorReadingModel ideal_reading_model();
 
-// `monitor: data_sheet` (the default): the GPM2002 data-sheet class, the
-// values of the realistic effects preset (sim::realistic_effects: cyclic
-// error, pin clearance, latch skew, compliance, thermal time constant) and
-// the drives' friction of gpm2002_drive_friction().
-MonitorReadingModel data_sheet_reading_model();
+// `monitor: data_sheet` (the default): the nominal values of the robot's
+// data sheet (encoder accuracy as the cyclic error, pin clearance, latch
+// skew of drives 2 and 3, compliance 1 / stiffness, warm-up time constant)
+// and the drives' friction of stated_drive_friction(sheet).
+MonitorReadingModel data_sheet_reading_model(const DataSheet& sheet);
 
-// Parses the scenario's `monitor:` section (node n, absent: the default);
-// throws InputError naming the file, line and key.
-MonitorReadingModel parse_monitor_reading_model(const YAML::Node& n, const std::string& file);
+// Parses the scenario's `monitor:` section (node n, absent: the default), the
+// `data_sheet` preset from sheet (the robot's); throws InputError naming the
+// file, line and key.
+MonitorReadingModel parse_monitor_reading_model(const YAML::Node& n, const std::string& file, const DataSheet& sheet);
 
 // m as a top-level `monitor:` section of YAML text, every key explicit, each
 // number in its shortest exact form: parse_monitor_reading_model reads it
@@ -100,8 +102,9 @@ struct CalibrationSpec {
   // The axial play of the passive links (joint clearance), by the sign of each
   // link's force; unset = on the fly.
   std::optional<bool> estimate_clearance;
-  // The drives' friction the procedure assumes (for the force signs).
-  DriveFriction drive_friction = gpm2002_drive_friction();
+  // The drives' friction the procedure assumes (for the force signs);
+  // default: the robot's data sheet (stated_drive_friction).
+  DriveFriction drive_friction = stated_drive_friction(DataSheet{});
   // With the clearance: samples where some passive link's axial force is
   // below this (N) are left out (its sign is uncertain); unset = MotionModel's.
   std::optional<double> tension_min_N;
@@ -140,7 +143,7 @@ struct RunSpec {
   std::optional<std::string> hardware;
   bool hardware_resume = false;  // continue DIR/samples.csv (`gpm run --hardware ... --resume`)
   CalibrationSpec calibration;
-  MonitorReadingModel monitor = data_sheet_reading_model();  // what the monitor of `operation:` assumes
+  MonitorReadingModel monitor = data_sheet_reading_model(DataSheet{});  // what the monitor of `operation:` assumes
   std::optional<CompensationPlan> compensation;  // set when outputs.compensation
   Expectations expect;
   Outputs outputs;

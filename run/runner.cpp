@@ -26,6 +26,7 @@
 #include "hw/procedures/stop_on_signal.hpp"
 #include "models/robot_yaml.hpp"
 #include "models/samples.hpp"
+#include "run/calibration_inputs.hpp"
 #include "run/expectations.hpp"
 #include "run/run_report_data.hpp"
 #include "run/sampling_design.hpp"
@@ -62,25 +63,6 @@ constexpr double kStartTransient_s = 0.05;
 // against q / (4 sqrt 2 h^2) = 8.5 rad/s^2 at w = h, which made the main job's chi2/dof 1.44
 // (8 ms: 1.08; 4 and 12 ms alike; 16 ms failed its 3 CRB sigmas, 4.7).
 constexpr double kAccelerationHalfWindow_s = 8e-3;
-
-// The data sheet's accuracy of the GPM2002's 17-bit absolute encoders, +-4
-// arcsec (A = 2e-5 rad), as the prior 1-sigma of each component of the
-// once-per-turn error A sin(theta + phase) the calibration on the fly
-// carries: A / sqrt 2, the spread of A cos(phase) over a phase unknown.
-const double kEncoderCyclicPrior_rad = 2e-5 / std::sqrt(2.0);
-
-// Encoder noise of one averaged sample: white reading noise over the
-// averaging window (one reading per drive period) plus quantisation
-// (uniform, step^2 / 12). An a-priori figure for the bound.
-double effective_sigma(const sim::Scenario& s) {
-  const double q = s.twin.encoder.bits > 0 ? 2.0 * M_PI / std::ldexp(1.0, s.twin.encoder.bits) : 0.0;
-  // On the fly every sample is one instantaneous reading.
-  const double n_avg = s.sampling->pattern == sim::PosePattern::kTrajectory
-                           ? 1.0
-                           : std::max(1.0, std::round(s.sampling->options.average_s * s.twin.servo_rate_hz));
-  const double noise = s.twin.encoder.noise_rad;
-  return std::sqrt(noise * noise / n_avg + q * q / 12.0);
-}
 
 // "value: chi2/dof" of each value a model-test profile tried (the run's
 // notes), the values formatted with value_format.
@@ -204,44 +186,11 @@ RunOutcome run_scenario(const RunSpec& spec_in, const std::string& scenario_file
   if (in_motion && spec.hardware)
     throw InputError(fmt::format("{}: sampling.pattern: trajectory runs on the twin only (the hardware interface "
                                  "samples stop-and-go); use pattern: designed with --hardware", scenario_file));
-  calib::MotionModel motion;
-  motion.compliance = spec.calibration.estimate_compliance.value_or(in_motion);
-  motion.skew = spec.calibration.estimate_skew.value_or(in_motion);
-  motion.friction = motion.compliance && spec.calibration.estimate_friction.value_or(in_motion);
-  // On the fly the samples are consecutive: the transmission's ringing twist
-  // is a response to the torques of the periods since the sample before too
-  // (calib/motion_correction.hpp).
-  // Only with a reading noise to judge it by: from noiseless readings (ideal
-  // encoders) the twin's soft loop closure, which follows the forces, showed
-  // as h at 30 sigma and moved dth3 by 4e-5 rad.
-  motion.torque_before = in_motion && motion.compliance && spec.calibration.sigma.value_or(effective_sigma(spec.sim)) > 0.0;
-  // On the fly each encoder's once-per-turn error is carried in the 1-sigma
-  // and the bound with the data sheet's accuracy as its prior
-  // (kEncoderCyclicPrior_rad; calib/motion_correction.hpp: considered, not estimated).
-  // (Ideal encoders, bits 0, have none.)
-  if (in_motion && spec.sim.twin.encoder.bits > 0) motion.cyclic_prior_rad = kEncoderCyclicPrior_rad;
-  if (spec.calibration.tension_min_N) motion.tension_min_N = *spec.calibration.tension_min_N;
-  // What the calibration assumes is what its user states (calibration:), as
-  // on a real robot: the twin's effects (the simulated truth) are not read.
-  // On the fly the joint clearance is estimated (a play whose force sign
-  // never changes is left to lb_i), and the drives' start transient is left out.
-  motion.clearance = spec.calibration.estimate_clearance.value_or(in_motion);
-  {
-    // The force signs of the clearance need what the transmissions take off
-    // the drive torque (calib/passive_tension.hpp): the stated friction
-    // (calibration.drive_friction), and from the design data the inertia
-    // about A_i of rotor, active link (a bar) and the passive link's half
-    // carried at B_i.
-    const MjcfOptions& design = spec.sim.twin.mjcf;
-    const Geometry& g = spec.sim.controller.geometry;
-    for (std::size_t i = 0; i < 3; ++i) {
-      const double la_m = 1e-3 * g.la_(static_cast<int>(i));
-      motion.load.coulomb_Nm[i] = spec.calibration.drive_friction.coulomb_Nm[i];
-      motion.load.viscous_Nm_s[i] = spec.calibration.drive_friction.viscous_Nm_s[i];
-      motion.load.inertia_kg_m2[i] = design.armature_kg_m2 +
-                                     (design.active_link_mass_kg / 3.0 + design.passive_link_mass_kg / 2.0) * la_m * la_m;
-    }
-  }
+  // What the calibration assumes is what its user states (calibration:) and
+  // the robot's data sheet, as on a real robot: the twin's effects and
+  // design values (the simulated truth) are not read (run/calibration_inputs.hpp).
+  const CalibrationInputs inputs = calibration_inputs(spec, spec.sim.controller);
+  calib::MotionModel motion = inputs.motion;
   const bool with_effects = motion.compliance || motion.skew || motion.clearance;
   if (with_effects && (spec.calibration.method != calib::Method::kLM || spec.calibration.cost != calib::Cost::kML))
     throw InputError(fmt::format("{}: estimating compliance, skew or clearance with the geometry (samples on the fly, or "
@@ -376,7 +325,7 @@ RunOutcome run_scenario(const RunSpec& spec_in, const std::string& scenario_file
             speeds.scale, at, tried);
       };
       if (fit_speed) choose_speed("the stated friction");
-      if (motion.clearance && spec.calibration.drive_friction.fit_scale && out.crb_sigma_rad > 0.0) {
+      if (motion.clearance && inputs.drive_friction.fit_scale && out.crb_sigma_rad > 0.0) {
         // The stated friction times the factor the model test prefers.
         calib::FrictionProfile profile = calib::calibrate_friction_profile(
             problem, omega, tau, lo, motion, alpha, calib::default_friction_scales(), out.crb_sigma_rad);

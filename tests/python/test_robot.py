@@ -92,6 +92,21 @@ def test_robot_file_round_trip(scratch):
     assert gpm.load_robot(scratch / "r.yaml") == robot
 
 
+def test_data_sheet_is_the_robot_files(scratch):
+    sheet = gpm.load_robot().data_sheet  # models/gpm2002.yaml: a 400 W servo behind a 10:1 planetary
+    assert sheet["gear_ratio"] == 10 and sheet["encoder_bits"] == 17
+    assert sheet["coulomb_Nm"] == dict(nominal=0.3, min=0.15, max=0.6)
+    assert sheet["rotor_inertia_kg_m2"]["nominal"] == 2.6e-5
+    assert math.isclose(sheet["rotor_inertia_kg_m2"]["max"], 2.86e-5)  # +-10 %
+    text = (ROOT / "models" / "gpm2002.yaml").read_text().split("data_sheet:")[0]
+    (scratch / "r.yaml").write_text(text + "data_sheet: {coulomb_Nm: 0.5}\n")
+    robot = gpm.load_robot(scratch / "r.yaml")
+    assert robot.data_sheet["coulomb_Nm"] == dict(nominal=0.5, min=0.5, max=0.5)  # a number: exact
+    assert robot.data_sheet["viscous_Nm_s"] == sheet["viscous_Nm_s"]  # left out: the GPM2002's
+    robot.save(scratch / "s.yaml")
+    assert gpm.load_robot(scratch / "s.yaml").data_sheet == robot.data_sheet
+
+
 def test_read_samples_is_the_csv_without_a_copy(scratch):
     path = scratch / "s.csv"
     path.write_text("sample,x,theta_m1,theta_m2,theta_m3,y\n4,1.5,0.1,0.2,0.3,2.5\n9,3.5,1.1,1.2,1.3,4.5\n")

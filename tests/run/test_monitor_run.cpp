@@ -106,7 +106,7 @@ TEST(MonitorRun, ReadingModelIsTheStatementNotTheTwinsEffects) {
       "encoder_skew_s: 0.0003, thermal: {time_constant_s: 30}}\n");
   std::array<double, kNumParams> prior;
   prior.fill(std::numeric_limits<double>::quiet_NaN());
-  MonitorReadingModel stated = data_sheet_reading_model();
+  MonitorReadingModel stated = data_sheet_reading_model(DataSheet{});
   stated.clearance_mm = {0.001, 0.002, 0.003};
   stated.skew_s = {0.0, 1e-5, -2e-5};
   const MonitorOutcome a = run_monitor(ideal_twin, ideal_twin.controller, prior, stated);
@@ -151,7 +151,7 @@ TEST(MonitorRun, ReadingModelIsTheStatementNotTheTwinsEffects) {
 // as pin clearance d_i / 2, the friction times the fitted factor).
 TEST(MonitorRun, ReadingModelAfterCalibrationTakesTheEstimatesWhereMade) {
   RunOutcome run;
-  run.spec.monitor = data_sheet_reading_model();
+  run.spec.monitor = data_sheet_reading_model(DataSheet{});
   run.spec.monitor.skew_s = {0.0, 7e-6, 8e-6};
   const MonitorReadingModel stated = run.spec.monitor;
   // No calibration (refused): the statement as it is.
@@ -234,7 +234,7 @@ TEST(MonitorRun, GpmRunMonitorUsesWhatTheCalibrationEstimated) {
   }
   // The friction: the stated one (data_sheet) times one factor the model test chose.
   ASSERT_TRUE(o.drive_friction_fitted);
-  const DriveFriction stated = gpm2002_drive_friction();
+  const DriveFriction stated = stated_drive_friction(DataSheet{});
   const double k = ms.coulomb_Nm[0] / stated.coulomb_Nm[0];
   bool tried = false;
   for (double f : calib::default_friction_scales()) tried = tried || std::abs(f - k) < 1e-12;
@@ -244,8 +244,8 @@ TEST(MonitorRun, GpmRunMonitorUsesWhatTheCalibrationEstimated) {
     EXPECT_DOUBLE_EQ(ms.viscous_Nm_s[i], k * stated.viscous_Nm_s[i]);
   }
   // Not estimated: the statement.
-  EXPECT_EQ(r.encoder_cyclic_rad, data_sheet_reading_model().encoder_cyclic_rad);
-  EXPECT_EQ(ms.thermal_tau_s, data_sheet_reading_model().thermal_time_constant_s);
+  EXPECT_EQ(r.encoder_cyclic_rad, data_sheet_reading_model(DataSheet{}).encoder_cyclic_rad);
+  EXPECT_EQ(ms.thermal_tau_s, data_sheet_reading_model(DataSheet{}).thermal_time_constant_s);
 }
 
 // Through hardware: the twin backend's actual robot (the fixture's perturbed
@@ -307,7 +307,7 @@ TEST(MonitorRun, MonitorsThroughTheTwinBackend) {
   EXPECT_GE(bad.alarms.front().param, 0) << bad.alarms.front().explanation;
 
   // A stated model reaches the hardware monitor as it is (the backend's twin is not read for it).
-  MonitorReadingModel stated = data_sheet_reading_model();
+  MonitorReadingModel stated = data_sheet_reading_model(DataSheet{});
   stated.clearance_mm = {0.001, 0.002, 0.003};
   const MonitorOutcome told = run_monitor_hardware(rig.scenario(), hw_actual, rig.actual, prior, stated);
   EXPECT_EQ(told.model.settings.clearance_mm, stated.clearance_mm);

@@ -6,9 +6,7 @@
 #include <gtest/gtest.h>
 
 #include "models/errors.hpp"
-#include "models/mjcf.hpp"
 #include "models/yaml_util.hpp"
-#include "sim/effects.hpp"
 
 namespace gpm::scenario {
 namespace {
@@ -111,17 +109,13 @@ TEST(RunSpec, LossAndEstimatedEffects) {
 }
 
 // calibration.drive_friction: what the procedure assumes, independent of the
-// twin's effects; default the realistic preset's friction plus the design
-// gearbox damping, its scale fitted; a number or one per joint; a key left
-// out keeps its default.
+// twin's effects; default the robot's data sheet (models/gpm2002.yaml: 0.3 N
+// m, 0.15 N m s/rad), its scale fitted; a number or one per joint; a key
+// left out keeps its default.
 TEST(RunSpec, DriveFrictionStatedByTheCalibration) {
   const RunSpec d = parse_run_spec(kHead, "s.yaml", kBase);
-  const sim::Effects realistic = sim::realistic_effects();
-  for (std::size_t i = 0; i < 3; ++i) {
-    EXPECT_EQ(d.calibration.drive_friction.coulomb_Nm[i], realistic.mjcf.coulomb_Nm[i]);
-    EXPECT_DOUBLE_EQ(d.calibration.drive_friction.viscous_Nm_s[i],
-                     MjcfOptions{}.active_damping + realistic.mjcf.viscous_Nm_s[i]);
-  }
+  EXPECT_EQ(d.calibration.drive_friction.coulomb_Nm, (std::array<double, 3>{0.3, 0.3, 0.3}));
+  EXPECT_EQ(d.calibration.drive_friction.viscous_Nm_s, (std::array<double, 3>{0.15, 0.15, 0.15}));
   // The twin's effects are the simulated machine: they do not change what the calibration assumes.
   const RunSpec ideal = parse_run_spec(kHead + "effects: {coulomb_friction_Nm: 2, viscous_friction_Nm_s: 1}\n",
                                        "s.yaml", kBase);
@@ -159,15 +153,15 @@ TEST(RunSpec, DriveFrictionStatedByTheCalibration) {
 // last bit through the scenario's own parser (awkward numbers: the shortest
 // exact form is written), and is the same section a scenario states.
 TEST(RunSpec, MonitorReadingModelYamlRoundTripsBitExact) {
-  MonitorReadingModel m = data_sheet_reading_model();
+  MonitorReadingModel m = data_sheet_reading_model(DataSheet{});
   m.clearance_mm = {0.005644814301912167, 1.0 / 3.0 * 1e-2, 0.0};
   m.skew_s = {0.0, 5.556675527672076e-05, -8.164314423058782e-05};
   m.compliance_rad_per_Nm = {0.0001, 0.000103386928736235, 0.0};
   m.drive_friction.viscous_Nm_s = {0.15000000000000002, 0.1, 0.2};
   m.thermal_time_constant_s = 612.5;
-  for (const MonitorReadingModel& want : {m, ideal_reading_model(), data_sheet_reading_model()}) {
+  for (const MonitorReadingModel& want : {m, ideal_reading_model(), data_sheet_reading_model(DataSheet{})}) {
     const std::string text = monitor_reading_model_yaml(want);
-    const MonitorReadingModel got = parse_monitor_reading_model(load_yaml_string(text, "r.yaml")["monitor"], "r.yaml");
+    const MonitorReadingModel got = parse_monitor_reading_model(load_yaml_string(text, "r.yaml")["monitor"], "r.yaml", DataSheet{});
     EXPECT_EQ(got.encoder_cyclic_rad, want.encoder_cyclic_rad) << text;
     EXPECT_EQ(got.clearance_mm, want.clearance_mm) << text;
     EXPECT_EQ(got.drive_friction.coulomb_Nm, want.drive_friction.coulomb_Nm) << text;
@@ -181,20 +175,20 @@ TEST(RunSpec, MonitorReadingModelYamlRoundTripsBitExact) {
 }
 
 // monitor: what the drift monitor assumes of the readings. Default the
-// data-sheet class (the realistic preset's reading errors and the drives'
-// friction calibration.drive_friction defaults to), whatever the twin's
-// effects; `ideal` models none; keys override the preset.
+// robot's data sheet (models/gpm2002.yaml: encoder accuracy 2e-5 rad, latch
+// skew 50 us per drive, stiffness 1e4 N m/rad, pin clearance 5 um, warm-up
+// 600 s, the drives' friction calibration.drive_friction defaults to),
+// whatever the twin's effects; `ideal` models none; keys override the preset.
 TEST(RunSpec, MonitorReadingModelIsStatedNotTakenFromTheTwin) {
   const RunSpec d = parse_run_spec(kHead, "s.yaml", kBase);
-  const sim::Effects realistic = sim::realistic_effects();
-  const DriveFriction friction = gpm2002_drive_friction();
-  EXPECT_EQ(d.monitor.encoder_cyclic_rad, realistic.encoder_cyclic_rad);
-  EXPECT_EQ(d.monitor.skew_s, realistic.encoder_skew_s);
-  EXPECT_EQ(d.monitor.compliance_rad_per_Nm, realistic.mjcf.compliance_rad_per_Nm);
-  EXPECT_EQ(d.monitor.drive_friction.coulomb_Nm, friction.coulomb_Nm);
-  EXPECT_EQ(d.monitor.drive_friction.viscous_Nm_s, friction.viscous_Nm_s);
-  EXPECT_EQ(d.monitor.thermal_time_constant_s, realistic.thermal.time_constant_s);
-  for (std::size_t i = 0; i < 3; ++i) EXPECT_DOUBLE_EQ(d.monitor.clearance_mm[i], 1e3 * realistic.mjcf.clearance_m[i]);
+  using Three = std::array<double, 3>;
+  EXPECT_EQ(d.monitor.encoder_cyclic_rad, (Three{2e-5, 2e-5, 2e-5}));
+  EXPECT_EQ(d.monitor.skew_s, (Three{0.0, 50e-6, 100e-6}));
+  EXPECT_EQ(d.monitor.compliance_rad_per_Nm, (Three{1e-4, 1e-4, 1e-4}));
+  EXPECT_EQ(d.monitor.drive_friction.coulomb_Nm, d.calibration.drive_friction.coulomb_Nm);
+  EXPECT_EQ(d.monitor.drive_friction.viscous_Nm_s, d.calibration.drive_friction.viscous_Nm_s);
+  EXPECT_EQ(d.monitor.thermal_time_constant_s, 600.0);
+  EXPECT_EQ(d.monitor.clearance_mm, (Three{0.005, 0.005, 0.005}));
   // The twin's effects are the simulated machine: they do not change what the monitor assumes.
   const RunSpec fx = parse_run_spec(kHead + "physics: {timestep_s: 0.00025}\nservo: {rate_hz: 4000}\n"
                                             "effects: {preset: realistic, passive_clearance_mm: 0.02, encoder_cyclic_rad: 0, "

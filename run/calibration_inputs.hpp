@@ -1,0 +1,39 @@
+// What the calibration and the drift monitor of `gpm run` are given besides
+// the readings: the scenario's statements (calibration:, monitor:) and the
+// robot's data sheet (models/data_sheet.hpp), never the twin's truth
+// (sim::Effects, MjcfOptions). A pure function, so that a test can change
+// every truth value and see the inputs stay bit-identical.
+#pragma once
+
+#include "calib/motion_correction.hpp"
+#include "models/robot.hpp"
+#include "run/run_spec.hpp"
+#include "sim/scenario.hpp"
+
+namespace gpm::scenario {
+
+struct CalibrationInputs {
+  // The reading effects estimated with the geometry and the transmission
+  // load of the force signs (friction, inertia), before the data.
+  calib::MotionModel motion;
+  DriveFriction drive_friction;  // calibration.drive_friction (default: the data sheet's)
+  MonitorReadingModel monitor;   // the monitor's reading model before calibration (monitor:)
+};
+
+// Encoder noise of one averaged sample (rad): white reading noise over the
+// averaging window (one reading per drive period) plus quantisation (step^2
+// / 12), from the scenario's encoder: and servo: (what the drives report).
+double effective_sigma(const sim::Scenario& s);
+
+// The inputs of spec's calibration and monitor for robot (the controller's
+// robot, whose data_sheet states rotor inertia, link masses and encoder
+// accuracy); reads no field of spec.sim.twin.effects or spec.sim.twin.mjcf.
+CalibrationInputs calibration_inputs(const RunSpec& spec, const Robot& robot);
+
+// The transmission load the force signs subtract from each drive torque
+// (calib/passive_tension.hpp): the stated friction and, from the data sheet,
+// the inertia about A_i of rotor (reflected, J_r N^2), active link (a bar,
+// m_a la^2 / 3) and the passive link's half carried at B_i (m_b la^2 / 2).
+calib::TransmissionLoad transmission_load(const DriveFriction& friction, const DataSheet& sheet, const Geometry& g);
+
+}  // namespace gpm::scenario
