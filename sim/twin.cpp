@@ -55,6 +55,7 @@ int optional_id(const mjModel* m, mjtObj type, const std::string& n) { return mj
 MjcfOptions mjcf_with_effects(const TwinConfig& c) {
   MjcfOptions o = c.mjcf;
   o.effects = c.effects.mjcf;
+  if (c.effects.drive.any()) drive_train_rotors(c.effects, o.effects);
   return o;
 }
 
@@ -94,6 +95,7 @@ void check_transmission(const Robot& actual, const TwinConfig& config) {
 TwinModel::TwinModel(const Robot& actual, const TwinConfig& config)
     : actual_(actual), config_(config), xml_(mjcf_from_robot(actual, mjcf_with_effects(config))) {
   config_.mjcf.effects = config.effects.mjcf;
+  if (config.effects.drive.any()) check_drive_train(actual, config_, kMaxOmegaDt);
   check_transmission(actual, config_);
   const double ratio = 1.0 / (config.servo_rate_hz * config.mjcf.timestep_s);
   steps_per_tick_ = static_cast<int>(std::lround(ratio));
@@ -133,6 +135,8 @@ TwinModel::TwinModel(const Robot& actual, const TwinConfig& config)
   for (int i = 0; i < 3; ++i)
     if (compliant[i] && model_->dof_frictionloss[dof_m[i]] > 0.0)
       rotor_friction[i] = take_rotor_friction(model_.get(), dof_m[i], actuator[i]);
+  if (config.effects.drive.any())
+    drive_train = make_drive_train(model_.get(), config.effects, qpos_m, qpos_a, dof_m, dof_a, actuator, rotor_friction);
   site_ee = require_id(m, mjOBJ_SITE, "ee");
   body_ee = require_id(m, mjOBJ_BODY, "ee");
 }
@@ -229,6 +233,7 @@ void twin_step(const TwinModel& model, TwinState& state) {
       state.last.torque[i] = state.servo[i].torque;
     }
   }
+  if (model.drive_train.on) drive_train_step(model.drive_train, m, d, state.servo, state.drive_train);
   for (const RotorFriction& r : model.rotor_friction)
     if (r.dof >= 0) d->qfrc_applied[r.dof] = rotor_friction_torque(m, d, r);
   mj_step2(m, d);
