@@ -60,6 +60,7 @@ MjcfOptions mjcf_with_effects(const TwinConfig& c) {
 }
 
 void check_transmission(const Robot& actual, const TwinConfig& config) {
+  if (config.effects.drive.any()) check_drive_train(actual, config, TwinModel::kMaxOmegaDt);
   const MjcfOptions o = mjcf_with_effects(config);
   for (int i = 0; i < 3; ++i) {
     const double c = o.effects.compliance_rad_per_Nm[static_cast<size_t>(i)];
@@ -95,7 +96,6 @@ void check_transmission(const Robot& actual, const TwinConfig& config) {
 TwinModel::TwinModel(const Robot& actual, const TwinConfig& config)
     : actual_(actual), config_(config), xml_(mjcf_from_robot(actual, mjcf_with_effects(config))) {
   config_.mjcf.effects = config.effects.mjcf;
-  if (config.effects.drive.any()) check_drive_train(actual, config_, kMaxOmegaDt);
   check_transmission(actual, config_);
   const double ratio = 1.0 / (config.servo_rate_hz * config.mjcf.timestep_s);
   steps_per_tick_ = static_cast<int>(std::lround(ratio));

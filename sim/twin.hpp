@@ -164,7 +164,8 @@ MjcfOptions mjcf_with_effects(const TwinConfig& config);
 // integration holds omega dt <= TwinModel::kMaxOmegaDt (docs/ARCHITECTURE.md measured
 // instability near 2; omega from transmission_omega), and the drive's
 // velocity loop, which then acts on the rotor alone, needs
-// kv / rate_hz / armature <= TwinModel::kMaxRotorLoopGain.
+// kv / rate_hz / armature <= TwinModel::kMaxRotorLoopGain. A drive train
+// (sim/drive_train_step.hpp check_drive_train) is checked first.
 void check_transmission(const Robot& actual, const TwinConfig& config);
 
 // Loop-closure gap (m) of the current mjData kinematics (after mj_forward or
