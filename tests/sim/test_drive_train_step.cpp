@@ -7,6 +7,9 @@
 //   its transmission by b/2 + f^-1((1 + delta) T) (the catalogue's torsion
 //   formula on top of the dead band; the applied torque, not the reported
 //   one, loads the mesh); between +T and -T the lost motion is b + 2 f^-1;
+// - cogging and torque constant: a drive holding an unloaded axis reports
+//   -cogging / (1 + delta) (it cancels its motor's ripple through its own
+//   torque constant);
 // - transmission error: at rest the link stands at theta_m - (TE(theta_m) -
 //   TE(theta_m0)) - tau / K (the gear's kinematic error plus Hooke's law);
 // - load-dependent and Stribeck friction: by power balance over a circle,
@@ -133,6 +136,35 @@ TEST(DriveTrainStep, LinkStandsOffByTheTransmissionError) {
     EXPECT_GT(std::abs(gear), 1e-4) << "chain " << k + 1 << ": the move should change the TE";
     EXPECT_NEAR(th - s.last.theta_a[static_cast<long>(k)], gear + hooke, 1e-7) << "chain " << k + 1 << " " << d.te_joint_rad;
   }
+}
+
+// Two drives hold position and the third is off, so at rest the mechanism
+// carries no torque (J^T tau = 0 with tau_3 = 0 and J's 2 x 2 block
+// regular): each holding drive applies nothing, and reports the torque that
+// cancels its motor's cogging through its own torque constant,
+// tau_reported = -A_c sin(P N theta_m + phi_c) / (1 + delta).
+TEST(DriveTrainStep, HoldingDrivesReportTheTorqueThatCancelsCogging) {
+  TwinConfig c = fast_config();
+  c.drives[2].mode = ServoMode::kTorqueOff;
+  c.effects.gear_ratio = 10.0;
+  c.effects.drive.cogging_periods_per_motor_rev = 24;
+  const double delta[2] = {0.05, -0.08}, phase[2] = {0.3, 2.2};
+  for (size_t k = 0; k < 2; ++k) {
+    DriveChain& d = c.effects.drive.chain[k];
+    d.cogging_Nm = 0.2, d.cogging_phase_rad = phase[k], d.torque_constant_delta = delta[k];
+  }
+  const TwinModel m(Robot{}, c);
+  TwinState s(m, 1);
+  run_for(m, s, 1.0);
+  twin_sense(m, s);
+  double largest = 0.0;
+  for (int i = 0; i < 2; ++i) {
+    const double cog = 0.2 * std::sin(24 * 10.0 * s.last.theta_motor[i] + phase[i]);
+    EXPECT_NEAR(s.last.torque[i], -cog / (1.0 + delta[i]), 1e-4) << "drive " << i + 1;
+    largest = std::max(largest, std::abs(cog));
+  }
+  EXPECT_GT(largest, 0.02) << "the test should see some cogging";
+  EXPECT_LT(s.last.motor_velocity.cwiseAbs().maxCoeff(), 1e-6) << "not at rest";
 }
 
 // Mean powers over two circles: the drives' input, the rotors' friction
