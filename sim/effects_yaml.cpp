@@ -129,13 +129,13 @@ Effects parse_effects(const YAML::Node& n, const std::string& file, std::uint64_
     if (!n.IsMap())
       throw InputError(yaml_where(file, n, c) + "expected ideal, realistic or a map of effects (scenarios/SCHEMA.md)");
     yaml_check_keys(n, file, c,
-                    {"preset", "transmission_compliance_rad_per_Nm", "passive_clearance_mm", "coulomb_friction_Nm",
-                     "viscous_friction_Nm_s", "thermal", "encoder_cyclic_rad", "encoder_skew_s", "gear_ratio",
-                     // drive train (sim/drive_train.hpp)
+                    {// drive train (sim/drive_train.hpp)
                      "backlash_rad", "drive_stiffness_Nm_per_rad", "drive_stiffness_bands_Nm", "drive_hysteresis_rad",
                      "transmission_error_joint_rad", "transmission_error_motor_rad", "transmission_error_motor_order",
                      "stiction_excess_Nm", "stribeck_speed_rad_s", "friction_load_coefficient",
-                     "torque_constant_delta", "cogging_Nm", "cogging_periods_per_motor_rev"});
+                     "torque_constant_delta", "cogging_Nm", "cogging_periods_per_motor_rev",
+                     "preset", "transmission_compliance_rad_per_Nm", "passive_clearance_mm", "coulomb_friction_Nm",
+                     "viscous_friction_Nm_s", "thermal", "encoder_cyclic_rad", "encoder_skew_s", "gear_ratio"});
     if (n["preset"]) e = preset(n["preset"], file, c + ".preset");
     const auto key = [&](const char* k) { return c + "." + k; };
     if (const YAML::Node v = n["transmission_compliance_rad_per_Nm"])
