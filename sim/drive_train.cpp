@@ -83,7 +83,7 @@ double transmission_torque(const DriveChain& c, double delta, double& s) {
 
 double friction_bound(const DriveChain& c, double coulomb_Nm, double omega_m, double tau_t) {
   double F = coulomb_Nm + c.load_friction * std::abs(tau_t);
-  if (c.stiction_excess_Nm > 0.0) {
+  if (c.stiction_excess_Nm > 0.0 && c.stribeck_speed_rad_s > 0.0) {
     const double r = omega_m / c.stribeck_speed_rad_s;
     F += c.stiction_excess_Nm * std::exp(-r * r);
   }

@@ -1,5 +1,6 @@
 // Tests of sim/drive_train_step.cpp: the drive train inside the twin, each
 // against an independent expectation.
+// - off (every amplitude 0) is the twin without a drive train, bit for bit;
 // - the mesh law applied through qfrc_applied with a linear stiffness (and a
 //   vanishing dead band) reproduces MuJoCo's own tendon spring step for step,
 //   rotor friction included (signs and wiring);
@@ -53,6 +54,30 @@ Eigen::Vector3d readings_at(const Robot& r, const Eigen::Vector2d& p) {
   Eigen::Vector3d c;
   for (int i = 0; i < 3; ++i) c[i] = q.theta_a[i] - r.geometry.dth_(i);
   return c;
+}
+
+// Off is off: a drive train whose every amplitude is 0 (phases, orders and
+// Stribeck speed set, as the scenario parser leaves them) builds no drive
+// train and steps bit for bit as the twin without one.
+TEST(DriveTrainStep, OffIsTheIdealTwinBitForBit) {
+  const Robot robot;
+  const TwinConfig ideal = fast_config();
+  TwinConfig off = ideal;
+  off.effects.drive.te_motor_order = 3, off.effects.drive.cogging_periods_per_motor_rev = 36;
+  for (DriveChain& d : off.effects.drive.chain)
+    d.te_joint_phase_rad = 1.0, d.te_motor_phase_rad = 2.0, d.cogging_phase_rad = 3.0, d.stribeck_speed_rad_s = 0.2;
+  const TwinModel mi(robot, ideal), mo(robot, off);
+  EXPECT_FALSE(off.effects.any());
+  EXPECT_FALSE(mo.drive_train.on);
+  EXPECT_EQ(mi.xml(), mo.xml());
+  TwinState si(mi, 1), so(mo, 1);
+  const Eigen::Vector3d theta_m0 = si.last.theta_motor;
+  const Eigen::Vector3d target = readings_at(robot, robot.home + Eigen::Vector2d(15.0, 25.0));
+  twin_command(si, target, Eigen::Vector3d::Zero());
+  twin_command(so, target, Eigen::Vector3d::Zero());
+  for (int k = 0; k < 1000; ++k) twin_step(mi, si), twin_step(mo, so);
+  for (int j = 0; j < mi.mj()->nq; ++j) EXPECT_EQ(si.data->qpos[j], so.data->qpos[j]) << j;
+  EXPECT_GT((si.last.theta_motor - theta_m0).cwiseAbs().maxCoeff(), 0.01) << "the drives should have moved";
 }
 
 TEST(DriveTrainStep, LinearMeshReproducesMuJoCosSpring) {
