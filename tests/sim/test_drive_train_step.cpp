@@ -131,9 +131,9 @@ TEST(DriveTrainStep, StaticDeflectionFollowsDeadBandAndBands) {
   const double T = 12.0, applied = 1.1 * T;
   const double expected = 3e-4 + 7.0 / 1.3e4 + (applied - 7.0) / 1.8e4;  // b/2 + T1/K1 + (T - T1)/K2
   const double plus = twist_under_torque(c, T), minus = twist_under_torque(c, -T);
-  EXPECT_NEAR(plus, expected, 1e-3 * expected);
-  EXPECT_NEAR(minus, -expected, 1e-3 * expected);
-  EXPECT_NEAR(plus - minus, 6e-4 + 2 * (7.0 / 1.3e4 + (applied - 7.0) / 1.8e4), 2e-3 * expected) << "lost motion";
+  EXPECT_NEAR(plus, expected, 1e-5 * expected);
+  EXPECT_NEAR(minus, -expected, 1e-5 * expected);
+  EXPECT_NEAR(plus - minus, 6e-4 + 2 * (7.0 / 1.3e4 + (applied - 7.0) / 1.8e4), 2e-5 * expected) << "lost motion";
 }
 
 TEST(DriveTrainStep, LinkStandsOffByTheTransmissionError) {
@@ -159,7 +159,7 @@ TEST(DriveTrainStep, LinkStandsOffByTheTransmissionError) {
     const double gear = te(th) - te(theta_m0[static_cast<long>(k)]);
     const double hooke = 1e-4 * s.last.torque[static_cast<long>(k)];
     EXPECT_GT(std::abs(gear), 1e-4) << "chain " << k + 1 << ": the move should change the TE";
-    EXPECT_NEAR(th - s.last.theta_a[static_cast<long>(k)], gear + hooke, 1e-7) << "chain " << k + 1 << " " << d.te_joint_rad;
+    EXPECT_NEAR(th - s.last.theta_a[static_cast<long>(k)], gear + hooke, 1e-9) << "chain " << k + 1 << " " << d.te_joint_rad;
   }
 }
 
