@@ -2,7 +2,7 @@
 // included) against bare mj_step on the same compiled model, and optionally
 // writes that model's MJCF for mujoco-testspeed (bench/sim_vs_testspeed.sh).
 //   bench_sim [--steps N] [--write-model FILE] [--timestep S] [--rate HZ]
-//             [--effects ideal|realistic|compliance|clearance|friction|thermal|encoder] [--profile]
+//             [--effects ideal|realistic|compliance|clearance|friction|thermal|encoder|drive|all] [--profile]
 // Prints "name steps_per_second" lines and "sim_seconds_per_wall_second"
 // of the twin (steps/s x timestep: the figure that compares runs at
 // different timesteps; effects: realistic needs 0.25 ms, see SCHEMA.md).
@@ -105,9 +105,14 @@ int main(int argc, char** argv) {
   else if (effects == "friction") fx.mjcf.coulomb_Nm = real.mjcf.coulomb_Nm, fx.mjcf.viscous_Nm_s = real.mjcf.viscous_Nm_s;
   else if (effects == "thermal") fx.thermal = real.thermal;
   else if (effects == "encoder") fx.encoder_cyclic_rad = real.encoder_cyclic_rad, fx.encoder_skew_s = real.encoder_skew_s;
-  else if (effects != "ideal") {
+  else if (effects == "drive" || effects == "all") {  // drive train drawn as a randomized preset would (sim/drive_train.hpp)
+    if (effects == "all") fx = real;
+    fx.gear_ratio = 10.0;
+    Rng draw(1);
+    draw_drive_train(draw, fx);
+  } else if (effects != "ideal") {
     std::fprintf(stderr, "bench_sim: --effects: '%s' is not ideal, realistic, compliance, clearance, friction, "
-                         "thermal or encoder\n", effects.c_str());
+                         "thermal, encoder, drive or all\n", effects.c_str());
     return 2;
   }
   const Robot robot;  // nominal

@@ -13,7 +13,7 @@ bool Effects::any() const {
   const auto nonzero = [](const std::array<double, 3>& a) { return a[0] != 0.0 || a[1] != 0.0 || a[2] != 0.0; };
   return nonzero(mjcf.compliance_rad_per_Nm) || nonzero(mjcf.clearance_m) || nonzero(mjcf.coulomb_Nm) ||
          nonzero(mjcf.viscous_Nm_s) || thermal.on() || nonzero(encoder_cyclic_rad) ||
-         nonzero(encoder_skew_s);
+         nonzero(encoder_skew_s) || drive.any();
 }
 
 Effects realistic_effects() {

@@ -12,6 +12,7 @@
 
 #include "models/mjcf.hpp"
 #include "models/parameters.hpp"
+#include "sim/drive_train.hpp"
 
 namespace gpm::sim {
 
@@ -40,6 +41,7 @@ struct Effects {
   // per motor revolution repeat gear_ratio times per joint revolution.
   // 1 = direct drive (and the ideal twin).
   double gear_ratio = 1.0;
+  DriveTrain drive;  // backlash, stiffness bands, TE, friction, torque constant, cogging (sim/drive_train.hpp)
 
   // True if anything differs from the ideal twin.
   bool any() const;

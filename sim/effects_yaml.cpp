@@ -49,6 +49,83 @@ Effects preset(const YAML::Node& n, const std::string& file, const std::string& 
                    fmt::format("'{}' is not a preset (valid: ideal, realistic, randomized)", name));
 }
 
+// --- Drive train (sim/drive_train.hpp) ---------------------------------------
+
+// Bands of N numbers: a list of N (all chains) or a list of three lists of N.
+template <size_t N>
+std::array<std::array<double, N>, 3> per_chain_bands(const YAML::Node& n, const std::string& file,
+                                                     const std::string& key, const Range& r, const char* what) {
+  const auto row = [&](const YAML::Node& l, const std::string& k) {
+    if (!l.IsSequence() || l.size() != N) throw InputError(yaml_where(file, l, k) + fmt::format("expected {}", what));
+    std::array<double, N> a{};
+    for (size_t j = 0; j < N; ++j) a[j] = bounded(l[j], file, fmt::format("{}[{}]", k, j), r);
+    return a;
+  };
+  const std::string both = fmt::format("{} (all chains) or a list of three such lists", what);
+  if (n.IsSequence() && n.size() == 3 && n[0].IsSequence()) {
+    std::array<std::array<double, N>, 3> a{};
+    for (size_t i = 0; i < 3; ++i) a[i] = row(n[i], fmt::format("{}[{}]", key, i));
+    return a;
+  }
+  if (!n.IsSequence() || n.size() != N) throw InputError(yaml_where(file, n, key) + "expected " + both);
+  const auto a = row(n, key);
+  return {a, a, a};
+}
+
+// Sets field of every chain from three values.
+void set_chains(DriveTrain& dt, double DriveChain::*field, const std::array<double, 3>& v) {
+  for (size_t k = 0; k < 3; ++k) dt.chain[k].*field = v[k];
+}
+
+// The drive-train keys of an effects map (after the others, so a preset's values are in e).
+void parse_drive_train(const YAML::Node& n, const std::string& file, const std::string& c, Effects& e) {
+  DriveTrain& dt = e.drive;
+  const auto key = [&](const char* k) { return c + "." + k; };
+  const auto chains = [&](const char* k, double DriveChain::*field, const Range& r) {
+    if (const YAML::Node v = n[k]) set_chains(dt, field, per_chain(v, file, key(k), r));
+  };
+  chains("backlash_rad", &DriveChain::backlash_rad, {0.0, 0.01, "0 to 0.01 rad (34 arcmin)"});
+  chains("drive_hysteresis_rad", &DriveChain::hysteresis_rad, {0.0, 0.01, "0 to 0.01 rad"});
+  chains("transmission_error_joint_rad", &DriveChain::te_joint_rad, {0.0, 0.01, "0 to 0.01 rad"});
+  chains("transmission_error_motor_rad", &DriveChain::te_motor_rad, {0.0, 0.01, "0 to 0.01 rad"});
+  chains("stiction_excess_Nm", &DriveChain::stiction_excess_Nm, {0.0, 20.0, "0 to 20 N m"});
+  chains("stribeck_speed_rad_s", &DriveChain::stribeck_speed_rad_s, {1e-4, 1.0, "1e-4 to 1 rad/s"});
+  chains("friction_load_coefficient", &DriveChain::load_friction, {0.0, 0.5, "0 to 0.5 N m per N m"});
+  chains("torque_constant_delta", &DriveChain::torque_constant_delta, {-0.5, 0.5, "-0.5 to 0.5"});
+  chains("cogging_Nm", &DriveChain::cogging_Nm, {0.0, 5.0, "0 to 5 N m"});
+  if (const YAML::Node v = n["transmission_error_motor_order"])
+    dt.te_motor_order = static_cast<int>(yaml_integer(v, file, key("transmission_error_motor_order"), 1, 10));
+  if (const YAML::Node v = n["cogging_periods_per_motor_rev"])
+    dt.cogging_periods_per_motor_rev = static_cast<int>(yaml_integer(v, file, key("cogging_periods_per_motor_rev"), 1, 1000));
+  const Range rk{1e3, 1e6, "1e3 to 1e6 N m/rad, K1 <= K2 <= K3"};
+  if (const YAML::Node v = n["drive_stiffness_Nm_per_rad"]) {
+    const std::string k = key("drive_stiffness_Nm_per_rad");
+    const auto K = v.IsScalar() ? std::array<std::array<double, 3>, 3>{} : per_chain_bands<3>(v, file, k, rk, "a list of three bands K1, K2, K3");
+    const double one = v.IsScalar() ? bounded(v, file, k, rk) : 0.0;
+    for (size_t i = 0; i < 3; ++i) {
+      dt.chain[i].stiffness_Nm_per_rad = v.IsScalar() ? std::array<double, 3>{one, one, one} : K[i];
+      const auto& Ki = dt.chain[i].stiffness_Nm_per_rad;
+      if (Ki[1] < Ki[0] || Ki[2] < Ki[1])
+        throw InputError(yaml_where(file, v, k) + fmt::format("chain {}: the bands must not soften (valid: {})", i + 1, rk.what));
+    }
+  }
+  if (const YAML::Node v = n["drive_stiffness_bands_Nm"]) {
+    const std::string k = key("drive_stiffness_bands_Nm");
+    const auto T = per_chain_bands<2>(v, file, k, {0.01, 1000.0, "0.01 to 1000 N m, T1 < T2"}, "a list of two torques T1, T2");
+    for (size_t i = 0; i < 3; ++i) {
+      if (!(T[i][0] < T[i][1]))
+        throw InputError(yaml_where(file, v, k) + fmt::format("chain {}: T1 = {} must be below T2 = {}", i + 1, T[i][0], T[i][1]));
+      dt.chain[i].band_Nm = T[i];
+    }
+  }
+  for (size_t i = 0; i < 3; ++i) {
+    const auto& Ki = dt.chain[i].stiffness_Nm_per_rad;
+    if ((Ki[0] != Ki[1] || Ki[1] != Ki[2]) && !(dt.chain[i].band_Nm[0] > 0.0))
+      throw InputError(yaml_where(file, n, c) + fmt::format("drive_stiffness_Nm_per_rad: chain {} has bands of "
+                                                            "different stiffness: give drive_stiffness_bands_Nm [T1, T2]", i + 1));
+  }
+}
+
 }  // namespace
 
 Effects parse_effects(const YAML::Node& n, const std::string& file, std::uint64_t seed) {
@@ -60,7 +137,12 @@ Effects parse_effects(const YAML::Node& n, const std::string& file, std::uint64_
     if (!n.IsMap())
       throw InputError(yaml_where(file, n, c) + "expected ideal, realistic, randomized or a map of effects (scenarios/SCHEMA.md)");
     yaml_check_keys(n, file, c,
-                    {"preset", "transmission_compliance_rad_per_Nm", "passive_clearance_mm", "coulomb_friction_Nm",
+                    {// drive train (sim/drive_train.hpp)
+                     "backlash_rad", "drive_stiffness_Nm_per_rad", "drive_stiffness_bands_Nm", "drive_hysteresis_rad",
+                     "transmission_error_joint_rad", "transmission_error_motor_rad", "transmission_error_motor_order",
+                     "stiction_excess_Nm", "stribeck_speed_rad_s", "friction_load_coefficient",
+                     "torque_constant_delta", "cogging_Nm", "cogging_periods_per_motor_rev",
+                     "preset", "transmission_compliance_rad_per_Nm", "passive_clearance_mm", "coulomb_friction_Nm",
                      "viscous_friction_Nm_s", "thermal", "encoder_cyclic_rad", "encoder_skew_s", "gear_ratio"});
     if (n["preset"]) e = preset(n["preset"], file, c + ".preset", seed);
     const auto key = [&](const char* k) { return c + "." + k; };
@@ -96,9 +178,14 @@ Effects parse_effects(const YAML::Node& n, const std::string& file, std::uint64_
         e.thermal.time_constant_s =
             bounded(t["time_constant_s"], file, ct + ".time_constant_s", {1.0, 1e6, "1 to 1e6 s"});
     }
+    parse_drive_train(n, file, c, e);
   }
   Rng rng(derive_seed(seed, 5));
   for (double& ph : e.encoder_phase_rad) ph = rng.uniform(0.0, 2.0 * std::numbers::pi);
+  Rng drive_rng(derive_seed(seed, 9));  // drive-train phases: TE per joint and per motor revolution, cogging
+  for (DriveChain& d : e.drive.chain)
+    for (double* ph : {&d.te_joint_phase_rad, &d.te_motor_phase_rad, &d.cogging_phase_rad})
+      *ph = drive_rng.uniform(0.0, 2.0 * std::numbers::pi);
   return e;
 }
 

@@ -38,12 +38,13 @@ RotorFriction take_rotor_friction(mjModel* m, int dof, int actuator) {
   return r;
 }
 
-double rotor_friction_torque(const mjModel* m, const mjData* d, const RotorFriction& r) {
+namespace {
+
+// f: passive, actuator (as mj_fwdActuation will compute it in mj_step2) less bias torque on r.dof.
+double rotor_torque(const mjModel* m, const mjData* d, const RotorFriction& r) {
   const int v = r.dof;
-  const double inertia = d->qM[m->dof_Madr[v]];
   double f = d->qfrc_passive[v] - d->qfrc_bias[v];
   if (r.actuator >= 0) {
-    // The motor's torque as mj_fwdActuation will compute it in mj_step2.
     const int a = r.actuator;
     double u = d->ctrl[a];
     if (m->actuator_ctrllimited[a]) u = std::clamp(u, m->actuator_ctrlrange[2 * a], m->actuator_ctrlrange[2 * a + 1]);
@@ -52,9 +53,26 @@ double rotor_friction_torque(const mjModel* m, const mjData* d, const RotorFrict
       force = std::clamp(force, m->actuator_forcerange[2 * a], m->actuator_forcerange[2 * a + 1]);
     f += m->actuator_gear[6 * a] * force;
   }
+  return f;
+}
+
+// The clamp of the header's closed form for the total torque f and bound F.
+double clamp_friction(const mjModel* m, const mjData* d, const RotorFriction& r, double f, double F) {
+  const double inertia = d->qM[m->dof_Madr[r.dof]];
   const double a0 = f / inertia;
-  const double aref = -r.damping_ref * d->qvel[v];
-  return std::clamp(-(a0 - aref) / (1.0 / inertia + r.regulariser), -r.coulomb_Nm, r.coulomb_Nm);
+  const double aref = -r.damping_ref * d->qvel[r.dof];
+  return std::clamp(-(a0 - aref) / (1.0 / inertia + r.regulariser), -F, F);
+}
+
+}  // namespace
+
+double rotor_friction_torque(const mjModel* m, const mjData* d, const RotorFriction& r) {
+  return clamp_friction(m, d, r, rotor_torque(m, d, r), r.coulomb_Nm);
+}
+
+double rotor_friction_torque(const mjModel* m, const mjData* d, const RotorFriction& r, double applied_Nm,
+                             double coulomb_Nm) {
+  return clamp_friction(m, d, r, rotor_torque(m, d, r) + applied_Nm, coulomb_Nm);
 }
 
 }  // namespace gpm::sim

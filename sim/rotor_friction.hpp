@@ -43,4 +43,10 @@ RotorFriction take_rotor_friction(mjModel* m, int dof, int actuator);
 // and qfrc_bias of mj_step1; qfrc_applied[r.dof] is otherwise 0).
 double rotor_friction_torque(const mjModel* m, const mjData* d, const RotorFriction& r);
 
+// The same with a further torque applied_Nm on the rotor (the caller's own
+// qfrc_applied besides the friction) and the bound coulomb_Nm instead of
+// r.coulomb_Nm (a bound that changes with speed and load, sim/drive_train.hpp).
+double rotor_friction_torque(const mjModel* m, const mjData* d, const RotorFriction& r, double applied_Nm,
+                             double coulomb_Nm);
+
 }  // namespace gpm::sim

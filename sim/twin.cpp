@@ -55,10 +55,12 @@ int optional_id(const mjModel* m, mjtObj type, const std::string& n) { return mj
 MjcfOptions mjcf_with_effects(const TwinConfig& c) {
   MjcfOptions o = c.mjcf;
   o.effects = c.effects.mjcf;
+  if (c.effects.drive.any()) drive_train_rotors(c.effects, o.effects);
   return o;
 }
 
 void check_transmission(const Robot& actual, const TwinConfig& config) {
+  if (config.effects.drive.any()) check_drive_train(actual, config, TwinModel::kMaxOmegaDt);
   const MjcfOptions o = mjcf_with_effects(config);
   for (int i = 0; i < 3; ++i) {
     const double c = o.effects.compliance_rad_per_Nm[static_cast<size_t>(i)];
@@ -133,6 +135,8 @@ TwinModel::TwinModel(const Robot& actual, const TwinConfig& config)
   for (int i = 0; i < 3; ++i)
     if (compliant[i] && model_->dof_frictionloss[dof_m[i]] > 0.0)
       rotor_friction[i] = take_rotor_friction(model_.get(), dof_m[i], actuator[i]);
+  if (config.effects.drive.any())
+    drive_train = make_drive_train(model_.get(), config.effects, qpos_m, qpos_a, dof_m, dof_a, actuator, rotor_friction);
   site_ee = require_id(m, mjOBJ_SITE, "ee");
   body_ee = require_id(m, mjOBJ_BODY, "ee");
 }
@@ -229,6 +233,7 @@ void twin_step(const TwinModel& model, TwinState& state) {
       state.last.torque[i] = state.servo[i].torque;
     }
   }
+  if (model.drive_train.on) drive_train_step(model.drive_train, m, d, state.servo, state.drive_train);
   for (const RotorFriction& r : model.rotor_friction)
     if (r.dof >= 0) d->qfrc_applied[r.dof] = rotor_friction_torque(m, d, r);
   mj_step2(m, d);

@@ -19,6 +19,7 @@
 
 #include "models/mjcf.hpp"
 #include "models/robot.hpp"
+#include "sim/drive_train_step.hpp"
 #include "sim/effects.hpp"
 #include "sim/encoder_model.hpp"
 #include "sim/mujoco_util.hpp"
@@ -75,6 +76,7 @@ class TwinModel {
   // the compiled model's frictionloss of joint_m is 0); dof -1 where MuJoCo's
   // frictionloss row acts (a rigid drive: joint_a in the closed chain).
   std::array<RotorFriction, 3> rotor_friction{};
+  DriveTrainModel drive_train;  // nonlinear drive trains (sim/drive_train_step.hpp)
 
   // Largest stable transmission stiffness at a timestep: omega dt <= this.
   static constexpr double kMaxOmegaDt = 1.5;
@@ -119,6 +121,7 @@ struct TwinState {
   Eigen::Vector3d command_position = Eigen::Vector3d::Zero();  // readings (rad)
   Eigen::Vector3d command_velocity = Eigen::Vector3d::Zero();  // rad/s
   long long steps = 0;
+  DriveTrainState drive_train;  // hysteresis slip, transmitted torque
   TwinSnapshot last;
 };
 
@@ -161,7 +164,8 @@ MjcfOptions mjcf_with_effects(const TwinConfig& config);
 // integration holds omega dt <= TwinModel::kMaxOmegaDt (docs/ARCHITECTURE.md measured
 // instability near 2; omega from transmission_omega), and the drive's
 // velocity loop, which then acts on the rotor alone, needs
-// kv / rate_hz / armature <= TwinModel::kMaxRotorLoopGain.
+// kv / rate_hz / armature <= TwinModel::kMaxRotorLoopGain. A drive train
+// (sim/drive_train_step.hpp check_drive_train) is checked first.
 void check_transmission(const Robot& actual, const TwinConfig& config);
 
 // Loop-closure gap (m) of the current mjData kinematics (after mj_forward or
