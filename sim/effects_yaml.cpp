@@ -41,6 +41,48 @@ Effects preset(const YAML::Node& n, const std::string& file, const std::string& 
   throw InputError(yaml_where(file, n, key) + fmt::format("'{}' is not a preset (valid: ideal, realistic)", name));
 }
 
+// --- Encoder harmonics, latch jitter, base-plate growth (sim/encoder_error.hpp) ---
+
+// encoder_harmonics: a list of up to kMaxEncoderHarmonics maps {order, amplitude_rad}.
+void parse_harmonics(const YAML::Node& n, const std::string& file, const std::string& c, Effects& e) {
+  if (!n.IsSequence() || n.size() > static_cast<size_t>(kMaxEncoderHarmonics))
+    throw InputError(yaml_where(file, n, c) + fmt::format("expected a list of up to {} maps {{order, amplitude_rad}}",
+                                                          kMaxEncoderHarmonics));
+  for (size_t h = 0; h < n.size(); ++h) {
+    const std::string ch = fmt::format("{}[{}]", c, h);
+    yaml_check_keys(n[h], file, ch, {"order", "amplitude_rad"});
+    if (!n[h]["order"] || !n[h]["amplitude_rad"])
+      throw InputError(yaml_where(file, n[h], ch) + "needs order (2 to 65536 per motor revolution) and amplitude_rad");
+    e.encoder_harmonics[h].order = static_cast<int>(yaml_integer(n[h]["order"], file, ch + ".order", 2, 65536));
+    e.encoder_harmonics[h].amplitude_rad =
+        per_chain(n[h]["amplitude_rad"], file, ch + ".amplitude_rad", {0.0, 0.01, "0 to 0.01 rad"});
+  }
+}
+
+// The keys of this block under effects (each optional).
+void parse_encoder_and_geometry(const YAML::Node& n, const std::string& file, Effects& e) {
+  if (const YAML::Node v = n["encoder_harmonics"]) parse_harmonics(v, file, "effects.encoder_harmonics", e);
+  if (const YAML::Node v = n["encoder_jitter_s"])
+    e.encoder_jitter_s = per_chain(v, file, "effects.encoder_jitter_s", {0.0, 1e-3, "0 to 1e-3 s"});
+}
+
+// thermal.base_expansion_per_K, thermal.base_time_constant_s (absent: as the links).
+void parse_base_thermal(const YAML::Node& t, const std::string& file, const std::string& ct, ThermalEffect& th) {
+  if (t["base_expansion_per_K"])
+    th.base_expansion_per_K = bounded(t["base_expansion_per_K"], file, ct + ".base_expansion_per_K", {0.0, 1e-3, "0 to 1e-3 per K"});
+  if (t["base_time_constant_s"])
+    th.base_time_constant_s = bounded(t["base_time_constant_s"], file, ct + ".base_time_constant_s", {1.0, 1e6, "1 to 1e6 s"});
+}
+
+// Phase of every harmonic slot of every encoder, uniform on [0, 2 pi), from its
+// own stream (the slots are always all drawn: a phase does not depend on how
+// many harmonics a scenario lists).
+void draw_harmonic_phases(std::uint64_t stream_seed, Effects& e) {
+  Rng rng(stream_seed);
+  for (EncoderHarmonic& h : e.encoder_harmonics)
+    for (double& ph : h.phase_rad) ph = rng.uniform(0.0, 2.0 * std::numbers::pi);
+}
+
 }  // namespace
 
 Effects parse_effects(const YAML::Node& n, const std::string& file, std::uint64_t seed) {
@@ -53,7 +95,9 @@ Effects parse_effects(const YAML::Node& n, const std::string& file, std::uint64_
       throw InputError(yaml_where(file, n, c) + "expected ideal, realistic or a map of effects (scenarios/SCHEMA.md)");
     yaml_check_keys(n, file, c,
                     {"preset", "transmission_compliance_rad_per_Nm", "passive_clearance_mm", "coulomb_friction_Nm",
-                     "viscous_friction_Nm_s", "thermal", "encoder_cyclic_rad", "encoder_skew_s", "gear_ratio"});
+                     "viscous_friction_Nm_s", "thermal", "encoder_cyclic_rad", "encoder_skew_s", "gear_ratio",
+                     // encoder harmonics, latch jitter, hub pins (parse_encoder_and_geometry)
+                     "encoder_harmonics", "encoder_jitter_s"});
     if (n["preset"]) e = preset(n["preset"], file, c + ".preset");
     const auto key = [&](const char* k) { return c + "." + k; };
     if (const YAML::Node v = n["transmission_compliance_rad_per_Nm"])
@@ -80,17 +124,21 @@ Effects parse_effects(const YAML::Node& n, const std::string& file, std::uint64_
     if (const YAML::Node t = n["thermal"]) {
       const std::string ct = key("thermal");
       if (!t.IsMap()) throw InputError(yaml_where(file, t, ct) + "expected {expansion_per_K, rise_K, time_constant_s}");
-      yaml_check_keys(t, file, ct, {"expansion_per_K", "rise_K", "time_constant_s"});
+      yaml_check_keys(t, file, ct, {"expansion_per_K", "rise_K", "time_constant_s", "base_expansion_per_K",
+                                    "base_time_constant_s"});
       if (t["expansion_per_K"])
         e.thermal.expansion_per_K = bounded(t["expansion_per_K"], file, ct + ".expansion_per_K", {0.0, 1e-3, "0 to 1e-3 per K"});
       if (t["rise_K"]) e.thermal.rise_K = bounded(t["rise_K"], file, ct + ".rise_K", {-50.0, 100.0, "-50 to 100 K"});
       if (t["time_constant_s"])
         e.thermal.time_constant_s =
             bounded(t["time_constant_s"], file, ct + ".time_constant_s", {1.0, 1e6, "1 to 1e6 s"});
+      parse_base_thermal(t, file, ct, e.thermal);
     }
+    parse_encoder_and_geometry(n, file, e);
   }
   Rng rng(derive_seed(seed, 5));
   for (double& ph : e.encoder_phase_rad) ph = rng.uniform(0.0, 2.0 * std::numbers::pi);
+  draw_harmonic_phases(derive_seed(seed, 16), e);
   return e;
 }
 

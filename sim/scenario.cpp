@@ -19,7 +19,7 @@ namespace gpm::sim {
 namespace {
 
 // Bounds of counts (scenarios/SCHEMA.md): poses in one plan, and rows of the
-// trajectory log (112 bytes each in memory: 2e7 rows is about 2.2 GB).
+// trajectory log (120 bytes each in memory: 2e7 rows is about 2.4 GB).
 constexpr long long kMaxPoses = 10000;
 constexpr double kMaxLogRows = 2e7;
 // Default rate of the trajectory log (trajectory.csv): ample for figures and
@@ -360,7 +360,7 @@ std::vector<GeometryEvent> parse_events(const YAML::Node& n, const Ctx& c, doubl
 
 // Refuses a run whose trajectory log could outgrow memory: an upper bound of
 // its rows, count x (longest move + settle timeout + average) + path duration,
-// at the servo rate / log.every, against kMaxLogRows (112 bytes a row in memory).
+// at the servo rate / log.every, against kMaxLogRows (120 bytes a row in memory).
 void check_log_size(const Scenario& s, const YAML::Node& root, const Ctx& c) {
   const double rows_per_s = s.twin.servo_rate_hz / s.log_every;
   // Every move stays inside the box of home, the poses and the path start (its

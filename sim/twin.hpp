@@ -102,6 +102,7 @@ struct TwinSnapshot {
   Eigen::Vector2d ee_mm = Eigen::Vector2d::Zero();     // true end-effector (site ee), mm
   double violation_m = 0.0;  // largest loop-closure gap |tip_b2 - ee|, |tip_b3 - ee| beyond the clearance (m)
   double growth = 0.0;       // thermal: relative length growth in effect (0 without thermal)
+  double growth_base = 0.0;  // thermal: relative growth of the base plate in effect (= growth unless it has its own law)
 };
 
 // Mutable part of the twin.
@@ -146,8 +147,8 @@ inline const mjModel* state_model(const TwinModel& model, const TwinState& state
 // anchors and hide the edit from the loop).
 void apply_geometry(const TwinModel& model, TwinState& state, const Geometry& g);
 
-// apply_geometry of the actual geometry grown by `growth` (sim/effects.hpp
-// thermal_geometry), recorded in state.last.growth.
+// apply_geometry of the actual geometry grown by `growth`, links and base alike
+// (sim/effects.hpp thermal_geometry), recorded in state.last.growth and .growth_base.
 void apply_thermal_growth(const TwinModel& model, TwinState& state, double growth);
 
 // The actual geometry at time t: the events so far, then thermal growth.
