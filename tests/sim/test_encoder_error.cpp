@@ -176,5 +176,46 @@ TEST(EncoderError, NoJitterDrawsNothingFromTheTwinsNoise) {
   EXPECT_EQ(b.state.noise.rng(), fresh());
 }
 
+// Draws of draw_encoder_and_geometry stay within the ranges stated in
+// scenarios/SCHEMA.md (motor-side arcsec divided by the gear ratio), differ
+// between chains, repeat with the seed and leave the gear ratio and every
+// other effect alone.
+TEST(EncoderError, RandomDrawsStayInTheirRangesAndDifferBetweenChains) {
+  constexpr double as = std::numbers::pi / (180.0 * 3600.0);
+  for (double ratio : {1.0, 10.0}) {
+    for (std::uint64_t seed = 1; seed <= 200; ++seed) {
+      Effects e;
+      e.gear_ratio = ratio;
+      Rng rng(seed), again(seed);
+      draw_encoder_and_geometry(rng, e);
+      Effects e2;
+      e2.gear_ratio = ratio;
+      draw_encoder_and_geometry(again, e2);
+      ASSERT_EQ(e.encoder_cyclic_rad, e2.encoder_cyclic_rad) << "seeded";
+      EXPECT_EQ(e.gear_ratio, ratio) << "a data-sheet value, not drawn";
+      EXPECT_FALSE(e.mjcf.compliant() || e.mjcf.loose());
+      EXPECT_EQ(e.thermal.rise_K, 0.0) << "the warm-up itself is not this draw's";
+      for (size_t k = 0; k < 3; ++k) {
+        EXPECT_GE(e.encoder_cyclic_rad[k] * ratio, 5.0 * as * (1 - 1e-12));
+        EXPECT_LE(e.encoder_cyclic_rad[k] * ratio, 40.0 * as * (1 + 1e-12));
+        EXPECT_GE(e.encoder_jitter_s[k], 0.05e-6);
+        EXPECT_LE(e.encoder_jitter_s[k], 2e-6);
+        EXPECT_EQ(e.encoder_harmonics[0].order, 2);
+        EXPECT_EQ(e.encoder_harmonics[1].order, 4);
+        EXPECT_LE(e.encoder_harmonics[0].amplitude_rad[k] * ratio, 6.0 * as * (1 + 1e-12));
+        EXPECT_LE(e.encoder_harmonics[1].amplitude_rad[k] * ratio, 3.0 * as * (1 + 1e-12));
+        EXPECT_GE(e.encoder_harmonics[1].amplitude_rad[k] * ratio, 0.5 * as * (1 - 1e-12));
+      }
+      EXPECT_NE(e.encoder_cyclic_rad[0], e.encoder_cyclic_rad[1]);
+      EXPECT_NE(e.encoder_jitter_s[1], e.encoder_jitter_s[2]);
+      EXPECT_NE(e.encoder_harmonics[0].phase_rad[0], e.encoder_harmonics[0].phase_rad[2]);
+      const double alpha_b = e.thermal.base_expansion_per_K.value_or(0.0);
+      EXPECT_TRUE(alpha_b >= 10e-6 && alpha_b <= 13e-6) << alpha_b;
+      const double tau_b = e.thermal.base_time_constant_s.value_or(0.0);
+      EXPECT_TRUE(tau_b >= 1800.0 && tau_b <= 7200.0) << tau_b;
+    }
+  }
+}
+
 }  // namespace
 }  // namespace gpm::sim
