@@ -22,13 +22,13 @@ bool Effects::any() const {
   const auto nonzero = [](const std::array<double, 3>& a) { return a[0] != 0.0 || a[1] != 0.0 || a[2] != 0.0; };
   return nonzero(mjcf.compliance_rad_per_Nm) || nonzero(mjcf.clearance_m) || nonzero(mjcf.coulomb_Nm) ||
          nonzero(mjcf.viscous_Nm_s) || thermal.on() || nonzero(encoder_cyclic_rad) ||
-         nonzero(encoder_skew_s) || encoder_extras_on();
+         nonzero(encoder_skew_s) || encoder_and_geometry_on();
 }
 
-bool Effects::encoder_extras_on() const {
+bool Effects::encoder_and_geometry_on() const {
   for (const EncoderHarmonic& h : encoder_harmonics)
     if (h.on()) return true;
-  return encoder_jitter_s[0] != 0.0 || encoder_jitter_s[1] != 0.0 || encoder_jitter_s[2] != 0.0;
+  return encoder_jitter_s[0] != 0.0 || encoder_jitter_s[1] != 0.0 || encoder_jitter_s[2] != 0.0 || mjcf.pinned_hub();
 }
 
 Effects realistic_effects() {

@@ -60,8 +60,8 @@ struct Effects {
 
   // True if anything differs from the ideal twin.
   bool any() const;
-  // True if an encoder harmonic or latch jitter is on.
-  bool encoder_extras_on() const;
+  // True if an encoder harmonic, latch jitter or a hub pin offset is on (sim/encoder_error.hpp).
+  bool encoder_and_geometry_on() const;
 };
 
 // The `realistic` preset: GPM2002-scale values (reasoning in scenarios/SCHEMA.md).

@@ -59,11 +59,25 @@ void parse_harmonics(const YAML::Node& n, const std::string& file, const std::st
   }
 }
 
+// hub_pin_offset_um: three pairs [x, y] (um, hub frame), one per chain; stored in metres.
+void parse_hub_pins(const YAML::Node& n, const std::string& file, const std::string& c, Effects& e) {
+  const char* what = "a list of three pairs [x, y] in um (one per chain, hub frame)";
+  if (!n.IsSequence() || n.size() != 3) throw InputError(yaml_where(file, n, c) + fmt::format("expected {}", what));
+  const Range r{-100.0, 100.0, "-100 to 100 um"};
+  for (size_t i = 0; i < 3; ++i) {
+    const std::string ci = fmt::format("{}[{}]", c, i);
+    if (!n[i].IsSequence() || n[i].size() != 2) throw InputError(yaml_where(file, n[i], ci) + fmt::format("expected {}", what));
+    for (size_t k = 0; k < 2; ++k)
+      e.mjcf.hub_pin_m[i][k] = 1e-6 * bounded(n[i][k], file, fmt::format("{}[{}]", ci, k), r);
+  }
+}
+
 // The keys of this block under effects (each optional).
 void parse_encoder_and_geometry(const YAML::Node& n, const std::string& file, Effects& e) {
   if (const YAML::Node v = n["encoder_harmonics"]) parse_harmonics(v, file, "effects.encoder_harmonics", e);
   if (const YAML::Node v = n["encoder_jitter_s"])
     e.encoder_jitter_s = per_chain(v, file, "effects.encoder_jitter_s", {0.0, 1e-3, "0 to 1e-3 s"});
+  if (const YAML::Node v = n["hub_pin_offset_um"]) parse_hub_pins(v, file, "effects.hub_pin_offset_um", e);
 }
 
 // thermal.base_expansion_per_K, thermal.base_time_constant_s (absent: as the links).
@@ -97,7 +111,7 @@ Effects parse_effects(const YAML::Node& n, const std::string& file, std::uint64_
                     {"preset", "transmission_compliance_rad_per_Nm", "passive_clearance_mm", "coulomb_friction_Nm",
                      "viscous_friction_Nm_s", "thermal", "encoder_cyclic_rad", "encoder_skew_s", "gear_ratio",
                      // encoder harmonics, latch jitter, hub pins (parse_encoder_and_geometry)
-                     "encoder_harmonics", "encoder_jitter_s"});
+                     "encoder_harmonics", "encoder_jitter_s", "hub_pin_offset_um"});
     if (n["preset"]) e = preset(n["preset"], file, c + ".preset");
     const auto key = [&](const char* k) { return c + "." + k; };
     if (const YAML::Node v = n["transmission_compliance_rad_per_Nm"])

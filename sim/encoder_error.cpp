@@ -35,6 +35,7 @@ constexpr double kHarmonicArcsec[2][2] = {{1.0, 6.0}, {0.5, 3.0}};
 constexpr double kJitter_s[2] = {0.05e-6, 2e-6};     // synchronised drive bus latch
 constexpr double kBaseExpansion[2] = {10e-6, 13e-6}; // cast iron to steel, 1/K
 constexpr double kBaseTau_s[2] = {1800.0, 7200.0};   // a heavy base plate warming slower
+constexpr double kHubPin_m = 20e-6;                  // largest hub pin offset (bore position tolerance)
 }  // namespace
 
 // A motor-side amplitude a (arcsec) reads as a / N in the joint reading.
@@ -52,6 +53,10 @@ void draw_encoder_and_geometry(Rng& rng, Effects& e) {
       eh.amplitude_rad[k] = rng.uniform(kHarmonicArcsec[h][0], kHarmonicArcsec[h][1]) * to_joint;
       eh.phase_rad[k] = rng.uniform(0.0, 2.0 * std::numbers::pi);
     }
+  }
+  for (auto& p : e.mjcf.hub_pin_m) {  // |p| uniform in [0, 20 um], direction uniform
+    const double r = rng.uniform(0.0, kHubPin_m), a = rng.uniform(0.0, 2.0 * std::numbers::pi);
+    p = {r * std::cos(a), r * std::sin(a)};
   }
   e.thermal.base_expansion_per_K = rng.uniform(kBaseExpansion[0], kBaseExpansion[1]);
   e.thermal.base_time_constant_s = rng.uniform(kBaseTau_s[0], kBaseTau_s[1]);

@@ -136,6 +136,10 @@ TwinModel::TwinModel(const Robot& actual, const TwinConfig& config)
       rotor_friction[i] = take_rotor_friction(model_.get(), dof_m[i], actuator[i]);
   site_ee = require_id(m, mjOBJ_SITE, "ee");
   body_ee = require_id(m, mjOBJ_BODY, "ee");
+  for (int i = 0; i < 3; ++i) {  // hub pin offsets (models/hub_pins.hpp): chains close at pin_b{i}
+    const int pin = optional_id(m, mjOBJ_SITE, name("pin_b", i));
+    site_pin[i] = pin >= 0 ? pin : site_ee;
+  }
 }
 
 void apply_geometry(const TwinModel& model, TwinState& state, const Geometry& g) {
@@ -192,10 +196,9 @@ TwinState::TwinState(const TwinModel& model, unsigned long long seed)
 }
 
 double constraint_violation_m(const TwinModel& model, const mjData* d) {
-  const Eigen::Vector3d ee = site_pos(d, model.site_ee);
   double worst = 0.0;
   for (int i = 1; i < 3; ++i)
-    worst = std::max(worst, (site_pos(d, model.site_tip[i]) - ee).norm() - model.hub_play_m[i]);
+    worst = std::max(worst, (site_pos(d, model.site_tip[i]) - site_pos(d, model.site_pin[i])).norm() - model.hub_play_m[i]);
   return worst;
 }
 

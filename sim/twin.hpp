@@ -61,6 +61,7 @@ class TwinModel {
   // qpos_m == qpos_a and dof_m == dof_a.
   std::array<int, 3> qpos_a{}, qpos_b{}, dof_a{}, qpos_m{}, dof_m{}, actuator{}, site_tip{};
   std::array<int, 3> site_side{-1, -1, -1};  // side_b{i} across the tip (clearance, chains 2 and 3), -1 if none
+  std::array<int, 3> site_pin{-1, -1, -1};   // hub site where chain i closes: pin_b{i} with hub pin offsets, else ee
   std::array<bool, 3> compliant{};
   int site_ee = -1;
   // Bodies and constraints whose placement a thermal edit changes.
@@ -166,8 +167,9 @@ MjcfOptions mjcf_with_effects(const TwinConfig& config);
 void check_transmission(const Robot& actual, const TwinConfig& config);
 
 // Loop-closure gap (m) of the current mjData kinematics (after mj_forward or
-// mj_step1): the largest distance between tip_b2 / tip_b3 and the ee site
-// beyond the play the clearance allows there (hub_play_m; 0 within it).
+// mj_step1): the largest distance between tip_b2 / tip_b3 and their hub site
+// (site_pin: ee, or pin_b{i} with hub pin offsets) beyond the play the
+// clearance allows there (hub_play_m; 0 within it).
 double constraint_violation_m(const TwinModel& model, const mjData* d);
 
 }  // namespace gpm::sim

@@ -1,5 +1,5 @@
 // Tests of sim/effects_yaml.cpp, the block of the encoder harmonics, latch
-// jitter and base-plate keys (through the scenario parser of
+// jitter, hub pin and base-plate keys (through the scenario parser of
 // sim/scenario.cpp): keys land in their units, absent keys leave the ideal
 // twin, harmonic phases are seeded per slot and encoder (reproducible,
 // different between encoders, independent of the other phases), and bad
@@ -45,11 +45,15 @@ TEST(EffectsYamlEncoder, KeysLandInTheirUnits) {
   EXPECT_EQ(e.thermal.base_expansion_per_K.value_or(0.0), 11e-6);
   EXPECT_EQ(e.thermal.base_time_constant_s.value_or(0.0), 3600.0);
   EXPECT_TRUE(e.any());
+  const Effects p = parse("{hub_pin_offset_um: [[8, -3], [-5, 12], [4, 6]]}");
+  EXPECT_DOUBLE_EQ(p.mjcf.hub_pin_m[1][1], 12e-6) << "um to m";
+  EXPECT_DOUBLE_EQ(p.mjcf.hub_pin_m[0][0], 8e-6);
+  EXPECT_TRUE(p.any());
 }
 
 TEST(EffectsYamlEncoder, AbsentKeysLeaveTheIdealTwinAndTheLinksLawForTheBase) {
   const Effects e = parse("{thermal: {expansion_per_K: 23e-6, rise_K: 3}}");
-  EXPECT_FALSE(e.encoder_extras_on());
+  EXPECT_FALSE(e.encoder_and_geometry_on());
   EXPECT_FALSE(e.thermal.base_own());
   for (double t : {0.0, 100.0, 1e4}) EXPECT_EQ(e.thermal.base_growth(t), e.thermal.growth(t));
   EXPECT_FALSE(parse("{gear_ratio: 10}").any()) << "a gear ratio is a data-sheet value, not an effect";
@@ -84,6 +88,12 @@ TEST(EffectsYamlEncoder, BadValuesNameFileLineKeyAndRange) {
   const std::string jit = error_of("{encoder_jitter_s: -1e-6}");
   EXPECT_NE(jit.find("effects.encoder_jitter_s"), std::string::npos) << jit;
   EXPECT_NE(jit.find("0 to 1e-3 s"), std::string::npos) << jit;
+  const std::string pins = error_of("{hub_pin_offset_um: [[1, 2], [3, 4]]}");
+  EXPECT_NE(pins.find("effects.hub_pin_offset_um"), std::string::npos) << pins;
+  EXPECT_NE(pins.find("three pairs"), std::string::npos) << pins;
+  const std::string far = error_of("{hub_pin_offset_um: [[1, 2], [3, 400], [0, 0]]}");
+  EXPECT_NE(far.find("effects.hub_pin_offset_um[1][1]"), std::string::npos) << far;
+  EXPECT_NE(far.find("-100 to 100 um"), std::string::npos) << far;
   const std::string base = error_of("{thermal: {rise_K: 3, base_time_constant_s: 0}}");
   EXPECT_NE(base.find("effects.thermal.base_time_constant_s"), std::string::npos) << base;
   EXPECT_NE(error_of("{thermal: {base_expansion: 1e-5}}").find("base_expansion_per_K"), std::string::npos);

@@ -194,6 +194,8 @@ TEST(EncoderError, RandomDrawsStayInTheirRangesAndDifferBetweenChains) {
       ASSERT_EQ(e.encoder_cyclic_rad, e2.encoder_cyclic_rad) << "seeded";
       EXPECT_EQ(e.gear_ratio, ratio) << "a data-sheet value, not drawn";
       EXPECT_FALSE(e.mjcf.compliant() || e.mjcf.loose());
+      for (const auto& p : e.mjcf.hub_pin_m) EXPECT_LE(std::hypot(p[0], p[1]), 20e-6 * (1 + 1e-12));
+      EXPECT_NE(e.mjcf.hub_pin_m[0], e.mjcf.hub_pin_m[1]);
       EXPECT_EQ(e.thermal.rise_K, 0.0) << "the warm-up itself is not this draw's";
       for (size_t k = 0; k < 3; ++k) {
         EXPECT_GE(e.encoder_cyclic_rad[k] * ratio, 5.0 * as * (1 - 1e-12));
