@@ -29,7 +29,6 @@ double latch_offset_s(const Effects& fx, int i, Rng& rng) {
 // Plausible ranges (scenarios/SCHEMA.md, effects; motor-side amplitudes in arcsec).
 namespace {
 constexpr double kArcsec = std::numbers::pi / (180.0 * 3600.0);
-constexpr double kCyclicArcsec[2] = {5.0, 40.0};   // eccentricity, once per motor revolution
 constexpr int kDrawnOrders[2] = {2, 4};             // interpolation error per motor revolution
 constexpr double kHarmonicArcsec[2][2] = {{1.0, 6.0}, {0.5, 3.0}};
 constexpr double kJitter_s[2] = {0.05e-6, 2e-6};     // synchronised drive bus latch
@@ -41,11 +40,7 @@ constexpr double kHubPin_m = 20e-6;                  // largest hub pin offset (
 // A motor-side amplitude a (arcsec) reads as a / N in the joint reading.
 void draw_encoder_and_geometry(Rng& rng, Effects& e) {
   const double to_joint = kArcsec / e.gear_ratio;
-  for (size_t k = 0; k < 3; ++k) {
-    e.encoder_cyclic_rad[k] = rng.uniform(kCyclicArcsec[0], kCyclicArcsec[1]) * to_joint;
-    e.encoder_phase_rad[k] = rng.uniform(0.0, 2.0 * std::numbers::pi);
-    e.encoder_jitter_s[k] = rng.uniform(kJitter_s[0], kJitter_s[1]);
-  }
+  for (size_t k = 0; k < 3; ++k) e.encoder_jitter_s[k] = rng.uniform(kJitter_s[0], kJitter_s[1]);
   for (size_t h = 0; h < 2; ++h) {
     EncoderHarmonic& eh = e.encoder_harmonics[h];
     eh.order = kDrawnOrders[h];

@@ -41,11 +41,14 @@ double encoder_angle_error(const Effects& fx, int i, double r);
 // n ~ N(0, 1) from rng; draws nothing when jitter_i = 0.
 double latch_offset_s(const Effects& fx, int i, Rng& rng);
 
-// Draws every encoder and geometry effect of this file's owner (encoder
-// harmonics and their amplitudes, latch jitter, base-plate expansion, hub pin
-// offsets) per chain from the plausible ranges of scenarios/SCHEMA.md. Reads
-// e.gear_ratio (a data-sheet value, not drawn) to state motor-side
-// amplitudes in the joint reading. Phases are drawn too.
+// Draws the encoder and geometry effects of this file per chain from the
+// plausible ranges of scenarios/SCHEMA.md: encoder harmonics (orders 2 and 4,
+// amplitudes and phases), latch jitter, hub pin offsets, the base plate's
+// expansion coefficient and time constant. Reads e.gear_ratio (a data-sheet
+// value, not drawn) to state motor-side amplitudes in the joint reading.
+// Leaves every other field alone (encoder_cyclic_rad, its phase and the
+// warm-up itself belong to the randomized preset; parse_effects re-seeds the
+// harmonic phases from the scenario seed).
 void draw_encoder_and_geometry(Rng& rng, Effects& e);
 
 }  // namespace gpm::sim
