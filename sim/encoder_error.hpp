@@ -31,6 +31,7 @@ struct EncoderHarmonic {
   std::array<double, 3> amplitude_rad{};  // A, as seen in the joint reading, rad
   std::array<double, 3> phase_rad{};      // phi (seeded per encoder, see effects_yaml)
 
+  // True if the slot is used and some chain has an amplitude.
   bool on() const { return order > 0 && (amplitude_rad[0] != 0.0 || amplitude_rad[1] != 0.0 || amplitude_rad[2] != 0.0); }
 };
 
