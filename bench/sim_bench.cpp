@@ -89,7 +89,7 @@ int main(int argc, char** argv) {
     else if (!std::strcmp(argv[i], "--rate") && i + 1 < argc) rate = std::stod(argv[++i]);
     else if (!std::strcmp(argv[i], "--profile")) profile = true;
     else {
-      std::fprintf(stderr, "usage: bench_sim [--steps N] [--write-model FILE] [--effects ideal|realistic] "
+      std::fprintf(stderr, "usage: bench_sim [--steps N] [--write-model FILE] [--effects ideal|realistic|...|encoder_geometry|all] "
                            "[--timestep S] [--rate HZ] [--profile]\n");
       return 2;
     }
@@ -105,14 +105,18 @@ int main(int argc, char** argv) {
   else if (effects == "friction") fx.mjcf.coulomb_Nm = real.mjcf.coulomb_Nm, fx.mjcf.viscous_Nm_s = real.mjcf.viscous_Nm_s;
   else if (effects == "thermal") fx.thermal = real.thermal;
   else if (effects == "encoder") fx.encoder_cyclic_rad = real.encoder_cyclic_rad, fx.encoder_skew_s = real.encoder_skew_s;
-  else if (effects == "drive" || effects == "all") {  // drive train drawn as a randomized preset would (sim/drive_train.hpp)
+  else if (effects == "drive" || effects == "encoder_geometry" || effects == "all") {
+    // Drawn as the randomized preset draws them (sim/drive_train.hpp, sim/encoder_error.hpp),
+    // motor encoders behind 10:1; "all": both on top of the realistic preset.
     if (effects == "all") fx = real;
     fx.gear_ratio = 10.0;
     Rng draw(1);
-    draw_drive_train(draw, fx);
+    if (effects != "encoder_geometry") draw_drive_train(draw, fx);
+    if (effects != "drive") draw_encoder_and_geometry(draw, fx);
+    if (effects == "encoder_geometry") fx.thermal.rise_K = 3.0, fx.thermal.expansion_per_K = 23e-6;
   } else if (effects != "ideal") {
     std::fprintf(stderr, "bench_sim: --effects: '%s' is not ideal, realistic, compliance, clearance, friction, "
-                         "thermal, encoder, drive or all\n", effects.c_str());
+                         "thermal, encoder, drive, encoder_geometry or all\n", effects.c_str());
     return 2;
   }
   const Robot robot;  // nominal

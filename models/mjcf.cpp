@@ -21,6 +21,7 @@
 #include <fmt/format.h>
 
 #include "models/errors.hpp"
+#include "models/hub_pins.hpp"
 #include "models/kinematics.hpp"
 #include "models/xml_escape.hpp"
 #include "models/yaml_util.hpp"
@@ -67,7 +68,7 @@ std::string mjcf_from_robot(const Robot& actual, const MjcfOptions& o) {
   const Geometry& g = actual.geometry;
   JointAngles q;
   try {
-    q = inverse_kinematics(g, actual.home, actual.branch);  // eq. 29-31
+    q = hub_assembly_ik(g, actual.home, actual.branch, o.effects);  // eq. 29-31 (per pin with hub pin offsets)
   } catch (const ReachError& e) {
     throw InputError(fmt::format(
         "the actual parameters cannot assemble at home ({}, {}): {}", actual.home.x(),
@@ -130,7 +131,7 @@ std::string mjcf_from_robot(const Robot& actual, const MjcfOptions& o) {
       // from ee, so the "centring" spring pushed the pins apart with ~70 N
       // and held the hub on the rim of the play whatever the load.
       tendons += fmt::format("    <spatial name=\"clear_b{}\" {} springlength=\"0\">\n      <site site=\"tip_b{}\"/>\n"
-                             "      <site site=\"ee\"/>\n    </spatial>\n", n, limit, n);
+                             "      <site site=\"{}\"/>\n    </spatial>\n", n, limit, n, hub_site(fx, i));
       // The transverse part of the play is held at 0, as chain 1's slide
       // holds it (second order in the closure, c^2 / lb): tendon side_b{i}
       // from site side_b{i}, kSideArm_m across the link from its tip, to ee
@@ -141,7 +142,7 @@ std::string mjcf_from_robot(const Robot& actual, const MjcfOptions& o) {
       // limit, linearised on so tight a curve, gave up to 0.1 mm near
       // singular poses (seed 11).
       tendons += fmt::format("    <spatial name=\"side_b{}\">\n      <site site=\"side_b{}\"/>\n"
-                             "      <site site=\"ee\"/>\n    </spatial>\n", n, n);
+                             "      <site site=\"{}\"/>\n    </spatial>\n", n, n, hub_site(fx, i));
     }
     const std::string in = "      ";  // indentation inside link_a
     if (compliance > 0.0) {
@@ -197,7 +198,9 @@ std::string mjcf_from_robot(const Robot& actual, const MjcfOptions& o) {
     if (c > 0.0 && i > 0)
       x += fmt::format("{}<site name=\"side_b{}\" pos=\"{} {} 0\" size=\"0.002\"/>\n", inb, n, num(lb_m),
                        num(kSideArm_m));
-    if (i == 0) {
+    if (i == 0 && fx.pinned_hub()) {
+      x += hub_pin_body(inb, lb_m, q.theta_b[0], o);  // a small plate with its own rotation
+    } else if (i == 0) {
       x += fmt::format("{}<body name=\"ee\" pos=\"{} 0 0\">\n", inb, num(lb_m));
       x += fmt::format("{}  <inertial pos=\"0 0 0\" mass=\"{}\" diaginertia=\"{} {} {}\"/>\n", inb,
                        num(o.ee_mass_kg), num(1e-5), num(1e-5), num(1e-5));

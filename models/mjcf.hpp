@@ -30,6 +30,8 @@
 //     on the link's line (the play is axial, as chain 1's slide). No extra
 //     bodies (mjcf.cpp).
 //   friction: frictionloss (Coulomb, N m) and extra damping on the actuated joint.
+//   hub pin offsets: body ee gets hinge hub_r and sites pin_b2, pin_b3 where
+//     chains 2 and 3 close (models/hub_pins.hpp).
 // Bodies are laid out already assembled at the actual inverse kinematics of
 // robot.home (paper eq. 29-31), so <connect>, which takes its second anchor at
 // qpos0, closes the loops exactly (docs/ARCHITECTURE.md, MuJoCo facts). Joint qpos are
@@ -65,9 +67,14 @@ struct MjcfEffects {
   // on light pin bodies); 0.9999 (as the loop constraints) holds the limits
   // to well under 1 um.
   double clearance_solimp = 0.9999;
+  // Hub pin offsets p_i (m, hub frame): the distal pin of passive link i sits
+  // at the hub centre + R(phi) p_i (models/hub_pins.hpp); zero = one common pin.
+  std::array<std::array<double, 2>, 3> hub_pin_m{};
 
   bool compliant() const;
   bool loose() const;
+  // True if a hub pin offset is non-zero (models/hub_pins.cpp).
+  bool pinned_hub() const;
 };
 
 // Mass, drive and solver properties of the MJCF (GPM2002-sized defaults; the

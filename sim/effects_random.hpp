@@ -5,6 +5,8 @@
 // procedure is judged on (`gpm study population`).
 #pragma once
 
+#include "models/data_sheet.hpp"
+#include "models/mjcf.hpp"
 #include "models/rng.hpp"
 #include "sim/effects.hpp"
 
@@ -25,18 +27,23 @@ struct EffectRange {
 struct RandomizedRanges {
   EffectRange stiffness_Nm_per_rad{0.7e4, 2.3e4, true};  // transmission; compliance = 1 / stiffness
   EffectRange clearance_mm{0.0, 0.020};                  // passive joints' radial play
-  EffectRange coulomb_Nm{0.1, 0.8, true};                // drive friction at the output
-  EffectRange viscous_Nm_s{0.03, 0.3, true};
   EffectRange expansion_per_K{21e-6, 24e-6};             // aluminium alloys
   EffectRange rise_K{0.5, 5.0};                          // warm-up of the machine
   EffectRange time_constant_s{300.0, 1800.0, true};
   EffectRange encoder_cyclic_rad{5e-6, 5e-5, true};      // 1 to 10 arcsec in the joint reading
   EffectRange skew_s{0.0, 200e-6};                       // latch time of each drive on the bus
-  double gear_ratio = 10.0;                              // the GPM2002's reducer (a data-sheet value, not drawn)
 };
 
 // One robot of the class: every effect drawn per chain from ranges (each
-// chain independently), encoder phases left at zero for the caller to seed.
-Effects randomized_effects(Rng& rng, const RandomizedRanges& ranges = {});
+// chain independently), with the drive train (sim/drive_train.hpp) and the
+// encoder and geometry effects (sim/encoder_error.hpp) drawn from theirs; the
+// drive friction per chain within the data sheet's tolerance, the gear ratio
+// the data sheet's. Encoder phases are left for the caller to seed.
+Effects randomized_effects(Rng& rng, const DataSheet& sheet = {}, const RandomizedRanges& ranges = {});
+
+// The actual masses and rotor inertia of one robot (the whole robot: the
+// model has one value of each), each drawn uniformly within the data sheet's
+// tolerance; mjcf's other settings are kept.
+void draw_masses_within(Rng& rng, const DataSheet& sheet, MjcfOptions& mjcf);
 
 }  // namespace gpm::sim

@@ -37,13 +37,14 @@ std::array<double, 3> per_chain(const YAML::Node& n, const std::string& file, co
 
 // A preset by name; `randomized` draws one robot of the class from the
 // scenario seed (stream 6), so a seed names one robot.
-Effects preset(const YAML::Node& n, const std::string& file, const std::string& key, std::uint64_t seed) {
+Effects preset(const YAML::Node& n, const std::string& file, const std::string& key, std::uint64_t seed,
+               const DataSheet& sheet) {
   const std::string name = yaml_string(n, file, key);
   if (name == "ideal") return Effects{};
   if (name == "realistic") return realistic_effects();
   if (name == "randomized") {
     Rng rng(derive_seed(seed, 6));
-    return randomized_effects(rng);
+    return randomized_effects(rng, sheet);
   }
   throw InputError(yaml_where(file, n, key) +
                    fmt::format("'{}' is not a preset (valid: ideal, realistic, randomized)", name));
@@ -126,13 +127,69 @@ void parse_drive_train(const YAML::Node& n, const std::string& file, const std::
   }
 }
 
+// --- Encoder harmonics, latch jitter, base-plate growth (sim/encoder_error.hpp) ---
+
+// encoder_harmonics: a list of up to kMaxEncoderHarmonics maps {order, amplitude_rad}.
+void parse_harmonics(const YAML::Node& n, const std::string& file, const std::string& c, Effects& e) {
+  if (!n.IsSequence() || n.size() > static_cast<size_t>(kMaxEncoderHarmonics))
+    throw InputError(yaml_where(file, n, c) + fmt::format("expected a list of up to {} maps {{order, amplitude_rad}}",
+                                                          kMaxEncoderHarmonics));
+  for (size_t h = 0; h < n.size(); ++h) {
+    const std::string ch = fmt::format("{}[{}]", c, h);
+    yaml_check_keys(n[h], file, ch, {"order", "amplitude_rad"});
+    if (!n[h]["order"] || !n[h]["amplitude_rad"])
+      throw InputError(yaml_where(file, n[h], ch) + "needs order (2 to 65536 per motor revolution) and amplitude_rad");
+    e.encoder_harmonics[h].order = static_cast<int>(yaml_integer(n[h]["order"], file, ch + ".order", 2, 65536));
+    e.encoder_harmonics[h].amplitude_rad =
+        per_chain(n[h]["amplitude_rad"], file, ch + ".amplitude_rad", {0.0, 0.01, "0 to 0.01 rad"});
+  }
+}
+
+// hub_pin_offset_um: three pairs [x, y] (um, hub frame), one per chain; stored in metres.
+void parse_hub_pins(const YAML::Node& n, const std::string& file, const std::string& c, Effects& e) {
+  const char* what = "a list of three pairs [x, y] in um (one per chain, hub frame)";
+  if (!n.IsSequence() || n.size() != 3) throw InputError(yaml_where(file, n, c) + fmt::format("expected {}", what));
+  const Range r{-100.0, 100.0, "-100 to 100 um"};
+  for (size_t i = 0; i < 3; ++i) {
+    const std::string ci = fmt::format("{}[{}]", c, i);
+    if (!n[i].IsSequence() || n[i].size() != 2) throw InputError(yaml_where(file, n[i], ci) + fmt::format("expected {}", what));
+    for (size_t k = 0; k < 2; ++k)
+      e.mjcf.hub_pin_m[i][k] = 1e-6 * bounded(n[i][k], file, fmt::format("{}[{}]", ci, k), r);
+  }
+}
+
+// The keys of this block under effects (each optional).
+void parse_encoder_and_geometry(const YAML::Node& n, const std::string& file, Effects& e) {
+  if (const YAML::Node v = n["encoder_harmonics"]) parse_harmonics(v, file, "effects.encoder_harmonics", e);
+  if (const YAML::Node v = n["encoder_jitter_s"])
+    e.encoder_jitter_s = per_chain(v, file, "effects.encoder_jitter_s", {0.0, 1e-3, "0 to 1e-3 s"});
+  if (const YAML::Node v = n["hub_pin_offset_um"]) parse_hub_pins(v, file, "effects.hub_pin_offset_um", e);
+}
+
+// thermal.base_expansion_per_K, thermal.base_time_constant_s (absent: as the links).
+void parse_base_thermal(const YAML::Node& t, const std::string& file, const std::string& ct, ThermalEffect& th) {
+  if (t["base_expansion_per_K"])
+    th.base_expansion_per_K = bounded(t["base_expansion_per_K"], file, ct + ".base_expansion_per_K", {0.0, 1e-3, "0 to 1e-3 per K"});
+  if (t["base_time_constant_s"])
+    th.base_time_constant_s = bounded(t["base_time_constant_s"], file, ct + ".base_time_constant_s", {1.0, 1e6, "1 to 1e6 s"});
+}
+
+// Phase of every harmonic slot of every encoder, uniform on [0, 2 pi), from its
+// own stream (the slots are always all drawn: a phase does not depend on how
+// many harmonics a scenario lists).
+void draw_harmonic_phases(std::uint64_t stream_seed, Effects& e) {
+  Rng rng(stream_seed);
+  for (EncoderHarmonic& h : e.encoder_harmonics)
+    for (double& ph : h.phase_rad) ph = rng.uniform(0.0, 2.0 * std::numbers::pi);
+}
+
 }  // namespace
 
-Effects parse_effects(const YAML::Node& n, const std::string& file, std::uint64_t seed) {
+Effects parse_effects(const YAML::Node& n, const std::string& file, std::uint64_t seed, const DataSheet& sheet) {
   const std::string c = "effects";
   Effects e;
   if (n.IsScalar()) {
-    e = preset(n, file, c, seed);
+    e = preset(n, file, c, seed, sheet);
   } else {
     if (!n.IsMap())
       throw InputError(yaml_where(file, n, c) + "expected ideal, realistic, randomized or a map of effects (scenarios/SCHEMA.md)");
@@ -143,8 +200,10 @@ Effects parse_effects(const YAML::Node& n, const std::string& file, std::uint64_
                      "stiction_excess_Nm", "stribeck_speed_rad_s", "friction_load_coefficient",
                      "torque_constant_delta", "cogging_Nm", "cogging_periods_per_motor_rev",
                      "preset", "transmission_compliance_rad_per_Nm", "passive_clearance_mm", "coulomb_friction_Nm",
-                     "viscous_friction_Nm_s", "thermal", "encoder_cyclic_rad", "encoder_skew_s", "gear_ratio"});
-    if (n["preset"]) e = preset(n["preset"], file, c + ".preset", seed);
+                     "viscous_friction_Nm_s", "thermal", "encoder_cyclic_rad", "encoder_skew_s", "gear_ratio",
+                     // encoder harmonics, latch jitter, hub pins (parse_encoder_and_geometry)
+                     "encoder_harmonics", "encoder_jitter_s", "hub_pin_offset_um"});
+    if (n["preset"]) e = preset(n["preset"], file, c + ".preset", seed, sheet);
     const auto key = [&](const char* k) { return c + "." + k; };
     if (const YAML::Node v = n["transmission_compliance_rad_per_Nm"])
       e.mjcf.compliance_rad_per_Nm =
@@ -170,15 +229,18 @@ Effects parse_effects(const YAML::Node& n, const std::string& file, std::uint64_
     if (const YAML::Node t = n["thermal"]) {
       const std::string ct = key("thermal");
       if (!t.IsMap()) throw InputError(yaml_where(file, t, ct) + "expected {expansion_per_K, rise_K, time_constant_s}");
-      yaml_check_keys(t, file, ct, {"expansion_per_K", "rise_K", "time_constant_s"});
+      yaml_check_keys(t, file, ct, {"expansion_per_K", "rise_K", "time_constant_s", "base_expansion_per_K",
+                                    "base_time_constant_s"});
       if (t["expansion_per_K"])
         e.thermal.expansion_per_K = bounded(t["expansion_per_K"], file, ct + ".expansion_per_K", {0.0, 1e-3, "0 to 1e-3 per K"});
       if (t["rise_K"]) e.thermal.rise_K = bounded(t["rise_K"], file, ct + ".rise_K", {-50.0, 100.0, "-50 to 100 K"});
       if (t["time_constant_s"])
         e.thermal.time_constant_s =
             bounded(t["time_constant_s"], file, ct + ".time_constant_s", {1.0, 1e6, "1 to 1e6 s"});
+      parse_base_thermal(t, file, ct, e.thermal);
     }
     parse_drive_train(n, file, c, e);
+    parse_encoder_and_geometry(n, file, e);
   }
   Rng rng(derive_seed(seed, 5));
   for (double& ph : e.encoder_phase_rad) ph = rng.uniform(0.0, 2.0 * std::numbers::pi);
@@ -186,6 +248,7 @@ Effects parse_effects(const YAML::Node& n, const std::string& file, std::uint64_
   for (DriveChain& d : e.drive.chain)
     for (double* ph : {&d.te_joint_phase_rad, &d.te_motor_phase_rad, &d.cogging_phase_rad})
       *ph = drive_rng.uniform(0.0, 2.0 * std::numbers::pi);
+  draw_harmonic_phases(derive_seed(seed, 16), e);
   return e;
 }
 

@@ -8,13 +8,16 @@
 
 #include <yaml-cpp/yaml.h>
 
+#include "models/data_sheet.hpp"
 #include "sim/effects.hpp"
 
 namespace gpm::sim {
 
 // Parses node (at key path `effects` of file). Encoder phases are drawn from
-// gpm::Rng seeded by derive_seed(seed, 5), one per encoder. Throws
+// gpm::Rng seeded by derive_seed(seed, 5), one per encoder; the phases of the
+// encoder harmonics from derive_seed(seed, 16), one per slot and encoder. Throws
 // InputError naming the file, line and key for a bad value or unknown key.
-Effects parse_effects(const YAML::Node& node, const std::string& file, std::uint64_t seed);
+Effects parse_effects(const YAML::Node& node, const std::string& file, std::uint64_t seed,
+                      const DataSheet& sheet = {});
 
 }  // namespace gpm::sim

@@ -43,7 +43,7 @@ TwinSnapshot advance(Session& s, const PathPoint& desired) {
     const long tick = s.state.steps / s.model.steps_per_tick() - 1;
     if (tick % s.log->every == 0) {
       s.log->add(LogRow{snap.time_s, desired.p, snap.ee_mm, snap.readings, snap.torque, snap.violation_m,
-                        snap.growth});
+                        snap.growth, snap.growth_base});
     }
   }
   if (s.max_tracking_mm > 0.0) {

@@ -27,6 +27,7 @@ struct LogRow {
   Eigen::Vector3d torque = Eigen::Vector3d::Zero();   // N m
   double violation_m = 0.0;
   double growth = 0.0;  // thermal: relative length growth of the actual mechanism at t
+  double growth_base = 0.0;  // thermal: relative growth of its base plate at t
 };
 
 // Log of a run: every `every`-th drive loop period. Rows are kept in memory

@@ -14,12 +14,13 @@
 #include "models/rng.hpp"
 #include "models/yaml_util.hpp"
 #include "sim/effects_yaml.hpp"
+#include "sim/effects_random.hpp"
 
 namespace gpm::sim {
 namespace {
 
 // Bounds of counts (scenarios/SCHEMA.md): poses in one plan, and rows of the
-// trajectory log (112 bytes each in memory: 2e7 rows is about 2.2 GB).
+// trajectory log (120 bytes each in memory: 2e7 rows is about 2.4 GB).
 constexpr long long kMaxPoses = 10000;
 constexpr double kMaxLogRows = 2e7;
 // Default rate of the trajectory log (trajectory.csv): ample for figures and
@@ -360,7 +361,7 @@ std::vector<GeometryEvent> parse_events(const YAML::Node& n, const Ctx& c, doubl
 
 // Refuses a run whose trajectory log could outgrow memory: an upper bound of
 // its rows, count x (longest move + settle timeout + average) + path duration,
-// at the servo rate / log.every, against kMaxLogRows (112 bytes a row in memory).
+// at the servo rate / log.every, against kMaxLogRows (120 bytes a row in memory).
 void check_log_size(const Scenario& s, const YAML::Node& root, const Ctx& c) {
   const double rows_per_s = s.twin.servo_rate_hz / s.log_every;
   // Every move stays inside the box of home, the poses and the path start (its
@@ -409,6 +410,16 @@ Path path_from_yaml(const YAML::Node& n, const std::string& file, const std::str
   return parse_path(n, Ctx{file, keypath}, &defaults);
 }
 
+namespace {
+
+// True when an effects section is, or starts from, the randomized preset.
+bool uses_randomized_preset(const YAML::Node& fx) {
+  const YAML::Node p = fx.IsMap() ? fx["preset"] : fx;
+  return p && p.IsScalar() && p.Scalar() == "randomized";
+}
+
+}  // namespace
+
 Scenario scenario_from_yaml(const YAML::Node& root, const std::string& file, const std::string& base_dir) {
   const Ctx c{file, ""};
   if (!root.IsMap()) fail(c, root, "expected a map of sections (see scenarios/SCHEMA.md)");
@@ -450,7 +461,15 @@ Scenario scenario_from_yaml(const YAML::Node& root, const std::string& file, con
   }
   if (root["encoder"]) parse_encoder(root["encoder"], c.at("encoder"), s.twin.encoder);
   if (const YAML::Node fx = root["effects"]) {
-    s.twin.effects = parse_effects(fx, file, s.seed);
+    s.twin.effects = parse_effects(fx, file, s.seed, s.controller.data_sheet);
+    if (uses_randomized_preset(fx)) {  // the actual masses too lie anywhere in the data sheet's tolerance
+      Rng rng(derive_seed(s.seed, 7));
+      const double armature = s.twin.mjcf.armature_kg_m2;
+      draw_masses_within(rng, s.controller.data_sheet, s.twin.mjcf);
+      // The drives are tuned to the rotor they turn (a drive's auto-tuning
+      // keeps its velocity-loop bandwidth kv / J): kv follows the drawn inertia.
+      for (ServoDrive& d : s.twin.drives) d.kv *= s.twin.mjcf.armature_kg_m2 / armature;
+    }
     try {
       check_transmission(s.controller, s.twin);
     } catch (const InputError& e) {

@@ -177,7 +177,7 @@ std::string trajectory_line(const LogRow& r, const Geometry* thermal_reference) 
                                 x(r.readings[1]), x(r.readings[2]), x(r.torque[0]), x(r.torque[1]),
                                 x(r.torque[2]), x(r.violation_m));
   if (thermal_reference) {
-    const Geometry g = thermal_geometry(*thermal_reference, r.growth);
+    const Geometry g = thermal_geometry(*thermal_reference, r.growth, r.growth_base);
     out += fmt::format(",{}", x(r.growth));  // (fmt: GCC 12 warns wrongly on "," + std::string)
     for (int i = 0; i < kNumParams; ++i)
       if (!is_offset(i)) out += fmt::format(",{}", x(g[i]));

@@ -31,19 +31,20 @@ void sense_kinematics(const TwinModel& model, const mjData* d, TwinSnapshot& s) 
   s.violation_m = constraint_violation_m(model, d);
 }
 
-// Readings follow the motors. The latch of encoder i is skew_i earlier than
-// the snapshot instant (angle extrapolated with the motor speed), and the
-// once-per-revolution error A_i sin(angle - dth_i + phase_i) is added before
-// noise and quantisation.
+// Readings follow the motors. The latch of encoder i is dt_i = skew_i +
+// jitter earlier than the snapshot instant (angle extrapolated with the motor
+// speed: theta - dt_i w), and the encoder error e_i(theta - dth_i) of
+// sim/encoder_error.hpp (per motor revolution) is added before noise and
+// quantisation to 2^bits x gear_ratio counts per joint revolution.
 void read_encoders(const TwinModel& model, TwinState& state) {
   const Geometry& g = state.geometry;
   const Effects& fx = model.config().effects;
   for (int i = 0; i < 3; ++i) {
-    const size_t k = static_cast<size_t>(i);
     double angle = state.last.theta_motor[i];
-    if (fx.encoder_skew_s[k] != 0.0) angle -= fx.encoder_skew_s[k] * state.last.motor_velocity[i];
-    angle += cyclic_error(fx.encoder_cyclic_rad[k], fx.encoder_phase_rad[k], angle - g.dth_(i));
-    state.last.readings[i] = encoder_reading(model.config().encoder, state.noise, angle, g.dth_(i));
+    const double dt = latch_offset_s(fx, i, state.noise.rng);
+    if (dt != 0.0) angle -= dt * state.last.motor_velocity[i];
+    angle += encoder_angle_error(fx, i, angle - g.dth_(i));
+    state.last.readings[i] = encoder_reading(model.config().encoder, state.noise, angle, g.dth_(i), fx.gear_ratio);
   }
 }
 
@@ -139,6 +140,10 @@ TwinModel::TwinModel(const Robot& actual, const TwinConfig& config)
     drive_train = make_drive_train(model_.get(), config.effects, qpos_m, qpos_a, dof_m, dof_a, actuator, rotor_friction);
   site_ee = require_id(m, mjOBJ_SITE, "ee");
   body_ee = require_id(m, mjOBJ_BODY, "ee");
+  for (int i = 0; i < 3; ++i) {  // hub pin offsets (models/hub_pins.hpp): chains close at pin_b{i}
+    const int pin = optional_id(m, mjOBJ_SITE, name("pin_b", i));
+    site_pin[i] = pin >= 0 ? pin : site_ee;
+  }
 }
 
 void apply_geometry(const TwinModel& model, TwinState& state, const Geometry& g) {
@@ -163,21 +168,23 @@ void apply_geometry(const TwinModel& model, TwinState& state, const Geometry& g)
 void apply_thermal_growth(const TwinModel& model, TwinState& state, double growth) {
   apply_geometry(model, state, thermal_geometry(model.actual().geometry, growth));
   state.last.growth = growth;
+  state.last.growth_base = growth;
 }
 
 namespace {
 
-// geometry_at_time with the thermal growth at t_s already computed.
-Geometry geometry_with_growth(const TwinModel& model, double t_s, double growth) {
+// geometry_at_time with the thermal growth of the links and of the base at t_s already computed.
+Geometry geometry_with_growth(const TwinModel& model, double t_s, double growth, double growth_base) {
   const TwinConfig& c = model.config();
   const Geometry g = c.events.empty() ? model.actual().geometry : geometry_at(model.actual().geometry, c.events, t_s);
-  return c.effects.thermal.on() ? thermal_geometry(g, growth) : g;
+  return c.effects.thermal.on() ? thermal_geometry(g, growth, growth_base) : g;
 }
 
 }  // namespace
 
 Geometry geometry_at_time(const TwinModel& model, double t_s) {
-  return geometry_with_growth(model, t_s, model.config().effects.thermal.growth(t_s));
+  const ThermalEffect& th = model.config().effects.thermal;
+  return geometry_with_growth(model, t_s, th.growth(t_s), th.base_growth(t_s));
 }
 
 TwinState::TwinState(const TwinModel& model, unsigned long long seed)
@@ -193,10 +200,9 @@ TwinState::TwinState(const TwinModel& model, unsigned long long seed)
 }
 
 double constraint_violation_m(const TwinModel& model, const mjData* d) {
-  const Eigen::Vector3d ee = site_pos(d, model.site_ee);
   double worst = 0.0;
   for (int i = 1; i < 3; ++i)
-    worst = std::max(worst, (site_pos(d, model.site_tip[i]) - ee).norm() - model.hub_play_m[i]);
+    worst = std::max(worst, (site_pos(d, model.site_tip[i]) - site_pos(d, model.site_pin[i])).norm() - model.hub_play_m[i]);
   return worst;
 }
 
@@ -217,9 +223,12 @@ void twin_step(const TwinModel& model, TwinState& state) {
   // Thermal growth follows the (slow, smooth) first-order rise every step and
   // events ramp in (sim/events.hpp): nanometres per step, never a jump.
   if (state.thermal_model) {
-    const double growth = model.config().effects.thermal.growth(d->time);  // one exp a step, not two
-    apply_geometry(model, state, geometry_with_growth(model, d->time, growth));
+    const ThermalEffect& th = model.config().effects.thermal;
+    const double growth = th.growth(d->time);  // one exp a step, not two (two with a base law of its own)
+    const double growth_base = th.base_own() ? th.base_growth(d->time) : growth;
+    apply_geometry(model, state, geometry_with_growth(model, d->time, growth, growth_base));
     state.last.growth = growth;
+    state.last.growth_base = growth_base;
   }
   mj_step1(m, d);  // positions, velocities and kinematics at the current time
   sense_kinematics(model, d, state.last);

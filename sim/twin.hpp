@@ -62,6 +62,7 @@ class TwinModel {
   // qpos_m == qpos_a and dof_m == dof_a.
   std::array<int, 3> qpos_a{}, qpos_b{}, dof_a{}, qpos_m{}, dof_m{}, actuator{}, site_tip{};
   std::array<int, 3> site_side{-1, -1, -1};  // side_b{i} across the tip (clearance, chains 2 and 3), -1 if none
+  std::array<int, 3> site_pin{-1, -1, -1};   // hub site where chain i closes: pin_b{i} with hub pin offsets, else ee
   std::array<bool, 3> compliant{};
   int site_ee = -1;
   // Bodies and constraints whose placement a thermal edit changes.
@@ -104,6 +105,7 @@ struct TwinSnapshot {
   Eigen::Vector2d ee_mm = Eigen::Vector2d::Zero();     // true end-effector (site ee), mm
   double violation_m = 0.0;  // largest loop-closure gap |tip_b2 - ee|, |tip_b3 - ee| beyond the clearance (m)
   double growth = 0.0;       // thermal: relative length growth in effect (0 without thermal)
+  double growth_base = 0.0;  // thermal: relative growth of the base plate in effect (= growth unless it has its own law)
 };
 
 // Mutable part of the twin.
@@ -149,8 +151,8 @@ inline const mjModel* state_model(const TwinModel& model, const TwinState& state
 // anchors and hide the edit from the loop).
 void apply_geometry(const TwinModel& model, TwinState& state, const Geometry& g);
 
-// apply_geometry of the actual geometry grown by `growth` (sim/effects.hpp
-// thermal_geometry), recorded in state.last.growth.
+// apply_geometry of the actual geometry grown by `growth`, links and base alike
+// (sim/effects.hpp thermal_geometry), recorded in state.last.growth and .growth_base.
 void apply_thermal_growth(const TwinModel& model, TwinState& state, double growth);
 
 // The actual geometry at time t: the events so far, then thermal growth.
@@ -169,8 +171,9 @@ MjcfOptions mjcf_with_effects(const TwinConfig& config);
 void check_transmission(const Robot& actual, const TwinConfig& config);
 
 // Loop-closure gap (m) of the current mjData kinematics (after mj_forward or
-// mj_step1): the largest distance between tip_b2 / tip_b3 and the ee site
-// beyond the play the clearance allows there (hub_play_m; 0 within it).
+// mj_step1): the largest distance between tip_b2 / tip_b3 and their hub site
+// (site_pin: ee, or pin_b{i} with hub pin offsets) beyond the play the
+// clearance allows there (hub_play_m; 0 within it).
 double constraint_violation_m(const TwinModel& model, const mjData* d);
 
 }  // namespace gpm::sim

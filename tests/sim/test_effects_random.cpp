@@ -23,21 +23,27 @@ bool within(double v, const EffectRange& r) { return v >= r.lo && v <= r.hi; }
 
 TEST(EffectsRandom, EveryDrawIsInItsRangeAndChainsDiffer) {
   const RandomizedRanges r;
+  const DataSheet sheet;
   Rng rng(7);
   for (int n = 0; n < 200; ++n) {
-    const Effects e = randomized_effects(rng, r);
+    const Effects e = randomized_effects(rng, sheet, r);
     for (size_t i = 0; i < 3; ++i) {
       EXPECT_TRUE(within(1.0 / e.mjcf.compliance_rad_per_Nm[i], r.stiffness_Nm_per_rad));
       EXPECT_TRUE(within(e.mjcf.clearance_m[i] * 1e3, r.clearance_mm));
-      EXPECT_TRUE(within(e.mjcf.coulomb_Nm[i], r.coulomb_Nm));
-      EXPECT_TRUE(within(e.mjcf.viscous_Nm_s[i], r.viscous_Nm_s));
+      // Friction within the data sheet's tolerance (viscous: with the model's 0.05 N m s/rad).
+      EXPECT_GE(e.mjcf.coulomb_Nm[i], sheet.coulomb_Nm.min());
+      EXPECT_LE(e.mjcf.coulomb_Nm[i], sheet.coulomb_Nm.max());
+      EXPECT_GE(e.mjcf.viscous_Nm_s[i] + MjcfOptions{}.active_damping, sheet.viscous_Nm_s.min() - 1e-15);
+      EXPECT_LE(e.mjcf.viscous_Nm_s[i] + MjcfOptions{}.active_damping, sheet.viscous_Nm_s.max() + 1e-15);
       EXPECT_TRUE(within(e.encoder_cyclic_rad[i], r.encoder_cyclic_rad));
       EXPECT_TRUE(within(e.encoder_skew_s[i], r.skew_s));
     }
     EXPECT_TRUE(within(e.thermal.expansion_per_K, r.expansion_per_K));
     EXPECT_TRUE(within(e.thermal.rise_K, r.rise_K));
     EXPECT_TRUE(within(e.thermal.time_constant_s, r.time_constant_s));
-    EXPECT_EQ(e.gear_ratio, r.gear_ratio);
+    EXPECT_EQ(e.gear_ratio, sheet.gear_ratio);
+    EXPECT_TRUE(e.drive.any());               // the drive train drawn too (sim/drive_train.hpp)
+    EXPECT_TRUE(e.encoder_and_geometry_on());  // and the encoder and geometry effects
     // Continuous draws: two chains equal would mean one value shared.
     EXPECT_NE(e.mjcf.coulomb_Nm[0], e.mjcf.coulomb_Nm[1]);
     EXPECT_NE(e.mjcf.compliance_rad_per_Nm[1], e.mjcf.compliance_rad_per_Nm[2]);
@@ -77,6 +83,20 @@ TEST(EffectsRandom, OneSeedIsOneRobot) {
   EXPECT_EQ(d.mjcf.viscous_Nm_s, a.mjcf.viscous_Nm_s);
 }
 
+TEST(EffectsRandom, TheActualMassesLieWithinTheDataSheetsTolerance) {
+  const DataSheet sheet;
+  const Scenario a = with_effects("randomized", 5), b = with_effects("randomized", 6);
+  EXPECT_NE(a.twin.mjcf.active_link_mass_kg, b.twin.mjcf.active_link_mass_kg);
+  for (const Scenario* s : {&a, &b}) {
+    EXPECT_GE(s->twin.mjcf.active_link_mass_kg, sheet.active_link_mass_kg.min());
+    EXPECT_LE(s->twin.mjcf.active_link_mass_kg, sheet.active_link_mass_kg.max());
+    EXPECT_GE(s->twin.mjcf.armature_kg_m2, sheet.rotor_inertia_kg_m2.min() * 100.0);
+    EXPECT_LE(s->twin.mjcf.armature_kg_m2, sheet.rotor_inertia_kg_m2.max() * 100.0);
+  }
+  // Another preset keeps the model's design values.
+  EXPECT_EQ(with_effects("realistic", 5).twin.mjcf.active_link_mass_kg, MjcfOptions{}.active_link_mass_kg);
+}
+
 TEST(EffectsRandom, EveryDrawnRobotBuildsAStableTwinAtTheMainJobsStep) {
   // The stiffest transmission of the range must pass the twin's stability
   // check (omega dt <= 1.5) at the main job's 0.25 ms step and 4 kHz loop.
@@ -87,6 +107,8 @@ TEST(EffectsRandom, EveryDrawnRobotBuildsAStableTwinAtTheMainJobsStep) {
     c.mjcf.timestep_s = 0.00025;
     c.servo_rate_hz = 4000.0;
     c.effects = randomized_effects(rng);
+    draw_masses_within(rng, DataSheet{}, c.mjcf);
+    for (ServoDrive& d : c.drives) d.kv *= c.mjcf.armature_kg_m2 / MjcfOptions{}.armature_kg_m2;  // tuned to the rotor
     const TwinModel model(robot, c);
     TwinState state(model, 1);
     for (int k = 0; k < 400; ++k) twin_step(model, state);  // 0.1 s holding home

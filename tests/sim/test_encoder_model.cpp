@@ -1,5 +1,6 @@
 // Tests of sim/encoder_model.cpp: quantisation within half a count, wrapping
-// to [0, 2 pi), eq. 35 with ideal encoders, seeded noise.
+// to [0, 2 pi), eq. 35 with ideal encoders, seeded noise; behind a gear ratio
+// N, 2^bits N counts per joint revolution.
 #include "sim/encoder_model.hpp"
 
 #include <cmath>
@@ -40,6 +41,29 @@ TEST(EncoderModel, QuantisationErrorIsAtMostHalfACountAndReadingsAreWholeCounts)
     }
     EXPECT_LE(worst, 0.5 * q * (1 + 1e-9)) << bits << " bits";
     EXPECT_GT(worst, 0.45 * q) << "the error should use the whole half count";
+  }
+}
+
+TEST(EncoderModel, GearRatioGivesTwoToTheBitsTimesRatioCountsPerJointRevolution) {
+  const EncoderModel m{17, 0.0};
+  Rng rng(3);
+  for (double ratio : {10.0, 50.0, 121.0 / 12.0}) {
+    const double q = kTwoPi / (131072.0 * ratio);  // a motor count seen at the joint
+    double worst = 0.0;
+    for (int k = 0; k < 20000; ++k) {
+      const double a = rng.uniform(-10.0, 10.0);
+      const double r = quantise_reading(m, a, ratio);
+      ASSERT_GE(r, 0.0);
+      ASSERT_LT(r, kTwoPi);
+      worst = std::max(worst, circ(r, a));
+    }
+    EXPECT_LE(worst, 0.5 * q * (1 + 1e-6)) << ratio;
+    EXPECT_GT(worst, 0.45 * q) << ratio;
+  }
+  // A whole ratio: every reading is a whole number of joint counts.
+  for (int k = 0; k < 1000; ++k) {
+    const double r = quantise_reading(m, rng.uniform(0.0, kTwoPi), 10.0);
+    ASSERT_NEAR(r / (kTwoPi / (131072.0 * 10.0)), std::round(r / (kTwoPi / (131072.0 * 10.0))), 1e-6);
   }
 }
 
