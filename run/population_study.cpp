@@ -290,6 +290,30 @@ nlohmann::json three(const std::array<double, 3>& a, double scale = 1.0) {
   return {number(a[0] * scale), number(a[1] * scale), number(a[2] * scale)};
 }
 
+// Each chain's drive train (sim/drive_train.hpp), as the effects keys name it.
+nlohmann::json drive_json(const sim::DriveTrain& d) {
+  nlohmann::json chains = nlohmann::json::array();
+  for (const sim::DriveChain& c : d.chain)
+    chains.push_back({{"backlash_rad", c.backlash_rad},
+                      {"drive_stiffness_Nm_per_rad", three(c.stiffness_Nm_per_rad)},
+                      {"drive_stiffness_bands_Nm", {c.band_Nm[0], c.band_Nm[1]}},
+                      {"drive_hysteresis_rad", c.hysteresis_rad},
+                      {"transmission_error_joint_rad", c.te_joint_rad},
+                      {"transmission_error_motor_rad", c.te_motor_rad},
+                      {"stiction_excess_Nm", c.stiction_excess_Nm},
+                      {"friction_load_coefficient", c.load_friction},
+                      {"torque_constant_delta", c.torque_constant_delta},
+                      {"cogging_Nm", c.cogging_Nm}});
+  return chains;
+}
+
+nlohmann::json harmonics_json(const sim::Effects& e) {
+  nlohmann::json h = nlohmann::json::array();
+  for (const sim::EncoderHarmonic& x : e.encoder_harmonics)
+    if (x.order > 0) h.push_back({{"order", x.order}, {"amplitude_rad", three(x.amplitude_rad)}});
+  return h;
+}
+
 nlohmann::json effects_json(const sim::Effects& e) {
   return {{"transmission_stiffness_Nm_per_rad",
            three({1.0 / e.mjcf.compliance_rad_per_Nm[0], 1.0 / e.mjcf.compliance_rad_per_Nm[1],
@@ -300,6 +324,11 @@ nlohmann::json effects_json(const sim::Effects& e) {
           {"encoder_cyclic_rad", three(e.encoder_cyclic_rad)},
           {"encoder_skew_s", three(e.encoder_skew_s)},
           {"gear_ratio", e.gear_ratio},
+          {"drive_train", drive_json(e.drive)},
+          {"encoder_harmonics", harmonics_json(e)},
+          {"encoder_jitter_s", three(e.encoder_jitter_s)},
+          {"hub_pin_offset_um", {three({e.mjcf.hub_pin_m[0][0], e.mjcf.hub_pin_m[1][0], e.mjcf.hub_pin_m[2][0]}, 1e6),
+                                 three({e.mjcf.hub_pin_m[0][1], e.mjcf.hub_pin_m[1][1], e.mjcf.hub_pin_m[2][1]}, 1e6)}},
           {"thermal", {{"expansion_per_K", e.thermal.expansion_per_K}, {"rise_K", e.thermal.rise_K},
                        {"time_constant_s", e.thermal.time_constant_s}}}};
 }

@@ -27,7 +27,6 @@ Effects randomized_effects(Rng& rng, const DataSheet& sheet, const RandomizedRan
   Effects e;
   e.gear_ratio = sheet.gear_ratio;
   for (size_t i = 0; i < 3; ++i) {
-    e.mjcf.compliance_rad_per_Nm[i] = 1.0 / r.stiffness_Nm_per_rad.draw(rng);
     e.mjcf.clearance_m[i] = r.clearance_mm.draw(rng) * kMetresPerMm;
     e.mjcf.coulomb_Nm[i] = within(rng, sheet.coulomb_Nm);
     e.mjcf.viscous_Nm_s[i] = std::max(0.0, within(rng, sheet.viscous_Nm_s) - kGearboxDamping_Nm_s);
@@ -37,7 +36,7 @@ Effects randomized_effects(Rng& rng, const DataSheet& sheet, const RandomizedRan
   e.thermal.expansion_per_K = r.expansion_per_K.draw(rng);
   e.thermal.rise_K = r.rise_K.draw(rng);
   e.thermal.time_constant_s = r.time_constant_s.draw(rng);
-  draw_drive_train(rng, e);
+  draw_drive_train(rng, e);  // the transmission: stiffness bands (with their rotor), backlash, ...
   draw_encoder_and_geometry(rng, e);
   return e;
 }

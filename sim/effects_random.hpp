@@ -25,12 +25,11 @@ struct EffectRange {
 // The ranges the `randomized` preset draws from (output-side units, as the
 // effects keys): the numbers and their sources are in scenarios/SCHEMA.md.
 struct RandomizedRanges {
-  EffectRange stiffness_Nm_per_rad{0.7e4, 2.3e4, true};  // transmission; compliance = 1 / stiffness
   EffectRange clearance_mm{0.0, 0.020};                  // passive joints' radial play
   EffectRange expansion_per_K{21e-6, 24e-6};             // aluminium alloys
   EffectRange rise_K{0.5, 5.0};                          // warm-up of the machine
   EffectRange time_constant_s{300.0, 1800.0, true};
-  EffectRange encoder_cyclic_rad{5e-6, 5e-5, true};      // 1 to 10 arcsec in the joint reading
+  EffectRange encoder_cyclic_rad{2.4e-6, 2e-5, true};    // 5 to 40 arcsec at the motor, through 10:1
   EffectRange skew_s{0.0, 200e-6};                       // latch time of each drive on the bus
 };
 

@@ -44,8 +44,23 @@ sim::TwinConfig changed_truth(sim::TwinConfig t) {
     m->clearance_damping_N_s_per_m = 3.3;
     m->clearance_solref_s = 0.0007;
     m->clearance_solimp = 0.9991;
+    m->hub_pin_m = {{{1e-6, 2e-6}, {3e-6, 4e-6}, {5e-6, 6e-6}}};
   }
-  e.thermal = sim::ThermalEffect{11e-6, 5.0, 321.0};
+  e.thermal = sim::ThermalEffect{11e-6, 5.0, 321.0, 12e-6, 1234.0};
+  for (std::size_t i = 0; i < 3; ++i) {
+    sim::DriveChain& c = e.drive.chain[i];
+    const double k = static_cast<double>(i + 1);
+    c = sim::DriveChain{1e-4 * k, {1e4 * k, 2e4 * k, 3e4 * k}, {1.0 * k, 5.0 * k}, 1e-5 * k, 2e-5 * k, 0.4 * k,
+                        3e-5 * k, 0.5 * k, 0.05 * k, 0.02 * k, 0.01 * k, 0.03 * k, 0.02 * k, 0.6 * k};
+  }
+  e.drive.te_motor_order = 3;
+  e.drive.cogging_periods_per_motor_rev = 30;
+  for (std::size_t h = 0; h < e.encoder_harmonics.size(); ++h) {
+    const double k = static_cast<double>(h + 1);
+    e.encoder_harmonics[h] = sim::EncoderHarmonic{static_cast<int>(h) + 2, {1e-6 * k, 2e-6 * k, 3e-6 * k},
+                                                  {0.1 * k, 0.2 * k, 0.3 * k}};
+  }
+  e.encoder_jitter_s = {1e-6, 2e-6, 3e-6};
   e.encoder_cyclic_rad = {3e-5, 4e-5, 5e-5};
   e.encoder_phase_rad = {0.1, 0.2, 0.3};
   e.encoder_skew_s = {1e-5, 7e-5, 3e-4};
