@@ -1,12 +1,8 @@
 #include "run/effects_study.hpp"
 
 #include <algorithm>
-#include <atomic>
 #include <chrono>
 #include <cmath>
-#include <exception>
-#include <mutex>
-#include <thread>
 #include <variant>
 
 #include <fmt/format.h>
@@ -16,6 +12,7 @@
 #include "models/errors.hpp"
 #include "models/output_file.hpp"
 #include "report/svg_plot.hpp"
+#include "run/parallel_runs.hpp"
 #include "run/runner.hpp"
 
 namespace gpm::scenario {
@@ -200,36 +197,25 @@ EffectsStudy run_effects_study(const std::vector<StudyProcedure>& procedures, co
   std::vector<RunSpec> specs;
   for (size_t k = 0; k < n; ++k) specs.push_back(case_spec(procedures[k / nc], options.cases[k % nc], options));
   study.rows.resize(n);
-  std::atomic<size_t> next{0};
-  std::mutex mutex;
-  std::exception_ptr bug;
-  auto worker = [&] {
-    for (size_t k = next++; k < n; k = next++) {
-      const auto c0 = std::chrono::steady_clock::now();
-      EffectsRow r;
-      try {
-        r = row_of(run_scenario(specs[k], procedures[k / nc].scenario));
-      } catch (const Error& e) {  // refused, diverged: a result of the study, not a stop
-        r = failed_row(e.what());
-      } catch (...) {
-        const std::lock_guard lock(mutex);
-        if (!bug) bug = std::current_exception();
-        continue;
-      }
-      r.procedure = procedures[k / nc].name;
-      r.effect = effect_case_name(options.cases[k % nc]);
-      r.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - c0).count();
-      const std::lock_guard lock(mutex);
-      study.rows[k] = r;
-      if (progress) progress(r);
-    }
-  };
-  const int threads = std::clamp(options.threads, 1, static_cast<int>(std::max<size_t>(n, 1)));
-  std::vector<std::thread> pool;
-  for (int t = 1; t < threads; ++t) pool.emplace_back(worker);
-  worker();
-  for (std::thread& t : pool) t.join();
-  if (bug) std::rethrow_exception(bug);
+  std::vector<EffectsRow> finished(n);
+  run_in_parallel(
+      n, options.threads,
+      [&](size_t k) {
+        const auto c0 = std::chrono::steady_clock::now();
+        EffectsRow& r = finished[k];
+        try {
+          r = row_of(run_scenario(specs[k], procedures[k / nc].scenario));
+        } catch (const Error& e) {  // refused, diverged: a result of the study, not a stop
+          r = failed_row(e.what());
+        }
+        r.procedure = procedures[k / nc].name;
+        r.effect = effect_case_name(options.cases[k % nc]);
+        r.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - c0).count();
+      },
+      [&](size_t k) {
+        study.rows[k] = finished[k];
+        if (progress) progress(study.rows[k]);
+      });
   study.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
   return study;
 }

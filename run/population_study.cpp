@@ -1,13 +1,9 @@
 #include "run/population_study.hpp"
 
 #include <algorithm>
-#include <atomic>
 #include <chrono>
 #include <cmath>
-#include <exception>
 #include <filesystem>
-#include <mutex>
-#include <thread>
 
 #include <fmt/format.h>
 #include <nlohmann/json.hpp>
@@ -17,6 +13,7 @@
 #include "models/output_file.hpp"
 #include "models/yaml_util.hpp"
 #include "report/svg_plot.hpp"
+#include "run/parallel_runs.hpp"
 #include "run/runner.hpp"
 
 namespace gpm::scenario {
@@ -138,33 +135,19 @@ PopulationStudy run_population_study(const std::string& scenario_file, const Pop
     specs.push_back(s);
   }
   if (!specs.empty()) study.name = specs.front().sim.name;
-  std::atomic<size_t> next{0};
-  std::atomic<int> done{0};
-  std::mutex mutex;
-  std::exception_ptr bug;
-  auto worker = [&] {
-    for (size_t k = next++; k < specs.size(); k = next++) {
-      const auto c0 = std::chrono::steady_clock::now();
-      PopulationRobot r;
-      try {
-        r = run_robot(specs[k], scenario_file, study.robots[k]);
-      } catch (...) {
-        const std::lock_guard lock(mutex);
-        if (!bug) bug = std::current_exception();
-        continue;
-      }
-      r.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - c0).count();
-      const std::lock_guard lock(mutex);
-      study.robots[k] = r;
-      if (progress) progress(r, ++done, static_cast<int>(specs.size()));
-    }
-  };
-  const int threads = std::clamp(options.threads, 1, static_cast<int>(std::max<size_t>(specs.size(), 1)));
-  std::vector<std::thread> pool;
-  for (int t = 1; t < threads; ++t) pool.emplace_back(worker);
-  worker();
-  for (std::thread& t : pool) t.join();
-  if (bug) std::rethrow_exception(bug);
+  std::vector<PopulationRobot> finished(specs.size());
+  int done = 0;
+  run_in_parallel(
+      specs.size(), options.threads,
+      [&](size_t k) {
+        const auto c0 = std::chrono::steady_clock::now();
+        finished[k] = run_robot(specs[k], scenario_file, study.robots[k]);
+        finished[k].seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - c0).count();
+      },
+      [&](size_t k) {
+        study.robots[k] = finished[k];
+        if (progress) progress(study.robots[k], ++done, static_cast<int>(specs.size()));
+      });
   study.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
   return study;
 }
