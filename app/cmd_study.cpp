@@ -173,7 +173,7 @@ void run_effects(const StudyOptions& o) {
       const auto c = scenario::parse_effect_case(name);
       if (!c)
         throw InputError(fmt::format("--effects: '{}' is not one of ideal, compliance, clearance, friction, thermal, "
-                                     "encoder_cyclic, encoder_skew, all", name));
+                                     "encoder_cyclic, encoder_skew, all, drive_train, encoder_motor, every", name));
       so.cases.push_back(*c);
     }
   }
@@ -273,7 +273,7 @@ void add_study(CLI::App& app) {
       ->required();
   effects->add_option("--effects", o->effects,
                       "Comma-separated cases (default every one: ideal, compliance, clearance, friction, thermal, "
-                      "encoder_cyclic, encoder_skew, all)");
+                      "encoder_cyclic, encoder_skew, all, drive_train, encoder_motor, every)");
   effects->add_option("--count", o->effects_count, "Poses per calibration, 12 to 2000 (default: each procedure's own)");
   effects->add_option("--threads", o->threads, "Runs in parallel")->capture_default_str();
   effects->callback([o] { run_effects(*o); });

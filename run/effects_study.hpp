@@ -8,6 +8,7 @@
 #pragma once
 
 #include <array>
+#include <cstdint>
 #include <functional>
 #include <optional>
 #include <string>
@@ -21,7 +22,16 @@
 namespace gpm::scenario {
 
 // Which effects of the realistic preset are on in one case.
-enum class EffectCase { kIdeal, kCompliance, kClearance, kFriction, kThermal, kEncoderCyclic, kEncoderSkew, kAll };
+// kDriveTrain, kEncoderMotor: the geared machine's effects the preset leaves
+// out, at values drawn once from their plausible ranges (kDrawSeed); kEvery:
+// the preset and both.
+enum class EffectCase {
+  kIdeal, kCompliance, kClearance, kFriction, kThermal, kEncoderCyclic, kEncoderSkew, kAll,
+  kDriveTrain, kEncoderMotor, kEvery
+};
+
+// Seed of the one draw of the drive train and of the motor encoder's effects.
+inline constexpr std::uint64_t kDrawSeed = 1;
 
 // Every case, ideal first and all last (the study's default).
 std::vector<EffectCase> all_effect_cases();
@@ -34,7 +44,9 @@ std::string effect_case_name(EffectCase c);
 std::optional<EffectCase> parse_effect_case(const std::string& name);
 
 // The effects of case c: the part of `realistic` that c names, every other
-// effect off. The encoder phases of `realistic` are kept (seeded by the scenario).
+// effect off (drive_train, encoder_motor: drawn with kDrawSeed behind a 10:1
+// reducer; every: all of it). The encoder phases of `realistic` are kept
+// (seeded by the scenario).
 sim::Effects effects_for_case(EffectCase c, const sim::Effects& realistic);
 
 // One calibration procedure of the study: a run spec (its effects replaced case by case).

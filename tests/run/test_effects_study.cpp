@@ -55,6 +55,18 @@ TEST(EffectCases, NamesRoundTripAndEachCaseSwitchesOnlyItsEffect) {
   EXPECT_EQ(skew.encoder_skew_s, real.encoder_skew_s);
   EXPECT_EQ(skew.mjcf.compliance_rad_per_Nm[1], 0.0);
   EXPECT_EQ(skew.encoder_cyclic_rad[2], 0.0);
+  // The geared machine's effects: each alone, and with the preset in `every`.
+  const sim::Effects drive = effects_for_case(EffectCase::kDriveTrain, real);
+  EXPECT_TRUE(drive.drive.any());
+  EXPECT_FALSE(drive.encoder_and_geometry_on());
+  EXPECT_EQ(drive.mjcf.coulomb_Nm[0], 0.0);
+  const sim::Effects motor = effects_for_case(EffectCase::kEncoderMotor, real);
+  EXPECT_TRUE(motor.encoder_and_geometry_on());
+  EXPECT_FALSE(motor.drive.any());
+  EXPECT_EQ(motor.gear_ratio, 10.0);
+  const sim::Effects every = effects_for_case(EffectCase::kEvery, real);
+  EXPECT_TRUE(every.drive.any() && every.encoder_and_geometry_on());
+  EXPECT_EQ(every.mjcf.coulomb_Nm, real.mjcf.coulomb_Nm);
 }
 
 TEST(EffectsStudy, RefusesTooFewPoses) {
