@@ -34,8 +34,8 @@ void check_events_assemble(const sim::Scenario& s, const Robot& controller, cons
   const sim::Path& path = s.operation->path;
   Robot after = actual;
   after.geometry = sim::geometry_after(actual.geometry, s.twin.events);
-  if (s.twin.effects.thermal.on())
-    after.geometry = sim::thermal_geometry(after.geometry, s.twin.effects.thermal.growth(s.operation->duration_s));
+  if (s.twin.effects.thermal.on())  // links and base plate, each by its own law
+    after.geometry = sim::thermal_geometry_at(after.geometry, s.twin.effects.thermal, s.operation->duration_s);
   for (int k = 0; k <= 200; ++k) {
     const Eigen::Vector2d p = sim::path_at(path, sim::path_duration(path) * k / 200.0).p;
     const std::array<std::pair<const Robot*, const char*>, 3> robots{
