@@ -12,16 +12,23 @@
 namespace gpm::calib {
 namespace {
 
+// Joint angles of every chain at p (eq. 31, 34); nullopt when a chain cannot reach p.
+std::optional<JointAngles> joint_angles(const Geometry& g, const Branches& branch, const Eigen::Vector2d& p) {
+  JointAngles q;
+  for (int c = 0; c < kNumChains; ++c) {
+    const auto ch = try_chain_ik(g, c, p, branch[static_cast<size_t>(c)]);
+    if (!ch) return std::nullopt;
+    q.theta_a[c] = ch->theta_a, q.theta_b[c] = ch->theta_b;
+  }
+  return q;
+}
+
 // The readings the model commands for p (eq. 31 and eq. 35); nullopt when the
 // model cannot reach p.
 std::optional<Eigen::Vector3d> commanded(const Geometry& model, const Branches& branch, const Eigen::Vector2d& p) {
-  Eigen::Vector3d theta_a;
-  for (int c = 0; c < kNumChains; ++c) {
-    const auto q = try_chain_ik(model, c, p, branch[static_cast<size_t>(c)]);
-    if (!q) return std::nullopt;
-    theta_a[c] = q->theta_a;
-  }
-  return readings_from_active(model, theta_a);
+  const auto q = joint_angles(model, branch, p);
+  if (!q) return std::nullopt;
+  return readings_from_active(model, q->theta_a);
 }
 
 // Where the actual robot stands when its three drives, equally stiff, hold
@@ -32,15 +39,11 @@ std::optional<Eigen::Vector3d> commanded(const Geometry& model, const Branches& 
 std::optional<Eigen::Vector2d> reached(const Robot& actual, const Eigen::Vector3d& theta_m, Eigen::Vector2d p) {
   const Eigen::Vector3d target = active_from_readings(actual.geometry, theta_m);  // eq. 35
   for (int it = 0; it < 8; ++it) {
-    JointAngles q;
-    for (int c = 0; c < kNumChains; ++c) {
-      const auto ch = try_chain_ik(actual.geometry, c, p, actual.branch[static_cast<size_t>(c)]);
-      if (!ch) return std::nullopt;
-      q.theta_a[c] = ch->theta_a, q.theta_b[c] = ch->theta_b;
-    }
+    const auto q = joint_angles(actual.geometry, actual.branch, p);
+    if (!q) return std::nullopt;
     Eigen::Vector3d r;
-    for (int c = 0; c < kNumChains; ++c) r[c] = wrap_pi(target[c] - q.theta_a[c]);
-    const Matrix32d J = active_jacobian(actual.geometry, q);
+    for (int c = 0; c < kNumChains; ++c) r[c] = wrap_pi(target[c] - q->theta_a[c]);
+    const Matrix32d J = active_jacobian(actual.geometry, *q);
     const Eigen::Vector2d dp = (J.transpose() * J).ldlt().solve(J.transpose() * r);
     p += dp;
     if (dp.norm() < 1e-12) break;
