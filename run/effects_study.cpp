@@ -15,6 +15,7 @@
 #include "models/rng.hpp"
 #include "run/parallel_runs.hpp"
 #include "run/runner.hpp"
+#include "run/table_cells.hpp"
 
 namespace gpm::scenario {
 namespace {
@@ -48,9 +49,8 @@ void add_encoder_motor(sim::Effects& e, const sim::Effects& realistic) {
   sim::draw_encoder_and_geometry(rng, e);
 }
 
-nlohmann::json number(double v) { return std::isfinite(v) ? nlohmann::json(v) : nlohmann::json(nullptr); }
-
-std::string cell(double v, const char* f) { return std::isfinite(v) ? fmt::format(fmt::runtime(f), v) : "-"; }
+constexpr auto number = json_finite;
+constexpr auto cell = table_cell;
 
 // Applies the options' reductions to one procedure's spec, and the case's effects.
 RunSpec case_spec(const StudyProcedure& p, EffectCase c, const EffectsStudyOptions& o) {

@@ -15,13 +15,13 @@
 #include "report/svg_plot.hpp"
 #include "run/parallel_runs.hpp"
 #include "run/runner.hpp"
+#include "run/table_cells.hpp"
 
 namespace gpm::scenario {
 namespace {
 
-nlohmann::json number(double v) { return std::isfinite(v) ? nlohmann::json(v) : nlohmann::json(nullptr); }
-
-std::string cell(double v, const char* f) { return std::isfinite(v) ? fmt::format(fmt::runtime(f), v) : "-"; }
+constexpr auto number = json_finite;
+constexpr auto cell = table_cell;
 
 double median(std::vector<double> v) {
   if (v.empty()) return NAN;

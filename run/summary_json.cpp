@@ -6,12 +6,12 @@
 #include <nlohmann/json.hpp>
 
 #include "run/runner.hpp"
+#include "run/table_cells.hpp"
 
 namespace gpm::scenario {
 namespace {
 
-// A number, or null when it is not finite (JSON has no NaN).
-nlohmann::json number(double v) { return std::isfinite(v) ? nlohmann::json(v) : nlohmann::json(nullptr); }
+constexpr auto number = json_finite;  // null when not finite (JSON has no NaN)
 
 nlohmann::json accuracy(const std::optional<Accuracy>& a) {
   if (!a) return nullptr;
