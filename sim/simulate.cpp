@@ -121,6 +121,9 @@ SimulationResult run_simulation(const Scenario& s, std::function<void(const LogR
   try {
     if (path) {
       r.samples = sample_along(session, *path, s.sampling->sample_every, 0);
+      // The time of each reading, as the calibration computes the rates (run/calibration_procedure.hpp).
+      const double dt = s.sampling->sample_every / s.twin.servo_rate_hz;
+      for (SampleRecord& rec : r.samples) rec.t_s = static_cast<double>(rec.id) * dt;
     } else {
       for (size_t k = 0; k < poses.size(); ++k)
         r.samples.push_back(take_sample(session, poses[k], static_cast<long>(k), s.sampling->options));
@@ -149,14 +152,14 @@ SimulationResult run_simulation(const Scenario& s, std::function<void(const LogR
 std::string samples_csv(const std::vector<SampleRecord>& samples) {
   std::string out =
       "sample,theta_m1,theta_m2,theta_m3,x,y,theta_a1,theta_a2,theta_a3,target_x,target_y,settled,tau1,tau2,tau3,"
-      "omega1,omega2,omega3,tau_last1,tau_last2,tau_last3,tau_between1,tau_between2,tau_between3\n";
+      "omega1,omega2,omega3,tau_last1,tau_last2,tau_last3,tau_between1,tau_between2,tau_between3,t\n";
   for (const SampleRecord& s : samples) {
-    out += fmt::format("{},{},{},{},{},{},{},{},{},{},{},{},{},{},{},{},{},{},{},{},{},{},{},{}\n", s.id, x(s.theta_m[0]), x(s.theta_m[1]),
+    out += fmt::format("{},{},{},{},{},{},{},{},{},{},{},{},{},{},{},{},{},{},{},{},{},{},{},{},{}\n", s.id, x(s.theta_m[0]), x(s.theta_m[1]),
                        x(s.theta_m[2]), x(s.xy_mm.x()), x(s.xy_mm.y()), x(s.theta_a[0]),
                        x(s.theta_a[1]), x(s.theta_a[2]), x(s.target.x()), x(s.target.y()),
                        s.settled ? 1 : 0, x(s.tau[0]), x(s.tau[1]), x(s.tau[2]), x(s.omega[0]), x(s.omega[1]),
                        x(s.omega[2]), x(s.tau_last[0]), x(s.tau_last[1]), x(s.tau_last[2]), x(s.tau_between[0]),
-                       x(s.tau_between[1]), x(s.tau_between[2]));
+                       x(s.tau_between[1]), x(s.tau_between[2]), x(s.t_s));
   }
   return out;
 }
