@@ -352,18 +352,19 @@ std::string model_test_line(const calib::ModelTest& test, bool stated) {
 }
 
 std::string model_test_yaml(const calib::ModelTest& test, int indent) {
+  // Flat keys: a result file stays a robot file, whose diagnostics are one-line values.
   const std::string p(static_cast<std::size_t>(indent), ' ');
-  std::string out = p + "model_test:\n";
-  out += fmt::format("{}  chi2: {}\n", p, format_exact(test.chi2));
-  out += fmt::format("{}  dof: {}\n", p, format_exact(test.dof));
-  out += fmt::format("{}  chi2_per_dof: {}\n", p, format_exact(test.chi2 / test.dof));
-  out += fmt::format("{}  p_value: {}\n", p, format_exact(test.p_value));
-  out += fmt::format("{}  sigma_rad: {}\n", p, format_exact(test.sigma_rad));
-  out += fmt::format("{}  passed: {}\n", p, test.passed ? "true" : "false");
+  std::string out;
+  out += fmt::format("{}model_test_chi2: {}\n", p, format_exact(test.chi2));
+  out += fmt::format("{}model_test_dof: {}\n", p, format_exact(test.dof));
+  out += fmt::format("{}model_test_chi2_per_dof: {}\n", p, format_exact(test.chi2 / test.dof));
+  out += fmt::format("{}model_test_p_value: {}\n", p, format_exact(test.p_value));
+  out += fmt::format("{}model_test_sigma_rad: {}\n", p, format_exact(test.sigma_rad));
+  out += fmt::format("{}model_test_passed: {}\n", p, test.passed ? "true" : "false");
   if (!test.passed) {
-    std::string quoted;  // a YAML double-quoted scalar
+    std::string quoted;  // a YAML (and JSON) double-quoted scalar
     for (char c : test.diagnosis) quoted += (c == '"' || c == '\\') ? std::string{'\\', c} : std::string{c};
-    out += fmt::format("{}  diagnosis: \"{}\"\n", p, quoted);
+    out += fmt::format("{}model_test_diagnosis: \"{}\"\n", p, quoted);
   }
   return out;
 }

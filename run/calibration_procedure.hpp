@@ -112,8 +112,9 @@ FileProcedure samples_file_procedure(const Samples& samples, const Robot& robot,
 // assumed (false: scaled by the residuals).
 std::string model_test_line(const calib::ModelTest& test, bool stated);
 
-// The model test as a YAML map `model_test:` at indent (chi2, dof,
-// chi2_per_dof, p_value, sigma_rad, passed, diagnosis), each number exact.
+// The model test as YAML keys at indent, for the end of a result file's
+// diagnostics: model_test_chi2, _dof, _chi2_per_dof, _p_value, _sigma_rad,
+// _passed and, when it fails, _diagnosis; each number exact.
 std::string model_test_yaml(const calib::ModelTest& test, int indent);
 
 }  // namespace gpm::scenario

@@ -66,7 +66,7 @@ TEST(CalibrationProcedure, WithoutTimesAndTorquesTheStaticFitAndItsModelTest) {
   // The static model leaves the twist out: the readings disagree with it.
   EXPECT_FALSE(c.model_test->passed);
   EXPECT_NE(model_test_line(*c.model_test, true).find("the stated 1-sigma understates the error"), std::string::npos);
-  EXPECT_NE(model_test_yaml(*c.model_test, 2).find("  model_test:\n    chi2: "), std::string::npos);
+  EXPECT_NE(model_test_yaml(*c.model_test, 2).find("  model_test_chi2: "), std::string::npos);
 }
 
 TEST(CalibrationProcedure, MotionModelWithoutTimesOrTorquesRefused) {
