@@ -131,21 +131,9 @@ void print_result(const CalibrateOptions& o, const Robot& robot, const Samples& 
   fmt::print("{} -> {}\n", r.converged ? "converged" : "NOT converged", o.out);
 }
 
-void run(const CalibrateOptions& o) {
-  const auto cost = calib::parse_cost(o.cost);
-  if (!cost) throw InputError(fmt::format("--cost: '{}' is not one of j1, j2, j3, ml", o.cost));
-  const calib::Method method = calib::parse_method(o.method, "--method");
-  const calib::RobustLoss loss = calib::parse_loss(o.loss, "--loss");
-  // --budget counts iterations for lm, evaluations for the global methods:
-  // each has its own bound (docs/CLI.md, Limits), checked before any work.
-  if (o.budget_given)
-    check_bound(static_cast<double>(o.budget), method == calib::Method::kLM ? limits::kLmIterations : limits::kEvaluations,
-                "--budget");
-  const std::string model_path = o.model.empty() ? default_model_path() : o.model;
-  const Robot robot = load_robot(model_path);
-  const Samples samples = read_samples_csv(o.data);
-  const FreeMask fixed = parse_param_list(o.fix, "--fix");
-
+// The calibration problem of the samples: the robot file's geometry as the
+// start, or its offsets from the reference reading (--init reference).
+calib::Problem problem_of(const CalibrateOptions& o, const Robot& robot, const Samples& samples, const FreeMask& fixed) {
   calib::Problem problem;
   problem.theta_m = samples.theta_m;
   problem.free = ~fixed;
@@ -169,7 +157,25 @@ void run(const CalibrateOptions& o) {
   } else if (!o.reference_point.empty()) {
     throw InputError("--reference-point: only meaningful with --reference-reading T1,T2,T3");
   }
+  return problem;
+}
 
+void run(const CalibrateOptions& o) {
+  const auto cost = calib::parse_cost(o.cost);
+  if (!cost) throw InputError(fmt::format("--cost: '{}' is not one of j1, j2, j3, ml", o.cost));
+  const calib::Method method = calib::parse_method(o.method, "--method");
+  const calib::RobustLoss loss = calib::parse_loss(o.loss, "--loss");
+  // --budget counts iterations for lm, evaluations for the global methods:
+  // each has its own bound (docs/CLI.md, Limits), checked before any work.
+  if (o.budget_given)
+    check_bound(static_cast<double>(o.budget), method == calib::Method::kLM ? limits::kLmIterations : limits::kEvaluations,
+                "--budget");
+  const std::string model_path = o.model.empty() ? default_model_path() : o.model;
+  const Robot robot = load_robot(model_path);
+  const Samples samples = read_samples_csv(o.data);
+  const FreeMask fixed = parse_param_list(o.fix, "--fix");
+
+  const calib::Problem problem = problem_of(o, robot, samples, fixed);
   calib::check_samples(problem, row_labels(o.data, samples));
   // Output policy (models/output_file.hpp): refused before the work when the
   // result would overwrite an input or cannot be written.

@@ -206,71 +206,34 @@ void take_motion_fit(RunOutcome& o, const CalibrationOutcome& c, const FreeMask&
   }
 }
 
-}  // namespace
+using Stage = std::function<void(const std::string&)>;
 
-RunOutcome run_scenario(const RunSpec& spec_in, const std::string& scenario_file, const Progress& progress,
-                        const std::string& samples_path) {
-  const auto t0 = std::chrono::steady_clock::now();
-  auto stage = [&](const std::string& s) { if (progress) progress(s); };
-  RunSpec spec = spec_in;
-  // events: belong to the operation (the monitor's twin time); the
-  // calibration's sampling and accuracy tests run on the mechanism before them.
-  const std::vector<sim::GeometryEvent> operation_events = std::move(spec.sim.twin.events);
-  spec.sim.twin.events.clear();
-  check_before_moving(spec);
-  if (spec.sim.sampling && !spec.sim.sampling->needs_design())
-    design_sampling(spec.sim, ~spec.calibration.fixed, 0.0);  // given poses: only their number is checked
-  if (spec.sim.sampling && spec.sim.sampling->needs_design()) {
-    stage("designing the calibration poses");
-    std::function<bool(const Eigen::Vector2d&)> admissible;
-    std::optional<hw::HardwareConfig> hw_cfg;
-    if (spec.hardware) {  // the poses must pass the hardware's safety limits too
-      hw_cfg = hw::load_hardware_config(*spec.hardware);
-      // With room to brake: 5 mm inside the workspace disc, 0.02 rad inside the joint limits.
-      hw_cfg->safety.workspace_margin_mm += 5.0;
-      for (int i = 0; i < 3; ++i) hw_cfg->safety.joint_min[i] += 0.02, hw_cfg->safety.joint_max[i] -= 0.02;
-      admissible = [&hw_cfg](const Eigen::Vector2d& p) {
-        return hw::target_violation(hw_cfg->safety, hw_cfg->controller, p, hw_cfg->modes).empty();
-      };
-    }
-    design_sampling(spec.sim, ~spec.calibration.fixed, effective_sigma(spec.sim), admissible);
+// The run-time pose design of spec's sampling; with hardware the poses must
+// pass its safety limits too.
+void design_poses(RunSpec& spec, const Stage& stage) {
+  stage("designing the calibration poses");
+  std::function<bool(const Eigen::Vector2d&)> admissible;
+  std::optional<hw::HardwareConfig> hw_cfg;
+  if (spec.hardware) {  // the poses must pass the hardware's safety limits too
+    hw_cfg = hw::load_hardware_config(*spec.hardware);
+    // With room to brake: 5 mm inside the workspace disc, 0.02 rad inside the joint limits.
+    hw_cfg->safety.workspace_margin_mm += 5.0;
+    for (int i = 0; i < 3; ++i) hw_cfg->safety.joint_min[i] += 0.02, hw_cfg->safety.joint_max[i] -= 0.02;
+    admissible = [&hw_cfg](const Eigen::Vector2d& p) {
+      return hw::target_violation(hw_cfg->safety, hw_cfg->controller, p, hw_cfg->modes).empty();
+    };
   }
-  const bool in_motion = spec.sim.sampling && spec.sim.sampling->pattern == sim::PosePattern::kTrajectory;
-  if (in_motion && spec.hardware)
-    throw InputError(fmt::format("{}: sampling.pattern: trajectory runs on the twin only (the hardware interface "
-                                 "samples stop-and-go); use pattern: designed with --hardware", scenario_file));
-  // What the calibration assumes is what its user states (calibration:) and
-  // the robot's data sheet, as on a real robot: the twin's effects and
-  // design values (the simulated truth) are not read (run/calibration_inputs.hpp).
-  const CalibrationInputs inputs = calibration_inputs(spec, spec.sim.controller);
-  const calib::MotionModel& motion = inputs.motion;
-  const bool with_effects = motion.compliance || motion.skew || motion.clearance;
-  if (with_effects && (spec.calibration.method != calib::Method::kLM || spec.calibration.cost != calib::Cost::kML))
-    throw InputError(fmt::format("{}: estimating compliance, skew or clearance with the geometry (samples on the fly, or "
-                                 "calibration.estimate) needs calibration {{method: lm, cost: ml}}", scenario_file));
-  if (with_effects && spec.hardware)
-    throw InputError(fmt::format("{}: calibration.estimate needs the drive torques and speeds of each sample, which "
-                                 "the hardware interface does not record yet", scenario_file));
-  RunOutcome out;
-  out.scenario_file = scenario_file;
-  out.spec = spec;
-  out.spec.sim.twin.events = operation_events;  // for the monitor of the operation
-  out.in_motion = in_motion;
-  out.nominal = spec.sim.controller;
-  out.calibrated = spec.sim.controller;
+  design_sampling(spec.sim, ~spec.calibration.fixed, effective_sigma(spec.sim), admissible);
+}
 
-  if (spec.hardware) {
-    stage("sampling through the hardware interface");
-    out.sim = sample_on_hardware(spec, samples_path, out.hardware_description);
-  } else {
-    stage("simulating the twin");
-    gpm::Progress simulated = progress ? gpm::Progress::terminal("gpm run: simulating", "simulated s")
-                                       : gpm::Progress::silent();  // models/progress.hpp
-    out.sim = sim::run_simulation(spec.sim, nullptr, &simulated);
-  }
+// The calibration of out's samples (run/calibration_procedure.hpp) with
+// inputs, from the encoder samples alone; the Cramer-Rao bound at the truth
+// and the residuals. Samples it cannot use fail the run (gpm::Error) unless
+// the scenario expects the refusal.
+void calibrate_run(RunOutcome& out, const RunSpec& spec, const CalibrationInputs& inputs, const std::string& scenario_file,
+                   const Stage& stage) {
   const Robot& actual = out.sim.actual;
-
-  // Calibration problem from the encoder samples alone.
+  const bool in_motion = out.in_motion;
   std::vector<Eigen::Vector2d> true_xy;
   std::vector<Eigen::Vector3d> noiseless;
   for (const sim::SampleRecord& r : out.sim.samples) {
@@ -323,38 +286,95 @@ RunOutcome run_scenario(const RunSpec& spec_in, const std::string& scenario_file
     }
   }
 
-  if (spec.compensation) {
-    // A constant-torque joint preloads the chain for the sampling only; the
-    // accuracy test runs the robot as in operation (that joint torque-off).
-    sim::TwinConfig test_twin = spec.sim.twin;
-    for (sim::ServoDrive& d : test_twin.drives)
-      if (d.mode == sim::ServoMode::kTorque) d.mode = sim::ServoMode::kTorqueOff;
-    stage("measuring accuracy with the nominal model");
-    const unsigned long long seed = sim::derive_seed(spec.sim.seed, 4);
-    // A progress line per measurement on a terminal (models/progress.hpp): test poses, then the path.
-    std::optional<gpm::Progress> measuring;
-    const auto steps = [&](const std::string& label) -> gpm::Progress& {
-      measuring.reset();
-      measuring.emplace(progress ? gpm::Progress::terminal("gpm run: " + label, "test steps",
-                                                           static_cast<double>(spec.compensation->poses.size() + 1))
-                                 : gpm::Progress::silent());
-      return *measuring;
-    };
-    out.before = measure_accuracy(actual, test_twin, out.nominal, *spec.compensation, seed, "nominal",
-                                 &steps("nominal model"), spec.sim.max_tracking_mm);
-    if (out.calibration) {
-      stage("measuring accuracy with the calibrated model");
-      out.after = measure_accuracy(actual, test_twin, out.calibrated, *spec.compensation, seed, "calibrated",
-                                 &steps("calibrated model"), spec.sim.max_tracking_mm);
-    }
-    if (!spec.hardware) {
-      stage("measuring accuracy with the actual parameters (the floor)");
-      Robot truth = out.nominal;
-      truth.geometry = actual.geometry;
-      out.floor = measure_accuracy(actual, test_twin, truth, *spec.compensation, seed, "actual",
-                                 &steps("actual parameters"), spec.sim.max_tracking_mm);
-    }
+}
+
+// The accuracy test of spec.compensation on the twin: the nominal, the
+// calibrated and (simulation only) the actual parameters.
+void measure_compensation(RunOutcome& out, const RunSpec& spec, const Progress& progress, const Stage& stage) {
+  const Robot& actual = out.sim.actual;
+  // A constant-torque joint preloads the chain for the sampling only; the
+  // accuracy test runs the robot as in operation (that joint torque-off).
+  sim::TwinConfig test_twin = spec.sim.twin;
+  for (sim::ServoDrive& d : test_twin.drives)
+    if (d.mode == sim::ServoMode::kTorque) d.mode = sim::ServoMode::kTorqueOff;
+  stage("measuring accuracy with the nominal model");
+  const unsigned long long seed = sim::derive_seed(spec.sim.seed, 4);
+  // A progress line per measurement on a terminal (models/progress.hpp): test poses, then the path.
+  std::optional<gpm::Progress> measuring;
+  const auto steps = [&](const std::string& label) -> gpm::Progress& {
+    measuring.reset();
+    measuring.emplace(progress ? gpm::Progress::terminal("gpm run: " + label, "test steps",
+                                                         static_cast<double>(spec.compensation->poses.size() + 1))
+                               : gpm::Progress::silent());
+    return *measuring;
+  };
+  out.before = measure_accuracy(actual, test_twin, out.nominal, *spec.compensation, seed, "nominal",
+                               &steps("nominal model"), spec.sim.max_tracking_mm);
+  if (out.calibration) {
+    stage("measuring accuracy with the calibrated model");
+    out.after = measure_accuracy(actual, test_twin, out.calibrated, *spec.compensation, seed, "calibrated",
+                               &steps("calibrated model"), spec.sim.max_tracking_mm);
   }
+  if (!spec.hardware) {
+    stage("measuring accuracy with the actual parameters (the floor)");
+    Robot truth = out.nominal;
+    truth.geometry = actual.geometry;
+    out.floor = measure_accuracy(actual, test_twin, truth, *spec.compensation, seed, "actual",
+                               &steps("actual parameters"), spec.sim.max_tracking_mm);
+  }
+}
+
+}  // namespace
+
+RunOutcome run_scenario(const RunSpec& spec_in, const std::string& scenario_file, const Progress& progress,
+                        const std::string& samples_path) {
+  const auto t0 = std::chrono::steady_clock::now();
+  auto stage = [&](const std::string& s) { if (progress) progress(s); };
+  RunSpec spec = spec_in;
+  // events: belong to the operation (the monitor's twin time); the
+  // calibration's sampling and accuracy tests run on the mechanism before them.
+  const std::vector<sim::GeometryEvent> operation_events = std::move(spec.sim.twin.events);
+  spec.sim.twin.events.clear();
+  check_before_moving(spec);
+  if (spec.sim.sampling && !spec.sim.sampling->needs_design())
+    design_sampling(spec.sim, ~spec.calibration.fixed, 0.0);  // given poses: only their number is checked
+  if (spec.sim.sampling && spec.sim.sampling->needs_design()) design_poses(spec, stage);
+  const bool in_motion = spec.sim.sampling && spec.sim.sampling->pattern == sim::PosePattern::kTrajectory;
+  if (in_motion && spec.hardware)
+    throw InputError(fmt::format("{}: sampling.pattern: trajectory runs on the twin only (the hardware interface "
+                                 "samples stop-and-go); use pattern: designed with --hardware", scenario_file));
+  // What the calibration assumes is what its user states (calibration:) and
+  // the robot's data sheet, as on a real robot: the twin's effects and
+  // design values (the simulated truth) are not read (run/calibration_inputs.hpp).
+  const CalibrationInputs inputs = calibration_inputs(spec, spec.sim.controller);
+  const calib::MotionModel& motion = inputs.motion;
+  const bool with_effects = motion.compliance || motion.skew || motion.clearance;
+  if (with_effects && (spec.calibration.method != calib::Method::kLM || spec.calibration.cost != calib::Cost::kML))
+    throw InputError(fmt::format("{}: estimating compliance, skew or clearance with the geometry (samples on the fly, or "
+                                 "calibration.estimate) needs calibration {{method: lm, cost: ml}}", scenario_file));
+  if (with_effects && spec.hardware)
+    throw InputError(fmt::format("{}: calibration.estimate needs the drive torques and speeds of each sample, which "
+                                 "the hardware interface does not record yet", scenario_file));
+  RunOutcome out;
+  out.scenario_file = scenario_file;
+  out.spec = spec;
+  out.spec.sim.twin.events = operation_events;  // for the monitor of the operation
+  out.in_motion = in_motion;
+  out.nominal = spec.sim.controller;
+  out.calibrated = spec.sim.controller;
+
+  if (spec.hardware) {
+    stage("sampling through the hardware interface");
+    out.sim = sample_on_hardware(spec, samples_path, out.hardware_description);
+  } else {
+    stage("simulating the twin");
+    gpm::Progress simulated = progress ? gpm::Progress::terminal("gpm run: simulating", "simulated s")
+                                       : gpm::Progress::silent();  // models/progress.hpp
+    out.sim = sim::run_simulation(spec.sim, nullptr, &simulated);
+  }
+  calibrate_run(out, spec, inputs, scenario_file, stage);
+
+  if (spec.compensation) measure_compensation(out, spec, progress, stage);
   if (out.calibration && !spec.hardware) out.positioning = calibrated_positioning(out);
   if (spec.sim.operation) {
     stage("monitoring the operation with the calibrated model");
