@@ -118,12 +118,17 @@ SimulationResult run_simulation(const Scenario& s, std::function<void(const LogR
   r.log.every = s.log_every;
   Session session = make_session(model, state, s.controller, &r.log);
   session.max_tracking_mm = s.max_tracking_mm;
+  // On the fly the time of each reading is its id x the sample interval, as
+  // the calibration computes the rates (run/calibration_procedure.hpp).
+  const auto stamp = [&](std::vector<SampleRecord>& samples) {
+    if (!path) return;
+    const double dt = s.sampling->sample_every / s.twin.servo_rate_hz;
+    for (SampleRecord& rec : samples) rec.t_s = static_cast<double>(rec.id) * dt;
+  };
   try {
     if (path) {
       r.samples = sample_along(session, *path, s.sampling->sample_every, 0);
-      // The time of each reading, as the calibration computes the rates (run/calibration_procedure.hpp).
-      const double dt = s.sampling->sample_every / s.twin.servo_rate_hz;
-      for (SampleRecord& rec : r.samples) rec.t_s = static_cast<double>(rec.id) * dt;
+      stamp(r.samples);
     } else {
       for (size_t k = 0; k < poses.size(); ++k)
         r.samples.push_back(take_sample(session, poses[k], static_cast<long>(k), s.sampling->options));
@@ -136,6 +141,7 @@ SimulationResult run_simulation(const Scenario& s, std::function<void(const LogR
     }
   } catch (TrackingStop& stop) {  // what was measured is kept
     if (stop.samples.empty()) stop.samples = std::move(r.samples);
+    else stamp(stop.samples);  // taken on the fly before the stop
     stop.rows = std::move(r.log.rows);
     r.log.sink = nullptr;
     if (progress) progress->finish();
