@@ -1,5 +1,8 @@
 // gpm calibrate: identify kinematic parameters from encoder samples (paper
-// section 3; docs/ARCHITECTURE.md command line). Parses, calls calib/, prints, writes the
+// section 3; docs/ARCHITECTURE.md command line) with gpm run's procedure
+// (run/calibration_procedure.hpp: the motion model for samples taken on the
+// fly, whose file has the times and drive torques; else the static fit; the
+// model test for both). Parses, calls the procedure, prints, writes the
 // result YAML atomically (with --json, prints the result file's content as one
 // JSON document instead of the text). Bad input: exit 2 with one line; LM not
 // converged: the result is written (diagnostics.converged: false), exit code 1;
@@ -29,6 +32,9 @@
 #include "models/output_file.hpp"
 #include "models/robot_yaml.hpp"
 #include "models/samples.hpp"
+#include "run/calibration_inputs.hpp"
+#include "run/calibration_procedure.hpp"
+#include "run/run_spec.hpp"
 
 namespace gpm::cli {
 namespace {
@@ -48,6 +54,9 @@ struct CalibrateOptions {
   bool allow_rank_deficient = false;
   bool json = false;
   std::string loss = "plain";
+  int encoder_bits = 0;  // 2^bits counts per turn; default: the robot's data sheet
+  bool encoder_bits_given = false;
+  bool static_fit = false;  // the static fit even for samples taken on the fly
 };
 
 // "FILE:LINE (sample ID)" for each data row, counting lines as the CSV reader
@@ -98,21 +107,33 @@ std::vector<double> parse_numbers(const std::string& text, size_t n, const std::
   return v;
 }
 
-void run(const CalibrateOptions& o) {
-  const auto cost = calib::parse_cost(o.cost);
-  if (!cost) throw InputError(fmt::format("--cost: '{}' is not one of j1, j2, j3, ml", o.cost));
-  const calib::Method method = calib::parse_method(o.method, "--method");
-  const calib::RobustLoss loss = calib::parse_loss(o.loss, "--loss");
-  // --budget counts iterations for lm, evaluations for the global methods:
-  // each has its own bound (docs/CLI.md, Limits), checked before any work.
-  if (o.budget_given)
-    check_bound(static_cast<double>(o.budget), method == calib::Method::kLM ? limits::kLmIterations : limits::kEvaluations,
-                "--budget");
-  const std::string model_path = o.model.empty() ? default_model_path() : o.model;
-  const Robot robot = load_robot(model_path);
-  const Samples samples = read_samples_csv(o.data);
-  const FreeMask fixed = parse_param_list(o.fix, "--fix");
+// The terminal's account of the calibration: parameters, diagnostics, model test.
+void print_result(const CalibrateOptions& o, const Robot& robot, const Samples& samples, const calib::Problem& problem,
+                  const scenario::CalibrationOutcome& outcome, const scenario::FileProcedure& proc) {
+  const calib::Result& r = outcome.result;
+  fmt::print("calibrated {} from {} samples with {} ({}), {} free parameters, {}\n", robot.name,
+             samples.size(), r.method, calib::cost_name(r.cost), r.free.count(), proc.model);
+  fmt::print("{:<6} {:>16} {:>16} {:>12}\n", "param", "start", "estimate", "1-sigma");
+  for (int i = 0; i < kNumParams; ++i) {
+    if (!r.free.test(static_cast<size_t>(i))) continue;
+    fmt::print("{:<6} {:>16.9f} {:>16.9f} {:>12.3g}\n", param_name(i), problem.start[i], r.geometry[i],
+               r.sigma[static_cast<size_t>(i)]);
+  }
+  fmt::print("J = {:.6g}, iterations {}, evaluations {}, rank {} of {}, condition number {:.4g}",
+             r.final_cost, r.iterations, r.evaluations, r.rank, r.free.count(), r.condition_number);
+  if (r.kmrmse_mm) fmt::print(", kmrmse {:.6g} mm", *r.kmrmse_mm);
+  fmt::print(", {:.3f} s\n", r.seconds);
+  if (outcome.model_test)
+    fmt::print("{}\n", scenario::model_test_line(*outcome.model_test, proc.sigma_stated));
+  else
+    fmt::print("model test not made (no reading 1-sigma: --sigma or --encoder-bits; or no more samples than "
+               "free parameters)\n");
+  fmt::print("{} -> {}\n", r.converged ? "converged" : "NOT converged", o.out);
+}
 
+// The calibration problem of the samples: the robot file's geometry as the
+// start, or its offsets from the reference reading (--init reference).
+calib::Problem problem_of(const CalibrateOptions& o, const Robot& robot, const Samples& samples, const FreeMask& fixed) {
   calib::Problem problem;
   problem.theta_m = samples.theta_m;
   problem.free = ~fixed;
@@ -136,7 +157,25 @@ void run(const CalibrateOptions& o) {
   } else if (!o.reference_point.empty()) {
     throw InputError("--reference-point: only meaningful with --reference-reading T1,T2,T3");
   }
+  return problem;
+}
 
+void run(const CalibrateOptions& o) {
+  const auto cost = calib::parse_cost(o.cost);
+  if (!cost) throw InputError(fmt::format("--cost: '{}' is not one of j1, j2, j3, ml", o.cost));
+  const calib::Method method = calib::parse_method(o.method, "--method");
+  const calib::RobustLoss loss = calib::parse_loss(o.loss, "--loss");
+  // --budget counts iterations for lm, evaluations for the global methods:
+  // each has its own bound (docs/CLI.md, Limits), checked before any work.
+  if (o.budget_given)
+    check_bound(static_cast<double>(o.budget), method == calib::Method::kLM ? limits::kLmIterations : limits::kEvaluations,
+                "--budget");
+  const std::string model_path = o.model.empty() ? default_model_path() : o.model;
+  const Robot robot = load_robot(model_path);
+  const Samples samples = read_samples_csv(o.data);
+  const FreeMask fixed = parse_param_list(o.fix, "--fix");
+
+  const calib::Problem problem = problem_of(o, robot, samples, fixed);
   calib::check_samples(problem, row_labels(o.data, samples));
   // Output policy (models/output_file.hpp): refused before the work when the
   // result would overwrite an input or cannot be written.
@@ -155,38 +194,37 @@ void run(const CalibrateOptions& o) {
   // binding's too (python/bind_calibrate.cpp).
   if (o.sigma_given) mo.encoder_sigma = check_bound(o.sigma, limits::kEncoderSigma, "--sigma");
   if (samples.has_xy) mo.true_xy = &samples.xy;
+  const scenario::FileProcedure proc = scenario::samples_file_procedure(
+      samples, robot, problem.start, problem.free, mo,
+      o.encoder_bits_given ? std::optional<int>(o.encoder_bits) : std::nullopt, o.static_fit);
+  if (proc.motion_not_used)
+    std::fprintf(stderr, "gpm: warning: %s\n",
+                 "the samples were taken on the fly, but their motion model needs --method lm --cost ml: "
+                 "calibrated with the static model");
   // A global method's budget on a terminal (models/progress.hpp): evaluations, rate, ETA.
   gpm::Progress progress = method == calib::Method::kLM
                                ? gpm::Progress::silent()
                                : gpm::Progress::terminal("gpm calibrate: " + std::string(calib::method_name(method)), "evaluations",
                                                          static_cast<double>(mo.budget));
-  if (progress.active()) mo.progress = [&progress](long done, long, double) { progress.update(static_cast<double>(done)); };
-  const calib::Result r = calib::calibrate(problem, mo);
+  scenario::ProcedureOptions po = proc.options;
+  if (progress.active()) po.method.progress = [&progress](long done, long, double) { progress.update(static_cast<double>(done)); };
+  const scenario::CalibrationOutcome outcome =
+      scenario::calibrate_samples(scenario::sample_series(samples), proc.inputs, po);
   progress.finish();
+  const calib::Result& r = outcome.result;
   calib::usable_robot(robot, r.geometry);  // else exit 1, nothing written
 
   for (const auto& note : r.notes) std::fprintf(stderr, "gpm: warning: %s\n", note.c_str());
-  calib::save_result(r, robot.name, o.out);
+  const std::string text =
+      calib::result_to_yaml(r, robot.name) + (outcome.model_test ? scenario::model_test_yaml(*outcome.model_test, 2) : "");
+  write_file_atomic(o.out, text);
   if (!r.converged) set_exit(1);
   if (o.json) {
     // The result file's content (the same text, read back as JSON) and nothing else.
-    print_json(yaml_text_to_json(calib::result_to_yaml(r, robot.name), o.out));
+    print_json(yaml_text_to_json(text, o.out));
     return;
   }
-
-  fmt::print("calibrated {} from {} samples with {} ({}), {} free parameters\n", robot.name,
-             samples.size(), r.method, calib::cost_name(r.cost), r.free.count());
-  fmt::print("{:<6} {:>16} {:>16} {:>12}\n", "param", "start", "estimate", "1-sigma");
-  for (int i = 0; i < kNumParams; ++i) {
-    if (!r.free.test(static_cast<size_t>(i))) continue;
-    fmt::print("{:<6} {:>16.9f} {:>16.9f} {:>12.3g}\n", param_name(i), problem.start[i], r.geometry[i],
-               r.sigma[static_cast<size_t>(i)]);
-  }
-  fmt::print("J = {:.6g}, iterations {}, evaluations {}, rank {} of {}, condition number {:.4g}",
-             r.final_cost, r.iterations, r.evaluations, r.rank, r.free.count(), r.condition_number);
-  if (r.kmrmse_mm) fmt::print(", kmrmse {:.6g} mm", *r.kmrmse_mm);
-  fmt::print(", {:.3f} s\n", r.seconds);
-  fmt::print("{} -> {}\n", r.converged ? "converged" : "NOT converged", o.out);
+  print_result(o, robot, samples, problem, outcome, proc);
 }
 
 }  // namespace
@@ -194,7 +232,7 @@ void run(const CalibrateOptions& o) {
 void add_calibrate(CLI::App& app) {
   auto o = std::make_shared<CalibrateOptions>();
   auto* cmd = app.add_subcommand("calibrate", "Identify kinematic parameters from encoder samples");
-  cmd->add_option("--data", o->data, "Samples CSV: sample,theta_m1,theta_m2,theta_m3[,x,y]")->required();
+  cmd->add_option("--data", o->data, "Samples CSV: sample,theta_m1,theta_m2,theta_m3[,x,y][,t,tau_last1..3,tau_between1..3]")->required();
   cmd->add_option("--model", o->model, "Robot file (YAML) with the start geometry and known values; default: the nominal GPM2002");
   cmd->add_option("-o,--output", o->out, "Result file (YAML)")->required();
   cmd->add_option("--fix", o->fix, "Parameters known and held fixed (comma-separated); at least 4 base coordinates for full rank")
@@ -220,6 +258,14 @@ void add_calibrate(CLI::App& app) {
                   "optionally :SCALE in residual units (rad for ml); default scale 2.385 (cauchy) or 1.345 "
                   "(huber) x the noise (--sigma, or estimated robustly from a plain fit)")
       ->capture_default_str();
+  cmd->add_option("--encoder-bits", o->encoder_bits,
+                  "Encoder resolution, 2^N counts per turn (0: ideal), for the reading 1-sigma of the model test and "
+                  "of the motion model when --sigma is not given; default: the robot file's data_sheet (17)")
+      ->transform(number_in(limits::kEncoderBits))
+      ->each([o](const std::string&) { o->encoder_bits_given = true; });
+  cmd->add_flag("--static", o->static_fit,
+                "The static model even when the samples were taken on the fly (the file's t, tau_last1..3 and "
+                "tau_between1..3 columns are then not used)");
   cmd->add_flag("--allow-rank-deficient", o->allow_rank_deficient,
                 "Solve a rank-deficient free set anyway (minimum-norm step; the result says so)");
   cmd->add_option("--init", o->init, "Start offsets: model (the robot file) or reference (section 3.2 step 3)")

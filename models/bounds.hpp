@@ -30,6 +30,8 @@ inline constexpr Bound kEvaluations{1, 1e10, true, "evaluations"};
 inline constexpr Bound kLmIterations{1, 1e6, true, "iterations"};
 // Encoder noise 1-sigma assumed or simulated (--sigma, calibration.sigma).
 inline constexpr Bound kEncoderSigma{1e-12, 1.0, false, "rad"};
+// Encoder resolution, 2^bits counts per turn (gpm calibrate --encoder-bits; 0: ideal), as the scenario's encoder.bits.
+inline constexpr Bound kEncoderBits{0, 40, true, "bits"};
 // Simulated encoder noise of synthetic samples (0: noiseless).
 inline constexpr Bound kNoiseSigma{0.0, 1.0, false, "rad"};
 // Scale of a robust loss (--loss cauchy:SCALE, calibration.loss), residual units.

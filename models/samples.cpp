@@ -85,7 +85,24 @@ Samples parse_samples_csv(const std::string& text, const std::string& file) {
     throw InputError(fmt::format("{}:{}: column '{}' without '{}' (give both x and y, or neither)",
                                  file, header_line, c_x < 0 ? "y" : "x", c_x < 0 ? "x" : "y"));
   }
+  // Optional triples of drive torques: the three columns or none.
+  struct Triple {
+    const char* name;
+    int col[3];
+    std::vector<Eigen::Vector3d>* out;
+  };
   Samples s;
+  Triple triples[3] = {{"tau", {}, &s.tau}, {"tau_last", {}, &s.tau_last}, {"tau_between", {}, &s.tau_between}};
+  for (Triple& tr : triples) {
+    int found = 0;
+    for (int k = 0; k < 3; ++k) found += (tr.col[k] = find(fmt::format("{}{}", tr.name, k + 1).c_str())) >= 0;
+    for (int k = 0; found > 0 && found < 3 && k < 3; ++k)
+      if (tr.col[k] < 0)
+        throw InputError(fmt::format("{}:{}: column '{}{}' missing (give {}1,{}2,{}3 all three, or none)", file,
+                                     header_line, tr.name, k + 1, tr.name, tr.name, tr.name));
+    if (found == 0) tr.out = nullptr;
+  }
+  const int c_time = find("t");
   s.has_xy = c_x >= 0;
   auto number = [&](const std::vector<std::string>& f, int col, int ln) {
     if (col >= static_cast<int>(f.size())) {
@@ -125,6 +142,16 @@ Samples parse_samples_csv(const std::string& text, const std::string& file) {
     for (int k = 0; k < 3; ++k) t[k] = number(f, c_t[k], line_no);
     s.theta_m.push_back(t);
     if (s.has_xy) s.xy.emplace_back(number(f, c_x, line_no), number(f, c_y, line_no));
+    for (const Triple& tr : triples)
+      if (tr.out) tr.out->emplace_back(number(f, tr.col[0], line_no), number(f, tr.col[1], line_no), number(f, tr.col[2], line_no));
+    if (c_time >= 0) {
+      const double t_s = number(f, c_time, line_no);
+      if (!s.t.empty() && !(t_s > s.t.back()))
+        throw InputError(fmt::format("{}:{}: column 't': {} s does not follow {} s of the row before (the times of "
+                                     "the readings must increase)",
+                                     file, line_no, f[static_cast<size_t>(c_time)], format_exact(s.t.back())));
+      s.t.push_back(t_s);
+    }
     if (c_id >= 0) {
       const double id = number(f, c_id, line_no);
       if (id != std::floor(id) || std::abs(id) > 9.0e15) {
@@ -146,13 +173,21 @@ Samples read_samples_csv(const std::string& path) {
 }
 
 std::string samples_to_csv(const Samples& s) {
-  std::string out = s.has_xy ? "sample,theta_m1,theta_m2,theta_m3,x,y\n"
-                             : "sample,theta_m1,theta_m2,theta_m3\n";
+  const std::pair<const char*, const std::vector<Eigen::Vector3d>*> triples[3] = {
+      {"tau", &s.tau}, {"tau_last", &s.tau_last}, {"tau_between", &s.tau_between}};
+  std::string out = s.has_xy ? "sample,theta_m1,theta_m2,theta_m3,x,y" : "sample,theta_m1,theta_m2,theta_m3";
+  for (const auto& [name, v] : triples)
+    if (!v->empty()) out += fmt::format(",{}1,{}2,{}3", name, name, name);
+  out += s.t.empty() ? "\n" : ",t\n";
   for (size_t j = 0; j < s.size(); ++j) {
     const long id = j < s.id.size() ? s.id[j] : static_cast<long>(j);
     out += fmt::format("{},{},{},{}", id, format_exact(s.theta_m[j][0]),
                        format_exact(s.theta_m[j][1]), format_exact(s.theta_m[j][2]));
     if (s.has_xy) out += fmt::format(",{},{}", format_exact(s.xy[j][0]), format_exact(s.xy[j][1]));
+    for (const auto& [name, v] : triples)
+      if (!v->empty())
+        out += fmt::format(",{},{},{}", format_exact((*v)[j][0]), format_exact((*v)[j][1]), format_exact((*v)[j][2]));
+    if (!s.t.empty()) out += fmt::format(",{}", format_exact(s.t[j]));
     out += '\n';
   }
   return out;

@@ -1,6 +1,8 @@
 // Encoder samples (docs/FORMATS.md, file contracts): CSV with a header row, columns
 // found by name, others ignored: sample,theta_m1,theta_m2,theta_m3[,x,y] with
-// readings in rad and, where known (simulation), the true end-effector in mm.
+// readings in rad and, where known (simulation), the true end-effector in mm;
+// optional: t (s, when each reading was taken, increasing), the drive torques
+// tau1..3, tau_last1..3, tau_between1..3 (N m; each triple all or none).
 #pragma once
 
 #include <string>
@@ -15,6 +17,11 @@ struct Samples {
   std::vector<Eigen::Vector3d> theta_m;    // encoder readings (rad)
   std::vector<Eigen::Vector2d> xy;         // true end-effector (mm), if has_xy
   bool has_xy = false;
+  std::vector<double> t;                   // `t`: time of each reading (s), empty if the file has none
+  // Drive torques (N m), each empty if the file has none: the sample's (tau1..3),
+  // the drive period's just before the reading (tau_last1..3) and the mean over the
+  // periods since the sample before (tau_between1..3; sim/sampling.hpp SampleRecord).
+  std::vector<Eigen::Vector3d> tau, tau_last, tau_between;
 
   size_t size() const { return theta_m.size(); }
 };

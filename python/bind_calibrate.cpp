@@ -1,7 +1,8 @@
 // gpm.calibrate and gpm.CalibrationResult: calibration from encoder readings
-// (calib/lm.hpp, the method dispatch of the global solvers, calib/sample_check.hpp)
-// with the checks and messages of `gpm calibrate` (app/cmd_calibrate.cpp), and
-// the result file (calib/result_yaml.hpp).
+// (and, for samples taken on the fly, their times and drive torques) by gpm
+// run's procedure (run/calibration_procedure.hpp: the motion model or the
+// static fit, then the model test) with the checks and messages of `gpm
+// calibrate` (app/cmd_calibrate.cpp), and the result file (calib/result_yaml.hpp).
 #include <cmath>
 #include <optional>
 #include <string>
@@ -17,6 +18,9 @@
 #include "python/bindings.hpp"
 #include "python/convert.hpp"
 #include "calib/calibrate.hpp"
+#include "models/robot_yaml.hpp"
+#include "models/samples.hpp"
+#include "run/calibration_procedure.hpp"
 
 namespace gpm::python {
 namespace {
@@ -26,7 +30,14 @@ namespace {
 struct CalibrationResult {
   calib::Result result;
   Robot base;
+  std::optional<calib::ModelTest> model_test;  // gpm.calibrate's (none from load_result)
 };
+
+// The result file's text: the result and, where made, the model test (as gpm calibrate writes it).
+std::string result_text(const CalibrationResult& c) {
+  return calib::result_to_yaml(c.result, c.base.name) +
+         (c.model_test ? scenario::model_test_yaml(*c.model_test, 2) : std::string());
+}
 
 py::dict diagnostics(const calib::Result& r) {
   py::dict d;
@@ -46,10 +57,51 @@ py::dict diagnostics(const calib::Result& r) {
   return d;
 }
 
+py::dict model_test_dict(const calib::ModelTest& t) {
+  py::dict d;
+  d["chi2"] = t.chi2;
+  d["dof"] = t.dof;
+  d["chi2_per_dof"] = t.chi2 / t.dof;
+  d["p_value"] = t.p_value;
+  d["sigma_rad"] = t.sigma_rad;
+  d["passed"] = t.passed;
+  if (!t.passed) d["diagnosis"] = t.diagnosis;
+  return d;
+}
+
+// The (n, 3) array a of name as rows, checked against n readings; none: empty.
+std::vector<Eigen::Vector3d> optional_rows(const py::object& a, const std::string& name, std::size_t n) {
+  if (a.is_none()) return {};
+  std::vector<Eigen::Vector3d> v = readings_from_array(a, name);
+  if (v.size() != n) throw InputError(fmt::format("{}: {} rows for {} rows of readings", name, v.size(), n));
+  return v;
+}
+
+// The samples of gpm.calibrate's arrays (readings, and times and torques where given), checked as the file reader does.
+Samples samples_of(const py::handle& readings, const py::object& t, const py::object& tau_last,
+                   const py::object& tau_between) {
+  Samples s;
+  s.theta_m = readings_from_array(readings, "readings");
+  const std::size_t n = s.theta_m.size();
+  for (std::size_t j = 0; j < n; ++j) s.id.push_back(static_cast<long>(j));
+  if (!t.is_none()) {
+    s.t = t.cast<std::vector<double>>();
+    if (s.t.size() != n) throw InputError(fmt::format("t: {} times for {} rows of readings", s.t.size(), n));
+    for (std::size_t j = 0; j < n; ++j)
+      if (!std::isfinite(s.t[j]) || (j > 0 && !(s.t[j] > s.t[j - 1])))
+        throw InputError(fmt::format("t[{}]: {} is not a finite time after t[{}] (the times must increase)", j, s.t[j],
+                                     j > 0 ? j - 1 : 0));
+  }
+  s.tau_last = optional_rows(tau_last, "tau_last", n);
+  s.tau_between = optional_rows(tau_between, "tau_between", n);
+  return s;
+}
+
 CalibrationResult calibrate(const py::handle& readings, const Robot& robot, const py::object& fix,
                             const std::string& cost_text, const std::string& method, const py::object& sigma,
                             bool allow_rank_deficient, const py::object& budget, long seed,
-                            const py::object& true_xy) {
+                            const py::object& true_xy, const py::object& t, const py::object& tau_last,
+                            const py::object& tau_between, const py::object& encoder_bits, bool static_model) {
   // Checks in the order of app/cmd_calibrate.cpp, with its messages; the
   // argument is named as in Python (cost=, method=, ...).
   const auto cost = calib::parse_cost(cost_text);
@@ -62,8 +114,12 @@ CalibrationResult calibrate(const py::handle& readings, const Robot& robot, cons
                 method_value == calib::Method::kLM ? limits::kLmIterations : limits::kEvaluations, "budget");
   }
   check_bound(static_cast<double>(seed), limits::kSeed, "seed");
+  const Samples samples = samples_of(readings, t, tau_last, tau_between);
+  std::optional<int> bits;
+  if (!encoder_bits.is_none())
+    bits = static_cast<int>(check_bound(static_cast<double>(encoder_bits.cast<long>()), limits::kEncoderBits, "encoder_bits"));
   calib::Problem problem;
-  problem.theta_m = readings_from_array(readings, "readings");
+  problem.theta_m = samples.theta_m;
   problem.free = ~param_set(fix, "fix");
   problem.start = robot.geometry;
   std::vector<Eigen::Vector2d> xy;
@@ -87,11 +143,20 @@ CalibrationResult calibrate(const py::handle& readings, const Robot& robot, cons
   }
   if (!xy.empty()) mo.true_xy = &xy;
 
-  CalibrationResult out{{}, robot};
+  const scenario::FileProcedure proc =
+      scenario::samples_file_procedure(samples, robot, problem.start, problem.free, mo, bits, static_model);
+  if (proc.motion_not_used &&
+      PyErr_WarnEx(PyExc_RuntimeWarning,
+                   "the samples were taken on the fly, but their motion model needs method lm with cost ml: "
+                   "calibrated with the static model", 1) != 0)
+    throw py::error_already_set();
+  CalibrationResult out{{}, robot, std::nullopt};
   {
     py::gil_scoped_release unlocked;
     calib::check_samples(problem);
-    out.result = calib::calibrate(problem, mo);
+    scenario::CalibrationOutcome c = scenario::calibrate_samples(scenario::sample_series(samples), proc.inputs, proc.options);
+    out.result = std::move(c.result);
+    out.model_test = c.model_test;
   }
   for (const auto& note : out.result.notes) {
     if (PyErr_WarnEx(PyExc_RuntimeWarning, note.c_str(), 1) != 0) throw py::error_already_set();
@@ -121,9 +186,15 @@ result file by `gpm calibrate` (docs/FORMATS.md file contracts).
           },
           "Dict of the 1-sigma of each estimated parameter (NaN when unknown).")
       .def_property_readonly(
-          "diagnostics", [](const CalibrationResult& c) { return diagnostics(c.result); },
+          "diagnostics",
+          [](const CalibrationResult& c) {
+            py::dict d = diagnostics(c.result);
+            if (c.model_test) d["model_test"] = model_test_dict(*c.model_test);
+            return d;
+          },
           "Dict: method, cost_function, cost (final J), iterations, evaluations, rank, free_parameters, "
-          "condition_number, kmrmse_mm (when true_xy was given), seconds, converged, rank_deficient, notes.")
+          "condition_number, kmrmse_mm (when true_xy was given), seconds, converged, rank_deficient, notes, and "
+          "model_test (chi2, dof, chi2_per_dof, p_value, sigma_rad, passed, diagnosis when failed; when made).")
       .def_property_readonly(
           "fixed", [](const CalibrationResult& c) { return param_names(~c.result.free); },
           "Names of the parameters held fixed.")
@@ -150,12 +221,12 @@ result file by `gpm calibrate` (docs/FORMATS.md file contracts).
           },
           "The calibrated robot: the input robot (name, home, branches, limits) with the estimated geometry.")
       .def(
-          "to_yaml", [](const CalibrationResult& c) { return calib::result_to_yaml(c.result, c.base.name); },
+          "to_yaml", [](const CalibrationResult& c) { return result_text(c); },
           "The result file text (YAML), as `gpm calibrate -o` writes it.")
       .def(
           "save",
           [](const CalibrationResult& c, const py::object& path) {
-            calib::save_result(c.result, c.base.name, path_arg(path, "path"));
+            write_file_atomic(path_arg(path, "path"), result_text(c));
           },
           py::arg("path"), "Writes the result file (YAML) atomically; it can serve as a robot model.")
       .def("__repr__", [](const CalibrationResult& c) {
@@ -168,6 +239,8 @@ result file by `gpm calibrate` (docs/FORMATS.md file contracts).
         py::arg("fix") = std::vector<std::string>{"xa1", "ya1", "xa2", "ya2"}, py::arg("cost") = "ml",
         py::arg("method") = "lm", py::arg("sigma") = py::none(), py::arg("allow_rank_deficient") = false,
         py::arg("budget") = py::none(), py::arg("seed") = 1, py::arg("true_xy") = py::none(),
+        py::arg("t") = py::none(), py::arg("tau_last") = py::none(), py::arg("tau_between") = py::none(),
+        py::arg("encoder_bits") = py::none(), py::arg("static_model") = false,
         R"doc(
 Identifies the robot's parameters from encoder readings (paper section 3), as
 `gpm calibrate` does, and returns a gpm.CalibrationResult.
@@ -183,7 +256,18 @@ sigma     encoder noise 1-sigma (rad) for the uncertainty; None: estimated
 allow_rank_deficient  solve an unidentifiable free set with a minimum-norm step;
 budget    lm: maximum iterations (200); global: evaluations (1.5e6);
 seed      seed of the global methods;
-true_xy   optional (n, 2) true end-effector positions (mm) for kmrmse (eq. 40).
+true_xy   optional (n, 2) true end-effector positions (mm) for kmrmse (eq. 40);
+t, tau_last, tau_between  optional: the time of each reading (n, s) and the
+          drive torques before it ((n, 3), N m; samples.csv columns t,
+          tau_last1..3, tau_between1..3). All three, evenly spaced times
+          (samples taken on the fly), method lm and cost ml: the geometry is
+          estimated with gpm run's motion model, as `gpm calibrate` does;
+encoder_bits  the encoders' 2^N counts per turn for the reading 1-sigma when
+          sigma is None (default: the robot's data sheet, 17);
+static_model  the static fit even for samples taken on the fly.
+
+Every calibration ends with the chi-square model test of its residuals
+against the reading 1-sigma: diagnostics["model_test"].
 
 Bad input raises gpm.InputError (a ValueError) with the command line's
 message (fewer samples than free parameters, circles that do not meet,
@@ -195,7 +279,7 @@ warnings are issued as RuntimeWarning. The GIL is released while solving.
   m.def(
       "load_result",
       [](const py::object& path, const py::object& robot) {
-        CalibrationResult c{calib::load_result(path_arg(path, "path")), Robot{}};
+        CalibrationResult c{calib::load_result(path_arg(path, "path")), Robot{}, std::nullopt};
         if (!robot.is_none()) c.base = robot.cast<Robot>();
         return c;
       },

@@ -5,14 +5,17 @@
 
 namespace gpm::scenario {
 
+double reading_sigma(int bits, double noise_rad, double n_avg) {
+  const double q = bits > 0 ? 2.0 * M_PI / std::ldexp(1.0, bits) : 0.0;
+  return std::sqrt(noise_rad * noise_rad / n_avg + q * q / 12.0);
+}
+
 double effective_sigma(const sim::Scenario& s) {
-  const double q = s.twin.encoder.bits > 0 ? 2.0 * M_PI / std::ldexp(1.0, s.twin.encoder.bits) : 0.0;
   // On the fly every sample is one instantaneous reading.
   const double n_avg = s.sampling->pattern == sim::PosePattern::kTrajectory
                            ? 1.0
                            : std::max(1.0, std::round(s.sampling->options.average_s * s.twin.servo_rate_hz));
-  const double noise = s.twin.encoder.noise_rad;
-  return std::sqrt(noise * noise / n_avg + q * q / 12.0);
+  return reading_sigma(s.twin.encoder.bits, s.twin.encoder.noise_rad, n_avg);
 }
 
 calib::TransmissionLoad transmission_load(const DriveFriction& friction, const DataSheet& sheet, const Geometry& g) {
@@ -29,8 +32,16 @@ calib::TransmissionLoad transmission_load(const DriveFriction& friction, const D
 }
 
 CalibrationInputs calibration_inputs(const RunSpec& spec, const Robot& robot) {
-  const CalibrationSpec& c = spec.calibration;
   const bool in_motion = spec.sim.sampling && spec.sim.sampling->pattern == sim::PosePattern::kTrajectory;
+  // (effective_sigma needs the sampling: only on the fly, where the sigma matters.)
+  const double sigma = in_motion ? spec.calibration.sigma.value_or(effective_sigma(spec.sim)) : 0.0;
+  CalibrationInputs in = calibration_inputs(spec.calibration, robot, in_motion, spec.sim.twin.encoder.bits, sigma);
+  in.monitor = spec.monitor;
+  return in;
+}
+
+CalibrationInputs calibration_inputs(const CalibrationSpec& c, const Robot& robot, bool in_motion, int encoder_bits,
+                                     double sigma_rad) {
   CalibrationInputs in;
   calib::MotionModel& motion = in.motion;
   motion.compliance = c.estimate_compliance.value_or(in_motion);
@@ -41,13 +52,13 @@ CalibrationInputs calibration_inputs(const RunSpec& spec, const Robot& robot) {
   // (calib/motion_correction.hpp). Only with a reading noise to judge it by:
   // from noiseless readings (ideal encoders) the twin's soft loop closure,
   // which follows the forces, showed as h at 30 sigma and moved dth3 by 4e-5 rad.
-  motion.torque_before = in_motion && motion.compliance && c.sigma.value_or(effective_sigma(spec.sim)) > 0.0;
+  motion.torque_before = in_motion && motion.compliance && sigma_rad > 0.0;
   // On the fly each encoder's once-per-turn error is carried in the 1-sigma
   // and the bound with the data sheet's accuracy A as its prior, A / sqrt 2
   // per component (the spread of A cos(phase) over a phase unknown;
   // calib/motion_correction.hpp: considered, not estimated). Ideal encoders
   // (bits 0) have none.
-  if (in_motion && spec.sim.twin.encoder.bits > 0)
+  if (in_motion && encoder_bits > 0)
     motion.cyclic_prior_rad = robot.data_sheet.encoder_accuracy_rad.nominal / std::sqrt(2.0);
   if (c.tension_min_N) motion.tension_min_N = *c.tension_min_N;
   // On the fly the joint clearance is estimated (a play whose force sign
@@ -55,7 +66,6 @@ CalibrationInputs calibration_inputs(const RunSpec& spec, const Robot& robot) {
   motion.clearance = c.estimate_clearance.value_or(in_motion);
   motion.load = transmission_load(c.drive_friction, robot.data_sheet, robot.geometry);
   in.drive_friction = c.drive_friction;
-  in.monitor = spec.monitor;
   return in;
 }
 

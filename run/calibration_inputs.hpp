@@ -25,10 +25,22 @@ struct CalibrationInputs {
 // / 12), from the scenario's encoder: and servo: (what the drives report).
 double effective_sigma(const sim::Scenario& s);
 
+// The same from the drives' statement alone: 2^bits counts per turn (0:
+// ideal), white noise noise_rad (rad) averaged over n_avg readings.
+double reading_sigma(int bits, double noise_rad, double n_avg);
+
 // The inputs of spec's calibration and monitor for robot (the controller's
 // robot, whose data_sheet states rotor inertia, link masses and encoder
 // accuracy); reads no field of spec.sim.twin.effects or spec.sim.twin.mjcf.
 CalibrationInputs calibration_inputs(const RunSpec& spec, const Robot& robot);
+
+// The calibration's inputs (monitor left at its default) from calibration c
+// and robot's data sheet for samples taken on the fly or not, by encoders of
+// 2^encoder_bits counts (0: ideal) read with 1-sigma sigma_rad: what gpm
+// calibrate states of a samples file; calibration_inputs(spec, robot) is this
+// at the scenario's values.
+CalibrationInputs calibration_inputs(const CalibrationSpec& c, const Robot& robot, bool in_motion, int encoder_bits,
+                                     double sigma_rad);
 
 // The transmission load the force signs subtract from each drive torque
 // (calib/passive_tension.hpp): the stated friction and, from the data sheet,

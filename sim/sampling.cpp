@@ -86,6 +86,7 @@ SampleRecord take_sample(Session& s, const Eigen::Vector2d& target, long id,
   rec.settle_time_s = k * period;
   // Average over the window; readings unwrapped around the first one.
   const long n = ticks_in(s.model, o.average_s);
+  rec.t_s = s.state.data->time + 0.5 * static_cast<double>(n) * period;
   Eigen::Vector3d first = Eigen::Vector3d::Zero(), sum_m = Eigen::Vector3d::Zero();
   Eigen::Vector3d sum_a = Eigen::Vector3d::Zero(), sum_tau = Eigen::Vector3d::Zero();
   Eigen::Vector3d sum_w = Eigen::Vector3d::Zero();

@@ -76,6 +76,9 @@ struct SampleRecord {
   Eigen::Vector3d tau_between = Eigen::Vector3d::Zero();  // N m, mean drive torque over the periods since the sample before
   bool settled = false;
   double settle_time_s = 0.0;  // from the end of the move until the criterion held
+  // s, when the reading was taken: on the fly the sample id x the sample interval (sample_every drive
+  // periods, set by run_simulation); stop-and-go the middle of the averaging window (twin time).
+  double t_s = 0.0;
 };
 
 // A twin driven by a controller model, logging as it goes.

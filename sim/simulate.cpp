@@ -118,9 +118,17 @@ SimulationResult run_simulation(const Scenario& s, std::function<void(const LogR
   r.log.every = s.log_every;
   Session session = make_session(model, state, s.controller, &r.log);
   session.max_tracking_mm = s.max_tracking_mm;
+  // On the fly the time of each reading is its id x the sample interval, as
+  // the calibration computes the rates (run/calibration_procedure.hpp).
+  const auto stamp = [&](std::vector<SampleRecord>& samples) {
+    if (!path) return;
+    const double dt = s.sampling->sample_every / s.twin.servo_rate_hz;
+    for (SampleRecord& rec : samples) rec.t_s = static_cast<double>(rec.id) * dt;
+  };
   try {
     if (path) {
       r.samples = sample_along(session, *path, s.sampling->sample_every, 0);
+      stamp(r.samples);
     } else {
       for (size_t k = 0; k < poses.size(); ++k)
         r.samples.push_back(take_sample(session, poses[k], static_cast<long>(k), s.sampling->options));
@@ -133,6 +141,7 @@ SimulationResult run_simulation(const Scenario& s, std::function<void(const LogR
     }
   } catch (TrackingStop& stop) {  // what was measured is kept
     if (stop.samples.empty()) stop.samples = std::move(r.samples);
+    else stamp(stop.samples);  // taken on the fly before the stop
     stop.rows = std::move(r.log.rows);
     r.log.sink = nullptr;
     if (progress) progress->finish();
@@ -149,14 +158,14 @@ SimulationResult run_simulation(const Scenario& s, std::function<void(const LogR
 std::string samples_csv(const std::vector<SampleRecord>& samples) {
   std::string out =
       "sample,theta_m1,theta_m2,theta_m3,x,y,theta_a1,theta_a2,theta_a3,target_x,target_y,settled,tau1,tau2,tau3,"
-      "omega1,omega2,omega3,tau_last1,tau_last2,tau_last3,tau_between1,tau_between2,tau_between3\n";
+      "omega1,omega2,omega3,tau_last1,tau_last2,tau_last3,tau_between1,tau_between2,tau_between3,t\n";
   for (const SampleRecord& s : samples) {
-    out += fmt::format("{},{},{},{},{},{},{},{},{},{},{},{},{},{},{},{},{},{},{},{},{},{},{},{}\n", s.id, x(s.theta_m[0]), x(s.theta_m[1]),
+    out += fmt::format("{},{},{},{},{},{},{},{},{},{},{},{},{},{},{},{},{},{},{},{},{},{},{},{},{}\n", s.id, x(s.theta_m[0]), x(s.theta_m[1]),
                        x(s.theta_m[2]), x(s.xy_mm.x()), x(s.xy_mm.y()), x(s.theta_a[0]),
                        x(s.theta_a[1]), x(s.theta_a[2]), x(s.target.x()), x(s.target.y()),
                        s.settled ? 1 : 0, x(s.tau[0]), x(s.tau[1]), x(s.tau[2]), x(s.omega[0]), x(s.omega[1]),
                        x(s.omega[2]), x(s.tau_last[0]), x(s.tau_last[1]), x(s.tau_last[2]), x(s.tau_between[0]),
-                       x(s.tau_between[1]), x(s.tau_between[2]));
+                       x(s.tau_between[1]), x(s.tau_between[2]), x(s.t_s));
   }
   return out;
 }

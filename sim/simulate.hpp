@@ -71,7 +71,8 @@ SimulationResult run_simulation(const Scenario& s, std::function<void(const LogR
 // tau_last1..3 (the drive torque of the period just before the sample's
 // instant, N m) and tau_between1..3 (the mean drive torque over the periods
 // since the sample before, N m): on the fly the torques applied before the
-// reading (tau1..3 is computed from it); at rest both equal tau1..3.
+// reading (tau1..3 is computed from it); at rest both equal tau1..3; then t
+// (s, when the reading was taken: SampleRecord::t_s).
 std::string samples_csv(const std::vector<SampleRecord>& samples);
 
 // trajectory.csv header: t,x_des,y_des,x,y,theta_m1..3,tau1..3,violation_m,

@@ -1,4 +1,5 @@
-// Tests of models/samples.cpp: the CSV contract, exact round trip, bad input.
+// Tests of models/samples.cpp: the CSV contract, exact round trip (with the
+// optional times and drive torques), bad input.
 #include "models/samples.hpp"
 
 #include <gtest/gtest.h>
@@ -39,6 +40,43 @@ TEST(Samples, RoundTripExact) {
     EXPECT_EQ(b.theta_m[j], s.theta_m[j]);
     EXPECT_EQ(b.xy[j], s.xy[j]);
   }
+}
+
+TEST(Samples, TimesAndTorquesRoundTripExact) {
+  Samples s;
+  for (int j = 0; j < 20; ++j) {
+    s.id.push_back(j);
+    s.theta_m.emplace_back(1.0 / (j + 3), std::sqrt(2.0) * j, -0.1 * j);
+    s.t.push_back(static_cast<double>(j) * (4 / 4000.0));
+    s.tau.emplace_back(0.1 * j, -1.0 / (j + 7), 3.0);
+    s.tau_last.emplace_back(std::sqrt(3.0) * j, 0.0, -2.5);
+    s.tau_between.emplace_back(1.0 / 7.0, j * 1e-17, -0.0);
+  }
+  const std::string text = samples_to_csv(s);
+  EXPECT_EQ(text.substr(0, text.find('\n')),
+            "sample,theta_m1,theta_m2,theta_m3,tau1,tau2,tau3,tau_last1,tau_last2,tau_last3,tau_between1,tau_between2,"
+            "tau_between3,t");
+  const Samples b = parse_samples_csv(text, "t");
+  ASSERT_EQ(b.size(), s.size());
+  EXPECT_EQ(b.t, s.t);
+  EXPECT_EQ(b.tau, s.tau);
+  EXPECT_EQ(b.tau_last, s.tau_last);
+  EXPECT_EQ(b.tau_between, s.tau_between);
+  // Without them (an old file) they stay empty.
+  const Samples old = parse_samples_csv("sample,theta_m1,theta_m2,theta_m3\n0,1,2,3\n", "s.csv");
+  EXPECT_TRUE(old.t.empty() && old.tau.empty() && old.tau_last.empty() && old.tau_between.empty());
+}
+
+TEST(Samples, BadTimesAndTorquesNameLineAndColumn) {
+  const std::string head = "sample,theta_m1,theta_m2,theta_m3,t,tau_last1,tau_last2,tau_last3\n";
+  EXPECT_EQ(error_of(head + "0,1,2,3,0,1,2,3\n1,1,2,3,0.001,1,x,3\n"),
+            "s.csv:3: column 'tau_last2': 'x' is not a number");
+  EXPECT_EQ(error_of(head + "0,1,2,3,inf,1,2,3\n"), "s.csv:2: column 't': value must be finite, got 'inf'");
+  EXPECT_EQ(error_of(head + "0,1,2,3,0.002,1,2,3\n1,1,2,3,0.001,1,2,3\n"),
+            "s.csv:3: column 't': 0.001 s does not follow 0.002 s of the row before (the times of the readings "
+            "must increase)");
+  EXPECT_EQ(error_of("theta_m1,theta_m2,theta_m3,tau_between1,tau_between3\n1,2,3,4,5\n"),
+            "s.csv:1: column 'tau_between2' missing (give tau_between1,tau_between2,tau_between3 all three, or none)");
 }
 
 TEST(Samples, BadInputNamesLineAndColumn) {

@@ -1,11 +1,14 @@
 # Tests python/bind_calibrate.cpp: gpm.calibrate, gpm.CalibrationResult, gpm.load_result.
+import json
+import pathlib
+import tempfile
 import warnings
 
 import numpy as np
 import pytest
 
 import gpm
-from conftest import TABLE5, cli_error, run_gpm
+from conftest import ROOT, TABLE5, cli_error, run_gpm
 
 FREE = [n for n in gpm.PARAM_NAMES if n not in ("xa1", "ya1", "xa2", "ya2")]
 
@@ -113,3 +116,54 @@ def test_no_warnings_on_a_well_posed_problem(table5_samples):
     with warnings.catch_warnings():
         warnings.simplefilter("error")
         gpm.calibrate(gpm.read_samples(table5_samples), gpm.load_robot())
+
+
+@pytest.fixture(scope="module")
+def on_the_fly_run():
+    """gpm run of a short on-the-fly scenario (about 20 s): its output folder."""
+    with tempfile.TemporaryDirectory(prefix="gpm-pytest-") as d:
+        out = pathlib.Path(d) / "run"
+        code, _, err = run_gpm("run", ROOT / "tests" / "fixtures" / "on_the_fly_small.yaml", "-o", out)
+        assert code == 0, err
+        yield out
+
+
+def samples_columns(path):
+    """The samples file's columns by name (float64 arrays)."""
+    data = np.genfromtxt(path, delimiter=",", names=True)
+    return {name: data[name] for name in data.dtype.names}
+
+
+def test_on_the_fly_samples_get_the_runs_procedure(on_the_fly_run, scratch):
+    # Times and torques given: gpm run's motion model, as gpm calibrate runs it on the file, to the last bit.
+    path = on_the_fly_run / "samples.csv"
+    code, _, err = run_gpm("calibrate", "--data", path, "--model", ROOT / "models" / "gpm2002.yaml",
+                           "-o", scratch / "cli.yaml")
+    assert code == 0, err
+    cli = gpm.load_result(scratch / "cli.yaml")
+    c = samples_columns(path)
+    readings, xy = gpm.read_samples(path, with_xy=True)
+    three = lambda name: np.stack([c[f"{name}{i}"] for i in (1, 2, 3)], axis=1)
+    with warnings.catch_warnings():
+        warnings.simplefilter("ignore", RuntimeWarning)  # the procedure's notes
+        r = gpm.calibrate(readings, gpm.load_robot(ROOT / "models" / "gpm2002.yaml"), true_xy=xy, t=c["t"],
+                          tau_last=three("tau_last"), tau_between=three("tau_between"))
+        static = gpm.calibrate(readings, gpm.load_robot(ROOT / "models" / "gpm2002.yaml"))
+    assert r.geometry == cli.geometry
+    summary = json.loads((on_the_fly_run / "summary.json").read_text())["model_test"]
+    test = r.diagnostics["model_test"]
+    assert (test["chi2"], test["dof"], test["passed"]) == (summary["chi2"], summary["dof"], summary["passed"])
+    assert "model_test_chi2" in r.to_yaml()
+    # Readings alone: the static fit, whose model test says the readings disagree with it.
+    assert static.geometry != r.geometry
+    assert not static.diagnostics["model_test"]["passed"]
+
+
+def test_bad_times_refused(table5_samples):
+    readings = gpm.read_samples(table5_samples)
+    t = np.arange(len(readings)) * 1e-3
+    t[5] = t[4]
+    with pytest.raises(gpm.InputError, match=r"t\[5\]: .*the times must increase"):
+        gpm.calibrate(readings, gpm.load_robot(), t=t)
+    with pytest.raises(gpm.InputError, match="tau_last: 3 rows for 50 rows of readings"):
+        gpm.calibrate(readings, gpm.load_robot(), tau_last=np.zeros((3, 3)))

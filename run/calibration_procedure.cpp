@@ -1,0 +1,372 @@
+#include "run/calibration_procedure.hpp"
+
+#include <algorithm>
+#include <cmath>
+
+#include <fmt/format.h>
+
+#include "calib/friction_profile.hpp"
+#include "calib/reading_rates.hpp"
+#include "calib/robust_loss.hpp"
+#include "models/errors.hpp"
+#include "models/samples.hpp"
+#include "models/yaml_util.hpp"
+
+namespace gpm::scenario {
+namespace {
+
+// On the fly, the joint accelerations are differences of the reading
+// speeds over +-this (s; calib/reading_rates.hpp: the speeds are central
+// differences over +-1 sample). Noise of 17-bit readings (q = 4.8e-5 rad)
+// at a 1 ms sample interval h: q / (sqrt 12 2 h w) = 0.86 rad/s^2 at w = 8 ms,
+// against q / (4 sqrt 2 h^2) = 8.5 rad/s^2 at w = h, which made the main job's chi2/dof 1.44
+// (8 ms: 1.08; 4 and 12 ms alike; 16 ms failed its 3 CRB sigmas, 4.7).
+constexpr double kAccelerationHalfWindow_s = 8e-3;
+
+// The motion model's fit in progress: the problem, the samples' rates and
+// torques, the LM options and the notes each stage leaves.
+struct MotionStage {
+  calib::Problem problem;
+  std::vector<Eigen::Vector3d> omega, tau, alpha;
+  calib::LmOptions lo;
+  calib::MotionModel motion;
+  calib::MotionFit fit;
+  double sigma = 0.0;
+  std::string speed_note, friction_note, clearance_dropped, before_dropped;
+  double friction_scale = 1.0;
+};
+
+// "value: chi2/dof" of each value a model-test profile tried (the run's
+// notes), the values formatted with value_format.
+std::string profile_tried(const calib::FrictionProfile& p, std::string_view value_format) {
+  std::string out;
+  for (std::size_t k = 0; k < p.scales.size(); ++k)
+    out += fmt::format("{}{}: {:.3g}", k ? ", " : "", fmt::format(fmt::runtime(value_format), p.scales[k]), p.chi2_per_dof[k]);
+  return out;
+}
+
+// Throws InputError unless every per-sample series of s that is given has one entry per reading.
+void check_sizes(const SampleSeries& s) {
+  const std::size_t n = s.theta_m.size();
+  const auto check = [n](std::size_t size, const char* what) {
+    if (size != 0 && size != n)
+      throw InputError(fmt::format("calibration: {} {} for {} readings (one per reading, or none)", size, what, n));
+  };
+  check(s.t_s.size(), "times");
+  check(s.tau.size(), "drive torques");
+  check(s.tau_between.size(), "mean drive torques since the sample before");
+}
+
+// The joints' speeds and accelerations (rad/s, rad/s^2): on the fly
+// differences of the readings themselves (calib/reading_rates.hpp: speeds
+// central over +-1 sample, accelerations over +-kAccelerationHalfWindow_s;
+// a real robot has no link-speed truth and its drives' motor speed rings with
+// the transmission); stop-and-go samples are taken at rest: 0.
+void reading_rates_of(const SampleSeries& s, bool in_motion, MotionStage& m) {
+  const std::size_t n = s.theta_m.size();
+  m.omega.assign(n, Eigen::Vector3d::Zero());
+  if (!in_motion) return;
+  if (s.t_s.size() != n || n < 2)
+    throw InputError("calibration: samples on the fly need the time of each reading (samples.csv column t)");
+  const double dt = (s.t_s.back() - s.t_s.front()) / static_cast<double>(n - 1);  // the sample interval
+  calib::RateOptions ro;
+  ro.alpha_span = std::max(1, static_cast<int>(std::lround(kAccelerationHalfWindow_s / dt)));
+  calib::ReadingRates rates = calib::reading_rates(s.t_s, s.theta_m, ro);
+  m.omega = std::move(rates.omega);
+  m.alpha = std::move(rates.alpha);
+}
+
+// The samples left out at the start on the fly: those within skip_s of the
+// first (a compliant transmission rings after the drives' start step, the
+// first command jumping from where the robot stands to the controller's
+// home: its twist is not c tau for a few periods; left out whether the
+// transmissions are compliant or not: the procedure does not know).
+int start_transient_count(const std::vector<double>& t_s, double skip_s) {
+  int k = 0;
+  // 1e-9: a time on the bound (sample id x interval) is not within it.
+  while (static_cast<std::size_t>(k) < t_s.size() && t_s[static_cast<std::size_t>(k)] - t_s.front() < skip_s * (1.0 - 1e-9))
+    ++k;
+  return k;
+}
+
+// The stage's LM options from the procedure's options and sigma.
+calib::LmOptions lm_options(const ProcedureOptions& o) {
+  calib::LmOptions lo;
+  lo.max_iterations = o.method.lm_max_iterations;
+  lo.encoder_sigma = o.sigma_rad > 0.0 ? std::optional<double>(o.sigma_rad) : std::nullopt;
+  lo.true_xy = o.method.true_xy;
+  lo.loss = o.method.loss;
+  if (lo.loss.active() && !(lo.loss.scale > 0.0)) lo.loss.scale = calib::default_tuning(lo.loss.kind) * o.sigma_rad;
+  return lo;
+}
+
+// The motion stage before any fit: problem, rates, torques (on the fly the
+// twist follows the torques the drives applied before the reading, not the
+// one computed from it, which reacts to its quantisation), skipped samples.
+MotionStage motion_stage(const SampleSeries& s, const CalibrationInputs& in, const ProcedureOptions& o) {
+  if (s.tau.size() != s.theta_m.size())
+    throw InputError("calibration: estimating compliance, skew or clearance needs the drive torque of each sample "
+                     "(samples.csv columns tau_last1..3 or tau1..3)");
+  MotionStage m;
+  m.problem.theta_m = s.theta_m;
+  m.problem.start = o.start;
+  m.problem.free = o.free;
+  m.motion = in.motion;
+  m.sigma = o.sigma_rad;
+  m.tau = s.tau;
+  if (m.motion.torque_before && !s.tau_between.empty()) m.motion.torque_between = s.tau_between;
+  reading_rates_of(s, o.in_motion, m);
+  if (o.in_motion) m.motion.skip_first = start_transient_count(s.t_s, o.skip_first_s);
+  m.lo = lm_options(o);
+  return m;
+}
+
+// The speed over which the drives' friction builds up, chosen by the model
+// test (calib/friction_profile.hpp) at the friction of motion.load; at: the
+// friction's name in the note.
+void choose_speed(MotionStage& m, const char* at) {
+  const calib::FrictionProfile speeds = calib::friction_speed_profile(
+      m.problem, m.omega, m.tau, m.lo, m.motion, m.alpha, calib::default_friction_speeds(), m.sigma);
+  m.motion = speeds.model;
+  m.fit = speeds.fit;
+  m.speed_note = fmt::format(
+      "drive friction builds up over {:.3g} rad/s (F tanh(omega / v)), the smallest chi2/dof of the speeds "
+      "tried in rad/s at {} ({})",
+      speeds.scale, at, profile_tried(speeds, "{:.3g}"));
+}
+
+// The stated friction times the factor the model test prefers (for the clearance's force signs).
+void choose_friction_scale(MotionStage& m) {
+  calib::FrictionProfile profile = calib::calibrate_friction_profile(
+      m.problem, m.omega, m.tau, m.lo, m.motion, m.alpha, calib::default_friction_scales(), m.sigma);
+  m.fit = std::move(profile.fit);
+  m.motion = profile.model;
+  m.friction_scale = profile.scale;
+  m.friction_note = fmt::format(
+      "drive friction for the force signs: the stated values x{:.2f} (Coulomb {:.3g}, {:.3g}, {:.3g} N m), the "
+      "smallest chi2/dof of the factors tried ({})",
+      profile.scale, m.motion.load.coulomb_Nm[0], m.motion.load.coulomb_Nm[1], m.motion.load.coulomb_Nm[2],
+      profile_tried(profile, "{:.2f}"));
+}
+
+// The first fit of the motion model: the friction's speed and scale chosen
+// by the model test where it can judge them, else one fit.
+void fit_motion(MotionStage& m, const CalibrationInputs& in, bool in_motion) {
+  const bool fit_speed = in_motion && m.motion.friction && m.sigma > 0.0;
+  if (fit_speed) choose_speed(m, "the stated friction");
+  if (m.motion.clearance && in.drive_friction.fit_scale && m.sigma > 0.0) {
+    choose_friction_scale(m);
+    // A speed chosen at a wrong friction stands in for it: chosen again at the factor's.
+    if (fit_speed && m.friction_scale != 1.0) choose_speed(m, "that friction");
+  } else if (!fit_speed) {
+    m.fit = calib::calibrate_in_motion(m.problem, m.omega, m.tau, m.lo, m.motion, m.alpha);
+  }
+}
+
+// The clearance and the lag on the torque before stay in the model only
+// where the data show them (some value 3 sigma from 0); else the fit is made
+// again without (the clearance's: every sample used, no force signs needed).
+void drop_undetected(MotionStage& m, bool keep_clearance) {
+  const calib::MotionFit& f = m.fit;
+  if (m.motion.clearance && !keep_clearance && !calib::clearance_detected(f)) {
+    m.clearance_dropped = fmt::format(
+        "joint clearance not detected (d = {:.2f}, {:.2f}, {:.2f} um, 1-sigma {:.2f}, {:.2f}, {:.2f} um: none 3 "
+        "sigma from 0): calibrated without it, from every sample",
+        1e3 * f.clearance[0], 1e3 * f.clearance[1], 1e3 * f.clearance[2], 1e3 * f.clearance_sigma[0],
+        1e3 * f.clearance_sigma[1], 1e3 * f.clearance_sigma[2]);
+    m.motion.clearance = false;
+    m.fit = calib::calibrate_in_motion(m.problem, m.omega, m.tau, m.lo, m.motion, m.alpha);
+  }
+  if (m.motion.torque_before && !calib::torque_before_detected(m.fit)) {
+    m.before_dropped = fmt::format(
+        "no response of the twist to the torque before detected (h = {:.3g}, {:.3g}, {:.3g} rad/N m, 1-sigma "
+        "{:.2g}, {:.2g}, {:.2g}): calibrated without it",
+        m.fit.torque_before[0], m.fit.torque_before[1], m.fit.torque_before[2], m.fit.torque_before_sigma[0],
+        m.fit.torque_before_sigma[1], m.fit.torque_before_sigma[2]);
+    m.motion.torque_before = false;
+    m.fit = calib::calibrate_in_motion(m.problem, m.omega, m.tau, m.lo, m.motion, m.alpha);
+  }
+}
+
+// The note of the samples the fit used, when it left some out.
+std::string samples_used_note(const calib::MotionFit& fit, std::size_t n, int skip_first) {
+  const std::size_t weak = n - fit.kept.size() - static_cast<std::size_t>(skip_first);
+  return fmt::format("{} of {} samples used: the first {} left out (the drives' start transient)", fit.kept.size(), n,
+                     skip_first) +
+         (weak > 0 ? fmt::format(", {} where a passive link's force was below {:.2g} N (its sign uncertain)", weak,
+                                 fit.tension_min_N)
+                   : std::string());
+}
+
+// The notes of the values estimated with the geometry (and carried), in the order of gpm run's report.
+void estimate_notes(const MotionStage& m, std::vector<std::string>& notes) {
+  const calib::MotionFit& f = m.fit;
+  notes.push_back(fmt::format(
+      "estimated with the geometry: latch skew s2 {:.3g} s, s3 {:.3g} s; transmission compliance "
+      "c1 {:.3g}, c2 {:.3g}, c3 {:.3g} rad/N m (0: not excited, e.g. a torque-off joint); friction twist "
+      "c F {:.3g}, {:.3g}, {:.3g} rad",
+      f.nu[0], f.nu[1], f.nu[2], f.nu[3], f.nu[4], f.friction[0], f.friction[1], f.friction[2]));
+  if (m.motion.torque_before)
+    notes.push_back(fmt::format(
+        "the transmissions' twist also responds to the change of torque since the sample before (the mean drive "
+        "torque since it, less the last period's, on the fly): h {:.3g}, "
+        "{:.3g}, {:.3g} rad/N m (1-sigma {:.2g}, {:.2g}, {:.2g})",
+        f.torque_before[0], f.torque_before[1], f.torque_before[2], f.torque_before_sigma[0],
+        f.torque_before_sigma[1], f.torque_before_sigma[2]));
+  if (m.motion.cyclic_prior_rad > 0.0)
+    notes.push_back(fmt::format(
+        "the encoders' once-per-turn error (data sheet +-{:.2g} rad, random phase) is carried in the 1-sigma and "
+        "the Cramer-Rao bound, not estimated",
+        m.motion.cyclic_prior_rad * std::sqrt(2.0)));
+  if (m.motion.clearance)
+    notes.push_back(fmt::format(
+        "joint clearance estimated with the geometry: passive links act as lb_i +- d_i by the sign of their axial "
+        "force, d = {:.2f}, {:.2f}, {:.2f} um (1-sigma {:.2f}, {:.2f}, {:.2f} um; force sign certain in {:.0f}, {:.0f}, "
+        "{:.0f} % of the samples)",
+        1e3 * f.clearance[0], 1e3 * f.clearance[1], 1e3 * f.clearance[2], 1e3 * f.clearance_sigma[0],
+        1e3 * f.clearance_sigma[1], 1e3 * f.clearance_sigma[2], 100 * f.clearance_used[0],
+        100 * f.clearance_used[1], 100 * f.clearance_used[2]));
+}
+
+// The outcome of a finished motion stage: result, notes, readings used, the bound's inputs.
+CalibrationOutcome motion_outcome(MotionStage&& m) {
+  CalibrationOutcome out;
+  out.with_effects = true;
+  out.result = m.fit.result;
+  out.used = m.fit.corrected;
+  std::vector<std::string>& notes = out.result.notes;
+  if (!m.speed_note.empty()) notes.push_back(m.speed_note);
+  if (!m.friction_note.empty() && m.motion.clearance) notes.push_back(m.friction_note);
+  // For the monitor of the operation (run/monitor_run.hpp reading_model_after_calibration).
+  if (m.motion.clearance || !m.clearance_dropped.empty()) out.joint_play_mm = m.fit.clearance;
+  if (!m.friction_note.empty() && m.motion.clearance)
+    out.drive_friction_fitted = DriveFriction{m.motion.load.coulomb_Nm, m.motion.load.viscous_Nm_s, false};
+  if (!m.clearance_dropped.empty()) notes.push_back(m.clearance_dropped);
+  if (!m.before_dropped.empty()) notes.push_back(m.before_dropped);
+  const std::size_t n = m.problem.theta_m.size();
+  if (m.fit.kept.size() < n) notes.push_back(samples_used_note(m.fit, n, m.motion.skip_first));
+  estimate_notes(m, notes);
+  out.fit = std::move(m.fit);
+  out.motion = std::move(m.motion);
+  out.omega = std::move(m.omega);
+  out.tau = std::move(m.tau);
+  out.alpha = std::move(m.alpha);
+  return out;
+}
+
+// The static fit (calib/calibrate.hpp) of the readings as they are.
+CalibrationOutcome static_outcome(const SampleSeries& s, const ProcedureOptions& o) {
+  calib::Problem problem;
+  problem.theta_m = s.theta_m;
+  problem.start = o.start;
+  problem.free = o.free;
+  CalibrationOutcome out;
+  out.result = calib::calibrate(problem, o.method);
+  out.used = s.theta_m;
+  return out;
+}
+
+}  // namespace
+
+CalibrationOutcome calibrate_samples(const SampleSeries& samples, const CalibrationInputs& inputs,
+                                     const ProcedureOptions& options) {
+  check_sizes(samples);
+  const calib::MotionModel& model = inputs.motion;
+  const bool with_effects = model.compliance || model.skew || model.clearance;
+  if (with_effects && (options.method.method != calib::Method::kLM || options.method.cost != calib::Cost::kML))
+    throw InputError("calibration: estimating compliance, skew or clearance with the geometry needs the method lm "
+                     "with the cost ml");
+  CalibrationOutcome out;
+  if (with_effects) {
+    MotionStage m = motion_stage(samples, inputs, options);
+    fit_motion(m, inputs, options.in_motion);
+    drop_undetected(m, options.keep_clearance);
+    out = motion_outcome(std::move(m));
+  } else {
+    out = static_outcome(samples, options);
+  }
+  const bool tested_cost = options.test_any_cost || out.result.cost == calib::Cost::kML;
+  if (tested_cost && options.sigma_rad > 0.0 && out.used.size() > options.free.count()) {
+    out.model_test = calib::model_test(out.result.geometry, options.free, out.used, options.sigma_rad);
+    if (!out.model_test->passed) out.result.notes.push_back(out.model_test->diagnosis);
+  }
+  return out;
+}
+
+SampleSeries sample_series(const Samples& samples) {
+  SampleSeries s;
+  s.theta_m = samples.theta_m;
+  s.t_s = samples.t;
+  s.tau = samples.tau_last.empty() ? samples.tau : samples.tau_last;
+  s.tau_between = samples.tau_between;
+  return s;
+}
+
+bool taken_on_the_fly(const Samples& samples) {
+  const std::size_t n = samples.size();
+  if (n < 3 || samples.t.size() != n || samples.tau_last.size() != n || samples.tau_between.size() != n) return false;
+  const double dt = (samples.t.back() - samples.t.front()) / static_cast<double>(n - 1);
+  for (std::size_t j = 1; j < n; ++j)
+    if (std::abs(samples.t[j] - samples.t[j - 1] - dt) > 1e-6 * dt) return false;
+  return true;
+}
+
+FileProcedure samples_file_procedure(const Samples& samples, const Robot& robot, const Geometry& start,
+                                     const FreeMask& free, const calib::MethodOptions& method,
+                                     std::optional<int> encoder_bits, bool static_model) {
+  const int bits = encoder_bits.value_or(robot.data_sheet.encoder_bits);
+  const bool on_the_fly = taken_on_the_fly(samples);
+  const bool lm_ml = method.method == calib::Method::kLM && method.cost == calib::Cost::kML;
+  const bool in_motion = on_the_fly && lm_ml && !static_model;
+  FileProcedure p;
+  p.motion_not_used = on_the_fly && !lm_ml && !static_model;
+  p.options.start = start;
+  p.options.free = free;
+  p.options.sigma_rad = method.encoder_sigma.value_or(reading_sigma(bits, 0.0, 1.0));
+  p.options.in_motion = in_motion;
+  p.options.test_any_cost = true;
+  p.options.method = method;
+  CalibrationSpec c;
+  c.drive_friction = stated_drive_friction(robot.data_sheet);
+  p.inputs = calibration_inputs(c, robot, in_motion, bits, p.options.sigma_rad);
+  p.sigma_stated = method.encoder_sigma.has_value() || in_motion;
+  p.model = in_motion ? "the motion model (samples on the fly: compliance, latch skew, friction, clearance)"
+                      : "the static model";
+  return p;
+}
+
+std::string model_test_line(const calib::ModelTest& test, bool stated) {
+  const double ratio = test.chi2 / test.dof;
+  if (test.passed)
+    return fmt::format("model test passes (chi2/dof {:.3g}, p {:.3g}): the residuals agree with the reading 1-sigma "
+                       "{:.3g} rad",
+                       ratio, test.p_value, test.sigma_rad);
+  if (stated)
+    return fmt::format("model test fails (chi2/dof {:.3g}, p {:.3g}): the stated 1-sigma understates the error (the "
+                       "residuals are {:.3g}x the reading 1-sigma {:.3g} rad)",
+                       ratio, test.p_value, test.rms_ratio, test.sigma_rad);
+  return fmt::format("model test fails (chi2/dof {:.3g}, p {:.3g}): the readings scatter {:.3g}x the encoders' 1-sigma "
+                     "{:.3g} rad; the 1-sigma of the result is scaled by the residuals, an effect the model leaves out "
+                     "is not in it",
+                     ratio, test.p_value, test.rms_ratio, test.sigma_rad);
+}
+
+std::string model_test_yaml(const calib::ModelTest& test, int indent) {
+  // Flat keys: a result file stays a robot file, whose diagnostics are one-line values.
+  const std::string p(static_cast<std::size_t>(indent), ' ');
+  std::string out;
+  out += fmt::format("{}model_test_chi2: {}\n", p, format_exact(test.chi2));
+  out += fmt::format("{}model_test_dof: {}\n", p, format_exact(test.dof));
+  out += fmt::format("{}model_test_chi2_per_dof: {}\n", p, format_exact(test.chi2 / test.dof));
+  out += fmt::format("{}model_test_p_value: {}\n", p, format_exact(test.p_value));
+  out += fmt::format("{}model_test_sigma_rad: {}\n", p, format_exact(test.sigma_rad));
+  out += fmt::format("{}model_test_passed: {}\n", p, test.passed ? "true" : "false");
+  if (!test.passed) {
+    std::string quoted;  // a YAML (and JSON) double-quoted scalar
+    for (char c : test.diagnosis) quoted += (c == '"' || c == '\\') ? std::string{'\\', c} : std::string{c};
+    out += fmt::format("{}model_test_diagnosis: \"{}\"\n", p, quoted);
+  }
+  return out;
+}
+
+}  // namespace gpm::scenario

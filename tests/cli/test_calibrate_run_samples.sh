@@ -1,0 +1,56 @@
+#!/usr/bin/env bash
+# Tests of app/cmd_calibrate.cpp on gpm run's own samples (one calibration
+# for every entry point, run/calibration_procedure.hpp): gpm calibrate on the
+# samples.csv of a short on-the-fly run gives gpm run's geometry to the last
+# digit and its model test; a file without the time and torque columns gets
+# the static fit and a model test; a bad value in the new columns: one line, exit 2.
+set -u
+GPM="$1"; SRC="$2"
+source "$(dirname "$0")/cli_lib.sh"
+
+check "gpm run" 0 "$GPM" run "$SRC/tests/fixtures/on_the_fly_small.yaml" -o "$tmp/run"
+S="$tmp/run/samples.csv"
+holds "samples.csv has t" grep -qE '^sample,.*,tau_between3,t$' "$S"
+
+check "calibrate on the run's samples" 0 "$GPM" calibrate --data "$S" --model "$SRC/models/gpm2002.yaml" -o "$tmp/r.yaml"
+expect_out "the motion model" "the motion model"
+expect_out "model test line" "^model test (passes|fails) \(chi2/dof"
+geometry() { awk '/^geometry:/{on=1; next} /^[^ ]/{on=0} on' "$1"; }
+holds "geometry bit for bit" cmp <(geometry "$tmp/run/calibration.yaml") <(geometry "$tmp/r.yaml")
+holds "model test as gpm run's" python3 - "$tmp/run/summary.json" "$tmp/r.yaml" <<'PY'
+import json, re, sys
+run = json.load(open(sys.argv[1]))["model_test"]
+text = open(sys.argv[2]).read()
+chi2 = float(re.search(r"^  model_test_chi2: (\S+)$", text, re.M).group(1))
+dof = float(re.search(r"^  model_test_dof: (\S+)$", text, re.M).group(1))
+passed = re.search(r"^  model_test_passed: (\S+)$", text, re.M).group(1) == "true"
+sys.exit(0 if (chi2, dof, passed) == (run["chi2"], run["dof"], run["passed"]) else 1)
+PY
+check "calibrate --json" 0 "$GPM" calibrate --data "$S" --model "$SRC/models/gpm2002.yaml" -o "$tmp/r.yaml" --json
+holds "json has the model test" python3 -c 'import json,sys; d=json.load(open(sys.argv[1])); sys.exit(0 if "model_test_chi2_per_dof" in d["diagnostics"] else 1)' "$tmp/out"
+check "result as --model (still a robot file)" 0 "$GPM" kin home --model "$tmp/r.yaml"
+
+# Without the time and torque columns (an old file): the static model, and its model test.
+cut -d, -f1-6 "$S" >"$tmp/old.csv"
+check "old file" 0 "$GPM" calibrate --data "$tmp/old.csv" --model "$SRC/models/gpm2002.yaml" -o "$tmp/r.yaml"
+expect_out "static model" "the static model"
+expect_out "static model test fails and says so" "^model test fails \(chi2/dof [0-9.e+]+, p [0-9.e+-]+\): the readings scatter"
+check "--static" 0 "$GPM" calibrate --data "$S" --model "$SRC/models/gpm2002.yaml" -o "$tmp/r.yaml" --static --sigma 1e-5
+expect_out "--static: static model" "the static model"
+expect_out "stated sigma understated" "^model test fails .*: the stated 1-sigma understates the error"
+
+# A bad value in the new columns: one line naming file, line and column, exit 2, nothing written.
+awk -F, 'BEGIN{OFS=","} NR==5{$NF="0.x"} {print}' "$S" >"$tmp/bad_t.csv"
+rm -f "$tmp/r.yaml"
+check "bad t" 2 "$GPM" calibrate --data "$tmp/bad_t.csv" --model "$SRC/models/gpm2002.yaml" -o "$tmp/r.yaml"
+expect_err "bad t message" "bad_t.csv:5: column 't': '0.x' is not a number"
+holds "nothing written" test ! -e "$tmp/r.yaml"
+awk -F, 'BEGIN{OFS=","} NR==1{for(i=1;i<=NF;i++) if($i=="tau_last2") c=i} NR==7{$c="nan"} {print}' "$S" >"$tmp/bad_tau.csv"
+check "bad tau_last" 2 "$GPM" calibrate --data "$tmp/bad_tau.csv" --model "$SRC/models/gpm2002.yaml" -o "$tmp/r.yaml"
+expect_err "bad tau_last message" "bad_tau.csv:7: column 'tau_last2': value must be finite"
+awk -F, 'BEGIN{OFS=","} NR==9{$NF="0"} {print}' "$S" >"$tmp/back_t.csv"
+check "t going back" 2 "$GPM" calibrate --data "$tmp/back_t.csv" --model "$SRC/models/gpm2002.yaml" -o "$tmp/r.yaml"
+expect_err "t going back message" "back_t.csv:9: column 't': 0 s does not follow"
+check "bad --encoder-bits" 2 "$GPM" calibrate --data "$S" --encoder-bits 41 -o "$tmp/r.yaml"
+
+finish
