@@ -21,6 +21,7 @@ calib::TransmissionLoad transmission_load(const DriveFriction& friction, const D
     const double la_m = 1e-3 * g.la_(static_cast<int>(i));
     load.coulomb_Nm[i] = friction.coulomb_Nm[i];
     load.viscous_Nm_s[i] = friction.viscous_Nm_s[i];
+    load.rotor_inertia_kg_m2[i] = sheet.reflected_inertia_kg_m2();
     load.inertia_kg_m2[i] =
         sheet.reflected_inertia_kg_m2() +
         (sheet.active_link_mass_kg.nominal / 3.0 + sheet.passive_link_mass_kg.nominal / 2.0) * la_m * la_m;
@@ -54,6 +55,13 @@ CalibrationInputs calibration_inputs(const RunSpec& spec, const Robot& robot) {
   // never changes is left to lb_i).
   motion.clearance = c.estimate_clearance.value_or(in_motion);
   motion.load = transmission_load(c.drive_friction, robot.data_sheet, robot.geometry);
+  motion.gear_ratio = robot.data_sheet.gear_ratio;
+  if (in_motion && motion.compliance) {
+    in.drive_candidates.backlash = {true, true, true};
+    in.drive_candidates.joint_harmonic = {true, true, true};
+    in.drive_candidates.motor_harmonic1 = {true, true, true};
+    in.drive_candidates.motor_harmonic2 = {true, true, true};
+  }
   in.drive_friction = c.drive_friction;
   in.monitor = spec.monitor;
   return in;

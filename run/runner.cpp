@@ -11,6 +11,7 @@
 #include "calib/crb.hpp"
 #include "calib/friction_profile.hpp"
 #include "calib/model_test.hpp"
+#include "calib/reading_model_selection.hpp"
 #include "calib/motion_correction.hpp"
 #include "calib/reading_rates.hpp"
 #include "calib/residuals.hpp"
@@ -366,7 +367,23 @@ RunOutcome run_scenario(const RunSpec& spec_in, const std::string& scenario_file
         motion.torque_before = false;
         fit = calib::calibrate_in_motion(problem, omega, tau, lo, motion, alpha);
       }
+      std::vector<std::string> drive_notes;
+      if (out.crb_sigma_rad > 0.0) {
+        // The drive train's effects the data call for, per joint (calib/reading_model_selection.hpp).
+        calib::DriveEffectSelection chosen =
+            calib::select_drive_effects(problem, omega, tau, lo, motion, alpha, inputs.drive_candidates);
+        fit = std::move(chosen.fit);
+        motion = chosen.model;
+        if (!chosen.kept.empty()) drive_notes.push_back("drive train estimated with the geometry: " + fmt::format("{}", fmt::join(chosen.kept, "; ")));
+        if (!chosen.dropped.empty()) drive_notes.push_back("drive train effects not detected: " + fmt::format("{}", fmt::join(chosen.dropped, "; ")));
+      }
+      if (fit.sandwich_used)
+        drive_notes.push_back(fmt::format(
+            "the readings exceed the noise (chi2/dof {:.3g} with the reading model): the 1-sigma stated are the "
+            "residuals' autocorrelation-robust sandwich, {:.2g}x the noise model's",
+            fit.chi2_per_dof, fit.sandwich_inflation));
       out.calibration = fit.result;
+      for (std::string& note : drive_notes) out.calibration->notes.push_back(std::move(note));
       out.motion_nu = fit.nu;
       out.motion_nu_sigma = fit.nu_sigma;
       used = fit.corrected;

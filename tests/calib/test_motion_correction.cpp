@@ -153,6 +153,7 @@ TEST(MotionCorrection, RecoversTheFrictionTwistAndIgnoringItBiasesTheFit) {
   EXPECT_LT(worst_in_sigmas(d, fit.result), 4.0);
   MotionModel no_friction;
   no_friction.friction = false;
+  no_friction.sandwich = false;  // judged by the noise model's 1-sigma (the sandwich widens it to the misfit)
   const MotionFit biased = calibrate_in_motion(d.problem, d.omega, d.tau, o, no_friction);
   EXPECT_EQ(biased.friction[0], 0.0);
   EXPECT_TRUE(std::isnan(biased.friction_sigma[0]));
@@ -246,6 +247,7 @@ TEST(MotionCorrection, RecoversTheJointClearanceAndIgnoringItBiasesTheFit) {
   EXPECT_LT(worst_in_sigmas(d, fit.result), 4.0);
   EXPECT_TRUE(clearance_detected(fit));
   model.clearance = false;
+  model.sandwich = false;  // judged by the noise model's 1-sigma (the sandwich widens it to the misfit)
   const MotionFit biased = calibrate_in_motion(d.problem, d.omega, d.tau, o, model);
   EXPECT_EQ(biased.kept.size(), poses.size());
   EXPECT_GT(worst_in_sigmas(d, biased.result), 4.0);
@@ -356,7 +358,9 @@ TEST(MotionCorrection, RecoversTheTwistOfTheTorqueBefore) {
   before.torque_before = true;
   const MotionFit fit = calibrate_in_motion(d.problem, d.omega, d.tau, o, before);
   expect_lag_recovered(d, fit, h);
-  const MotionFit biased = calibrate_in_motion(d.problem, d.omega, d.tau, o);
+  MotionModel plain;
+  plain.sandwich = false;  // judged by the noise model's 1-sigma (the sandwich widens it to the misfit)
+  const MotionFit biased = calibrate_in_motion(d.problem, d.omega, d.tau, o, plain);
   EXPECT_EQ(biased.torque_before[0], 0.0);
   EXPECT_TRUE(std::isnan(biased.torque_before_sigma[0]));
   EXPECT_GT(worst_in_sigmas(d, biased.result), 4.0);
