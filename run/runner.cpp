@@ -12,6 +12,7 @@
 #include "calib/friction_profile.hpp"
 #include "calib/model_test.hpp"
 #include "calib/reading_model_selection.hpp"
+#include "calib/reading_step.hpp"
 #include "calib/motion_correction.hpp"
 #include "calib/reading_rates.hpp"
 #include "calib/residuals.hpp"
@@ -240,6 +241,18 @@ RunOutcome run_scenario(const RunSpec& spec_in, const std::string& scenario_file
   }
 
   out.crb_sigma_rad = spec.calibration.sigma.value_or(effective_sigma(spec.sim));
+  std::string step_note;
+  if (in_motion && !spec.calibration.sigma) {
+    // Single readings on the fly show their encoders' step (calib/reading_step.hpp):
+    // a geared drive's motor encoder is finer at the joint than its bits say.
+    if (const std::optional<double> q = calib::reading_step(problem.theta_m)) {
+      const double noise = spec.sim.twin.encoder.noise_rad;
+      out.crb_sigma_rad = std::sqrt(*q * *q / 12.0 + noise * noise);
+      step_note = fmt::format("reading resolution from the samples: {:.4g} rad ({:.4g} counts per joint revolution), "
+                              "reading 1-sigma {:.3g} rad",
+                              *q, 2.0 * M_PI / *q, out.crb_sigma_rad);
+    }
+  }
   if (problem.free.count() <= noiseless.size()) {
     out.crb = scaled_bound([&] { return calib::crb_sigma(actual.geometry, problem.free, noiseless, 1.0); },
                            out.crb_sigma_rad);
@@ -383,6 +396,7 @@ RunOutcome run_scenario(const RunSpec& spec_in, const std::string& scenario_file
             "residuals' autocorrelation-robust sandwich, {:.2g}x the noise model's",
             fit.chi2_per_dof, fit.sandwich_inflation));
       out.calibration = fit.result;
+      if (!step_note.empty()) out.calibration->notes.push_back(step_note);
       for (std::string& note : drive_notes) out.calibration->notes.push_back(std::move(note));
       out.motion_nu = fit.nu;
       out.motion_nu_sigma = fit.nu_sigma;
