@@ -330,6 +330,15 @@ std::vector<Eigen::Vector3d> correct_readings(const std::vector<Eigen::Vector3d>
 
 namespace {
 
+// The noise model's 1-sigma slot of MotionFit that nuisance column k fills (nullptr: none kept).
+double* noise_sigma_slot(MotionFit& fit, std::size_t k) {
+  if (k >= 8 && k < 11) return &fit.noise_sigma.clearance[k - 8];
+  if (k >= 11 && k < 14) return &fit.noise_sigma.torque_before[k - 11];
+  if (k >= 20 && k < 23) return &fit.noise_sigma.backlash[k - 20];
+  if (k >= 23) return &fit.noise_sigma.harmonic[(k - 23) / 6][(k - 23) % 6];
+  return nullptr;
+}
+
 // The 1-sigma slot of MotionFit that nuisance column k fills.
 double& nuisance_sigma_slot(MotionFit& fit, std::size_t k) {
   if (k < 5) return fit.nu_sigma[k];
@@ -460,6 +469,10 @@ MotionFit fit_in_motion(const Problem& problem, const std::vector<Eigen::Vector3
   fit.cyclic_sigma.fill(std::numeric_limits<double>::quiet_NaN());
   fit.backlash_sigma.fill(std::numeric_limits<double>::quiet_NaN());
   for (auto& h : fit.harmonic_sigma) h.fill(std::numeric_limits<double>::quiet_NaN());
+  fit.noise_sigma.clearance = fit.clearance_sigma;
+  fit.noise_sigma.torque_before = fit.torque_before_sigma;
+  fit.noise_sigma.backlash = fit.backlash_sigma;
+  fit.noise_sigma.harmonic = fit.harmonic_sigma;
   Problem p = problem;
   LmOptions lm = options;
   const bool want_covariance = options.compute_covariance;
@@ -579,6 +592,11 @@ MotionFit fit_in_motion(const Problem& problem, const std::vector<Eigen::Vector3
                                             : (dof > 0 ? r.squaredNorm() / dof : std::numeric_limits<double>::quiet_NaN());
     const Eigen::MatrixXd A = (J.transpose() * J).ldlt().solve(Eigen::MatrixXd::Identity(m, m));
     Eigen::MatrixXd C = s2 * A;
+    for (int c = 0; c < q; ++c) {
+      const Eigen::Index i = Jg_free.cols() + c;
+      if (double* slot = noise_sigma_slot(fit, static_cast<std::size_t>(cols[static_cast<std::size_t>(c)])))
+        *slot = std::sqrt(C(i, i));
+    }
     if (options.encoder_sigma && dof > 0) fit.chi2_per_dof = r.squaredNorm() / s2 / dof;
     if (model.sandwich && options.encoder_sigma && dof > 0 && misfit(r.squaredNorm() / s2, dof)) {
       // The residuals exceed the noise: what the model leaves out moves the
@@ -678,13 +696,15 @@ std::array<double, kNumParams> motion_crb(const Geometry& truth, const FreeMask&
 
 bool clearance_detected(const MotionFit& fit, double k) {
   for (std::size_t i = 0; i < 3; ++i)
-    if (std::isfinite(fit.clearance_sigma[i]) && std::abs(fit.clearance[i]) >= k * fit.clearance_sigma[i]) return true;
+    if (std::isfinite(fit.noise_sigma.clearance[i]) && std::abs(fit.clearance[i]) >= k * fit.noise_sigma.clearance[i])
+      return true;
   return false;
 }
 
 bool torque_before_detected(const MotionFit& fit, double k) {
   for (std::size_t i = 0; i < 3; ++i)
-    if (std::isfinite(fit.torque_before_sigma[i]) && std::abs(fit.torque_before[i]) >= k * fit.torque_before_sigma[i])
+    if (std::isfinite(fit.noise_sigma.torque_before[i]) &&
+        std::abs(fit.torque_before[i]) >= k * fit.noise_sigma.torque_before[i])
       return true;
   return false;
 }

@@ -129,6 +129,13 @@ struct MotionFit {
   // revolution; 0 where not estimated, sigma NaN.
   std::array<std::array<double, 6>, 3> harmonic{};
   std::array<std::array<double, 6>, 3> harmonic_sigma{};
+  // The 1-sigma of the noise model alone (sigma^2 (J'J)^-1: neither the
+  // considered cyclic error nor the sandwich), which the tests of "is this
+  // effect there" weigh the estimates by (NaN where not estimated).
+  struct NoiseSigma {
+    std::array<double, 3> clearance{}, torque_before{}, backlash{};
+    std::array<std::array<double, 6>, 3> harmonic{};
+  } noise_sigma;
   double chi2_per_dof = 0.0;                // (r'r / sigma^2) / (n - columns) of the fit (0 without sigma)
   bool sandwich_used = false;               // the covariance is the misfit's sandwich (MotionModel::sandwich)
   double sandwich_inflation = 1.0;          // RMS over the geometry of its 1-sigma over the noise-model 1-sigma
@@ -170,13 +177,13 @@ std::vector<Eigen::Vector3d> correct_readings(const std::vector<Eigen::Vector3d>
                                               const std::vector<Eigen::Vector3d>& tau,
                                               const std::array<double, 5>& nu);
 
-// True if some estimated play d_i of fit lies at least k 1-sigma from 0 (the
+// True if some estimated play d_i of fit lies at least k 1-sigma (of the noise model) from 0 (the
 // test of "no joint clearance", d_i = 0, two-sided at k sigma per chain); a
 // play not estimated (sigma NaN) does not count.
 bool clearance_detected(const MotionFit& fit, double k = 3.0);
 
 // True if some estimated response h_i of fit to the torque before lies at
-// least k 1-sigma from 0 (the test of "the twist follows the torque of its
+// least k 1-sigma (of the noise model) from 0 (the test of "the twist follows the torque of its
 // instant", two-sided at k sigma per joint); one not estimated does not count.
 bool torque_before_detected(const MotionFit& fit, double k = 3.0);
 

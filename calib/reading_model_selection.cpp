@@ -39,7 +39,7 @@ DriveEffectSelection select_drive_effects(const Problem& problem, const std::vec
   bool changed = false;
   for (std::size_t i = 0; i < 3; ++i) {
     if (out.model.backlash[i]) {
-      const double z = sigmas(all.backlash[i], all.backlash_sigma[i]);
+      const double z = sigmas(all.backlash[i], all.noise_sigma.backlash[i]);
       const bool keep = z >= k;
       (keep ? out.kept : out.dropped).push_back(fmt::format("backlash of joint {} ({:.1f} sigma)", i + 1, z));
       if (!keep) out.model.backlash[i] = false, changed = true;
@@ -47,7 +47,7 @@ DriveEffectSelection select_drive_effects(const Problem& problem, const std::vec
     for (std::size_t o = 0; o < 3; ++o) {
       if (!(*orders[o])[i]) continue;
       const auto& h = all.harmonic[o];
-      const auto& hs = all.harmonic_sigma[o];
+      const auto& hs = all.noise_sigma.harmonic[o];
       const double z = std::hypot(sigmas(h[i], hs[i]), sigmas(h[i + 3], hs[i + 3]));
       const bool keep = z >= pair_level;
       (keep ? out.kept : out.dropped)

@@ -3,7 +3,7 @@
 // once per joint revolution and once and twice per motor revolution): a
 // backward selection by Wald tests. The calibration in motion is fitted with
 // every candidate the data excite; a backlash is kept where its estimate lies
-// k 1-sigma from 0, a harmonic where its pair (a, b) does at the same level
+// k 1-sigma of the noise model (MotionFit::noise_sigma) from 0, a harmonic where its pair (a, b) does at the same level
 // (a^2/sa^2 + b^2/sb^2 >= the chi-square(2) quantile of the two-sided k-sigma
 // level); the fit is made again with the kept ones. A robot's data sheet says
 // what its reducer may do; what this robot does is what its readings show.

@@ -305,7 +305,8 @@ TEST(MotionCorrection, NoClearanceIsDetectedWhereThereIsNone) {
   EXPECT_FALSE(clearance_detected(fit));
   MotionFit hand;
   hand.clearance = {0.0, 0.0029, 0.0};
-  hand.clearance_sigma = {NAN, 0.001, 0.001};
+  hand.noise_sigma.clearance = {NAN, 0.001, 0.001};  // the test weighs by the noise model's 1-sigma
+  hand.clearance_sigma = {NAN, 1.0, 1.0};             // not by the stated one
   EXPECT_FALSE(clearance_detected(hand));
   EXPECT_TRUE(clearance_detected(hand, 2.8));
   hand.clearance = {1.0, -0.0031, 0.0};
