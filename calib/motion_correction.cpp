@@ -27,9 +27,16 @@ double ml_residual(const ParamVector& x, const Eigen::Vector3d& theta) {
   return r;
 }
 
-// Number of nuisance columns (nuisance_columns).
-constexpr std::size_t kNuisance = 20;
-constexpr int kFirstCyclic = 14;
+// The nuisance columns (nuisance_columns): where each value's slots start.
+constexpr int kSkew = 0;          // s2 s3
+constexpr int kCompliance = 2;    // c1 c2 c3
+constexpr int kFriction = 5;      // c1 F1, c2 F2, c3 F3
+constexpr int kClearance = 8;     // d1 d2 d3
+constexpr int kBefore = 11;       // h1 h2 h3
+constexpr int kFirstCyclic = 14;  // a1 a2 a3 b1 b2 b3 under the data sheet's prior
+constexpr int kBacklash = 20;     // beta1 beta2 beta3
+constexpr int kHarmonic = 23;     // three orders (joint, motor, 2 x motor), each a1 a2 a3 b1 b2 b3
+constexpr std::size_t kNuisance = 41;
 
 // The change of the drive torques from the sample before to each one:
 // model.torque_between(j) - tau(j) where recorded (one per sample), else
@@ -65,6 +72,13 @@ std::vector<int> nuisance_columns(const MotionModel& m) {
   if (m.clearance) add(8, 3);
   if (m.compliance && m.torque_before) add(11, 3);
   if (m.cyclic_prior_rad > 0.0 && m.estimate_cyclic) add(kFirstCyclic, 6);
+  for (int i = 0; i < 3; ++i)
+    if (m.backlash[static_cast<std::size_t>(i)]) cols.push_back(kBacklash + i);
+  const std::array<const std::array<bool, 3>*, 3> orders{&m.joint_harmonic, &m.motor_harmonic1, &m.motor_harmonic2};
+  for (int o = 0; o < 3; ++o)
+    for (int i = 0; i < 3; ++i)
+      if ((*orders[static_cast<std::size_t>(o)])[static_cast<std::size_t>(i)])
+        cols.push_back(kHarmonic + 6 * o + i), cols.push_back(kHarmonic + 6 * o + 3 + i);
   return cols;
 }
 
@@ -159,33 +173,39 @@ Eigen::Vector3d reading_sensitivity(const ParamVector& x, const Eigen::Vector3d&
   return u;
 }
 
-// One row of the nuisance Jacobian, every column (0..19), from the reading
-// sensitivities u and the sample's regressors (nb: the change of torque
-// from the sample before; reading: the raw readings, for the cyclic error;
-// calib/motion_correction.hpp).
-std::array<double, kNuisance> nuisance_row(const Eigen::Vector3d& u, const Eigen::Vector3d& omega, const Eigen::Vector3d& tau,
-                                           const Eigen::Vector3d& fric, const Eigen::Vector3d& clr, const Eigen::Vector3d& nb,
-                                           const Eigen::Vector3d& reading) {
-  return {u[1] * omega[1],
-          u[2] * omega[2],
-          -u[0] * tau[0],
-          -u[1] * tau[1],
-          -u[2] * tau[2],
-          u[0] * fric[0],
-          u[1] * fric[1],
-          u[2] * fric[2],
-          u[0] * clr[0],
-          u[1] * clr[1],
-          u[2] * clr[2],
-          -u[0] * nb[0],
-          -u[1] * nb[1],
-          -u[2] * nb[2],
-          -u[0] * std::sin(reading[0]),
-          -u[1] * std::sin(reading[1]),
-          -u[2] * std::sin(reading[2]),
-          -u[0] * std::cos(reading[0]),
-          -u[1] * std::cos(reading[1]),
-          -u[2] * std::cos(reading[2])};
+// What one sample offers the nuisance columns besides its reading
+// sensitivities: speed, torque, friction and clearance regressors, the change
+// of torque from the sample before (nb), the raw readings (for the cyclic
+// errors) and the sign of each mesh's torque (0 uncertain; calib/motion_correction.hpp).
+struct SampleRegressors {
+  Eigen::Vector3d omega, tau, fric, clr, nb, reading, flank;
+};
+
+// Angle of harmonic order o (0: joint revolution, 1: motor revolution, 2: twice per motor revolution) of reading r.
+double harmonic_angle(int o, double r, double gear_ratio) { return o == 0 ? r : o * gear_ratio * r; }
+
+// One row of the nuisance Jacobian, every column, from the reading
+// sensitivities u and the sample's regressors x (calib/motion_correction.hpp).
+std::array<double, kNuisance> nuisance_row(const Eigen::Vector3d& u, const SampleRegressors& x, double gear_ratio) {
+  std::array<double, kNuisance> row{};
+  row[kSkew] = u[1] * x.omega[1];
+  row[kSkew + 1] = u[2] * x.omega[2];
+  for (int i = 0; i < 3; ++i) {
+    const auto k = static_cast<std::size_t>(i);
+    row[kCompliance + k] = -u[i] * x.tau[i];
+    row[kFriction + k] = u[i] * x.fric[i];
+    row[kClearance + k] = u[i] * x.clr[i];
+    row[kBefore + k] = -u[i] * x.nb[i];
+    row[kFirstCyclic + k] = -u[i] * std::sin(x.reading[i]);
+    row[kFirstCyclic + 3 + k] = -u[i] * std::cos(x.reading[i]);
+    row[kBacklash + k] = -u[i] * x.flank[i];
+    for (std::size_t o = 0; o < 3; ++o) {
+      const double a = harmonic_angle(static_cast<int>(o), x.reading[i], gear_ratio);
+      row[kHarmonic + 6 * o + k] = -u[i] * std::sin(a);
+      row[kHarmonic + 6 * o + 3 + k] = -u[i] * std::cos(a);
+    }
+  }
+  return row;
 }
 
 // The rows of the cyclic error's prior (MotionModel::cyclic_prior_rad) for
@@ -196,7 +216,7 @@ void append_cyclic_prior(const std::vector<int>& cols, Eigen::Index first, doubl
                          Eigen::VectorXd* r, const std::array<double, kNuisance>* values) {
   std::vector<int> at;
   for (std::size_t c = 0; c < cols.size(); ++c)
-    if (cols[c] >= kFirstCyclic) at.push_back(static_cast<int>(c));
+    if (cols[c] >= kFirstCyclic && cols[c] < kBacklash) at.push_back(static_cast<int>(c));
   if (at.empty()) return;
   const Eigen::Index n = J.rows(), extra = static_cast<Eigen::Index>(at.size());
   J.conservativeResize(n + extra, Eigen::NoChange);
@@ -212,7 +232,8 @@ void append_cyclic_prior(const std::vector<int>& cols, Eigen::Index first, doubl
 // The nuisance columns of model that the samples excite (calibrate_in_motion).
 std::vector<int> excited_columns(const MotionModel& model, const std::vector<Eigen::Vector3d>& omega,
                                  const std::vector<Eigen::Vector3d>& tau, const std::vector<Eigen::Vector3d>& fric,
-                                 const std::vector<Eigen::Vector3d>& clr, const std::vector<Eigen::Vector3d>& nb) {
+                                 const std::vector<Eigen::Vector3d>& clr, const std::vector<Eigen::Vector3d>& nb,
+                                 const std::vector<Eigen::Vector3d>& flank) {
   const std::size_t n = omega.size();
   auto regressor = [&](int c, std::size_t j) {
     if (c < 2) return omega[j][c + 1];
@@ -220,21 +241,25 @@ std::vector<int> excited_columns(const MotionModel& model, const std::vector<Eig
     if (c < 8) return model.friction ? fric[j][c - 5] : 0.0;
     if (c < 11) return clr[j][c - 8];
     if (c < kFirstCyclic) return nb.empty() ? 0.0 : nb[j][c - 11] - nb[0][c - 11];
-    return 1.0;  // the cyclic error: held by its prior
+    return 1.0;  // the cyclic errors: a harmonic of the reading itself
+  };
+  // A value whose regressor takes both signs, each in at least kMinSignShare
+  // of the samples (a play or a flank that never changes is a constant, held
+  // by lb_i or dth_i).
+  const auto both_signs = [&](const std::vector<Eigen::Vector3d>& v, int i) {
+    double pos = 0.0, neg = 0.0;
+    for (std::size_t j = 0; j < n; ++j) {
+      if (v[j][i] > 0.0) pos += 1.0;
+      if (v[j][i] < 0.0) neg += 1.0;
+    }
+    return std::min(pos, neg) >= kMinSignShare * static_cast<double>(n) ? 1.0 : 0.0;
   };
   std::vector<int> cols;
   for (int c : nuisance_columns(model)) {
     double excitation = 0.0;
     for (std::size_t j = 0; j < n; ++j) excitation += std::abs(regressor(c, j));
-    if (c >= 8 && c < 11) {
-      // A passive link whose force keeps one sign stays at one end of its
-      // play: a constant length change, part of lb_i (chain 1 held at a
-      // constant torque). Its play is estimated when each sign holds in at
-      // least kMinSignShare of the samples.
-      double pos = 0.0, neg = 0.0;
-      for (std::size_t j = 0; j < n; ++j) (clr[j][c - 8] > 0.0 ? pos : clr[j][c - 8] < 0.0 ? neg : excitation) += 1.0;
-      excitation = std::min(pos, neg) >= kMinSignShare * static_cast<double>(n) ? 1.0 : 0.0;
-    }
+    if (c >= kClearance && c < kClearance + 3) excitation = both_signs(clr, c - kClearance);
+    if (c >= kBacklash && c < kBacklash + 3) excitation = both_signs(flank, c - kBacklash);
     if (excitation > 0.0) cols.push_back(c);
   }
   return cols;
@@ -260,12 +285,32 @@ std::vector<Eigen::Vector3d> transmitted_torques(const MotionModel& model, const
   return tau_t;
 }
 
+// The sign of each mesh's torque (MotionModel::backlash), 0 where it is
+// below model.backlash_torque_min_Nm or the joint has no backlash estimated.
+std::vector<Eigen::Vector3d> flank_regressors(const MotionModel& model, const std::vector<Eigen::Vector3d>& omega,
+                                              const std::vector<Eigen::Vector3d>& tau,
+                                              const std::vector<Eigen::Vector3d>& alpha) {
+  std::vector<Eigen::Vector3d> flank(omega.size(), Eigen::Vector3d::Zero());
+  for (std::size_t j = 0; j < omega.size(); ++j)
+    for (int i = 0; i < 3; ++i) {
+      if (!model.backlash[static_cast<std::size_t>(i)]) continue;
+      const double t = mesh_torque(model.load, i, tau[j][i], omega[j][i], alpha.empty() ? 0.0 : alpha[j][i]);
+      if (std::abs(t) >= model.backlash_torque_min_Nm) flank[j][i] = t > 0.0 ? 1.0 : -1.0;
+    }
+  return flank;
+}
+
 // The samples calibrate_in_motion keeps: after the first model.skip_first,
-// those whose clearance regressors are all certain (with drop_uncertain).
-std::vector<std::size_t> kept_samples(const MotionModel& model, const std::vector<Eigen::Vector3d>& clr) {
+// those whose clearance regressors are all certain (with drop_uncertain) and
+// whose meshes' flanks are certain where a backlash is estimated.
+std::vector<std::size_t> kept_samples(const MotionModel& model, const std::vector<Eigen::Vector3d>& clr,
+                                      const std::vector<Eigen::Vector3d>& flank) {
   std::vector<std::size_t> kept;
-  for (std::size_t j = static_cast<std::size_t>(std::max(0, model.skip_first)); j < clr.size(); ++j)
-    if (!(model.clearance && model.drop_uncertain) || (clr[j].array() != 0.0).all()) kept.push_back(j);
+  for (std::size_t j = static_cast<std::size_t>(std::max(0, model.skip_first)); j < clr.size(); ++j) {
+    bool ok = !(model.clearance && model.drop_uncertain) || (clr[j].array() != 0.0).all();
+    for (int i = 0; i < 3; ++i) ok = ok && (!model.backlash[static_cast<std::size_t>(i)] || flank[j][i] != 0.0);
+    if (ok) kept.push_back(j);
+  }
   return kept;
 }
 
@@ -284,6 +329,67 @@ std::vector<Eigen::Vector3d> correct_readings(const std::vector<Eigen::Vector3d>
 }
 
 namespace {
+
+// The noise model's 1-sigma slot of MotionFit that nuisance column k fills (nullptr: none kept).
+double* noise_sigma_slot(MotionFit& fit, std::size_t k) {
+  if (k >= 8 && k < 11) return &fit.noise_sigma.clearance[k - 8];
+  if (k >= 11 && k < 14) return &fit.noise_sigma.torque_before[k - 11];
+  if (k >= 20 && k < 23) return &fit.noise_sigma.backlash[k - 20];
+  if (k >= 23) return &fit.noise_sigma.harmonic[(k - 23) / 6][(k - 23) % 6];
+  return nullptr;
+}
+
+// The 1-sigma slot of MotionFit that nuisance column k fills.
+double& nuisance_sigma_slot(MotionFit& fit, std::size_t k) {
+  if (k < 5) return fit.nu_sigma[k];
+  if (k < 8) return fit.friction_sigma[k - 5];
+  if (k < 11) return fit.clearance_sigma[k - 8];
+  if (k < 14) return fit.torque_before_sigma[k - 11];
+  if (k < 20) return fit.cyclic_sigma[k - 14];
+  if (k < 23) return fit.backlash_sigma[k - 20];
+  const std::size_t h = k - static_cast<std::size_t>(kHarmonic);
+  return fit.harmonic_sigma[h / 6][h % 6];
+}
+
+// True when chi2 for dof degrees of freedom exceeds the noise at 0.1 %
+// (Wilson-Hilferty: (chi2/dof)^(1/3) is about normal, mean 1 - 2/(9 dof),
+// variance 2/(9 dof)).
+bool misfit(double chi2, double dof) {
+  const double v = 2.0 / (9.0 * dof);
+  return (std::cbrt(chi2 / dof) - (1.0 - v)) / std::sqrt(v) > 3.09;
+}
+
+// Bartlett bandwidth L of Andrews (1991) for residuals r along the path,
+// modelled as AR(1) with coefficient rho (their lag-1 autocorrelation):
+// L = 1.1447 (alpha n)^(1/3), alpha = 4 rho^2 / ((1 - rho)^2 (1 + rho)^2);
+// at most n / 2.
+int andrews_bandwidth(const Eigen::VectorXd& r) {
+  const Eigen::Index n = r.size();
+  if (n < 3) return 0;
+  const double rho = std::clamp(r.head(n - 1).dot(r.tail(n - 1)) / r.head(n - 1).squaredNorm(), -0.999, 0.999);
+  const double alpha = 4.0 * rho * rho / ((1.0 - rho) * (1.0 - rho) * (1.0 + rho) * (1.0 + rho));
+  const double L = 1.1447 * std::cbrt(alpha * static_cast<double>(n));
+  return static_cast<int>(std::min(std::floor(L), static_cast<double>(n / 2)));
+}
+
+// The autocorrelation-consistent (Newey-West, Bartlett weights 1 - |l| / (L + 1))
+// covariance of the least-squares estimate with (J'J)^-1 = A and residuals r
+// along the path: A B A, B = sum_{j,k} (1 - |j - k| / (L + 1))_+ g_j g_k',
+// g_j = J_j' r_j, L = andrews_bandwidth(r). B is summed as the windows of
+// L + 1 consecutive g (every window that overlaps the path, partial ones at
+// its ends): sum_t S_t S_t' / (L + 1), which is O(n) for any L.
+Eigen::MatrixXd newey_west_sandwich(const Eigen::MatrixXd& A, const Eigen::MatrixXd& J, const Eigen::VectorXd& r) {
+  const Eigen::Index n = J.rows(), m = J.cols();
+  const int L = andrews_bandwidth(r);
+  Eigen::MatrixXd prefix = Eigen::MatrixXd::Zero(n + 1, m);  // row k: sum of g_j, j < k
+  for (Eigen::Index j = 0; j < n; ++j) prefix.row(j + 1) = prefix.row(j) + r[j] * J.row(j);
+  Eigen::MatrixXd B = Eigen::MatrixXd::Zero(m, m);
+  for (Eigen::Index t = -L; t < n; ++t) {
+    const Eigen::RowVectorXd S = prefix.row(std::min(n, t + L + 1)) - prefix.row(std::max<Eigen::Index>(0, t));
+    B.noalias() += S.transpose() * S;
+  }
+  return A * (B / (L + 1.0)) * A;
+}
 
 // calibrate_in_motion with the torque changes nb (torques_before of the
 // whole sequence; empty without model.torque_before) given.
@@ -314,9 +420,11 @@ MotionFit fit_in_motion(const Problem& problem, const std::vector<Eigen::Vector3
   const double tension_min = effective_tension_min(model, forces);
   std::vector<Eigen::Vector3d> clr(n, Eigen::Vector3d::Zero());
   if (model.clearance) clr = clearance_regressors(forces, tension_min);
+  const std::vector<Eigen::Vector3d> flank = flank_regressors(model, omega, tau, alpha);
   // Samples left out: the leading ones, and (with the clearance) those in
-  // which some chain's force sign is uncertain; the fit runs on the rest.
-  std::vector<std::size_t> kept = kept_samples(model, clr);
+  // which some chain's force sign is uncertain, and those where a mesh with
+  // backlash crosses its gap; the fit runs on the rest.
+  std::vector<std::size_t> kept = kept_samples(model, clr, flank);
   if (kept.size() < n) {
     Problem sub = problem;
     sub.theta_m.clear();
@@ -350,7 +458,7 @@ MotionFit fit_in_motion(const Problem& problem, const std::vector<Eigen::Vector3
   MotionModel with_prior = model;
   if (!options.encoder_sigma) with_prior.cyclic_prior_rad = 0.0;
   const double prior_weight = with_prior.cyclic_prior_rad > 0.0 ? *options.encoder_sigma / with_prior.cyclic_prior_rad : 0.0;
-  const std::vector<int> cols = excited_columns(with_prior, omega, tau, fric, clr, nb);
+  const std::vector<int> cols = excited_columns(with_prior, omega, tau, fric, clr, nb, flank);
   const int q = static_cast<int>(cols.size());
 
   MotionFit fit;
@@ -359,6 +467,12 @@ MotionFit fit_in_motion(const Problem& problem, const std::vector<Eigen::Vector3
   fit.clearance_sigma.fill(std::numeric_limits<double>::quiet_NaN());
   fit.torque_before_sigma.fill(std::numeric_limits<double>::quiet_NaN());
   fit.cyclic_sigma.fill(std::numeric_limits<double>::quiet_NaN());
+  fit.backlash_sigma.fill(std::numeric_limits<double>::quiet_NaN());
+  for (auto& h : fit.harmonic_sigma) h.fill(std::numeric_limits<double>::quiet_NaN());
+  fit.noise_sigma.clearance = fit.clearance_sigma;
+  fit.noise_sigma.torque_before = fit.torque_before_sigma;
+  fit.noise_sigma.backlash = fit.backlash_sigma;
+  fit.noise_sigma.harmonic = fit.harmonic_sigma;
   Problem p = problem;
   LmOptions lm = options;
   const bool want_covariance = options.compute_covariance;
@@ -377,14 +491,21 @@ MotionFit fit_in_motion(const Problem& problem, const std::vector<Eigen::Vector3
     std::copy_n(nu_all.begin() + 8, 3, fit.clearance.begin());
     std::copy_n(nu_all.begin() + 11, 3, fit.torque_before.begin());
     std::copy_n(nu_all.begin() + kFirstCyclic, 6, fit.cyclic.begin());
+    std::copy_n(nu_all.begin() + kBacklash, 3, fit.backlash.begin());
+    for (std::size_t o = 0; o < 3; ++o) std::copy_n(nu_all.begin() + kHarmonic + 6 * o, 6, fit.harmonic[o].begin());
     std::vector<Eigen::Vector3d> out = correct_readings(problem.theta_m, omega, tau, fit.nu);
     for (std::size_t j = 0; j < n; ++j)
       for (int k = 0; k < 3; ++k) {
-        out[j][k] += fit.friction[static_cast<std::size_t>(k)] * fric[j][k];
-        if (!nb.empty()) out[j][k] -= fit.torque_before[static_cast<std::size_t>(k)] * nb[j][k];
+        const auto i = static_cast<std::size_t>(k);
+        out[j][k] += fit.friction[i] * fric[j][k];
+        if (!nb.empty()) out[j][k] -= fit.torque_before[i] * nb[j][k];
         const double raw = problem.theta_m[j][k];
-        out[j][k] -= fit.cyclic[static_cast<std::size_t>(k)] * std::sin(raw) +
-                     fit.cyclic[static_cast<std::size_t>(k) + 3] * std::cos(raw);
+        out[j][k] -= fit.cyclic[i] * std::sin(raw) + fit.cyclic[i + 3] * std::cos(raw);
+        out[j][k] -= fit.backlash[i] * flank[j][k];
+        for (std::size_t o = 0; o < 3; ++o) {
+          const double a = harmonic_angle(static_cast<int>(o), raw, model.gear_ratio);
+          out[j][k] -= fit.harmonic[o][i] * std::sin(a) + fit.harmonic[o][i + 3] * std::cos(a);
+        }
       }
     return out;
   };
@@ -422,8 +543,9 @@ MotionFit fit_in_motion(const Problem& problem, const std::vector<Eigen::Vector3
     for (std::size_t j = 0; j < n; ++j) {
       const Eigen::Vector3d& th = p.theta_m[j];
       r[static_cast<Eigen::Index>(j)] = ml_residual(x, th);
-      const std::array<double, kNuisance> all = nuisance_row(reading_sensitivity(x, th), omega[j], tau[j], fric[j], clr[j],
-                                                             nb.empty() ? Eigen::Vector3d::Zero() : nb[j], problem.theta_m[j]);
+      const SampleRegressors reg{omega[j], tau[j], fric[j], clr[j], nb.empty() ? Eigen::Vector3d::Zero() : nb[j],
+                                 problem.theta_m[j], flank[j]};
+      const std::array<double, kNuisance> all = nuisance_row(reading_sensitivity(x, th), reg, model.gear_ratio);
       for (int c = 0; c < q; ++c) Jn(static_cast<Eigen::Index>(j), c) = all[static_cast<std::size_t>(cols[static_cast<std::size_t>(c)])];
       for (int c = 0; c < 6; ++c) Jc(static_cast<Eigen::Index>(j), c) = all[static_cast<std::size_t>(kFirstCyclic + c)];
     }
@@ -470,6 +592,20 @@ MotionFit fit_in_motion(const Problem& problem, const std::vector<Eigen::Vector3
                                             : (dof > 0 ? r.squaredNorm() / dof : std::numeric_limits<double>::quiet_NaN());
     const Eigen::MatrixXd A = (J.transpose() * J).ldlt().solve(Eigen::MatrixXd::Identity(m, m));
     Eigen::MatrixXd C = s2 * A;
+    for (int c = 0; c < q; ++c) {
+      const Eigen::Index i = Jg_free.cols() + c;
+      if (double* slot = noise_sigma_slot(fit, static_cast<std::size_t>(cols[static_cast<std::size_t>(c)])))
+        *slot = std::sqrt(C(i, i));
+    }
+    if (options.encoder_sigma && dof > 0) fit.chi2_per_dof = r.squaredNorm() / s2 / dof;
+    if (model.sandwich && options.encoder_sigma && dof > 0 && misfit(r.squaredNorm() / s2, dof)) {
+      // The residuals exceed the noise: what the model leaves out moves the
+      // estimate as much as it moves the residuals, correlated along the path.
+      const Eigen::MatrixXd S = newey_west_sandwich(A, J.topRows(static_cast<Eigen::Index>(n)), r);
+      fit.sandwich_inflation = std::sqrt(S.diagonal().head(Jg_free.cols()).sum() /
+                                         C.diagonal().head(Jg_free.cols()).sum());
+      if (fit.sandwich_inflation > 1.0) C = S, fit.sandwich_used = true;
+    }
     if (considers_cyclic(model)) add_considered(A, J, Jc, model.cyclic_prior_rad, C);
     auto& cov = *fit.result.covariance;
     cov.setZero();
@@ -481,8 +617,7 @@ MotionFit fit_in_motion(const Problem& problem, const std::vector<Eigen::Vector3
     for (int c = 0; c < q; ++c) {
       const Eigen::Index i = Jg_free.cols() + c;
       const std::size_t k = static_cast<std::size_t>(cols[static_cast<std::size_t>(c)]);
-      (k < 5 ? fit.nu_sigma[k] : k < 8 ? fit.friction_sigma[k - 5] : k < 11 ? fit.clearance_sigma[k - 8]
-                                       : k < 14 ? fit.torque_before_sigma[k - 11] : fit.cyclic_sigma[k - 14]) = std::sqrt(C(i, i));
+      nuisance_sigma_slot(fit, k) = std::sqrt(C(i, i));
     }
   }
   return fit;
@@ -512,16 +647,18 @@ std::array<double, kNumParams> motion_crb(const Geometry& truth, const FreeMask&
     clr = clearance_regressors(forces, effective_tension_min(model, forces));
   }
   const std::vector<Eigen::Vector3d> nb_all = torques_before(model, tau);
-  std::vector<Eigen::Vector3d> th, w, t, c, nb;
-  for (std::size_t j : kept_samples(model, clr)) {
+  const std::vector<Eigen::Vector3d> flank_all = flank_regressors(model, omega, tau, alpha);
+  std::vector<Eigen::Vector3d> th, w, t, c, nb, flank;
+  for (std::size_t j : kept_samples(model, clr, flank_all)) {
     if (!nb_all.empty()) nb.push_back(nb_all[j]);
     th.push_back(theta_m[j]);
     w.push_back(omega[j]);
     t.push_back(tau[j]);
     c.push_back(clr[j]);
+    flank.push_back(flank_all[j]);
   }
   const std::vector<Eigen::Vector3d> fric = friction_regressors(model, w);
-  const std::vector<int> cols = excited_columns(model, w, t, fric, c, nb);
+  const std::vector<int> cols = excited_columns(model, w, t, fric, c, nb, flank);
   std::vector<int> free_index;
   for (int k = 0; k < kNumParams; ++k)
     if (free[k]) free_index.push_back(k);
@@ -532,8 +669,8 @@ std::array<double, kNumParams> motion_crb(const Geometry& truth, const FreeMask&
   for (std::size_t j = 0; j < th.size(); ++j) {
     const auto row = static_cast<Eigen::Index>(j);
     for (std::size_t k = 0; k < free_index.size(); ++k) J(row, static_cast<Eigen::Index>(k)) = J_all(row, free_index[k]);
-    const std::array<double, kNuisance> all =
-        nuisance_row(reading_sensitivity(x, th[j]), w[j], t[j], fric[j], c[j], nb.empty() ? Eigen::Vector3d::Zero() : nb[j], th[j]);
+    const SampleRegressors reg{w[j], t[j], fric[j], c[j], nb.empty() ? Eigen::Vector3d::Zero() : nb[j], th[j], flank[j]};
+    const std::array<double, kNuisance> all = nuisance_row(reading_sensitivity(x, th[j]), reg, model.gear_ratio);
     for (std::size_t k = 0; k < cols.size(); ++k)
       J(row, static_cast<Eigen::Index>(free_index.size() + k)) = all[static_cast<std::size_t>(cols[k])];
     for (int c = 0; c < 6; ++c) Jc(row, c) = all[static_cast<std::size_t>(kFirstCyclic + c)];
@@ -559,13 +696,15 @@ std::array<double, kNumParams> motion_crb(const Geometry& truth, const FreeMask&
 
 bool clearance_detected(const MotionFit& fit, double k) {
   for (std::size_t i = 0; i < 3; ++i)
-    if (std::isfinite(fit.clearance_sigma[i]) && std::abs(fit.clearance[i]) >= k * fit.clearance_sigma[i]) return true;
+    if (std::isfinite(fit.noise_sigma.clearance[i]) && std::abs(fit.clearance[i]) >= k * fit.noise_sigma.clearance[i])
+      return true;
   return false;
 }
 
 bool torque_before_detected(const MotionFit& fit, double k) {
   for (std::size_t i = 0; i < 3; ++i)
-    if (std::isfinite(fit.torque_before_sigma[i]) && std::abs(fit.torque_before[i]) >= k * fit.torque_before_sigma[i])
+    if (std::isfinite(fit.noise_sigma.torque_before[i]) &&
+        std::abs(fit.torque_before[i]) >= k * fit.noise_sigma.torque_before[i])
       return true;
   return false;
 }

@@ -94,6 +94,18 @@ struct MotionModel {
                                   // covariance and the bound (considered) or estimated (estimate_cyclic)
   bool estimate_cyclic = false;   // with cyclic_prior_rad: estimate a_i, b_i under the prior (needs
                                   // LmOptions::encoder_sigma; without it they are not estimated)
+  // A geared drive between its motor encoder and its link (each per joint;
+  // which ones a robot needs is chosen by the data, calib/reading_model_selection.hpp):
+  std::array<bool, 3> backlash{};  // half the lost motion beta_i: theta_a = theta_m - beta_i sgn(tau_mesh_i)
+  double backlash_torque_min_Nm = 0.1;  // |tau_mesh_i| below this: the flank in contact uncertain, the
+                                        // sample left out (the link crosses the gap)
+  std::array<bool, 3> joint_harmonic{};   // once per joint revolution, a_i sin(theta_m) + b_i cos(theta_m),
+                                          // estimated without a prior (the reducer's transmission error)
+  std::array<bool, 3> motor_harmonic1{};  // once per motor revolution: a sin(N theta_m) + b cos(N theta_m)
+  std::array<bool, 3> motor_harmonic2{};  // twice per motor revolution: a sin(2 N theta_m) + b cos(2 N theta_m)
+  double gear_ratio = 1.0;                // N: motor revolutions per joint revolution (the data sheet's)
+  bool sandwich = true;  // when the fit's residuals exceed the noise (chi-square test at 0.1 %), the covariance
+                         // is the autocorrelation-robust sandwich of the residuals (Newey-West), not sigma^2 (J'J)^-1
   int skip_first = 0;          // leading samples left out (the drives' start transient)
   int max_passes = 6;      // Gauss-Newton passes (each one LM fit)
 };
@@ -111,6 +123,22 @@ struct MotionFit {
   std::array<double, 3> torque_before_sigma{};  // their 1-sigma (NaN where not estimated)
   std::array<double, 6> cyclic{};           // a1 a2 a3 b1 b2 b3 (rad); 0 where not estimated
   std::array<double, 6> cyclic_sigma{};     // their 1-sigma, prior included (NaN where not estimated)
+  std::array<double, 3> backlash{};         // beta_i (rad); 0 where not estimated
+  std::array<double, 3> backlash_sigma{};   // their 1-sigma (NaN where not estimated)
+  // Harmonics a1 a2 a3 b1 b2 b3 (rad) of each order: once per joint revolution, once and twice per motor
+  // revolution; 0 where not estimated, sigma NaN.
+  std::array<std::array<double, 6>, 3> harmonic{};
+  std::array<std::array<double, 6>, 3> harmonic_sigma{};
+  // The 1-sigma of the noise model alone (sigma^2 (J'J)^-1: neither the
+  // considered cyclic error nor the sandwich), which the tests of "is this
+  // effect there" weigh the estimates by (NaN where not estimated).
+  struct NoiseSigma {
+    std::array<double, 3> clearance{}, torque_before{}, backlash{};
+    std::array<std::array<double, 6>, 3> harmonic{};
+  } noise_sigma;
+  double chi2_per_dof = 0.0;                // (r'r / sigma^2) / (n - columns) of the fit (0 without sigma)
+  bool sandwich_used = false;               // the covariance is the misfit's sandwich (MotionModel::sandwich)
+  double sandwich_inflation = 1.0;          // RMS over the geometry of its 1-sigma over the noise-model 1-sigma
   double tension_min_N = 0.0;               // the force threshold used (MotionModel::tension_min_N or lower)
   std::array<double, 3> clearance_used{};   // fraction of the samples whose force sign was certain, per chain
   int passes = 0;
@@ -149,13 +177,13 @@ std::vector<Eigen::Vector3d> correct_readings(const std::vector<Eigen::Vector3d>
                                               const std::vector<Eigen::Vector3d>& tau,
                                               const std::array<double, 5>& nu);
 
-// True if some estimated play d_i of fit lies at least k 1-sigma from 0 (the
+// True if some estimated play d_i of fit lies at least k 1-sigma (of the noise model) from 0 (the
 // test of "no joint clearance", d_i = 0, two-sided at k sigma per chain); a
 // play not estimated (sigma NaN) does not count.
 bool clearance_detected(const MotionFit& fit, double k = 3.0);
 
 // True if some estimated response h_i of fit to the torque before lies at
-// least k 1-sigma from 0 (the test of "the twist follows the torque of its
+// least k 1-sigma (of the noise model) from 0 (the test of "the twist follows the torque of its
 // instant", two-sided at k sigma per joint); one not estimated does not count.
 bool torque_before_detected(const MotionFit& fit, double k = 3.0);
 

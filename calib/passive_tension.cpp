@@ -12,6 +12,13 @@ double transmitted_torque(const TransmissionLoad& load, int i, double tau, doubl
   return tau - load.coulomb_Nm[k] * sign - load.viscous_Nm_s[k] * omega - load.inertia_kg_m2[k] * alpha;
 }
 
+double mesh_torque(const TransmissionLoad& load, int i, double tau, double omega, double alpha) {
+  const auto k = static_cast<std::size_t>(i);
+  const double v = load.friction_speed_rad_s;
+  const double sign = v > 0.0 ? std::tanh(omega / v) : (omega > 0.0 ? 1.0 : (omega < 0.0 ? -1.0 : 0.0));
+  return tau - load.coulomb_Nm[k] * sign - load.viscous_Nm_s[k] * omega - load.rotor_inertia_kg_m2[k] * alpha;
+}
+
 double passive_link_tension(const Geometry& g, int i, double theta_a, double theta_b, double tau_t) {
   return -tau_t / (1e-3 * g.la_(i) * std::sin(theta_b - theta_a));
 }

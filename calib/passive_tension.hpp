@@ -44,6 +44,7 @@ struct TransmissionLoad {
   std::array<double, 3> coulomb_Nm{};     // motor-side Coulomb friction F_i
   std::array<double, 3> viscous_Nm_s{};   // viscous friction b_i (per rad/s)
   std::array<double, 3> inertia_kg_m2{};  // rotor (reflected) plus active link about A_i
+  std::array<double, 3> rotor_inertia_kg_m2{};  // the rotor alone, reflected to the joint (the mesh's load)
   double friction_speed_rad_s = kFrictionSpeed;  // v_F: the friction reaches tanh(1) = 76 % of F_i at this
                                                  // speed (a drive's friction builds up over a speed range:
                                                  // lubricant film, the seal's and the reducer's compliance);
@@ -53,6 +54,11 @@ struct TransmissionLoad {
 // The torque transmitted to active link i (N m) at drive torque tau (N m),
 // joint speed omega (rad/s) and acceleration alpha (rad/s^2).
 double transmitted_torque(const TransmissionLoad& load, int i, double tau, double omega, double alpha);
+
+// The torque the reducer's mesh of joint i carries (N m): the drive torque
+// tau less the motor-side friction and the rotor's inertia,
+// tau - F_i tanh(omega / v_F) - b_i omega - J_r_i alpha (the flank in contact is its sign).
+double mesh_torque(const TransmissionLoad& load, int i, double tau, double omega, double alpha);
 
 // Axial force T_i (N, > 0 in tension) of passive link i (0..2) of geometry g
 // (mm) at active angle theta_a and passive angle theta_b (rad), from the

@@ -1,6 +1,7 @@
 #include "models/data_sheet.hpp"
 
 #include <array>
+#include <cmath>
 
 #include <fmt/format.h>
 #include <yaml-cpp/yaml.h>
@@ -20,8 +21,9 @@ struct Item {
   const char* unit;
 };
 
-constexpr std::array<Item, 11> kItems{{
+constexpr std::array<Item, 12> kItems{{
     {"encoder_accuracy_rad", &DataSheet::encoder_accuracy_rad, 0.0, 0.01, false, "rad"},
+    {"transmission_error_rad", &DataSheet::transmission_error_rad, 0.0, 0.01, false, "rad"},
     {"rotor_inertia_kg_m2", &DataSheet::rotor_inertia_kg_m2, 0.0, 0.01, true, "kg m^2"},
     {"active_link_mass_kg", &DataSheet::active_link_mass_kg, 0.0, 100.0, true, "kg"},
     {"passive_link_mass_kg", &DataSheet::passive_link_mass_kg, 0.0, 100.0, true, "kg"},
@@ -80,12 +82,16 @@ Stated read_stated(const YAML::Node& n, const std::string& file, const std::stri
 
 }  // namespace
 
+double DataSheet::joint_harmonic_max_rad() const {
+  return std::hypot(transmission_error_rad.max(), gear_ratio == 1.0 ? encoder_accuracy_rad.max() : 0.0);
+}
+
 DataSheet data_sheet_from_yaml(const YAML::Node& node, const std::string& file, const std::string& keypath) {
   if (!node.IsMap())
     throw InputError(yaml_where(file, node, keypath) +
                      "expected a map of the robot's stated values (gear_ratio, encoder_bits, coulomb_Nm, ...; docs/FORMATS.md)");
   yaml_check_keys(node, file, keypath,
-                  {"gear_ratio", "encoder_bits", "encoder_accuracy_rad", "rotor_inertia_kg_m2", "active_link_mass_kg",
+                  {"gear_ratio", "encoder_bits", "encoder_accuracy_rad", "transmission_error_rad", "rotor_inertia_kg_m2", "active_link_mass_kg",
                    "passive_link_mass_kg", "end_effector_mass_kg", "coulomb_Nm", "viscous_Nm_s", "stiffness_Nm_per_rad",
                    "clearance_mm", "latch_skew_s", "warm_up_time_constant_s"});
   DataSheet d;

@@ -38,6 +38,9 @@ struct DataSheet {
   int encoder_bits = 17;     // 2^bits counts per motor revolution (exact)
   // Once-per-revolution error amplitude of each encoder (rad): +-4 arcsec accuracy class, up to.
   Stated encoder_accuracy_rad{2e-5, 0.0, 1.0};
+  // The reducer's kinematic (transmission) error once per output revolution, amplitude (rad): up to
+  // 1.5 arcmin, a precision planetary's transmission accuracy class.
+  Stated transmission_error_rad{4.3633e-4, 0.0, 1.0};
   Stated rotor_inertia_kg_m2{2.6e-5, 0.9, 1.1};   // J_r, motor side, +-10 %
   Stated active_link_mass_kg{0.40, 0.95, 1.05};   // aluminium bar 244 x 40 x 15 mm, +-5 %
   Stated passive_link_mass_kg{0.25, 0.95, 1.05};  // aluminium bar 244 x 30 x 12 mm, +-5 %
@@ -52,6 +55,9 @@ struct DataSheet {
   Stated latch_skew_s{50e-6, 0.0, 2.0};
   Stated warm_up_time_constant_s{600.0, 0.5, 2.0};  // tau_T: first-order warm-up of the mechanism (s)
 
+  // The largest error once per joint revolution it admits (rad): the reducer's, and the encoder's own
+  // when it sits on the joint (N = 1), in quadrature.
+  double joint_harmonic_max_rad() const;
   // The rotor inertia reflected to the joint, J_r N^2 (kg m^2).
   double reflected_inertia_kg_m2() const { return rotor_inertia_kg_m2.nominal * gear_ratio * gear_ratio; }
   // Torsional compliance at the output, 1 / k (rad/N m).

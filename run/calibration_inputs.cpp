@@ -24,6 +24,7 @@ calib::TransmissionLoad transmission_load(const DriveFriction& friction, const D
     const double la_m = 1e-3 * g.la_(static_cast<int>(i));
     load.coulomb_Nm[i] = friction.coulomb_Nm[i];
     load.viscous_Nm_s[i] = friction.viscous_Nm_s[i];
+    load.rotor_inertia_kg_m2[i] = sheet.reflected_inertia_kg_m2();
     load.inertia_kg_m2[i] =
         sheet.reflected_inertia_kg_m2() +
         (sheet.active_link_mass_kg.nominal / 3.0 + sheet.passive_link_mass_kg.nominal / 2.0) * la_m * la_m;
@@ -53,18 +54,29 @@ CalibrationInputs calibration_inputs(const CalibrationSpec& c, const Robot& robo
   // from noiseless readings (ideal encoders) the twin's soft loop closure,
   // which follows the forces, showed as h at 30 sigma and moved dth3 by 4e-5 rad.
   motion.torque_before = in_motion && motion.compliance && sigma_rad > 0.0;
-  // On the fly each encoder's once-per-turn error is carried in the 1-sigma
-  // and the bound with the data sheet's accuracy A as its prior, A / sqrt 2
-  // per component (the spread of A cos(phase) over a phase unknown;
-  // calib/motion_correction.hpp: considered, not estimated). Ideal encoders
-  // (bits 0) have none.
+  // On the fly the error once per joint revolution (the reducer's
+  // transmission error, and the encoder's own on a direct drive) is carried
+  // in the 1-sigma and the bound with the data sheet's largest amplitude A as
+  // its prior, A / sqrt 2 per component (the spread of A cos(phase) over a
+  // phase unknown; calib/motion_correction.hpp: considered, not estimated:
+  // over the joints' range of motion it is nearly the geometry's own
+  // directions, docs/PROCEDURES.md). Ideal encoders (bits 0: no noise to
+  // weigh a prior against) have none.
   if (in_motion && encoder_bits > 0)
-    motion.cyclic_prior_rad = robot.data_sheet.encoder_accuracy_rad.nominal / std::sqrt(2.0);
+    motion.cyclic_prior_rad = robot.data_sheet.joint_harmonic_max_rad() / std::sqrt(2.0);
   if (c.tension_min_N) motion.tension_min_N = *c.tension_min_N;
   // On the fly the joint clearance is estimated (a play whose force sign
   // never changes is left to lb_i).
   motion.clearance = c.estimate_clearance.value_or(in_motion);
   motion.load = transmission_load(c.drive_friction, robot.data_sheet, robot.geometry);
+  motion.gear_ratio = robot.data_sheet.gear_ratio;
+  // On the fly the data choose, per joint, a backlash and the errors once
+  // and twice per motor revolution (calib/reading_model_selection.hpp).
+  if (in_motion && motion.compliance) {
+    in.drive_candidates.backlash = {true, true, true};
+    in.drive_candidates.motor_harmonic1 = {true, true, true};
+    in.drive_candidates.motor_harmonic2 = {true, true, true};
+  }
   in.drive_friction = c.drive_friction;
   return in;
 }

@@ -16,6 +16,10 @@ struct CalibrationInputs {
   // The reading effects estimated with the geometry and the transmission
   // load of the force signs (friction, inertia), before the data.
   calib::MotionModel motion;
+  // The drive-train effects the data may call for (backlash, harmonic errors
+  // per joint and motor revolution; calib/reading_model_selection.hpp): every
+  // one on the fly, none otherwise.
+  calib::MotionModel drive_candidates;
   DriveFriction drive_friction;  // calibration.drive_friction (default: the data sheet's)
   MonitorReadingModel monitor;   // the monitor's reading model before calibration (monitor:)
 };

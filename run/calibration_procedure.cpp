@@ -6,7 +6,9 @@
 #include <fmt/format.h>
 
 #include "calib/friction_profile.hpp"
+#include "calib/reading_model_selection.hpp"
 #include "calib/reading_rates.hpp"
+#include "calib/reading_step.hpp"
 #include "calib/robust_loss.hpp"
 #include "models/errors.hpp"
 #include "models/samples.hpp"
@@ -33,6 +35,7 @@ struct MotionStage {
   calib::MotionFit fit;
   double sigma = 0.0;
   std::string speed_note, friction_note, clearance_dropped, before_dropped;
+  std::vector<std::string> drive_notes;  // the drive train's effects kept and dropped, the sandwich
   double friction_scale = 1.0;
 };
 
@@ -188,6 +191,27 @@ void drop_undetected(MotionStage& m, bool keep_clearance) {
   }
 }
 
+// The drive train's effects the data call for, per joint (backlash, errors
+// once and twice per motor revolution: calib/reading_model_selection.hpp),
+// and the note of a covariance widened to the misfit.
+void select_drive_train(MotionStage& m, const CalibrationInputs& in) {
+  if (m.sigma > 0.0) {
+    calib::DriveEffectSelection chosen =
+        calib::select_drive_effects(m.problem, m.omega, m.tau, m.lo, m.motion, m.alpha, in.drive_candidates);
+    m.fit = std::move(chosen.fit);
+    m.motion = chosen.model;
+    if (!chosen.kept.empty())
+      m.drive_notes.push_back(fmt::format("drive train estimated with the geometry: {}", fmt::join(chosen.kept, "; ")));
+    if (!chosen.dropped.empty())
+      m.drive_notes.push_back(fmt::format("drive train effects not detected: {}", fmt::join(chosen.dropped, "; ")));
+  }
+  if (m.fit.sandwich_used)
+    m.drive_notes.push_back(fmt::format(
+        "the readings exceed the noise (chi2/dof {:.3g} with the reading model): the 1-sigma stated are the "
+        "residuals' autocorrelation-robust sandwich, {:.2g}x the noise model's",
+        m.fit.chi2_per_dof, m.fit.sandwich_inflation));
+}
+
 // The note of the samples the fit used, when it left some out.
 std::string samples_used_note(const calib::MotionFit& fit, std::size_t n, int skip_first) {
   const std::size_t weak = n - fit.kept.size() - static_cast<std::size_t>(skip_first);
@@ -215,8 +239,8 @@ void estimate_notes(const MotionStage& m, std::vector<std::string>& notes) {
         f.torque_before_sigma[1], f.torque_before_sigma[2]));
   if (m.motion.cyclic_prior_rad > 0.0)
     notes.push_back(fmt::format(
-        "the encoders' once-per-turn error (data sheet +-{:.2g} rad, random phase) is carried in the 1-sigma and "
-        "the Cramer-Rao bound, not estimated",
+        "the error once per joint revolution (the reducer's transmission error and a direct drive's encoder: data "
+        "sheet +-{:.2g} rad, random phase) is carried in the 1-sigma and the Cramer-Rao bound, not estimated",
         m.motion.cyclic_prior_rad * std::sqrt(2.0)));
   if (m.motion.clearance)
     notes.push_back(fmt::format(
@@ -243,6 +267,7 @@ CalibrationOutcome motion_outcome(MotionStage&& m) {
     out.drive_friction_fitted = DriveFriction{m.motion.load.coulomb_Nm, m.motion.load.viscous_Nm_s, false};
   if (!m.clearance_dropped.empty()) notes.push_back(m.clearance_dropped);
   if (!m.before_dropped.empty()) notes.push_back(m.before_dropped);
+  for (const std::string& note : m.drive_notes) notes.push_back(note);
   const std::size_t n = m.problem.theta_m.size();
   if (m.fit.kept.size() < n) notes.push_back(samples_used_note(m.fit, n, m.motion.skip_first));
   estimate_notes(m, notes);
@@ -269,8 +294,20 @@ CalibrationOutcome static_outcome(const SampleSeries& s, const ProcedureOptions&
 }  // namespace
 
 CalibrationOutcome calibrate_samples(const SampleSeries& samples, const CalibrationInputs& inputs,
-                                     const ProcedureOptions& options) {
+                                     const ProcedureOptions& options_in) {
   check_sizes(samples);
+  ProcedureOptions options = options_in;
+  std::string step_note;
+  if (options.in_motion && options.sigma_from_step) {
+    // Single readings on the fly show their encoders' step (calib/reading_step.hpp):
+    // a geared drive's motor encoder is finer at the joint than its bits say.
+    if (const std::optional<double> q = calib::reading_step(samples.theta_m)) {
+      options.sigma_rad = std::sqrt(*q * *q / 12.0 + options.reading_noise_rad * options.reading_noise_rad);
+      step_note = fmt::format("reading resolution from the samples: {:.4g} rad ({:.4g} counts per joint revolution), "
+                              "reading 1-sigma {:.3g} rad",
+                              *q, 2.0 * M_PI / *q, options.sigma_rad);
+    }
+  }
   const calib::MotionModel& model = inputs.motion;
   const bool with_effects = model.compliance || model.skew || model.clearance;
   if (with_effects && (options.method.method != calib::Method::kLM || options.method.cost != calib::Cost::kML))
@@ -281,10 +318,13 @@ CalibrationOutcome calibrate_samples(const SampleSeries& samples, const Calibrat
     MotionStage m = motion_stage(samples, inputs, options);
     fit_motion(m, inputs, options.in_motion);
     drop_undetected(m, options.keep_clearance);
+    select_drive_train(m, inputs);
     out = motion_outcome(std::move(m));
   } else {
     out = static_outcome(samples, options);
   }
+  out.sigma_rad = options.sigma_rad;
+  if (!step_note.empty()) out.result.notes.insert(out.result.notes.begin(), step_note);
   const bool tested_cost = options.test_any_cost || out.result.cost == calib::Cost::kML;
   if (tested_cost && options.sigma_rad > 0.0 && out.used.size() > options.free.count()) {
     out.model_test = calib::model_test(out.result.geometry, options.free, out.used, options.sigma_rad);
@@ -324,6 +364,7 @@ FileProcedure samples_file_procedure(const Samples& samples, const Robot& robot,
   p.options.free = free;
   p.options.sigma_rad = method.encoder_sigma.value_or(reading_sigma(bits, 0.0, 1.0));
   p.options.in_motion = in_motion;
+  p.options.sigma_from_step = !method.encoder_sigma.has_value();
   p.options.test_any_cost = true;
   p.options.method = method;
   CalibrationSpec c;

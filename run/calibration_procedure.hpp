@@ -52,6 +52,11 @@ struct ProcedureOptions {
   Geometry start;           // the fit's start and the values of the fixed parameters
   FreeMask free;            // the parameters estimated
   double sigma_rad = 0.0;   // 1-sigma of one reading (rad; 0: ideal encoders, no model test)
+  // On the fly: the reading 1-sigma from the step the readings show
+  // (calib/reading_step.hpp) with white noise reading_noise_rad, where they
+  // show one (else sigma_rad); false: sigma_rad as stated.
+  bool sigma_from_step = false;
+  double reading_noise_rad = 0.0;
   bool in_motion = false;   // the samples were taken on the fly, consecutive (rates from t_s)
   double skip_first_s = kStartTransient_s;  // on the fly: leading samples within this of the first left out
   bool keep_clearance = false;  // the clearance stays in the model where not detected (stated by the user)
@@ -64,6 +69,7 @@ struct CalibrationOutcome {
   std::optional<calib::ModelTest> model_test;  // none: no sigma, not the ML cost, or no degrees of freedom
   std::vector<Eigen::Vector3d> used;           // the readings the fit explains (corrected for the motion model)
   bool with_effects = false;                   // the motion model was estimated with the geometry
+  double sigma_rad = 0.0;                      // the reading 1-sigma the fit and its test assumed (rad)
   // With effects, what the Cramer-Rao bound of the joint estimation needs
   // (calib::motion_crb): the final model, the samples' rates and torques.
   calib::MotionFit fit;

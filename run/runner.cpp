@@ -151,6 +151,8 @@ ProcedureOptions procedure_options(const RunSpec& spec, const Robot& nominal, co
     for (int i = 0; i < 3; ++i) po.start[dth(i)] = wrap_pi(qn.theta_a[i] - m[i]);
   }
   po.sigma_rad = spec.calibration.sigma.value_or(effective_sigma(spec.sim));
+  po.sigma_from_step = !spec.calibration.sigma.has_value();
+  po.reading_noise_rad = spec.sim.twin.encoder.noise_rad;
   po.keep_clearance = spec.calibration.estimate_clearance.has_value();
   calib::MethodOptions& mo = po.method;
   mo.method = spec.calibration.method;
@@ -262,6 +264,11 @@ void calibrate_run(RunOutcome& out, const RunSpec& spec, const CalibrationInputs
     // hardware) use the drive torque of the sample.
     const bool torque_history = in_motion && !spec.hardware;
     CalibrationOutcome c = calibrate_samples(sample_series(out.sim.samples, torque_history), inputs, po);
+    if (c.sigma_rad != out.crb_sigma_rad && po.free.count() <= noiseless.size()) {  // the readings' own step
+      out.crb_sigma_rad = c.sigma_rad;
+      out.crb = scaled_bound([&] { return calib::crb_sigma(actual.geometry, po.free, noiseless, 1.0); },
+                             out.crb_sigma_rad);
+    }
     out.calibration = c.result;
     used = c.used;
     out.model_test = c.model_test;

@@ -153,6 +153,7 @@ TEST(MotionCorrection, RecoversTheFrictionTwistAndIgnoringItBiasesTheFit) {
   EXPECT_LT(worst_in_sigmas(d, fit.result), 4.0);
   MotionModel no_friction;
   no_friction.friction = false;
+  no_friction.sandwich = false;  // judged by the noise model's 1-sigma (the sandwich widens it to the misfit)
   const MotionFit biased = calibrate_in_motion(d.problem, d.omega, d.tau, o, no_friction);
   EXPECT_EQ(biased.friction[0], 0.0);
   EXPECT_TRUE(std::isnan(biased.friction_sigma[0]));
@@ -246,6 +247,7 @@ TEST(MotionCorrection, RecoversTheJointClearanceAndIgnoringItBiasesTheFit) {
   EXPECT_LT(worst_in_sigmas(d, fit.result), 4.0);
   EXPECT_TRUE(clearance_detected(fit));
   model.clearance = false;
+  model.sandwich = false;  // judged by the noise model's 1-sigma (the sandwich widens it to the misfit)
   const MotionFit biased = calibrate_in_motion(d.problem, d.omega, d.tau, o, model);
   EXPECT_EQ(biased.kept.size(), poses.size());
   EXPECT_GT(worst_in_sigmas(d, biased.result), 4.0);
@@ -303,7 +305,8 @@ TEST(MotionCorrection, NoClearanceIsDetectedWhereThereIsNone) {
   EXPECT_FALSE(clearance_detected(fit));
   MotionFit hand;
   hand.clearance = {0.0, 0.0029, 0.0};
-  hand.clearance_sigma = {NAN, 0.001, 0.001};
+  hand.noise_sigma.clearance = {NAN, 0.001, 0.001};  // the test weighs by the noise model's 1-sigma
+  hand.clearance_sigma = {NAN, 1.0, 1.0};             // not by the stated one
   EXPECT_FALSE(clearance_detected(hand));
   EXPECT_TRUE(clearance_detected(hand, 2.8));
   hand.clearance = {1.0, -0.0031, 0.0};
@@ -356,7 +359,9 @@ TEST(MotionCorrection, RecoversTheTwistOfTheTorqueBefore) {
   before.torque_before = true;
   const MotionFit fit = calibrate_in_motion(d.problem, d.omega, d.tau, o, before);
   expect_lag_recovered(d, fit, h);
-  const MotionFit biased = calibrate_in_motion(d.problem, d.omega, d.tau, o);
+  MotionModel plain;
+  plain.sandwich = false;  // judged by the noise model's 1-sigma (the sandwich widens it to the misfit)
+  const MotionFit biased = calibrate_in_motion(d.problem, d.omega, d.tau, o, plain);
   EXPECT_EQ(biased.torque_before[0], 0.0);
   EXPECT_TRUE(std::isnan(biased.torque_before_sigma[0]));
   EXPECT_GT(worst_in_sigmas(d, biased.result), 4.0);

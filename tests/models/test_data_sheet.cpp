@@ -3,6 +3,8 @@
 // and one clear error line per bad key.
 #include "models/data_sheet.hpp"
 
+#include <cmath>
+
 #include <gtest/gtest.h>
 #include <yaml-cpp/yaml.h>
 
@@ -40,6 +42,13 @@ TEST(DataSheet, Gpm2002FileStatesItsClass) {
   EXPECT_EQ(d.viscous_Nm_s, (Stated{0.15, 0.5, 2.0}));
   EXPECT_EQ(d.stiffness_Nm_per_rad.nominal, 1e4);
   EXPECT_EQ(d.encoder_accuracy_rad, (Stated{2e-5, 0.0, 1.0}));
+  EXPECT_EQ(d.transmission_error_rad, (Stated{4.3633e-4, 0.0, 1.0}));  // 1.5 arcmin
+  // The error once per joint revolution: the reducer's alone behind 10:1 (the
+  // encoder's repeats per motor revolution); both in quadrature on a direct drive.
+  EXPECT_EQ(d.joint_harmonic_max_rad(), 4.3633e-4);
+  DataSheet direct = d;
+  direct.gear_ratio = 1.0;
+  EXPECT_DOUBLE_EQ(direct.joint_harmonic_max_rad(), std::hypot(4.3633e-4, 2e-5));
   EXPECT_EQ(d.latch_skew_s.nominal, 50e-6);
   EXPECT_EQ(d.clearance_mm.max(), 0.01);  // up to twice 5 um
   EXPECT_NEAR(d.reflected_inertia_kg_m2(), 0.0026, 1e-15);  // 0.26e-4 kg m^2 x 10^2

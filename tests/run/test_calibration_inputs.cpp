@@ -169,12 +169,12 @@ TEST(CalibrationInputs, TheRobotsDataSheetReachesThem) {
   for (double j : in.motion.load.inertia_kg_m2) EXPECT_NEAR(j, 0.0179801, 1e-7);
   for (double f : in.motion.load.coulomb_Nm) EXPECT_EQ(f, 0.3);
   for (double b : in.motion.load.viscous_Nm_s) EXPECT_EQ(b, 0.15);
-  EXPECT_NEAR(in.motion.cyclic_prior_rad, 1.41421e-5, 1e-10);  // +-4 arcsec / sqrt 2
+  EXPECT_DOUBLE_EQ(in.motion.cyclic_prior_rad, 4.3633e-4 / std::sqrt(2.0));  // the reducer's 1.5 arcmin / sqrt 2 (N = 10)
   EXPECT_EQ(in.monitor.compliance_rad_per_Nm, (std::array<double, 3>{1e-4, 1e-4, 1e-4}));
 
   Robot other = spec.sim.controller;
   other.data_sheet.rotor_inertia_kg_m2.nominal = 5.2e-5;  // twice the rotor: + 0.0026 kg m^2
-  other.data_sheet.encoder_accuracy_rad.nominal = 4e-5;
+  other.data_sheet.transmission_error_rad.nominal *= 2.0;
   other.data_sheet.coulomb_Nm.nominal = 0.6;  // the friction the spec resolved is the spec's, not re-read
   const CalibrationInputs o = calibration_inputs(spec, other);
   for (std::size_t i = 0; i < 3; ++i) EXPECT_NEAR(o.motion.load.inertia_kg_m2[i] - in.motion.load.inertia_kg_m2[i], 0.0026, 1e-12);

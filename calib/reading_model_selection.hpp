@@ -1,0 +1,34 @@
+// Which of a geared drive's reading effects a robot's data need, per joint
+// (calib/motion_correction.hpp MotionModel: backlash, the harmonic errors
+// once per joint revolution and once and twice per motor revolution): a
+// backward selection by Wald tests. The calibration in motion is fitted with
+// every candidate the data excite; a backlash is kept where its estimate lies
+// k 1-sigma of the noise model (MotionFit::noise_sigma) from 0, a harmonic where its pair (a, b) does at the same level
+// (a^2/sa^2 + b^2/sb^2 >= the chi-square(2) quantile of the two-sided k-sigma
+// level); the fit is made again with the kept ones. A robot's data sheet says
+// what its reducer may do; what this robot does is what its readings show.
+#pragma once
+
+#include <string>
+#include <vector>
+
+#include "calib/motion_correction.hpp"
+
+namespace gpm::calib {
+
+struct DriveEffectSelection {
+  MotionFit fit;                     // the fit with the kept effects
+  MotionModel model;                 // model with the kept effects switched on
+  std::vector<std::string> kept;     // e.g. "backlash 2 (12.3 sigma)"
+  std::vector<std::string> dropped;  // e.g. "motor harmonic 1 of joint 3 (1.2 sigma)"
+};
+
+// Fits problem with model plus every candidate in candidates (the effects
+// switched on there), then again with those the Wald test at k sigma keeps
+// (calibrate_in_motion: omega, tau, alpha as there). Throws as calibrate_in_motion.
+DriveEffectSelection select_drive_effects(const Problem& problem, const std::vector<Eigen::Vector3d>& omega,
+                                          const std::vector<Eigen::Vector3d>& tau, const LmOptions& options,
+                                          const MotionModel& model, const std::vector<Eigen::Vector3d>& alpha,
+                                          const MotionModel& candidates, double k = 3.0);
+
+}  // namespace gpm::calib
