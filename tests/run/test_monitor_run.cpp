@@ -194,6 +194,16 @@ TEST(MonitorRun, ReadingModelAfterCalibrationTakesTheEstimatesWhereMade) {
   // The clearance looked for and not found: none (zeros), not the statement's 5 um.
   run.joint_play_mm = std::array<double, 3>{};
   EXPECT_EQ(reading_model_after_calibration(run).clearance_mm, (std::array<double, 3>{}));
+  // The least innovation scale: the statement's without a model test, the
+  // calibration's residual RMS over the noise when above it, never below the
+  // statement's (issue 31).
+  EXPECT_EQ(reading_model_after_calibration(run).scale_floor, stated.scale_floor);
+  run.model_test = calib::ModelTest{};
+  run.model_test->chi2 = 400.0;
+  run.model_test->dof = 100.0;
+  EXPECT_DOUBLE_EQ(reading_model_after_calibration(run).scale_floor, 2.0);
+  run.model_test->chi2 = 50.0;
+  EXPECT_EQ(reading_model_after_calibration(run).scale_floor, 1.0);
 }
 
 // End to end on the realistic twin, samples on the fly (the main job's
