@@ -9,7 +9,8 @@
 # preset's effects (--keep-effects). Tabulates false alarms per hour of healthy
 # monitored time (after learning, before the slip) and the slip's detection
 # delay into DIR/monitor_population.md and .json, and writes the table into
-# docs/MONITORING.md between its markers.
+# docs/MONITORING.md between its markers. VARIANTS="learning" re-runs only
+# that population (the table takes every population found in DIR).
 #   bash scripts/study_monitor_population.sh [DIR] [COUNT]
 #   (default out/monitor_population, 10 robots a population; ~4 minutes a population on 2 cores)
 set -euo pipefail
@@ -28,7 +29,7 @@ grep -q "learning_s: 0" "$out/monitor_population_nolearning.yaml"
 effects_list=(randomized); [[ ${PRESET:-0} == 1 ]] && effects_list+=(preset)
 for effects in "${effects_list[@]}"; do
   flag=(); [[ $effects == preset ]] && flag=(--keep-effects)
-  for variant in nolearning learning; do
+  for variant in ${VARIANTS:-nolearning learning}; do
     s=$scenario; [[ $variant == nolearning ]] && s=$out/monitor_population_nolearning.yaml
     echo "study monitor population: $variant, $effects effects" >&2
     timeout 900 "$gpm" study population "$s" -o "$out/${variant}_$effects" --count "$count" "${flag[@]}" >/dev/null

@@ -59,7 +59,8 @@ double step_statistic(const MonitorModel& model, const MonitorData& data) {
       const int i = model.free_index[ks];
       s_zh[ks] += dz[i] * z;
       s_hh[ks] += dz[i] * dz[i];
-      if (s_hh[ks] > 0.0) best = std::max(best, s_zh[ks] * s_zh[ks] / (s_hh[ks] * (1.0 + s_hh[ks] * var[ks])));
+      if (s_hh[ks] > 0.0)
+        best = std::max(best, s_zh[ks] * s_zh[ks] / (s_hh[ks] * (1.0 + s_hh[ks] * var[ks]) * data.step_factor[i]));
     }
   }
   return best;

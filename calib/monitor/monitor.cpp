@@ -62,7 +62,20 @@ void finish_learning(const MonitorModel& m, MonitorData& d, double t_s) {
     d.z[slot] = (d.z[slot] - d.learned.median) / s;
     d.dz[slot] /= s;
   }
-  d.glr_threshold = m.glr_threshold * d.learned.step_factor;
+  // The step test: each parameter's statistic divided by its own factor
+  // (the reported step_factor is the largest); the threshold stays.
+  const int batches = d.learn_count / m.settings.learning_batch;
+  double largest = 1.0;
+  for (int k = 0; k < m.n_free; ++k) {
+    const int i = m.free_index[static_cast<size_t>(k)];
+    d.step_factor[i] = matched_sum_factor(batches, d.learned.median, s, [&](int b) {
+      const auto u = static_cast<size_t>(b);
+      return MatchedBatch{d.learn_h[u][i], d.learn_hz[u][i], d.learn_hh[u][i]};
+    });
+    largest = std::max(largest, d.step_factor[i]);
+  }
+  d.learned.step_factor = largest;
+  d.glr_threshold = m.glr_threshold;
   const double W = m.settings.window;
   const double kappa = d.learned.chi_factor, nu = W * d.learned.chi_mean / kappa;
   d.chi_threshold = std::max(m.threshold, kappa * chi2_quantile_wilson_hilferty(nu, m.chi_normal_quantile));
@@ -186,8 +199,9 @@ MonitorModel make_monitor_model(const MonitorSettings& s) {
   }
   require(s.tension_min_N >= 0.0 && std::isfinite(s.tension_min_N), "tension_min_N must be >= 0");
   require(s.learning_s >= 0.0 && s.learning_s <= 10.0, fmt::format("learning_s {} must be in 0..10 s", s.learning_s));
-  require(s.learning_batch >= 1 && s.learning_batch <= kMaxLearn / 4,
-          fmt::format("learning_batch {} must be in 1..{}", s.learning_batch, kMaxLearn / 4));
+  require(s.learning_batch >= kMaxLearn / kMaxLearnBatches && s.learning_batch <= kMaxLearn / 4,
+          fmt::format("learning_batch {} must be in {}..{}", s.learning_batch, kMaxLearn / kMaxLearnBatches,
+                      kMaxLearn / 4));
   require(s.bias_tau_s > 0.0, "bias_tau_s must be > 0");
   require(s.scale_floor >= 1.0 && std::isfinite(s.scale_floor), "scale_floor must be finite and >= 1");
   m.glr_threshold = chi2_upper_quantile(1, 0.5 * m.p_window / (m.n_free * s.window));
@@ -306,8 +320,13 @@ StepResult monitor_step(const MonitorModel& m, MonitorData& d, double t_s, const
   ++d.accepted;
   // (The first quarter of the learning phase is not learnt from: the filter
   // settles there on what the calibration left.)
-  if (d.learning && d.learn_count < kMaxLearn && t_s - d.t_start >= 0.25 * m.settings.learning_s)
+  if (d.learning && d.learn_count < kMaxLearn && t_s - d.t_start >= 0.25 * m.settings.learning_s) {
+    const auto b = static_cast<size_t>(d.learn_count / m.settings.learning_batch);  // < kMaxLearnBatches
+    d.learn_h[b] += dz;
+    d.learn_hz[b] += z * dz;
+    d.learn_hh[b] += dz.cwiseProduct(dz);
     d.learn_z[static_cast<size_t>(d.learn_count++)] = z;
+  }
   const double z_tested = z - d.bias;
   if (!d.learning && m.settings.learning_s > 0.0 && d.pending < 0 && d.accepted > 1)
     // The slowly varying bias (after the sample is tested against the former one).

@@ -42,6 +42,7 @@ inline constexpr int kMaxWindow = 512;
 inline constexpr int kMaxAlarms = 64;
 // Most innovations the learning phase keeps (10 s at 200 samples/s).
 inline constexpr int kMaxLearn = 2048;
+inline constexpr int kMaxLearnBatches = 128;  // learning batches whose step-test sums are kept
 // Filter coordinates: the estimated parameters, the common thermal growth
 // rate, the two coefficients of each encoder's once-per-revolution error and
 // the effective clearance of each chain.
@@ -126,8 +127,8 @@ struct MonitorSettings {
   // from the robot's own innovations (those of its last three quarters: the
   // filter settles in the first on what the calibration left) their scale (robust, never below
   // scale_floor x the stated one), their bias and how alike neighbouring
-  // samples are (batches of learning_batch samples), and from then on its
-  // filter takes the learnt scale as the reading noise and its thresholds
+  // samples are (batches of learning_batch samples, 16..512), and from then
+  // on its filter takes the learnt scale as the reading noise and its tests
   // widen by what it learnt (never narrower than the stated model's). The
   // stated clearance, known only as a bound, starts the filter at half its
   // value with a 1-sigma of half of it. The bias is then followed with time
@@ -233,7 +234,13 @@ struct MonitorData {
   double learning_end_s = 0.0;  // when learning ended (t_start without learning)
   int learn_count = 0;
   std::array<double, kMaxLearn> learn_z{}, learn_scratch{};
+  // Per learning batch and estimated parameter: sums of dz, dz z and dz^2
+  // (learning.hpp MatchedBatch), for the step test's factors.
+  std::array<ParamRow, kMaxLearnBatches> learn_h{}, learn_hz{}, learn_hh{};
   LearnedScale learned;      // what was learnt (defaults: nothing)
+  // The step test's variance factor of each parameter (>= 1; 1 until learnt):
+  // its statistic along parameter i is divided by step_factor[i].
+  ParamRow step_factor = ParamRow::Ones();
   double noise_scale = 1.0;  // the filter's reading noise is noise_scale x model.sigma_rad
   double bias = 0.0;         // bias of the innovations (z units), taken off before the tests
   double t_last_accepted = 0.0;

@@ -87,6 +87,35 @@ TEST(Learning, StepFactorOfCorrelatedInnovationsIsTheBatchMeansVariance) {
   EXPECT_NEAR(l.effective_samples, n / batch_var, 0.2 * n / batch_var);
 }
 
+// The step test's factor along a signature h: independent innovations give
+// 1 whatever h (up to the widening by one standard error); AR(1) ones with a
+// constant h the batch-means variance factor of the test above (8.2); a
+// learnt bias is taken off first.
+TEST(Learning, MatchedSumFactorOfIndependentAndCorrelatedInnovations) {
+  Rng rng(11);
+  const int B = 50, batches = 40;
+  std::vector<MatchedBatch> iid(batches), ar(batches);
+  double prev = rng.normal();
+  const double rho = 0.8;
+  for (int b = 0; b < batches; ++b)
+    for (int j = 0; j < B; ++j) {
+      const double h = std::sin(0.1 * (b * B + j)) + 0.3;  // a signature that varies along the path
+      const double z = 2.0 + 3.0 * rng.normal();             // bias 2, scale 3
+      iid[static_cast<size_t>(b)].h += h, iid[static_cast<size_t>(b)].hz += h * z, iid[static_cast<size_t>(b)].hh += h * h;
+      prev = rho * prev + std::sqrt(1.0 - rho * rho) * rng.normal();
+      ar[static_cast<size_t>(b)].h += 1.0, ar[static_cast<size_t>(b)].hz += prev, ar[static_cast<size_t>(b)].hh += 1.0;
+    }
+  const double widen = 1.0 + std::sqrt(2.0 / (batches - 1));
+  const double f_iid = matched_sum_factor(batches, 2.0, 3.0, [&](int b) { return iid[static_cast<size_t>(b)]; });
+  EXPECT_GE(f_iid, 1.0);
+  EXPECT_LT(f_iid, 1.6 * widen);
+  // The bias not taken off inflates it: the test would be the less sensitive.
+  EXPECT_GT(matched_sum_factor(batches, 0.0, 3.0, [&](int b) { return iid[static_cast<size_t>(b)]; }), 3.0 * f_iid);
+  const double f_ar = matched_sum_factor(batches, 0.0, 1.0, [&](int b) { return ar[static_cast<size_t>(b)]; });
+  EXPECT_NEAR(f_ar, 8.2 * widen, 0.35 * 8.2 * widen);
+  EXPECT_EQ(matched_sum_factor(1, 0.0, 1.0, [&](int b) { return ar[static_cast<size_t>(b)]; }), 1.0);
+}
+
 // The chi-square quantile at other degrees of freedom from the normal
 // quantile of the monitor's threshold (Wilson-Hilferty) against Boost's.
 TEST(Learning, WilsonHilfertyQuantileAgreesWithTheExactOne) {
