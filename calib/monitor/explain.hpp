@@ -30,6 +30,8 @@ void explain_window(const MonitorModel& model, const MonitorData& data, Alarm& a
 // degree of freedom. After the learning phase each parameter's term is
 // divided by data.step_factor[i], the variance factor of such sums learnt
 // from the robot (learning.hpp). Allocation-free, O(window * n_free).
-double step_statistic(const MonitorModel& model, const MonitorData& data);
+// per_param_max (optional): each parameter's largest term is raised to at
+// least its value (the learning phase keeps them).
+double step_statistic(const MonitorModel& model, const MonitorData& data, ParamRow* per_param_max = nullptr);
 
 }  // namespace gpm::calib::monitor

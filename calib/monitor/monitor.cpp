@@ -46,6 +46,11 @@ bool moved_enough(const MonitorModel& m, const MonitorData& d, const Eigen::Vect
   return true;
 }
 
+// Where the largest step-test term of a healthy robot over a learning phase
+// lies, as a share of the threshold (for independent N(0, 1) innovations:
+// the largest of ~1000 window tests over n W onsets, about 25 of 49).
+constexpr double kLearnStepMaxShare = 0.5;
+
 // Ends the learning phase at t_s (learning.hpp): the learnt scale becomes the
 // filter's reading noise, the learnt median the bias, the window's
 // innovations are restated in the new units and the thresholds widen.
@@ -72,6 +77,10 @@ void finish_learning(const MonitorModel& m, MonitorData& d, double t_s) {
       const auto u = static_cast<size_t>(b);
       return MatchedBatch{d.learn_h[u][i], d.learn_hz[u][i], d.learn_hh[u][i]};
     });
+    // The largest term seen while learning, in the new units, sits where a
+    // healthy robot's would: a structured reading error repeats with the job
+    // (not Gaussian), and the batches see it only on average.
+    d.step_factor[i] = std::max(d.step_factor[i], d.learn_step_max[i] / (s * s) / (kLearnStepMaxShare * m.glr_threshold));
     largest = std::max(largest, d.step_factor[i]);
   }
   d.learned.step_factor = largest;
@@ -79,6 +88,9 @@ void finish_learning(const MonitorModel& m, MonitorData& d, double t_s) {
   const double W = m.settings.window;
   const double kappa = d.learned.chi_factor, nu = W * d.learned.chi_mean / kappa;
   d.chi_threshold = std::max(m.threshold, kappa * chi2_quantile_wilson_hilferty(nu, m.chi_normal_quantile));
+  // As for the step test: the largest window sum seen while learning sits
+  // where a healthy robot's would, W + 3 sqrt(2 W).
+  d.chi_threshold = std::max(d.chi_threshold, d.learn_chi_max / (s * s) * m.threshold / (W + 3.0 * std::sqrt(2.0 * W)));
 }
 
 }  // namespace
@@ -346,8 +358,10 @@ StepResult monitor_step(const MonitorModel& m, MonitorData& d, double t_s, const
     out.learnt = true;
   }
   const bool full = d.count == W && d.pending < 0;
+  const bool learn_max = d.learning && full && t_s - d.t_start >= 0.25 * m.settings.learning_s;
   d.statistic = full ? window_statistic(d) : 0.0;
-  d.step_statistic = full ? step_statistic(m, d) : 0.0;
+  d.step_statistic = full ? step_statistic(m, d, learn_max ? &d.learn_step_max : nullptr) : 0.0;
+  if (learn_max) d.learn_chi_max = std::max(d.learn_chi_max, d.statistic);
   d.last_z = z;
   out.accepted = true;
   out.z = z;

@@ -241,6 +241,10 @@ struct MonitorData {
   // The step test's variance factor of each parameter (>= 1; 1 until learnt):
   // its statistic along parameter i is divided by step_factor[i].
   ParamRow step_factor = ParamRow::Ones();
+  // The largest step-test term of each parameter and the largest chi-square
+  // statistic while learning (last three quarters, full windows).
+  ParamRow learn_step_max = ParamRow::Zero();
+  double learn_chi_max = 0.0;
   double noise_scale = 1.0;  // the filter's reading noise is noise_scale x model.sigma_rad
   double bias = 0.0;         // bias of the innovations (z units), taken off before the tests
   double t_last_accepted = 0.0;
