@@ -9,8 +9,9 @@
 # preset's effects (--keep-effects). Tabulates false alarms per hour of healthy
 # monitored time (after learning, before the slip) and the slip's detection
 # delay into DIR/monitor_population.md and .json, and writes the table into
-# docs/MONITORING.md between its markers. VARIANTS="learning" re-runs only
-# that population (the table takes every population found in DIR).
+# docs/MONITORING.md between its markers. VARIANTS="learning" and
+# RUN_EFFECTS="preset" run only those populations (the table takes every
+# population of the chosen effects found in DIR).
 #   bash scripts/study_monitor_population.sh [DIR] [COUNT]
 #   (default out/monitor_population, 10 robots a population; ~4 minutes a population on 2 cores)
 set -euo pipefail
@@ -27,7 +28,7 @@ sed -e "s|^robot: .*|robot: $robot|" -e "s|^monitor: data_sheet.*|monitor: {pres
   "$scenario" > "$out/monitor_population_nolearning.yaml"
 grep -q "learning_s: 0" "$out/monitor_population_nolearning.yaml"
 effects_list=(randomized); [[ ${PRESET:-0} == 1 ]] && effects_list+=(preset)
-for effects in "${effects_list[@]}"; do
+for effects in ${RUN_EFFECTS:-${effects_list[@]}}; do
   flag=(); [[ $effects == preset ]] && flag=(--keep-effects)
   for variant in ${VARIANTS:-nolearning learning}; do
     s=$scenario; [[ $variant == nolearning ]] && s=$out/monitor_population_nolearning.yaml
