@@ -357,7 +357,9 @@ StepResult monitor_step(const MonitorModel& m, MonitorData& d, double t_s, const
     finish_learning(m, d, t_s);
     out.learnt = true;
   }
-  const bool full = d.count == W && d.pending < 0;
+  // (The sample that ends the learning phase is not tested: that cycle has
+  // done the learning's work, and the next sample tests the same window.)
+  const bool full = d.count == W && d.pending < 0 && !out.learnt;
   const bool learn_max = d.learning && full && t_s - d.t_start >= 0.25 * m.settings.learning_s;
   d.statistic = full ? window_statistic(d) : 0.0;
   d.step_statistic = full ? step_statistic(m, d, learn_max ? &d.learn_step_max : nullptr) : 0.0;
