@@ -11,7 +11,8 @@
 # delay into DIR/monitor_population.md and .json, and writes the table into
 # docs/MONITORING.md between its markers. VARIANTS="learning" and
 # RUN_EFFECTS="preset" run only those populations (the table takes every
-# population of the chosen effects found in DIR).
+# population of the chosen effects found in DIR); VARIANTS=bigslip runs the
+# population with a 1e-3 rad slip (learning on); TABLE_ONLY=1 only tabulates.
 #   bash scripts/study_monitor_population.sh [DIR] [COUNT]
 #   (default out/monitor_population, 10 robots a population; ~4 minutes a population on 2 cores)
 set -euo pipefail
@@ -27,11 +28,15 @@ robot=$(realpath models/gpm2002.yaml)
 sed -e "s|^robot: .*|robot: $robot|" -e "s|^monitor: data_sheet.*|monitor: {preset: data_sheet, learning_s: 0}|" \
   "$scenario" > "$out/monitor_population_nolearning.yaml"
 grep -q "learning_s: 0" "$out/monitor_population_nolearning.yaml"
+# ... and with a slip ten times larger (1e-3 rad), for VARIANTS=bigslip.
+sed -e "s|^robot: .*|robot: $robot|" -e "s|dth2: 1.0e-4|dth2: 1.0e-3|" "$scenario" > "$out/monitor_population_bigslip.yaml"
+grep -q "dth2: 1.0e-3" "$out/monitor_population_bigslip.yaml"
 effects_list=(randomized); [[ ${PRESET:-0} == 1 ]] && effects_list+=(preset)
+[[ ${TABLE_ONLY:-0} == 1 ]] && RUN_EFFECTS=" "  # TABLE_ONLY=1: tabulate what DIR holds
 for effects in ${RUN_EFFECTS:-${effects_list[@]}}; do
   flag=(); [[ $effects == preset ]] && flag=(--keep-effects)
   for variant in ${VARIANTS:-nolearning learning}; do
-    s=$scenario; [[ $variant == nolearning ]] && s=$out/monitor_population_nolearning.yaml
+    s=$scenario; [[ $variant != learning ]] && s=$out/monitor_population_$variant.yaml
     echo "study monitor population: $variant, $effects effects" >&2
     timeout 900 "$gpm" study population "$s" -o "$out/${variant}_$effects" --count "$count" "${flag[@]}" >/dev/null
   done
@@ -41,10 +46,11 @@ import json, os, re, sys
 out, effects_list = sys.argv[1], sys.argv[2:]
 num = lambda v, f: "-" if v is None else format(v, f)
 summary, per_robot, rows = [], [], []
-label = {"nolearning": "without learning (before)", "learning": "with learning (after)"}
+label = {"nolearning": "without learning (before)", "learning": "with learning (after)",
+         "bigslip": "with learning, slip 1e-3 rad"}
 for effects in effects_list:
     pops = {}
-    for variant in ("nolearning", "learning"):
+    for variant in ("nolearning", "learning", "bigslip"):
         p = os.path.join(out, f"{variant}_{effects}", "population.json")
         if os.path.exists(p):
             pops[variant] = json.load(open(p))
@@ -57,7 +63,7 @@ for effects in effects_list:
                        f"{num(m.get('false_alarms_per_hour'), '.0f')} | {m.get('robots_with_false_alarms', '-')} | "
                        f"{m.get('detected', '-')} of {m.get('events', '-')} | "
                        f"{num(m.get('detection_delay_median_s'), '.3f')} / {num(m.get('detection_delay_max_s'), '.3f')} |")
-    if len(pops) == 2:
+    if "nolearning" in pops and "learning" in pops:
         before = {r["seed"]: r for r in pops["nolearning"]["robots"]}
         for r in pops["learning"]["robots"]:
             b = before.get(r["seed"], {})
