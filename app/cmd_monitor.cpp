@@ -113,6 +113,7 @@ void add_monitor(CLI::App& app) {
     fmt::print("operation  {:.1f} s, {} servo cycles, {:.1f} s wall\n", o.simulated_s, o.cycles, o.wall_s);
     if (!o.hardware.empty()) fmt::print("hardware   {}\n", o.hardware);
     fmt::print("readings   {}\n", reading_from);
+    fmt::print("learning   {}\n", scenario::learning_text(o));
     if (o.truth_known)
       fmt::print("alarms     {} ({} false; stated rate {} per hour)\n", o.alarms.size(), o.false_alarms,
                  o.model.settings.false_alarms_per_hour);

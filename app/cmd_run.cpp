@@ -75,6 +75,15 @@ void print_summary(const scenario::RunOutcome& o, const std::string& dir) {
                o.model_test->passed ? "the residuals are as small as the encoders explain"
                                     : "fails (see the report's notes for the likely cause)");
   }
+  if (o.monitor) {
+    const scenario::MonitorOutcome& m = *o.monitor;
+    fmt::print("monitor    {:.1f} s of operation, {} alarms ({} false)\n", m.simulated_s, m.alarms.size(), m.false_alarms);
+    fmt::print("learning   {}\n", scenario::learning_text(m));
+    for (const auto& d : m.detections)
+      fmt::print("event {}    at {:.3f} s {}\n", d.event, d.at_s,
+                 d.detected_s ? fmt::format("detected after {:.3f} s: {}", *d.detected_s - d.at_s, d.explanation)
+                              : std::string("not detected"));
+  }
   size_t failed = 0;
   for (const auto& c : o.checks) {
     if (!c.passed) {

@@ -8,6 +8,7 @@
 //                           test, step test and a filter update): the worst
 //                           regular cycle;
 //   BM_MonitorStepAlarm     the cycle that explains an alarm and re-baselines
+//   BM_MonitorStepLearningEnd  the one cycle that ends the learning phase
 //                           (the rare worst case).
 //   bench_monitor [--benchmark_filter=...]
 #include <benchmark/benchmark.h>
@@ -107,10 +108,11 @@ BENCHMARK(BM_MonitorStepAcceptedRealistic)->Unit(benchmark::kMicrosecond);
 void BM_MonitorStepAlarm(benchmark::State& state) {
   // Run up to the cycle before an alarm's explanation, then time that cycle.
   const MonitorModel m = make_monitor_model(MonitorSettings{});
-  static const std::vector<Eigen::Vector3d> readings = circle_readings(6000, 3.0);
+  // (the jump after the learning phase: no alarm while learning)
+  static const std::vector<Eigen::Vector3d> readings = circle_readings(13000, m.settings.learning_s + 3.0);
   MonitorData start = make_monitor_data(m);
   long c = 0;
-  for (; c < 6000; ++c) {
+  for (; c < 13000; ++c) {
     if (start.pending == 1 && start.cycles_since_accepted + 1 >= m.settings.decimation) break;
     monitor_step(m, start, c / 1000.0, readings[static_cast<size_t>(c)]);
   }
@@ -125,5 +127,30 @@ void BM_MonitorStepAlarm(benchmark::State& state) {
   }
 }
 BENCHMARK(BM_MonitorStepAlarm)->Unit(benchmark::kMicrosecond);
+
+// The one cycle that ends the learning phase (learning.hpp: medians, batch
+// factors, the window restated).
+void BM_MonitorStepLearningEnd(benchmark::State& state) {
+  const MonitorModel m = make_monitor_model(MonitorSettings{});
+  static const std::vector<Eigen::Vector3d> readings = circle_readings(10000);
+  long end = -1;
+  {
+    auto dry = std::make_unique<MonitorData>(make_monitor_data(m));
+    for (long c = 0; c < 10000 && end < 0; ++c)
+      if (monitor_step(m, *dry, c / 1000.0, readings[static_cast<size_t>(c)]).learnt) end = c;
+  }
+  auto start = std::make_unique<MonitorData>(make_monitor_data(m));
+  for (long c = 0; c < end; ++c) monitor_step(m, *start, c / 1000.0, readings[static_cast<size_t>(c)]);
+  auto d = std::make_unique<MonitorData>();
+  for (auto _ : state) {
+    state.PauseTiming();
+    *d = *start;
+    state.ResumeTiming();
+    const StepResult r = monitor_step(m, *d, end / 1000.0, readings[static_cast<size_t>(end)]);
+    benchmark::DoNotOptimize(r);
+    if (!r.learnt) state.SkipWithError("the timed cycle did not end the learning phase");
+  }
+}
+BENCHMARK(BM_MonitorStepLearningEnd)->Unit(benchmark::kMicrosecond);
 
 }  // namespace

@@ -97,6 +97,8 @@ void apply_reading_model(calib::monitor::MonitorSettings& ms, const MonitorReadi
   // the links growing relative to the base, which the monitor's growth state
   // follows on this time constant.
   ms.thermal_tau_s = reading.thermal_time_constant_s;
+  ms.learning_s = reading.learning_s;
+  ms.scale_floor = reading.scale_floor;
 }
 
 MonitorOutcome run_monitor(const sim::Scenario& s, const Robot& controller,
@@ -175,6 +177,11 @@ MonitorOutcome run_monitor(const sim::Scenario& s, const Robot& controller,
   }
   mon::monitor_flush(out.model, md);
   out.simulated_s = state.data->time;
+  out.learning_end_s = md.learning ? out.simulated_s : md.learning_end_s;
+  out.learned = md.learned;
+  out.learning_start_s = md.t_start;
+  out.chi_threshold = md.chi_threshold;
+  out.step_threshold = md.glr_threshold;
   out.cycles = md.cycles;
   out.accepted = md.accepted;
   record_estimate(out.simulated_s);
@@ -224,6 +231,10 @@ MonitorReadingModel reading_model_after_calibration(const RunOutcome& run) {
     m.drive_friction.coulomb_Nm = run.drive_friction_fitted->coulomb_Nm;
     m.drive_friction.viscous_Nm_s = run.drive_friction_fitted->viscous_Nm_s;
   }
+  // What the calibration stated of its residuals: the monitor's innovations
+  // are never taken as smaller (the learning phase may find them larger).
+  if (run.model_test && run.model_test->dof > 0.0 && std::isfinite(run.model_test->chi2))
+    m.scale_floor = std::clamp(std::sqrt(run.model_test->chi2 / run.model_test->dof), m.scale_floor, 1e3);
   return m;
 }
 
@@ -349,6 +360,11 @@ MonitorOutcome run_monitor_hardware(const sim::Scenario& s, const std::string& h
   robot->shutdown();
   mon::monitor_flush(out.model, *md);
   out.simulated_s = ticks * period;
+  out.learning_end_s = md->learning ? out.simulated_s : md->learning_end_s;
+  out.learned = md->learned;
+  out.learning_start_s = md->t_start;
+  out.chi_threshold = md->chi_threshold;
+  out.step_threshold = md->glr_threshold;
   out.cycles = md->cycles;
   out.accepted = md->accepted;
   (void)t_path;
@@ -469,6 +485,7 @@ nlohmann::json monitor_summary(const MonitorOutcome& o) {
   j["false_alarms"] = o.truth_known ? nlohmann::json(o.false_alarms) : nlohmann::json(nullptr);
   if (!o.hardware.empty()) j["hardware"] = o.hardware;
   j["false_alarm_rate_per_hour"] = o.model.settings.false_alarms_per_hour;
+  j["learning"] = learning_summary(o);
   // What the monitor assumed of the readings (the statement, or the calibration's estimates).
   const MonitorReadingModel& r = o.reading;
   j["reading_model"] = {{"encoder_cyclic_rad", r.encoder_cyclic_rad},
@@ -494,6 +511,34 @@ nlohmann::json monitor_summary(const MonitorOutcome& o) {
   return j;
 }
 
+nlohmann::json learning_summary(const MonitorOutcome& o) {
+  const calib::monitor::LearnedScale& l = o.learned;
+  return {{"learning_s", o.model.settings.learning_s},
+          {"length_s", o.learning_end_s - o.learning_start_s},
+          {"ended_s", o.learning_end_s},
+          {"samples", l.samples},
+          {"innovation_median", l.median},
+          {"innovation_mad_scale", l.mad_scale},
+          {"scale", l.scale},
+          {"scale_floor", o.model.settings.scale_floor},
+          {"step_factor", l.step_factor},
+          {"chi_mean", l.chi_mean},
+          {"chi_factor", l.chi_factor},
+          {"chi_square_threshold", o.chi_threshold},
+          {"step_threshold", o.step_threshold}};
+}
+
+std::string learning_text(const MonitorOutcome& o) {
+  const calib::monitor::LearnedScale& l = o.learned;
+  if (o.model.settings.learning_s <= 0.0) return "no learning phase (the stated reading model taken as exact)";
+  return fmt::format(
+      "learning phase {:.2f} s (no alarm before {:.2f} s), {} samples: innovation scale {:.2f} (MAD; {:.2f} used, "
+      "floor {:.2f}), bias {:+.2f}; step test divided by up to {:.1f} (threshold {:.1f}), chi-square threshold "
+      "{:.1f} (stated {:.1f})",
+      o.learning_end_s - o.learning_start_s, o.learning_end_s, l.samples, l.mad_scale, l.scale,
+      o.model.settings.scale_floor, l.median, l.step_factor, o.step_threshold, o.chi_threshold, o.model.threshold);
+}
+
 void add_monitor_section(report::ReportDocument& doc, const MonitorOutcome& o, int level, const std::string& figure) {
   const FreeMask est = o.model.settings.estimate;
   doc.paragraph(fmt::format("{:.1f} s of normal operation ({} servo cycles at {:.0f} Hz{}), {} alarms{}, "
@@ -502,6 +547,7 @@ void add_monitor_section(report::ReportDocument& doc, const MonitorOutcome& o, i
                             o.hardware.empty() ? "" : " through " + o.hardware, o.alarms.size(),
                             o.truth_known ? fmt::format(" ({} false)", o.false_alarms) : "",
                             o.model.settings.false_alarms_per_hour, o.model.threshold, o.model.settings.window));
+  doc.paragraph(fmt::format("Learning: {}.", learning_text(o)));
   {
     const MonitorReadingModel& r = o.reading;
     const auto three = [](const std::array<double, 3>& v, double scale) {

@@ -57,6 +57,11 @@ struct MonitorOutcome {
   std::vector<MonitorEstimateRow> estimates;
   std::vector<MonitorDetection> detections;
   int false_alarms = 0;                    // alarms no event explains
+  // The learning phase (calib/monitor/learning.hpp): when it ended (operation
+  // time; no alarm before) and what the monitor learnt of its innovations.
+  double learning_start_s = 0.0, learning_end_s = 0.0;
+  calib::monitor::LearnedScale learned;
+  double chi_threshold = 0.0, step_threshold = 0.0;  // thresholds in force after learning
   // The actual geometry at the end (events and thermal growth), expressed in
   // the monitor's gauge (the similarity that keeps the fixed xa1 ya1 xa2 ya2
   // where the monitor holds them: encoders cannot see the rest).
@@ -104,7 +109,8 @@ MonitorOutcome run_monitor_hardware(const sim::Scenario& scenario, const std::st
                                     const std::atomic<bool>* stop = nullptr);
 
 // Sets the monitor's reading model (skew, compliance, motor-side friction,
-// cyclic encoder error, pin clearance, thermal time constant) from `reading`.
+// cyclic encoder error, pin clearance, thermal time constant, learning phase
+// and least innovation scale) from `reading`.
 void apply_reading_model(calib::monitor::MonitorSettings& settings, const MonitorReadingModel& reading);
 
 // The scenario's `expect:` for gpm monitor (every key optional).
@@ -143,6 +149,10 @@ const std::vector<std::string>& monitor_output_names();
 std::string monitor_alarms_csv(const MonitorOutcome& outcome);
 std::string monitor_estimates_csv(const MonitorOutcome& outcome);
 nlohmann::json monitor_summary(const MonitorOutcome& outcome);
+// The learning phase: summary.json's `learning` block, and one line of text
+// (terminal, report).
+nlohmann::json learning_summary(const MonitorOutcome& outcome);
+std::string learning_text(const MonitorOutcome& outcome);
 void add_monitor_section(report::ReportDocument& doc, const MonitorOutcome& outcome, int level,
                          const std::string& figure);
 
@@ -153,8 +163,9 @@ struct RunOutcome;  // run/runner.hpp
 // driven joint from a calibration with motion corrections; the joint play d_i
 // of the passive links, as pin clearance d_i / 2, zero when the calibration
 // looked for it and found none; the drives' friction times the factor the
-// model test chose, when it chose one), the scenario's `monitor:` statement
-// for the rest.
+// model test chose, when it chose one; the least innovation scale raised to
+// the calibration's residual RMS over the noise, sqrt(chi2 / dof), when above
+// it), the scenario's `monitor:` statement for the rest.
 MonitorReadingModel reading_model_after_calibration(const RunOutcome& run);
 
 // gpm run's hook: when the scenario has `operation:`, the calibrated model

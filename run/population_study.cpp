@@ -61,6 +61,32 @@ void judge_parameters(const calib::Result& c, const Geometry& actual, Population
   }
 }
 
+// The monitor on a healthy robot (after learning, before the first event)
+// and its detection of the first event.
+void judge_monitor(const MonitorOutcome& m, PopulationRobot& r) {
+  r.monitored = true;
+  r.learning_s = m.learning_end_s - m.learning_start_s;
+  r.learned_scale = m.learned.scale;
+  const auto& events = m.scenario.twin.events;
+  double first = m.simulated_s;
+  int first_index = -1;
+  for (std::size_t e = 0; e < events.size(); ++e)
+    if (events[e].at_s < first) first = events[e].at_s, first_index = static_cast<int>(e);
+  r.monitored_s = std::max(0.0, first - m.learning_end_s);
+  for (const MonitorAlarm& a : m.alarms) {
+    if (a.t_s < first) ++r.false_alarms;
+    else ++r.alarms_after_event;
+  }
+  r.false_alarms_per_hour = r.monitored_s > 0.0 ? 3600.0 * r.false_alarms / r.monitored_s : NAN;
+  r.event = first_index >= 0;
+  if (r.event)
+    for (const MonitorDetection& d : m.detections)
+      if (d.event == first_index && d.detected_s) {
+        r.detection_delay_s = *d.detected_s - d.at_s;
+        r.detection = d.explanation;
+      }
+}
+
 PopulationRobot robot_of(const RunOutcome& o, PopulationRobot r) {
   if (!o.calibration) return failed_robot(r, o.refused.value_or("no calibration"));
   if (!o.calibration->converged) return failed_robot(r, "calibration did not converge");
@@ -76,6 +102,7 @@ PopulationRobot robot_of(const RunOutcome& o, PopulationRobot r) {
   if (!o.positioning) return failed_robot(r, "the calibrated model reaches no point of the workspace disc");
   r.positioning = *o.positioning;
   judge_parameters(*o.calibration, o.sim.actual.geometry, r);
+  if (o.monitor) judge_monitor(*o.monitor, r);
   return r;
 }
 
@@ -173,20 +200,60 @@ PopulationSummary PopulationStudy::summary() const {
   s.within_3_sigma_fraction = estimated > 0 ? static_cast<double>(within) / estimated : NAN;
   s.model_test_pass_fraction = tested > 0 ? static_cast<double>(passed) / tested : NAN;
   s.normalised_positioning_median = median(normalised);
+  std::vector<double> delays;
+  for (const PopulationRobot& r : robots) {
+    if (r.failure || !r.monitored) continue;
+    ++s.monitored;
+    s.false_alarms += r.false_alarms;
+    s.monitored_hours += r.monitored_s / 3600.0;
+    if (r.false_alarms > 0) ++s.robots_with_false_alarms;
+    if (r.event) ++s.events;
+    if (r.detection_delay_s) ++s.detected, delays.push_back(*r.detection_delay_s);
+  }
+  s.false_alarms_per_hour = s.monitored_hours > 0.0 ? s.false_alarms / s.monitored_hours : NAN;
+  s.detection_delay_median_s = median(delays);
+  s.detection_delay_max_s = delays.empty() ? NAN : *std::max_element(delays.begin(), delays.end());
   return s;
 }
 
-std::vector<std::string> population_table_header() {
-  return {"seed", "positioning RMS (um)", "max (um)", "its stated 1-sigma (um)", "worst parameter / its 1-sigma",
-          "within 3 sigma", "static RMS (um)", "calibrated / floor", "model test (chi2/dof)", "s"};
+namespace {
+bool any_monitored(const PopulationStudy& study) {
+  for (const PopulationRobot& r : study.robots)
+    if (r.monitored) return true;
+  return false;
+}
+
+// The monitor's cells of a robot (false alarms, per hour, learning, scale, detection).
+std::vector<std::string> monitor_cells(const PopulationRobot& r) {
+  if (!r.monitored) return {"-", "-", "-", "-", "-"};
+  std::string detection = "-";
+  if (r.event)
+    detection = r.detection_delay_s ? fmt::format("{:.3f} ({})", *r.detection_delay_s, r.detection) : "missed";
+  return {fmt::format("{} in {:.1f} s", r.false_alarms, r.monitored_s), cell(r.false_alarms_per_hour, "{:.0f}"),
+          cell(r.learning_s, "{:.1f}"), cell(r.learned_scale, "{:.2f}"), detection};
+}
+}  // namespace
+
+std::vector<std::string> population_table_header(const PopulationStudy& study) {
+  std::vector<std::string> h{"seed", "positioning RMS (um)", "max (um)", "its stated 1-sigma (um)",
+                             "worst parameter / its 1-sigma", "within 3 sigma", "static RMS (um)",
+                             "calibrated / floor", "model test (chi2/dof)"};
+  if (any_monitored(study))
+    h.insert(h.end(), {"false alarms (after learning, before the event)", "false alarms per hour", "learning (s)",
+                       "learnt scale", "event detected after (s)"});
+  h.push_back("s");
+  return h;
 }
 
 std::vector<std::vector<std::string>> population_table_rows(const PopulationStudy& study) {
   std::vector<std::vector<std::string>> rows;
+  const bool monitored = any_monitored(study);
   for (const PopulationRobot& r : study.robots) {
     if (r.failure) {
-      rows.push_back({std::to_string(r.seed), "failed: " + *r.failure, "-", "-", "-", "-", "-", "-", "-",
-                      cell(r.seconds, "{:.0f}")});
+      std::vector<std::string> row{std::to_string(r.seed), "failed: " + *r.failure, "-", "-", "-", "-", "-", "-", "-"};
+      if (monitored) row.insert(row.end(), {"-", "-", "-", "-", "-"});
+      row.push_back(cell(r.seconds, "{:.0f}"));
+      rows.push_back(row);
       continue;
     }
     const std::string test = r.model_test_passed ? (*r.model_test_passed ? "passes" : "fails") : "-";
@@ -194,13 +261,27 @@ std::vector<std::vector<std::string>> population_table_rows(const PopulationStud
                     cell(r.positioning.stated_sigma_rms_um, "{:.2f}"),
                     r.worst_param.empty() ? "-" : fmt::format("{} ({})", cell(r.worst_sigma_ratio, "{:.2f}"), r.worst_param),
                     fmt::format("{}/{}", r.within_3_sigma, r.estimated), cell(r.calibrated_static_um, "{:.2f}"),
-                    cell(r.floor_ratio, "{:.2f}"), fmt::format("{} ({})", test, cell(r.chi2_per_dof, "{:.2f}")),
-                    cell(r.seconds, "{:.0f}")});
+                    cell(r.floor_ratio, "{:.2f}"), fmt::format("{} ({})", test, cell(r.chi2_per_dof, "{:.2f}"))});
+    if (monitored) {
+      const std::vector<std::string> m = monitor_cells(r);
+      rows.back().insert(rows.back().end(), m.begin(), m.end());
+    }
+    rows.back().push_back(cell(r.seconds, "{:.0f}"));
   }
   return rows;
 }
 
 namespace {
+
+std::string monitor_summary_text(const PopulationSummary& s) {
+  return fmt::format(
+      "Monitoring the operation after calibration ({} robots): {} false alarms in {:.2f} h of monitored time after "
+      "the learning phase and before the event ({} per hour; {} robots with any); the event detected on {} of {} "
+      "robots, delay median {} s, worst {} s.",
+      s.monitored, s.false_alarms, s.monitored_hours, cell(s.false_alarms_per_hour, "{:.1f}"),
+      s.robots_with_false_alarms, s.detected, s.events, cell(s.detection_delay_median_s, "{:.3f}"),
+      cell(s.detection_delay_max_s, "{:.3f}"));
+}
 
 std::string summary_text(const PopulationStudy& study) {
   const PopulationSummary s = study.summary();
@@ -213,7 +294,8 @@ std::string summary_text(const PopulationStudy& study) {
       study.randomized ? "every effect drawn per chain from its plausible range" : "the scenario's own effects",
       s.failed, cell(s.positioning_median_um, "{:.2f}"), cell(s.positioning_max_um, "{:.2f}"),
       cell(100.0 * s.within_3_sigma_fraction, "{:.0f}"), cell(s.worst_sigma_ratio, "{:.1f}"),
-      cell(s.normalised_positioning_median, "{:.2f}"), cell(100.0 * s.model_test_pass_fraction, "{:.0f}"));
+      cell(s.normalised_positioning_median, "{:.2f}"), cell(100.0 * s.model_test_pass_fraction, "{:.0f}")) +
+         (s.monitored > 0 ? " " + monitor_summary_text(s) : std::string());
 }
 
 // Figure: each robot's positioning RMS and its stated 1-sigma, robots sorted by the RMS.
@@ -337,6 +419,16 @@ nlohmann::json robot_json(const PopulationRobot& r) {
   j["parameters"] = params;
   j["within_3_sigma"] = r.within_3_sigma;
   j["estimated"] = r.estimated;
+  if (r.monitored)
+    j["monitor"] = {{"learning_s", number(r.learning_s)},
+                    {"learned_scale", number(r.learned_scale)},
+                    {"monitored_s", number(r.monitored_s)},
+                    {"false_alarms", r.false_alarms},
+                    {"false_alarms_per_hour", number(r.false_alarms_per_hour)},
+                    {"event", r.event},
+                    {"detection_delay_s", r.detection_delay_s ? nlohmann::json(*r.detection_delay_s) : nlohmann::json(nullptr)},
+                    {"detection", r.detection},
+                    {"alarms_after_event", r.alarms_after_event}};
   j["seconds"] = number(r.seconds);
   return j;
 }
@@ -346,7 +438,7 @@ nlohmann::json robot_json(const PopulationRobot& r) {
 std::string population_markdown(const PopulationStudy& study) {
   report::ReportDocument doc;
   doc.paragraph(summary_text(study));
-  doc.table(population_table_header(), population_table_rows(study));
+  doc.table(population_table_header(study), population_table_rows(study));
   return doc.markdown();
 }
 
@@ -365,6 +457,16 @@ std::string population_json(const PopulationStudy& study) {
                   {"worst_sigma_ratio", number(s.worst_sigma_ratio)},
                   {"model_test_pass_fraction", number(s.model_test_pass_fraction)},
                   {"normalised_positioning_median", number(s.normalised_positioning_median)}};
+  if (s.monitored > 0)
+    j["summary"]["monitor"] = {{"robots", s.monitored},
+                               {"false_alarms", s.false_alarms},
+                               {"monitored_hours", number(s.monitored_hours)},
+                               {"false_alarms_per_hour", number(s.false_alarms_per_hour)},
+                               {"robots_with_false_alarms", s.robots_with_false_alarms},
+                               {"events", s.events},
+                               {"detected", s.detected},
+                               {"detection_delay_median_s", number(s.detection_delay_median_s)},
+                               {"detection_delay_max_s", number(s.detection_delay_max_s)}};
   j["robots"] = nlohmann::json::array();
   for (const PopulationRobot& r : study.robots) j["robots"].push_back(robot_json(r));
   return j.dump(2) + "\n";
@@ -381,7 +483,7 @@ report::ReportDocument population_report(const PopulationStudy& study) {
       "and where the actual robot stands when its three drives hold them (equally stiff: its joint angles nearest "
       "to the commanded ones), noise-free. Its stated 1-sigma propagates the calibration's covariance to the same "
       "points (per axis; the RMS of the 2-d error is about 1.4 times it when the 1-sigma is honest).");
-  doc.table(population_table_header(), population_table_rows(study));
+  doc.table(population_table_header(study), population_table_rows(study));
   doc.figure("population_positioning", "Positioning error of the calibrated model per robot, with its stated 1-sigma",
              positioning_plot(study));
   doc.figure("population_sigma", "Every estimated parameter's error in units of its stated 1-sigma",

@@ -44,6 +44,17 @@ struct PopulationRobot {
   std::string worst_param;                 // largest |error| / sigma
   double worst_sigma_ratio = 0.0;
   int estimated = 0, within_3_sigma = 0;   // parameters with a stated 1-sigma; of those within 3 of it
+  // With `operation:` (the calibrated model monitors it, run/monitor_run.hpp):
+  bool monitored = false;
+  double learning_s = 0.0;        // length of the monitor's learning phase (no alarm in it)
+  double learned_scale = 0.0;     // the innovation scale it learnt (1: as stated)
+  double monitored_s = 0.0;       // monitored time after learning and before the first event
+  int false_alarms = 0;           // alarms in that time (the robot was healthy)
+  double false_alarms_per_hour = 0.0;  // false_alarms / monitored_s, per hour (NaN: no time)
+  bool event = false;             // the scenario injects an event (first of its events)
+  std::optional<double> detection_delay_s;  // its first alarm after it, minus its time (none: missed)
+  std::string detection;          // that alarm's explanation
+  int alarms_after_event = 0;     // every alarm from the event on (the detection among them)
   double seconds = 0.0;
 };
 
@@ -55,6 +66,16 @@ struct PopulationSummary {
   double worst_sigma_ratio = 0.0;
   double model_test_pass_fraction = 0.0;
   double normalised_positioning_median = 0.0;  // RMS positioning error / its stated 1-sigma (1: honest)
+  // Monitoring (robots with `operation:`): pooled false alarms per hour of
+  // monitored time after learning and before the event, robots with any, and
+  // the detection delays of the event.
+  int monitored = 0;
+  int false_alarms = 0;
+  double monitored_hours = 0.0;
+  double false_alarms_per_hour = 0.0;
+  int robots_with_false_alarms = 0;
+  int events = 0, detected = 0;
+  double detection_delay_median_s = 0.0, detection_delay_max_s = 0.0;
 };
 
 struct PopulationStudy {
@@ -80,8 +101,9 @@ std::string population_robot_scenario(const std::string& scenario_file, std::uin
 PopulationStudy run_population_study(const std::string& scenario_file, const PopulationOptions& options,
                                      const PopulationProgress& progress = {});
 
-// The table, one row per robot: header and cells as printed.
-std::vector<std::string> population_table_header();
+// The table, one row per robot: header and cells as printed (with the
+// monitor's columns when the study monitored).
+std::vector<std::string> population_table_header(const PopulationStudy& study);
 std::vector<std::vector<std::string>> population_table_rows(const PopulationStudy& study);
 
 // The summary and the table in Markdown (for the terminal and the README).

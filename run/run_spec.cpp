@@ -316,7 +316,7 @@ MonitorReadingModel parse_monitor_reading_model(const YAML::Node& n, const std::
                      "expected a preset (ideal, data_sheet) or a map of the monitor's reading model (see scenarios/SCHEMA.md)");
   yaml_check_keys(n, file, "monitor",
                   {"preset", "encoder_cyclic_rad", "clearance_mm", "drive_friction", "skew_s", "compliance_rad_per_Nm",
-                   "thermal_time_constant_s"});
+                   "thermal_time_constant_s", "learning_s", "scale_floor"});
   MonitorReadingModel m =
       n["preset"] ? reading_model_preset(n["preset"], file, "monitor.preset", sheet) : data_sheet_reading_model(sheet);
   if (n["encoder_cyclic_rad"]) m.encoder_cyclic_rad = per_joint(n["encoder_cyclic_rad"], file, "monitor.encoder_cyclic_rad", 0.01, "rad");
@@ -333,6 +333,18 @@ MonitorReadingModel parse_monitor_reading_model(const YAML::Node& n, const std::
                        fmt::format("{} s is out of range (valid: 1 to 1e6 s)", tau));
     m.thermal_time_constant_s = tau;
   }
+  if (const YAML::Node t = n["learning_s"]) {
+    const double v = yaml_number(t, file, "monitor.learning_s");
+    if (!(v >= 0.0 && v <= 10.0))
+      throw InputError(yaml_where(file, t, "monitor.learning_s") + fmt::format("{} s is out of range (valid: 0 to 10 s)", v));
+    m.learning_s = v;
+  }
+  if (const YAML::Node t = n["scale_floor"]) {
+    const double v = yaml_number(t, file, "monitor.scale_floor");
+    if (!(v >= 1.0 && v <= 1e3))
+      throw InputError(yaml_where(file, t, "monitor.scale_floor") + fmt::format("{} is out of range (valid: 1 to 1000)", v));
+    m.scale_floor = v;
+  }
   return m;
 }
 
@@ -344,10 +356,11 @@ std::string monitor_reading_model_yaml(const MonitorReadingModel& m) {
       "monitor:             # the drift monitor's reading model (gpm monitor --model reads it; scenario key monitor:)\n"
       "  encoder_cyclic_rad: {}\n  clearance_mm: {}\n"
       "  drive_friction: {{coulomb_Nm: {}, viscous_Nm_s: {}}}\n"
-      "  skew_s: {}\n  compliance_rad_per_Nm: {}\n  thermal_time_constant_s: {}\n",
+      "  skew_s: {}\n  compliance_rad_per_Nm: {}\n  thermal_time_constant_s: {}\n"
+      "  learning_s: {}\n  scale_floor: {}\n",
       three(m.encoder_cyclic_rad), three(m.clearance_mm), three(m.drive_friction.coulomb_Nm),
       three(m.drive_friction.viscous_Nm_s), three(m.skew_s), three(m.compliance_rad_per_Nm),
-      format_exact(m.thermal_time_constant_s));
+      format_exact(m.thermal_time_constant_s), format_exact(m.learning_s), format_exact(m.scale_floor));
 }
 
 RunSpec parse_run_spec(const std::string& text, const std::string& file, const std::string& base_dir) {

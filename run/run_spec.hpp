@@ -56,6 +56,13 @@ struct MonitorReadingModel {
   std::array<double, 3> compliance_rad_per_Nm{};  // transmission compliance of each chain
   // Time constant of the slow drift the monitor tracks (s); ideal: the monitor's own default.
   double thermal_time_constant_s = calib::monitor::MonitorSettings{}.thermal_tau_s;
+  // Learning phase (calib/monitor/learning.hpp): seconds of operation the
+  // monitor learns the scale, bias and correlation of its innovations before
+  // it may raise an alarm (0: none, the statement taken as exact).
+  double learning_s = calib::monitor::MonitorSettings{}.learning_s;
+  // Least scale of the innovations, in units of what this statement gives
+  // (>= 1; gpm run: the calibration's sqrt(chi2 / dof) when above 1).
+  double scale_floor = 1.0;
 };
 
 // `monitor: ideal`: no reading error modelled; drift tracked on the

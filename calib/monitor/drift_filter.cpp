@@ -19,7 +19,7 @@ Eigen::Vector3d without_cyclic(const MonitorModel& m, const std::array<double, k
 
 // h = dr/du (zero for the rate; for the cyclic coefficients dr/dtheta_i =
 // dr/ddth_i times -sin, -cos theta_m_i), P h' and s = sigma^2 + h P h'.
-double innovation_variance(const MonitorModel& m, const StateMatrix& P, const ParamRow& g,
+double innovation_variance(const MonitorModel& m, double noise_scale, const StateMatrix& P, const ParamRow& g,
                            const Eigen::Vector3d& theta_m, const Eigen::Vector3d& tension,
                            std::array<double, kMaxState>& Ph) {
   std::array<double, kMaxState> h{};
@@ -39,7 +39,8 @@ double innovation_variance(const MonitorModel& m, const StateMatrix& P, const Pa
     Ph[static_cast<size_t>(k)] = acc;
     hPh += h[static_cast<size_t>(k)] * acc;
   }
-  return m.sigma_rad * m.sigma_rad + hPh;
+  const double sigma = noise_scale * m.sigma_rad;  // the learnt reading noise (1 until learnt)
+  return sigma * sigma + hPh;
 }
 
 }  // namespace
@@ -99,7 +100,7 @@ bool filter_innovation(const MonitorModel& m, const MonitorData& d, double t_s, 
   ParamRow g;
   if (!ml_residual_and_gradient(shifted(x, d.clearance, tension), without_cyclic(m, d.cyclic, theta_m), r, g)) return false;
   std::array<double, kMaxState> Ph{};
-  const double sqrt_s = std::sqrt(innovation_variance(m, P, g, theta_m, tension, Ph));
+  const double sqrt_s = std::sqrt(innovation_variance(m, d.noise_scale, P, g, theta_m, tension, Ph));
   z = r / sqrt_s;
   dz = g / sqrt_s;
   return true;
@@ -113,7 +114,7 @@ void filter_update(const MonitorModel& m, MonitorData& d, double t_s, const Eige
   ParamRow g;
   if (!ml_residual_and_gradient(shifted(d.estimate, d.clearance, tension), without_cyclic(m, d.cyclic, theta_m), r, g)) return;
   std::array<double, kMaxState> Ph{};
-  const double s = innovation_variance(m, d.P, g, theta_m, tension, Ph);
+  const double s = innovation_variance(m, d.noise_scale, d.P, g, theta_m, tension, Ph);
   for (int k = 0; k < m.n_state; ++k) {
     const double du = -Ph[static_cast<size_t>(k)] / s * r;
     if (k == m.rate_index) d.growth_rate += du;

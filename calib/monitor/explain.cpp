@@ -43,7 +43,7 @@ void explain_window(const MonitorModel& model, const MonitorData& data, Alarm& a
   }
 }
 
-double step_statistic(const MonitorModel& model, const MonitorData& data) {
+double step_statistic(const MonitorModel& model, const MonitorData& data, ParamRow* per_param_max) {
   std::array<double, kNumParams> s_zh{}, s_hh{}, var{};
   for (int k = 0; k < model.n_free; ++k) {
     const double sd = 1.0 / model.scale[static_cast<size_t>(k)];
@@ -59,7 +59,11 @@ double step_statistic(const MonitorModel& model, const MonitorData& data) {
       const int i = model.free_index[ks];
       s_zh[ks] += dz[i] * z;
       s_hh[ks] += dz[i] * dz[i];
-      if (s_hh[ks] > 0.0) best = std::max(best, s_zh[ks] * s_zh[ks] / (s_hh[ks] * (1.0 + s_hh[ks] * var[ks])));
+      if (s_hh[ks] > 0.0) {
+        const double term = s_zh[ks] * s_zh[ks] / (s_hh[ks] * (1.0 + s_hh[ks] * var[ks]) * data.step_factor[i]);
+        best = std::max(best, term);
+        if (per_param_max) (*per_param_max)[i] = std::max((*per_param_max)[i], term);
+      }
     }
   }
   return best;

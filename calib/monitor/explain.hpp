@@ -27,7 +27,11 @@ void explain_window(const MonitorModel& model, const MonitorData& data, Alarm& a
 // with P_ii the filter's variance of parameter i: the window's innovations
 // share the filter's error, so under no change S_zh has variance
 // S_hh + S_hh^2 P_ii along column i, and each term is chi-square with 1
-// degree of freedom. Allocation-free, O(window * n_free).
-double step_statistic(const MonitorModel& model, const MonitorData& data);
+// degree of freedom. After the learning phase each parameter's term is
+// divided by data.step_factor[i], the variance factor of such sums learnt
+// from the robot (learning.hpp). Allocation-free, O(window * n_free).
+// per_param_max (optional): each parameter's largest term is raised to at
+// least its value (the learning phase keeps them).
+double step_statistic(const MonitorModel& model, const MonitorData& data, ParamRow* per_param_max = nullptr);
 
 }  // namespace gpm::calib::monitor

@@ -46,6 +46,53 @@ bool moved_enough(const MonitorModel& m, const MonitorData& d, const Eigen::Vect
   return true;
 }
 
+// Where the largest step-test term of a healthy robot over a learning phase
+// lies, as a share of the threshold (for independent N(0, 1) innovations:
+// the largest of ~1000 window tests over n W onsets, about 25 of 49).
+constexpr double kLearnStepMaxShare = 0.5;
+
+// Ends the learning phase at t_s (learning.hpp): the learnt scale becomes the
+// filter's reading noise, the learnt median the bias, the window's
+// innovations are restated in the new units and the thresholds widen.
+void finish_learning(const MonitorModel& m, MonitorData& d, double t_s) {
+  d.learning = false;
+  d.learning_end_s = t_s;
+  d.learned = learn_innovation_scale(d.learn_z.data(), d.learn_count, m.settings.learning_batch,
+                                     m.settings.scale_floor, d.learn_scratch.data());
+  const double s = d.learned.scale;
+  d.noise_scale = s;
+  d.bias = d.learned.median / s;
+  for (int j = 0; j < d.count; ++j) {
+    const auto slot = static_cast<size_t>(slot_of(d, j));
+    d.z[slot] = (d.z[slot] - d.learned.median) / s;
+    d.dz[slot] /= s;
+  }
+  // The step test: each parameter's statistic divided by its own factor
+  // (the reported step_factor is the largest); the threshold stays.
+  const int batches = d.learn_count / m.settings.learning_batch;
+  double largest = 1.0;
+  for (int k = 0; k < m.n_free; ++k) {
+    const int i = m.free_index[static_cast<size_t>(k)];
+    d.step_factor[i] = matched_sum_factor(batches, d.learned.median, s, [&](int b) {
+      const auto u = static_cast<size_t>(b);
+      return MatchedBatch{d.learn_h[u][i], d.learn_hz[u][i], d.learn_hh[u][i]};
+    });
+    // The largest term seen while learning, in the new units, sits where a
+    // healthy robot's would: a structured reading error repeats with the job
+    // (not Gaussian), and the batches see it only on average.
+    d.step_factor[i] = std::max(d.step_factor[i], d.learn_step_max[i] / (s * s) / (kLearnStepMaxShare * m.glr_threshold));
+    largest = std::max(largest, d.step_factor[i]);
+  }
+  d.learned.step_factor = largest;
+  d.glr_threshold = m.glr_threshold;
+  const double W = m.settings.window;
+  const double kappa = d.learned.chi_factor, nu = W * d.learned.chi_mean / kappa;
+  d.chi_threshold = std::max(m.threshold, kappa * chi2_quantile_wilson_hilferty(nu, m.chi_normal_quantile));
+  // As for the step test: the largest window sum seen while learning sits
+  // where a healthy robot's would, W + 3 sqrt(2 W).
+  d.chi_threshold = std::max(d.chi_threshold, d.learn_chi_max / (s * s) * m.threshold / (W + 3.0 * std::sqrt(2.0 * W)));
+}
+
 }  // namespace
 
 std::array<double, kNumParams> MonitorSettings::nan_array() {
@@ -156,12 +203,21 @@ MonitorModel make_monitor_model(const MonitorSettings& s) {
       const auto k = static_cast<size_t>(m.n_state++);
       const double c = s.clearance_mm[static_cast<size_t>(i)];
       m.scale[k] = 1.0;
-      m.prior_variance[k] = std::max(0.0625 * c * c, 1e-30);
+      // Learning: the stated clearance is a bound, not a value (a robot better
+      // than its data sheet has less): mean c / 2 (make_monitor_data), 1-sigma c / 2.
+      m.prior_variance[k] = std::max((s.learning_s > 0.0 ? 0.25 : 0.0625) * c * c, 1e-30);
       m.variance_cap[k] = m.prior_variance[k];
     }
   }
   require(s.tension_min_N >= 0.0 && std::isfinite(s.tension_min_N), "tension_min_N must be >= 0");
+  require(s.learning_s >= 0.0 && s.learning_s <= 10.0, fmt::format("learning_s {} must be in 0..10 s", s.learning_s));
+  require(s.learning_batch >= kMaxLearn / kMaxLearnBatches && s.learning_batch <= kMaxLearn / 4,
+          fmt::format("learning_batch {} must be in {}..{}", s.learning_batch, kMaxLearn / kMaxLearnBatches,
+                      kMaxLearn / 4));
+  require(s.bias_tau_s > 0.0, "bias_tau_s must be > 0");
+  require(s.scale_floor >= 1.0 && std::isfinite(s.scale_floor), "scale_floor must be finite and >= 1");
   m.glr_threshold = chi2_upper_quantile(1, 0.5 * m.p_window / (m.n_free * s.window));
+  m.chi_normal_quantile = wilson_hilferty_normal_quantile(s.window, m.threshold);
   return m;
 }
 
@@ -169,6 +225,11 @@ MonitorData make_monitor_data(const MonitorModel& m) {
   MonitorData d;
   d.estimate = m.settings.geometry;
   d.clearance = m.settings.clearance_mm;
+  if (m.settings.learning_s > 0.0)
+    for (double& c : d.clearance) c *= 0.5;
+  d.learning = m.settings.learning_s > 0.0;
+  d.chi_threshold = m.threshold;
+  d.glr_threshold = m.glr_threshold;
   d.P.setZero();
   for (int k = 0; k < m.n_state; ++k) d.P(k, k) = m.prior_variance[static_cast<size_t>(k)];
   return d;
@@ -201,6 +262,11 @@ StepResult monitor_step(const MonitorModel& m, MonitorData& d, double t_s, const
   }
   ++d.cycles;
   ++d.cycles_since_accepted;
+  if (!d.started) {
+    d.started = true;
+    d.t_start = t_s;
+    if (!d.learning) d.learning_end_s = t_s;
+  }
   // Independence gate (README.md): at most one sample per `decimation`
   // cycles, and only when every joint has moved, so that the quantisation
   // errors of accepted samples are not copies of each other.
@@ -264,18 +330,40 @@ StepResult monitor_step(const MonitorModel& m, MonitorData& d, double t_s, const
   d.last_accepted = theta_raw;
   d.cycles_since_accepted = 0;
   ++d.accepted;
+  // (The first quarter of the learning phase is not learnt from: the filter
+  // settles there on what the calibration left.)
+  if (d.learning && d.learn_count < kMaxLearn && t_s - d.t_start >= 0.25 * m.settings.learning_s) {
+    const auto b = static_cast<size_t>(d.learn_count / m.settings.learning_batch);  // < kMaxLearnBatches
+    d.learn_h[b] += dz;
+    d.learn_hz[b] += z * dz;
+    d.learn_hh[b] += dz.cwiseProduct(dz);
+    d.learn_z[static_cast<size_t>(d.learn_count++)] = z;
+  }
+  const double z_tested = z - d.bias;
+  if (!d.learning && m.settings.learning_s > 0.0 && d.pending < 0 && d.accepted > 1)
+    // The slowly varying bias (after the sample is tested against the former one).
+    d.bias += (z - d.bias) * std::min(1.0, (t_s - d.t_last_accepted) / m.settings.bias_tau_s);
+  d.t_last_accepted = t_s;
 
   const auto slot = static_cast<size_t>(d.head);
-  d.z[slot] = z;
+  d.z[slot] = z_tested;
   d.t[slot] = t_s;
   d.dz[slot] = dz;
   d.theta[slot] = theta_m;
   d.tension[slot] = tension_sign;
   d.head = (d.head + 1) % kMaxWindow;
   ++d.count;
-  const bool full = d.count == W && d.pending < 0;
+  if (d.learning && (t_s - d.t_start >= m.settings.learning_s || d.learn_count >= kMaxLearn)) {
+    finish_learning(m, d, t_s);
+    out.learnt = true;
+  }
+  // (The sample that ends the learning phase is not tested: that cycle has
+  // done the learning's work, and the next sample tests the same window.)
+  const bool full = d.count == W && d.pending < 0 && !out.learnt;
+  const bool learn_max = d.learning && full && t_s - d.t_start >= 0.25 * m.settings.learning_s;
   d.statistic = full ? window_statistic(d) : 0.0;
-  d.step_statistic = full ? step_statistic(m, d) : 0.0;
+  d.step_statistic = full ? step_statistic(m, d, learn_max ? &d.learn_step_max : nullptr) : 0.0;
+  if (learn_max) d.learn_chi_max = std::max(d.learn_chi_max, d.statistic);
   d.last_z = z;
   out.accepted = true;
   out.z = z;
@@ -303,7 +391,8 @@ StepResult monitor_step(const MonitorModel& m, MonitorData& d, double t_s, const
     d.statistic = 0.0;
     d.step_statistic = 0.0;
     d.pending = -1;
-  } else if (d.pending < 0 && d.filtered >= W && (d.statistic > m.threshold || d.step_statistic > m.glr_threshold)) {
+  } else if (d.pending < 0 && !d.learning && d.filtered >= W &&
+             (d.statistic > d.chi_threshold || d.step_statistic > d.glr_threshold)) {
     // (No alarm before the filter has absorbed one window: until then the
     // innovations share the prior's error of the nuisance states, cyclic
     // error and clearance, which the step test does not normalise by.)
@@ -311,10 +400,10 @@ StepResult monitor_step(const MonitorModel& m, MonitorData& d, double t_s, const
     a = Alarm{};
     a.t_s = t_s;
     // Report the test that is further past its threshold.
-    const bool step = d.step_statistic / m.glr_threshold > d.statistic / m.threshold;
+    const bool step = d.step_statistic / d.glr_threshold > d.statistic / d.chi_threshold;
     a.kind = step ? AlarmKind::kStep : AlarmKind::kChiSquare;
     a.statistic = step ? d.step_statistic : d.statistic;
-    a.threshold = step ? m.glr_threshold : m.threshold;
+    a.threshold = step ? d.glr_threshold : d.chi_threshold;
     ++d.alarm_count;
     out.alarm = true;
     d.pending = std::max(m.settings.explain_samples, 1);

@@ -29,6 +29,7 @@
 
 #include <Eigen/Core>
 
+#include "calib/monitor/learning.hpp"
 #include "calib/monitor/ml_sensitivity.hpp"
 #include "calib/passive_tension.hpp"
 #include "models/parameters.hpp"
@@ -39,6 +40,9 @@ namespace gpm::calib::monitor {
 // alarm's explanation) and the number of alarms kept.
 inline constexpr int kMaxWindow = 512;
 inline constexpr int kMaxAlarms = 64;
+// Most innovations the learning phase keeps (10 s at 200 samples/s).
+inline constexpr int kMaxLearn = 2048;
+inline constexpr int kMaxLearnBatches = 128;  // learning batches whose step-test sums are kept
 // Filter coordinates: the estimated parameters, the common thermal growth
 // rate, the two coefficients of each encoder's once-per-revolution error and
 // the effective clearance of each chain.
@@ -118,6 +122,22 @@ struct MonitorSettings {
   std::array<double, 3> cyclic_rad{};
   std::array<double, 3> clearance_mm{};
   double tension_min_N = 0.3;
+  // Learning phase (issue 31, learning.hpp): for the first learning_s seconds
+  // of operation (from the first call) no alarm is raised; the monitor learns
+  // from the robot's own innovations (those of its last three quarters: the
+  // filter settles in the first on what the calibration left) their scale (robust, never below
+  // scale_floor x the stated one), their bias and how alike neighbouring
+  // samples are (batches of learning_batch samples, 16..512), and from then
+  // on its filter takes the learnt scale as the reading noise and its tests
+  // widen by what it learnt (never narrower than the stated model's). The
+  // stated clearance, known only as a bound, starts the filter at half its
+  // value with a 1-sigma of half of it. The bias is then followed with time
+  // constant bias_tau_s (while no alarm is pending). learning_s 0: no
+  // learning, the stated model is taken as exact (the monitor before issue 31).
+  double learning_s = 8.0;
+  int learning_batch = 50;
+  double bias_tau_s = 60.0;
+  double scale_floor = 1.0;
 
   // An array of NaN (the "use the default" marker of prior_sigma).
   static std::array<double, kNumParams> nan_array();
@@ -133,6 +153,7 @@ struct MonitorModel {
   double p_window = 0.0;         // false-alarm probability per test sample: rate / tests_per_hour
   double threshold = 0.0;        // chi-square test: chi2_W upper quantile at p_window / 2
   double glr_threshold = 0.0;    // step test: chi2_1 upper quantile at p_window / (2 n_free W)
+  double chi_normal_quantile = 0.0;  // the standard normal quantile whose Wilson-Hilferty image at W is `threshold`
   int n_free = 0;                        // number of estimated parameters
   int n_state = 0;                       // filter coordinates: n_free, plus 1 with a growth-rate state
   int rate_index = -1;                   // index of the growth-rate coordinate, -1 without
@@ -206,6 +227,29 @@ struct MonitorData {
   int pending = -1;  // accepted samples until the latest alarm is explained; -1: none pending
   long cycles = 0, accepted = 0, skipped = 0;  // skipped: readings with no ML residual
   long filtered = 0;  // samples the filter has absorbed
+  // Learning phase (MonitorSettings::learning_s, learning.hpp).
+  bool started = false;      // a cycle has been seen (t_start is set)
+  double t_start = 0.0;      // time of the first cycle
+  bool learning = false;     // still learning: no alarm
+  double learning_end_s = 0.0;  // when learning ended (t_start without learning)
+  int learn_count = 0;
+  std::array<double, kMaxLearn> learn_z{}, learn_scratch{};
+  // Per learning batch and estimated parameter: sums of dz, dz z and dz^2
+  // (learning.hpp MatchedBatch), for the step test's factors.
+  std::array<ParamRow, kMaxLearnBatches> learn_h{}, learn_hz{}, learn_hh{};
+  LearnedScale learned;      // what was learnt (defaults: nothing)
+  // The step test's variance factor of each parameter (>= 1; 1 until learnt):
+  // its statistic along parameter i is divided by step_factor[i].
+  ParamRow step_factor = ParamRow::Ones();
+  // The largest step-test term of each parameter and the largest chi-square
+  // statistic while learning (last three quarters, full windows).
+  ParamRow learn_step_max = ParamRow::Zero();
+  double learn_chi_max = 0.0;
+  double noise_scale = 1.0;  // the filter's reading noise is noise_scale x model.sigma_rad
+  double bias = 0.0;         // bias of the innovations (z units), taken off before the tests
+  double t_last_accepted = 0.0;
+  double chi_threshold = 0.0;  // thresholds in force (the model's, widened after learning)
+  double glr_threshold = 0.0;
 };
 
 // Fresh state: estimate = model geometry, covariance = prior.
@@ -216,7 +260,8 @@ struct StepResult {
   bool accepted = false;  // the sample entered the test and the filter
   bool alarm = false;     // an alarm was raised (data.alarms[(data.alarm_count - 1) % kMaxAlarms])
   bool explained = false; // the latest alarm's explanation was filled in (explain_samples later)
-  double z = 0.0;         // normalised innovation of an accepted sample
+  double z = 0.0;         // normalised innovation of an accepted sample (before the bias is taken off)
+  bool learnt = false;    // the learning phase ended with this sample
   double statistic = 0.0; // window statistic after this sample (0 while the window fills)
   double step_statistic = 0.0;  // step statistic after this sample (0 while the window fills)
 };

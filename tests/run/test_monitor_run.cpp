@@ -25,6 +25,13 @@ namespace {
 const std::string kBase = gpm::scenarios_dir();
 // The twin fixtures below are ideal (no reading errors): so is what their monitor assumes.
 const MonitorReadingModel kIdeal = ideal_reading_model();
+// The same without the learning phase (the statement taken as exact): for
+// the short runs through hardware whose events come before 8 s of operation.
+const MonitorReadingModel kIdealExact = [] {
+  MonitorReadingModel m = ideal_reading_model();
+  m.learning_s = 0.0;
+  return m;
+}();
 
 std::string run_yaml(const std::string& operation) {
   return "robot: robots/table5_frame.yaml\nseed: 3\n"
@@ -66,12 +73,17 @@ TEST(MonitorRun, GpmRunMonitorsTheOperationWithTheCalibratedModel) {
 // before them, so it is the same with or without them, and the monitor of
 // the operation detects the jump.
 TEST(MonitorRun, OperationEventsLeaveTheCalibrationAloneAndAreDetected) {
+  // (a learning phase of 2 s, so that the jump at 5 s comes after it)
   const std::string op =
       "operation: {path: {shape: circle, centre: [216.5, 250], radius: 60, period_s: 4}, duration_s: 8}\n";
-  const RunOutcome plain = run_scenario(parse_run_spec(run_yaml(op), "t.yaml", kBase), "t.yaml");
-  const RunOutcome with =
-      run_scenario(parse_run_spec(run_yaml(op + "events: [{at_s: 5, change: {dth2: 1.0e-3}}]\n"), "t.yaml", kBase),
-                   "t.yaml");
+  std::string plain_yaml = run_yaml(op), with_yaml = run_yaml(op + "events: [{at_s: 5, change: {dth2: 1.0e-3}}]\n");
+  for (std::string* y : {&plain_yaml, &with_yaml}) {
+    const auto at = y->find("monitor: ideal\n");
+    ASSERT_NE(at, std::string::npos);
+    y->replace(at, 15, "monitor: {preset: ideal, learning_s: 2}\n");
+  }
+  const RunOutcome plain = run_scenario(parse_run_spec(plain_yaml, "t.yaml", kBase), "t.yaml");
+  const RunOutcome with = run_scenario(parse_run_spec(with_yaml, "t.yaml", kBase), "t.yaml");
   ASSERT_TRUE(plain.calibration && with.calibration);
   EXPECT_GT(with.sim.sampling_s, 5.0) << "the sampling should outlast the event's time";
   EXPECT_EQ(with.calibration->geometry.values, plain.calibration->geometry.values);
@@ -80,6 +92,8 @@ TEST(MonitorRun, OperationEventsLeaveTheCalibrationAloneAndAreDetected) {
   ASSERT_TRUE(with.monitor->detections[0].detected_s) << "the jump at 5 s was not detected";
   EXPECT_GE(*with.monitor->detections[0].detected_s, 5.0);
   EXPECT_EQ(with.monitor->false_alarms, 0);
+  EXPECT_NEAR(with.monitor->learning_end_s, 2.0, 0.05);
+  EXPECT_NEAR(monitor_summary(*with.monitor)["learning"]["length_s"].get<double>(), 2.0, 0.05);
 }
 
 TEST(MonitorRun, GpmRunWithoutOperationDoesNotMonitor) {
@@ -194,6 +208,16 @@ TEST(MonitorRun, ReadingModelAfterCalibrationTakesTheEstimatesWhereMade) {
   // The clearance looked for and not found: none (zeros), not the statement's 5 um.
   run.joint_play_mm = std::array<double, 3>{};
   EXPECT_EQ(reading_model_after_calibration(run).clearance_mm, (std::array<double, 3>{}));
+  // The least innovation scale: the statement's without a model test, the
+  // calibration's residual RMS over the noise when above it, never below the
+  // statement's (issue 31).
+  EXPECT_EQ(reading_model_after_calibration(run).scale_floor, stated.scale_floor);
+  run.model_test = calib::ModelTest{};
+  run.model_test->chi2 = 400.0;
+  run.model_test->dof = 100.0;
+  EXPECT_DOUBLE_EQ(reading_model_after_calibration(run).scale_floor, 2.0);
+  run.model_test->chi2 = 50.0;
+  EXPECT_EQ(reading_model_after_calibration(run).scale_floor, 1.0);
 }
 
 // End to end on the realistic twin, samples on the fly (the main job's
@@ -286,7 +310,10 @@ TEST(MonitorRun, MonitorsThroughTheTwinBackend) {
                                              (rig.dir.path() / "actual.yaml").string());
   std::array<double, kNumParams> prior;
   prior.fill(std::numeric_limits<double>::quiet_NaN());
-  const MonitorOutcome good = run_monitor_hardware(rig.scenario(), hw_actual, rig.actual, prior, kIdeal);
+  // Without the learning phase (a robot wrong from the start is learnt as
+  // healthy: here the nominal model must alarm as it did).
+  const MonitorReadingModel& exact = kIdealExact;
+  const MonitorOutcome good = run_monitor_hardware(rig.scenario(), hw_actual, rig.actual, prior, exact);
   EXPECT_FALSE(good.truth_known);
   EXPECT_FALSE(good.hardware.empty());
   EXPECT_GT(good.cycles, 1500);  // 7 s at 250 Hz
@@ -300,7 +327,7 @@ TEST(MonitorRun, MonitorsThroughTheTwinBackend) {
   EXPECT_EQ(good.model.settings.thermal_tau_s, kIdeal.thermal_time_constant_s);
 
   const std::string hw_nominal = rig.hardware("twin", "twin: {scenario: " + kTwinScenario + "}\n", kSrc + "/models/gpm2002.yaml");
-  const MonitorOutcome bad = run_monitor_hardware(rig.scenario(), hw_nominal, Robot{}, prior, kIdeal);
+  const MonitorOutcome bad = run_monitor_hardware(rig.scenario(), hw_nominal, Robot{}, prior, exact);
   ASSERT_FALSE(bad.alarms.empty());
   // as soon as the monitor may alarm (one window learnt), with a parameter named
   EXPECT_LT(bad.alarms.front().t_s, 4.0);
@@ -346,7 +373,7 @@ MonitorOutcome monitor_through_emulator(HardwareRig& rig, const hw::EmulatorFaul
   const std::string file = rig.hardware("modbus", "modbus: {register_map: map.yaml}\n", (rig.dir.path() / "actual.yaml").string());
   std::array<double, kNumParams> prior;
   prior.fill(std::numeric_limits<double>::quiet_NaN());
-  MonitorOutcome out = run_monitor_hardware(rig.scenario(), file, rig.actual, prior, kIdeal);
+  MonitorOutcome out = run_monitor_hardware(rig.scenario(), file, rig.actual, prior, kIdealExact);
   EXPECT_NE(out.hardware.find("modbus"), std::string::npos) << out.hardware;
   EXPECT_GT(out.cycles, 1500);
   EXPECT_GT(out.accepted, 500);  // every joint moving: most cycles give a sample

@@ -75,3 +75,48 @@ TEST(PopulationStudy, ARobotReRunAloneGivesItsNumbersAndTheSummaryIsTheRobots) {
 
 }  // namespace
 }  // namespace gpm::scenario
+
+namespace gpm::scenario {
+namespace {
+
+// The monitor's figures of a population (issue 31): false alarms pooled per
+// hour of healthy monitored time, detection delays over the robots that
+// detected, failed robots left out; the table gains the monitor's columns
+// only when the study monitored.
+TEST(PopulationStudy, MonitorFiguresArePooledOverTheMonitoredRobots) {
+  PopulationStudy study;
+  study.robots.resize(4);
+  for (std::size_t k = 0; k < study.robots.size(); ++k) study.robots[k].seed = k + 1;
+  EXPECT_EQ(population_table_header(study).size(), 10u);  // nothing monitored: no monitor columns
+  PopulationRobot& a = study.robots[0];
+  a.monitored = a.event = true;
+  a.false_alarms = 2, a.monitored_s = 30.0, a.false_alarms_per_hour = 240.0;
+  a.detection_delay_s = 0.2;
+  PopulationRobot& b = study.robots[1];
+  b.monitored = b.event = true;
+  b.monitored_s = 30.0;  // no false alarm, the event missed
+  PopulationRobot& c = study.robots[2];
+  c.monitored = c.event = true;
+  c.monitored_s = 60.0, c.detection_delay_s = 0.6;
+  study.robots[3].failure = "diverged";
+  study.robots[3].monitored = true, study.robots[3].false_alarms = 100;  // failed: not counted
+  const PopulationSummary s = study.summary();
+  EXPECT_EQ(s.monitored, 3);
+  EXPECT_EQ(s.false_alarms, 2);
+  EXPECT_DOUBLE_EQ(s.monitored_hours, 120.0 / 3600.0);
+  EXPECT_DOUBLE_EQ(s.false_alarms_per_hour, 60.0);
+  EXPECT_EQ(s.robots_with_false_alarms, 1);
+  EXPECT_EQ(s.events, 3);
+  EXPECT_EQ(s.detected, 2);
+  EXPECT_DOUBLE_EQ(s.detection_delay_median_s, 0.4);
+  EXPECT_DOUBLE_EQ(s.detection_delay_max_s, 0.6);
+  const auto header = population_table_header(study);
+  EXPECT_EQ(header.size(), 15u);
+  const auto rows = population_table_rows(study);
+  for (const auto& row : rows) EXPECT_EQ(row.size(), header.size());
+  EXPECT_EQ(rows[1][13], "missed");
+  EXPECT_NE(population_json(study).find("\"false_alarms_per_hour\": 60.0"), std::string::npos);
+}
+
+}  // namespace
+}  // namespace gpm::scenario

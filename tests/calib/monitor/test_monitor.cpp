@@ -91,7 +91,7 @@ TEST(Monitor, OffsetJumpIsDetectedAnywhereOnTheCircle) {
   double worst = 0.0;
   for (int joint = 0; joint < 3; ++joint)
     for (int k = 0; k < 16; ++k) {
-      const double t0 = 5.0 + 0.25 * k;
+      const double t0 = m.settings.learning_s + 5.0 + 0.25 * k;  // after the learning phase
       auto d = std::make_unique<MonitorData>(make_monitor_data(m));
       const auto run = run_circle(m, *d, t0 + 2.6, [&](double t) {
         Geometry g = base;

@@ -56,12 +56,14 @@ TEST(MonitorAlloc, TenThousandCyclesAllocateNothing) {
   testing::CircleStream cs;
   const Geometry base = m.settings.geometry;
   // Readings first (the stream is not under test): warm-up 0..5 s, then
-  // 10,000 cycles from 5 s with a jump of dth2 at 6 s.
+  // 10,000 cycles from 5 s (the end of the learning phase at 8 s among
+  // them) with a jump of dth2 at 11 s.
+  ASSERT_EQ(m.settings.learning_s, 8.0);
   const int warm = 5000, counted = 10000;
   std::vector<Eigen::Vector3d> readings(warm + counted);
   for (int c = 0; c < warm + counted; ++c) {
     Geometry g = base;
-    if (c >= 6000) g[kDth2] += 1e-4;
+    if (c >= 11000) g[kDth2] += 1e-4;
     readings[static_cast<size_t>(c)] = cs.readings(g, c / 1000.0);
   }
   for (int c = 0; c < warm; ++c) monitor_step(m, *d, c / 1000.0, readings[static_cast<size_t>(c)]);

@@ -1,0 +1,218 @@
+// Tests of calib/monitor/learning.cpp (the learning phase's estimates against
+// closed forms) and of the learning phase in calib/monitor/monitor.cpp on
+// generated readings (circle_stream.hpp): no alarm while learning, the learnt
+// scale of a robot noisier than stated, and a slip after learning still found
+// within 1 s and named.
+#include "calib/monitor/learning.hpp"
+
+#include <cmath>
+#include <vector>
+
+#include <gtest/gtest.h>
+
+#include "calib/chi_square.hpp"
+#include "calib/monitor/monitor.hpp"
+#include "models/rng.hpp"
+#include "tests/calib/monitor/run_circle.hpp"
+
+namespace gpm::calib::monitor {
+namespace {
+
+using testing::run_circle;
+
+LearnedScale learn(const std::vector<double>& z, int batch, double floor = 1.0) {
+  std::vector<double> scratch(z.size());
+  return learn_innovation_scale(z.data(), static_cast<int>(z.size()), batch, floor, scratch.data());
+}
+
+// Independent N(bias, s^2): the median is the bias, 1.4826 MAD the scale; the
+// scale used is the MAD's upper bound 1.4826 MAD (1 + 2.2 / sqrt(n)).
+TEST(Learning, ScaleAndBiasOfIndependentInnovations) {
+  Rng rng(7);
+  std::vector<double> z(2000);
+  for (double& v : z) v = 0.5 + 3.0 * rng.normal();
+  const LearnedScale l = learn(z, 50);
+  EXPECT_EQ(l.samples, 2000);
+  EXPECT_NEAR(l.median, 0.5, 0.15);
+  EXPECT_NEAR(l.mad_scale, 3.0, 0.15);
+  EXPECT_NEAR(l.scale, l.mad_scale * (1.0 + 2.2 / std::sqrt(l.effective_samples)), 1e-9);
+  EXPECT_GT(l.effective_samples, 1000.0);  // independent: about n
+  // Independent samples: the factors are 1 up to their widening (one standard error).
+  EXPECT_GE(l.step_factor, 1.0);
+  EXPECT_LT(l.step_factor, 1.5);
+  EXPECT_GE(l.chi_factor, 1.0);
+  EXPECT_LT(l.chi_factor, 1.6);
+}
+
+// The stated model is a floor: innovations smaller than stated leave scale 1
+// (never narrower than the quantisation); a larger floor (what the
+// calibration stated) holds too.
+TEST(Learning, ScaleIsNeverBelowTheStatedModel) {
+  Rng rng(8);
+  std::vector<double> z(2000);
+  for (double& v : z) v = 0.4 * rng.normal();
+  EXPECT_EQ(learn(z, 50).scale, 1.0);
+  EXPECT_EQ(learn(z, 50, 2.5).scale, 2.5);
+  EXPECT_NEAR(learn(z, 50).mad_scale, 0.4, 0.03);
+}
+
+// A median and MAD: a few gross outliers (a slip in the learning phase) move
+// the scale little.
+TEST(Learning, ScaleIsRobustToOutliers) {
+  Rng rng(9);
+  std::vector<double> z(2000);
+  for (double& v : z) v = 2.0 * rng.normal();
+  for (int k = 0; k < 40; ++k) z[static_cast<size_t>(50 * k)] = 500.0;
+  EXPECT_NEAR(learn(z, 50).mad_scale, 2.0, 0.15);
+}
+
+// AR(1) innovations z_k = rho z_{k-1} + sqrt(1 - rho^2) w_k (unit variance):
+// a batch mean of B samples has variance (1/B) [(1 + rho) / (1 - rho) -
+// 2 rho (1 - rho^B) / (B (1 - rho)^2)], so B var = 8.2 for rho = 0.8, B = 50;
+// the factor used is that times (mad / scale)^2, widened by one standard
+// error sqrt(2 / (batches - 1)).
+TEST(Learning, StepFactorOfCorrelatedInnovationsIsTheBatchMeansVariance) {
+  Rng rng(10);
+  const double rho = 0.8;
+  const int n = 20000, B = 50;
+  std::vector<double> z(n);
+  double prev = rng.normal();
+  for (double& v : z) v = prev = rho * prev + std::sqrt(1.0 - rho * rho) * rng.normal();
+  const LearnedScale l = learn(z, B);
+  const double batch_var = (1.0 + rho) / (1.0 - rho) - 2.0 * rho * (1.0 - std::pow(rho, B)) / (B * (1.0 - rho) * (1.0 - rho));
+  EXPECT_NEAR(batch_var, 8.2, 1e-3);
+  const double r = l.mad_scale / l.scale;
+  const double expected = batch_var * r * r * (1.0 + std::sqrt(2.0 / (n / B - 1)));
+  EXPECT_NEAR(l.step_factor, expected, 0.15 * expected);
+  EXPECT_NEAR(l.effective_samples, n / batch_var, 0.2 * n / batch_var);
+}
+
+// The step test's factor along a signature h: independent innovations give
+// 1 whatever h (up to the widening by one standard error); AR(1) ones with a
+// constant h the batch-means variance factor of the test above (8.2); a
+// learnt bias is taken off first.
+TEST(Learning, MatchedSumFactorOfIndependentAndCorrelatedInnovations) {
+  Rng rng(11);
+  const int B = 50, batches = 40;
+  std::vector<MatchedBatch> iid(batches), ar(batches);
+  double prev = rng.normal();
+  const double rho = 0.8;
+  for (int b = 0; b < batches; ++b)
+    for (int j = 0; j < B; ++j) {
+      const double h = std::sin(0.1 * (b * B + j)) + 0.3;  // a signature that varies along the path
+      const double z = 2.0 + 3.0 * rng.normal();             // bias 2, scale 3
+      iid[static_cast<size_t>(b)].h += h, iid[static_cast<size_t>(b)].hz += h * z, iid[static_cast<size_t>(b)].hh += h * h;
+      prev = rho * prev + std::sqrt(1.0 - rho * rho) * rng.normal();
+      ar[static_cast<size_t>(b)].h += 1.0, ar[static_cast<size_t>(b)].hz += prev, ar[static_cast<size_t>(b)].hh += 1.0;
+    }
+  const double widen = 1.0 + std::sqrt(2.0 / (batches - 1));
+  const double f_iid = matched_sum_factor(batches, 2.0, 3.0, [&](int b) { return iid[static_cast<size_t>(b)]; });
+  EXPECT_GE(f_iid, 1.0);
+  EXPECT_LT(f_iid, 1.6 * widen);
+  // The bias not taken off inflates it: the test would be the less sensitive.
+  EXPECT_GT(matched_sum_factor(batches, 0.0, 3.0, [&](int b) { return iid[static_cast<size_t>(b)]; }), 3.0 * f_iid);
+  const double f_ar = matched_sum_factor(batches, 0.0, 1.0, [&](int b) { return ar[static_cast<size_t>(b)]; });
+  EXPECT_NEAR(f_ar, 8.2 * widen, 0.35 * 8.2 * widen);
+  EXPECT_EQ(matched_sum_factor(1, 0.0, 1.0, [&](int b) { return ar[static_cast<size_t>(b)]; }), 1.0);
+}
+
+// The chi-square quantile at other degrees of freedom from the normal
+// quantile of the monitor's threshold (Wilson-Hilferty) against Boost's.
+TEST(Learning, WilsonHilfertyQuantileAgreesWithTheExactOne) {
+  const double p = 0.5 * 0.01 / 720000.0;
+  const double zp = wilson_hilferty_normal_quantile(250, chi2_upper_quantile(250, p));
+  for (double dof : {250.0, 120.0, 60.0}) {
+    const double exact = chi2_upper_quantile(dof, p);
+    EXPECT_NEAR(chi2_quantile_wilson_hilferty(dof, zp), exact, 5e-3 * exact) << dof;
+  }
+  // Fewer degrees of freedom: within 2 %, and above the exact one (a wider test).
+  const double exact = chi2_upper_quantile(25.0, p), wh = chi2_quantile_wilson_hilferty(25.0, zp);
+  EXPECT_GE(wh, exact);
+  EXPECT_LT(wh, 1.02 * exact);
+}
+
+// A robot noisier than stated (reading noise 4e-5 rad the monitor is not
+// told of): without learning, false alarms; with it, none, and the learnt
+// scale is sqrt(q^2 / 12 + 4e-5^2) / sqrt(q^2 / 12) (the ML residual carries
+// the reading noise one to one; the parameters are known so well here that
+// the filter adds nothing to the innovation's variance).
+TEST(MonitorLearning, LearnsTheScaleOfANoisierRobotAndRaisesNoAlarm) {
+  testing::CircleStream cs;
+  cs.noise_rad = 4e-5;
+  const Geometry base = MonitorSettings{}.geometry;
+  const auto healthy = [&](double) { return base; };
+  MonitorSettings s;
+  for (int k = 0; k < kNumParams; ++k) s.prior_sigma[static_cast<size_t>(k)] = is_offset(k) ? 1e-9 : 1e-8;
+  s.thermal_growth_mm = 0.0;
+  s.offset_drift_rad = 0.0;
+  s.learning_s = 0.0;
+  {
+    const MonitorModel m = make_monitor_model(s);
+    auto d = std::make_unique<MonitorData>(make_monitor_data(m));
+    EXPECT_GT(run_circle(m, *d, 30.0, healthy, cs).alarm_times.size(), 0u) << "the test could not fail";
+  }
+  s.learning_s = 8.0;
+  const MonitorModel m = make_monitor_model(s);
+  auto d = std::make_unique<MonitorData>(make_monitor_data(m));
+  const auto run = run_circle(m, *d, 60.0, healthy, cs);
+  EXPECT_TRUE(run.alarm_times.empty()) << run.alarm_times.size() << " alarms, first at " << run.alarm_times.front();
+  EXPECT_FALSE(d->learning);
+  EXPECT_NEAR(d->learning_end_s, 8.0, 0.05);
+  const double expected = std::sqrt(m.sigma_rad * m.sigma_rad + 4e-5 * 4e-5) / m.sigma_rad;
+  EXPECT_NEAR(d->learned.mad_scale, expected, 0.05 * expected);
+  EXPECT_NEAR(d->learned.median, 0.0, 0.1 * expected);
+  EXPECT_GE(d->noise_scale, d->learned.mad_scale);
+}
+
+// No alarm while learning, even for a gross slip inside the learning phase
+// (without learning the same slip raises one); the learning phase ends on
+// time.
+TEST(MonitorLearning, NoAlarmDuringLearning) {
+  const Geometry base = MonitorSettings{}.geometry;
+  const auto slip_at_4s = [&](double t) {
+    Geometry g = base;
+    if (t >= 4.0) g[kDth2] += 1e-3;
+    return g;
+  };
+  MonitorSettings s;
+  s.learning_s = 0.0;
+  {
+    const MonitorModel m = make_monitor_model(s);
+    auto d = std::make_unique<MonitorData>(make_monitor_data(m));
+    const auto run = run_circle(m, *d, 9.0, slip_at_4s);
+    ASSERT_FALSE(run.alarm_times.empty()) << "the test could not fail";
+    EXPECT_LT(run.alarm_times.front(), 5.0);
+  }
+  s.learning_s = 9.0;
+  const MonitorModel m = make_monitor_model(s);
+  auto d = std::make_unique<MonitorData>(make_monitor_data(m));
+  const auto run = run_circle(m, *d, 9.0, slip_at_4s);
+  EXPECT_TRUE(run.alarm_times.empty());
+  EXPECT_TRUE(d->learning);
+}
+
+// After learning on the stated 17-bit robot the scale stays near 1 and a
+// 1e-4 rad slip of each encoder is found within 1 s and named.
+TEST(MonitorLearning, SlipAfterLearningIsFoundWithinOneSecondAndNamed) {
+  MonitorSettings s;
+  s.learning_s = 8.0;
+  const MonitorModel m = make_monitor_model(s);
+  for (int joint = 0; joint < 3; ++joint) {
+    auto d = std::make_unique<MonitorData>(make_monitor_data(m));
+    const Geometry base = m.settings.geometry;
+    const auto run = run_circle(m, *d, 40.0, [&](double t) {
+      Geometry g = base;
+      if (t >= 30.0) g[dth(joint)] += 1e-4;
+      return g;
+    });
+    EXPECT_LT(d->learned.scale, 1.2) << "joint " << joint + 1;
+    ASSERT_FALSE(run.alarm_times.empty()) << "joint " << joint + 1;
+    EXPECT_GE(run.alarm_times[0], 30.0);
+    EXPECT_LT(run.alarm_times[0], 31.0) << "joint " << joint + 1;
+    ASSERT_FALSE(run.alarms.empty());
+    EXPECT_EQ(run.alarms[0].param, dth(joint)) << describe_alarm(run.alarms[0]);
+  }
+}
+
+}  // namespace
+}  // namespace gpm::calib::monitor
