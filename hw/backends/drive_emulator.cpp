@@ -83,11 +83,14 @@ void validate_emulator_options(const EmulatorOptions& o) {
                                 std::pair{"--delay-after-writes", f.delay_after_writes},
                                 std::pair{"--fault-after-writes", f.fault_after_writes},
                                 std::pair{"--garbage-after-writes", f.garbage_after_writes},
-                                std::pair{"--slip-after-writes", f.slip_after_writes}}) {
+                                std::pair{"--slip-after-writes", f.slip_after_writes},
+                                std::pair{"--stall-after-writes", f.stall_after_writes}}) {
     if (n < -1) throw InputError(fmt::format("{}: {} is not a count of writes (>= 0, or -1: never)", flag, n));
   }
   if (!(f.delay_s >= 0 && f.delay_s <= 60))
     throw InputError(fmt::format("--delay: {} s is outside [0, 60] s", f.delay_s));
+  if (!(f.stall_s >= 0 && f.stall_s <= 60))
+    throw InputError(fmt::format("--stall: {} s is outside [0, 60] s", f.stall_s));
   if (f.fault_axis < 0 || f.fault_axis > 2 || f.garbage_axis < 0 || f.garbage_axis > 2 || f.slip_axis < 0 ||
       f.slip_axis > 2)
     throw InputError("--fault-axis, --garbage-axis, --slip-axis: an axis is 0, 1 or 2");
@@ -107,9 +110,11 @@ struct DriveEmulator::Impl {
   double command_time = 0.0;
   bool feedforward_live = false;
   double start = 0.0, last_request = 0.0;  // on the emulator's clock (s)
+  double next_tick = 0.0;                  // when the next plant tick is due
   bool seen_request = false;
+  bool serving = false;  // started (not serve_bytes): requests bring the plant up to the clock
   long writes = 0;
-  bool delaying = false, dropped = false;
+  bool delaying = false, dropped = false, stalled = false;
   std::string error;
   Rng rng{12345};
 
@@ -130,7 +135,9 @@ bool DriveEmulator::wait_until_no_clients(double timeout_s) {
 void DriveEmulator::tick_now() {
   std::lock_guard lock(mutex_);
   prepare();
-  tick(clock_.now() - impl_->start);
+  const double now = clock_.now();
+  tick(now - impl_->start);
+  if (impl_->serving) impl_->next_tick = std::max(impl_->next_tick, now + options_.tick_s);
 }
 
 DriveEmulator::~DriveEmulator() {
@@ -171,6 +178,7 @@ void DriveEmulator::prepare() {
   modbus_set_response_timeout(s.ctx, 0, 1000);
   s.start = clock_.now();
   s.last_request = s.start;
+  s.next_tick = s.start;
 }
 
 int DriveEmulator::start() {
@@ -186,6 +194,8 @@ int DriveEmulator::start() {
   getsockname(listen_fd_, reinterpret_cast<sockaddr*>(&addr), &len);
   port_ = ntohs(addr.sin_port);
   tick(0.0);
+  s.next_tick = s.start + options_.tick_s;
+  s.serving = true;
   thread_ = std::thread([this] { serve(); });
   return port_;
 }
@@ -284,6 +294,14 @@ void DriveEmulator::tick(double t) {
   }
 }
 
+void DriveEmulator::tick_if_due(double now) {
+  Impl& s = *impl_;
+  if (now < s.next_tick) return;
+  tick(now - s.start);
+  s.next_tick += options_.tick_s;
+  if (s.next_tick < now) s.next_tick = now + options_.tick_s;
+}
+
 void DriveEmulator::handle_request(int fd) {
   Impl& s = *impl_;
   std::uint8_t q[MODBUS_TCP_MAX_ADU_LENGTH];
@@ -297,8 +315,12 @@ void DriveEmulator::handle_request(int fd) {
     }
     return;
   }
-  s.last_request = clock_.now();
+  const double now = clock_.now();
+  s.last_request = now;
   s.seen_request = true;
+  // The plant as it is at the time of the request (a tick due now runs
+  // first, whether or not the serving loop has come to it yet).
+  if (s.serving) tick_if_due(now);
   const int unit = q[6], function = q[7];
   const EmulatorFaults& f = options_.faults;
   if (function == MODBUS_FC_WRITE_SINGLE_REGISTER || function == MODBUS_FC_WRITE_MULTIPLE_REGISTERS) {
@@ -315,6 +337,13 @@ void DriveEmulator::handle_request(int fd) {
     if (hit(f.fault_after_writes)) s.fault[static_cast<size_t>(f.fault_axis)] = true;
     if (hit(f.garbage_after_writes)) s.garbage[static_cast<size_t>(f.garbage_axis)] = true;
     if (hit(f.slip_after_writes)) s.slipped[static_cast<size_t>(f.slip_axis)] = true;
+    if (hit(f.stall_after_writes)) s.stalled = true;
+  }
+  if (s.stalled) {  // swallowed: no reply, the server held for stall_s
+    mutex_.unlock();
+    clock_.sleep_until(clock_.now() + f.stall_s);
+    mutex_.lock();
+    return;
   }
   if (s.delaying) {
     mutex_.unlock();
@@ -405,7 +434,6 @@ bool DriveEmulator::request_waiting() const {
 
 void DriveEmulator::serve() {
   Impl& s = *impl_;
-  double next_tick = clock_.now();
   try {
     while (!stop_) {
       fd_set set;
@@ -418,7 +446,11 @@ void DriveEmulator::serve() {
       }
       // Wait for a request until the next tick (at most one tick of real time,
       // so an injected clock that moves by itself is followed too).
-      const double wait = std::clamp(next_tick - clock_.now(), 0.0, options_.tick_s);
+      double wait;
+      {
+        std::lock_guard lock(mutex_);
+        wait = std::clamp(s.next_tick - clock_.now(), 0.0, options_.tick_s);
+      }
       timeval tv{0, static_cast<suseconds_t>(wait * 1e6)};
       const int n = ::select(maxfd + 1, &set, nullptr, nullptr, &tv);
       std::unique_lock lock(mutex_);
@@ -444,15 +476,11 @@ void DriveEmulator::serve() {
       // A request already waiting in a socket is not a lost connection: when
       // the watchdog would trip (e.g. this thread was not scheduled for a
       // while), serve what is waiting first.
-      if (now >= next_tick && s.seen_request && now - s.last_request > options_.comms_watchdog_s &&
+      if (now >= s.next_tick && s.seen_request && now - s.last_request > options_.comms_watchdog_s &&
           request_waiting()) {
         continue;
       }
-      if (now >= next_tick) {
-        tick(now - s.start);
-        next_tick += options_.tick_s;
-        if (next_tick < now) next_tick = now + options_.tick_s;
-      }
+      tick_if_due(now);
     }
   } catch (const std::exception& e) {
     std::lock_guard lock(mutex_);

@@ -43,6 +43,9 @@ int main(int argc, char** argv) {
   app.add_option("--slip-after-writes", opt.faults.slip_after_writes, "fault: an encoder slips (offset jump)");
   app.add_option("--slip-axis", opt.faults.slip_axis, "axis of the slip (0..2)")->check(CLI::Range(0, 2));
   app.add_option("--slip-counts", opt.faults.slip_counts, "size of the slip (counts)");
+  app.add_option("--stall-after-writes", opt.faults.stall_after_writes,
+                 "fault: the server stalls (requests read, never answered)");
+  app.add_option("--stall", opt.faults.stall_s, "how long each swallowed request holds the server (s)");
   try {
     app.parse(argc, argv);
   } catch (const CLI::CallForHelp& e) {
