@@ -111,6 +111,7 @@ struct DriveEmulator::Impl {
   bool feedforward_live = false;
   double start = 0.0, last_request = 0.0;  // on the emulator's clock (s)
   double next_tick = 0.0;                  // when the next plant tick is due
+  double plant_t = 0.0;                    // stepped: the plant's time (s)
   bool seen_request = false;
   bool serving = false;  // started (not serve_bytes): requests bring the plant up to the clock
   long writes = 0;
@@ -136,7 +137,7 @@ void DriveEmulator::tick_now() {
   std::lock_guard lock(mutex_);
   prepare();
   const double now = clock_.now();
-  tick(now - impl_->start);
+  tick(options_.stepped ? impl_->plant_t : now - impl_->start);
   if (impl_->serving) impl_->next_tick = std::max(impl_->next_tick, now + options_.tick_s);
 }
 
@@ -160,6 +161,8 @@ void DriveEmulator::prepare() {
     size[a.unit_id] = std::max(size[a.unit_id], hi + 1);
   }
   if (map_.latch) size[map_.latch->unit_id] = std::max(size[map_.latch->unit_id], map_.latch->address + 1);
+  if (options_.stepped && !map_.latch)
+    throw InputError("--stepped: the register map has no latch (the plant steps at each latch trigger)");
   for (auto [unit, n] : size) s.units[unit] = modbus_mapping_new(0, 0, n, 0);
   twin_.configure();
   twin_.activate();
@@ -297,14 +300,23 @@ void DriveEmulator::tick(double t) {
 void DriveEmulator::tick_if_due(double now) {
   Impl& s = *impl_;
   if (now < s.next_tick) return;
-  tick(now - s.start);
+  if (!options_.stepped) {
+    tick(now - s.start);
+  } else {
+    // Stepped: between latch triggers the plant's time stands; only what
+    // switches a power stage off acts at once (the comms watchdog, an enable
+    // bit cleared: a client that disables its drives and goes sees them off).
+    bool off = s.seen_request && now - s.last_request > options_.comms_watchdog_s;
+    for (int i = 0; i < 3; ++i) off = off || (s.power[i] && !get_bit(s.regs(map_.axes[i].unit_id), map_.axes[i].enable));
+    if (off) tick(s.plant_t);
+  }
   s.next_tick += options_.tick_s;
   if (s.next_tick < now) s.next_tick = now + options_.tick_s;
 }
 
 void DriveEmulator::handle_request(int fd) {
   Impl& s = *impl_;
-  std::uint8_t q[MODBUS_TCP_MAX_ADU_LENGTH];
+  std::uint8_t q[MODBUS_TCP_MAX_ADU_LENGTH] = {};
   modbus_set_socket(s.ctx, fd);
   const int rc = modbus_receive(s.ctx, q);
   if (rc <= 0) {
@@ -320,8 +332,19 @@ void DriveEmulator::handle_request(int fd) {
   s.seen_request = true;
   // The plant as it is at the time of the request (a tick due now runs
   // first, whether or not the serving loop has come to it yet).
-  if (s.serving) tick_if_due(now);
   const int unit = q[6], function = q[7];
+  const int addr = (q[8] << 8) | q[9];
+  const int count = function == MODBUS_FC_WRITE_SINGLE_REGISTER ? 1
+                    : function == MODBUS_FC_WRITE_MULTIPLE_REGISTERS ? ((q[10] << 8) | q[11])
+                                                                     : 0;
+  const bool latch_write = map_.latch && unit == map_.latch->unit_id && addr <= map_.latch->address &&
+                           map_.latch->address < addr + count;
+  if (s.serving && !options_.stepped) {
+    tick_if_due(now);
+  } else if (s.serving && latch_write) {  // stepped: one client cycle
+    s.plant_t += options_.command_period_s;
+    tick(s.plant_t);
+  }
   const EmulatorFaults& f = options_.faults;
   if (function == MODBUS_FC_WRITE_SINGLE_REGISTER || function == MODBUS_FC_WRITE_MULTIPLE_REGISTERS) {
     ++s.writes;
@@ -365,12 +388,7 @@ void DriveEmulator::handle_request(int fd) {
       return;
     }
     // A write that covers the latch register (its value is in the mapping now).
-    const int addr = (q[8] << 8) | q[9];
-    const int count = function == MODBUS_FC_WRITE_SINGLE_REGISTER ? 1
-                      : function == MODBUS_FC_WRITE_MULTIPLE_REGISTERS ? ((q[10] << 8) | q[11])
-                                                                       : 0;
-    if (map_.latch && unit == map_.latch->unit_id && addr <= map_.latch->address &&
-        map_.latch->address < addr + count && map_.latch->address < it->second->nb_registers) {
+    if (latch_write && map_.latch->address < it->second->nb_registers) {
       const std::uint16_t id = it->second->tab_registers[map_.latch->address];
       for (const AxisRegisters& a : map_.axes) {  // every axis at once, from the same plant tick
         std::uint16_t* r = s.regs(a.unit_id);

@@ -59,6 +59,13 @@ struct EmulatorOptions {
   double command_period_s = 0.004;         // the client's command period (feed-forward; gpm-drive-emulator
                                            // gives it to the twin: twin_config_from_scenario)
   EmulatorFaults faults;
+  // Stepped by the client (for a client in another process, which cannot
+  // share a clock): the plant advances by command_period_s at each latch
+  // trigger (one per client read cycle) and at nothing else, so its motion
+  // depends on the client's commands per cycle, not on when either process
+  // ran. The comms watchdog, delays and stalls stay on the clock. Needs a
+  // latch in the map.
+  bool stepped = false;
   // Time of the plant, the watchdog, delays and stalls (nullptr: the wall
   // clock). Every request first brings the plant up to the clock's time, so
   // a client on the same ManualClock (stepped: the clock moves only when the
