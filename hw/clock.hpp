@@ -1,6 +1,10 @@
 // The time source of the hardware layer, injected where time is measured or
-// waited for (CycleClock, SafetySupervisor comms timing, DriveEmulator), so
-// tests drive a ManualClock instead of sleeping on the wall clock.
+// waited for (CycleClock, SafetySupervisor comms timing, DriveBackend's
+// enable wait, ModbusTransport's response timeout, DriveEmulator), so tests
+// drive a ManualClock instead of sleeping on the wall clock. A client and the
+// drive emulator given one ManualClock run stepped: the clock moves only when
+// the client waits for its next cycle (sleep_until jumps) or the emulator
+// delays or stalls a reply, and nothing depends on the wall time.
 #pragma once
 
 #include <atomic>

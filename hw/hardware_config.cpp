@@ -127,7 +127,7 @@ std::unique_ptr<SafetySupervisor> make_hardware(const HardwareConfig& c, Clock& 
   } else {
     const RegisterMap& m = *c.register_map;
     backend = std::make_unique<DriveBackend>(
-        m, std::make_unique<ModbusTransport>(m.host, m.port, m.response_timeout_s), period, clock);
+        m, std::make_unique<ModbusTransport>(m.host, m.port, m.response_timeout_s, clock), period, clock);
   }
   return std::make_unique<SafetySupervisor>(std::move(backend), c.controller, c.safety, clock);
 }

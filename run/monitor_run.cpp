@@ -253,7 +253,7 @@ std::optional<MonitorOutcome> monitor_after_calibration(const RunOutcome& run) {
 
 MonitorOutcome run_monitor_hardware(const sim::Scenario& s, const std::string& hardware_file, const Robot& controller,
                                     const std::array<double, kNumParams>& prior_sigma, const MonitorReadingModel& reading,
-                                    const MonitorProgress& progress, const std::atomic<bool>* stop) {
+                                    const MonitorProgress& progress, const std::atomic<bool>* stop, hw::Clock& clock) {
   namespace mon = calib::monitor;
   const auto wall0 = std::chrono::steady_clock::now();
   if (!s.operation)
@@ -298,7 +298,7 @@ MonitorOutcome run_monitor_hardware(const sim::Scenario& s, const std::string& h
   out.model = mon::make_monitor_model(ms);
   auto md = std::make_unique<mon::MonitorData>(mon::make_monitor_data(out.model));
 
-  std::unique_ptr<hw::SafetySupervisor> robot = hw::make_hardware(config);
+  std::unique_ptr<hw::SafetySupervisor> robot = hw::make_hardware(config, clock);
   // Every command of the path (a loop and its return to the start, at full
   // speed, one per cycle) against the hardware's limits, before anything moves.
   {

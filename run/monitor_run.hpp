@@ -14,6 +14,7 @@
 #include <nlohmann/json.hpp>
 
 #include "calib/monitor/monitor.hpp"
+#include "hw/clock.hpp"
 #include "models/robot.hpp"
 #include "report/report_document.hpp"
 #include "run/run_spec.hpp"
@@ -102,11 +103,12 @@ MonitorOutcome run_monitor(const sim::Scenario& scenario, const Robot& controlle
 // out (truth_known false). stop (optional) is polled every cycle: a request
 // disables the drives and throws hw::Interrupted with what was monitored so far
 // lost only from memory (nothing is written yet). InputError for a bad file
-// or a path outside the safety limits, before anything moves.
+// or a path outside the safety limits, before anything moves. clock: the
+// time of the hardware loop (tests share a ManualClock with the drive emulator).
 MonitorOutcome run_monitor_hardware(const sim::Scenario& scenario, const std::string& hardware_file,
                                     const Robot& controller, const std::array<double, kNumParams>& prior_sigma,
                                     const MonitorReadingModel& reading, const MonitorProgress& progress = {},
-                                    const std::atomic<bool>* stop = nullptr);
+                                    const std::atomic<bool>* stop = nullptr, hw::Clock& clock = hw::steady_clock());
 
 // Sets the monitor's reading model (skew, compliance, motor-side friction,
 // cyclic encoder error, pin clearance, thermal time constant, learning phase

@@ -83,11 +83,14 @@ void validate_emulator_options(const EmulatorOptions& o) {
                                 std::pair{"--delay-after-writes", f.delay_after_writes},
                                 std::pair{"--fault-after-writes", f.fault_after_writes},
                                 std::pair{"--garbage-after-writes", f.garbage_after_writes},
-                                std::pair{"--slip-after-writes", f.slip_after_writes}}) {
+                                std::pair{"--slip-after-writes", f.slip_after_writes},
+                                std::pair{"--stall-after-writes", f.stall_after_writes}}) {
     if (n < -1) throw InputError(fmt::format("{}: {} is not a count of writes (>= 0, or -1: never)", flag, n));
   }
   if (!(f.delay_s >= 0 && f.delay_s <= 60))
     throw InputError(fmt::format("--delay: {} s is outside [0, 60] s", f.delay_s));
+  if (!(f.stall_s >= 0 && f.stall_s <= 60))
+    throw InputError(fmt::format("--stall: {} s is outside [0, 60] s", f.stall_s));
   if (f.fault_axis < 0 || f.fault_axis > 2 || f.garbage_axis < 0 || f.garbage_axis > 2 || f.slip_axis < 0 ||
       f.slip_axis > 2)
     throw InputError("--fault-axis, --garbage-axis, --slip-axis: an axis is 0, 1 or 2");
@@ -107,9 +110,12 @@ struct DriveEmulator::Impl {
   double command_time = 0.0;
   bool feedforward_live = false;
   double start = 0.0, last_request = 0.0;  // on the emulator's clock (s)
+  double next_tick = 0.0;                  // when the next plant tick is due
+  double plant_t = 0.0;                    // stepped: the plant's time (s)
   bool seen_request = false;
+  bool serving = false;  // started (not serve_bytes): requests bring the plant up to the clock
   long writes = 0;
-  bool delaying = false, dropped = false;
+  bool delaying = false, dropped = false, stalled = false;
   std::string error;
   Rng rng{12345};
 
@@ -130,7 +136,9 @@ bool DriveEmulator::wait_until_no_clients(double timeout_s) {
 void DriveEmulator::tick_now() {
   std::lock_guard lock(mutex_);
   prepare();
-  tick(clock_.now() - impl_->start);
+  const double now = clock_.now();
+  tick(options_.stepped ? impl_->plant_t : now - impl_->start);
+  if (impl_->serving) impl_->next_tick = std::max(impl_->next_tick, now + options_.tick_s);
 }
 
 DriveEmulator::~DriveEmulator() {
@@ -153,6 +161,8 @@ void DriveEmulator::prepare() {
     size[a.unit_id] = std::max(size[a.unit_id], hi + 1);
   }
   if (map_.latch) size[map_.latch->unit_id] = std::max(size[map_.latch->unit_id], map_.latch->address + 1);
+  if (options_.stepped && !map_.latch)
+    throw InputError("--stepped: the register map has no latch (the plant steps at each latch trigger)");
   for (auto [unit, n] : size) s.units[unit] = modbus_mapping_new(0, 0, n, 0);
   twin_.configure();
   twin_.activate();
@@ -171,6 +181,7 @@ void DriveEmulator::prepare() {
   modbus_set_response_timeout(s.ctx, 0, 1000);
   s.start = clock_.now();
   s.last_request = s.start;
+  s.next_tick = s.start;
 }
 
 int DriveEmulator::start() {
@@ -186,6 +197,8 @@ int DriveEmulator::start() {
   getsockname(listen_fd_, reinterpret_cast<sockaddr*>(&addr), &len);
   port_ = ntohs(addr.sin_port);
   tick(0.0);
+  s.next_tick = s.start + options_.tick_s;
+  s.serving = true;
   thread_ = std::thread([this] { serve(); });
   return port_;
 }
@@ -284,9 +297,26 @@ void DriveEmulator::tick(double t) {
   }
 }
 
+void DriveEmulator::tick_if_due(double now) {
+  Impl& s = *impl_;
+  if (now < s.next_tick) return;
+  if (!options_.stepped) {
+    tick(now - s.start);
+  } else {
+    // Stepped: between latch triggers the plant's time stands; only what
+    // switches a power stage off acts at once (the comms watchdog, an enable
+    // bit cleared: a client that disables its drives and goes sees them off).
+    bool off = s.seen_request && now - s.last_request > options_.comms_watchdog_s;
+    for (int i = 0; i < 3; ++i) off = off || (s.power[i] && !get_bit(s.regs(map_.axes[i].unit_id), map_.axes[i].enable));
+    if (off) tick(s.plant_t);
+  }
+  s.next_tick += options_.tick_s;
+  if (s.next_tick < now) s.next_tick = now + options_.tick_s;
+}
+
 void DriveEmulator::handle_request(int fd) {
   Impl& s = *impl_;
-  std::uint8_t q[MODBUS_TCP_MAX_ADU_LENGTH];
+  std::uint8_t q[MODBUS_TCP_MAX_ADU_LENGTH] = {};
   modbus_set_socket(s.ctx, fd);
   const int rc = modbus_receive(s.ctx, q);
   if (rc <= 0) {
@@ -297,9 +327,24 @@ void DriveEmulator::handle_request(int fd) {
     }
     return;
   }
-  s.last_request = clock_.now();
+  const double now = clock_.now();
+  s.last_request = now;
   s.seen_request = true;
+  // The plant as it is at the time of the request (a tick due now runs
+  // first, whether or not the serving loop has come to it yet).
   const int unit = q[6], function = q[7];
+  const int addr = (q[8] << 8) | q[9];
+  const int count = function == MODBUS_FC_WRITE_SINGLE_REGISTER ? 1
+                    : function == MODBUS_FC_WRITE_MULTIPLE_REGISTERS ? ((q[10] << 8) | q[11])
+                                                                     : 0;
+  const bool latch_write = map_.latch && unit == map_.latch->unit_id && addr <= map_.latch->address &&
+                           map_.latch->address < addr + count;
+  if (s.serving && !options_.stepped) {
+    tick_if_due(now);
+  } else if (s.serving && latch_write) {  // stepped: one client cycle
+    s.plant_t += options_.command_period_s;
+    tick(s.plant_t);
+  }
   const EmulatorFaults& f = options_.faults;
   if (function == MODBUS_FC_WRITE_SINGLE_REGISTER || function == MODBUS_FC_WRITE_MULTIPLE_REGISTERS) {
     ++s.writes;
@@ -315,6 +360,13 @@ void DriveEmulator::handle_request(int fd) {
     if (hit(f.fault_after_writes)) s.fault[static_cast<size_t>(f.fault_axis)] = true;
     if (hit(f.garbage_after_writes)) s.garbage[static_cast<size_t>(f.garbage_axis)] = true;
     if (hit(f.slip_after_writes)) s.slipped[static_cast<size_t>(f.slip_axis)] = true;
+    if (hit(f.stall_after_writes)) s.stalled = true;
+  }
+  if (s.stalled) {  // swallowed: no reply, the server held for stall_s
+    mutex_.unlock();
+    clock_.sleep_until(clock_.now() + f.stall_s);
+    mutex_.lock();
+    return;
   }
   if (s.delaying) {
     mutex_.unlock();
@@ -336,12 +388,7 @@ void DriveEmulator::handle_request(int fd) {
       return;
     }
     // A write that covers the latch register (its value is in the mapping now).
-    const int addr = (q[8] << 8) | q[9];
-    const int count = function == MODBUS_FC_WRITE_SINGLE_REGISTER ? 1
-                      : function == MODBUS_FC_WRITE_MULTIPLE_REGISTERS ? ((q[10] << 8) | q[11])
-                                                                       : 0;
-    if (map_.latch && unit == map_.latch->unit_id && addr <= map_.latch->address &&
-        map_.latch->address < addr + count && map_.latch->address < it->second->nb_registers) {
+    if (latch_write && map_.latch->address < it->second->nb_registers) {
       const std::uint16_t id = it->second->tab_registers[map_.latch->address];
       for (const AxisRegisters& a : map_.axes) {  // every axis at once, from the same plant tick
         std::uint16_t* r = s.regs(a.unit_id);
@@ -405,7 +452,6 @@ bool DriveEmulator::request_waiting() const {
 
 void DriveEmulator::serve() {
   Impl& s = *impl_;
-  double next_tick = clock_.now();
   try {
     while (!stop_) {
       fd_set set;
@@ -418,7 +464,11 @@ void DriveEmulator::serve() {
       }
       // Wait for a request until the next tick (at most one tick of real time,
       // so an injected clock that moves by itself is followed too).
-      const double wait = std::clamp(next_tick - clock_.now(), 0.0, options_.tick_s);
+      double wait;
+      {
+        std::lock_guard lock(mutex_);
+        wait = std::clamp(s.next_tick - clock_.now(), 0.0, options_.tick_s);
+      }
       timeval tv{0, static_cast<suseconds_t>(wait * 1e6)};
       const int n = ::select(maxfd + 1, &set, nullptr, nullptr, &tv);
       std::unique_lock lock(mutex_);
@@ -444,15 +494,11 @@ void DriveEmulator::serve() {
       // A request already waiting in a socket is not a lost connection: when
       // the watchdog would trip (e.g. this thread was not scheduled for a
       // while), serve what is waiting first.
-      if (now >= next_tick && s.seen_request && now - s.last_request > options_.comms_watchdog_s &&
+      if (now >= s.next_tick && s.seen_request && now - s.last_request > options_.comms_watchdog_s &&
           request_waiting()) {
         continue;
       }
-      if (now >= next_tick) {
-        tick(now - s.start);
-        next_tick += options_.tick_s;
-        if (next_tick < now) next_tick = now + options_.tick_s;
-      }
+      tick_if_due(now);
     }
   } catch (const std::exception& e) {
     std::lock_guard lock(mutex_);

@@ -42,18 +42,36 @@ struct EmulatorFaults {
   long slip_after_writes = -1;
   int slip_axis = 0;
   long slip_counts = 0;
+  // A stalled server: from then on every request is read and never answered
+  // (the connection stays open); each swallowed request holds the server for
+  // stall_s on its clock (on a ManualClock: the clock jumps by stall_s, so a
+  // client on the same clock sees its response timeout pass at once).
+  long stall_after_writes = -1;
+  double stall_s = 1.0;
 };
 
 // Settings of the emulator.
 struct EmulatorOptions {
   std::string bind_address = "127.0.0.1";  // loopback unless told otherwise
   int port = 0;                            // 0: an ephemeral port (see port())
-  double tick_s = 0.001;                   // plant update period (wall clock)
+  double tick_s = 0.001;                   // plant update period (on the clock)
   double comms_watchdog_s = 0.3;           // no request this long: power stages off
   double command_period_s = 0.004;         // the client's command period (feed-forward; gpm-drive-emulator
                                            // gives it to the twin: twin_config_from_scenario)
   EmulatorFaults faults;
-  Clock* clock = nullptr;                  // time of the plant and the watchdog (nullptr: wall clock)
+  // Stepped by the client (for a client in another process, which cannot
+  // share a clock): the plant advances by command_period_s at each latch
+  // trigger (one per client read cycle) and at nothing else, so its motion
+  // depends on the client's commands per cycle, not on when either process
+  // ran. The comms watchdog, delays and stalls stay on the clock. Needs a
+  // latch in the map.
+  bool stepped = false;
+  // Time of the plant, the watchdog, delays and stalls (nullptr: the wall
+  // clock). Every request first brings the plant up to the clock's time, so
+  // a client on the same ManualClock (stepped: the clock moves only when the
+  // client waits for its next cycle) gets replies that depend on the clock
+  // and the requests alone, not on when the serving thread ran.
+  Clock* clock = nullptr;
 };
 
 // The numeric IPv4 address the emulator binds for name (a dotted quad or a
@@ -113,6 +131,8 @@ class DriveEmulator {
   void prepare();
   void serve();
   void tick(double t);
+  // Runs a plant tick if one is due at now (on the emulator's clock).
+  void tick_if_due(double now);
   void handle_request(int fd);
   // Whether a client has a request waiting to be read (no wait).
   bool request_waiting() const;

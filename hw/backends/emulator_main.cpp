@@ -33,6 +33,8 @@ int main(int argc, char** argv) {
   app.add_option("--port", opt.port, "port 0..65535 (0: ephemeral, printed)");
   app.add_option("--command-period", opt.command_period_s, "client's command period (s, 1e-4..1), for feed-forward");
   app.add_option("--comms-watchdog", opt.comms_watchdog_s, "drive-side comms watchdog (s)");
+  app.add_flag("--stepped", opt.stepped,
+               "the plant advances one command period per latch trigger (per client cycle), not in real time");
   app.add_option("--drop-after-writes", opt.faults.drop_after_writes, "fault: drop the connection");
   app.add_option("--delay-after-writes", opt.faults.delay_after_writes, "fault: delay replies");
   app.add_option("--delay", opt.faults.delay_s, "reply delay (s)");
@@ -43,6 +45,9 @@ int main(int argc, char** argv) {
   app.add_option("--slip-after-writes", opt.faults.slip_after_writes, "fault: an encoder slips (offset jump)");
   app.add_option("--slip-axis", opt.faults.slip_axis, "axis of the slip (0..2)")->check(CLI::Range(0, 2));
   app.add_option("--slip-counts", opt.faults.slip_counts, "size of the slip (counts)");
+  app.add_option("--stall-after-writes", opt.faults.stall_after_writes,
+                 "fault: the server stalls (requests read, never answered)");
+  app.add_option("--stall", opt.faults.stall_s, "how long each swallowed request holds the server (s)");
   try {
     app.parse(argc, argv);
   } catch (const CLI::CallForHelp& e) {

@@ -103,19 +103,20 @@ seed: 4
 path: {shape: circle, centre: [216.5, 250], radius: 15, period_s: 0.4, revolutions: 100}
 render: {size: 160x120, fps: 20}
 YAML
-"$GPM" render long.yaml -o long.mp4 >/dev/null 2>"$tmp/int.err" &
+# Frame 5 goes to a FIFO (written in place): once it has been read whole,
+# the video is being encoded (its temporary made before the first frame).
+# The script waits on that, not on the wall clock (timeout only bounds a
+# render that failed before frame 5).
+mkfifo frame5.fifo
+"$GPM" render long.yaml -o long.mp4 --frame-png 5:frame5.fifo >/dev/null 2>"$tmp/int.err" &
 pid=$!
-# Waits (bounded) for the encoder's temporary, then interrupts.
-for _ in $(seq 2000); do
-  compgen -G '.long.mp4.tmp*' >/dev/null && break
-  kill -0 "$pid" 2>/dev/null || break
-  sleep 0.01
-done
+timeout 300 cat frame5.fifo >/dev/null
+if compgen -G '.long.mp4.tmp*' >/dev/null; then passed=$((passed+1)); else echo "FAIL no temporary while encoding"; fail=$((fail+1)); fi
 kill -INT "$pid" 2>/dev/null
 wait "$pid"; got=$?
 if [[ $got -eq 130 ]]; then passed=$((passed+1)); else echo "FAIL interrupted render: exit $got, want 130"; cat "$tmp/int.err"; fail=$((fail+1)); fi
 if [[ ! -e long.mp4 && -z "$(ls -A | grep '^\.')" ]]; then passed=$((passed+1)); else echo "FAIL interrupted render left:"; ls -la; fail=$((fail+1)); fi
-rm -f long.yaml
+rm -f long.yaml frame5.fifo
 
 # The renderer is a separate executable: gpm links neither OSMesa nor libav,
 # and without gpm-render next to it, gpm render says so in one line (exit 2).

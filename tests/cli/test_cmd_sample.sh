@@ -60,18 +60,24 @@ check "both pose sources" 2 "$GPM" sample --hardware "$tmp/twin.yaml" --poses "$
 
 # modbus through the emulator on an ephemeral loopback port; its drive-side
 # comms watchdog is long, so only the client can switch the drives off here.
+# Two processes on the wall clock, so every time limit is generous (response
+# 2 s, comms 5 s, command watchdog 2 s / 5 s): this tests the command's
+# contract, not real-time timing, and must hold on a loaded machine (the
+# timeouts themselves are tested on an injected clock: tests/hw).
 mkfifo "$tmp/emu.fifo"
 "$EMU" --map "$SRC/hw/examples/register_map_emulator.yaml" --scenario "$SRC/tests/fixtures/twin_disc.yaml" \
   --port 0 --comms-watchdog 30 >"$tmp/emu.fifo" 2>"$tmp/emu.err" &
 emu_pid=$!
 read -r -t 60 line <"$tmp/emu.fifo" || { echo "FAIL emulator did not start"; cat "$tmp/emu.err"; exit 1; }
 port=${line##*:}
-sed "s/port: 1502/port: $port/" "$SRC/hw/examples/register_map_emulator.yaml" >"$tmp/map.yaml"
+sed -e "s/port: 1502/port: $port/" -e "s/response_timeout: [0-9.]*/response_timeout: 2/" \
+  "$SRC/hw/examples/register_map_emulator.yaml" >"$tmp/map.yaml"
 cat >"$tmp/modbus.yaml" <<YAML
 backend: modbus
 controller: $SRC/models/gpm2002.yaml
 modbus: {register_map: $tmp/map.yaml}
-$safety
+$(printf '%s\n' "$safety" | sed -e 's/^\(  watchdog_hold:\) *[0-9.]*/\1 2/' -e 's/^\(  watchdog_disable:\) *[0-9.]*/\1 5/' \
+  -e 's/^\(  comms_timeout:\) *[0-9.]*/\1 5/')
 YAML
 check "modbus session" 0 "$GPM" sample --hardware "$tmp/modbus.yaml" --poses "$tmp/poses2.yaml" -o "$tmp/m.csv"
 expect "modbus describes itself" "$tmp/out" "modbus-tcp 127.0.0.1:$port"

@@ -1,6 +1,8 @@
 // Tests of hw/backends/drive_emulator.cpp: loopback-only ephemeral ports, power stage
 // on a rising enable edge, off on the drive-side comms watchdog and on a fault;
-// a malformed request or a client that never reads stalls no other client.
+// a malformed request or a client that never reads stalls no other client; on
+// an injected clock, a stalled client (silent) and a stalled server (no reply)
+// and delayed replies are decided by that clock alone, not by the wall time.
 #include <cerrno>
 #include <functional>
 
@@ -17,6 +19,7 @@
 #include "hw/backends/drive_emulator.hpp"
 #include "hw/clock.hpp"
 #include "hw/hardware_config.hpp"
+#include "hw/hw_errors.hpp"
 #include "hw/backends/modbus_transport.hpp"
 #include "models/errors.hpp"
 
@@ -67,6 +70,9 @@ TEST(DriveEmulator, OptionsOutsideTheirRangesAreRefused) {
   refused([](EmulatorOptions& o) { o.faults.delay_s = -0.1; });
   refused([](EmulatorOptions& o) { o.faults.fault_axis = 3; });
   refused([](EmulatorOptions& o) { o.faults.drop_after_writes = -2; });
+  refused([](EmulatorOptions& o) { o.faults.stall_after_writes = -2; });
+  refused([](EmulatorOptions& o) { o.faults.stall_s = -1; });
+  refused([](EmulatorOptions& o) { o.faults.stall_s = std::nan(""); });
   // NaN is outside every range (a NaN command period left the drives standing).
   refused([](EmulatorOptions& o) { o.command_period_s = std::nan(""); });
   refused([](EmulatorOptions& o) { o.command_period_s = 0; });
@@ -190,6 +196,98 @@ TEST(DriveEmulator, EnableEdgeWatchdogAndFault) {
   t.read(1, 11, 1, &code);
   EXPECT_EQ(code, 0x2310);
   EXPECT_FALSE(emu->power_on()[0]);
+}
+
+// A stalled client: connected, drives enabled, then silent. The drives'
+// comms watchdog switches them off once the injected clock has passed it,
+// not before, however long the wall time (no request comes in either way).
+TEST(DriveEmulator, AStalledClientIsSwitchedOffByTheWatchdogOnTheInjectedClock) {
+  ManualClock clock;
+  EmulatorOptions o;
+  o.clock = &clock;
+  o.comms_watchdog_s = 0.3;
+  auto emu = make(o);
+  const int port = emu->start();
+  ModbusTransport t("127.0.0.1", port, 0.05, clock);
+  t.connect();
+  const std::uint16_t on = 1;
+  for (int unit = 1; unit <= 3; ++unit) t.write(unit, 0, 1, &on);
+  clock.advance(0.004);
+  emu->tick_now();
+  EXPECT_EQ(emu->power_on(), (std::array<bool, 3>{true, true, true}));
+  clock.advance(0.299);  // 0.303 s on the clock since the last request: past the watchdog
+  emu->tick_now();
+  EXPECT_EQ(emu->power_on(), (std::array<bool, 3>{false, false, false}));
+  // The same silence one step shorter than the watchdog keeps them on.
+  auto emu2 = make(o);
+  ModbusTransport t2("127.0.0.1", emu2->start(), 0.05, clock);
+  t2.connect();
+  for (int unit = 1; unit <= 3; ++unit) t2.write(unit, 0, 1, &on);
+  clock.advance(0.004);
+  emu2->tick_now();
+  clock.advance(0.29);
+  emu2->tick_now();
+  EXPECT_EQ(emu2->power_on(), (std::array<bool, 3>{true, true, true}));
+}
+
+// A stalled server: after its second write it reads requests and never
+// answers. The client's response timeout runs on the injected clock, which
+// the stalled server moves (stall_s per swallowed request), so the timeout is
+// certain and immediate, with a wall bound of ModbusTransport::kWallBackstopS
+// only for a server that would hold the clock still.
+TEST(DriveEmulator, AStalledServerIsAResponseTimeoutOnTheInjectedClock) {
+  ManualClock clock;
+  EmulatorOptions o;
+  o.clock = &clock;
+  o.faults.stall_after_writes = 2;
+  o.faults.stall_s = 1.0;
+  auto emu = make(o);
+  const int port = emu->start();
+  ModbusTransport t("127.0.0.1", port, 0.05, clock);
+  t.connect();
+  const std::uint16_t on = 1;
+  std::uint16_t st = 0;
+  t.write(2, 0, 1, &on);  // write 1: answered
+  t.read(2, 10, 1, &st);  // answered
+  const double t0 = clock.now();
+  try {
+    t.write(2, 0, 1, &on);  // write 2: swallowed
+    FAIL() << "a stalled server answered";
+  } catch (const HardwareError& e) {
+    EXPECT_NE(std::string(e.what()).find("writing registers 0..0 failed: Connection timed out"), std::string::npos)
+        << e.what();
+  }
+  EXPECT_GE(clock.now() - t0, 1.0);  // the time the stall took, on the clock
+  // The drives, silent since, are switched off by their own watchdog.
+  clock.advance(0.5);
+  emu->tick_now();
+  EXPECT_EQ(emu->power_on(), (std::array<bool, 3>{false, false, false}));
+  EXPECT_EQ(emu->error(), "");
+}
+
+// Delayed replies are late or in time by the injected clock: a delay just
+// under the response timeout is answered, one just over it is a timeout,
+// whatever the wall time the replies took.
+TEST(DriveEmulator, DelayedRepliesAreLateByTheInjectedClockOnly) {
+  for (const double delay : {0.045, 0.055}) {
+    ManualClock clock;
+    EmulatorOptions o;
+    o.clock = &clock;
+    o.faults.delay_after_writes = 1;
+    o.faults.delay_s = delay;
+    auto emu = make(o);
+    ModbusTransport t("127.0.0.1", emu->start(), 0.05, clock);
+    t.connect();
+    const std::uint16_t on = 1;
+    std::uint16_t st = 0;
+    if (delay < 0.05) {  // write 1 and every reply after it come delay late
+      EXPECT_NO_THROW(t.write(2, 0, 1, &on)) << delay;
+      EXPECT_NO_THROW(t.read(2, 10, 1, &st)) << delay;
+      EXPECT_NEAR(clock.now(), 2 * delay, 1e-9);
+    } else {
+      EXPECT_THROW(t.write(2, 0, 1, &on), HardwareError) << delay;
+    }
+  }
 }
 
 }  // namespace

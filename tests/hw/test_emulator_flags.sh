@@ -28,6 +28,8 @@ refused "bind 0.0.0.0" "--allow-non-loopback" --bind 0.0.0.0 --port 0
 refused "bind unresolvable" "--bind" --bind "no such host.invalid" --port 0
 refused "unknown flag" "--frobnicate" --frobnicate 1
 refused "port not a number" "--port" --port abc
+refused "stall -1" "--stall" --stall -1 --stall-after-writes 3
+refused "stall after -2 writes" "--stall-after-writes" --stall-after-writes -2
 
 mkfifo "$tmp/fifo"
 "$EMU" --map "$MAP" --scenario "$SC" --bind localhost --port 0 >"$tmp/fifo" 2>"$tmp/err" &

@@ -57,7 +57,10 @@ fs::path map_file(const fs::path& dir, int port) {
 
 struct ModbusRig {
   test::TempDir dir;
-  ManualClock clock{true};  // the wall clock, which the test may move ahead
+  // One stepped clock for the client and the emulator: it moves only when the
+  // client waits for its next cycle (or the emulator delays or stalls), so
+  // every reply depends on the clock and the requests, not on the load.
+  ManualClock clock;
   std::unique_ptr<DriveEmulator> emu;
   HardwareConfig config;
   explicit ModbusRig(const std::string& name, const EmulatorFaults& faults = {}) : dir(name) {
@@ -86,7 +89,7 @@ Samples run_twin(const fs::path& dir) {
 TEST(SamplingSession, TwinAndModbusAgreeWithinOneCount) {
   ModbusRig rig("parity");
   const Samples twin = run_twin(rig.dir);
-  auto hw = make_hardware(rig.config);
+  auto hw = make_hardware(rig.config, rig.clock);
   SampleLog log((rig.dir / "modbus.csv").string(), false);
   const SessionResult r = run_sampling_session(*hw, plan(), log);
   EXPECT_EQ(r.taken, 4);
@@ -111,7 +114,7 @@ TEST(SamplingSession, TwinAndModbusAgreeWithinOneCount) {
 void expect_fault_handled(const std::string& name, const EmulatorFaults& f, const std::string& words,
                           bool client_disables) {
   ModbusRig rig(name, f);
-  auto hw = make_hardware(rig.config);
+  auto hw = make_hardware(rig.config, rig.clock);
   const fs::path csv = rig.dir / "s.csv";
   std::string message;
   {

@@ -5,7 +5,10 @@
 #include "render/frame_queue.hpp"
 
 #include <atomic>
+#include <condition_variable>
+#include <mutex>
 #include <stdexcept>
+#include <thread>
 #include <vector>
 
 #include <gtest/gtest.h>
@@ -41,29 +44,34 @@ TEST(FrameQueue, EveryFrameOnceInOrderWithItsPixels) {
 }
 
 TEST(FrameQueue, ProducerWaitsWhenTheQueueIsFull) {
-  // The consumer holds frame 0 until the producer has tried to push more
-  // frames than the queue can take; the producer must wait, not drop them.
-  std::atomic<int> pushed{0};
-  std::atomic<bool> release{false};
-  std::atomic<int> consumed{0};
-  FrameQueue q(2, [&](const FrameImage&, int) {
-    while (!release.load()) std::this_thread::yield();
-    consumed.fetch_add(1);
+  // The consumer holds frame 0 until the frames that fit without it are in
+  // (it and the queue's 2), waiting on a condition, not on the wall clock;
+  // then no more than capacity + 1 (the one being consumed) + 1 (the buffer
+  // being filled) may have got in: the producer waits, it does not drop.
+  std::mutex m;
+  std::condition_variable changed;
+  int pushed = 0, consumed = 0, most_in_while_held = -1;
+  FrameQueue q(2, [&](const FrameImage&, int k) {
+    std::unique_lock lock(m);
+    if (k == 0) {
+      changed.wait(lock, [&] { return pushed >= 3; });
+      most_in_while_held = pushed;
+    }
+    ++consumed;
   });
   std::thread producer([&] {
     for (int k = 0; k < 10; ++k) {
       q.push(frame_with(k), k);
-      pushed.fetch_add(1);
+      std::lock_guard lock(m);
+      ++pushed;
+      changed.notify_all();
     }
   });
-  // Bounded: at most capacity + 1 (the one being consumed) + 1 (the buffer being filled) get in.
-  for (int spin = 0; spin < 20000 && pushed.load() < 4; ++spin) std::this_thread::yield();
-  const int before = pushed.load();
-  EXPECT_LE(before, 4) << "the queue took more frames than its capacity";
-  release = true;
   producer.join();
   q.finish();
-  EXPECT_EQ(consumed.load(), 10);
+  EXPECT_GE(most_in_while_held, 3);
+  EXPECT_LE(most_in_while_held, 4) << "the queue took more frames than its capacity";
+  EXPECT_EQ(consumed, 10);
 }
 
 TEST(FrameQueue, ConsumerErrorReachesTheProducer) {

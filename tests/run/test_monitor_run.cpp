@@ -349,7 +349,9 @@ TEST(MonitorRun, MonitorsThroughTheTwinBackend) {
 // injected as given): readings, speeds and torques come from the drives'
 // registers, read one drive after the other while the robot moves.
 MonitorOutcome monitor_through_emulator(HardwareRig& rig, const hw::EmulatorFaults& faults, bool latch) {
-  hw::ManualClock clock{true};
+  // One stepped clock for the client and the emulator: it moves only when the
+  // client waits for its next cycle, so the run does not depend on the load.
+  hw::ManualClock clock;
   hw::EmulatorOptions o;
   o.clock = &clock;
   o.faults = faults;
@@ -373,7 +375,7 @@ MonitorOutcome monitor_through_emulator(HardwareRig& rig, const hw::EmulatorFaul
   const std::string file = rig.hardware("modbus", "modbus: {register_map: map.yaml}\n", (rig.dir.path() / "actual.yaml").string());
   std::array<double, kNumParams> prior;
   prior.fill(std::numeric_limits<double>::quiet_NaN());
-  MonitorOutcome out = run_monitor_hardware(rig.scenario(), file, rig.actual, prior, kIdealExact);
+  MonitorOutcome out = run_monitor_hardware(rig.scenario(), file, rig.actual, prior, kIdealExact, {}, nullptr, clock);
   EXPECT_NE(out.hardware.find("modbus"), std::string::npos) << out.hardware;
   EXPECT_GT(out.cycles, 1500);
   EXPECT_GT(out.accepted, 500);  // every joint moving: most cycles give a sample

@@ -19,7 +19,12 @@ bad() { echo "FAIL $1"; fail=$((fail+1)); }
 
 # Starts the emulator (extra flags: faults) and writes $tmp/map.yaml for its port.
 start_emulator() {
-  local flags=("$@")  # the drive-side comms watchdog at 2 s unless given (see the hardware file below)
+  # The drive-side comms watchdog at 2 s unless given (see the hardware file
+  # below). --stepped: the plant advances one command period per client cycle
+  # (latch trigger), so the samples depend on the commands, not on how the
+  # two processes were scheduled (on a loaded machine the real-time plant
+  # gave samples 1.6 counts from the twin's).
+  local flags=("$@" --stepped)
   [[ " $* " == *" --comms-watchdog "* ]] || flags+=(--comms-watchdog 2)
   rm -f "$tmp/emu.fifo"; mkfifo "$tmp/emu.fifo"
   "$EMU" --map "$SRC/hw/examples/register_map_emulator.yaml" --scenario "$SRC/tests/fixtures/twin_disc.yaml" \

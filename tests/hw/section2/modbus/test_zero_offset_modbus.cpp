@@ -1,10 +1,9 @@
 // The section-2.4 procedure unchanged on backend `modbus` through
-// gpm-drive-emulator (loopback, ephemeral port, real time): the direct method
+// gpm-drive-emulator (loopback, ephemeral port, one stepped clock for the
+// client and the emulator, so no wall-clock timing): the direct method
 // from a start a few mm off O recovers the emulated twin's actual offsets, and
 // the drives are off afterwards. Kept short (three circles, about 25 s).
-#include <chrono>
 #include <cstdio>
-#include <thread>
 
 #include <gtest/gtest.h>
 
@@ -23,7 +22,10 @@ TEST(ZeroOffsetSearchModbus, DirectMethodThroughTheEmulatorFindsTheOffsets) {
   std::string map_text = test::read_text(test::kSrc + "/hw/examples/register_map_emulator.yaml");
   test::write_text(dir / "map.yaml", map_text);
   const RegisterMap map0 = load_register_map((dir / "map.yaml").string());
-  DriveEmulator emu(map0, twin_config_from_scenario((dir / "scenario.yaml").string(), 0.004), EmulatorOptions{});
+  ManualClock clock;  // moves only when the client waits for its next cycle
+  EmulatorOptions eo;
+  eo.clock = &clock;
+  DriveEmulator emu(map0, twin_config_from_scenario((dir / "scenario.yaml").string(), 0.004), eo);
   const int port = emu.start();
   map_text.replace(map_text.find("port: 1502"), 10, "port: " + std::to_string(port));
   test::write_text(dir / "map.yaml", map_text);
@@ -31,7 +33,7 @@ TEST(ZeroOffsetSearchModbus, DirectMethodThroughTheEmulatorFindsTheOffsets) {
                    "backend: modbus\nrate_hz: 250\ncontroller: " + test::kSrc +
                        "/models/gpm2002.yaml\nmodbus: {register_map: map.yaml}\n" + test::kSafetyYaml);
   const HardwareConfig cfg = load_hardware_config((dir / "modbus.yaml").string());
-  auto hw = make_hardware(cfg);
+  auto hw = make_hardware(cfg, clock);
   ZeroSearchOptions o = test::fast_options({219.5, 252.5});
   o.method = ZeroMethod::kDirect;
   o.circle_radius_mm = 30.0;
