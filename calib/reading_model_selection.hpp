@@ -5,7 +5,10 @@
 // every candidate the data excite; a backlash is kept where its estimate lies
 // k 1-sigma of the noise model (MotionFit::noise_sigma) from 0, a harmonic where its pair (a, b) does at the same level
 // (a^2/sa^2 + b^2/sb^2 >= the chi-square(2) quantile of the two-sided k-sigma
-// level); the fit is made again with the kept ones. A robot's data sheet says
+// level); the fit is made again with the kept ones. A backlash is a
+// candidate only where the samples can tell its flank (the mesh torque above
+// MotionModel::backlash_torque_min_Nm in half the samples, for all such
+// joints together too; else it is reported as dropped). A robot's data sheet says
 // what its reducer may do; what this robot does is what its readings show.
 #pragma once
 

@@ -112,6 +112,24 @@ TEST(ReadingModelSelection, KeepsTheDriveEffectsTheRobotHasAndDropsTheOthers) {
   EXPECT_GT(worst_in_sigmas(d, blind.result), 20.0);
 }
 
+// A joint whose mesh carries next to no torque (an unloaded, torque-off
+// drive on a robot of little friction) cannot tell its flank: its backlash
+// is no candidate (samples would all be left out) and the fit goes on.
+TEST(ReadingModelSelection, ABacklashWhoseFlankTheSamplesCannotTellIsNoCandidate) {
+  DriveData d = make_data(600, 17, false);
+  Rng rng(18);
+  for (Eigen::Vector3d& t : d.tau) t[0] = rng.normal(0.0, 0.01);  // joint 1: |tau| < 0.05 N m nearly always
+  LmOptions o;
+  o.encoder_sigma = kSigma;
+  const DriveEffectSelection s =
+      select_drive_effects(d.problem, d.omega, d.tau, o, rigid_geared(), {}, every_candidate());
+  EXPECT_FALSE(s.model.backlash[0]);
+  ASSERT_FALSE(s.dropped.empty());
+  EXPECT_NE(s.dropped.front().find("backlash of joint 1"), std::string::npos) << s.dropped.front();
+  EXPECT_GT(s.fit.kept.size(), 500u);  // joints 2 and 3 tell theirs in nearly every sample
+  EXPECT_LT(worst_in_sigmas(d, s.fit.result), 4.0);
+}
+
 TEST(ReadingModelSelection, FindsNothingOnARobotWithoutADriveTrain) {
   const DriveData d = make_data(600, 9, false);
   LmOptions o;
