@@ -10,6 +10,7 @@
 #include <Eigen/Dense>
 #include <fmt/format.h>
 
+#include "calib/chi_square.hpp"
 #include "calib/identifiability.hpp"
 #include "calib/parameterization.hpp"
 #include "calib/passive_tension.hpp"
@@ -331,33 +332,29 @@ std::vector<Eigen::Vector3d> correct_readings(const std::vector<Eigen::Vector3d>
 namespace {
 
 // The noise model's 1-sigma slot of MotionFit that nuisance column k fills (nullptr: none kept).
-double* noise_sigma_slot(MotionFit& fit, std::size_t k) {
-  if (k >= 8 && k < 11) return &fit.noise_sigma.clearance[k - 8];
-  if (k >= 11 && k < 14) return &fit.noise_sigma.torque_before[k - 11];
-  if (k >= 20 && k < 23) return &fit.noise_sigma.backlash[k - 20];
-  if (k >= 23) return &fit.noise_sigma.harmonic[(k - 23) / 6][(k - 23) % 6];
+double* noise_sigma_slot(MotionFit& fit, int k) {
+  const auto at = [k](int first) { return static_cast<std::size_t>(k - first); };
+  if (k >= kClearance && k < kBefore) return &fit.noise_sigma.clearance[at(kClearance)];
+  if (k >= kBefore && k < kFirstCyclic) return &fit.noise_sigma.torque_before[at(kBefore)];
+  if (k >= kBacklash && k < kHarmonic) return &fit.noise_sigma.backlash[at(kBacklash)];
+  if (k >= kHarmonic) return &fit.noise_sigma.harmonic[at(kHarmonic) / 6][at(kHarmonic) % 6];
   return nullptr;
 }
 
 // The 1-sigma slot of MotionFit that nuisance column k fills.
-double& nuisance_sigma_slot(MotionFit& fit, std::size_t k) {
-  if (k < 5) return fit.nu_sigma[k];
-  if (k < 8) return fit.friction_sigma[k - 5];
-  if (k < 11) return fit.clearance_sigma[k - 8];
-  if (k < 14) return fit.torque_before_sigma[k - 11];
-  if (k < 20) return fit.cyclic_sigma[k - 14];
-  if (k < 23) return fit.backlash_sigma[k - 20];
-  const std::size_t h = k - static_cast<std::size_t>(kHarmonic);
-  return fit.harmonic_sigma[h / 6][h % 6];
+double& nuisance_sigma_slot(MotionFit& fit, int k) {
+  const auto at = [k](int first) { return static_cast<std::size_t>(k - first); };
+  if (k < kFriction) return fit.nu_sigma[at(kSkew)];
+  if (k < kClearance) return fit.friction_sigma[at(kFriction)];
+  if (k < kBefore) return fit.clearance_sigma[at(kClearance)];
+  if (k < kFirstCyclic) return fit.torque_before_sigma[at(kBefore)];
+  if (k < kBacklash) return fit.cyclic_sigma[at(kFirstCyclic)];
+  if (k < kHarmonic) return fit.backlash_sigma[at(kBacklash)];
+  return fit.harmonic_sigma[at(kHarmonic) / 6][at(kHarmonic) % 6];
 }
 
-// True when chi2 for dof degrees of freedom exceeds the noise at 0.1 %
-// (Wilson-Hilferty: (chi2/dof)^(1/3) is about normal, mean 1 - 2/(9 dof),
-// variance 2/(9 dof)).
-bool misfit(double chi2, double dof) {
-  const double v = 2.0 / (9.0 * dof);
-  return (std::cbrt(chi2 / dof) - (1.0 - v)) / std::sqrt(v) > 3.09;
-}
+// True when chi2 for dof degrees of freedom exceeds the noise at 0.1 %.
+bool misfit(double chi2, double dof) { return chi2_survival(dof, chi2) < 1e-3; }
 
 // Bartlett bandwidth L of Andrews (1991) for residuals r along the path,
 // modelled as AR(1) with coefficient rho (their lag-1 autocorrelation):
@@ -594,7 +591,7 @@ MotionFit fit_in_motion(const Problem& problem, const std::vector<Eigen::Vector3
     Eigen::MatrixXd C = s2 * A;
     for (int c = 0; c < q; ++c) {
       const Eigen::Index i = Jg_free.cols() + c;
-      if (double* slot = noise_sigma_slot(fit, static_cast<std::size_t>(cols[static_cast<std::size_t>(c)])))
+      if (double* slot = noise_sigma_slot(fit, cols[static_cast<std::size_t>(c)]))
         *slot = std::sqrt(C(i, i));
     }
     if (options.encoder_sigma && dof > 0) fit.chi2_per_dof = r.squaredNorm() / s2 / dof;
@@ -616,8 +613,7 @@ MotionFit fit_in_motion(const Problem& problem, const std::vector<Eigen::Vector3
       fit.result.sigma[static_cast<std::size_t>(free_index[a])] = std::sqrt(C(static_cast<Eigen::Index>(a), static_cast<Eigen::Index>(a)));
     for (int c = 0; c < q; ++c) {
       const Eigen::Index i = Jg_free.cols() + c;
-      const std::size_t k = static_cast<std::size_t>(cols[static_cast<std::size_t>(c)]);
-      nuisance_sigma_slot(fit, k) = std::sqrt(C(i, i));
+      nuisance_sigma_slot(fit, cols[static_cast<std::size_t>(c)]) = std::sqrt(C(i, i));
     }
   }
   return fit;

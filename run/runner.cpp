@@ -264,10 +264,10 @@ void calibrate_run(RunOutcome& out, const RunSpec& spec, const CalibrationInputs
     // hardware) use the drive torque of the sample.
     const bool torque_history = in_motion && !spec.hardware;
     CalibrationOutcome c = calibrate_samples(sample_series(out.sim.samples, torque_history), inputs, po);
-    if (c.sigma_rad != out.crb_sigma_rad && po.free.count() <= noiseless.size()) {  // the readings' own step
+    if (c.sigma_rad != out.crb_sigma_rad && out.crb_sigma_rad > 0.0) {
+      // The readings' own step: the bound scales with the reading 1-sigma.
+      for (double& v : out.crb) v *= c.sigma_rad / out.crb_sigma_rad;
       out.crb_sigma_rad = c.sigma_rad;
-      out.crb = scaled_bound([&] { return calib::crb_sigma(actual.geometry, po.free, noiseless, 1.0); },
-                             out.crb_sigma_rad);
     }
     out.calibration = c.result;
     used = c.used;
