@@ -11,6 +11,7 @@
 #include "models/errors.hpp"
 #include "models/output_file.hpp"
 #include "calib/model_test.hpp"
+#include "calib/reading_model.hpp"
 #include "run/sampling_design.hpp"
 #include "sim/simulate.hpp"
 
@@ -38,7 +39,7 @@ void add_simulate(CLI::App& app) {
     sim::Scenario s = sim::load_scenario(opt->scenario);
     // `designed` and `trajectory` plans: poses designed for the default gauge.
     scenario::design_sampling(s, default_free_mask(),
-                              calib::encoder_sigma(s.twin.encoder.bits, s.twin.encoder.noise_rad));
+                              calib::reading_sigma(calib::encoder_step_rad(s.twin.encoder.bits), s.twin.encoder.noise_rad));
     sim::SimulationResult r;
     try {
       Progress progress = Progress::terminal("gpm simulate", "simulated s");  // on a terminal only

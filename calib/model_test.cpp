@@ -15,11 +15,6 @@
 
 namespace gpm::calib {
 
-double encoder_sigma(int bits, double noise_rad) {
-  const double q = bits > 0 ? 2.0 * std::numbers::pi / std::ldexp(1.0, bits) : 0.0;
-  return std::sqrt(q * q / 12.0 + noise_rad * noise_rad);
-}
-
 ModelTest model_test(const Geometry& g, const FreeMask& free,
                      const std::vector<Eigen::Vector3d>& theta_m, double sigma, double alpha) {
   if (!(sigma > 0.0) || !std::isfinite(sigma))

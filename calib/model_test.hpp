@@ -36,11 +36,6 @@ struct ModelTest {
   std::vector<long> worst_samples;
 };
 
-// 1-sigma reading error (rad) of an encoder with 2^bits counts per
-// revolution (0: ideal) and Gaussian noise noise_rad: the quantisation step
-// over sqrt(12) combined in quadrature with the noise.
-double encoder_sigma(int bits, double noise_rad);
-
 // Chi-square test of the ML residuals of readings theta_m at geometry g with
 // `free` estimated (p = free count), assuming reading noise sigma (rad) and
 // significance alpha. Throws InputError for sigma <= 0, alpha outside (0, 1)

@@ -14,6 +14,7 @@
 #include "calib/identifiability.hpp"
 #include "calib/parameterization.hpp"
 #include "calib/passive_tension.hpp"
+#include "calib/reading_model.hpp"
 #include "calib/residuals.hpp"
 #include "models/errors.hpp"
 #include "models/kinematics.hpp"
@@ -181,9 +182,6 @@ Eigen::Vector3d reading_sensitivity(const ParamVector& x, const Eigen::Vector3d&
 struct SampleRegressors {
   Eigen::Vector3d omega, tau, fric, clr, nb, reading, flank;
 };
-
-// Angle of harmonic order o (0: joint revolution, 1: motor revolution, 2: twice per motor revolution) of reading r.
-double harmonic_angle(int o, double r, double gear_ratio) { return o == 0 ? r : o * gear_ratio * r; }
 
 // One row of the nuisance Jacobian, every column, from the reading
 // sensitivities u and the sample's regressors x (calib/motion_correction.hpp).

@@ -7,6 +7,7 @@
 #include "hw/backends/drive_backend.hpp"
 #include "hw/backends/modbus_transport.hpp"
 #include "models/errors.hpp"
+#include "models/rng.hpp"
 #include "models/robot_yaml.hpp"
 #include "models/yaml_util.hpp"
 #include "sim/scenario.hpp"
@@ -26,7 +27,7 @@ TwinBackendConfig twin_config_from_scenario(const std::string& scenario_path, do
   TwinBackendConfig t;
   t.actual = sim::make_actual(sc);
   t.twin = sc.twin;
-  t.seed = sim::derive_seed(sc.seed, 2);
+  t.seed = derive_seed(sc.seed, Stream::kTwinNoise);
   t.period_s = period_s;
   return t;
 }

@@ -19,11 +19,28 @@ inline std::uint64_t splitmix64(std::uint64_t& state) {
   return z ^ (z >> 31);
 }
 
-// Seed of an independent stream `stream` derived from a run seed.
-inline std::uint64_t derive_stream_seed(std::uint64_t seed, std::uint64_t stream) {
-  std::uint64_t s = seed ^ (0xd1b54a32d192ed03ULL * (stream + 1));
-  splitmix64(s);
-  return splitmix64(s);
+// The independent random streams of a run, each derived from the run's seed
+// (derive_seed): a new use of randomness gets a new name here.
+enum class Stream : int {
+  kActualParameters = 0,  // the actual robot's parameters (perturbed from the nominal)
+  kSamplePoses = 1,       // the calibration's sample poses
+  kTwinNoise = 2,         // the twin's reading noise and servo state
+  kTestPoses = 3,         // the accuracy test's poses (independent of the samples)
+  kAccuracyTest = 4,      // the accuracy measurement's own noise
+  kEncoderErrors = 5,     // the encoders' drawn error phases
+  kRandomizedEffects = 6, // the effects of the `randomized` preset
+  kRandomizedMasses = 7,  // the masses of the `randomized` preset
+  kDriveTrainPhases = 9,  // the drive trains' error phases (reducer, motor, cogging)
+  kHarmonicPhases = 16,   // the phases of the encoders' harmonics
+};
+
+// Seed of the independent stream `stream` of a run seeded by `seed`
+// (a splitmix64 step of seed + golden ratio x (stream + 1)).
+inline std::uint64_t derive_seed(std::uint64_t seed, Stream stream) {
+  std::uint64_t z = seed + 0x9e3779b97f4a7c15ULL * static_cast<std::uint64_t>(static_cast<int>(stream) + 1);
+  z = (z ^ (z >> 30)) * 0xbf58476d1ce4e5b9ULL;
+  z = (z ^ (z >> 27)) * 0x94d049bb133111ebULL;
+  return z ^ (z >> 31);
 }
 
 class Rng {

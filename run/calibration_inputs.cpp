@@ -5,17 +5,12 @@
 
 namespace gpm::scenario {
 
-double reading_sigma(int bits, double noise_rad, double n_avg) {
-  const double q = bits > 0 ? 2.0 * M_PI / std::ldexp(1.0, bits) : 0.0;
-  return std::sqrt(noise_rad * noise_rad / n_avg + q * q / 12.0);
-}
-
 double effective_sigma(const sim::Scenario& s) {
   // On the fly every sample is one instantaneous reading.
   const double n_avg = s.sampling->pattern == sim::PosePattern::kTrajectory
                            ? 1.0
                            : std::max(1.0, std::round(s.sampling->options.average_s * s.twin.servo_rate_hz));
-  return reading_sigma(s.twin.encoder.bits, s.twin.encoder.noise_rad, n_avg);
+  return calib::reading_sigma(calib::encoder_step_rad(s.twin.encoder.bits), s.twin.encoder.noise_rad, n_avg);
 }
 
 calib::TransmissionLoad transmission_load(const DriveFriction& friction, const DataSheet& sheet, const Geometry& g) {

@@ -29,10 +29,6 @@ struct CalibrationInputs {
 // / 12), from the scenario's encoder: and servo: (what the drives report).
 double effective_sigma(const sim::Scenario& s);
 
-// The same from the drives' statement alone: 2^bits counts per turn (0:
-// ideal), white noise noise_rad (rad) averaged over n_avg readings.
-double reading_sigma(int bits, double noise_rad, double n_avg);
-
 // The inputs of spec's calibration and monitor for robot (the controller's
 // robot, whose data_sheet states rotor inertia, link masses and encoder
 // accuracy); reads no field of spec.sim.twin.effects or spec.sim.twin.mjcf.

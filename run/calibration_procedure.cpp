@@ -253,7 +253,7 @@ void estimate_notes(const MotionStage& m, std::vector<std::string>& notes) {
 }
 
 // The outcome of a finished motion stage: result, notes, readings used, the bound's inputs.
-CalibrationOutcome motion_outcome(MotionStage&& m) {
+CalibrationOutcome motion_outcome(MotionStage&& m, const calib::ReadingModel& stated) {
   CalibrationOutcome out;
   out.with_effects = true;
   out.result = m.fit.result;
@@ -262,9 +262,8 @@ CalibrationOutcome motion_outcome(MotionStage&& m) {
   if (!m.speed_note.empty()) notes.push_back(m.speed_note);
   if (!m.friction_note.empty() && m.motion.clearance) notes.push_back(m.friction_note);
   // For the monitor of the operation (run/monitor_run.hpp reading_model_after_calibration).
-  if (m.motion.clearance || !m.clearance_dropped.empty()) out.joint_play_mm = m.fit.clearance;
-  if (!m.friction_note.empty() && m.motion.clearance)
-    out.drive_friction_fitted = DriveFriction{m.motion.load.coulomb_Nm, m.motion.load.viscous_Nm_s, false};
+  out.reading = estimated_reading_model(stated, m.fit, m.motion, m.motion.clearance || !m.clearance_dropped.empty(),
+                                        !m.friction_note.empty() && m.motion.clearance);
   if (!m.clearance_dropped.empty()) notes.push_back(m.clearance_dropped);
   if (!m.before_dropped.empty()) notes.push_back(m.before_dropped);
   for (const std::string& note : m.drive_notes) notes.push_back(note);
@@ -302,7 +301,7 @@ CalibrationOutcome calibrate_samples(const SampleSeries& samples, const Calibrat
     // Single readings on the fly show their encoders' step (calib/reading_step.hpp):
     // a geared drive's motor encoder is finer at the joint than its bits say.
     if (const std::optional<double> q = calib::reading_step(samples.theta_m)) {
-      options.sigma_rad = std::sqrt(*q * *q / 12.0 + options.reading_noise_rad * options.reading_noise_rad);
+      options.sigma_rad = calib::reading_sigma(*q, options.reading_noise_rad);
       step_note = fmt::format("reading resolution from the samples: {:.4g} rad ({:.4g} counts per joint revolution), "
                               "reading 1-sigma {:.3g} rad",
                               *q, 2.0 * M_PI / *q, options.sigma_rad);
@@ -319,7 +318,7 @@ CalibrationOutcome calibrate_samples(const SampleSeries& samples, const Calibrat
     fit_motion(m, inputs, options.in_motion);
     drop_undetected(m, options.keep_clearance);
     select_drive_train(m, inputs);
-    out = motion_outcome(std::move(m));
+    out = motion_outcome(std::move(m), inputs.monitor.reading);
   } else {
     out = static_outcome(samples, options);
   }
@@ -331,6 +330,25 @@ CalibrationOutcome calibrate_samples(const SampleSeries& samples, const Calibrat
     if (!out.model_test->passed) out.result.notes.push_back(out.model_test->diagnosis);
   }
   return out;
+}
+
+calib::ReadingModel estimated_reading_model(calib::ReadingModel r, const calib::MotionFit& f,
+                                            const calib::MotionModel& motion, bool play_looked_for,
+                                            bool friction_scaled) {
+  const auto estimated = [](double sd) { return std::isfinite(sd) && sd > 0.0; };
+  if (estimated(f.nu_sigma[0]) || estimated(f.nu_sigma[1])) r.skew_s = {0.0, f.nu[0], f.nu[1]};
+  for (std::size_t i = 0; i < 3; ++i) {
+    if (estimated(f.nu_sigma[2 + i])) r.compliance_rad_per_Nm[i] = std::max(0.0, f.nu[2 + i]);
+    if (play_looked_for) r.clearance_mm[i] = std::max(0.0, f.clearance[i]);
+    if (estimated(f.backlash_sigma[i])) r.backlash_rad[i] = std::max(0.0, f.backlash[i]);
+  }
+  if (friction_scaled) {
+    r.load.coulomb_Nm = motion.load.coulomb_Nm;
+    r.load.viscous_Nm_s = motion.load.viscous_Nm_s;
+  }
+  r.harmonic = f.harmonic;
+  r.gear_ratio = motion.gear_ratio;
+  return r;
 }
 
 SampleSeries sample_series(const Samples& samples) {
@@ -362,7 +380,7 @@ FileProcedure samples_file_procedure(const Samples& samples, const Robot& robot,
   p.motion_not_used = on_the_fly && !lm_ml && !static_model;
   p.options.start = start;
   p.options.free = free;
-  p.options.sigma_rad = method.encoder_sigma.value_or(reading_sigma(bits, 0.0, 1.0));
+  p.options.sigma_rad = method.encoder_sigma.value_or(calib::reading_sigma(calib::encoder_step_rad(bits), 0.0));
   p.options.in_motion = in_motion;
   p.options.sigma_from_step = !method.encoder_sigma.has_value();
   p.options.test_any_cost = true;

@@ -75,8 +75,9 @@ struct CalibrationOutcome {
   calib::MotionFit fit;
   calib::MotionModel motion;
   std::vector<Eigen::Vector3d> omega, tau, alpha;
-  std::optional<std::array<double, 3>> joint_play_mm;   // where the clearance was looked for (zeros: not detected)
-  std::optional<DriveFriction> drive_friction_fitted;   // where the model test chose a factor of the stated friction
+  // With effects: the monitor's stated reading model (CalibrationInputs::monitor)
+  // with the estimates in place of the stated values.
+  std::optional<calib::ReadingModel> reading;
 };
 
 // The calibration of samples with inputs (motion model, stated friction) and
@@ -85,6 +86,16 @@ struct CalibrationOutcome {
 // free set, everything the fits refuse).
 CalibrationOutcome calibrate_samples(const SampleSeries& samples, const CalibrationInputs& inputs,
                                      const ProcedureOptions& options);
+
+// The reading model r (stated) with the estimates of fit in place: skew and
+// compliance where estimated (a compliance or backlash fitted below 0, within
+// its noise of none, is none), the passive links' play where it was looked
+// for (play_looked_for), the drives' friction of motion where the model test
+// scaled it (friction_scaled), the drive-train harmonics fit estimated (0
+// elsewhere) and the gear ratio of motion.
+calib::ReadingModel estimated_reading_model(calib::ReadingModel r, const calib::MotionFit& fit,
+                                            const calib::MotionModel& motion, bool play_looked_for,
+                                            bool friction_scaled);
 
 // The series of a samples file: readings, times, and as the twist's torque
 // tau_last where the file has it (samples on the fly), else tau.

@@ -13,6 +13,7 @@
 #include <nlohmann/json.hpp>
 
 #include "models/errors.hpp"
+#include "models/rng.hpp"
 #include "models/kinematics.hpp"
 #include "models/mjcf.hpp"
 #include "models/output_file.hpp"
@@ -81,17 +82,19 @@ std::string csv_field(const std::string& s) {
   return out + "\"";
 }
 
+// Each pin's radial clearance of r's passive links (half the link's play).
+std::array<double, 3> pin_clearance_mm(const calib::ReadingModel& r) {
+  return {0.5 * r.clearance_mm[0], 0.5 * r.clearance_mm[1], 0.5 * r.clearance_mm[2]};
+}
+
 }  // namespace
 
 void apply_reading_model(calib::monitor::MonitorSettings& ms, const MonitorReadingModel& reading) {
-  ms.skew_s = reading.skew_s;
-  ms.compliance_rad_per_Nm = reading.compliance_rad_per_Nm;
-  // The reducer's friction and damping sit on the rotor, ahead of the
-  // compliance: only with a compliance does it matter.
-  ms.coulomb_Nm = reading.drive_friction.coulomb_Nm;
-  ms.viscous_Nm_s = reading.drive_friction.viscous_Nm_s;
-  ms.cyclic_rad = reading.encoder_cyclic_rad;
-  ms.clearance_mm = reading.clearance_mm;
+  const int bits = ms.reading.encoder_bits;  // the encoder is the run's, not the statement's
+  const double noise = ms.reading.noise_rad;
+  ms.reading = reading.reading;
+  ms.reading.encoder_bits = bits;
+  ms.reading.noise_rad = noise;
   // A uniform expansion of links and base plate is a similarity, which the
   // encoders cannot see (and the monitor need not track); what they see is
   // the links growing relative to the base, which the monitor's growth state
@@ -121,7 +124,7 @@ MonitorOutcome run_monitor(const sim::Scenario& s, const Robot& controller,
   Robot actual_at_start = out.actual;
   actual_at_start.home = sim::path_at(path, 0.0).p;
   const sim::TwinModel twin(actual_at_start, s.twin);
-  sim::TwinState state(twin, sim::derive_seed(s.seed, 2));
+  sim::TwinState state(twin, derive_seed(s.seed, Stream::kTwinNoise));
   Robot ctrl = controller;
   ctrl.home = actual_at_start.home;
   sim::Session session = sim::make_session(twin, state, ctrl, nullptr);
@@ -130,8 +133,8 @@ MonitorOutcome run_monitor(const sim::Scenario& s, const Robot& controller,
   mon::MonitorSettings ms;
   ms.geometry = controller.geometry;
   ms.prior_sigma = prior_sigma;
-  ms.encoder_bits = s.twin.encoder.bits;
-  ms.noise_rad = s.twin.encoder.noise_rad;
+  ms.reading.encoder_bits = s.twin.encoder.bits;
+  ms.reading.noise_rad = s.twin.encoder.noise_rad;
   ms.cycle_hz = s.twin.servo_rate_hz;
   // At most 200 samples per second whatever the servo rate (the independence
   // gate of calib/monitor/README.md: closer samples share quantisation errors).
@@ -212,25 +215,7 @@ MonitorOutcome run_monitor(const sim::Scenario& s, const Robot& controller,
 MonitorReadingModel reading_model_after_calibration(const RunOutcome& run) {
   MonitorReadingModel m = run.spec.monitor;  // the statement
   if (!run.calibration) return m;
-  // An estimate has a positive, finite 1-sigma (0: no motion corrections were
-  // fitted; NaN: not estimated, e.g. the compliance of a torque-off joint).
-  const auto estimated = [&](std::size_t k) {
-    const double sd = run.motion_nu_sigma[k];
-    return std::isfinite(sd) && sd > 0.0;
-  };
-  // s2, s3 relative to encoder 1, then c1..c3 (calib/motion_correction.hpp).
-  if (estimated(0) || estimated(1)) m.skew_s = {0.0, run.motion_nu[0], run.motion_nu[1]};
-  // A compliance fitted below 0 (within its noise of a stiff transmission) is none.
-  for (std::size_t i = 0; i < 3; ++i)
-    if (estimated(2 + i)) m.compliance_rad_per_Nm[i] = std::max(0.0, run.motion_nu[2 + i]);
-  // The passive link acts as lb_i + d_i sign(T_i) in the calibration and as
-  // lb_i + 2 c_i sign(T_i) in the monitor (a play fitted below 0 is none).
-  if (run.joint_play_mm)
-    for (std::size_t i = 0; i < 3; ++i) m.clearance_mm[i] = std::max(0.0, 0.5 * (*run.joint_play_mm)[i]);
-  if (run.drive_friction_fitted) {
-    m.drive_friction.coulomb_Nm = run.drive_friction_fitted->coulomb_Nm;
-    m.drive_friction.viscous_Nm_s = run.drive_friction_fitted->viscous_Nm_s;
-  }
+  if (run.reading_estimated) m.reading = *run.reading_estimated;  // the statement with the calibration's estimates
   // What the calibration stated of its residuals: the monitor's innovations
   // are never taken as smaller (the learning phase may find them larger).
   if (run.model_test && run.model_test->dof > 0.0 && std::isfinite(run.model_test->chi2))
@@ -289,8 +274,8 @@ MonitorOutcome run_monitor_hardware(const sim::Scenario& s, const std::string& h
   mon::MonitorSettings ms;
   ms.geometry = controller.geometry;
   ms.prior_sigma = prior_sigma;
-  ms.encoder_bits = s.twin.encoder.bits;
-  ms.noise_rad = s.twin.encoder.noise_rad;
+  ms.reading.encoder_bits = s.twin.encoder.bits;
+  ms.reading.noise_rad = s.twin.encoder.noise_rad;
   ms.cycle_hz = config.rate_hz;
   ms.decimation = std::max(1, static_cast<int>(std::lround(ms.cycle_hz / 200.0)));
   apply_reading_model(ms, reading);
@@ -487,14 +472,15 @@ nlohmann::json monitor_summary(const MonitorOutcome& o) {
   j["false_alarm_rate_per_hour"] = o.model.settings.false_alarms_per_hour;
   j["learning"] = learning_summary(o);
   // What the monitor assumed of the readings (the statement, or the calibration's estimates).
-  const MonitorReadingModel& r = o.reading;
-  j["reading_model"] = {{"encoder_cyclic_rad", r.encoder_cyclic_rad},
-                        {"clearance_mm", r.clearance_mm},
-                        {"coulomb_Nm", r.drive_friction.coulomb_Nm},
-                        {"viscous_Nm_s", r.drive_friction.viscous_Nm_s},
+  const calib::ReadingModel& r = o.reading.reading;
+  j["reading_model"] = {{"encoder_cyclic_rad", r.cyclic_rad},
+                        {"clearance_mm", pin_clearance_mm(r)},
+                        {"coulomb_Nm", r.load.coulomb_Nm},
+                        {"viscous_Nm_s", r.load.viscous_Nm_s},
                         {"skew_s", r.skew_s},
                         {"compliance_rad_per_Nm", r.compliance_rad_per_Nm},
-                        {"thermal_time_constant_s", r.thermal_time_constant_s}};
+                        {"backlash_rad", r.backlash_rad},
+                        {"thermal_time_constant_s", o.reading.thermal_time_constant_s}};
   j["detections"] = nlohmann::json::array();
   for (const MonitorDetection& d : o.detections) {
     nlohmann::json dj = {{"event", d.event}, {"at_s", d.at_s}};
@@ -549,16 +535,17 @@ void add_monitor_section(report::ReportDocument& doc, const MonitorOutcome& o, i
                             o.model.settings.false_alarms_per_hour, o.model.threshold, o.model.settings.window));
   doc.paragraph(fmt::format("Learning: {}.", learning_text(o)));
   {
-    const MonitorReadingModel& r = o.reading;
+    const calib::ReadingModel& r = o.reading.reading;
     const auto three = [](const std::array<double, 3>& v, double scale) {
       return fmt::format("{:.3g}, {:.3g}, {:.3g}", v[0] * scale, v[1] * scale, v[2] * scale);
     };
     doc.paragraph(fmt::format(
         "Reading model assumed (joints 1, 2, 3): latch skew {} us; compliance {} rad/N m; drive friction {} N m "
-        "and {} N m s/rad; cyclic encoder error {} urad; pin clearance {} um; drift time constant {:.0f} s.",
-        three(r.skew_s, 1e6), three(r.compliance_rad_per_Nm, 1.0), three(r.drive_friction.coulomb_Nm, 1.0),
-        three(r.drive_friction.viscous_Nm_s, 1.0), three(r.encoder_cyclic_rad, 1e6), three(r.clearance_mm, 1e3),
-        r.thermal_time_constant_s));
+        "and {} N m s/rad; cyclic encoder error {} urad; pin clearance {} um; backlash {} urad; drift time "
+        "constant {:.0f} s.",
+        three(r.skew_s, 1e6), three(r.compliance_rad_per_Nm, 1.0), three(r.load.coulomb_Nm, 1.0),
+        three(r.load.viscous_Nm_s, 1.0), three(r.cyclic_rad, 1e6), three(pin_clearance_mm(r), 1e3),
+        three(r.backlash_rad, 1e6), o.reading.thermal_time_constant_s));
   }
   if (!o.detections.empty()) {
     std::vector<std::vector<std::string>> rows;

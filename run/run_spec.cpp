@@ -67,6 +67,27 @@ std::array<double, 3> skew_list(const YAML::Node& n, const std::string& file, co
       [](double s) { return std::array<double, 3>{0.0, s, s}; });
 }
 
+// monitor.harmonic_rad: three lists of six (a1 a2 a3 b1 b2 b3, rad), one per
+// order: once per joint revolution, once and twice per motor revolution.
+std::array<std::array<double, 6>, calib::kHarmonicOrders> harmonic_orders(const YAML::Node& n, const std::string& file,
+                                                                          const std::string& key) {
+  const std::string expected = "expected three lists of six numbers (a1 a2 a3 b1 b2 b3 in rad of each order: joint, "
+                               "motor, twice motor revolution), each within +-0.01 rad";
+  if (!n.IsSequence() || n.size() != 3) throw InputError(yaml_where(file, n, key) + expected);
+  std::array<std::array<double, 6>, calib::kHarmonicOrders> out{};
+  for (std::size_t o = 0; o < 3; ++o) {
+    const YAML::Node row = n[o];
+    const std::string k = fmt::format("{}[{}]", key, o);
+    if (!row.IsSequence() || row.size() != 6) throw InputError(yaml_where(file, row, k) + expected);
+    for (std::size_t c = 0; c < 6; ++c) {
+      const double x = yaml_number(row[c], file, fmt::format("{}[{}]", k, c));
+      if (!(std::abs(x) <= 0.01)) throw InputError(yaml_where(file, row[c], k) + expected);
+      out[o][c] = x;
+    }
+  }
+  return out;
+}
+
 MonitorReadingModel reading_model_preset(const YAML::Node& n, const std::string& file, const std::string& key,
                                          const DataSheet& sheet) {
   const std::string name = yaml_string(n, file, key);
@@ -208,7 +229,7 @@ CompensationPlan parse_compensation(const YAML::Node& n, const std::string& file
   }
   if (plan.poses.empty()) {
     // Test poses independent of the calibration samples (their own stream).
-    Rng rng(sim::derive_seed(s.seed, 3));
+    Rng rng(derive_seed(s.seed, Stream::kTestPoses));
     plan.poses = sim::disc_poses(centre, radius, count, rng);
   }
   if (s.sampling) plan.sampling = s.sampling->options;
@@ -298,12 +319,16 @@ MonitorReadingModel ideal_reading_model() { return MonitorReadingModel{}; }
 
 MonitorReadingModel data_sheet_reading_model(const DataSheet& sheet) {
   MonitorReadingModel m;
-  m.encoder_cyclic_rad.fill(sheet.encoder_accuracy_rad.nominal);
-  m.clearance_mm.fill(sheet.clearance_mm.nominal);
-  m.drive_friction = stated_drive_friction(sheet);
+  calib::ReadingModel& r = m.reading;
+  r.cyclic_rad.fill(sheet.encoder_accuracy_rad.nominal);
+  r.clearance_mm.fill(2.0 * sheet.clearance_mm.nominal);  // both pins' radial clearance
+  const DriveFriction f = stated_drive_friction(sheet);
+  r.load.coulomb_Nm = f.coulomb_Nm;
+  r.load.viscous_Nm_s = f.viscous_Nm_s;
   // Encoder 1 is the reference; drive i latches i - 1 bus slots after it.
-  for (std::size_t i = 0; i < 3; ++i) m.skew_s[i] = static_cast<double>(i) * sheet.latch_skew_s.nominal;
-  m.compliance_rad_per_Nm.fill(sheet.compliance_rad_per_Nm());
+  for (std::size_t i = 0; i < 3; ++i) r.skew_s[i] = static_cast<double>(i) * sheet.latch_skew_s.nominal;
+  r.compliance_rad_per_Nm.fill(sheet.compliance_rad_per_Nm());
+  r.gear_ratio = sheet.gear_ratio;
   m.thermal_time_constant_s = sheet.warm_up_time_constant_s.nominal;
   return m;
 }
@@ -316,16 +341,26 @@ MonitorReadingModel parse_monitor_reading_model(const YAML::Node& n, const std::
                      "expected a preset (ideal, data_sheet) or a map of the monitor's reading model (see scenarios/SCHEMA.md)");
   yaml_check_keys(n, file, "monitor",
                   {"preset", "encoder_cyclic_rad", "clearance_mm", "drive_friction", "skew_s", "compliance_rad_per_Nm",
-                   "thermal_time_constant_s", "learning_s", "scale_floor"});
+                   "backlash_rad", "harmonic_rad", "thermal_time_constant_s", "learning_s", "scale_floor"});
   MonitorReadingModel m =
       n["preset"] ? reading_model_preset(n["preset"], file, "monitor.preset", sheet) : data_sheet_reading_model(sheet);
-  if (n["encoder_cyclic_rad"]) m.encoder_cyclic_rad = per_joint(n["encoder_cyclic_rad"], file, "monitor.encoder_cyclic_rad", 0.01, "rad");
-  if (n["clearance_mm"]) m.clearance_mm = per_joint(n["clearance_mm"], file, "monitor.clearance_mm", 1.0, "mm");
-  if (n["drive_friction"])
-    m.drive_friction = parse_drive_friction(n["drive_friction"], file, "monitor.drive_friction", m.drive_friction, false);
-  if (n["skew_s"]) m.skew_s = skew_list(n["skew_s"], file, "monitor.skew_s");
+  calib::ReadingModel& r = m.reading;
+  if (n["encoder_cyclic_rad"]) r.cyclic_rad = per_joint(n["encoder_cyclic_rad"], file, "monitor.encoder_cyclic_rad", 0.01, "rad");
+  if (n["clearance_mm"]) {
+    r.clearance_mm = per_joint(n["clearance_mm"], file, "monitor.clearance_mm", 1.0, "mm");
+    for (double& d : r.clearance_mm) d *= 2.0;  // both pins' radial clearance: the link's play
+  }
+  if (n["drive_friction"]) {
+    const DriveFriction f = parse_drive_friction(n["drive_friction"], file, "monitor.drive_friction",
+                                                 DriveFriction{r.load.coulomb_Nm, r.load.viscous_Nm_s, false}, false);
+    r.load.coulomb_Nm = f.coulomb_Nm;
+    r.load.viscous_Nm_s = f.viscous_Nm_s;
+  }
+  if (n["skew_s"]) r.skew_s = skew_list(n["skew_s"], file, "monitor.skew_s");
   if (n["compliance_rad_per_Nm"])
-    m.compliance_rad_per_Nm = per_joint(n["compliance_rad_per_Nm"], file, "monitor.compliance_rad_per_Nm", 1.0, "rad/N m");
+    r.compliance_rad_per_Nm = per_joint(n["compliance_rad_per_Nm"], file, "monitor.compliance_rad_per_Nm", 1.0, "rad/N m");
+  if (n["backlash_rad"]) r.backlash_rad = per_joint(n["backlash_rad"], file, "monitor.backlash_rad", 0.01, "rad");
+  if (const YAML::Node h = n["harmonic_rad"]) r.harmonic = harmonic_orders(h, file, "monitor.harmonic_rad");
   if (const YAML::Node t = n["thermal_time_constant_s"]) {
     const double tau = yaml_number(t, file, "monitor.thermal_time_constant_s");
     if (!(tau >= 1.0 && tau <= 1e6))
@@ -352,15 +387,25 @@ std::string monitor_reading_model_yaml(const MonitorReadingModel& m) {
   const auto three = [](const std::array<double, 3>& v) {
     return fmt::format("[{}, {}, {}]", format_exact(v[0]), format_exact(v[1]), format_exact(v[2]));
   };
+  const calib::ReadingModel& r = m.reading;
+  std::array<double, 3> pin{};  // the YAML states each pin's radial clearance
+  for (std::size_t i = 0; i < 3; ++i) pin[i] = 0.5 * r.clearance_mm[i];
+  std::string harmonics;
+  for (const auto& h : r.harmonic) {
+    harmonics += harmonics.empty() ? "[" : ", ";
+    harmonics += "[";
+    for (std::size_t c = 0; c < h.size(); ++c) harmonics += (c ? ", " : "") + format_exact(h[c]);
+    harmonics += "]";
+  }
   return fmt::format(
       "monitor:             # the drift monitor's reading model (gpm monitor --model reads it; scenario key monitor:)\n"
       "  encoder_cyclic_rad: {}\n  clearance_mm: {}\n"
       "  drive_friction: {{coulomb_Nm: {}, viscous_Nm_s: {}}}\n"
-      "  skew_s: {}\n  compliance_rad_per_Nm: {}\n  thermal_time_constant_s: {}\n"
-      "  learning_s: {}\n  scale_floor: {}\n",
-      three(m.encoder_cyclic_rad), three(m.clearance_mm), three(m.drive_friction.coulomb_Nm),
-      three(m.drive_friction.viscous_Nm_s), three(m.skew_s), three(m.compliance_rad_per_Nm),
-      format_exact(m.thermal_time_constant_s), format_exact(m.learning_s), format_exact(m.scale_floor));
+      "  skew_s: {}\n  compliance_rad_per_Nm: {}\n  backlash_rad: {}\n  harmonic_rad: {}]\n"
+      "  thermal_time_constant_s: {}\n  learning_s: {}\n  scale_floor: {}\n",
+      three(r.cyclic_rad), three(pin), three(r.load.coulomb_Nm), three(r.load.viscous_Nm_s), three(r.skew_s),
+      three(r.compliance_rad_per_Nm), three(r.backlash_rad), harmonics, format_exact(m.thermal_time_constant_s),
+      format_exact(m.learning_s), format_exact(m.scale_floor));
 }
 
 RunSpec parse_run_spec(const std::string& text, const std::string& file, const std::string& base_dir) {

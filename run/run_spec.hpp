@@ -48,12 +48,10 @@ DriveFriction stated_drive_friction(const DataSheet& sheet);
 // by the calibration's estimate where the calibration made one
 // (run/monitor_run.hpp reading_model_after_calibration).
 struct MonitorReadingModel {
-  std::array<double, 3> encoder_cyclic_rad{};     // once-per-revolution error amplitude of each encoder (rad)
-  std::array<double, 3> clearance_mm{};           // radial clearance of each passive link's two pins (mm):
-                                                  // the link acts as lb_i + 2 c_i sign(T_i)
-  DriveFriction drive_friction{};                 // motor-side friction of each drive (fit_scale unused)
-  std::array<double, 3> skew_s{};                 // latch skew of each encoder (s)
-  std::array<double, 3> compliance_rad_per_Nm{};  // transmission compliance of each chain
+  // The reading errors (calib/reading_model.hpp; its encoder is the
+  // scenario's encoder:, the run's). The YAML states the radial clearance c of
+  // each pin (clearance_mm); the model holds the play of the link, d = 2 c.
+  calib::ReadingModel reading = calib::monitor::MonitorSettings{}.reading;
   // Time constant of the slow drift the monitor tracks (s); ideal: the monitor's own default.
   double thermal_time_constant_s = calib::monitor::MonitorSettings{}.thermal_tau_s;
   // Learning phase (calib/monitor/learning.hpp): seconds of operation the

@@ -17,6 +17,7 @@
 #include "calib/result_yaml.hpp"
 #include "models/pose_layouts.hpp"
 #include "models/errors.hpp"
+#include "models/rng.hpp"
 #include "models/kinematics.hpp"
 #include "models/output_file.hpp"
 #include "hw/hardware_config.hpp"
@@ -189,8 +190,7 @@ void take_motion_fit(RunOutcome& o, const CalibrationOutcome& c, const FreeMask&
                      const std::vector<Eigen::Vector3d>& noiseless) {
   o.motion_nu = c.fit.nu;
   o.motion_nu_sigma = c.fit.nu_sigma;
-  o.joint_play_mm = c.joint_play_mm;
-  o.drive_friction_fitted = c.drive_friction_fitted;
+  o.reading_estimated = c.reading;
   const double sigma = o.crb_sigma_rad;
   if ((c.motion.clearance || c.motion.cyclic_prior_rad > 0.0) && sigma > 0.0) {
     o.crb = scaled_bound(
@@ -305,7 +305,7 @@ void measure_compensation(RunOutcome& out, const RunSpec& spec, const Progress& 
   for (sim::ServoDrive& d : test_twin.drives)
     if (d.mode == sim::ServoMode::kTorque) d.mode = sim::ServoMode::kTorqueOff;
   stage("measuring accuracy with the nominal model");
-  const unsigned long long seed = sim::derive_seed(spec.sim.seed, 4);
+  const unsigned long long seed = derive_seed(spec.sim.seed, Stream::kAccuracyTest);
   // A progress line per measurement on a terminal (models/progress.hpp): test poses, then the path.
   std::optional<gpm::Progress> measuring;
   const auto steps = [&](const std::string& label) -> gpm::Progress& {

@@ -54,11 +54,9 @@ struct RunOutcome {
   // Samples taken on the fly: compliance and skew estimated with the geometry.
   bool in_motion = false;
   std::array<double, 5> motion_nu{}, motion_nu_sigma{};  // s2, s3 (s), c1..c3 (rad/N m)
-  // The joint play d_i of the passive links (mm) when the calibration looked
-  // for it (zeros: not detected); the drives' friction it used when the
-  // model test chose a factor of the stated one (calib/friction_profile.hpp).
-  std::optional<std::array<double, 3>> joint_play_mm;
-  std::optional<DriveFriction> drive_friction_fitted;
+  // The reading model the calibration estimated (the monitor's statement
+  // with the estimates in place; run/calibration_procedure.hpp).
+  std::optional<calib::ReadingModel> reading_estimated;
   std::optional<MonitorOutcome> monitor;  // the calibrated model monitoring `operation:` (run/monitor_run.hpp)
   std::vector<Check> checks;
   double seconds = 0.0;

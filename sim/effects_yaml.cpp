@@ -43,7 +43,7 @@ Effects preset(const YAML::Node& n, const std::string& file, const std::string& 
   if (name == "ideal") return Effects{};
   if (name == "realistic") return realistic_effects();
   if (name == "randomized") {
-    Rng rng(derive_seed(seed, 6));
+    Rng rng(derive_seed(seed, Stream::kRandomizedEffects));
     return randomized_effects(rng, sheet);
   }
   throw InputError(yaml_where(file, n, key) +
@@ -242,13 +242,13 @@ Effects parse_effects(const YAML::Node& n, const std::string& file, std::uint64_
     parse_drive_train(n, file, c, e);
     parse_encoder_and_geometry(n, file, e);
   }
-  Rng rng(derive_seed(seed, 5));
+  Rng rng(derive_seed(seed, Stream::kEncoderErrors));
   for (double& ph : e.encoder_phase_rad) ph = rng.uniform(0.0, 2.0 * std::numbers::pi);
-  Rng drive_rng(derive_seed(seed, 9));  // drive-train phases: TE per joint and per motor revolution, cogging
+  Rng drive_rng(derive_seed(seed, Stream::kDriveTrainPhases));  // drive-train phases: TE per joint and per motor revolution, cogging
   for (DriveChain& d : e.drive.chain)
     for (double* ph : {&d.te_joint_phase_rad, &d.te_motor_phase_rad, &d.cogging_phase_rad})
       *ph = drive_rng.uniform(0.0, 2.0 * std::numbers::pi);
-  draw_harmonic_phases(derive_seed(seed, 16), e);
+  draw_harmonic_phases(derive_seed(seed, Stream::kHarmonicPhases), e);
   return e;
 }
 

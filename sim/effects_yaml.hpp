@@ -14,8 +14,8 @@
 namespace gpm::sim {
 
 // Parses node (at key path `effects` of file). Encoder phases are drawn from
-// gpm::Rng seeded by derive_seed(seed, 5), one per encoder; the phases of the
-// encoder harmonics from derive_seed(seed, 16), one per slot and encoder. Throws
+// gpm::Rng seeded by derive_seed(seed, Stream::kEncoderErrors), one per encoder; the phases of the
+// encoder harmonics from derive_seed(seed, Stream::kHarmonicPhases), one per slot and encoder. Throws
 // InputError naming the file, line and key for a bad value or unknown key.
 Effects parse_effects(const YAML::Node& node, const std::string& file, std::uint64_t seed,
                       const DataSheet& sheet = {});

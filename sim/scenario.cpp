@@ -397,14 +397,6 @@ void check_log_size(const Scenario& s, const YAML::Node& root, const Ctx& c) {
 
 }  // namespace
 
-std::uint64_t derive_seed(std::uint64_t seed, int stream) {
-  // splitmix64 of (seed, stream): independent, well-mixed streams.
-  std::uint64_t z = seed + 0x9e3779b97f4a7c15ULL * static_cast<std::uint64_t>(stream + 1);
-  z = (z ^ (z >> 30)) * 0xbf58476d1ce4e5b9ULL;
-  z = (z ^ (z >> 27)) * 0x94d049bb133111ebULL;
-  return z ^ (z >> 31);
-}
-
 Path path_from_yaml(const YAML::Node& n, const std::string& file, const std::string& keypath,
                     const PathDefaults& defaults) {
   return parse_path(n, Ctx{file, keypath}, &defaults);
@@ -463,7 +455,7 @@ Scenario scenario_from_yaml(const YAML::Node& root, const std::string& file, con
   if (const YAML::Node fx = root["effects"]) {
     s.twin.effects = parse_effects(fx, file, s.seed, s.controller.data_sheet);
     if (uses_randomized_preset(fx)) {  // the actual masses too lie anywhere in the data sheet's tolerance
-      Rng rng(derive_seed(s.seed, 7));
+      Rng rng(derive_seed(s.seed, Stream::kRandomizedMasses));
       const double armature = s.twin.mjcf.armature_kg_m2;
       draw_masses_within(rng, s.controller.data_sheet, s.twin.mjcf);
       // The drives are tuned to the rotor they turn (a drive's auto-tuning
@@ -520,7 +512,7 @@ Robot make_actual(const Scenario& s) {
   Robot actual = s.controller;
   actual.name = s.controller.name + " (actual)";
   actual.calibration.reset();  // a controller read from a result file: its std etc. are not the actual robot's
-  Rng rng(derive_seed(s.seed, 0));
+  Rng rng(derive_seed(s.seed, Stream::kActualParameters));
   for (int i = 0; i < kNumParams; ++i) {
     const double z = rng.normal();  // drawn for every parameter: streams do not shift
     const auto& ex = s.actual.explicit_values[static_cast<size_t>(i)];
@@ -545,7 +537,7 @@ Robot make_actual(const Scenario& s) {
 std::vector<Eigen::Vector2d> plan_poses(const SamplingPlan& p, std::uint64_t seed) {
   switch (p.pattern) {
     case PosePattern::kDisc: {
-      Rng rng(derive_seed(seed, 1));
+      Rng rng(derive_seed(seed, Stream::kSamplePoses));
       return disc_poses(p.centre, p.radius, p.count, rng);
     }
     case PosePattern::kCircle: return circle_points(p.centre, p.radius, p.count);

@@ -111,16 +111,12 @@ Scenario scenario_from_yaml(const YAML::Node& root, const std::string& file,
 Scenario parse_scenario(const std::string& text, const std::string& file,
                         const std::string& base_dir);
 
-// Seed of an independent random stream derived from the scenario seed
-// (0: actual parameters, 1: sample poses, 2: encoder noise).
-std::uint64_t derive_seed(std::uint64_t seed, int stream);
-
 // The actual robot: the controller's robot with explicit values applied and
-// the others perturbed (seeded by derive_seed(seed, 0)); throws InputError if
+// the others perturbed (seeded by derive_seed(seed, Stream::kActualParameters)); throws InputError if
 // it cannot assemble at home.
 Robot make_actual(const Scenario& scenario);
 
-// The sample poses of a plan (disc poses from derive_seed(seed, 1)).
+// The sample poses of a plan (disc poses from derive_seed(seed, Stream::kSamplePoses)).
 std::vector<Eigen::Vector2d> plan_poses(const SamplingPlan& plan, std::uint64_t seed);
 
 }  // namespace gpm::sim

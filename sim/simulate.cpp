@@ -10,6 +10,7 @@
 
 #include "models/drive_margin.hpp"
 #include "models/errors.hpp"
+#include "models/rng.hpp"
 #include "models/kinematics.hpp"
 #include "models/output_file.hpp"
 #include "models/robot_yaml.hpp"
@@ -114,7 +115,7 @@ SimulationResult run_simulation(const Scenario& s, std::function<void(const LogR
       in_motion ? std::optional<WaypointPath>(excitation_plan(s, r.actual, poses)) : std::nullopt;
   const TwinModel model(r.actual, s.twin);
   r.model_xml = model.xml();
-  TwinState state(model, derive_seed(s.seed, 2));
+  TwinState state(model, derive_seed(s.seed, Stream::kTwinNoise));
   r.log.every = s.log_every;
   Session session = make_session(model, state, s.controller, &r.log);
   session.max_tracking_mm = s.max_tracking_mm;

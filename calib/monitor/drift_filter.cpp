@@ -31,7 +31,7 @@ double innovation_variance(const MonitorModel& m, double noise_scale, const Stat
       h[k + 1] = -g[dth(i)] * std::cos(theta_m[i]) / m.scale[k + 1];
     }
   if (m.clearance_index >= 0)
-    for (int i = 0; i < 3; ++i) h[static_cast<size_t>(m.clearance_index + i)] = 2.0 * tension[i] * g[lb(i)];
+    for (int i = 0; i < 3; ++i) h[static_cast<size_t>(m.clearance_index + i)] = tension[i] * g[lb(i)];
   double hPh = 0.0;
   for (int k = 0; k < m.n_state; ++k) {
     double acc = 0.0;
@@ -86,7 +86,7 @@ void filter_predict(const MonitorModel& m, Geometry& x, double& rate, StateMatri
 // The geometry a sample is read against: the estimate with its clearance shift.
 static Geometry shifted(const Geometry& x, const std::array<double, 3>& clearance, const Eigen::Vector3d& tension) {
   Geometry g = x;
-  for (int i = 0; i < 3; ++i) g[lb(i)] += 2.0 * clearance[static_cast<size_t>(i)] * tension[i];
+  for (int i = 0; i < 3; ++i) g[lb(i)] += clearance[static_cast<size_t>(i)] * tension[i];
   return g;
 }
 

@@ -10,11 +10,11 @@
 // noise of a white rate derivative, [dt^3/3 v v', dt^2/2 v; dt^2/2 v', dt]).
 // With a stated cyclic encoder error the state also holds its coefficients
 // a_i, b_i (constant; the readings lose a_i sin theta_i + b_i cos theta_i),
-// and with a stated clearance the effective clearance c_i of each chain
-// (constant; the passive length is lb_i + 2 c_i sign(T_i)).
+// and with a stated clearance the effective play d_i of each chain
+// (constant; the passive length is lb_i + d_i sign(T_i)).
 // Measurement: the ML residual of the readings, r(u) = 0 with variance
 // sigma^2 (calib/residuals.hpp) at the geometry with each passive length
-// shifted by the sample's clearance (MonitorSettings::clearance_mm),
+// shifted by the sample's play (ReadingModel::clearance_mm),
 // linearised at the current estimate.
 #pragma once
 
@@ -32,7 +32,7 @@ void filter_predict(const MonitorModel& model, Geometry& estimate, double& growt
 // Also returns dz/dparams = (dr/dparams) / sqrt(s). False when the readings
 // have no ML residual (collinear elbows). Allocation-free.
 // tension: the sign of each passive link's axial force for the sample (its
-// length is lb_i + 2 c_i tension_i, c_i the estimated effective clearance).
+// length is lb_i + d_i tension_i, d_i the estimated effective play).
 bool filter_innovation(const MonitorModel& model, const MonitorData& data, double t_s,
                        const Eigen::Vector3d& theta_m, const Eigen::Vector3d& tension, double& z,
                        ParamRow& dz_dparams);

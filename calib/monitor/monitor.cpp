@@ -102,11 +102,7 @@ std::array<double, kNumParams> MonitorSettings::nan_array() {
 }
 
 MonitorModel make_monitor_model(const MonitorSettings& s) {
-  require(s.encoder_bits >= 0 && s.encoder_bits <= 40,
-          fmt::format("encoder_bits {} is out of range (0 for an ideal encoder, else 1..40)", s.encoder_bits));
-  require(s.noise_rad >= 0.0 && std::isfinite(s.noise_rad), "noise_rad must be finite and >= 0");
-  require(s.encoder_bits > 0 || s.noise_rad > 0.0,
-          "an ideal encoder (bits 0) without noise_rad gives zero noise: give bits or noise_rad");
+  check_reading_model(s.reading, "monitor settings: ");
   require(s.cycle_hz > 0.0 && std::isfinite(s.cycle_hz), "cycle_hz must be > 0");
   require(s.decimation >= 1, "decimation must be >= 1");
   require(s.window >= 2 && s.window <= kMaxWindow / 2,
@@ -122,32 +118,13 @@ MonitorModel make_monitor_model(const MonitorSettings& s) {
   require(s.jump_offset_rad > 0.0 && s.jump_length_mm > 0.0, "jump scales must be > 0");
   require(s.min_motion_counts >= 0.0, "min_motion_counts must be >= 0");
   require(s.estimate.any(), "no parameter to estimate");
-  require(s.friction_speed_rad_s >= 0.0 && std::isfinite(s.friction_speed_rad_s) && s.friction_stick_rad_s >= 0.0 &&
-              std::isfinite(s.friction_stick_rad_s),
-          "friction_speed_rad_s and friction_stick_rad_s must be >= 0");
-  for (int i = 0; i < 3; ++i) {
-    const auto k = static_cast<size_t>(i);
-    require(std::isfinite(s.skew_s[k]) && std::abs(s.skew_s[k]) <= 0.01,
-            fmt::format("skew_s of encoder {} must be within +-0.01 s", i + 1));
-    require(std::isfinite(s.compliance_rad_per_Nm[k]) && s.compliance_rad_per_Nm[k] >= 0.0 && s.compliance_rad_per_Nm[k] <= 1.0,
-            fmt::format("compliance_rad_per_Nm of chain {} must be in 0..1", i + 1));
-    require(std::isfinite(s.coulomb_Nm[k]) && s.coulomb_Nm[k] >= 0.0 && std::isfinite(s.viscous_Nm_s[k]) &&
-                s.viscous_Nm_s[k] >= 0.0,
-            fmt::format("coulomb_Nm and viscous_Nm_s of chain {} must be finite and >= 0", i + 1));
-    require(std::isfinite(s.cyclic_rad[k]) && s.cyclic_rad[k] >= 0.0 && s.cyclic_rad[k] <= 0.01,
-            fmt::format("cyclic_rad of encoder {} must be in 0..0.01", i + 1));
-    require(std::isfinite(s.clearance_mm[k]) && s.clearance_mm[k] >= 0.0 && s.clearance_mm[k] <= 1.0,
-            fmt::format("clearance_mm of chain {} must be in 0..1", i + 1));
-  }
+  require(s.friction_stick_rad_s >= 0.0 && std::isfinite(s.friction_stick_rad_s), "friction_stick_rad_s must be >= 0");
 
   MonitorModel m;
   m.settings = s;
-  m.load.coulomb_Nm = s.coulomb_Nm;
-  m.load.viscous_Nm_s = s.viscous_Nm_s;
-  m.load.friction_speed_rad_s = s.friction_speed_rad_s;
-  const double count = s.encoder_bits > 0 ? 2.0 * std::numbers::pi / std::ldexp(1.0, s.encoder_bits) : 0.0;
-  m.sigma_rad = std::sqrt(count * count / 12.0 + s.noise_rad * s.noise_rad);
-  m.motion_gate_rad = s.min_motion_counts * (count > 0.0 ? count : s.noise_rad);
+  const double count = encoder_step_rad(s.reading.encoder_bits);
+  m.sigma_rad = reading_sigma(s.reading);
+  m.motion_gate_rad = s.min_motion_counts * (count > 0.0 ? count : s.reading.noise_rad);
   m.tests_per_hour = 3600.0 * s.cycle_hz / s.decimation;
   m.p_window = s.false_alarms_per_hour / m.tests_per_hour;
   require(m.p_window < 0.5, "false_alarms_per_hour is larger than the number of tests per hour");
@@ -184,27 +161,28 @@ MonitorModel make_monitor_model(const MonitorSettings& s) {
     m.prior_variance[static_cast<size_t>(m.rate_index)] = rate * rate;
     m.variance_cap[static_cast<size_t>(m.rate_index)] = 4.0 * rate * rate;
   }
-  if (s.cyclic_rad[0] > 0.0 || s.cyclic_rad[1] > 0.0 || s.cyclic_rad[2] > 0.0) {
+  const ReadingModel& r = s.reading;
+  if (r.cyclic_rad[0] > 0.0 || r.cyclic_rad[1] > 0.0 || r.cyclic_rad[2] > 0.0) {
     // a_i, b_i = A_i cos(phase_i), A_i sin(phase_i) with a uniform phase:
     // variance A_i^2 / 2 each; constant (no process noise).
     m.cyclic_index = m.n_state;
     for (int c = 0; c < kNumCyclic; ++c) {
       const auto k = static_cast<size_t>(m.n_state++);
-      const double a = s.cyclic_rad[static_cast<size_t>(c / 2)];
+      const double a = r.cyclic_rad[static_cast<size_t>(c / 2)];
       m.scale[k] = mean_la;
       m.prior_variance[k] = std::max(mean_la * mean_la * a * a / 2.0, 1e-30);
       m.variance_cap[k] = m.prior_variance[k];
     }
   }
-  m.has_clearance = s.clearance_mm[0] > 0.0 || s.clearance_mm[1] > 0.0 || s.clearance_mm[2] > 0.0;
+  m.has_clearance = r.clearance_mm[0] > 0.0 || r.clearance_mm[1] > 0.0 || r.clearance_mm[2] > 0.0;
   if (m.has_clearance) {
     m.clearance_index = m.n_state;
     for (int i = 0; i < 3; ++i) {
       const auto k = static_cast<size_t>(m.n_state++);
-      const double c = s.clearance_mm[static_cast<size_t>(i)];
+      const double c = r.clearance_mm[static_cast<size_t>(i)];
       m.scale[k] = 1.0;
-      // Learning: the stated clearance is a bound, not a value (a robot better
-      // than its data sheet has less): mean c / 2 (make_monitor_data), 1-sigma c / 2.
+      // Learning: the stated play is a bound, not a value (a robot better
+      // than its data sheet has less): mean d / 2 (make_monitor_data), 1-sigma d / 2.
       m.prior_variance[k] = std::max((s.learning_s > 0.0 ? 0.25 : 0.0625) * c * c, 1e-30);
       m.variance_cap[k] = m.prior_variance[k];
     }
@@ -224,7 +202,7 @@ MonitorModel make_monitor_model(const MonitorSettings& s) {
 MonitorData make_monitor_data(const MonitorModel& m) {
   MonitorData d;
   d.estimate = m.settings.geometry;
-  d.clearance = m.settings.clearance_mm;
+  d.clearance = m.settings.reading.clearance_mm;
   if (m.settings.learning_s > 0.0)
     for (double& c : d.clearance) c *= 0.5;
   d.learning = m.settings.learning_s > 0.0;
@@ -254,11 +232,12 @@ StepResult monitor_step(const MonitorModel& m, MonitorData& d, double t_s, const
   StepResult out;
   // Motion corrections (calib/motion_correction.hpp): the link angle the
   // reading stands for.
-  Eigen::Vector3d theta_m = theta_raw, carried;
+  const ReadingModel& reading = m.settings.reading;
+  Eigen::Vector3d theta_m, carried, flank;
   for (int i = 0; i < 3; ++i) {
-    const auto k = static_cast<size_t>(i);
-    carried[i] = transmitted_torque(m.load, i, tau[i], omega[i], 0.0);  // no acceleration given: no inertia term
-    theta_m[i] += m.settings.skew_s[k] * omega[i] - m.settings.compliance_rad_per_Nm[k] * carried[i];
+    carried[i] = transmitted_torque(reading.load, i, tau[i], omega[i], 0.0);  // no acceleration given: no inertia term
+    flank[i] = std::abs(carried[i]) >= kFlankTorqueMinNm ? (carried[i] > 0.0 ? 1.0 : -1.0) : 0.0;
+    theta_m[i] = link_angle(reading, i, theta_raw[i], omega[i], carried[i], flank[i]);
   }
   ++d.cycles;
   ++d.cycles_since_accepted;
@@ -282,9 +261,11 @@ StepResult monitor_step(const MonitorModel& m, MonitorData& d, double t_s, const
   if (!moved_enough(m, d, theta_raw)) return out;
   for (int i = 0; i < 3; ++i) {
     const auto k = static_cast<size_t>(i);
-    if (m.settings.compliance_rad_per_Nm[k] * m.settings.coulomb_Nm[k] > 0.5 * m.sigma_rad &&
+    if (reading.compliance_rad_per_Nm[k] * reading.load.coulomb_Nm[k] > 0.5 * m.sigma_rad &&
         std::abs(omega[i]) < m.settings.friction_stick_rad_s)
       return out;
+    // A reducer with backlash whose mesh crosses its gap: the flank unknown.
+    if (reading.backlash_rad[k] > 0.0 && flank[i] == 0.0) return out;
   }
 
   // The oldest sample leaves a full window and updates the filter; while an
@@ -297,8 +278,8 @@ StepResult monitor_step(const MonitorModel& m, MonitorData& d, double t_s, const
     --d.count;
   }
 
-  // Clearance (MonitorSettings::clearance_mm): each passive link acts as
-  // lb_i + 2 c_i sign(T_i), T_i its axial force from the moment balance of
+  // Clearance (ReadingModel::clearance_mm): each passive link acts as
+  // lb_i + d_i sign(T_i), T_i its axial force from the moment balance of
   // the active link; a sample whose tension sign is uncertain is not used.
   Eigen::Vector3d tension_sign = Eigen::Vector3d::Zero();
   if (m.has_clearance) {
@@ -310,7 +291,7 @@ StepResult monitor_step(const MonitorModel& m, MonitorData& d, double t_s, const
       return out;
     }
     for (int i = 0; i < 3; ++i) {
-      const double c = m.settings.clearance_mm[static_cast<size_t>(i)];
+      const double c = reading.clearance_mm[static_cast<size_t>(i)];
       if (c <= 0.0) continue;
       const double tension = passive_link_tension(d.estimate, i, theta_a[i], fk->theta_b[i], carried[i]);
       if (!(std::abs(tension) >= m.settings.tension_min_N)) return out;

@@ -32,6 +32,7 @@
 #include "calib/monitor/learning.hpp"
 #include "calib/monitor/ml_sensitivity.hpp"
 #include "calib/passive_tension.hpp"
+#include "calib/reading_model.hpp"
 #include "models/parameters.hpp"
 
 namespace gpm::calib::monitor {
@@ -58,8 +59,6 @@ struct MonitorSettings {
   // NaN: 0.002 mm for lengths and base coordinates, 2e-5 rad for offsets
   // (pass the calibration's 1-sigma when known).
   std::array<double, kNumParams> prior_sigma = nan_array();
-  int encoder_bits = 17;        // counts per revolution 2^bits; 0 = ideal (no quantisation)
-  double noise_rad = 0.0;       // additive Gaussian reading noise (1-sigma)
   double cycle_hz = 1000.0;     // servo rate at which monitor_step() is called
   int decimation = 5;           // at most one accepted sample per this many cycles
   double min_motion_counts = 2.0;  // every joint must move this many counts between accepted samples
@@ -80,47 +79,25 @@ struct MonitorSettings {
   // (calib/monitor/explain.hpp): an encoder slip, a knock on a link or base.
   double jump_offset_rad = 1e-3;
   double jump_length_mm = 0.005;
-  // Motion corrections of the readings (the model of calib/motion_correction.hpp,
-  // with the values a calibration in motion estimated): the monitor tests the
-  // link angles theta_m_i + skew_s_i omega_i - compliance_i tau_t_i, omega the
-  // joint (motor) speed passed to monitor_step() and tau_t the torque the
-  // transmission carries: the drive torque tau minus the friction on the
-  // motor side of the compliance, tau_t = tau - coulomb tanh(omega /
-  // friction_speed_rad_s) - viscous omega, calib::transmitted_torque without
-  // the inertia term (the monitor is given no acceleration; the reducer's
-  // friction acts on the rotor; a torque-off joint's link still drags its
-  // rotor through the twist).
-  std::array<double, 3> skew_s{};                  // latch skew of each encoder (s)
-  std::array<double, 3> compliance_rad_per_Nm{};  // transmission compliance of each chain
-  std::array<double, 3> coulomb_Nm{};             // Coulomb friction on the motor side (N m)
-  std::array<double, 3> viscous_Nm_s{};           // viscous friction on the motor side (N m s/rad)
-  // The Coulomb friction develops over joint speeds of about friction_speed_rad_s
-  // (coulomb tanh(speed / friction_speed); 0: coulomb sign(speed)); under
-  // friction_stick_rad_s it lies anywhere in +-coulomb, and a sample is used
-  // only when every joint whose friction twist compliance x coulomb exceeds
-  // half the reading noise moves faster (measured on the twin's MuJoCo
-  // friction: the twist error grows below 0.1 rad/s).
-  double friction_speed_rad_s = 0.1;
+  // The reading model (calib/reading_model.hpp) the monitor tests the link
+  // angles by: calib::link_angle of each reading at the joint (motor) speed
+  // omega passed to monitor_step() and the torque the transmission carries,
+  // tau_t = tau - coulomb tanh(omega / friction_speed) - viscous omega
+  // (calib::transmitted_torque without the inertia term: the monitor is given
+  // no acceleration), and the backlash on the flank of tau_t. Its encoder
+  // gives the reading noise; each encoder's once-per-revolution error of
+  // amplitude cyclic_rad_i and unknown phase is estimated by the filter
+  // (a_i, b_i, prior variance A_i^2 / 2 each); with a clearance d_i the filter
+  // estimates each passive link's effective play (prior: the stated value,
+  // 1-sigma a quarter of it), the link acting as lb_i + d_i sgn(T_i), T_i from
+  // the active link's moment balance (calib/passive_tension.hpp).
+  ReadingModel reading = {.load = {.friction_speed_rad_s = 0.1}};
+  // Under friction_stick_rad_s the Coulomb friction lies anywhere in
+  // +-coulomb: a sample is used only when every joint whose friction twist
+  // compliance x coulomb exceeds half the reading noise moves faster.
   double friction_stick_rad_s = 0.05;
-  // Reading errors of the mechanism:
-  // - once-per-revolution encoder error A_i sin(theta_m_i + phase_i) of
-  //   unknown phase: estimated by the filter as a_i sin(theta_m_i) +
-  //   b_i cos(theta_m_i) with prior variance A_i^2 / 2 each (the slowly varying
-  //   error it leaves would otherwise look like a step);
-  // - radial clearance c_i of the elbow and hub joints of chain i (mm): the
-  //   passive link is a two-force member, both its pins sit against their
-  //   clearance along the link in the direction of its axial force, so it
-  //   acts as a link of length lb_i + 2 c_i sign(T_i); the filter estimates
-  //   the effective c_i (prior: the stated value, 1-sigma a quarter of it;
-  //   a soft stop lets the pins go a little further). The tension T_i comes
-  //   from the quasi-static moment balance of the active link,
-  //   T_i = -tau_t_i / (la_i sin(theta_b_i - theta_a_i)) (tau_t the
-  //   transmitted torque above, theta_b from forward kinematics); a sample is
-  //   used only when |T_i| >= tension_min_N for every chain with clearance
-  //   (below it the sign is uncertain: on the twin the pins followed the
-  //   sign of T in 98-100 % of the samples above 0.1 N, 50-70 % below 0.05 N).
-  std::array<double, 3> cyclic_rad{};
-  std::array<double, 3> clearance_mm{};
+  // A sample is used only when |T_i| >= tension_min_N for every chain with a
+  // clearance (below it the sign of the force is uncertain).
   double tension_min_N = 0.3;
   // Learning phase (issue 31, learning.hpp): for the first learning_s seconds
   // of operation (from the first call) no alarm is raised; the monitor learns
@@ -146,8 +123,7 @@ struct MonitorSettings {
 // Constant model of the monitor (derived once from the settings).
 struct MonitorModel {
   MonitorSettings settings;
-  TransmissionLoad load;         // coulomb_Nm, viscous_Nm_s, friction_speed_rad_s of the settings, no inertia
-  double sigma_rad = 0.0;        // reading noise: sqrt(q^2 / 12 + noise_rad^2), q = 2 pi / 2^bits
+  double sigma_rad = 0.0;        // reading noise: calib::reading_sigma of settings.reading
   double motion_gate_rad = 0.0;  // min_motion_counts * count (or * noise_rad when ideal)
   double tests_per_hour = 0.0;   // 3600 * cycle_hz / decimation: the most window tests per hour
   double p_window = 0.0;         // false-alarm probability per test sample: rate / tests_per_hour
@@ -158,7 +134,7 @@ struct MonitorModel {
   int n_state = 0;                       // filter coordinates: n_free, plus 1 with a growth-rate state
   int rate_index = -1;                   // index of the growth-rate coordinate, -1 without
   int cyclic_index = -1;                 // first of the kNumCyclic cyclic-error coordinates, -1 without
-  bool has_clearance = false;            // some clearance_mm > 0: the passive lengths follow the tension
+  bool has_clearance = false;            // some reading.clearance_mm > 0: the passive lengths follow the tension
   int clearance_index = -1;              // first of the 3 effective-clearance coordinates, -1 without
   std::array<int, kNumParams> free_index{};  // parameter of each filter coordinate (first n_free)
   // Filter coordinates u = scale * value: 1 for mm, the mean active length
@@ -201,7 +177,7 @@ struct MonitorData {
   // Estimated cyclic encoder error (rad): a_1, b_1, a_2, b_2, a_3, b_3; the
   // reading error of encoder i is a_i sin(theta_m_i) + b_i cos(theta_m_i).
   std::array<double, kNumCyclic> cyclic{};
-  std::array<double, 3> clearance{};  // estimated effective clearance of each chain (mm)
+  std::array<double, 3> clearance{};  // estimated effective play d_i of each chain (mm)
   double growth_rate = 0.0;  // estimated common growth rate (mm/s for a link of the mean length)
   StateMatrix P;             // covariance of the filter coordinates (n_state x n_state used)
   Eigen::Vector3d last_accepted = Eigen::Vector3d::Zero();

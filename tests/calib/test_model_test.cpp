@@ -37,13 +37,6 @@ Geometry fit(const std::vector<Eigen::Vector3d>& theta_m) {
   return calibrate_lm(p, o).geometry;
 }
 
-TEST(ModelTest, EncoderSigmaIsQuantisationAndNoiseInQuadrature) {
-  const double q17 = 2.0 * std::numbers::pi / 131072.0;
-  EXPECT_NEAR(encoder_sigma(17, 0.0), q17 / std::sqrt(12.0), 1e-18);
-  EXPECT_DOUBLE_EQ(encoder_sigma(0, 3e-5), 3e-5);
-  EXPECT_NEAR(encoder_sigma(17, 1e-5), std::hypot(q17 / std::sqrt(12.0), 1e-5), 1e-18);
-}
-
 TEST(ModelTest, UnderTheModelChiSquareHasItsMeanAndPValuesSpread) {
   const Robot a = actual_robot();
   const int n = 60, seeds = 20;

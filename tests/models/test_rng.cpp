@@ -4,6 +4,7 @@
 
 #include <array>
 #include <cmath>
+#include <set>
 
 #include <gtest/gtest.h>
 
@@ -34,8 +35,27 @@ TEST(Rng, SameSeedSameStreamDifferentSeedDifferentStream) {
     EXPECT_EQ(x, b.bits());
     EXPECT_NE(x, c.bits());
   }
-  EXPECT_NE(derive_stream_seed(7, 0), derive_stream_seed(7, 1));
-  EXPECT_NE(derive_stream_seed(7, 0), derive_stream_seed(8, 0));
+}
+
+// derive_seed is one splitmix64 step from the state seed + golden ratio x stream.
+TEST(Rng, DerivedSeedIsASplitmixStepAlongTheStreams) {
+  for (const std::uint64_t seed : {0ULL, 7ULL, 0xffffffffffffffffULL}) {
+    std::uint64_t state = seed + 0x9e3779b97f4a7c15ULL * 4;
+    EXPECT_EQ(derive_seed(seed, Stream::kAccuracyTest), splitmix64(state));
+  }
+}
+
+// Every named stream of a seed differs from the others and from another seed's.
+TEST(Rng, NamedStreamsAreDistinct) {
+  const Stream all[] = {Stream::kActualParameters, Stream::kSamplePoses,     Stream::kTwinNoise,
+                        Stream::kTestPoses,        Stream::kAccuracyTest,    Stream::kEncoderErrors,
+                        Stream::kRandomizedEffects, Stream::kRandomizedMasses, Stream::kDriveTrainPhases,
+                        Stream::kHarmonicPhases};
+  std::set<std::uint64_t> seen;
+  for (const Stream s : all) {
+    EXPECT_TRUE(seen.insert(derive_seed(1, s)).second);
+    EXPECT_NE(derive_seed(1, s), derive_seed(2, s));
+  }
 }
 
 TEST(Rng, UniformMomentsAndRange) {

@@ -115,12 +115,15 @@ void expect_identical(const CalibrationInputs& a, const CalibrationInputs& b) {
   EXPECT_TRUE(same(a.drive_friction.viscous_Nm_s, b.drive_friction.viscous_Nm_s));
   EXPECT_EQ(a.drive_friction.fit_scale, b.drive_friction.fit_scale);
   const MonitorReadingModel &r = a.monitor, &s = b.monitor;
-  EXPECT_TRUE(same(r.encoder_cyclic_rad, s.encoder_cyclic_rad));
-  EXPECT_TRUE(same(r.clearance_mm, s.clearance_mm));
-  EXPECT_TRUE(same(r.drive_friction.coulomb_Nm, s.drive_friction.coulomb_Nm));
-  EXPECT_TRUE(same(r.drive_friction.viscous_Nm_s, s.drive_friction.viscous_Nm_s));
-  EXPECT_TRUE(same(r.skew_s, s.skew_s));
-  EXPECT_TRUE(same(r.compliance_rad_per_Nm, s.compliance_rad_per_Nm));
+  const calib::ReadingModel &x = r.reading, &y = s.reading;
+  EXPECT_TRUE(same(x.cyclic_rad, y.cyclic_rad));
+  EXPECT_TRUE(same(x.clearance_mm, y.clearance_mm));
+  EXPECT_TRUE(same(x.load.coulomb_Nm, y.load.coulomb_Nm));
+  EXPECT_TRUE(same(x.load.viscous_Nm_s, y.load.viscous_Nm_s));
+  EXPECT_TRUE(same(x.skew_s, y.skew_s));
+  EXPECT_TRUE(same(x.compliance_rad_per_Nm, y.compliance_rad_per_Nm));
+  EXPECT_TRUE(same(x.backlash_rad, y.backlash_rad));
+  EXPECT_TRUE(same(x.gear_ratio, y.gear_ratio));
   EXPECT_TRUE(same(r.thermal_time_constant_s, s.thermal_time_constant_s));
 }
 
@@ -170,7 +173,7 @@ TEST(CalibrationInputs, TheRobotsDataSheetReachesThem) {
   for (double f : in.motion.load.coulomb_Nm) EXPECT_EQ(f, 0.3);
   for (double b : in.motion.load.viscous_Nm_s) EXPECT_EQ(b, 0.15);
   EXPECT_DOUBLE_EQ(in.motion.cyclic_prior_rad, 4.3633e-4 / std::sqrt(2.0));  // the reducer's 1.5 arcmin / sqrt 2 (N = 10)
-  EXPECT_EQ(in.monitor.compliance_rad_per_Nm, (std::array<double, 3>{1e-4, 1e-4, 1e-4}));
+  EXPECT_EQ(in.monitor.reading.compliance_rad_per_Nm, (std::array<double, 3>{1e-4, 1e-4, 1e-4}));
 
   Robot other = spec.sim.controller;
   other.data_sheet.rotor_inertia_kg_m2.nominal = 5.2e-5;  // twice the rotor: + 0.0026 kg m^2
@@ -196,17 +199,17 @@ TEST(CalibrationInputs, DataSheetOfTheScenariosRobotSetsTheDefaults) {
   using Three = std::array<double, 3>;
   EXPECT_EQ(in.drive_friction.coulomb_Nm, (Three{0.5, 0.5, 0.5}));
   EXPECT_EQ(in.motion.load.viscous_Nm_s, (Three{0.2, 0.2, 0.2}));
-  EXPECT_EQ(in.monitor.drive_friction.coulomb_Nm, (Three{0.5, 0.5, 0.5}));
-  EXPECT_EQ(in.monitor.compliance_rad_per_Nm, (Three{5e-5, 5e-5, 5e-5}));
-  EXPECT_EQ(in.monitor.skew_s, (Three{0.0, 1e-5, 2e-5}));
-  EXPECT_EQ(in.monitor.clearance_mm, (Three{0.01, 0.01, 0.01}));
+  EXPECT_EQ(in.monitor.reading.load.coulomb_Nm, (Three{0.5, 0.5, 0.5}));
+  EXPECT_EQ(in.monitor.reading.compliance_rad_per_Nm, (Three{5e-5, 5e-5, 5e-5}));
+  EXPECT_EQ(in.monitor.reading.skew_s, (Three{0.0, 1e-5, 2e-5}));
+  EXPECT_EQ(in.monitor.reading.clearance_mm, (Three{0.02, 0.02, 0.02}));  // both pins
   const RunSpec told = parse_run_spec(robot + "calibration: {drive_friction: {coulomb_Nm: 0.1}}\nmonitor: {skew_s: 0}\n",
                                       "r.yaml", base);
   const CalibrationInputs t = calibration_inputs(told, told.sim.controller);
   EXPECT_EQ(t.drive_friction.coulomb_Nm, (Three{0.1, 0.1, 0.1}));
   EXPECT_EQ(t.drive_friction.viscous_Nm_s, (Three{0.2, 0.2, 0.2}));  // a key left out: the data sheet's
-  EXPECT_EQ(t.monitor.skew_s, (Three{0.0, 0.0, 0.0}));
-  EXPECT_EQ(t.monitor.clearance_mm, (Three{0.01, 0.01, 0.01}));
+  EXPECT_EQ(t.monitor.reading.skew_s, (Three{0.0, 0.0, 0.0}));
+  EXPECT_EQ(t.monitor.reading.clearance_mm, (Three{0.02, 0.02, 0.02}));
 }
 
 }  // namespace

@@ -5,6 +5,8 @@
 // torques get the static fit and its model test; missing inputs refused.
 #include "run/calibration_procedure.hpp"
 
+#include <limits>
+
 #include <gtest/gtest.h>
 
 #include "models/errors.hpp"
@@ -25,6 +27,50 @@ const RunOutcome& small_run() {
 }
 
 // What gpm calibrate runs on a samples file (app/cmd_calibrate.cpp at its
+// The reading model after a calibration in motion: the statement with the
+// estimates in place where made (skew and compliance with a positive
+// 1-sigma, a value fitted below 0 none, the play where looked for, the
+// friction where scaled, the harmonics estimated).
+TEST(CalibrationProcedure, EstimatedReadingModelTakesTheEstimatesWhereMade) {
+  calib::ReadingModel stated;
+  stated.skew_s = {0.0, 7e-6, 8e-6};
+  stated.compliance_rad_per_Nm = {1e-4, 1e-4, 1e-4};
+  stated.clearance_mm = {0.01, 0.01, 0.01};
+  stated.load.coulomb_Nm = {0.3, 0.3, 0.3};
+  stated.cyclic_rad = {2e-5, 2e-5, 2e-5};
+  calib::MotionFit fit;
+  calib::MotionModel motion;
+  // No motion corrections fitted (1-sigma 0): the statement.
+  fit.nu = {1e-4, 2e-4, 3e-4, 4e-4, 5e-4};
+  calib::ReadingModel r = estimated_reading_model(stated, fit, motion, false, false);
+  EXPECT_EQ(r.skew_s, stated.skew_s);
+  EXPECT_EQ(r.compliance_rad_per_Nm, stated.compliance_rad_per_Nm);
+  EXPECT_EQ(r.clearance_mm, stated.clearance_mm);
+  // Joint 1 torque-off (its compliance NaN: not estimated) keeps the statement;
+  // chain 3's play fitted below 0 is none; the friction is motion's (scaled).
+  const double nan = std::numeric_limits<double>::quiet_NaN();
+  fit.nu_sigma = {1e-6, 1e-6, nan, 1e-5, 1e-5};
+  fit.nu[3] = -6e-6;
+  fit.clearance = {0.010, 0.008, -0.001};
+  fit.backlash = {nan, 2e-4, -1e-5};
+  fit.backlash_sigma = {nan, 1e-5, 1e-5};
+  fit.harmonic[1][4] = 3e-5;
+  motion.load.coulomb_Nm = {0.15, 0.15, 0.15};
+  motion.gear_ratio = 50.0;
+  r = estimated_reading_model(stated, fit, motion, true, true);
+  EXPECT_EQ(r.skew_s, (std::array<double, 3>{0.0, 1e-4, 2e-4}));
+  EXPECT_EQ(r.compliance_rad_per_Nm, (std::array<double, 3>{1e-4, 0.0, 5e-4}));
+  EXPECT_EQ(r.clearance_mm, (std::array<double, 3>{0.010, 0.008, 0.0}));
+  EXPECT_EQ(r.backlash_rad, (std::array<double, 3>{0.0, 2e-4, 0.0}));
+  EXPECT_EQ(r.load.coulomb_Nm, motion.load.coulomb_Nm);
+  EXPECT_EQ(r.harmonic[1][4], 3e-5);
+  EXPECT_EQ(r.gear_ratio, 50.0);
+  EXPECT_EQ(r.cyclic_rad, stated.cyclic_rad);  // not estimated: the statement
+  // The play looked for and not found: none (zeros), not the statement's.
+  fit.clearance = {};
+  EXPECT_EQ(estimated_reading_model(stated, fit, motion, true, true).clearance_mm, (std::array<double, 3>{}));
+}
+
 // defaults): the robot file's data sheet, no scenario.
 CalibrationOutcome calibrate_file(const Samples& s, bool static_model = false) {
   const Robot robot = load_robot(std::string(GPM_SOURCE_DIR) + "/models/gpm2002.yaml");

@@ -121,29 +121,33 @@ TEST(MonitorRun, ReadingModelIsTheStatementNotTheTwinsEffects) {
   std::array<double, kNumParams> prior;
   prior.fill(std::numeric_limits<double>::quiet_NaN());
   MonitorReadingModel stated = data_sheet_reading_model(DataSheet{});
-  stated.clearance_mm = {0.001, 0.002, 0.003};
-  stated.skew_s = {0.0, 1e-5, -2e-5};
+  stated.reading.clearance_mm = {0.002, 0.004, 0.006};
+  stated.reading.skew_s = {0.0, 1e-5, -2e-5};
+  stated.reading.backlash_rad = {1e-4, 0.0, 2e-4};
   const MonitorOutcome a = run_monitor(ideal_twin, ideal_twin.controller, prior, stated);
   const MonitorOutcome b = run_monitor(other_twin, other_twin.controller, prior, stated);
   for (const MonitorOutcome* o : {&a, &b}) {
     const calib::monitor::MonitorSettings& ms = o->model.settings;
-    EXPECT_EQ(ms.clearance_mm, stated.clearance_mm);
-    EXPECT_EQ(ms.skew_s, stated.skew_s);
-    EXPECT_EQ(ms.compliance_rad_per_Nm, stated.compliance_rad_per_Nm);
-    EXPECT_EQ(ms.coulomb_Nm, stated.drive_friction.coulomb_Nm);
-    EXPECT_EQ(ms.viscous_Nm_s, stated.drive_friction.viscous_Nm_s);
-    EXPECT_EQ(ms.cyclic_rad, stated.encoder_cyclic_rad);
+    const calib::ReadingModel& r = stated.reading;
+    EXPECT_EQ(ms.reading.clearance_mm, r.clearance_mm);
+    EXPECT_EQ(ms.reading.skew_s, r.skew_s);
+    EXPECT_EQ(ms.reading.compliance_rad_per_Nm, r.compliance_rad_per_Nm);
+    EXPECT_EQ(ms.reading.load.coulomb_Nm, r.load.coulomb_Nm);
+    EXPECT_EQ(ms.reading.load.viscous_Nm_s, r.load.viscous_Nm_s);
+    EXPECT_EQ(ms.reading.cyclic_rad, r.cyclic_rad);
+    EXPECT_EQ(ms.reading.backlash_rad, r.backlash_rad);
+    EXPECT_EQ(ms.reading.encoder_bits, 17);  // the run's encoder, not the statement's
     EXPECT_EQ(ms.thermal_tau_s, stated.thermal_time_constant_s);
-    EXPECT_EQ(o->reading.clearance_mm, stated.clearance_mm);
-    // summary.json says what the monitor assumed.
+    // summary.json says what the monitor assumed (each pin's radial clearance, half the play).
     const nlohmann::json j = monitor_summary(*o)["reading_model"];
     using Three = std::array<double, 3>;
-    EXPECT_EQ(j["clearance_mm"].get<Three>(), stated.clearance_mm);
-    EXPECT_EQ(j["skew_s"].get<Three>(), stated.skew_s);
-    EXPECT_EQ(j["coulomb_Nm"].get<Three>(), stated.drive_friction.coulomb_Nm);
-    EXPECT_EQ(j["viscous_Nm_s"].get<Three>(), stated.drive_friction.viscous_Nm_s);
-    EXPECT_EQ(j["compliance_rad_per_Nm"].get<Three>(), stated.compliance_rad_per_Nm);
-    EXPECT_EQ(j["encoder_cyclic_rad"].get<Three>(), stated.encoder_cyclic_rad);
+    EXPECT_EQ(j["clearance_mm"].get<Three>(), (Three{0.001, 0.002, 0.003}));
+    EXPECT_EQ(j["skew_s"].get<Three>(), r.skew_s);
+    EXPECT_EQ(j["coulomb_Nm"].get<Three>(), r.load.coulomb_Nm);
+    EXPECT_EQ(j["viscous_Nm_s"].get<Three>(), r.load.viscous_Nm_s);
+    EXPECT_EQ(j["compliance_rad_per_Nm"].get<Three>(), r.compliance_rad_per_Nm);
+    EXPECT_EQ(j["encoder_cyclic_rad"].get<Three>(), r.cyclic_rad);
+    EXPECT_EQ(j["backlash_rad"].get<Three>(), r.backlash_rad);
     EXPECT_EQ(j["thermal_time_constant_s"].get<double>(), stated.thermal_time_constant_s);
   }
   // The whole derived model is the same (noise, thresholds, priors, scales).
@@ -160,58 +164,31 @@ TEST(MonitorRun, ReadingModelIsTheStatementNotTheTwinsEffects) {
   EXPECT_TRUE(b.model.has_clearance);
 }
 
-// gpm run's monitor: the statement, with the calibration's estimates where it
-// made them (skew and compliance with a positive 1-sigma, the joint play d_i
-// as pin clearance d_i / 2, the friction times the fitted factor).
-TEST(MonitorRun, ReadingModelAfterCalibrationTakesTheEstimatesWhereMade) {
+// gpm run's monitor: the statement without a calibration, the calibration's
+// estimated reading model (run/calibration_procedure.hpp) with one.
+TEST(MonitorRun, ReadingModelAfterCalibrationIsTheEstimatedOne) {
   RunOutcome run;
   run.spec.monitor = data_sheet_reading_model(DataSheet{});
-  run.spec.monitor.skew_s = {0.0, 7e-6, 8e-6};
+  run.spec.monitor.reading.skew_s = {0.0, 7e-6, 8e-6};
   const MonitorReadingModel stated = run.spec.monitor;
   // No calibration (refused): the statement as it is.
-  {
-    const MonitorReadingModel m = reading_model_after_calibration(run);
-    EXPECT_EQ(m.skew_s, stated.skew_s);
-    EXPECT_EQ(m.clearance_mm, stated.clearance_mm);
-    EXPECT_EQ(m.compliance_rad_per_Nm, stated.compliance_rad_per_Nm);
-  }
-  // A stop-and-go calibration (no motion corrections: 1-sigma 0): the statement.
+  EXPECT_EQ(reading_model_after_calibration(run).reading.skew_s, stated.reading.skew_s);
+  // A stop-and-go calibration (no reading model estimated): the statement.
   run.calibration = calib::Result{};
-  run.motion_nu = {1e-4, 2e-4, 3e-4, 4e-4, 5e-4};
-  {
-    const MonitorReadingModel m = reading_model_after_calibration(run);
-    EXPECT_EQ(m.skew_s, stated.skew_s);
-    EXPECT_EQ(m.compliance_rad_per_Nm, stated.compliance_rad_per_Nm);
-    EXPECT_EQ(m.drive_friction.coulomb_Nm, stated.drive_friction.coulomb_Nm);
-  }
-  // In motion: skew and the compliance of joints 2 and 3 estimated; joint 1
-  // torque-off (not estimated, NaN) keeps the statement; the play of chain 3
-  // fitted below 0 is none; the friction is the stated one times 0.5.
-  const double nan = std::numeric_limits<double>::quiet_NaN();
-  run.motion_nu_sigma = {1e-6, 1e-6, nan, 1e-5, 1e-5};
-  run.joint_play_mm = std::array<double, 3>{0.010, 0.008, -0.001};
-  DriveFriction half = stated.drive_friction;
-  for (std::size_t i = 0; i < 3; ++i) half.coulomb_Nm[i] *= 0.5, half.viscous_Nm_s[i] *= 0.5;
-  run.drive_friction_fitted = half;
+  EXPECT_EQ(reading_model_after_calibration(run).reading.skew_s, stated.reading.skew_s);
+  // In motion: the estimated model.
+  calib::ReadingModel estimated = stated.reading;
+  estimated.skew_s = {0.0, 1e-4, 2e-4};
+  estimated.backlash_rad = {0.0, 3e-4, 0.0};
+  run.reading_estimated = estimated;
   const MonitorReadingModel m = reading_model_after_calibration(run);
-  EXPECT_EQ(m.skew_s, (std::array<double, 3>{0.0, 1e-4, 2e-4}));
-  EXPECT_EQ(m.compliance_rad_per_Nm, (std::array<double, 3>{stated.compliance_rad_per_Nm[0], 4e-4, 5e-4}));
-  EXPECT_EQ(m.clearance_mm, (std::array<double, 3>{0.005, 0.004, 0.0}));
-  EXPECT_EQ(m.drive_friction.coulomb_Nm, half.coulomb_Nm);
-  EXPECT_EQ(m.drive_friction.viscous_Nm_s, half.viscous_Nm_s);
-  // Not estimated: the statement.
-  EXPECT_EQ(m.encoder_cyclic_rad, stated.encoder_cyclic_rad);
+  EXPECT_EQ(m.reading.skew_s, estimated.skew_s);
+  EXPECT_EQ(m.reading.backlash_rad, estimated.backlash_rad);
   EXPECT_EQ(m.thermal_time_constant_s, stated.thermal_time_constant_s);
-  // A compliance fitted below 0 (a stiff transmission within its noise) is none.
-  run.motion_nu[3] = -6e-6;
-  EXPECT_EQ(reading_model_after_calibration(run).compliance_rad_per_Nm[1], 0.0);
-  // The clearance looked for and not found: none (zeros), not the statement's 5 um.
-  run.joint_play_mm = std::array<double, 3>{};
-  EXPECT_EQ(reading_model_after_calibration(run).clearance_mm, (std::array<double, 3>{}));
   // The least innovation scale: the statement's without a model test, the
   // calibration's residual RMS over the noise when above it, never below the
   // statement's (issue 31).
-  EXPECT_EQ(reading_model_after_calibration(run).scale_floor, stated.scale_floor);
+  EXPECT_EQ(m.scale_floor, stated.scale_floor);
   run.model_test = calib::ModelTest{};
   run.model_test->chi2 = 400.0;
   run.model_test->dof = 100.0;
@@ -239,36 +216,36 @@ TEST(MonitorRun, GpmRunMonitorUsesWhatTheCalibrationEstimated) {
       "t.yaml", kBase);
   const RunOutcome o = run_scenario(spec, "t.yaml");
   ASSERT_TRUE(o.calibration && o.monitor);
-  ASSERT_TRUE(o.joint_play_mm) << "the clearance was not looked for";
+  ASSERT_TRUE(o.reading_estimated) << "no reading model estimated";
   const MonitorReadingModel& r = o.monitor->reading;
   const calib::monitor::MonitorSettings& ms = o.monitor->model.settings;
+  const calib::ReadingModel& mr = ms.reading;
   // The twin's latch skew is 50 and 100 us, its compliance 1e-4 rad/N m (sim::realistic_effects):
   // the estimates, not the statement's 0 (measured 62 and 109 us on the path
   // that keeps sampling.path_margin; 56 and 82 us on the path before it).
-  EXPECT_NEAR(ms.skew_s[1], 5e-5, 1.5e-5);
-  EXPECT_NEAR(ms.skew_s[2], 1e-4, 2e-5);
-  EXPECT_NEAR(ms.compliance_rad_per_Nm[1], 1e-4, 2e-5);
-  EXPECT_NEAR(ms.compliance_rad_per_Nm[2], 1e-4, 2e-5);
-  EXPECT_EQ(ms.compliance_rad_per_Nm[0], 3e-4);  // joint 1 torque-off: the statement
-  // 5 um radial clearance at each pin: d_i about 10 um, the monitor's c_i about 5 um (not the stated 50).
+  EXPECT_NEAR(mr.skew_s[1], 5e-5, 1.5e-5);
+  EXPECT_NEAR(mr.skew_s[2], 1e-4, 2e-5);
+  EXPECT_NEAR(mr.compliance_rad_per_Nm[1], 1e-4, 2e-5);
+  EXPECT_NEAR(mr.compliance_rad_per_Nm[2], 1e-4, 2e-5);
+  EXPECT_EQ(mr.compliance_rad_per_Nm[0], 3e-4);  // joint 1 torque-off: the statement
+  // 5 um radial clearance at each pin: the play d_i about 10 um (not the stated 100).
   for (std::size_t i = 0; i < 3; ++i) {
-    EXPECT_DOUBLE_EQ(ms.clearance_mm[i], std::max(0.0, 0.5 * (*o.joint_play_mm)[i]));
-    EXPECT_GT(ms.clearance_mm[i], 0.002);
-    EXPECT_LT(ms.clearance_mm[i], 0.008);
+    EXPECT_DOUBLE_EQ(mr.clearance_mm[i], o.reading_estimated->clearance_mm[i]);
+    EXPECT_GT(mr.clearance_mm[i], 0.004);
+    EXPECT_LT(mr.clearance_mm[i], 0.016);
   }
   // The friction: the stated one (data_sheet) times one factor the model test chose.
-  ASSERT_TRUE(o.drive_friction_fitted);
   const DriveFriction stated = stated_drive_friction(DataSheet{});
-  const double k = ms.coulomb_Nm[0] / stated.coulomb_Nm[0];
+  const double k = mr.load.coulomb_Nm[0] / stated.coulomb_Nm[0];
   bool tried = false;
   for (double f : calib::default_friction_scales()) tried = tried || std::abs(f - k) < 1e-12;
   EXPECT_TRUE(tried) << k;
   for (std::size_t i = 0; i < 3; ++i) {
-    EXPECT_DOUBLE_EQ(ms.coulomb_Nm[i], k * stated.coulomb_Nm[i]);
-    EXPECT_DOUBLE_EQ(ms.viscous_Nm_s[i], k * stated.viscous_Nm_s[i]);
+    EXPECT_DOUBLE_EQ(mr.load.coulomb_Nm[i], k * stated.coulomb_Nm[i]);
+    EXPECT_DOUBLE_EQ(mr.load.viscous_Nm_s[i], k * stated.viscous_Nm_s[i]);
   }
   // Not estimated: the statement.
-  EXPECT_EQ(r.encoder_cyclic_rad, data_sheet_reading_model(DataSheet{}).encoder_cyclic_rad);
+  EXPECT_EQ(r.reading.cyclic_rad, data_sheet_reading_model(DataSheet{}).reading.cyclic_rad);
   EXPECT_EQ(ms.thermal_tau_s, data_sheet_reading_model(DataSheet{}).thermal_time_constant_s);
 }
 
@@ -322,7 +299,7 @@ TEST(MonitorRun, MonitorsThroughTheTwinBackend) {
   EXPECT_TRUE(monitor_summary(good)["false_alarms"].is_null());
   EXPECT_TRUE(monitor_summary(good)["final_error"].empty());
   // Through hardware too the monitor assumes what it is told (here: ideal, like the backend's twin).
-  EXPECT_EQ(good.model.settings.clearance_mm, kIdeal.clearance_mm);
+  EXPECT_EQ(good.model.settings.reading.clearance_mm, kIdeal.reading.clearance_mm);
   EXPECT_EQ(good.model.cyclic_index, -1);
   EXPECT_EQ(good.model.settings.thermal_tau_s, kIdeal.thermal_time_constant_s);
 
@@ -335,13 +312,13 @@ TEST(MonitorRun, MonitorsThroughTheTwinBackend) {
 
   // A stated model reaches the hardware monitor as it is (the backend's twin is not read for it).
   MonitorReadingModel stated = data_sheet_reading_model(DataSheet{});
-  stated.clearance_mm = {0.001, 0.002, 0.003};
+  stated.reading.clearance_mm = {0.002, 0.004, 0.006};
   const MonitorOutcome told = run_monitor_hardware(rig.scenario(), hw_actual, rig.actual, prior, stated);
-  EXPECT_EQ(told.model.settings.clearance_mm, stated.clearance_mm);
-  EXPECT_EQ(told.model.settings.skew_s, stated.skew_s);
-  EXPECT_EQ(told.model.settings.coulomb_Nm, stated.drive_friction.coulomb_Nm);
+  EXPECT_EQ(told.model.settings.reading.clearance_mm, stated.reading.clearance_mm);
+  EXPECT_EQ(told.model.settings.reading.skew_s, stated.reading.skew_s);
+  EXPECT_EQ(told.model.settings.reading.load.coulomb_Nm, stated.reading.load.coulomb_Nm);
   EXPECT_EQ(told.model.settings.thermal_tau_s, stated.thermal_time_constant_s);
-  EXPECT_EQ(told.reading.compliance_rad_per_Nm, stated.compliance_rad_per_Nm);
+  EXPECT_EQ(told.reading.reading.compliance_rad_per_Nm, stated.reading.compliance_rad_per_Nm);
 }
 
 // Monitors the rig's operation through the drive emulator (Modbus/TCP on

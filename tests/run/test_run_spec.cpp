@@ -154,23 +154,27 @@ TEST(RunSpec, DriveFrictionStatedByTheCalibration) {
 // exact form is written), and is the same section a scenario states.
 TEST(RunSpec, MonitorReadingModelYamlRoundTripsBitExact) {
   MonitorReadingModel m = data_sheet_reading_model(DataSheet{});
-  m.clearance_mm = {0.005644814301912167, 1.0 / 3.0 * 1e-2, 0.0};
-  m.skew_s = {0.0, 5.556675527672076e-05, -8.164314423058782e-05};
-  m.compliance_rad_per_Nm = {0.0001, 0.000103386928736235, 0.0};
-  m.drive_friction.viscous_Nm_s = {0.15000000000000002, 0.1, 0.2};
+  m.reading.clearance_mm = {0.005644814301912167, 1.0 / 3.0 * 1e-2, 0.0};
+  m.reading.skew_s = {0.0, 5.556675527672076e-05, -8.164314423058782e-05};
+  m.reading.compliance_rad_per_Nm = {0.0001, 0.000103386928736235, 0.0};
+  m.reading.load.viscous_Nm_s = {0.15000000000000002, 0.1, 0.2};
   m.thermal_time_constant_s = 612.5;
+  m.reading.backlash_rad = {0.0, 2.9088820866572158e-4, 1e-5};
+  m.reading.harmonic[1] = {1.0 / 3.0 * 1e-5, 0.0, -2e-6, 0.0, 7e-7, 0.0};
   for (const MonitorReadingModel& want : {m, ideal_reading_model(), data_sheet_reading_model(DataSheet{})}) {
     const std::string text = monitor_reading_model_yaml(want);
     const MonitorReadingModel got = parse_monitor_reading_model(load_yaml_string(text, "r.yaml")["monitor"], "r.yaml", DataSheet{});
-    EXPECT_EQ(got.encoder_cyclic_rad, want.encoder_cyclic_rad) << text;
-    EXPECT_EQ(got.clearance_mm, want.clearance_mm) << text;
-    EXPECT_EQ(got.drive_friction.coulomb_Nm, want.drive_friction.coulomb_Nm) << text;
-    EXPECT_EQ(got.drive_friction.viscous_Nm_s, want.drive_friction.viscous_Nm_s) << text;
-    EXPECT_EQ(got.skew_s, want.skew_s) << text;
-    EXPECT_EQ(got.compliance_rad_per_Nm, want.compliance_rad_per_Nm) << text;
+    EXPECT_EQ(got.reading.cyclic_rad, want.reading.cyclic_rad) << text;
+    EXPECT_EQ(got.reading.clearance_mm, want.reading.clearance_mm) << text;
+    EXPECT_EQ(got.reading.load.coulomb_Nm, want.reading.load.coulomb_Nm) << text;
+    EXPECT_EQ(got.reading.load.viscous_Nm_s, want.reading.load.viscous_Nm_s) << text;
+    EXPECT_EQ(got.reading.skew_s, want.reading.skew_s) << text;
+    EXPECT_EQ(got.reading.compliance_rad_per_Nm, want.reading.compliance_rad_per_Nm) << text;
     EXPECT_EQ(got.thermal_time_constant_s, want.thermal_time_constant_s) << text;
+    EXPECT_EQ(got.reading.backlash_rad, want.reading.backlash_rad) << text;
+    EXPECT_EQ(got.reading.harmonic, want.reading.harmonic) << text;
     // The same text is a scenario's monitor: section.
-    EXPECT_EQ(parse_run_spec(kHead + text, "s.yaml", kBase).monitor.skew_s, want.skew_s);
+    EXPECT_EQ(parse_run_spec(kHead + text, "s.yaml", kBase).monitor.reading.skew_s, want.reading.skew_s);
   }
 }
 
@@ -182,34 +186,34 @@ TEST(RunSpec, MonitorReadingModelYamlRoundTripsBitExact) {
 TEST(RunSpec, MonitorReadingModelIsStatedNotTakenFromTheTwin) {
   const RunSpec d = parse_run_spec(kHead, "s.yaml", kBase);
   using Three = std::array<double, 3>;
-  EXPECT_EQ(d.monitor.encoder_cyclic_rad, (Three{2e-5, 2e-5, 2e-5}));
-  EXPECT_EQ(d.monitor.skew_s, (Three{0.0, 50e-6, 100e-6}));
-  EXPECT_EQ(d.monitor.compliance_rad_per_Nm, (Three{1e-4, 1e-4, 1e-4}));
-  EXPECT_EQ(d.monitor.drive_friction.coulomb_Nm, d.calibration.drive_friction.coulomb_Nm);
-  EXPECT_EQ(d.monitor.drive_friction.viscous_Nm_s, d.calibration.drive_friction.viscous_Nm_s);
+  EXPECT_EQ(d.monitor.reading.cyclic_rad, (Three{2e-5, 2e-5, 2e-5}));
+  EXPECT_EQ(d.monitor.reading.skew_s, (Three{0.0, 50e-6, 100e-6}));
+  EXPECT_EQ(d.monitor.reading.compliance_rad_per_Nm, (Three{1e-4, 1e-4, 1e-4}));
+  EXPECT_EQ(d.monitor.reading.load.coulomb_Nm, d.calibration.drive_friction.coulomb_Nm);
+  EXPECT_EQ(d.monitor.reading.load.viscous_Nm_s, d.calibration.drive_friction.viscous_Nm_s);
   EXPECT_EQ(d.monitor.thermal_time_constant_s, 600.0);
-  EXPECT_EQ(d.monitor.clearance_mm, (Three{0.005, 0.005, 0.005}));
+  EXPECT_EQ(d.monitor.reading.clearance_mm, (Three{0.01, 0.01, 0.01}));  // the play of both pins
   // The twin's effects are the simulated machine: they do not change what the monitor assumes.
   const RunSpec fx = parse_run_spec(kHead + "physics: {timestep_s: 0.00025}\nservo: {rate_hz: 4000}\n"
                                             "effects: {preset: realistic, passive_clearance_mm: 0.02, encoder_cyclic_rad: 0, "
                                             "coulomb_friction_Nm: 2, encoder_skew_s: 0.001, thermal: {time_constant_s: 30}}\n",
                                     "s.yaml", kBase);
-  EXPECT_EQ(fx.monitor.clearance_mm, d.monitor.clearance_mm);
-  EXPECT_EQ(fx.monitor.encoder_cyclic_rad, d.monitor.encoder_cyclic_rad);
-  EXPECT_EQ(fx.monitor.drive_friction.coulomb_Nm, d.monitor.drive_friction.coulomb_Nm);
-  EXPECT_EQ(fx.monitor.skew_s, d.monitor.skew_s);
+  EXPECT_EQ(fx.monitor.reading.clearance_mm, d.monitor.reading.clearance_mm);
+  EXPECT_EQ(fx.monitor.reading.cyclic_rad, d.monitor.reading.cyclic_rad);
+  EXPECT_EQ(fx.monitor.reading.load.coulomb_Nm, d.monitor.reading.load.coulomb_Nm);
+  EXPECT_EQ(fx.monitor.reading.skew_s, d.monitor.reading.skew_s);
   EXPECT_EQ(fx.monitor.thermal_time_constant_s, d.monitor.thermal_time_constant_s);
-  EXPECT_EQ(parse_run_spec(kHead + "monitor: data_sheet\n", "s.yaml", kBase).monitor.skew_s, d.monitor.skew_s);
+  EXPECT_EQ(parse_run_spec(kHead + "monitor: data_sheet\n", "s.yaml", kBase).monitor.reading.skew_s, d.monitor.reading.skew_s);
 
   // ideal: no reading error; the drift time constant is the monitor's own default.
   const MonitorReadingModel ideal = parse_run_spec(kHead + "monitor: ideal\n", "s.yaml", kBase).monitor;
   const std::array<double, 3> zero{};
-  EXPECT_EQ(ideal.encoder_cyclic_rad, zero);
-  EXPECT_EQ(ideal.clearance_mm, zero);
-  EXPECT_EQ(ideal.skew_s, zero);
-  EXPECT_EQ(ideal.compliance_rad_per_Nm, zero);
-  EXPECT_EQ(ideal.drive_friction.coulomb_Nm, zero);
-  EXPECT_EQ(ideal.drive_friction.viscous_Nm_s, zero);
+  EXPECT_EQ(ideal.reading.cyclic_rad, zero);
+  EXPECT_EQ(ideal.reading.clearance_mm, zero);
+  EXPECT_EQ(ideal.reading.skew_s, zero);
+  EXPECT_EQ(ideal.reading.compliance_rad_per_Nm, zero);
+  EXPECT_EQ(ideal.reading.load.coulomb_Nm, zero);
+  EXPECT_EQ(ideal.reading.load.viscous_Nm_s, zero);
   EXPECT_EQ(ideal.thermal_time_constant_s, calib::monitor::MonitorSettings{}.thermal_tau_s);
 
   // Keys override the preset (default data_sheet); a skew number is encoders 2 and 3 (1 is the reference).
@@ -219,16 +223,16 @@ TEST(RunSpec, MonitorReadingModelIsStatedNotTakenFromTheTwin) {
                              "encoder_cyclic_rad: 1.0e-5, thermal_time_constant_s: 900}\n",
                      "s.yaml", kBase)
           .monitor;
-  EXPECT_EQ(m.clearance_mm, (std::array<double, 3>{0.001, 0.002, 0.003}));
-  EXPECT_EQ(m.skew_s, (std::array<double, 3>{0.0, 2e-5, 2e-5}));
-  EXPECT_EQ(m.drive_friction.coulomb_Nm, (std::array<double, 3>{0.5, 0.5, 0.5}));
-  EXPECT_EQ(m.drive_friction.viscous_Nm_s, zero);  // kept from the preset
-  EXPECT_EQ(m.compliance_rad_per_Nm, (std::array<double, 3>{2e-4, 2e-4, 2e-4}));
-  EXPECT_EQ(m.encoder_cyclic_rad, (std::array<double, 3>{1e-5, 1e-5, 1e-5}));
+  EXPECT_EQ(m.reading.clearance_mm, (std::array<double, 3>{0.002, 0.004, 0.006}));
+  EXPECT_EQ(m.reading.skew_s, (std::array<double, 3>{0.0, 2e-5, 2e-5}));
+  EXPECT_EQ(m.reading.load.coulomb_Nm, (std::array<double, 3>{0.5, 0.5, 0.5}));
+  EXPECT_EQ(m.reading.load.viscous_Nm_s, zero);  // kept from the preset
+  EXPECT_EQ(m.reading.compliance_rad_per_Nm, (std::array<double, 3>{2e-4, 2e-4, 2e-4}));
+  EXPECT_EQ(m.reading.cyclic_rad, (std::array<double, 3>{1e-5, 1e-5, 1e-5}));
   EXPECT_EQ(m.thermal_time_constant_s, 900.0);
   const MonitorReadingModel k = parse_run_spec(kHead + "monitor: {clearance_mm: 0}\n", "s.yaml", kBase).monitor;
-  EXPECT_EQ(k.clearance_mm, zero);
-  EXPECT_EQ(k.skew_s, d.monitor.skew_s);  // the rest: data_sheet
+  EXPECT_EQ(k.reading.clearance_mm, zero);
+  EXPECT_EQ(k.reading.skew_s, d.monitor.reading.skew_s);  // the rest: data_sheet
 
   // Bad values: one line naming the key and what would be valid.
   EXPECT_EQ(error_of(kHead + "monitor: datasheet\n"),
@@ -243,6 +247,11 @@ TEST(RunSpec, MonitorReadingModelIsStatedNotTakenFromTheTwin) {
             "s.yaml:3: monitor.skew_s[1]: 0.02 s is out of range (valid: -0.01 to 0.01 s)");
   EXPECT_NE(error_of(kHead + "monitor: {skew_s: [0, 0.001]}\n").find("monitor.skew_s: expected a number (encoders 2 and 3) or a list of three"),
             std::string::npos);
+  EXPECT_EQ(error_of(kHead + "monitor: {harmonic_rad: [[0, 0, 0, 0, 0, 0]]}\n"),
+            "s.yaml:3: monitor.harmonic_rad: expected three lists of six numbers (a1 a2 a3 b1 b2 b3 in rad of each "
+            "order: joint, motor, twice motor revolution), each within +-0.01 rad");
+  EXPECT_EQ(error_of(kHead + "monitor: {backlash_rad: 0.5}\n"),
+            "s.yaml:3: monitor.backlash_rad: 0.5 is out of range (valid: 0 to 0.01 rad)");
   EXPECT_EQ(error_of(kHead + "monitor: {compliance_rad_per_Nm: 2}\n"),
             "s.yaml:3: monitor.compliance_rad_per_Nm: 2 is out of range (valid: 0 to 1 rad/N m)");
   EXPECT_EQ(error_of(kHead + "monitor: {thermal_time_constant_s: 0.5}\n"),

@@ -11,6 +11,7 @@
 #include <gtest/gtest.h>
 
 #include "calib/model_test.hpp"
+#include "calib/reading_model.hpp"
 #include "models/data_dir.hpp"
 #include "models/drive_margin.hpp"
 #include "models/errors.hpp"
@@ -25,7 +26,7 @@ const RunSpec& main_job() {
   static const RunSpec spec = [] {
     RunSpec s = load_run_spec(gpm::scenarios_dir() + "/main.yaml");
     design_sampling(s.sim, ~s.calibration.fixed,
-                    calib::encoder_sigma(s.sim.twin.encoder.bits, s.sim.twin.encoder.noise_rad));
+                    calib::reading_sigma(calib::encoder_step_rad(s.sim.twin.encoder.bits), s.sim.twin.encoder.noise_rad));
     return s;
   }();
   return spec;

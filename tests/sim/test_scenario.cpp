@@ -274,11 +274,5 @@ TEST(Scenario, ActualFromARobotFile) {
             std::string::npos);
 }
 
-TEST(Scenario, DerivedSeedsDiffer) {
-  EXPECT_NE(derive_seed(1, 0), derive_seed(1, 1));
-  EXPECT_NE(derive_seed(1, 0), derive_seed(2, 0));
-  EXPECT_EQ(derive_seed(1, 2), derive_seed(1, 2));
-}
-
 }  // namespace
 }  // namespace gpm::sim

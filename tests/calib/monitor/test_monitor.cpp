@@ -26,7 +26,7 @@ using testing::run_circle;
 
 TEST(Monitor, NoiseAndThresholdFollowFromTheStatedRates) {
   MonitorSettings s;
-  s.noise_rad = 1e-5;
+  s.reading.noise_rad = 1e-5;
   const MonitorModel m = make_monitor_model(s);
   const double q = 2.0 * std::numbers::pi / 131072.0;
   EXPECT_NEAR(m.sigma_rad, std::sqrt(q * q / 12.0 + 1e-10), 1e-18);
@@ -45,7 +45,7 @@ TEST(Monitor, RejectsBadSettingsWithOneLine) {
   s.window = 1000;
   EXPECT_THROW(make_monitor_model(s), InputError);
   s = MonitorSettings{};
-  s.encoder_bits = 0;
+  s.reading.encoder_bits = 0;
   EXPECT_THROW(make_monitor_model(s), InputError);  // no noise at all
   s = MonitorSettings{};
   s.false_alarms_per_hour = 0.0;
@@ -133,7 +133,7 @@ TEST(Monitor, NoFalseAlarmInFiveMinutesAndInnovationsAreWhite) {
 // innovations stay normalised, no false alarm, and a jump is still named.
 TEST(Monitor, AdditiveReadingNoiseIsPartOfSigma) {
   MonitorSettings s;
-  s.noise_rad = 2e-5;
+  s.reading.noise_rad = 2e-5;
   const MonitorModel m = make_monitor_model(s);
   MonitorData d = make_monitor_data(m);
   testing::CircleStream cs;

@@ -97,11 +97,11 @@ TEST(MonitorAlloc, TenThousandCyclesAllocateNothing) {
 // cyclic-error and clearance coordinates, forward kinematics per sample).
 TEST(MonitorAlloc, ReadingModelAllocatesNothing) {
   MonitorSettings s;
-  s.skew_s = {0.0, 5e-5, 1e-4};
-  s.compliance_rad_per_Nm = {1e-4, 1e-4, 1e-4};
-  s.coulomb_Nm = {0.3, 0.3, 0.3};
-  s.cyclic_rad = {2e-5, 2e-5, 2e-5};
-  s.clearance_mm = {0.005, 0.005, 0.005};
+  s.reading.skew_s = {0.0, 5e-5, 1e-4};
+  s.reading.compliance_rad_per_Nm = {1e-4, 1e-4, 1e-4};
+  s.reading.load.coulomb_Nm = {0.3, 0.3, 0.3};
+  s.reading.cyclic_rad = {2e-5, 2e-5, 2e-5};
+  s.reading.clearance_mm = {0.01, 0.01, 0.01};
   const MonitorModel m = make_monitor_model(s);
   MonitorData* d = new MonitorData(make_monitor_data(m));
   testing::CircleStream cs;

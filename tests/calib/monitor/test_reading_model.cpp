@@ -104,12 +104,12 @@ MonitorSettings exact() {
 
 MonitorSettings corrected(const DriveEffects& fx) {
   MonitorSettings s = exact();
-  s.skew_s = fx.skew_s;
-  s.compliance_rad_per_Nm = fx.compliance;
-  s.coulomb_Nm = fx.coulomb;
-  s.viscous_Nm_s = fx.viscous;
-  s.cyclic_rad = fx.cyclic;
-  s.clearance_mm = fx.clearance_mm;
+  s.reading.skew_s = fx.skew_s;
+  s.reading.compliance_rad_per_Nm = fx.compliance;
+  s.reading.load.coulomb_Nm = fx.coulomb;
+  s.reading.load.viscous_Nm_s = fx.viscous;
+  s.reading.cyclic_rad = fx.cyclic;
+  for (std::size_t i = 0; i < 3; ++i) s.reading.clearance_mm[i] = 2.0 * fx.clearance_mm[i];  // both pins
   return s;
 }
 
@@ -133,7 +133,7 @@ TEST(MonitorReadingModel, MotionCorrectionRemovesTwistAndSkew) {
 TEST(MonitorReadingModel, RotorFrictionIsPartOfTheTransmittedTorque) {
   const DriveEffects fx;
   MonitorSettings s = corrected(fx);
-  s.coulomb_Nm = {0.0, 0.0, 0.0};
+  s.reading.load.coulomb_Nm = {0.0, 0.0, 0.0};
   const Outcome o = run(make_monitor_model(s), fx, 60.0);
   EXPECT_GT(o.alarms, 0);
 }
@@ -171,7 +171,7 @@ TEST(MonitorReadingModel, ClearanceFollowsTheTensionOfThePassiveLinks) {
   DriveEffects fx;
   fx.clearance_mm = {0.005, 0.005, 0.005};
   MonitorSettings ignored = corrected(fx);
-  ignored.clearance_mm = {0.0, 0.0, 0.0};
+  ignored.reading.clearance_mm = {0.0, 0.0, 0.0};
   const Outcome bad = run(make_monitor_model(ignored), fx, 60.0);
   std::printf("clearance ignored: %ld alarms\n", bad.alarms);
   EXPECT_GT(bad.alarms, 0);
@@ -202,16 +202,16 @@ TEST(MonitorReadingModel, LearningQuietsAMonitorToldTooLittle) {
 
 TEST(MonitorReadingModel, RejectsBadEffectValues) {
   MonitorSettings s;
-  s.skew_s[1] = 0.5;
+  s.reading.skew_s[1] = 0.5;
   EXPECT_THROW(make_monitor_model(s), InputError);
   s = MonitorSettings{};
-  s.compliance_rad_per_Nm[0] = -1e-4;
+  s.reading.compliance_rad_per_Nm[0] = -1e-4;
   EXPECT_THROW(make_monitor_model(s), InputError);
   s = MonitorSettings{};
-  s.cyclic_rad[2] = std::nan("");
+  s.reading.cyclic_rad[2] = std::nan("");
   EXPECT_THROW(make_monitor_model(s), InputError);
   s = MonitorSettings{};
-  s.clearance_mm[0] = 2.0;
+  s.reading.clearance_mm[0] = 3.0;
   EXPECT_THROW(make_monitor_model(s), InputError);
 }
 

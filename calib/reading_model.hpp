@@ -1,0 +1,67 @@
+// The reading model: what lies between a link's angle and the number its
+// drive reports, joint by joint. One statement and one convention for the
+// calibration in motion (calib/motion_correction.hpp, which estimates it),
+// the drift monitor (calib/monitor/monitor.hpp, which corrects by it) and
+// run/ (the scenario's `monitor:` and `calibration.drive_friction`).
+//
+// The link angle a reading theta_m of joint i stands for is
+//   theta_a_i = theta_m_i + s_i omega_i - c_i tau_t_i - beta_i sgn(tau_mesh_i)
+//               - sum_o (a_oi sin(k_o theta_m_i) + b_oi cos(k_o theta_m_i))
+// (latch skew s, compliance c under the transmitted torque tau_t, backlash
+// beta on the flank the mesh torque presses, drive-train harmonics of orders
+// k_o = 1, N, 2N per joint revolution, N the gear ratio), and passive link i
+// acts as lb_i + d_i sgn(T_i) under its axial force T_i (calib/passive_tension.hpp).
+#pragma once
+
+#include <array>
+#include <string>
+
+#include "calib/passive_tension.hpp"
+
+namespace gpm::calib {
+
+// Orders of the drive-train harmonics: once per joint revolution, once and
+// twice per motor revolution.
+inline constexpr int kHarmonicOrders = 3;
+
+// Mesh torque (N m) below which the flank a reducer's backlash sits on is
+// unknown (the link crossing its gap).
+inline constexpr double kFlankTorqueMinNm = 0.1;
+
+struct ReadingModel {
+  int encoder_bits = 17;   // counts per revolution 2^bits; 0 = ideal (no quantisation)
+  double noise_rad = 0.0;  // additive Gaussian reading noise (1-sigma)
+  std::array<double, 3> skew_s{};                 // latch skew s_i of each encoder (s; encoder 1 the reference)
+  std::array<double, 3> compliance_rad_per_Nm{};  // transmission compliance c_i
+  TransmissionLoad load;                          // what the transmission takes off the drive torque
+  std::array<double, 3> clearance_mm{};           // d_i: passive link i acts as lb_i + d_i sgn(T_i) (both pins' play)
+  std::array<double, 3> cyclic_rad{};             // amplitude of each encoder's once-per-revolution error
+  std::array<double, 3> backlash_rad{};           // beta_i: half the lost motion of joint i's reducer
+  // a_o1 a_o2 a_o3 b_o1 b_o2 b_o3 (rad) of each harmonic order o.
+  std::array<std::array<double, 6>, kHarmonicOrders> harmonic{};
+  double gear_ratio = 1.0;  // N: motor revolutions per joint revolution
+};
+
+// Throws InputError naming the first value of m out of its range (each
+// prefixed by `where`, e.g. "monitor: ").
+void check_reading_model(const ReadingModel& m, const std::string& where);
+
+// The quantisation step (rad) of an encoder of 2^bits counts per revolution; 0 for bits 0.
+double encoder_step_rad(int bits);
+
+// 1-sigma (rad) of a mean of n_avg readings of quantisation step step_rad
+// and Gaussian noise noise_rad: sqrt(step^2 / 12 + noise^2 / n_avg).
+double reading_sigma(double step_rad, double noise_rad, double n_avg = 1.0);
+
+// reading_sigma of one reading of model m's encoder.
+double reading_sigma(const ReadingModel& m);
+
+// The angle of harmonic order o (0..2) of reading theta_m (rad): theta_m, N theta_m, 2 N theta_m.
+double harmonic_angle(int o, double theta_m, double gear_ratio);
+
+// The link angle reading theta_m of joint i (0..2) stands for under m, at joint
+// speed omega (rad/s), transmitted torque tau_t (N m) and the sign of the
+// mesh torque flank (+-1; 0 where the flank is unknown).
+double link_angle(const ReadingModel& m, int i, double theta_m, double omega, double tau_t, double flank);
+
+}  // namespace gpm::calib

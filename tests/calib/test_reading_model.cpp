@@ -1,0 +1,94 @@
+// Tests of calib/reading_model.cpp: the reading sigma of an encoder, the link
+// angle of a reading by hand and against the calibration's own correction
+// (calib/motion_correction.hpp correct_readings), and the range checks.
+#include "calib/reading_model.hpp"
+
+#include <cmath>
+#include <numbers>
+
+#include <gtest/gtest.h>
+
+#include "calib/motion_correction.hpp"
+#include "models/errors.hpp"
+
+namespace gpm::calib {
+namespace {
+
+TEST(ReadingModel, ReadingSigmaIsQuantisationAndNoiseInQuadrature) {
+  const double q17 = 2.0 * std::numbers::pi / 131072.0;
+  EXPECT_EQ(encoder_step_rad(17), q17);
+  EXPECT_EQ(encoder_step_rad(0), 0.0);
+  EXPECT_NEAR(reading_sigma(q17, 0.0), q17 / std::sqrt(12.0), 1e-18);
+  EXPECT_DOUBLE_EQ(reading_sigma(0.0, 3e-5), 3e-5);
+  EXPECT_NEAR(reading_sigma(q17, 1e-5), std::hypot(q17 / std::sqrt(12.0), 1e-5), 1e-18);
+  // Averaging n readings divides the noise's variance by n, not the step's.
+  EXPECT_NEAR(reading_sigma(q17, 2e-5, 4.0), std::hypot(q17 / std::sqrt(12.0), 1e-5), 1e-18);
+  ReadingModel m;
+  m.encoder_bits = 17;
+  m.noise_rad = 1e-5;
+  EXPECT_EQ(reading_sigma(m), reading_sigma(q17, 1e-5));
+}
+
+// Every effect at once, worked by hand: theta = 1 rad, omega = 2 rad/s,
+// tau_t = 3 N m on the pressed flank (+1), gear ratio 10.
+TEST(ReadingModel, LinkAngleByHand) {
+  ReadingModel m;
+  m.skew_s = {1e-4, 0.0, 0.0};
+  m.compliance_rad_per_Nm = {2e-5, 0.0, 0.0};
+  m.backlash_rad = {3e-4, 0.0, 0.0};
+  m.gear_ratio = 10.0;
+  m.harmonic[0] = {1e-5, 0, 0, 2e-5, 0, 0};  // once per joint revolution: a sin(1) + b cos(1)
+  m.harmonic[2] = {0, 0, 0, 4e-6, 0, 0};     // twice per motor revolution: b cos(20)
+  const double want = 1.0 + 2e-4 - 6e-5 - 3e-4 - (1e-5 * std::sin(1.0) + 2e-5 * std::cos(1.0)) - 4e-6 * std::cos(20.0);
+  EXPECT_NEAR(link_angle(m, 0, 1.0, 2.0, 3.0, 1.0), want, 1e-15);
+  // The other joints carry none of it; the flank unknown (0) takes no backlash.
+  EXPECT_EQ(link_angle(m, 1, 1.0, 2.0, 3.0, 1.0), 1.0);
+  EXPECT_NEAR(link_angle(m, 0, 1.0, 2.0, 3.0, 0.0) - link_angle(m, 0, 1.0, 2.0, 3.0, 1.0), 3e-4, 1e-15);
+  EXPECT_EQ(harmonic_angle(0, 0.5, 10.0), 0.5);
+  EXPECT_EQ(harmonic_angle(1, 0.5, 10.0), 5.0);
+  EXPECT_EQ(harmonic_angle(2, 0.5, 10.0), 10.0);
+}
+
+// Skew and compliance: the same link angles as the calibration's correction
+// of its readings (theta_m + s omega - c tau, encoder 1 the reference).
+TEST(ReadingModel, LinkAngleAgreesWithTheCalibrationsCorrection) {
+  ReadingModel m;
+  m.skew_s = {0.0, 5e-5, 1e-4};
+  m.compliance_rad_per_Nm = {1e-4, 2e-4, 3e-4};
+  const std::vector<Eigen::Vector3d> theta{{0.3, 1.2, -2.0}, {0.31, 1.18, -1.9}};
+  const std::vector<Eigen::Vector3d> omega{{0.5, -0.4, 1.1}, {0.0, 2.0, -1.0}};
+  const std::vector<Eigen::Vector3d> tau{{1.0, -2.0, 0.5}, {0.2, 0.0, -3.0}};
+  const std::vector<Eigen::Vector3d> c = correct_readings(theta, omega, tau, {5e-5, 1e-4, 1e-4, 2e-4, 3e-4});
+  for (std::size_t j = 0; j < theta.size(); ++j)
+    for (int i = 0; i < 3; ++i) EXPECT_NEAR(link_angle(m, i, theta[j][i], omega[j][i], tau[j][i], 0.0), c[j][i], 1e-15);
+}
+
+TEST(ReadingModel, CheckNamesTheValueOutOfRange) {
+  EXPECT_NO_THROW(check_reading_model(ReadingModel{}, "m: "));
+  const auto message = [](ReadingModel m) {
+    try {
+      check_reading_model(m, "m: ");
+    } catch (const InputError& e) {
+      return std::string(e.what());
+    }
+    return std::string("no error");
+  };
+  ReadingModel m;
+  m.skew_s[1] = 0.5;
+  EXPECT_EQ(message(m), "m: skew_s of encoder 2 must be within +-0.01 s");
+  m = ReadingModel{};
+  m.clearance_mm[2] = 3.0;
+  EXPECT_EQ(message(m), "m: clearance_mm of chain 3 must be in 0..2");
+  m = ReadingModel{};
+  m.backlash_rad[0] = std::nan("");
+  EXPECT_EQ(message(m), "m: cyclic_rad and backlash_rad of joint 1 must be in 0..0.01");
+  m = ReadingModel{};
+  m.encoder_bits = 0;
+  EXPECT_NE(message(m).find("ideal encoder"), std::string::npos);
+  m = ReadingModel{};
+  m.gear_ratio = 0.5;
+  EXPECT_EQ(message(m), "m: gear_ratio must be finite and >= 1");
+}
+
+}  // namespace
+}  // namespace gpm::calib
