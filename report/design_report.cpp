@@ -20,17 +20,22 @@ std::vector<std::string> layout_cells(const DesignLayout& l, double best_worst) 
           design_bound_text(l.worst_mm / best_worst), fmt::format("{:.2f}", l.log_det)};
 }
 
-// The report's text and table (figures added by design_comparison_report).
-ReportDocument comparison_text(const DesignComparison& c) {
-  ReportDocument doc;
-  doc.heading(1, "Excitation design: layouts at equal poses and noise");
-  doc.paragraph(fmt::format(
+// The settings of the comparison and how to read its bounds.
+std::string settings_paragraph(const DesignComparison& c) {
+  return fmt::format(
       "{} poses each, encoder noise {} rad (1-sigma, iid), free parameters {} (the rest fixed). "
       "Bounds are Cramer-Rao bounds (calib/crb.hpp) at the geometry of `{}` (the nominal one, known before "
       "calibration). mm parameters in mm; encoder offsets dth_i as rad x la_i (the elbow displacement an "
       "offset error causes), so that all compare in mm. worst = largest bound, mean = mean over the free "
       "parameters.",
-      c.count, c.sigma, format_param_list(c.free), c.model));
+      c.count, c.sigma, format_param_list(c.free), c.model);
+}
+
+// The report's text and table (figures added by design_comparison_report).
+ReportDocument comparison_text(const DesignComparison& c) {
+  ReportDocument doc;
+  doc.heading(1, "Excitation design: layouts at equal poses and noise");
+  doc.paragraph(settings_paragraph(c));
   std::vector<std::vector<std::string>> table;
   for (const auto& l : c.layouts) table.push_back(layout_cells(l, c.layouts.back().worst_mm));
   doc.table({"layout", "worst bound (mm)", "worst parameter", "mean bound (mm)", "worst / optimised", "log det F"},
@@ -47,10 +52,8 @@ ReportDocument comparison_text(const DesignComparison& c) {
 // One line per layout of every free parameter's finite bound, on a log axis.
 std::string bounds_figure(const DesignComparison& c) {
   std::vector<Series> series;
-  PlotOptions po;
-  po.title = fmt::format("Cramer-Rao bound per parameter, {} poses, noise {} rad", c.count, c.sigma);
-  po.x_label = "free parameter (offsets as rad x la)";
-  po.y_label = "1-sigma bound (mm)";
+  PlotOptions po = titled_plot(fmt::format("Cramer-Rao bound per parameter, {} poses, noise {} rad", c.count, c.sigma),
+                               "free parameter (offsets as rad x la)", "1-sigma bound (mm)");
   po.log_y = true;
   po.width = 760;
   for (int i : c.layouts.front().free_index) po.x_categories.emplace_back(param_name(i));
@@ -68,11 +71,7 @@ std::string bounds_figure(const DesignComparison& c) {
 // The poses of every layout in the workspace, at equal scale on x and y.
 std::string layouts_figure(const DesignComparison& c) {
   std::vector<Series> series;
-  PlotOptions po;
-  po.title = "Pose layouts in the workspace";
-  po.x_label = "x (mm)";
-  po.y_label = "y (mm)";
-  po.equal_aspect = true;
+  PlotOptions po = workspace_plot("Pose layouts in the workspace");
   po.width = 640;
   po.height = 640;
   for (const auto& l : c.layouts) {
