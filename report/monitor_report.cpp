@@ -94,4 +94,11 @@ void add_monitor_section(ReportDocument& doc, const MonitorReport& m, int level,
   if (!svg.empty()) doc.figure(figure, "Parameter tracks of the drift estimator", svg);
 }
 
+ReportDocument monitor_report(const std::string& scenario_name, const MonitorReport& m) {
+  ReportDocument doc;
+  doc.heading(1, fmt::format("gpm monitor: {}", scenario_name));
+  add_monitor_section(doc, m, 2, "tracks");
+  return doc;
+}
+
 }  // namespace gpm::report

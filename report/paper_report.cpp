@@ -5,6 +5,8 @@
 
 #include <fmt/format.h>
 
+#include "report/svg_plot.hpp"
+
 namespace gpm::report {
 
 const char* paper_reason_name(PaperReason r) {
@@ -67,6 +69,24 @@ std::string paper_reason_cell(const PaperTable& table, const PaperRow& row) {
   const auto s = sentences(table);
   const auto it = std::find(s.begin(), s.end(), row.why);
   return fmt::format("[{}] {}", it - s.begin() + 1, paper_reason_name(row.reason));
+}
+
+std::string paper_convergence_svg(int figure, const std::string& cost, const std::vector<PaperCurve>& curves) {
+  std::vector<Series> series;
+  for (const PaperCurve& c : curves) {
+    Series s;
+    s.label = c.label;
+    for (const auto& [e, j] : c.history) {
+      if (e <= 0 || !(j > 0)) continue;
+      s.x.push_back(static_cast<double>(e));
+      s.y.push_back(j);
+    }
+    series.push_back(std::move(s));
+  }
+  PlotOptions o = titled_plot(fmt::format("Figure {}: best {} against evaluations", figure, cost),
+                              "error-function evaluations", cost);
+  o.log_y = true;
+  return svg_plot(series, o);
 }
 
 ReportDocument paper_document(const PaperDocument& p) {

@@ -8,6 +8,7 @@
 #include <cstdint>
 #include <optional>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include "report/report_document.hpp"
@@ -64,6 +65,15 @@ struct PaperDocument {
 // The reason cell of a row in paper.md: "agrees" or "[n] <reason name>",
 // n numbering the distinct sentences of its table from 1.
 std::string paper_reason_cell(const PaperTable& table, const PaperRow& row);
+
+// One run's convergence record on a figure: (evaluations, best J) after each improvement.
+struct PaperCurve {
+  std::string label;  // the method, e.g. "DE"
+  std::vector<std::pair<long, double>> history;
+};
+
+// Figure 3, 4 or 5 of the paper: best J (cost, e.g. "J1") against evaluations, log y, one line per curve.
+std::string paper_convergence_svg(int figure, const std::string& cost, const std::vector<PaperCurve>& curves);
 
 // The document: a summary, then one section per table or figure.
 ReportDocument paper_document(const PaperDocument& p);

@@ -554,10 +554,8 @@ void write_monitor(const MonitorOutcome& o, const std::string& dir) {
   folder.add("alarms.csv", monitor_alarms_csv(o));
   folder.add("estimates.csv", monitor_estimates_csv(o));
   folder.add("summary.json", monitor_summary(o).dump(2) + "\n");
-  report::ReportDocument doc;
-  doc.heading(1, fmt::format("gpm monitor: {}", o.scenario.name));
-  add_monitor_section(doc, o, 2, "tracks");
-  doc.stage(folder, "report", fmt::format("gpm monitor: {}", o.scenario.name));
+  report::monitor_report(o.scenario.name, monitor_report_data(o))
+      .stage(folder, "report", fmt::format("gpm monitor: {}", o.scenario.name));
   folder.commit();
 }
 

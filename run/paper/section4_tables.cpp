@@ -16,7 +16,6 @@
 #include "calib/paper_values.hpp"
 #include "models/data_dir.hpp"
 #include "models/errors.hpp"
-#include "report/svg_plot.hpp"
 #include "run/paper/closure_costs.hpp"
 #include "sim/simulate.hpp"
 
@@ -100,24 +99,10 @@ std::pair<Reason, std::string> final_j_reason(Method m, Cost c, double ours, dou
 
 // The log10 J convergence figure of one cost (paper Figs. 3-5).
 std::string convergence_svg(const calib::global::Comparison& cmp, Cost cost, int figure) {
-  std::vector<report::Series> series;
-  for (const auto& run : cmp.runs) {
-    if (run.cost != cost) continue;
-    report::Series s;
-    s.label = method_label(run.method);
-    for (const auto& [e, j] : run.result.history) {
-      if (e <= 0 || !(j > 0)) continue;
-      s.x.push_back(static_cast<double>(e));
-      s.y.push_back(j);
-    }
-    series.push_back(std::move(s));
-  }
-  report::PlotOptions o;
-  o.title = fmt::format("Figure {}: best {} against evaluations", figure, cost_label(cost));
-  o.x_label = "error-function evaluations";
-  o.y_label = cost_label(cost);
-  o.log_y = true;
-  return report::svg_plot(series, o);
+  std::vector<report::PaperCurve> curves;
+  for (const auto& run : cmp.runs)
+    if (run.cost == cost) curves.push_back({method_label(run.method), run.result.history});
+  return report::paper_convergence_svg(figure, cost_label(cost), curves);
 }
 
 // The comparison of section 4 and what every table of it compares against.

@@ -56,5 +56,13 @@ TEST(MonitorReport, ThroughHardwareTheTruthIsUnknownAndNoTrackWithoutEstimates) 
   EXPECT_TRUE(doc.figure_files().empty());
 }
 
+TEST(MonitorReport, GpmMonitorsReportIsTitledAndHoldsTheSection) {
+  const ReportDocument doc = monitor_report("op", twin_run());
+  const std::string md = doc.markdown();
+  EXPECT_EQ(md.rfind("# gpm monitor: op\n", 0), 0u);
+  EXPECT_NE(md.find("## Tracked parameters at the end"), std::string::npos);
+  EXPECT_EQ(doc.figure_files().size(), 1u);
+}
+
 }  // namespace
 }  // namespace gpm::report

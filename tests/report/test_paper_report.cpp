@@ -46,5 +46,16 @@ TEST(PaperReport, ValuesWithSixSignificantDigits) {
   EXPECT_EQ(paper_reason_name(PaperReason::kSetup), std::string("different setup"));
 }
 
+TEST(PaperReport, ConvergenceFigureDrawsThePositivePointsOfEachCurve) {
+  const std::string svg =
+      paper_convergence_svg(3, "J1", {{"GA", {{0, 5.0}, {10, 1.0}, {100, 0.1}}}, {"DE", {{10, 2.0}, {50, 1.0}, {100, 0.0}}}});
+  EXPECT_NE(svg.find("Figure 3: best J1 against evaluations"), std::string::npos);
+  EXPECT_NE(svg.find(">GA<"), std::string::npos);
+  EXPECT_NE(svg.find(">DE<"), std::string::npos);
+  size_t lines = 0;
+  for (size_t at = svg.find("<path d=\"M"); at != std::string::npos; at = svg.find("<path d=\"M", at + 1)) ++lines;
+  EXPECT_EQ(lines, 2u);  // one line per curve; DE's J = 0 is left out
+}
+
 }  // namespace
 }  // namespace gpm::report
