@@ -10,7 +10,6 @@
 #include <fmt/format.h>
 
 #include "app/commands.hpp"
-#include "app/compare_report.hpp"
 #include "app/number_options.hpp"
 #include "calib/global/comparison.hpp"
 #include "calib/paper_values.hpp"
@@ -18,6 +17,8 @@
 #include "models/errors.hpp"
 #include "models/output_file.hpp"
 #include "models/robot_yaml.hpp"
+#include "report/compare_report.hpp"
+#include "run/compare_report_data.hpp"
 
 namespace gpm::cli {
 
@@ -75,11 +76,12 @@ void run_compare(const CompareArgs& a) {
   const auto c = calib::global::run_comparison(st, progress);
   if (progress) std::fprintf(stderr, "\n");
 
-  out.add("table6.md", compare_markdown(c));
+  const report::CompareReport data = scenario::compare_report_data(c);
+  out.add("table6.md", report::compare_markdown(data));
   out.add("runs.csv", calib::global::comparison_runs_csv(c));
   out.add("history.csv", calib::global::comparison_history_csv(c));
   for (calib::Cost cost : st.costs)
-    out.add(fmt::format("convergence_{}.svg", calib::cost_name(cost)), compare_svg(c, cost));
+    out.add(fmt::format("convergence_{}.svg", calib::cost_name(cost)), report::compare_svg(data, std::string(calib::cost_name(cost))));
   out.commit();
   std::printf("%s", fmt::format("gpm compare: {} runs in {:.1f} s -> {}/table6.md, runs.csv, "
                                 "history.csv, convergence_*.svg\n{}\n",

@@ -23,8 +23,7 @@
 #include "models/output_file.hpp"
 #include "models/progress.hpp"
 #include "models/robot_yaml.hpp"
-#include "report/report_document.hpp"
-#include "report/svg_plot.hpp"
+#include "report/design_report.hpp"
 
 namespace gpm::cli {
 namespace {
@@ -124,90 +123,16 @@ void run_design(const DesignCliOptions& o) {
   fmt::print("wrote            {} ({} poses)\n", o.out, design.poses.size());
 }
 
-std::string fmt_bound(double v) { return std::isfinite(v) ? fmt::format("{:.4g}", v) : "inf"; }
-
-// The comparison report (figures added by the caller).
-report::ReportDocument comparison_report(const std::vector<ex::LayoutBounds>& rows, const ex::DesignOptions& d,
+// The comparison's rows as the report library takes them (report/design_report.hpp).
+report::DesignComparison comparison_data(const std::vector<ex::LayoutBounds>& rows, const ex::DesignOptions& d,
                                          const std::string& model) {
-  const double ratio = ex::improvement_over_best_other(rows);
-  report::ReportDocument doc;
-  doc.heading(1, "Excitation design: layouts at equal poses and noise");
-  doc.paragraph(fmt::format(
-      "{} poses each, encoder noise {} rad (1-sigma, iid), free parameters {} (the rest fixed). "
-      "Bounds are Cramer-Rao bounds (calib/crb.hpp) at the geometry of `{}` (the nominal one, known before "
-      "calibration). mm parameters in mm; encoder offsets dth_i as rad x la_i (the elbow displacement an "
-      "offset error causes), so that all compare in mm. worst = largest bound, mean = mean over the free "
-      "parameters.",
-      d.count, d.sigma, format_param_list(d.free), model));
-  const double best_worst = rows.back().bounds.worst_mm;
-  std::vector<std::vector<std::string>> table;
-  for (const auto& r : rows)
-    table.push_back({r.name, fmt_bound(r.bounds.worst_mm),
-                     r.bounds.worst_param >= 0 ? std::string(param_name(r.bounds.worst_param)) : "-",
-                     fmt_bound(r.bounds.mean_mm), fmt_bound(r.bounds.worst_mm / best_worst),
-                     fmt::format("{:.2f}", r.bounds.log_det)});
-  doc.table({"layout", "worst bound (mm)", "worst parameter", "mean bound (mm)", "worst / optimised", "log det F"},
-            table);
-  doc.paragraph("Layouts:");
-  std::vector<std::string> layouts;
-  for (const auto& r : rows) layouts.push_back(fmt::format("`{}`: {}", r.name, r.description));
-  doc.bullets(layouts);
-  doc.paragraph(fmt::format("The optimised set is {:.1f}x better on the worst-parameter bound than the best of "
-                            "the others (goal: at least 3x).", ratio));
-  return doc;
-}
-
-std::string comparison_csv(const std::vector<ex::LayoutBounds>& rows) {
-  std::string csv = "layout,poses,worst_mm,worst_param,mean_mm,log_det";
-  for (int i : rows.front().bounds.free_index) csv += fmt::format(",{}_mm", param_name(i));
-  csv += "\n";
+  report::DesignComparison c{model, d.count, d.sigma, d.free, ex::improvement_over_best_other(rows), {}};
   for (const auto& r : rows) {
-    csv += fmt::format("{},{},{},{},{},{}", r.name, r.poses.size(), r.bounds.worst_mm,
-                       r.bounds.worst_param >= 0 ? param_name(r.bounds.worst_param) : "", r.bounds.mean_mm,
-                       r.bounds.log_det);
-    for (Eigen::Index k = 0; k < r.bounds.scaled.size(); ++k) csv += fmt::format(",{}", r.bounds.scaled[k]);
-    csv += "\n";
+    const ex::Bounds& b = r.bounds;
+    c.layouts.push_back({r.name, r.description, r.poses, b.free_index, b.scaled, b.worst_mm, b.mean_mm, b.log_det,
+                         b.worst_param});
   }
-  return csv;
-}
-
-std::string bounds_figure(const std::vector<ex::LayoutBounds>& rows, const ex::DesignOptions& d) {
-  std::vector<report::Series> series;
-  report::PlotOptions po;
-  po.title = fmt::format("Cramer-Rao bound per parameter, {} poses, noise {} rad", d.count, d.sigma);
-  po.x_label = "free parameter (offsets as rad x la)";
-  po.y_label = "1-sigma bound (mm)";
-  po.log_y = true;
-  po.width = 760;
-  for (int i : rows.front().bounds.free_index) po.x_categories.emplace_back(param_name(i));
-  for (const auto& r : rows) {
-    report::Series s;
-    s.label = r.name;
-    s.style = report::Series::Style::kLineMarkers;
-    for (Eigen::Index k = 0; k < r.bounds.scaled.size(); ++k)
-      if (std::isfinite(r.bounds.scaled[k])) s.x.push_back(static_cast<double>(k)), s.y.push_back(r.bounds.scaled[k]);
-    series.push_back(std::move(s));
-  }
-  return report::svg_plot(series, po);
-}
-
-std::string layouts_figure(const std::vector<ex::LayoutBounds>& rows) {
-  std::vector<report::Series> series;
-  report::PlotOptions po;
-  po.title = "Pose layouts in the workspace";
-  po.x_label = "x (mm)";
-  po.y_label = "y (mm)";
-  po.equal_aspect = true;
-  po.width = 640;
-  po.height = 640;
-  for (const auto& r : rows) {
-    report::Series s;
-    s.label = r.name;
-    s.style = report::Series::Style::kMarkers;
-    for (const auto& p : r.poses) s.x.push_back(p.x()), s.y.push_back(p.y());
-    series.push_back(std::move(s));
-  }
-  return report::svg_plot(series, po);
+  return c;
 }
 
 void run_compare(const DesignCliOptions& o) {
@@ -221,14 +146,12 @@ void run_compare(const DesignCliOptions& o) {
   c.seed = o.seed;
   const Robot robot = load_robot(o.model);
   const auto rows = ex::compare_layouts(robot, c);
-  report::ReportDocument doc = comparison_report(rows, c.design, o.model);
-  doc.heading(2, "Figures");
-  doc.figure("design_comparison", "Cramer-Rao bound of every free parameter, per layout", bounds_figure(rows, c.design));
-  doc.figure("design_layouts", "The poses of every layout", layouts_figure(rows));
+  const report::DesignComparison data = comparison_data(rows, c.design, o.model);
   // All files or none (models/output_file.hpp), never over the model file.
   OutputFolder out(o.out, {o.model});
-  doc.stage(out, "design_comparison", "Excitation design: layouts at equal poses and noise");
-  out.add("design_comparison.csv", comparison_csv(rows));
+  report::design_comparison_report(data).stage(out, "design_comparison",
+                                               "Excitation design: layouts at equal poses and noise");
+  out.add("design_comparison.csv", report::design_comparison_csv(data));
   out.add("optimised_poses.yaml", ex::pose_list_yaml(rows.back().poses, "gpm design --compare: the optimised set"));
   out.commit();
   if (o.json) {
@@ -251,8 +174,8 @@ void run_compare(const DesignCliOptions& o) {
   }
   fmt::print("{:10} {:>14} {:>8} {:>14}\n", "layout", "worst (mm)", "param", "mean (mm)");
   for (const auto& r : rows)
-    fmt::print("{:10} {:>14} {:>8} {:>14}\n", r.name, fmt_bound(r.bounds.worst_mm),
-               r.bounds.worst_param >= 0 ? param_name(r.bounds.worst_param) : "-", fmt_bound(r.bounds.mean_mm));
+    fmt::print("{:10} {:>14} {:>8} {:>14}\n", r.name, report::design_bound_text(r.bounds.worst_mm),
+               r.bounds.worst_param >= 0 ? param_name(r.bounds.worst_param) : "-", report::design_bound_text(r.bounds.mean_mm));
   fmt::print("optimised is {:.1f}x better on the worst bound than the best other layout\n",
              ex::improvement_over_best_other(rows));
   fmt::print("wrote {}/design_comparison.md, .html, .csv, .svg, design_layouts.svg, optimised_poses.yaml\n", o.out);

@@ -10,6 +10,7 @@
 #include <unistd.h>
 #include <limits>
 #include <memory>
+#include <optional>
 #include <string>
 
 #include <fmt/format.h>
@@ -35,6 +36,134 @@ struct MonitorOptions {
   std::string hardware;
 };
 
+// The monitor's starting 1-sigma per parameter: a calibration result's, NaN where unknown.
+std::array<double, kNumParams> prior_sigma(const Robot& controller) {
+  std::array<double, kNumParams> prior;
+  prior.fill(std::numeric_limits<double>::quiet_NaN());
+  if (controller.calibration)
+    for (int k = 0; k < kNumParams; ++k) {
+      const auto& sd = controller.calibration->sigma[static_cast<std::size_t>(k)];
+      if (sd && std::isfinite(*sd) && *sd > 0.0) prior[static_cast<std::size_t>(k)] = *sd;
+    }
+  return prior;
+}
+
+// What the monitor assumes of the readings and where it was stated.
+struct ReadingChoice {
+  scenario::MonitorReadingModel model;
+  std::string from;
+};
+
+// A calibration result's `monitor:` (gpm run writes the calibration's
+// estimates there), else the scenario's statement (`monitor:`), whose preset
+// data_sheet is the robot's data sheet: the model's where it states one (a
+// result file does not), else the scenario's robot's.
+ReadingChoice reading_of(const MonitorOptions& opt, const sim::Scenario& s, const Robot& controller) {
+  const DataSheet& sheet = !opt.model.empty() && load_yaml_file(opt.model)["data_sheet"] ? controller.data_sheet
+                                                                                         : s.controller.data_sheet;
+  const YAML::Node stated = load_yaml_file(opt.scenario)["monitor"];
+  ReadingChoice r{scenario::parse_monitor_reading_model(stated, opt.scenario, sheet),
+                  stated ? fmt::format("the scenario's monitor: ({})", opt.scenario)
+                         : "data_sheet (the default; a scenario states its own with monitor:)"};
+  if (!opt.model.empty())
+    if (const YAML::Node n = load_yaml_file(opt.model)["monitor"]) {
+      r.model = scenario::parse_monitor_reading_model(n, opt.model, sheet);
+      r.from = fmt::format("the calibration result's monitor: ({})", opt.model);
+    }
+  return r;
+}
+
+// The operation on the twin or through the hardware file; none when a signal
+// interrupted it (drives disabled, one line on stderr, exit code 130 set).
+std::optional<scenario::MonitorOutcome> run_operation(const MonitorOptions& opt, const sim::Scenario& s,
+                                                      const Robot& controller,
+                                                      const std::array<double, kNumParams>& prior,
+                                                      const scenario::MonitorReadingModel& reading) {
+  // Progress on a terminal only (a log file gets the summary alone).
+  const bool tty = isatty(STDERR_FILENO) != 0;
+  const auto progress = [tty](double t, double T) {
+    if (tty) std::fprintf(stderr, "\rgpm monitor: %.0f of %.0f s of operation", t, T);
+  };
+  try {
+    std::optional<scenario::MonitorOutcome> o;
+    if (opt.hardware.empty()) {
+      o = scenario::run_monitor(s, controller, prior, reading, progress);
+    } else {
+      // A robot that moves: drives disabled on SIGINT/SIGTERM/SIGHUP (exit 130).
+      const hw::StopOnSignal signals;
+      try {
+        o = scenario::run_monitor_hardware(s, opt.hardware, controller, prior, reading, progress, signals.flag());
+      } catch (const hw::Interrupted& e) {
+        if (tty) std::fprintf(stderr, "\n");
+        std::fprintf(stderr, "gpm monitor: %s: %s (drives disabled; nothing written)\n",
+                     hw::StopOnSignal::signal_name(), e.what());
+        set_exit(hw::kInterruptedExit);
+        return std::nullopt;
+      }
+    }
+    if (tty) std::fprintf(stderr, "\n");
+    return o;
+  } catch (const sim::SimError& e) {
+    throw InputError(fmt::format("{}: {}", opt.scenario, e.what()));
+  }
+}
+
+// Prints the alarms and the events' detections.
+void print_alarms(const scenario::MonitorOutcome& o) {
+  if (o.truth_known)
+    fmt::print("alarms     {} ({} false; stated rate {} per hour)\n", o.alarms.size(), o.false_alarms,
+               o.model.settings.false_alarms_per_hour);
+  else
+    fmt::print("alarms     {} (stated false-alarm rate {} per hour)\n", o.alarms.size(),
+               o.model.settings.false_alarms_per_hour);
+  for (const auto& a : o.alarms)
+    fmt::print("alarm      at {:.3f} s ({} {:.1f} > {:.1f}): {}\n", a.t_s, a.kind, a.statistic, a.threshold,
+               a.explanation);
+  for (const auto& d : o.detections) {
+    if (d.detected_s)
+      fmt::print("event {}    at {:.3f} s detected at {:.3f} s (delay {:.3f} s): {}\n", d.event, d.at_s,
+                 *d.detected_s, *d.detected_s - d.at_s, d.explanation);
+    else
+      fmt::print("event {}    at {:.3f} s: not detected\n", d.event, d.at_s);
+  }
+}
+
+// Prints the run's summary and verdict; exit code 1 when an expectation failed.
+void print_summary(const MonitorOptions& opt, const sim::Scenario& s, const scenario::MonitorOutcome& o,
+                   const std::string& reading_from, const std::vector<scenario::MonitorCheck>& checks) {
+  int failed = 0;
+  for (const auto& c : checks) failed += c.passed ? 0 : 1;
+  fmt::print("scenario   {} ({})\n", s.name, opt.scenario);
+  fmt::print("operation  {:.1f} s, {} servo cycles, {:.1f} s wall\n", o.simulated_s, o.cycles, o.wall_s);
+  if (!o.hardware.empty()) fmt::print("hardware   {}\n", o.hardware);
+  fmt::print("readings   {}\n", reading_from);
+  fmt::print("learning   {}\n", scenario::learning_text(o));
+  print_alarms(o);
+  for (const auto& c : checks)
+    if (!c.passed) fmt::print("FAILED     {}: {}\n", c.name, c.detail);
+  fmt::print("verdict    {} ({} checks, {} failed)\n", failed ? "FAILED" : "PASSED", checks.size(), failed);
+  fmt::print("report     {}/report.html (and report.md, alarms.csv, estimates.csv, summary.json)\n", opt.out);
+  if (failed) set_exit(1);
+}
+
+// gpm monitor: the operation with the drift monitor, its files and summary.
+void run_monitor_command(const MonitorOptions& opt) {
+  // DIR's files against every input (scenario, the files it names, model,
+  // hardware file) and not a hardware session's folder: before anything is read.
+  check_output_folder(opt.out, scenario::monitor_output_names());
+  sim::Scenario s = sim::load_scenario(opt.scenario);
+  Robot controller = s.controller;
+  if (!opt.model.empty()) controller = load_robot(opt.model);
+  // A calibration result as the model: the monitor starts from its 1-sigma.
+  const std::array<double, kNumParams> prior = prior_sigma(controller);
+  const scenario::MonitorExpect expect = scenario::load_monitor_expect(opt.scenario);  // bad keys before moving
+  const ReadingChoice reading = reading_of(opt, s, controller);
+  const std::optional<scenario::MonitorOutcome> o = run_operation(opt, s, controller, prior, reading.model);
+  if (!o) return;
+  scenario::write_monitor(*o, opt.out);
+  print_summary(opt, s, *o, reading.from, scenario::check_monitor(*o, expect));
+}
+
 }  // namespace
 
 void add_monitor(CLI::App& app) {
@@ -47,93 +176,7 @@ void add_monitor(CLI::App& app) {
   cmd->add_option("--model", opt->model, "The controller's model (robot or calibration result file); default: the scenario's robot");
   cmd->add_option("--hardware", opt->hardware,
                   "Hardware file (hw/): monitor the operation through the twin backend or the drives");
-  cmd->callback([opt] {
-    // DIR's files against every input (scenario, the files it names, model,
-    // hardware file) and not a hardware session's folder: before anything is read.
-    check_output_folder(opt->out, scenario::monitor_output_names());
-    sim::Scenario s = sim::load_scenario(opt->scenario);
-    Robot controller = s.controller;
-    if (!opt->model.empty()) controller = load_robot(opt->model);
-    std::array<double, kNumParams> prior;
-    prior.fill(std::numeric_limits<double>::quiet_NaN());
-    // A calibration result as the model: the monitor starts from its 1-sigma.
-    if (controller.calibration)
-      for (int k = 0; k < kNumParams; ++k) {
-        const auto& sd = controller.calibration->sigma[static_cast<std::size_t>(k)];
-        if (sd && std::isfinite(*sd) && *sd > 0.0) prior[static_cast<std::size_t>(k)] = *sd;
-      }
-    scenario::MonitorOutcome o;
-    const scenario::MonitorExpect expect = scenario::load_monitor_expect(opt->scenario);  // bad keys before moving
-    // What the monitor assumes of the readings: a calibration result's
-    // `monitor:` (gpm run writes the calibration's estimates there), else the
-    // scenario's statement (`monitor:`), whose preset data_sheet is the
-    // robot's data sheet: the model's where it states one (a result file
-    // does not), else the scenario's robot's.
-    const DataSheet& sheet = !opt->model.empty() && load_yaml_file(opt->model)["data_sheet"]
-                                 ? controller.data_sheet
-                                 : s.controller.data_sheet;
-    const YAML::Node stated = load_yaml_file(opt->scenario)["monitor"];
-    scenario::MonitorReadingModel reading = scenario::parse_monitor_reading_model(stated, opt->scenario, sheet);
-    std::string reading_from = stated ? fmt::format("the scenario's monitor: ({})", opt->scenario)
-                                      : "data_sheet (the default; a scenario states its own with monitor:)";
-    if (!opt->model.empty())
-      if (const YAML::Node n = load_yaml_file(opt->model)["monitor"]) {
-        reading = scenario::parse_monitor_reading_model(n, opt->model, sheet);
-        reading_from = fmt::format("the calibration result's monitor: ({})", opt->model);
-      }
-    // Progress on a terminal only (a log file gets the summary alone).
-    const bool tty = isatty(STDERR_FILENO) != 0;
-    const auto progress = [tty](double t, double T) {
-      if (tty) std::fprintf(stderr, "\rgpm monitor: %.0f of %.0f s of operation", t, T);
-    };
-    try {
-      if (opt->hardware.empty()) {
-        o = scenario::run_monitor(s, controller, prior, reading, progress);
-      } else {
-        // A robot that moves: drives disabled on SIGINT/SIGTERM/SIGHUP (exit 130).
-        const hw::StopOnSignal signals;
-        try {
-          o = scenario::run_monitor_hardware(s, opt->hardware, controller, prior, reading, progress, signals.flag());
-        } catch (const hw::Interrupted& e) {
-          if (tty) std::fprintf(stderr, "\n");
-          std::fprintf(stderr, "gpm monitor: %s: %s (drives disabled; nothing written)\n", hw::StopOnSignal::signal_name(), e.what());
-          set_exit(hw::kInterruptedExit);
-          return;
-        }
-      }
-      if (tty) std::fprintf(stderr, "\n");
-    } catch (const sim::SimError& e) {
-      throw InputError(fmt::format("{}: {}", opt->scenario, e.what()));
-    }
-    scenario::write_monitor(o, opt->out);
-    const auto checks = scenario::check_monitor(o, expect);
-    int failed = 0;
-    for (const auto& c : checks) failed += c.passed ? 0 : 1;
-    fmt::print("scenario   {} ({})\n", s.name, opt->scenario);
-    fmt::print("operation  {:.1f} s, {} servo cycles, {:.1f} s wall\n", o.simulated_s, o.cycles, o.wall_s);
-    if (!o.hardware.empty()) fmt::print("hardware   {}\n", o.hardware);
-    fmt::print("readings   {}\n", reading_from);
-    fmt::print("learning   {}\n", scenario::learning_text(o));
-    if (o.truth_known)
-      fmt::print("alarms     {} ({} false; stated rate {} per hour)\n", o.alarms.size(), o.false_alarms,
-                 o.model.settings.false_alarms_per_hour);
-    else
-      fmt::print("alarms     {} (stated false-alarm rate {} per hour)\n", o.alarms.size(),
-                 o.model.settings.false_alarms_per_hour);
-    for (const auto& a : o.alarms) fmt::print("alarm      at {:.3f} s ({} {:.1f} > {:.1f}): {}\n", a.t_s, a.kind, a.statistic, a.threshold, a.explanation);
-    for (const auto& d : o.detections) {
-      if (d.detected_s)
-        fmt::print("event {}    at {:.3f} s detected at {:.3f} s (delay {:.3f} s): {}\n", d.event, d.at_s, *d.detected_s,
-                   *d.detected_s - d.at_s, d.explanation);
-      else
-        fmt::print("event {}    at {:.3f} s: not detected\n", d.event, d.at_s);
-    }
-    for (const auto& c : checks)
-      if (!c.passed) fmt::print("FAILED     {}: {}\n", c.name, c.detail);
-    fmt::print("verdict    {} ({} checks, {} failed)\n", failed ? "FAILED" : "PASSED", checks.size(), failed);
-    fmt::print("report     {}/report.html (and report.md, alarms.csv, estimates.csv, summary.json)\n", opt->out);
-    if (failed) set_exit(1);
-  });
+  cmd->callback([opt] { run_monitor_command(*opt); });
 }
 
 }  // namespace gpm::cli

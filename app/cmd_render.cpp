@@ -98,6 +98,107 @@ std::unique_ptr<Story> run_story(const std::string& file) {
   return story;
 }
 
+// The render options: the scenario's `render` section, overridden by the flags given.
+render::RenderOptions render_options(const RenderCliOptions& opt, bool fps_given, bool speed_given) {
+  render::RenderOptions o = render::render_options_from_file(opt.scenario);
+  if (!opt.size.empty()) render::parse_size(opt.size, "--size", o.width, o.height);
+  if (fps_given) {  // given: 0 is refused like any other impossible rate
+    if (!(opt.fps > 0 && opt.fps <= 240)) throw InputError(fmt::format("--fps: must be in (0, 240], got {}", opt.fps));
+    o.fps = opt.fps;
+  }
+  if (speed_given) {
+    if (!(opt.speed > 0)) throw InputError(fmt::format("--speed: must be positive, got {}", opt.speed));
+    o.speed = opt.speed;
+  }
+  if (!opt.camera.empty()) o.camera = opt.camera;
+  if (!opt.quality.empty()) o.quality = render::parse_quality(opt.quality, "--quality");
+  return o;
+}
+
+// Loads every scenario and checks that its model renders with the options' camera.
+std::vector<sim::Scenario> load_scenarios(const RenderCliOptions& opt, const render::RenderOptions& o,
+                                          const std::vector<std::string>& files) {
+  std::vector<sim::Scenario> scenarios;
+  for (const std::string& f : files) {
+    scenarios.push_back(sim::load_scenario(f));
+    const Robot actual = sim::make_actual(scenarios.back());
+    render::check_render_setup(mjcf_from_robot(actual, scenarios.back().twin.mjcf), o,
+                               opt.camera.empty() ? f + ": render.camera" : "--camera");
+  }
+  return scenarios;
+}
+
+// Refuses an output that is an input (models/output_file.hpp) or whose suffix is not what is written.
+void check_outputs(const RenderCliOptions& opt, const std::vector<render::FrameRequest>& pngs,
+                   const std::vector<std::string>& files) {
+  if (!opt.out.empty()) check_output_file(opt.out, files);
+  for (const render::FrameRequest& p : pngs) check_output_file(p.path, files);
+  // The suffix says the format: only what is written is accepted (render/video_job.hpp).
+  if (!opt.out.empty()) render::check_output_suffix(opt.out, ".mp4", "-o");
+  for (const render::FrameRequest& p : pngs) render::check_output_suffix(p.path, ".png", "--frame-png");
+}
+
+// The simulated runs shown side by side, one part (the results own the logs the views point at).
+std::vector<std::vector<render::RunView>> simulation_parts(const std::vector<sim::Scenario>& scenarios,
+                                                           const std::vector<std::string>& files,
+                                                           std::vector<sim::SimulationResult>& results) {
+  for (size_t i = 0; i < scenarios.size(); ++i) results.push_back(run(scenarios[i], files[i]));
+  std::vector<render::RunView> views;
+  for (size_t i = 0; i < results.size(); ++i) views.push_back(render::run_view(results[i], scenarios[i].name));
+  return {views};
+}
+
+// Prints what was rendered and written.
+void print_render_summary(const RenderCliOptions& opt, const render::RenderOptions& o,
+                          const std::vector<std::string>& files, const render::VideoSummary& v, bool story,
+                          const std::vector<std::vector<render::RunView>>& parts,
+                          const std::vector<render::FrameRequest>& pngs) {
+  fmt::print("scenario         {}\n", fmt::join(files, " | "));
+  fmt::print("frames           {} at {} fps, {}x{}, camera {}, quality {}\n", v.frames, o.fps, v.width, v.height,
+             o.camera, render::quality_name(o.quality));
+  if (story) {
+    for (size_t i = 0; i < parts.size(); ++i) {
+      std::string caption = parts[i].front().label;
+      std::replace(caption.begin(), caption.end(), '\n', ' ');
+      fmt::print("part             {} from frame {}\n", caption, v.part_first[i]);
+    }
+  }
+  fmt::print("rendered         {:.1f} frames/s ({:.2f} s wall, {})\n", v.frames_per_s, v.wall_s, v.gl_renderer);
+  if (!opt.out.empty()) fmt::print("wrote            {} ({})\n", opt.out, v.codec);
+  for (const render::FrameRequest& p : pngs) fmt::print("wrote            {} (frame {})\n", p.path, p.frame);
+}
+
+// gpm render: checks everything, simulates (or runs the story), renders and prints a summary.
+void run_render(const RenderCliOptions& opt, bool fps_given, bool speed_given) {
+  if (opt.out.empty() && opt.frame_png.empty()) throw InputError("gpm render: give -o VIDEO.mp4 and/or --frame-png N:FILE");
+  const render::RenderOptions o = render_options(opt, fps_given, speed_given);
+  std::vector<render::FrameRequest> pngs;
+  for (const std::string& f : opt.frame_png) pngs.push_back(render::parse_frame_request(f, "--frame-png"));
+  std::vector<std::string> files = {opt.scenario};
+  if (!opt.beside.empty()) files.push_back(opt.beside);
+  const std::vector<sim::Scenario> scenarios = load_scenarios(opt, o, files);
+  check_outputs(opt, pngs, files);
+
+  const bool story = opt.beside.empty() && !opt.simulation_only && is_run_scenario(opt.scenario);
+  std::unique_ptr<Story> ran;
+  std::vector<sim::SimulationResult> results;
+  std::vector<std::vector<render::RunView>> parts;
+  if (story) {
+    ran = run_story(opt.scenario);
+    parts = ran->parts;
+  } else {
+    parts = simulation_parts(scenarios, files, results);
+  }
+  // A progress line on a terminal (frames, fps, ETA); PNG-only renders are short.
+  int total = 0;
+  for (int c : render::part_frame_counts(parts, o)) total += c;
+  Progress progress = Progress::terminal("gpm render", "frames", opt.out.empty() ? 0 : total);
+  render::VideoJobOptions job;
+  job.progress = opt.out.empty() ? nullptr : &progress;
+  const render::VideoSummary v = render::render_parts(parts, o, opt.out, pngs, job);
+  print_render_summary(opt, o, files, v, story, parts, pngs);
+}
+
 }  // namespace
 
 void add_render(CLI::App& app) {
@@ -115,76 +216,7 @@ void add_render(CLI::App& app) {
   cmd->add_option("--beside", opt->beside, "A second scenario shown side by side (e.g. the calibrated controller)");
   cmd->add_flag("--simulation-only", opt->simulation_only,
                 "For a gpm run scenario: only its simulation (the sampling), not the story of the run");
-  cmd->callback([opt, fps, speed] {
-    if (opt->out.empty() && opt->frame_png.empty())
-      throw InputError("gpm render: give -o VIDEO.mp4 and/or --frame-png N:FILE");
-    render::RenderOptions o = render::render_options_from_file(opt->scenario);
-    if (!opt->size.empty()) render::parse_size(opt->size, "--size", o.width, o.height);
-    if (fps->count() > 0) {  // given: 0 is refused like any other impossible rate
-      if (!(opt->fps > 0 && opt->fps <= 240))
-        throw InputError(fmt::format("--fps: must be in (0, 240], got {}", opt->fps));
-      o.fps = opt->fps;
-    }
-    if (speed->count() > 0) {
-      if (!(opt->speed > 0)) throw InputError(fmt::format("--speed: must be positive, got {}", opt->speed));
-      o.speed = opt->speed;
-    }
-    if (!opt->camera.empty()) o.camera = opt->camera;
-    if (!opt->quality.empty()) o.quality = render::parse_quality(opt->quality, "--quality");
-    std::vector<render::FrameRequest> pngs;
-    for (const std::string& f : opt->frame_png) pngs.push_back(render::parse_frame_request(f, "--frame-png"));
-
-    std::vector<std::string> files = {opt->scenario};
-    if (!opt->beside.empty()) files.push_back(opt->beside);
-    std::vector<sim::Scenario> scenarios;
-    for (const std::string& f : files) {
-      scenarios.push_back(sim::load_scenario(f));
-      const Robot actual = sim::make_actual(scenarios.back());
-      render::check_render_setup(mjcf_from_robot(actual, scenarios.back().twin.mjcf), o,
-                                 opt->camera.empty() ? f + ": render.camera" : "--camera");
-    }
-    // Output policy (models/output_file.hpp): an output that is an input is refused.
-    if (!opt->out.empty()) check_output_file(opt->out, files);
-    for (const render::FrameRequest& p : pngs) check_output_file(p.path, files);
-    // The suffix says the format: only what is written is accepted (render/video_job.hpp).
-    if (!opt->out.empty()) render::check_output_suffix(opt->out, ".mp4", "-o");
-    for (const render::FrameRequest& p : pngs) render::check_output_suffix(p.path, ".png", "--frame-png");
-
-    const bool story = opt->beside.empty() && !opt->simulation_only && is_run_scenario(opt->scenario);
-    std::unique_ptr<Story> ran;
-    std::vector<sim::SimulationResult> results;
-    std::vector<std::vector<render::RunView>> parts;
-    if (story) {
-      ran = run_story(opt->scenario);
-      parts = ran->parts;
-    } else {
-      for (size_t i = 0; i < scenarios.size(); ++i) results.push_back(run(scenarios[i], files[i]));
-      std::vector<render::RunView> views;
-      for (size_t i = 0; i < results.size(); ++i) views.push_back(render::run_view(results[i], scenarios[i].name));
-      parts.push_back(views);
-    }
-    // A progress line on a terminal (frames, fps, ETA); PNG-only renders are short.
-    int total = 0;
-    for (int c : render::part_frame_counts(parts, o)) total += c;
-    Progress progress = Progress::terminal("gpm render", "frames", opt->out.empty() ? 0 : total);
-    render::VideoJobOptions job;
-    job.progress = opt->out.empty() ? nullptr : &progress;
-    const render::VideoSummary v = render::render_parts(parts, o, opt->out, pngs, job);
-
-    fmt::print("scenario         {}\n", fmt::join(files, " | "));
-    fmt::print("frames           {} at {} fps, {}x{}, camera {}, quality {}\n", v.frames, o.fps, v.width,
-               v.height, o.camera, render::quality_name(o.quality));
-    if (story) {
-      for (size_t i = 0; i < parts.size(); ++i) {
-        std::string caption = parts[i].front().label;
-        std::replace(caption.begin(), caption.end(), '\n', ' ');
-        fmt::print("part             {} from frame {}\n", caption, v.part_first[i]);
-      }
-    }
-    fmt::print("rendered         {:.1f} frames/s ({:.2f} s wall, {})\n", v.frames_per_s, v.wall_s, v.gl_renderer);
-    if (!opt->out.empty()) fmt::print("wrote            {} ({})\n", opt->out, v.codec);
-    for (const render::FrameRequest& p : pngs) fmt::print("wrote            {} (frame {})\n", p.path, p.frame);
-  });
+  cmd->callback([opt, fps, speed] { run_render(*opt, fps->count() > 0, speed->count() > 0); });
 }
 
 }  // namespace gpm::cli

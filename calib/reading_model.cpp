@@ -51,6 +51,10 @@ void check_reading_model(const ReadingModel& m, const std::string& where) {
   require(m.gear_ratio >= 1.0 && std::isfinite(m.gear_ratio), where, "gear_ratio must be finite and >= 1");
 }
 
+std::array<double, 3> pin_clearance_mm(const ReadingModel& m) {
+  return {0.5 * m.clearance_mm[0], 0.5 * m.clearance_mm[1], 0.5 * m.clearance_mm[2]};
+}
+
 double encoder_step_rad(int bits) { return bits > 0 ? 2.0 * std::numbers::pi / std::ldexp(1.0, bits) : 0.0; }
 
 double reading_sigma(double step_rad, double noise_rad, double n_avg) {

@@ -46,6 +46,9 @@ struct ReadingModel {
 // prefixed by `where`, e.g. "monitor: ").
 void check_reading_model(const ReadingModel& m, const std::string& where);
 
+// The radial clearance (mm) of each pin of m's passive links: half the link's play.
+std::array<double, 3> pin_clearance_mm(const ReadingModel& m);
+
 // The quantisation step (rad) of an encoder of 2^bits counts per revolution; 0 for bits 0.
 double encoder_step_rad(int bits);
 

@@ -164,9 +164,8 @@ CalibrationResult calibrate(const py::handle& readings, const Robot& robot, cons
   return out;
 }
 
-}  // namespace
-
-void bind_calibrate(py::module_& m) {
+// gpm.CalibrationResult: the estimate, its 1-sigma and diagnostics, and the result file.
+void bind_result_class(py::module_& m) {
   py::class_<CalibrationResult>(m, "CalibrationResult", R"doc(
 The outcome of gpm.calibrate (or gpm.load_result): the geometry, the 1-sigma
 of the estimated parameters and the solver's diagnostics, as written to the
@@ -234,7 +233,10 @@ result file by `gpm calibrate` (docs/FORMATS.md file contracts).
                            calib::cost_name(c.result.cost), c.result.free.count(), c.result.final_cost,
                            c.result.converged ? "converged" : "NOT converged");
       });
+}
 
+// gpm.calibrate: the calibration procedure of gpm calibrate.
+void bind_calibrate_function(py::module_& m) {
   m.def("calibrate", &calibrate, py::arg("readings"), py::arg("robot"),
         py::arg("fix") = std::vector<std::string>{"xa1", "ya1", "xa2", "ya2"}, py::arg("cost") = "ml",
         py::arg("method") = "lm", py::arg("sigma") = py::none(), py::arg("allow_rank_deficient") = false,
@@ -275,7 +277,10 @@ a rank-deficient free set naming what to fix, unknown names). A solve that
 does not converge returns normally with .converged False; the solver's
 warnings are issued as RuntimeWarning. The GIL is released while solving.
 )doc");
+}
 
+// gpm.load_result: a result file as a CalibrationResult.
+void bind_load_result(py::module_& m) {
   m.def(
       "load_result",
       [](const py::object& path, const py::object& robot) {
@@ -286,6 +291,14 @@ warnings are issued as RuntimeWarning. The GIL is released while solving.
       py::arg("path"), py::arg("robot") = py::none(),
       "Loads a result file written by `gpm calibrate` or CalibrationResult.save; robot (default: the nominal "
       "GPM2002) supplies home, branches and limits of .robot.");
+}
+
+}  // namespace
+
+void bind_calibrate(py::module_& m) {
+  bind_result_class(m);
+  bind_calibrate_function(m);
+  bind_load_result(m);
 }
 
 }  // namespace gpm::python

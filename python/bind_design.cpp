@@ -43,32 +43,28 @@ py::dict bounds_dict(const ex::Bounds& b) {
   return d;
 }
 
-
 struct PyDesign {
   ex::Design design;
   ex::DesignOptions options;
 };
 
-}  // namespace
+// A read-only (n, 2) view of one pose list of the design held by self (no copy).
+py::array_t<double> poses_view(const py::object& self, std::vector<Eigen::Vector2d> ex::Design::*list) {
+  const auto& p = self.cast<const PyDesign&>().design.*list;
+  return view_rows(p.empty() ? nullptr : p.front().data(), p.size(), 2, sizeof(Eigen::Vector2d), self);
+}
 
-void bind_design(py::module_& m) {
+// gpm.Design: the chosen poses, the greedy start, their bounds, and the pose list file.
+void bind_design_class(py::module_& m) {
   py::class_<PyDesign, std::shared_ptr<PyDesign>>(m, "Design", R"doc(
 Calibration poses chosen by gpm.design, with their Cramer-Rao bounds at the
 nominal geometry (calib/excitation/excitation.hpp).
 )doc")
       .def_property_readonly(
-          "poses",
-          [](py::object self) {
-            const auto& p = self.cast<const PyDesign&>().design.poses;
-            return view_rows(p.empty() ? nullptr : p.front().data(), p.size(), 2, sizeof(Eigen::Vector2d), self);
-          },
+          "poses", [](py::object self) { return poses_view(self, &ex::Design::poses); },
           "(n, 2) chosen poses in mm (a read-only view into the design, no copy).")
       .def_property_readonly(
-          "start",
-          [](py::object self) {
-            const auto& p = self.cast<const PyDesign&>().design.start;
-            return view_rows(p.empty() ? nullptr : p.front().data(), p.size(), 2, sizeof(Eigen::Vector2d), self);
-          },
+          "start", [](py::object self) { return poses_view(self, &ex::Design::start); },
           "(n, 2) greedy D-optimal start of the exchange, mm.")
       .def_property_readonly(
           "bounds", [](const PyDesign& d) { return bounds_dict(d.design.bounds); },
@@ -93,7 +89,10 @@ nominal geometry (calib/excitation/excitation.hpp).
           },
           py::arg("path"), py::arg("comment") = "gpm.design",
           "Writes the pose list atomically; the file is a scenario: gpm.simulate(path) samples the poses.");
+}
 
+// gpm.design: the excitation design of gpm design.
+void bind_design_function(py::module_& m) {
   m.def(
       "design",
       [](const py::object& robot, double count, double sigma, const py::object& fix, const std::string& criterion,
@@ -120,7 +119,46 @@ fix        parameters held fixed (default xa1, ya1, xa2, ya2);
 grid_step  candidate grid spacing (mm); guard  extra reach margin (mm).
 Returns a gpm.Design. Raises gpm.InputError for bad options.
 )doc");
+}
 
+// The noiseless encoder readings: readings (n, 3) rad when given, else those of poses (n, 2) mm.
+std::vector<Eigen::Vector3d> crb_readings(const Robot& robot, const py::object& readings, const py::object& poses) {
+  if (!readings.is_none()) return readings_from_array(readings, "readings");
+  std::vector<Eigen::Vector3d> theta;
+  for (const auto& p : points_from_array(poses, "poses")) {
+    const JointAngles q = inverse_kinematics(robot.geometry, p, robot.branch);
+    theta.push_back(readings_from_active(robot.geometry, q.theta_a));
+  }
+  return theta;
+}
+
+// gpm.crb's dict: free names, std per name, covariance and Fisher information.
+py::dict crb_dict(const Robot& robot, const py::object& readings, double sigma, const py::object& fix,
+                  const py::object& poses) {
+  if (readings.is_none() == poses.is_none())
+    throw InputError("crb: give exactly one of readings= (n, 3) rad or poses= (n, 2) mm");
+  check_bound(sigma, limits::kEncoderSigma, "sigma");
+  const FreeMask free = ~param_set(fix, "fix");
+  const std::vector<Eigen::Vector3d> theta = crb_readings(robot, readings, poses);
+  if (theta.size() < free.count())
+    throw InputError(fmt::format("crb: {} samples cannot bound {} free parameters (need at least {})", theta.size(),
+                                 free.count(), free.count()));
+  const Eigen::MatrixXd fisher = calib::fisher_information(robot.geometry, free, theta, sigma);
+  const Eigen::MatrixXd bound = calib::cramer_rao_bound(robot.geometry, free, theta, sigma);
+  const auto sd = calib::crb_sigma(robot.geometry, free, theta, sigma);
+  py::dict std_dict;
+  for (int i = 0; i < kNumParams; ++i)
+    if (free.test(static_cast<size_t>(i))) std_dict[py::str(std::string(param_name(i)))] = sd[static_cast<size_t>(i)];
+  py::dict d;
+  d["free"] = param_names(free);
+  d["std"] = std_dict;
+  d["covariance"] = matrix_array(bound);
+  d["fisher"] = matrix_array(fisher);
+  return d;
+}
+
+// gpm.pose_bounds and gpm.crb: Cramer-Rao bounds of poses or readings.
+void bind_bounds(py::module_& m) {
   m.def(
       "pose_bounds",
       [](const Robot& robot, const py::handle& poses, double sigma, const py::object& fix) {
@@ -135,37 +173,7 @@ Returns a gpm.Design. Raises gpm.InputError for bad options.
 
   m.def(
       "crb",
-      [](const Robot& robot, const py::object& readings, double sigma, const py::object& fix,
-         const py::object& poses) {
-        if (readings.is_none() == poses.is_none())
-          throw InputError("crb: give exactly one of readings= (n, 3) rad or poses= (n, 2) mm");
-        check_bound(sigma, limits::kEncoderSigma, "sigma");
-        const FreeMask free = ~param_set(fix, "fix");
-        std::vector<Eigen::Vector3d> theta;
-        if (!readings.is_none()) {
-          theta = readings_from_array(readings, "readings");
-        } else {
-          for (const auto& p : points_from_array(poses, "poses")) {
-            const JointAngles q = inverse_kinematics(robot.geometry, p, robot.branch);
-            theta.push_back(readings_from_active(robot.geometry, q.theta_a));
-          }
-        }
-        if (theta.size() < free.count())
-          throw InputError(fmt::format("crb: {} samples cannot bound {} free parameters (need at least {})",
-                                       theta.size(), free.count(), free.count()));
-        const Eigen::MatrixXd fisher = calib::fisher_information(robot.geometry, free, theta, sigma);
-        const Eigen::MatrixXd bound = calib::cramer_rao_bound(robot.geometry, free, theta, sigma);
-        const auto sd = calib::crb_sigma(robot.geometry, free, theta, sigma);
-        py::dict std_dict;
-        for (int i = 0; i < kNumParams; ++i)
-          if (free.test(static_cast<size_t>(i))) std_dict[py::str(std::string(param_name(i)))] = sd[static_cast<size_t>(i)];
-        py::dict d;
-        d["free"] = param_names(free);
-        d["std"] = std_dict;
-        d["covariance"] = matrix_array(bound);
-        d["fisher"] = matrix_array(fisher);
-        return d;
-      },
+      &crb_dict,
       py::arg("robot"), py::arg("readings") = py::none(), py::arg("sigma") = 1e-4,
       py::arg("fix") = std::vector<std::string>{"xa1", "ya1", "xa2", "ya2"}, py::arg("poses") = py::none(),
       R"doc(
@@ -176,6 +184,14 @@ readings by inverse kinematics). Returns a dict: free (names), std (name ->
 bound, mm or rad), covariance (k, k) = sigma^2 (J' J)^-1 and fisher (k, k)
 = J' J / sigma^2, with J the Jacobian of the ML residual.
 )doc");
+}
+
+}  // namespace
+
+void bind_design(py::module_& m) {
+  bind_design_class(m);
+  bind_design_function(m);
+  bind_bounds(m);
 }
 
 }  // namespace gpm::python

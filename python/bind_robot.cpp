@@ -42,6 +42,18 @@ py::array_t<double> vec(const Eigen::VectorXd& v) {
   return a;
 }
 
+// An (n, cols) float64 array whose row j is row(j) (an Eigen vector of cols entries).
+template <class Row>
+py::array_t<double> rows_array(size_t n, py::ssize_t cols, const Row& row) {
+  py::array_t<double> out({static_cast<py::ssize_t>(n), cols});
+  auto o = out.mutable_unchecked<2>();
+  for (size_t j = 0; j < n; ++j) {
+    const auto v = row(j);
+    for (py::ssize_t k = 0; k < cols; ++k) o(j, k) = v[k];
+  }
+  return out;
+}
+
 }  // namespace
 
 // The robot's data sheet as a dict: gear_ratio, encoder_bits, and each stated
@@ -68,15 +80,11 @@ py::dict data_sheet_dict(const Robot& r) {
   return out;
 }
 
-void bind_robot(py::module_& m) {
-  py::class_<Robot>(m, "Robot", R"doc(
-The robot model: 15 geometric parameters, home, elbow branches and workspace
-margins (models/robot.hpp). Millimetres and radians throughout.
+namespace {
 
-Robot(geometry=None, name="GPM2002") starts from the GPM2002's nominal
-geometry and replaces the parameters given in the dict `geometry`.
-Use gpm.load_robot(path) for a robot file.
-)doc")
+// gpm.Robot's constructor and its data: name, geometry, home, branch, limits, data sheet.
+void bind_robot_data(py::class_<Robot>& robot) {
+  robot
       .def(py::init([](const py::object& geometry, const std::string& name) {
              Robot r;
              r.name = name;
@@ -115,8 +123,12 @@ Use gpm.load_robot(path) for a robot file.
       .def_property_readonly("data_sheet", &data_sheet_dict,
                              "What the robot's documents state (models/data_sheet.hpp, docs/FORMATS.md): gear_ratio, "
                              "encoder_bits, and for each stated value (coulomb_Nm, rotor_inertia_kg_m2, ...) a dict "
-                             "nominal, min, max (the tolerance). A copy; the calibration reads these, never the twin's truth.")
-      .def(
+                             "nominal, min, max (the tolerance). A copy; the calibration reads these, never the twin's truth.");
+}
+
+// gpm.Robot's kinematics: ik, ik_angles, fk, jacobian, conditioning, check_reach.
+void bind_robot_kinematics(py::class_<Robot>& robot) {
+  robot.def(
           "ik",
           [](const Robot& r, double x, double y) {
             const JointAngles q = pose_angles(r, x, y);
@@ -129,14 +141,9 @@ Use gpm.load_robot(path) for a robot file.
           "ik",
           [](const Robot& r, const py::array_t<double, py::array::c_style | py::array::forcecast>& points) {
             const auto p = points_from_array(points, "ik(points)");
-            py::array_t<double> out({static_cast<py::ssize_t>(p.size()), py::ssize_t{3}});
-            auto o = out.mutable_unchecked<2>();
-            for (size_t j = 0; j < p.size(); ++j) {
-              const JointAngles q = inverse_kinematics(r.geometry, p[j], r.branch);
-              const Eigen::Vector3d t = readings_from_active(r.geometry, q.theta_a);
-              for (int k = 0; k < 3; ++k) o(j, k) = t[k];
-            }
-            return out;
+            return rows_array(p.size(), 3, [&](size_t j) {
+              return Eigen::Vector3d(readings_from_active(r.geometry, inverse_kinematics(r.geometry, p[j], r.branch).theta_a));
+            });
           },
           py::arg("points"),
           "Inverse kinematics of (n, 2) end-effector positions (mm): the (n, 3) encoder readings (rad), e.g. the "
@@ -156,13 +163,7 @@ Use gpm.load_robot(path) for a robot file.
               -> py::array_t<double> {
             const bool single = readings.ndim() == 1;
             const auto rows = readings_from_array(readings, "fk(readings)");
-            py::array_t<double> out({static_cast<py::ssize_t>(rows.size()), py::ssize_t{2}});
-            auto o = out.mutable_unchecked<2>();
-            for (size_t j = 0; j < rows.size(); ++j) {
-              const Eigen::Vector2d p = fk_row(r, rows[j], j);
-              o(j, 0) = p.x();
-              o(j, 1) = p.y();
-            }
+            py::array_t<double> out = rows_array(rows.size(), 2, [&](size_t j) { return fk_row(r, rows[j], j); });
             if (single) return out.reshape({py::ssize_t{2}});
             return out;
           },
@@ -199,8 +200,12 @@ Use gpm.load_robot(path) for a robot file.
             return py::make_tuple(reach.ok, reach.reason);
           },
           py::arg("x"), py::arg("y"),
-          "(ok, reason): whether (x, y) is reachable keeping the robot's margins; reason says what is violated.")
-      .def(
+          "(ok, reason): whether (x, y) is reachable keeping the robot's margins; reason says what is violated.");
+}
+
+// gpm.Robot as a file: to_yaml, save, ==, repr.
+void bind_robot_file(py::class_<Robot>& robot) {
+  robot.def(
           "to_yaml", [](const Robot& r) { return robot_to_yaml(r); },
           "The robot file text (YAML, every number written exactly).")
       .def(
@@ -211,7 +216,10 @@ Use gpm.load_robot(path) for a robot file.
         return fmt::format("<gpm.Robot '{}' la=({}, {}, {}) dth=({}, {}, {})>", r.name, r.geometry[kLa1],
                            r.geometry[kLa2], r.geometry[kLa3], r.geometry[kDth1], r.geometry[kDth2], r.geometry[kDth3]);
       });
+}
 
+// gpm.load_robot, read_samples, models_dir and scenarios_dir.
+void bind_robot_loaders(py::module_& m) {
   m.def(
       "load_robot",
       [](const py::object& path) {
@@ -242,6 +250,23 @@ Use gpm.load_robot(path) for a robot file.
 
   m.def("models_dir", &models_dir, "Folder of the nominal robot files (gpm2002.yaml, gpm2002.xml).");
   m.def("scenarios_dir", &scenarios_dir, "Folder of the scenario library (*.yaml).");
+}
+
+}  // namespace
+
+void bind_robot(py::module_& m) {
+  py::class_<Robot> robot(m, "Robot", R"doc(
+The robot model: 15 geometric parameters, home, elbow branches and workspace
+margins (models/robot.hpp). Millimetres and radians throughout.
+
+Robot(geometry=None, name="GPM2002") starts from the GPM2002's nominal
+geometry and replaces the parameters given in the dict `geometry`.
+Use gpm.load_robot(path) for a robot file.
+)doc");
+  bind_robot_data(robot);
+  bind_robot_kinematics(robot);
+  bind_robot_file(robot);
+  bind_robot_loaders(m);
 }
 
 }  // namespace gpm::python

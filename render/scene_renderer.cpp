@@ -1,6 +1,7 @@
 #include "render/scene_renderer.hpp"
 
 #include <algorithm>
+#include <tuple>
 #include <cmath>
 #include <cstring>
 
@@ -152,6 +153,102 @@ struct SceneRenderer::Impl {
     for (auto& s : slots)
       if (s->scene_made) mjv_freeScene(&s->scene);
   }
+
+  // Loads each run's model and data into a slot, the panels side by side; returns the logs' time span.
+  std::pair<double, double> load_runs(const std::vector<RunView>& runs, const RenderOptions& options, int panel_w) {
+    double t0 = 1e300, t1 = -1e300;
+    for (size_t i = 0; i < runs.size(); ++i) {
+      auto s = std::make_unique<RunSlot>();
+      s->view = runs[i];
+      t0 = std::min(t0, s->view.log->rows.front().t);
+      t1 = std::max(t1, s->view.log->rows.back().t);
+      s->model = sim::load_model_from_xml(s->view.model_xml);
+      mjModel* m = s->model.get();
+      m->vis.global.offwidth = options.width;
+      m->vis.global.offheight = options.height;
+      m->vis.quality.offsamples = options.quality == Quality::kHigh ? kHighQualitySamples : 0;
+      OverlayPainter::paint_model(m);
+      check_camera(m, options.camera, "camera");
+      s->data.reset(mj_makeData(m));
+      s->adr = joint_addresses(m);
+      s->viewport = {static_cast<int>(i) * panel_w, 0, panel_w, options.height};
+      slots.push_back(std::move(s));
+    }
+    return {t0, t1};
+  }
+
+  // Makes MuJoCo's rendering context with an off-screen buffer of the options' size (RenderError otherwise).
+  void make_context(const RenderOptions& options) {
+    font = font_scale_for(options.height);
+    mjr_defaultContext(&con);
+    mjr_makeContext(slots.front()->model.get(), &con, font);
+    con_made = true;
+    mjr_setBuffer(mjFB_OFFSCREEN, &con);
+    if (con.currentBuffer != mjFB_OFFSCREEN || con.offWidth < options.width || con.offHeight < options.height)
+      throw RenderError(fmt::format("MuJoCo could not make a {}x{} off-screen buffer", options.width, options.height));
+  }
+
+  // Width (px) of the longest line of t in the context's font.
+  int text_px(const std::string& t) const {
+    int w = 0, best = 0;
+    for (const char c : t) {
+      if (c == '\n') w = 0;
+      else if (c > 0 && c < 127) best = std::max(best, w += con.charWidth[static_cast<int>(c)]);
+    }
+    return best;
+  }
+
+  // The text column (frame_layout.hpp): as wide as its longest line; used
+  // when it leaves at least half the panel to the mechanism and its lines fit
+  // the height, else the text is drawn over the scene in the corners (column 0).
+  void fit_text_column(int panel_w, int height) {
+    const int cw = std::max(1, con.charWidth[static_cast<int>('0')]);
+    pad = std::max(2, cw / 2);
+    line_h = std::max(1, con.charHeight);
+    int width = text_px("enc 1") + text_px("-3.14159 rad") + 3 * cw;  // the two columns of the data block
+    for (const auto& s : slots) width = std::max(width, text_px(s->view.label) + 2 * cw);
+    width = std::max(width, kSwatchChars * cw + text_px(std::string(kLegendDesired)) + 4 * cw);
+    // Height: caption, 5 data lines, 2 legend lines, the scale bar's label and ticks, margins.
+    int label_lines = 0;
+    for (const auto& s : slots)
+      if (!s->view.label.empty())
+        label_lines = std::max(label_lines, 1 + static_cast<int>(std::count(s->view.label.begin(),
+                                                                             s->view.label.end(), '\n')));
+    const int pitch = line_h + line_h / 4;  // mjr_overlay's line spacing, measured
+    const int column_h = (label_lines + 5 + 2 + 1) * pitch + std::max(6, line_h / 2) + 6 * pad;
+    column = width <= kMaxColumnFrac * panel_w && column_h <= height ? width : 0;
+  }
+
+  // Frames slot s's camera on region and makes its painter, scale bar and scene.
+  void make_scene(RunSlot& s, const RenderOptions& options, const Framing& region, int panel_w) {
+    mjModel* m = s.model.get();
+    const Framing shown = column > 0 && (options.camera == "top" || options.camera == "oblique")
+                              ? frame_beside_column(region, panel_w, options.height, column, pad)
+                              : region;
+    s.camera = make_camera(m, options.camera, shown, static_cast<double>(panel_w) / options.height);
+    // Scale of the plane in the image: pixels per mm at the framing distance.
+    const double fovy = m->vis.global.fovy;
+    const double px_per_m =
+        0.5 * options.height / std::tan(0.5 * fovy * kPi / 180.0) / std::max(s.camera.distance, 1e-3);
+    const double mm_per_px = 1.0 / (px_per_m * kMetresPerMm);
+    const double line_px = std::max(1.5, options.height / 320.0);
+    s.painter = std::make_unique<OverlayPainter>(s.view.actual, *s.view.log, std::max(0.2, 1.5 * mm_per_px),
+                                                 std::max(2.0, kMarkerRadiusPx * mm_per_px), line_px);
+    // Scale bar in the plane of the traces, top camera only (elsewhere the scale varies across the image).
+    if (options.camera == "top" && column > 0) {
+      const int cw = std::max(1, con.charWidth[static_cast<int>('0')]);
+      s.px_per_mm = top_px_per_mm(s.camera.distance, OverlayStyle::kPathZ_m, fovy, options.height);
+      s.scale_mm = scale_bar_mm(s.px_per_mm, column - 2 * pad - 2 * cw);
+    }
+    mjv_defaultOption(&s.option);
+    for (int g = 0; g < mjNGROUP; ++g) s.option.sitegroup[g] = 0;
+    mjv_defaultScene(&s.scene);
+    mjv_makeScene(m, &s.scene, m->ngeom + s.painter->max_geoms() + 16);
+    s.scene_made = true;
+    s.scene.flags[mjRND_SHADOW] = options.quality == Quality::kHigh;
+    s.scene.flags[mjRND_REFLECTION] = 0;
+    s.scene.flags[mjRND_SKYBOX] = 0;
+  }
 };
 
 SceneRenderer::SceneRenderer(const std::vector<RunView>& runs, const RenderOptions& options,
@@ -172,92 +269,11 @@ SceneRenderer::SceneRenderer(const std::vector<RunView>& runs, const RenderOptio
                                  im.context.max_renderbuffer_size()));
 
   const Framing region = region_in ? *region_in : framing_of(runs);
-  const int n = static_cast<int>(runs.size());
-  const int panel_w = options.width / n;
-  const double aspect = static_cast<double>(panel_w) / options.height;
-  t0_ = 1e300;
-  t1_ = -1e300;
-  for (int i = 0; i < n; ++i) {
-    auto s = std::make_unique<RunSlot>();
-    s->view = runs[static_cast<size_t>(i)];
-    t0_ = std::min(t0_, s->view.log->rows.front().t);
-    t1_ = std::max(t1_, s->view.log->rows.back().t);
-    s->model = sim::load_model_from_xml(s->view.model_xml);
-    mjModel* m = s->model.get();
-    m->vis.global.offwidth = options.width;
-    m->vis.global.offheight = options.height;
-    m->vis.quality.offsamples = options.quality == Quality::kHigh ? kHighQualitySamples : 0;
-    OverlayPainter::paint_model(m);
-    check_camera(m, options.camera, "camera");
-    s->data.reset(mj_makeData(m));
-    s->adr = joint_addresses(m);
-    s->viewport = {i * panel_w, 0, panel_w, options.height};
-    im.slots.push_back(std::move(s));
-  }
-  im.font = font_scale_for(options.height);
-  mjr_defaultContext(&im.con);
-  mjr_makeContext(im.slots.front()->model.get(), &im.con, im.font);
-  im.con_made = true;
-  mjr_setBuffer(mjFB_OFFSCREEN, &im.con);
-  if (im.con.currentBuffer != mjFB_OFFSCREEN || im.con.offWidth < options.width ||
-      im.con.offHeight < options.height)
-    throw RenderError(fmt::format("MuJoCo could not make a {}x{} off-screen buffer", options.width, options.height));
-
-  // The text column (frame_layout.hpp): as wide as its longest line; used
-  // when it leaves at least half the panel to the mechanism and its lines fit
-  // the height, else the text is drawn over the scene in the corners.
-  const auto text_px = [&im](const std::string& t) {
-    int w = 0, best = 0;
-    for (const char c : t) {
-      if (c == '\n') w = 0;
-      else if (c > 0 && c < 127) best = std::max(best, w += im.con.charWidth[static_cast<int>(c)]);
-    }
-    return best;
-  };
-  const int cw = std::max(1, im.con.charWidth[static_cast<int>('0')]);
-  im.pad = std::max(2, cw / 2);
-  im.line_h = std::max(1, im.con.charHeight);
-  int column = text_px("enc 1") + text_px("-3.14159 rad") + 3 * cw;  // the two columns of the data block
-  for (const auto& s : im.slots) column = std::max(column, text_px(s->view.label) + 2 * cw);
-  column = std::max(column, kSwatchChars * cw + text_px(std::string(kLegendDesired)) + 4 * cw);
-  // Height: caption, 5 data lines, 2 legend lines, the scale bar's label and ticks, margins.
-  int label_lines = 0;
-  for (const auto& s : im.slots)
-    if (!s->view.label.empty())
-      label_lines = std::max(label_lines, 1 + static_cast<int>(std::count(s->view.label.begin(),
-                                                                           s->view.label.end(), '\n')));
-  const int pitch = im.line_h + im.line_h / 4;  // mjr_overlay's line spacing, measured
-  const int column_h = (label_lines + 5 + 2 + 1) * pitch + std::max(6, im.line_h / 2) + 6 * im.pad;
-  im.column = column <= kMaxColumnFrac * panel_w && column_h <= options.height ? column : 0;
-  for (auto& s : im.slots) {
-    mjModel* m = s->model.get();
-    const Framing shown =
-        im.column > 0 && (options.camera == "top" || options.camera == "oblique")
-            ? frame_beside_column(region, panel_w, options.height, im.column, im.pad)
-            : region;
-    s->camera = make_camera(m, options.camera, shown, aspect);
-    // Scale of the plane in the image: pixels per mm at the framing distance.
-    const double fovy = m->vis.global.fovy;
-    const double px_per_m = 0.5 * options.height / std::tan(0.5 * fovy * kPi / 180.0) /
-                            std::max(s->camera.distance, 1e-3);
-    const double mm_per_px = 1.0 / (px_per_m * kMetresPerMm);
-    const double line_px = std::max(1.5, options.height / 320.0);
-    s->painter = std::make_unique<OverlayPainter>(s->view.actual, *s->view.log, std::max(0.2, 1.5 * mm_per_px),
-                                                  std::max(2.0, kMarkerRadiusPx * mm_per_px), line_px);
-    // Scale bar in the plane of the traces, top camera only (elsewhere the scale varies across the image).
-    if (options.camera == "top" && im.column > 0) {
-      s->px_per_mm = top_px_per_mm(s->camera.distance, OverlayStyle::kPathZ_m, fovy, options.height);
-      s->scale_mm = scale_bar_mm(s->px_per_mm, im.column - 2 * im.pad - 2 * cw);
-    }
-    mjv_defaultOption(&s->option);
-    for (int g = 0; g < mjNGROUP; ++g) s->option.sitegroup[g] = 0;
-    mjv_defaultScene(&s->scene);
-    mjv_makeScene(m, &s->scene, m->ngeom + s->painter->max_geoms() + 16);
-    s->scene_made = true;
-    s->scene.flags[mjRND_SHADOW] = options.quality == Quality::kHigh;
-    s->scene.flags[mjRND_REFLECTION] = 0;
-    s->scene.flags[mjRND_SKYBOX] = 0;
-  }
+  const int panel_w = options.width / static_cast<int>(runs.size());
+  std::tie(t0_, t1_) = im.load_runs(runs, options, panel_w);
+  im.make_context(options);
+  im.fit_text_column(panel_w, options.height);
+  for (auto& s : im.slots) im.make_scene(*s, options, region, panel_w);
   im.frame.width = options.width;
   im.frame.height = options.height;
   im.frame.rgb.assign(static_cast<size_t>(options.width) * options.height * 3, 0);

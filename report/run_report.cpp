@@ -94,11 +94,7 @@ std::string layout_figure(const RunReport& o) {
     for (const auto& p : o.test_poses) test.x.push_back(p.x()), test.y.push_back(p.y());
     all.push_back(test);
   }
-  PlotOptions po;
-  po.title = "Sample layout over the workspace";
-  po.x_label = "x (mm)";
-  po.y_label = "y (mm)";
-  po.equal_aspect = true;
+  PlotOptions po = workspace_plot("Sample layout over the workspace");
   po.height = 520;
   return svg_plot(all, po);
 }
@@ -124,11 +120,8 @@ std::string residual_figure(const RunReport& o) {
       if (lo == hi) break;
     }
   }
-  PlotOptions po;
-  po.title = "Closure residual per sample (reading space, maximum-likelihood scaling)";
-  po.x_label = "sample";
-  po.y_label = "residual (µrad)";
-  return svg_plot({r}, po);
+  return svg_plot({r}, titled_plot("Closure residual per sample (reading space, maximum-likelihood scaling)",
+                                    "sample", "residual (µrad)"));
 }
 
 // Two panels over the LM iterations: J, and the length of each step tried.
@@ -194,10 +187,7 @@ std::string history_figure(const RunCalibration& r) {
   s.label = fmt::format("{} on {}", r.method, r.cost);
   s.style = Series::Style::kLineMarkers;
   for (const auto& [e, j] : r.history) s.x.push_back(static_cast<double>(e)), s.y.push_back(j);
-  PlotOptions po;
-  po.title = "Convergence";
-  po.x_label = "error-function evaluations";
-  po.y_label = "best cost J";
+  PlotOptions po = titled_plot("Convergence", "error-function evaluations", "best cost J");
   po.log_y = true;
   return svg_plot({s}, po);
 }
@@ -245,18 +235,13 @@ std::string tracking_figure(const RunReport& o) {
     s.y = a->path_error_um;
     all.push_back(s);
   }
-  PlotOptions po;
-  po.title = "Tracking error along the test path";
-  po.x_label = "t (s)";
-  po.y_label = "|actual − desired| (µm)";
+  PlotOptions po = titled_plot("Tracking error along the test path", "t (s)", "|actual − desired| (µm)");
   po.log_y = true;
   return svg_plot(all, po);
 }
 
-}  // namespace
-
-ReportDocument build_run_report(const RunReport& o) {
-  ReportDocument d;
+// The verdict, the failed expectations and where the samples came from.
+void add_verdict(ReportDocument& d, const RunReport& o) {
   d.heading(1, fmt::format("gpm run: {}", o.name));
   std::vector<std::string> failed;
   for (const RunCheck& c : o.checks)
@@ -270,92 +255,111 @@ ReportDocument build_run_report(const RunReport& o) {
                             "actual robot, the truth when that hardware simulates this scenario.",
                             o.hardware_description));
   }
+}
 
-  if (o.positioning_um) {
-    const auto& p = *o.positioning_um;
-    d.heading(2, "Positioning error of the calibrated model");
-    d.paragraph(fmt::format(
-        "Over a disc of 80 mm round home (points 10 mm apart), the readings the calibrated model commands and where "
-        "the actual robot stands when its three drives hold them, noise-free: RMS {:.2f} µm, max {:.2f} µm. The "
-        "calibration's covariance states {:.2f} µm per axis (RMS over the points); error / stated 1-sigma {:.2f} "
-        "(1 when the 1-sigma is honest).",
-        p[0], p[1], p[2], p[3]));
-  }
-  if (o.before) {
-    d.heading(2, "Accuracy before and after calibration");
-    d.paragraph("The twin (actual parameters) driven by the controller's model: static error after settling at the "
-                "test poses, tracking error along the test path, and the servos' internal preload |P τ| (torques "
-                "that do no work on the end-effector, eq. 15).");
-    std::vector<std::vector<std::string>> rows;
-    for (const RunAccuracy* a : {&*o.before, o.after ? &*o.after : nullptr, o.floor ? &*o.floor : nullptr}) {
-      if (!a) continue;
-      rows.push_back({a->label, fmt::format("{:.2f}", a->static_rms_um), fmt::format("{:.2f}", a->static_max_um),
-                      fmt::format("{:.2f}", a->path_rms_um), fmt::format("{:.2f}", a->path_max_um),
-                      fmt::format("{:.4f}", a->static_preload_rms_nm), fmt::format("{:.4f}", a->path_preload_rms_nm)});
-    }
-    d.table({"controller model", "static RMS (µm)", "static max (µm)", "path RMS (µm)", "path max (µm)",
-             "static preload RMS (N m)", "path preload RMS (N m)"},
-            rows);
-    if (o.after) {
-      d.paragraph(fmt::format("Static accuracy improved ×{:.3g}; path tracking ×{:.3g}; preload ×{:.3g}.",
-                              o.before->static_rms_um / o.after->static_rms_um,
-                              o.before->path_rms_um / o.after->path_rms_um,
-                              o.before->static_preload_rms_nm / std::max(1e-12, o.after->static_preload_rms_nm)));
-    }
-    if (o.after && o.floor) {
-      d.paragraph(fmt::format("The `actual` row is the floor: the controller given the true parameters. Calibrated "
-                              "static RMS is {:.2f}× the floor. Sampling took {:.2f} s of robot time.",
-                              o.after->static_rms_um / std::max(1e-12, o.floor->static_rms_um), o.robot_time_s));
-    }
-  }
-  if (o.model_test) {
-    const RunModelTest& t = *o.model_test;
-    d.paragraph(fmt::format("Model test: χ² = {:.4g} for {:.0f} degrees of freedom (encoder σ {:.3g} rad), "
-                            "p = {:.3g}: {}.",
-                            t.chi2, t.dof, t.sigma_rad, t.p_value,
-                            t.passed ? "the residuals are as small as the encoders explain" : t.diagnosis));
-  }
+// The calibrated model's positioning error over the workspace.
+void add_positioning(ReportDocument& d, const std::array<double, 4>& p) {
+  d.heading(2, "Positioning error of the calibrated model");
+  d.paragraph(fmt::format(
+      "Over a disc of 80 mm round home (points 10 mm apart), the readings the calibrated model commands and where "
+      "the actual robot stands when its three drives hold them, noise-free: RMS {:.2f} µm, max {:.2f} µm. The "
+      "calibration's covariance states {:.2f} µm per axis (RMS over the points); error / stated 1-sigma {:.2f} "
+      "(1 when the 1-sigma is honest).",
+      p[0], p[1], p[2], p[3]));
+}
 
+// The accuracy table of the nominal, calibrated and actual controller models and their ratios.
+void add_accuracy(ReportDocument& d, const RunReport& o) {
+  d.heading(2, "Accuracy before and after calibration");
+  d.paragraph("The twin (actual parameters) driven by the controller's model: static error after settling at the "
+              "test poses, tracking error along the test path, and the servos' internal preload |P τ| (torques "
+              "that do no work on the end-effector, eq. 15).");
+  std::vector<std::vector<std::string>> rows;
+  for (const RunAccuracy* a : {&*o.before, o.after ? &*o.after : nullptr, o.floor ? &*o.floor : nullptr}) {
+    if (!a) continue;
+    rows.push_back({a->label, fmt::format("{:.2f}", a->static_rms_um), fmt::format("{:.2f}", a->static_max_um),
+                    fmt::format("{:.2f}", a->path_rms_um), fmt::format("{:.2f}", a->path_max_um),
+                    fmt::format("{:.4f}", a->static_preload_rms_nm), fmt::format("{:.4f}", a->path_preload_rms_nm)});
+  }
+  d.table({"controller model", "static RMS (µm)", "static max (µm)", "path RMS (µm)", "path max (µm)",
+           "static preload RMS (N m)", "path preload RMS (N m)"},
+          rows);
+  if (o.after) {
+    d.paragraph(fmt::format("Static accuracy improved ×{:.3g}; path tracking ×{:.3g}; preload ×{:.3g}.",
+                            o.before->static_rms_um / o.after->static_rms_um,
+                            o.before->path_rms_um / o.after->path_rms_um,
+                            o.before->static_preload_rms_nm / std::max(1e-12, o.after->static_preload_rms_nm)));
+  }
+  if (o.after && o.floor) {
+    d.paragraph(fmt::format("The `actual` row is the floor: the controller given the true parameters. Calibrated "
+                            "static RMS is {:.2f}× the floor. Sampling took {:.2f} s of robot time.",
+                            o.after->static_rms_um / std::max(1e-12, o.floor->static_rms_um), o.robot_time_s));
+  }
+}
+
+// The chi-square test of the residuals against the encoder noise.
+void add_model_test(ReportDocument& d, const RunModelTest& t) {
+  d.paragraph(fmt::format("Model test: χ² = {:.4g} for {:.0f} degrees of freedom (encoder σ {:.3g} rad), "
+                          "p = {:.3g}: {}.",
+                          t.chi2, t.dof, t.sigma_rad, t.p_value,
+                          t.passed ? "the residuals are as small as the encoders explain" : t.diagnosis));
+}
+
+// The parameter table: nominal, actual, estimated, 1-sigma, error and the Cramer-Rao bound.
+void add_parameters(ReportDocument& d, const RunReport& o, const RunCalibration& r) {
+  d.paragraph(fmt::format("{} on {} from {} encoder samples, {} free parameters (fixed: {}). Cramér-Rao bound (CRB) "
+                          "at encoder σ {:.3g} rad per sample.",
+                          r.method, r.cost, o.sample_xy.size(), r.free.count(),
+                          format_param_list(~r.free), o.crb_sigma_rad));
+  std::vector<std::vector<std::string>> rows;
+  for (int i = 0; i < kNumParams; ++i) {
+    const bool free = r.free.test(static_cast<size_t>(i));
+    const double err = r.geometry[i] - o.actual[i];
+    rows.push_back({std::string(param_name(i)) + " (" + unit(i) + ")", num(o.nominal.geometry[i], 8),
+                    num(o.actual[i], 10), num(r.geometry[i], 10),
+                    free ? num(r.sigma[static_cast<size_t>(i)], 3) : "fixed", free ? num(err, 3) : "-",
+                    free ? num(o.crb[static_cast<size_t>(i)], 3) : "-",
+                    free ? num(std::abs(err) / o.crb[static_cast<size_t>(i)], 3) : "-"});
+  }
+  d.table({"parameter", "nominal", "actual", "estimated", "1σ", "error", "CRB σ", "|error| / CRB σ"}, rows);
+}
+
+// The solver's diagnostics and its notes (but the model test's diagnosis, already shown).
+void add_diagnostics(ReportDocument& d, const RunReport& o, const RunCalibration& r) {
+  d.heading(3, "Diagnostics");
+  d.table({"cost J", "iterations", "evaluations", "rank", "condition number", "kmrmse (mm)", "seconds", "converged"},
+          {{num(r.final_cost, 4), std::to_string(r.iterations), std::to_string(r.evaluations),
+            std::to_string(r.rank), num(r.condition_number, 4), r.kmrmse_mm ? num(*r.kmrmse_mm, 4) : "-",
+            num(r.seconds, 3), r.converged ? "yes" : "no"}});
+  std::vector<std::string> notes;
+  for (const std::string& n : r.notes)
+    if (!(o.model_test && n == o.model_test->diagnosis)) notes.push_back(with_unit_symbols(n));
+  if (!notes.empty()) d.bullets(notes);
+}
+
+// The calibration's section: refused, or its parameters and diagnostics.
+void add_calibration(ReportDocument& d, const RunReport& o) {
   d.heading(2, "Calibration");
   if (o.refused) {
     d.paragraph("The calibration was refused, as the scenario expects:");
     d.preformatted(*o.refused);
   }
   if (o.calibration) {
-    const RunCalibration& r = *o.calibration;
-    d.paragraph(fmt::format("{} on {} from {} encoder samples, {} free parameters (fixed: {}). Cramér-Rao bound (CRB) "
-                            "at encoder σ {:.3g} rad per sample.",
-                            r.method, r.cost, o.sample_xy.size(), r.free.count(),
-                            format_param_list(~r.free), o.crb_sigma_rad));
-    std::vector<std::vector<std::string>> rows;
-    for (int i = 0; i < kNumParams; ++i) {
-      const bool free = r.free.test(static_cast<size_t>(i));
-      const double err = r.geometry[i] - o.actual[i];
-      rows.push_back({std::string(param_name(i)) + " (" + unit(i) + ")", num(o.nominal.geometry[i], 8),
-                      num(o.actual[i], 10), num(r.geometry[i], 10),
-                      free ? num(r.sigma[static_cast<size_t>(i)], 3) : "fixed", free ? num(err, 3) : "-",
-                      free ? num(o.crb[static_cast<size_t>(i)], 3) : "-",
-                      free ? num(std::abs(err) / o.crb[static_cast<size_t>(i)], 3) : "-"});
-    }
-    d.table({"parameter", "nominal", "actual", "estimated", "1σ", "error", "CRB σ", "|error| / CRB σ"}, rows);
-    d.heading(3, "Diagnostics");
-    d.table({"cost J", "iterations", "evaluations", "rank", "condition number", "kmrmse (mm)", "seconds", "converged"},
-            {{num(r.final_cost, 4), std::to_string(r.iterations), std::to_string(r.evaluations),
-              std::to_string(r.rank), num(r.condition_number, 4), r.kmrmse_mm ? num(*r.kmrmse_mm, 4) : "-",
-              num(r.seconds, 3), r.converged ? "yes" : "no"}});
-    std::vector<std::string> notes;
-    for (const std::string& n : r.notes)  // the model test's diagnosis is already in its paragraph above
-      if (!(o.model_test && n == o.model_test->diagnosis)) notes.push_back(with_unit_symbols(n));
-    if (!notes.empty()) d.bullets(notes);
+    add_parameters(d, o, *o.calibration);
+    add_diagnostics(d, o, *o.calibration);
   }
+}
 
-  if (!o.checks.empty()) {
-    d.heading(2, "Expectations");
-    std::vector<std::vector<std::string>> rows;
-    for (const RunCheck& c : o.checks) rows.push_back({c.name, c.passed ? "pass" : "FAIL", with_unit_symbols(c.detail)});
-    d.table({"check", "result", "measured"}, rows);
-  }
+// One row per expectation: its name, pass or FAIL and what was measured.
+void add_expectations(ReportDocument& d, const std::vector<RunCheck>& checks) {
+  d.heading(2, "Expectations");
+  std::vector<std::vector<std::string>> rows;
+  for (const RunCheck& c : checks) rows.push_back({c.name, c.passed ? "pass" : "FAIL", with_unit_symbols(c.detail)});
+  d.table({"check", "result", "measured"}, rows);
+}
 
+// The figures: layout, residuals, convergence, parameter errors and tracking.
+void add_figures(ReportDocument& d, const RunReport& o) {
   d.heading(2, "Figures");
   d.figure("layout", "Calibration samples and accuracy test poses over the reachable workspace", layout_figure(o));
   if (o.calibration) {
@@ -375,6 +379,19 @@ ReportDocument build_run_report(const RunReport& o) {
              error_figure(o, true));
   }
   if (o.before) d.figure("tracking", "Tracking error along the test path, nominal and calibrated model", tracking_figure(o));
+}
+
+}  // namespace
+
+ReportDocument build_run_report(const RunReport& o) {
+  ReportDocument d;
+  add_verdict(d, o);
+  if (o.positioning_um) add_positioning(d, *o.positioning_um);
+  if (o.before) add_accuracy(d, o);
+  if (o.model_test) add_model_test(d, *o.model_test);
+  add_calibration(d, o);
+  if (!o.checks.empty()) add_expectations(d, o.checks);
+  add_figures(d, o);
   return d;
 }
 

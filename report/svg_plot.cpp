@@ -77,28 +77,53 @@ std::vector<double> nice_ticks(double lo, double hi, int target) {
   return ticks;
 }
 
-std::string svg_plot(const std::vector<Series>& series, const PlotOptions& o) {
-  const double left = 70, right = 20, top = o.title.empty() ? 20 : 40, bottom = 55;
-  // The legend: one row of 18 px per labelled series below the plot, and
-  // 8 px under the last row for descenders.
-  constexpr double kLegendRow = 18;
-  double legend_h = 0;
-  for (const Series& s : series) legend_h += s.label.empty() ? 0 : kLegendRow;
-  if (legend_h > 0) legend_h += 8;
-  const double pw = o.width - left - right, ph = o.height - top - bottom;
+namespace {
 
-  auto ty = [&](double y) { return o.log_y ? std::log10(y) : y; };
+// The legend's row height (px) per labelled series below the plot.
+constexpr double kLegendRow = 18;
+
+// The plot area on the page and the data range it shows (y as log10 on a log axis).
+struct Frame {
+  double left = 70, right = 20, top = 20, bottom = 55;
+  double pw = 0, ph = 0;  // plot area (px)
+  double x0 = 0, x1 = 1, y0 = 0, y1 = 1;
+  bool log_y = false;
+  double ty(double y) const { return log_y ? std::log10(y) : y; }
+  double px(double x) const { return left + (x - x0) / (x1 - x0) * pw; }
+  double py(double y) const { return top + (1.0 - (y - y0) / (y1 - y0)) * ph; }
+};
+
+// The legend's height: one row per labelled series and 8 px under the last row for descenders.
+double legend_height(const std::vector<Series>& series) {
+  double h = 0;
+  for (const Series& s : series) h += s.label.empty() ? 0 : kLegendRow;
+  return h > 0 ? h + 8 : 0;
+}
+
+// Whether point i of s is drawn (finite, and positive on a log axis).
+bool drawn(const Series& s, size_t i, bool log_y) {
+  return !(log_y && s.y[i] <= 0.0) && std::isfinite(s.y[i]) && std::isfinite(s.x[i]);
+}
+
+// The lower end of point i's error bar in axis units.
+double bar_low(const Frame& f, const Series& s, size_t i, double e) {
+  return f.log_y ? f.ty(std::max(s.y[i] - e, s.y[i] * 1e-3)) : s.y[i] - e;
+}
+
+// Half-length of point i's error bar (0 without one).
+double bar_half(const Series& s, size_t i) { return i < s.y_err.size() ? std::abs(s.y_err[i]) : 0.0; }
+
+// The data range of every drawn point with its error bar, padded; a fallback range when empty.
+void fit_range(Frame& f, const std::vector<Series>& series, const PlotOptions& o) {
   double x0 = std::numeric_limits<double>::infinity(), x1 = -x0, y0 = x0, y1 = -x0;
   for (const Series& s : series) {
     for (size_t i = 0; i < s.x.size() && i < s.y.size(); ++i) {
-      const double e = i < s.y_err.size() ? std::abs(s.y_err[i]) : 0.0;
-      if (o.log_y && s.y[i] <= 0.0) continue;
-      if (!std::isfinite(s.x[i]) || !std::isfinite(s.y[i])) continue;
+      if (!drawn(s, i, o.log_y)) continue;
+      const double e = bar_half(s, i);
       x0 = std::min(x0, s.x[i]);
       x1 = std::max(x1, s.x[i]);
-      const double lo = o.log_y ? ty(std::max(s.y[i] - e, s.y[i] * 1e-3)) : s.y[i] - e;
-      y0 = std::min(y0, lo);
-      y1 = std::max(y1, ty(s.y[i] + e));
+      y0 = std::min(y0, bar_low(f, s, i, e));
+      y1 = std::max(y1, f.ty(s.y[i] + e));
     }
   }
   if (!std::isfinite(x0)) x0 = 0, x1 = 1, y0 = 0, y1 = 1;
@@ -107,20 +132,86 @@ std::string svg_plot(const std::vector<Series>& series, const PlotOptions& o) {
   if (y1 - y0 <= 0) y0 -= std::max(0.5, std::abs(y0) * 0.1), y1 += std::max(0.5, std::abs(y1) * 0.1);
   const double padx = o.x_categories.empty() ? 0.03 * (x1 - x0) : 0.0;
   const double pady = 0.05 * (y1 - y0);
-  x0 -= padx, x1 += padx, y0 -= pady, y1 += pady;
-  if (o.equal_aspect) {
-    const double sx = pw / (x1 - x0), sy = ph / (y1 - y0);
-    if (sx > sy) {
-      const double c = 0.5 * (x0 + x1), half = 0.5 * pw / sy;
-      x0 = c - half, x1 = c + half;
-    } else {
-      const double c = 0.5 * (y0 + y1), half = 0.5 * ph / sx;
-      y0 = c - half, y1 = c + half;
-    }
-  }
-  auto px = [&](double x) { return left + (x - x0) / (x1 - x0) * pw; };
-  auto py = [&](double y) { return top + (1.0 - (y - y0) / (y1 - y0)) * ph; };
+  f.x0 = x0 - padx, f.x1 = x1 + padx, f.y0 = y0 - pady, f.y1 = y1 + pady;
+}
 
+// Widens the range on one axis so that x and y share one scale.
+void equalise_aspect(Frame& f) {
+  const double sx = f.pw / (f.x1 - f.x0), sy = f.ph / (f.y1 - f.y0);
+  if (sx > sy) {
+    const double c = 0.5 * (f.x0 + f.x1), half = 0.5 * f.pw / sy;
+    f.x0 = c - half, f.x1 = c + half;
+  } else {
+    const double c = 0.5 * (f.y0 + f.y1), half = 0.5 * f.ph / sx;
+    f.y0 = c - half, f.y1 = c + half;
+  }
+}
+
+// The frame of a chart of the series with options o.
+Frame frame_of(const std::vector<Series>& series, const PlotOptions& o) {
+  Frame f;
+  f.top = o.title.empty() ? 20 : 40;
+  f.pw = o.width - f.left - f.right, f.ph = o.height - f.top - f.bottom;
+  f.log_y = o.log_y;
+  fit_range(f, series, o);
+  if (o.equal_aspect) equalise_aspect(f);
+  return f;
+}
+
+// Ticks on a log axis as (log10 position, label). An axis spanning less than
+// two decades gets round values in between (labelled 5.4e-05, ...).
+std::vector<std::pair<double, std::string>> log_ticks(const Frame& f) {
+  std::vector<std::pair<double, std::string>> yt;
+  for (double t : nice_ticks(std::ceil(f.y0), std::floor(f.y1), 6))
+    if (std::abs(t - std::round(t)) < 1e-9) yt.emplace_back(t, tick_label(t, true));
+  if (yt.size() >= 2) return yt;
+  yt.clear();
+  const auto ticks = nice_ticks(std::pow(10.0, f.y0), std::pow(10.0, f.y1), 5);
+  // Enough significant digits to tell neighbouring ticks apart.
+  const double step = ticks.size() > 1 ? ticks[1] - ticks[0] : 1.0;
+  const int digits = std::clamp(
+      static_cast<int>(std::ceil(std::log10(std::pow(10.0, f.y1) / std::max(step, 1e-300)) + 1e-9)) + 1, 2, 15);
+  for (double t : ticks)
+    if (t > 0.0) yt.emplace_back(std::log10(t), fmt::format("{:.{}g}", t, digits));
+  return yt;
+}
+
+// The horizontal grid lines and labels of the y axis.
+std::string y_grid_svg(const Frame& f) {
+  std::vector<std::pair<double, std::string>> yt;
+  if (f.log_y) yt = log_ticks(f);
+  else
+    for (double t : nice_ticks(f.y0, f.y1, 6)) yt.emplace_back(t, tick_label(t, false));
+  std::string svg;
+  for (const auto& [t, label] : yt) {
+    svg += fmt::format("<line x1=\"{:.1f}\" y1=\"{:.1f}\" x2=\"{:.1f}\" y2=\"{:.1f}\" stroke=\"#ddd\"/>"
+                       "<text x=\"{:.1f}\" y=\"{:.1f}\" text-anchor=\"end\">{}</text>\n",
+                       f.left, f.py(t), f.left + f.pw, f.py(t), f.left - 5, f.py(t) + 4, label);
+  }
+  return svg;
+}
+
+// The vertical grid lines and labels of the x axis (or its category names).
+std::string x_grid_svg(const Frame& f, const PlotOptions& o) {
+  std::string svg;
+  if (!o.x_categories.empty()) {
+    for (size_t i = 0; i < o.x_categories.size(); ++i) {
+      svg += fmt::format("<text x=\"{:.1f}\" y=\"{:.1f}\" text-anchor=\"middle\">{}</text>\n",
+                         f.px(static_cast<double>(i)), f.top + f.ph + 15, xml_escape(o.x_categories[i]));
+    }
+    return svg;
+  }
+  for (double t : nice_ticks(f.x0, f.x1, 7)) {
+    if (o.integer_x && std::abs(t - std::round(t)) > 1e-9) continue;
+    svg += fmt::format("<line x1=\"{:.1f}\" y1=\"{:.1f}\" x2=\"{:.1f}\" y2=\"{:.1f}\" stroke=\"#ddd\"/>"
+                       "<text x=\"{:.1f}\" y=\"{:.1f}\" text-anchor=\"middle\">{}</text>\n",
+                       f.px(t), f.top, f.px(t), f.top + f.ph, f.px(t), f.top + f.ph + 15, tick_label(t, false));
+  }
+  return svg;
+}
+
+// The page, the title, the grid, the zero line, the plot's box and the axis labels.
+std::string axes_svg(const Frame& f, const PlotOptions& o, double legend_h) {
   std::string svg = fmt::format(
       "<svg xmlns=\"http://www.w3.org/2000/svg\" width=\"{}\" height=\"{}\" viewBox=\"0 0 {} {}\" "
       "font-family=\"sans-serif\" font-size=\"11\">\n<rect width=\"100%\" height=\"100%\" fill=\"white\"/>\n",
@@ -129,109 +220,115 @@ std::string svg_plot(const std::vector<Series>& series, const PlotOptions& o) {
     svg += fmt::format("<text x=\"{}\" y=\"22\" text-anchor=\"middle\" font-size=\"14\">{}</text>\n",
                        o.width / 2, xml_escape(o.title));
   }
-  // Grid and ticks.
-  // Ticks as (position on the axis, label). A log axis spanning less than two
-  // decades gets round values in between (labelled 5.4e-05, ...).
-  std::vector<std::pair<double, std::string>> yt;
-  if (o.log_y) {
-    for (double t : nice_ticks(std::ceil(y0), std::floor(y1), 6))
-      if (std::abs(t - std::round(t)) < 1e-9) yt.emplace_back(t, tick_label(t, true));
-    if (yt.size() < 2) {
-      yt.clear();
-      const auto ticks = nice_ticks(std::pow(10.0, y0), std::pow(10.0, y1), 5);
-      // Enough significant digits to tell neighbouring ticks apart.
-      const double step = ticks.size() > 1 ? ticks[1] - ticks[0] : 1.0;
-      const int digits = std::clamp(
-          static_cast<int>(std::ceil(std::log10(std::pow(10.0, y1) / std::max(step, 1e-300)) + 1e-9)) + 1, 2, 15);
-      for (double t : ticks)
-        if (t > 0.0) yt.emplace_back(std::log10(t), fmt::format("{:.{}g}", t, digits));
-    }
-  } else {
-    for (double t : nice_ticks(y0, y1, 6)) yt.emplace_back(t, tick_label(t, false));
-  }
-  for (const auto& [t, label] : yt) {
-    svg += fmt::format("<line x1=\"{:.1f}\" y1=\"{:.1f}\" x2=\"{:.1f}\" y2=\"{:.1f}\" stroke=\"#ddd\"/>"
-                       "<text x=\"{:.1f}\" y=\"{:.1f}\" text-anchor=\"end\">{}</text>\n",
-                       left, py(t), left + pw, py(t), left - 5, py(t) + 4, label);
-  }
-  if (o.x_categories.empty()) {
-    for (double t : nice_ticks(x0, x1, 7)) {
-      if (o.integer_x && std::abs(t - std::round(t)) > 1e-9) continue;
-      svg += fmt::format("<line x1=\"{:.1f}\" y1=\"{:.1f}\" x2=\"{:.1f}\" y2=\"{:.1f}\" stroke=\"#ddd\"/>"
-                         "<text x=\"{:.1f}\" y=\"{:.1f}\" text-anchor=\"middle\">{}</text>\n",
-                         px(t), top, px(t), top + ph, px(t), top + ph + 15, tick_label(t, false));
-    }
-  } else {
-    for (size_t i = 0; i < o.x_categories.size(); ++i) {
-      svg += fmt::format("<text x=\"{:.1f}\" y=\"{:.1f}\" text-anchor=\"middle\">{}</text>\n",
-                         px(static_cast<double>(i)), top + ph + 15, xml_escape(o.x_categories[i]));
-    }
-  }
-  if (!o.log_y && y0 < 0 && y1 > 0) {
+  svg += y_grid_svg(f) + x_grid_svg(f, o);
+  if (!f.log_y && f.y0 < 0 && f.y1 > 0) {
     svg += fmt::format("<line x1=\"{:.1f}\" y1=\"{:.1f}\" x2=\"{:.1f}\" y2=\"{:.1f}\" stroke=\"#888\"/>\n",
-                       left, py(0), left + pw, py(0));
+                       f.left, f.py(0), f.left + f.pw, f.py(0));
   }
   svg += fmt::format("<rect x=\"{}\" y=\"{}\" width=\"{}\" height=\"{}\" fill=\"none\" stroke=\"#333\"/>\n",
-                     left, top, pw, ph);
-  svg += fmt::format("<text x=\"{:.1f}\" y=\"{:.1f}\" text-anchor=\"middle\">{}</text>\n", left + pw / 2,
-                     top + ph + 35, xml_escape(o.x_label));
+                     f.left, f.top, f.pw, f.ph);
+  svg += fmt::format("<text x=\"{:.1f}\" y=\"{:.1f}\" text-anchor=\"middle\">{}</text>\n", f.left + f.pw / 2,
+                     f.top + f.ph + 35, xml_escape(o.x_label));
   svg += fmt::format("<text transform=\"translate(14,{:.1f}) rotate(-90)\" text-anchor=\"middle\">{}</text>\n",
-                     top + ph / 2, xml_escape(o.y_label + (o.log_y ? " (log10)" : "")));
-  // Series: bands first (behind), then lines, error bars and markers.
-  std::vector<size_t> order;
-  for (size_t k = 0; k < series.size(); ++k)
-    if (series[k].style == Series::Style::kBand) order.push_back(k);
-  for (size_t k = 0; k < series.size(); ++k)
-    if (series[k].style != Series::Style::kBand) order.push_back(k);
-  auto color_of = [&](size_t k) { return series[k].color.empty() ? std::string(kPalette[k % 8]) : series[k].color; };
-  for (size_t k : order) {
-    const Series& s = series[k];
-    const std::string color = color_of(k);
-    std::string path;
-    for (size_t i = 0; i < s.x.size() && i < s.y.size(); ++i) {
-      if ((o.log_y && s.y[i] <= 0.0) || !std::isfinite(s.y[i]) || !std::isfinite(s.x[i])) continue;
-      const double X = px(s.x[i]), Y = py(ty(s.y[i]));
-      const double e = i < s.y_err.size() ? std::abs(s.y_err[i]) : 0.0;
-      const double lo = o.log_y ? ty(std::max(s.y[i] - e, s.y[i] * 1e-3)) : s.y[i] - e;
-      if (s.style == Series::Style::kBand) {
-        const double half = 0.5 * s.band_width * pw / (x1 - x0);
-        svg += fmt::format("<rect x=\"{:.2f}\" y=\"{:.2f}\" width=\"{:.2f}\" height=\"{:.2f}\" fill=\"{}\" "
-                           "fill-opacity=\"{}\"/>\n",
-                           X - half, py(ty(s.y[i] + e)), 2 * half, std::max(1.0, py(lo) - py(ty(s.y[i] + e))), color,
-                           s.opacity);
-        continue;
-      }
-      if (s.style != Series::Style::kMarkers) path += fmt::format("{}{:.2f},{:.2f}", path.empty() ? "M" : " L", X, Y);
-      if (i < s.y_err.size()) {
-        svg += fmt::format("<line x1=\"{0:.2f}\" y1=\"{1:.2f}\" x2=\"{0:.2f}\" y2=\"{2:.2f}\" stroke=\"{3}\"/>"
-                           "<line x1=\"{4:.2f}\" y1=\"{1:.2f}\" x2=\"{5:.2f}\" y2=\"{1:.2f}\" stroke=\"{3}\"/>"
-                           "<line x1=\"{4:.2f}\" y1=\"{2:.2f}\" x2=\"{5:.2f}\" y2=\"{2:.2f}\" stroke=\"{3}\"/>\n",
-                           X, py(lo), py(ty(s.y[i] + e)), color, X - 4, X + 4);
-      }
-      if (s.style != Series::Style::kLine) svg += marker_svg(s, color, X, Y);
-      if (i < s.point_labels.size() && !s.point_labels[i].empty()) {
-        // Beside the point, on the side facing the plot's centre so it stays inside.
-        const bool right_half = X > left + pw / 2, top_half = Y < top + ph / 2;
-        svg += fmt::format("<text x=\"{:.2f}\" y=\"{:.2f}\" text-anchor=\"{}\" font-weight=\"bold\">{}</text>\n",
-                           X + (right_half ? -8.0 : 8.0), Y + (top_half ? 14.0 : -6.0), right_half ? "end" : "start",
-                           xml_escape(s.point_labels[i]));
-      }
-    }
-    if (!path.empty()) {
-      svg += fmt::format("<path d=\"{}\" fill=\"none\" stroke=\"{}\" stroke-width=\"1.5\"/>\n", path, color);
-    }
+                     f.top + f.ph / 2, xml_escape(o.y_label + (o.log_y ? " (log10)" : "")));
+  return svg;
+}
+
+// Point i of a band series: a shaded box y - e .. y + e, band_width wide.
+std::string band_svg(const Frame& f, const Series& s, size_t i, const std::string& color) {
+  const double e = bar_half(s, i), X = f.px(s.x[i]);
+  const double half = 0.5 * s.band_width * f.pw / (f.x1 - f.x0);
+  return fmt::format("<rect x=\"{:.2f}\" y=\"{:.2f}\" width=\"{:.2f}\" height=\"{:.2f}\" fill=\"{}\" "
+                     "fill-opacity=\"{}\"/>\n",
+                     X - half, f.py(f.ty(s.y[i] + e)), 2 * half,
+                     std::max(1.0, f.py(bar_low(f, s, i, e)) - f.py(f.ty(s.y[i] + e))), color, s.opacity);
+}
+
+// Point i's error bar, marker and label (its line segment is drawn by series_svg).
+std::string point_svg(const Frame& f, const Series& s, size_t i, const std::string& color) {
+  std::string svg;
+  const double X = f.px(s.x[i]), Y = f.py(f.ty(s.y[i]));
+  if (i < s.y_err.size()) {
+    const double e = bar_half(s, i);
+    svg += fmt::format("<line x1=\"{0:.2f}\" y1=\"{1:.2f}\" x2=\"{0:.2f}\" y2=\"{2:.2f}\" stroke=\"{3}\"/>"
+                       "<line x1=\"{4:.2f}\" y1=\"{1:.2f}\" x2=\"{5:.2f}\" y2=\"{1:.2f}\" stroke=\"{3}\"/>"
+                       "<line x1=\"{4:.2f}\" y1=\"{2:.2f}\" x2=\"{5:.2f}\" y2=\"{2:.2f}\" stroke=\"{3}\"/>\n",
+                       X, f.py(bar_low(f, s, i, e)), f.py(f.ty(s.y[i] + e)), color, X - 4, X + 4);
   }
-  // Legend, in the order the series were given.
+  if (s.style != Series::Style::kLine) svg += marker_svg(s, color, X, Y);
+  if (i < s.point_labels.size() && !s.point_labels[i].empty()) {
+    // Beside the point, on the side facing the plot's centre so it stays inside.
+    const bool right_half = X > f.left + f.pw / 2, top_half = Y < f.top + f.ph / 2;
+    svg += fmt::format("<text x=\"{:.2f}\" y=\"{:.2f}\" text-anchor=\"{}\" font-weight=\"bold\">{}</text>\n",
+                       X + (right_half ? -8.0 : 8.0), Y + (top_half ? 14.0 : -6.0), right_half ? "end" : "start",
+                       xml_escape(s.point_labels[i]));
+  }
+  return svg;
+}
+
+// One series: its bands, or its error bars, markers and labels and then its line.
+std::string series_svg(const Frame& f, const Series& s, const std::string& color) {
+  std::string svg, path;
+  for (size_t i = 0; i < s.x.size() && i < s.y.size(); ++i) {
+    if (!drawn(s, i, f.log_y)) continue;
+    if (s.style == Series::Style::kBand) {
+      svg += band_svg(f, s, i, color);
+      continue;
+    }
+    if (s.style != Series::Style::kMarkers)
+      path += fmt::format("{}{:.2f},{:.2f}", path.empty() ? "M" : " L", f.px(s.x[i]), f.py(f.ty(s.y[i])));
+    svg += point_svg(f, s, i, color);
+  }
+  if (!path.empty()) svg += fmt::format("<path d=\"{}\" fill=\"none\" stroke=\"{}\" stroke-width=\"1.5\"/>\n", path, color);
+  return svg;
+}
+
+// Series k's colour: its own, or the palette's.
+std::string color_of(const std::vector<Series>& series, size_t k) {
+  return series[k].color.empty() ? std::string(kPalette[k % 8]) : series[k].color;
+}
+
+// The legend below the plot, in the order the series were given.
+std::string legend_svg(const Frame& f, const std::vector<Series>& series, const PlotOptions& o) {
+  std::string svg;
   double ly = o.height + 4;
   for (size_t k = 0; k < series.size(); ++k) {
     const Series& s = series[k];
     if (s.label.empty()) continue;
-    svg += legend_swatch(s, color_of(k), left, ly + 9);
-    svg += fmt::format("<text x=\"{}\" y=\"{:.1f}\">{}</text>\n", left + 32, ly + 13, xml_escape(s.label));
+    svg += legend_swatch(s, color_of(series, k), f.left, ly + 9);
+    svg += fmt::format("<text x=\"{}\" y=\"{:.1f}\">{}</text>\n", f.left + 32, ly + 13, xml_escape(s.label));
     ly += kLegendRow;
   }
+  return svg;
+}
+
+}  // namespace
+
+std::string svg_plot(const std::vector<Series>& series, const PlotOptions& o) {
+  const Frame f = frame_of(series, o);
+  std::string svg = axes_svg(f, o, legend_height(series));
+  // Series: bands first (behind), then lines, error bars and markers.
+  for (size_t k = 0; k < series.size(); ++k)
+    if (series[k].style == Series::Style::kBand) svg += series_svg(f, series[k], color_of(series, k));
+  for (size_t k = 0; k < series.size(); ++k)
+    if (series[k].style != Series::Style::kBand) svg += series_svg(f, series[k], color_of(series, k));
+  svg += legend_svg(f, series, o);
   svg += "</svg>\n";
   return svg;
+}
+
+PlotOptions titled_plot(const std::string& title, const std::string& x_label, const std::string& y_label) {
+  PlotOptions po;
+  po.title = title;
+  po.x_label = x_label;
+  po.y_label = y_label;
+  return po;
+}
+
+PlotOptions workspace_plot(const std::string& title) {
+  PlotOptions po = titled_plot(title, "x (mm)", "y (mm)");
+  po.equal_aspect = true;
+  return po;
 }
 
 }  // namespace gpm::report

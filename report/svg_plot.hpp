@@ -48,6 +48,12 @@ struct PlotOptions {
 // SVG text of a chart of the series.
 std::string svg_plot(const std::vector<Series>& series, const PlotOptions& options);
 
+// Plot options with a title and axis labels, the rest at their defaults.
+PlotOptions titled_plot(const std::string& title, const std::string& x_label, const std::string& y_label);
+
+// Plot options of a workspace layout: x and y in mm at one scale.
+PlotOptions workspace_plot(const std::string& title);
+
 // One SVG of several charts (svg_plot output) stacked top to bottom, as
 // panels sharing a caption; as wide as the widest.
 std::string svg_stack(const std::vector<std::string>& charts);

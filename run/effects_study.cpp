@@ -11,7 +11,7 @@
 #include "models/data_dir.hpp"
 #include "models/errors.hpp"
 #include "models/output_file.hpp"
-#include "report/svg_plot.hpp"
+#include "report/effects_report.hpp"
 #include "models/rng.hpp"
 #include "run/parallel_runs.hpp"
 #include "run/runner.hpp"
@@ -50,7 +50,6 @@ void add_encoder_motor(sim::Effects& e, const sim::Effects& realistic) {
 }
 
 constexpr auto number = json_finite;
-constexpr auto cell = table_cell;
 
 // Applies the options' reductions to one procedure's spec, and the case's effects.
 RunSpec case_spec(const StudyProcedure& p, EffectCase c, const EffectsStudyOptions& o) {
@@ -117,31 +116,23 @@ EffectsRow failed_row(const std::string& why) {
   return r;
 }
 
-// Figure: one value per case (x: the cases), one marker series per procedure.
-std::string per_case_plot(const EffectsStudy& s, double EffectsRow::*field, const std::string& title,
-                          const std::string& y_label) {
-  std::vector<report::Series> series;
-  const size_t nc = s.cases.size();
-  for (size_t p = 0; p < s.procedures.size(); ++p) {
-    report::Series ser;
-    ser.label = s.procedures[p].name;
-    ser.style = report::Series::Style::kMarkers;
-    for (size_t c = 0; c < nc; ++c) {
-      const double v = s.rows[p * nc + c].*field;
-      if (!std::isfinite(v)) continue;
-      ser.x.push_back(static_cast<double>(c));
-      ser.y.push_back(v);
-    }
-    series.push_back(ser);
+// The report's data of the study (report/effects_report.hpp).
+report::EffectsReport effects_report_data(const EffectsStudy& s) {
+  const sim::Effects fx = sim::realistic_effects();
+  report::EffectsReport e;
+  e.realistic = {fx.mjcf.compliance_rad_per_Nm[0], fx.mjcf.clearance_m[0] * 1e6, fx.mjcf.coulomb_Nm[0],
+                 fx.mjcf.viscous_Nm_s[0], fx.thermal.expansion_per_K, fx.thermal.rise_K,
+                 fx.thermal.time_constant_s, fx.encoder_cyclic_rad[0], fx.encoder_skew_s[1], fx.encoder_skew_s[2]};
+  for (const StudyProcedure& p : s.procedures) {
+    report::EffectsProcedure proc{p.name, p.description, {}};
+    for (int k = 0; k < kNumParams; ++k)
+      if (!p.spec.calibration.fixed.test(static_cast<size_t>(k))) proc.free.push_back(k);
+    e.procedures.push_back(proc);
   }
-  report::PlotOptions po;
-  po.title = title;
-  po.x_label = "effect (alone at its realistic value; all: every one)";
-  po.y_label = y_label;
-  po.log_y = true;
-  po.width = 720;
-  for (EffectCase c : s.cases) po.x_categories.push_back(effect_case_name(c));
-  return report::svg_plot(series, po);
+  for (EffectCase c : s.cases) e.cases.push_back(effect_case_name(c));
+  e.rows = s.rows;
+  e.seconds = s.seconds;
+  return e;
 }
 
 }  // namespace
@@ -244,29 +235,11 @@ EffectsStudy run_effects_study(const std::vector<StudyProcedure>& procedures, co
   return study;
 }
 
-std::vector<std::string> effects_table_header() {
-  return {"procedure", "effect", "worst parameter", "its error (um)", "worst error / CRB sigma",
-          "calibrated static RMS (um)", "floor (um)", "calibrated / floor", "model test"};
-}
-
 std::vector<std::vector<std::string>> effects_table_rows(const EffectsStudy& s) {
-  std::vector<std::vector<std::string>> rows;
-  for (const EffectsRow& r : s.rows) {
-    const std::string test = r.model_test_passed ? (*r.model_test_passed ? "passes" : "fails") : "-";
-    rows.push_back({r.procedure, r.effect, r.worst_param.empty() ? "-" : r.worst_param,
-                    cell(r.worst_error_um, "{:.1f}"),
-                    r.worst_crb_param.empty() ? "-" : fmt::format("{} ({})", cell(r.worst_crb_ratio, "{:.3g}"), r.worst_crb_param),
-                    cell(r.calibrated_um, "{:.1f}"), cell(r.floor_um, "{:.1f}"), cell(r.floor_ratio, "{:.2f}"),
-                    r.failure ? fmt::format("{} ({})", test, *r.failure) : test});
-  }
-  return rows;
+  return report::effects_table_rows(s.rows);
 }
 
-std::string effects_markdown_table(const EffectsStudy& s) {
-  report::ReportDocument table;  // the report's own Markdown table
-  table.table(effects_table_header(), effects_table_rows(s));
-  return table.markdown();
-}
+std::string effects_markdown_table(const EffectsStudy& s) { return report::effects_markdown_table(s.rows); }
 
 std::string effects_json(const EffectsStudy& s) {
   nlohmann::json j;
@@ -307,55 +280,7 @@ std::string effects_json(const EffectsStudy& s) {
   return j.dump(2) + "\n";
 }
 
-report::ReportDocument effects_report(const EffectsStudy& s) {
-  report::ReportDocument doc;
-  doc.heading(1, "What each physical effect does to calibration");
-  const sim::Effects fx = sim::realistic_effects();
-  doc.paragraph(fmt::format(
-      "Each effect of the realistic twin alone at its realistic value (transmission compliance {:g} rad/N m, "
-      "passive clearance {:g} um, friction {:g} N m + {:g} N m s/rad, thermal {:g}/K x {:g} K with time constant "
-      "{:g} s, encoder cyclic error {:g} rad, encoder latch skew {:g} / {:g} s), all of them together, and none "
-      "(ideal); then the geared machine's effects the preset leaves out, drawn once from their plausible ranges "
-      "behind a 10:1 reducer (drive_train, encoder_motor), and with the preset (every); all on the same actual "
-      "robot (the scenario's seed) for each procedure. Errors are estimated minus "
-      "actual; offsets are counted in um at the 244 mm link. The floor is the static RMS error of the controller "
-      "given the actual parameters on the same twin; calibrated / floor is what the calibration leaves on the "
-      "table. CRB sigma: the Cramer-Rao bound the run reports (on the fly: jointly with the nuisance values it "
-      "estimates, and carrying the encoders' cyclic error with its data-sheet prior; stop-and-go: for the encoder "
-      "quantisation and noise alone).",
-      fx.mjcf.compliance_rad_per_Nm[0], fx.mjcf.clearance_m[0] * 1e6, fx.mjcf.coulomb_Nm[0], fx.mjcf.viscous_Nm_s[0],
-      fx.thermal.expansion_per_K, fx.thermal.rise_K, fx.thermal.time_constant_s, fx.encoder_cyclic_rad[0],
-      fx.encoder_skew_s[1], fx.encoder_skew_s[2]));
-  std::vector<std::string> procs;
-  for (const StudyProcedure& p : s.procedures) procs.push_back(fmt::format("{}: {}", p.name, p.description));
-  doc.bullets(procs);
-  doc.table(effects_table_header(), effects_table_rows(s));
-  doc.figure("effects_floor_ratio", "Static RMS error after calibration over the floor, per effect and procedure",
-             per_case_plot(s, &EffectsRow::floor_ratio, "calibrated / floor (static RMS)", "calibrated / floor"));
-  doc.figure("effects_crb_ratio", "Largest parameter error in Cramer-Rao sigmas, per effect and procedure",
-             per_case_plot(s, &EffectsRow::worst_crb_ratio, "worst parameter error / CRB sigma", "error / CRB sigma"));
-  doc.figure("effects_worst_error", "Largest parameter error (offsets x 244 mm), per effect and procedure",
-             per_case_plot(s, &EffectsRow::worst_error_um, "worst parameter error", "um"));
-  const size_t nc = s.cases.size();
-  for (size_t p = 0; p < s.procedures.size(); ++p) {
-    doc.heading(2, fmt::format("Parameter errors: {}", s.procedures[p].name));
-    std::vector<int> free;
-    for (int k = 0; k < kNumParams; ++k)
-      if (!s.procedures[p].spec.calibration.fixed.test(static_cast<size_t>(k))) free.push_back(k);
-    std::vector<std::string> header{"effect"};
-    for (int k : free) header.push_back(fmt::format("{} ({})", param_name(k), is_offset(k) ? "urad" : "um"));
-    std::vector<std::vector<std::string>> rows;
-    for (size_t c = 0; c < nc; ++c) {
-      const EffectsRow& r = s.rows[p * nc + c];
-      std::vector<std::string> row{r.effect};
-      for (int k : free) row.push_back(cell(r.error[static_cast<size_t>(k)] * 1e3 * (is_offset(k) ? 1e3 : 1.0), "{:.1f}"));
-      rows.push_back(row);
-    }
-    doc.table(header, rows);
-  }
-  doc.paragraph(fmt::format("{} runs in {:.0f} s.", s.rows.size(), s.seconds));
-  return doc;
-}
+report::ReportDocument effects_report(const EffectsStudy& s) { return report::effects_report(effects_report_data(s)); }
 
 void write_effects_study(const EffectsStudy& s, const std::string& dir) {
   OutputFolder out(dir);

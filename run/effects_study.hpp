@@ -15,6 +15,7 @@
 #include <vector>
 
 #include "models/parameters.hpp"
+#include "report/effects_report.hpp"
 #include "report/report_document.hpp"
 #include "run/run_spec.hpp"
 #include "sim/effects.hpp"
@@ -73,23 +74,7 @@ struct EffectsStudyOptions {
 };
 
 // The outcome of one (procedure, effect) case.
-struct EffectsRow {
-  std::string procedure, effect;
-  std::optional<std::string> failure;             // refused, diverged or not converged: why
-  std::array<double, kNumParams> error{};         // estimated - actual (mm, rad; NaN where fixed)
-  std::array<double, kNumParams> crb{};           // Cramer-Rao 1-sigma at the truth (NaN where fixed)
-  std::string worst_param;                        // largest |error| (offsets counted at the 244 mm link)
-  double worst_error_um = 0.0;                    // its size, um (offsets x 244 mm)
-  std::string worst_crb_param;                    // largest |error| / CRB sigma
-  double worst_crb_ratio = 0.0;
-  double nominal_um = 0.0, calibrated_um = 0.0, floor_um = 0.0;  // static RMS (NaN if not measured)
-  double floor_ratio = 0.0;                       // calibrated / floor
-  std::optional<bool> model_test_passed;
-  std::array<double, 5> motion_nu{};              // skew s2, s3 (s), compliance c1..c3 (rad/N m) when estimated
-  std::array<double, 5> motion_nu_sigma{};        // their 1-sigma (NaN where not estimated)
-  bool motion_estimated = false;
-  double seconds = 0.0;
-};
+using EffectsRow = report::EffectsRow;  // report/effects_report.hpp
 
 struct EffectsStudy {
   std::vector<StudyProcedure> procedures;
@@ -108,7 +93,7 @@ EffectsStudy run_effects_study(const std::vector<StudyProcedure>& procedures, co
                                const EffectsProgress& progress = {});
 
 // The summary table (one row per case): header and cells as printed.
-std::vector<std::string> effects_table_header();
+using report::effects_table_header;
 std::vector<std::vector<std::string>> effects_table_rows(const EffectsStudy& study);
 
 // The summary table in Markdown (docs/EFFECTS.md's table is this text).

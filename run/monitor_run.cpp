@@ -22,7 +22,7 @@
 #include "hw/procedures/motion.hpp"
 #include "report/report_document.hpp"
 #include "run/runner.hpp"
-#include "report/svg_plot.hpp"
+#include "run/monitor_report_data.hpp"
 #include "sim/sampling.hpp"
 #include "sim/trajectory.hpp"
 #include "sim/twin.hpp"
@@ -80,11 +80,6 @@ std::string csv_field(const std::string& s) {
   std::string out = "\"";
   for (char c : s) out += c == '"' ? std::string("\"\"") : std::string(1, c);
   return out + "\"";
-}
-
-// Each pin's radial clearance of r's passive links (half the link's play).
-std::array<double, 3> pin_clearance_mm(const calib::ReadingModel& r) {
-  return {0.5 * r.clearance_mm[0], 0.5 * r.clearance_mm[1], 0.5 * r.clearance_mm[2]};
 }
 
 }  // namespace
@@ -474,7 +469,7 @@ nlohmann::json monitor_summary(const MonitorOutcome& o) {
   // What the monitor assumed of the readings (the statement, or the calibration's estimates).
   const calib::ReadingModel& r = o.reading.reading;
   j["reading_model"] = {{"encoder_cyclic_rad", r.cyclic_rad},
-                        {"clearance_mm", pin_clearance_mm(r)},
+                        {"clearance_mm", calib::pin_clearance_mm(r)},
                         {"coulomb_Nm", r.load.coulomb_Nm},
                         {"viscous_Nm_s", r.load.viscous_Nm_s},
                         {"skew_s", r.skew_s},
@@ -526,79 +521,7 @@ std::string learning_text(const MonitorOutcome& o) {
 }
 
 void add_monitor_section(report::ReportDocument& doc, const MonitorOutcome& o, int level, const std::string& figure) {
-  const FreeMask est = o.model.settings.estimate;
-  doc.paragraph(fmt::format("{:.1f} s of normal operation ({} servo cycles at {:.0f} Hz{}), {} alarms{}, "
-                            "stated false-alarm rate {} per hour (chi-square threshold {:.1f} over {} samples).",
-                            o.simulated_s, o.cycles, o.model.settings.cycle_hz,
-                            o.hardware.empty() ? "" : " through " + o.hardware, o.alarms.size(),
-                            o.truth_known ? fmt::format(" ({} false)", o.false_alarms) : "",
-                            o.model.settings.false_alarms_per_hour, o.model.threshold, o.model.settings.window));
-  doc.paragraph(fmt::format("Learning: {}.", learning_text(o)));
-  {
-    const calib::ReadingModel& r = o.reading.reading;
-    const auto three = [](const std::array<double, 3>& v, double scale) {
-      return fmt::format("{:.3g}, {:.3g}, {:.3g}", v[0] * scale, v[1] * scale, v[2] * scale);
-    };
-    doc.paragraph(fmt::format(
-        "Reading model assumed (joints 1, 2, 3): latch skew {} us; compliance {} rad/N m; drive friction {} N m "
-        "and {} N m s/rad; cyclic encoder error {} urad; pin clearance {} um; backlash {} urad; drift time "
-        "constant {:.0f} s.",
-        three(r.skew_s, 1e6), three(r.compliance_rad_per_Nm, 1.0), three(r.load.coulomb_Nm, 1.0),
-        three(r.load.viscous_Nm_s, 1.0), three(r.cyclic_rad, 1e6), three(pin_clearance_mm(r), 1e3),
-        three(r.backlash_rad, 1e6), o.reading.thermal_time_constant_s));
-  }
-  if (!o.detections.empty()) {
-    std::vector<std::vector<std::string>> rows;
-    for (const MonitorDetection& d : o.detections)
-      rows.push_back({std::to_string(d.event), fmt::format("{:.3f}", d.at_s),
-                      d.detected_s ? fmt::format("{:.3f}", *d.detected_s) : "missed",
-                      d.detected_s ? fmt::format("{:.3f}", *d.detected_s - d.at_s) : "", d.explanation});
-    doc.table({"event", "at (s)", "detected (s)", "delay (s)", "explanation"}, rows);
-  }
-  if (!o.alarms.empty()) {
-    std::vector<std::vector<std::string>> rows;
-    for (std::size_t k = 0; k < o.alarms.size() && k < 20; ++k) {
-      const MonitorAlarm& a = o.alarms[k];
-      rows.push_back({fmt::format("{:.3f}", a.t_s), a.kind, fmt::format("{:.1f}", a.statistic),
-                      fmt::format("{:.1f}", a.threshold), a.explanation});
-    }
-    doc.heading(level, o.alarms.size() > 20 ? fmt::format("Alarms (first 20 of {})", o.alarms.size()) : "Alarms");
-    doc.table({"t (s)", "test", "statistic", "threshold", "explanation"}, rows);
-  }
-  std::vector<std::vector<std::string>> errs;
-  for (int k = 0; k < kNumParams; ++k) {
-    if (!est[static_cast<std::size_t>(k)]) continue;
-    const double scale = is_offset(k) ? o.controller.geometry.la_(k - kDth1) * 1e3 : 1e3;  // um at the link tip
-    if (!o.truth_known) {
-      errs.push_back({std::string(param_name(k)), "unknown", fmt::format("{:.9g}", o.final_estimate.value[static_cast<std::size_t>(k)]),
-                      "", fmt::format("{:.2f}", o.final_estimate.sigma[static_cast<std::size_t>(k)] * scale)});
-      continue;
-    }
-    errs.push_back({std::string(param_name(k)), fmt::format("{:.9g}", o.final_truth.values[static_cast<std::size_t>(k)]),
-                    fmt::format("{:.9g}", o.final_estimate.value[static_cast<std::size_t>(k)]),
-                    fmt::format("{:.2f}", (o.final_estimate.value[static_cast<std::size_t>(k)] - o.final_truth.values[static_cast<std::size_t>(k)]) * scale),
-                    fmt::format("{:.2f}", o.final_estimate.sigma[static_cast<std::size_t>(k)] * scale)});
-  }
-  doc.heading(level, "Tracked parameters at the end");
-  doc.table({"parameter", "actual", "estimate", "error (um at the link)", "1-sigma (um)"}, errs);
-  // Parameter tracks: estimate minus the value at the start, in um at the link.
-  std::vector<report::Series> series;
-  for (int k = 0; k < kNumParams; ++k) {
-    if (!est[static_cast<std::size_t>(k)] || o.estimates.empty()) continue;
-    const double scale = is_offset(k) ? o.controller.geometry.la_(k - kDth1) * 1e3 : 1e3;
-    report::Series sr;
-    sr.label = std::string(param_name(k));
-    for (const MonitorEstimateRow& r : o.estimates) {
-      sr.x.push_back(r.t_s);
-      sr.y.push_back((r.value[static_cast<std::size_t>(k)] - o.estimates.front().value[static_cast<std::size_t>(k)]) * scale);
-    }
-    series.push_back(sr);
-  }
-  report::PlotOptions po;
-  po.title = "Tracked change of each parameter";
-  po.x_label = "t (s)";
-  po.y_label = "change since start (um at the link)";
-  if (!series.empty()) doc.figure(figure, "Parameter tracks of the drift estimator", report::svg_plot(series, po));
+  report::add_monitor_section(doc, monitor_report_data(o), level, figure);
 }
 
 const std::vector<std::string>& monitor_output_names() {
@@ -612,10 +535,8 @@ void write_monitor(const MonitorOutcome& o, const std::string& dir) {
   folder.add("alarms.csv", monitor_alarms_csv(o));
   folder.add("estimates.csv", monitor_estimates_csv(o));
   folder.add("summary.json", monitor_summary(o).dump(2) + "\n");
-  report::ReportDocument doc;
-  doc.heading(1, fmt::format("gpm monitor: {}", o.scenario.name));
-  add_monitor_section(doc, o, 2, "tracks");
-  doc.stage(folder, "report", fmt::format("gpm monitor: {}", o.scenario.name));
+  report::monitor_report(o.scenario.name, monitor_report_data(o))
+      .stage(folder, "report", fmt::format("gpm monitor: {}", o.scenario.name));
   folder.commit();
 }
 

@@ -12,7 +12,7 @@
 #include "models/errors.hpp"
 #include "models/output_file.hpp"
 #include "models/yaml_util.hpp"
-#include "report/svg_plot.hpp"
+#include "report/population_report.hpp"
 #include "run/parallel_runs.hpp"
 #include "run/runner.hpp"
 #include "run/table_cells.hpp"
@@ -21,7 +21,6 @@ namespace gpm::scenario {
 namespace {
 
 constexpr auto number = json_finite;
-constexpr auto cell = table_cell;
 
 double median(std::vector<double> v) {
   if (v.empty()) return NAN;
@@ -217,138 +216,17 @@ PopulationSummary PopulationStudy::summary() const {
 }
 
 namespace {
-bool any_monitored(const PopulationStudy& study) {
+
+// The report's data of the study (report/population_report.hpp).
+report::PopulationReport population_report_data(const PopulationStudy& study) {
+  report::PopulationReport p{study.name, study.randomized, study.seconds, study.summary(), {}};
   for (const PopulationRobot& r : study.robots)
-    if (r.monitored) return true;
-  return false;
-}
-
-// The monitor's cells of a robot (false alarms, per hour, learning, scale, detection).
-std::vector<std::string> monitor_cells(const PopulationRobot& r) {
-  if (!r.monitored) return {"-", "-", "-", "-", "-"};
-  std::string detection = "-";
-  if (r.event)
-    detection = r.detection_delay_s ? fmt::format("{:.3f} ({})", *r.detection_delay_s, r.detection) : "missed";
-  return {fmt::format("{} in {:.1f} s", r.false_alarms, r.monitored_s), cell(r.false_alarms_per_hour, "{:.0f}"),
-          cell(r.learning_s, "{:.1f}"), cell(r.learned_scale, "{:.2f}"), detection};
-}
-}  // namespace
-
-std::vector<std::string> population_table_header(const PopulationStudy& study) {
-  std::vector<std::string> h{"seed", "positioning RMS (um)", "max (um)", "its stated 1-sigma (um)",
-                             "worst parameter / its 1-sigma", "within 3 sigma", "static RMS (um)",
-                             "calibrated / floor", "model test (chi2/dof)"};
-  if (any_monitored(study))
-    h.insert(h.end(), {"false alarms (after learning, before the event)", "false alarms per hour", "learning (s)",
-                       "learnt scale", "event detected after (s)"});
-  h.push_back("s");
-  return h;
-}
-
-std::vector<std::vector<std::string>> population_table_rows(const PopulationStudy& study) {
-  std::vector<std::vector<std::string>> rows;
-  const bool monitored = any_monitored(study);
-  for (const PopulationRobot& r : study.robots) {
-    if (r.failure) {
-      std::vector<std::string> row{std::to_string(r.seed), "failed: " + *r.failure, "-", "-", "-", "-", "-", "-", "-"};
-      if (monitored) row.insert(row.end(), {"-", "-", "-", "-", "-"});
-      row.push_back(cell(r.seconds, "{:.0f}"));
-      rows.push_back(row);
-      continue;
-    }
-    const std::string test = r.model_test_passed ? (*r.model_test_passed ? "passes" : "fails") : "-";
-    rows.push_back({std::to_string(r.seed), cell(r.positioning.rms_um, "{:.2f}"), cell(r.positioning.max_um, "{:.2f}"),
-                    cell(r.positioning.stated_sigma_rms_um, "{:.2f}"),
-                    r.worst_param.empty() ? "-" : fmt::format("{} ({})", cell(r.worst_sigma_ratio, "{:.2f}"), r.worst_param),
-                    fmt::format("{}/{}", r.within_3_sigma, r.estimated), cell(r.calibrated_static_um, "{:.2f}"),
-                    cell(r.floor_ratio, "{:.2f}"), fmt::format("{} ({})", test, cell(r.chi2_per_dof, "{:.2f}"))});
-    if (monitored) {
-      const std::vector<std::string> m = monitor_cells(r);
-      rows.back().insert(rows.back().end(), m.begin(), m.end());
-    }
-    rows.back().push_back(cell(r.seconds, "{:.0f}"));
-  }
-  return rows;
-}
-
-namespace {
-
-std::string monitor_summary_text(const PopulationSummary& s) {
-  return fmt::format(
-      "Monitoring the operation after calibration ({} robots): {} false alarms in {:.2f} h of monitored time after "
-      "the learning phase and before the event ({} per hour; {} robots with any); the event detected on {} of {} "
-      "robots, delay median {} s, worst {} s.",
-      s.monitored, s.false_alarms, s.monitored_hours, cell(s.false_alarms_per_hour, "{:.1f}"),
-      s.robots_with_false_alarms, s.detected, s.events, cell(s.detection_delay_median_s, "{:.3f}"),
-      cell(s.detection_delay_max_s, "{:.3f}"));
-}
-
-std::string summary_text(const PopulationStudy& study) {
-  const PopulationSummary s = study.summary();
-  return fmt::format(
-      "{} robots of `{}` ({}), {} failed. Positioning error of the calibrated model over a disc round home "
-      "(noise-free, three drives holding the readings it commands): median of the robots' RMS {} um, worst robot {} um. Parameters within 3 "
-      "of their stated 1-sigma: {} %; the worst parameter {} sigma. Positioning error over its stated 1-sigma "
-      "(median over robots, 1 when the 1-sigma is honest): {}. Model test passes on {} % of the robots.",
-      s.robots, study.name,
-      study.randomized ? "every effect drawn per chain from its plausible range" : "the scenario's own effects",
-      s.failed, cell(s.positioning_median_um, "{:.2f}"), cell(s.positioning_max_um, "{:.2f}"),
-      cell(100.0 * s.within_3_sigma_fraction, "{:.0f}"), cell(s.worst_sigma_ratio, "{:.1f}"),
-      cell(s.normalised_positioning_median, "{:.2f}"), cell(100.0 * s.model_test_pass_fraction, "{:.0f}")) +
-         (s.monitored > 0 ? " " + monitor_summary_text(s) : std::string());
-}
-
-// Figure: each robot's positioning RMS and its stated 1-sigma, robots sorted by the RMS.
-std::string positioning_plot(const PopulationStudy& study) {
-  std::vector<const PopulationRobot*> ok;
-  for (const PopulationRobot& r : study.robots)
-    if (!r.failure) ok.push_back(&r);
-  std::sort(ok.begin(), ok.end(),
-            [](const auto* a, const auto* b) { return a->positioning.rms_um < b->positioning.rms_um; });
-  report::Series rms, sigma;
-  rms.label = "positioning error RMS";
-  sigma.label = "its stated 1-sigma (RMS per axis)";
-  rms.style = report::Series::Style::kLineMarkers;
-  sigma.style = report::Series::Style::kMarkers;
-  sigma.marker = report::Series::Marker::kTriangle;
-  for (size_t k = 0; k < ok.size(); ++k) {
-    const double f = (k + 0.5) / static_cast<double>(ok.size());
-    rms.x.push_back(f), rms.y.push_back(ok[k]->positioning.rms_um);
-    sigma.x.push_back(f), sigma.y.push_back(ok[k]->positioning.stated_sigma_rms_um);
-  }
-  report::PlotOptions po;
-  po.title = "Positioning error of the calibrated model, over the population";
-  po.x_label = "fraction of robots (sorted by their error)";
-  po.y_label = "um";
-  po.log_y = true;
-  return report::svg_plot({rms, sigma}, po);
-}
-
-// Figure: every estimated parameter's |error| / stated 1-sigma, per parameter.
-std::string sigma_plot(const PopulationStudy& study) {
-  report::Series pts, bound;
-  pts.label = "one robot";
-  bound.label = "3 sigma";
-  pts.style = report::Series::Style::kMarkers;
-  report::PlotOptions po;
-  po.title = "Parameter errors in units of their stated 1-sigma";
-  po.x_label = "parameter";
-  po.y_label = "|estimated - actual| / stated 1-sigma";
-  po.width = 720;
-  int column = 0;
-  for (int k = 0; k < kNumParams; ++k) {
-    bool any = false;
-    for (const PopulationRobot& r : study.robots)
-      if (!r.failure && std::isfinite(r.sigma[static_cast<size_t>(k)])) {
-        pts.x.push_back(column);
-        pts.y.push_back(std::abs(r.error[static_cast<size_t>(k)]) / r.sigma[static_cast<size_t>(k)]);
-        any = true;
-      }
-    if (any) po.x_categories.push_back(std::string(param_name(k))), ++column;
-  }
-  bound.x = {-0.5, column - 0.5};
-  bound.y = {3.0, 3.0};
-  return report::svg_plot({pts, bound}, po);
+    p.robots.push_back({r.seed, r.failure, r.positioning.rms_um, r.positioning.max_um,
+                        r.positioning.stated_sigma_rms_um, r.calibrated_static_um, r.floor_ratio, r.model_test_passed,
+                        r.chi2_per_dof, r.error, r.sigma, r.worst_param, r.worst_sigma_ratio, r.estimated,
+                        r.within_3_sigma, r.monitored, r.learning_s, r.learned_scale, r.monitored_s, r.false_alarms,
+                        r.false_alarms_per_hour, r.event, r.detection_delay_s, r.detection, r.seconds});
+  return p;
 }
 
 nlohmann::json three(const std::array<double, 3>& a, double scale = 1.0) {
@@ -435,11 +313,16 @@ nlohmann::json robot_json(const PopulationRobot& r) {
 
 }  // namespace
 
+std::vector<std::string> population_table_header(const PopulationStudy& study) {
+  return report::population_table_header(population_report_data(study));
+}
+
+std::vector<std::vector<std::string>> population_table_rows(const PopulationStudy& study) {
+  return report::population_table_rows(population_report_data(study));
+}
+
 std::string population_markdown(const PopulationStudy& study) {
-  report::ReportDocument doc;
-  doc.paragraph(summary_text(study));
-  doc.table(population_table_header(study), population_table_rows(study));
-  return doc.markdown();
+  return report::population_markdown(population_report_data(study));
 }
 
 std::string population_json(const PopulationStudy& study) {
@@ -473,23 +356,7 @@ std::string population_json(const PopulationStudy& study) {
 }
 
 report::ReportDocument population_report(const PopulationStudy& study) {
-  report::ReportDocument doc;
-  doc.heading(1, fmt::format("Population study: {}", study.name));
-  doc.paragraph(summary_text(study));
-  doc.paragraph(
-      "Each robot is the scenario with its own seed: its actual geometry and (randomized) every effect per chain "
-      "drawn from its plausible range; robot_SEED.yaml in this folder is that robot alone (gpm run re-runs it). "
-      "Positioning error: at points 10 mm apart within 80 mm of home, the readings the calibrated model commands, "
-      "and where the actual robot stands when its three drives hold them (equally stiff: its joint angles nearest "
-      "to the commanded ones), noise-free. Its stated 1-sigma propagates the calibration's covariance to the same "
-      "points (per axis; the RMS of the 2-d error is about 1.4 times it when the 1-sigma is honest).");
-  doc.table(population_table_header(study), population_table_rows(study));
-  doc.figure("population_positioning", "Positioning error of the calibrated model per robot, with its stated 1-sigma",
-             positioning_plot(study));
-  doc.figure("population_sigma", "Every estimated parameter's error in units of its stated 1-sigma",
-             sigma_plot(study));
-  doc.paragraph(fmt::format("{} robots in {:.0f} s.", study.robots.size(), study.seconds));
-  return doc;
+  return report::population_report(population_report_data(study));
 }
 
 void write_population_study(const PopulationStudy& study, const std::string& dir) {

@@ -17,7 +17,7 @@
 
 #include "calib/positioning_error.hpp"
 #include "models/parameters.hpp"
-#include "report/report_document.hpp"
+#include "report/population_report.hpp"
 #include "sim/effects.hpp"
 
 namespace gpm::scenario {
@@ -58,25 +58,8 @@ struct PopulationRobot {
   double seconds = 0.0;
 };
 
-// Figures over the robots that did not fail.
-struct PopulationSummary {
-  int robots = 0, failed = 0;
-  double positioning_median_um = 0.0, positioning_max_um = 0.0;  // of each robot's RMS
-  double within_3_sigma_fraction = 0.0;  // of all estimated parameters
-  double worst_sigma_ratio = 0.0;
-  double model_test_pass_fraction = 0.0;
-  double normalised_positioning_median = 0.0;  // RMS positioning error / its stated 1-sigma (1: honest)
-  // Monitoring (robots with `operation:`): pooled false alarms per hour of
-  // monitored time after learning and before the event, robots with any, and
-  // the detection delays of the event.
-  int monitored = 0;
-  int false_alarms = 0;
-  double monitored_hours = 0.0;
-  double false_alarms_per_hour = 0.0;
-  int robots_with_false_alarms = 0;
-  int events = 0, detected = 0;
-  double detection_delay_median_s = 0.0, detection_delay_max_s = 0.0;
-};
+// Figures over the robots that did not fail (report/population_report.hpp).
+using PopulationSummary = report::PopulationSummary;
 
 struct PopulationStudy {
   std::string scenario;  // the scenario file

@@ -388,8 +388,7 @@ std::string monitor_reading_model_yaml(const MonitorReadingModel& m) {
     return fmt::format("[{}, {}, {}]", format_exact(v[0]), format_exact(v[1]), format_exact(v[2]));
   };
   const calib::ReadingModel& r = m.reading;
-  std::array<double, 3> pin{};  // the YAML states each pin's radial clearance
-  for (std::size_t i = 0; i < 3; ++i) pin[i] = 0.5 * r.clearance_mm[i];
+  const std::array<double, 3> pin = calib::pin_clearance_mm(r);  // the YAML states each pin's radial clearance
   std::string harmonics;
   for (const auto& h : r.harmonic) {
     harmonics += harmonics.empty() ? "[" : ", ";

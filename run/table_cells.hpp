@@ -5,17 +5,16 @@
 #include <cmath>
 #include <string>
 
-#include <fmt/format.h>
 #include <nlohmann/json.hpp>
+
+#include "report/table_cell.hpp"
 
 namespace gpm::scenario {
 
 // v, or null when v is not finite.
 inline nlohmann::json json_finite(double v) { return std::isfinite(v) ? nlohmann::json(v) : nlohmann::json(nullptr); }
 
-// v formatted by f (an fmt format, e.g. "{:.2f}"), or "-" when v is not finite.
-inline std::string table_cell(double v, const char* f) {
-  return std::isfinite(v) ? fmt::format(fmt::runtime(f), v) : "-";
-}
+// v formatted by f (an fmt format, e.g. "{:.2f}"), or "-" when v is not finite (report/table_cell.hpp).
+using report::table_cell;
 
 }  // namespace gpm::scenario

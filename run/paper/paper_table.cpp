@@ -7,24 +7,13 @@
 
 namespace gpm::paper {
 
-const char* reason_name(Reason r) {
-  switch (r) {
-    case Reason::kAgrees: return "agrees";
-    case Reason::kPaperMistake: return "paper mistake";
-    case Reason::kMethod: return "property of the method";
-    case Reason::kSetup: return "different setup";
-    case Reason::kOpen: return "open question";
-  }
-  return "?";
+const char* reason_name(Reason r) { return report::paper_reason_name(r); }
+
+Table make_table(const std::string& id, const std::string& title, const std::string& setup) {
+  return Table{id, title, setup, {}, {}, {}, {}};
 }
 
-std::string format_value(double v) {
-  if (!std::isfinite(v)) return std::isnan(v) ? "nan" : (v > 0 ? "inf" : "-inf");
-  if (v == 0.0) return "0";
-  const double a = std::fabs(v);
-  if (a >= 1e-3 && a < 1e6) return fmt::format("{:.6g}", v);
-  return fmt::format("{:.5e}", v);
-}
+std::string format_value(double v) { return report::paper_value_text(v); }
 
 double printed_half_unit(const std::string& text) {
   // Mantissa decimals and exponent: "1.00078" -> 5 decimals, "3.1841e2" -> 4 decimals, e2.

@@ -8,41 +8,20 @@
 #include <string>
 #include <vector>
 
+#include "report/paper_report.hpp"
+
 namespace gpm::paper {
 
-// Why a value differs from the printed one.
-enum class Reason {
-  kAgrees,        // equal to the printed digits (no sentence needed)
-  kPaperMistake,  // the printed value is wrong (docs/PAPER_NOTES.md, an errata item)
-  kMethod,        // a property of the method or of the solver
-  kSetup,         // a different setup: the paper's data, robot or budget are not reproduced exactly
-  kOpen,          // not explained: an open question
-};
+// Why a value differs from the printed one, a row and a table (report/paper_report.hpp).
+using Reason = report::PaperReason;
+using Row = report::PaperRow;
+using Table = report::PaperTable;
 
 // "agrees", "paper mistake", "property of the method", "different setup", "open question".
 const char* reason_name(Reason r);
 
-struct Row {
-  std::string quantity;            // e.g. "dth1, J1, 3 samples"
-  std::string unit;                // "rad", "mm", "" ...
-  std::optional<double> paper;     // printed value (nullopt: not printed)
-  std::string paper_text;          // as printed ("-" when not printed)
-  std::optional<double> ours;      // this run's value (nullopt: text only)
-  std::string ours_text;           // as written in paper.md
-  std::string extra_text;          // the table's extra column (e.g. the actual value), may be empty
-  Reason reason = Reason::kAgrees;
-  std::string why;                 // one sentence; empty only when reason is kAgrees
-};
-
-struct Table {
-  std::string id;                  // "table1" ... "table8", "figure3" ... "figure5"
-  std::string title;               // e.g. "Table 2. Calibration results of sensor zero positions"
-  std::string setup;               // what this run did, as the paper did it (one paragraph)
-  std::string extra_column;        // header of Row::extra_text ("" = no extra column)
-  std::vector<Row> rows;
-  std::string figure_svg;          // figures: the SVG of this run (empty for tables)
-  std::vector<std::string> notes;  // findings that are not one row (sentences)
-};
+// A table with its id, title and setup paragraph, no rows yet.
+Table make_table(const std::string& id, const std::string& title, const std::string& setup);
 
 // Value printed the way paper.md and paper.json show it: 6 significant digits.
 std::string format_value(double v);

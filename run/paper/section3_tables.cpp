@@ -131,16 +131,13 @@ Table table2() {
   const Robot actual = robot_with(actual_g);
   // Links and bases known exactly (section 3.3 A): the model is the actual geometry.
   const Geometry start = reference_start(actual, actual, kRoughHome);
-  Table t;
-  t.id = "table2";
-  t.title = "Table 2. Calibration results of sensor zero positions";
-  t.setup = fmt::format(
+  Table t = make_table("table2", "Table 2. Calibration results of sensor zero positions", fmt::format(
       "Section 3.3 A on generated data: the section-3 actual values (offsets 1.0 rad), links and bases known, "
       "the three offsets free. Initial offsets from the encoder readings taken at the rough home guess "
       "(210, 245) as if the robot stood at home (216.5, 250) (section 3.2 step 3). Exact readings at 3 and 9 "
       "poses seeded in a disc of radius {} mm about home; Ceres LM on J1 (eq. 36-37) and J2 (eq. 38-39, "
       "row 1 corrected per the errata).",
-      kDiscRadiusMm);
+      kDiscRadiusMm));
   t.extra_column = "actual";
   for (int i = 0; i < 3; ++i) {
     Row r = compare_row(fmt::format("initial estimate dth{}", i + 1), "rad", fixed5(pt.initial[i]),
@@ -183,15 +180,13 @@ Table table3() {
   const Robot actual = robot_with(actual_g);
   const Robot model;
   const Geometry start = reference_start(model, actual, kRoughHome);
-  Table t;
-  t.id = "table3";
-  t.title = "Table 3. Calibration results of sensor zero positions and link lengths";
-  t.setup =
+  Table t = make_table(
+      "table3", "Table 3. Calibration results of sensor zero positions and link lengths",
       "Section 3.3 B on generated data: bases known (nominal: the table lists none), offsets and the six "
       "links free; links start at the "
       "nominal 244 mm, offsets from the readings at (210, 245) with that nominal model. 21 exact samples "
       "in the same disc; Ceres LM on J1, J2 and J3 (eq. 42-43, l_ac and l_as by eq. 41, recovered by eq. 44 "
-      "as corrected in the errata).";
+      "as corrected in the errata).");
   t.extra_column = "actual (this run)";
   for (int i : kLinkOrder) {
     const int dec = is_offset(i) ? 5 : -1;
@@ -240,14 +235,11 @@ Table table4() {
   eleven.reset(kXa2);
   const LocalRun r12 = run_lm(actual, start, twelve, calib::Cost::kJ3, 31, /*allow_rank_deficient=*/true);
   const LocalRun r11 = run_lm(actual, start11, eleven, calib::Cost::kJ3, 31);
-  Table t;
-  t.id = "table4";
-  t.title = "Table 4. Calibration results of 12 parameters";
-  t.setup = fmt::format(
+  Table t = make_table("table4", "Table 4. Calibration results of 12 parameters", fmt::format(
       "Section 3.3 C on generated data: 31 exact samples in the same disc, J3, nominal start with offsets from "
       "the readings at (210, 245). 12 free parameters (x_a^1, y_a^1, y_a^2 fixed): rank {} of 12, solved with a "
       "minimum-norm LM step; 11 free (x_a^2 fixed at its true value too): rank {} of 11.",
-      r12.result.rank, r11.result.rank);
+      r12.result.rank, r11.result.rank));
   t.extra_column = "actual (this run)";
   const std::array<int, 12> order{kDth1, kDth2, kDth3, kLa1, kLa2, kLa3, kLb1, kLb2, kLb3, kXa3, kYa3, kXa2};
   const std::string family =

@@ -16,7 +16,6 @@
 #include "calib/paper_values.hpp"
 #include "models/data_dir.hpp"
 #include "models/errors.hpp"
-#include "report/svg_plot.hpp"
 #include "run/paper/closure_costs.hpp"
 #include "sim/simulate.hpp"
 
@@ -100,24 +99,180 @@ std::pair<Reason, std::string> final_j_reason(Method m, Cost c, double ours, dou
 
 // The log10 J convergence figure of one cost (paper Figs. 3-5).
 std::string convergence_svg(const calib::global::Comparison& cmp, Cost cost, int figure) {
-  std::vector<report::Series> series;
-  for (const auto& run : cmp.runs) {
-    if (run.cost != cost) continue;
-    report::Series s;
-    s.label = method_label(run.method);
-    for (const auto& [e, j] : run.result.history) {
-      if (e <= 0 || !(j > 0)) continue;
-      s.x.push_back(static_cast<double>(e));
-      s.y.push_back(j);
-    }
-    series.push_back(std::move(s));
+  std::vector<report::PaperCurve> curves;
+  for (const auto& run : cmp.runs)
+    if (run.cost == cost) curves.push_back({method_label(run.method), run.result.history});
+  return report::paper_convergence_svg(figure, cost_label(cost), curves);
+}
+
+// The comparison of section 4 and what every table of it compares against.
+struct Section4Run {
+  const Section4Settings& settings;
+  const calib::global::Comparison& cmp;
+  Geometry nominal = Geometry::gpm2002_nominal();
+  Geometry actual = calib::table5_actual();
+  double ratio = 0.0;  // J2 (= J3) over J1 at the nominal values for the samples
+
+  // The run of method m on cost c (one seed).
+  const calib::global::ComparisonRun& run(Method m, Cost c) const {
+    for (const auto& r : cmp.runs)
+      if (r.method == m && r.cost == c) return r;
+    throw std::logic_error("paper: comparison run missing");
   }
-  report::PlotOptions o;
-  o.title = fmt::format("Figure {}: best {} against evaluations", figure, cost_label(cost));
-  o.x_label = "error-function evaluations";
-  o.y_label = cost_label(cost);
-  o.log_y = true;
-  return report::svg_plot(series, o);
+};
+
+constexpr Method kMethods[3] = {Method::kGA, Method::kPSO, Method::kDE};
+constexpr Cost kCosts[3] = {Cost::kJ1, Cost::kJ2, Cost::kJ3};
+
+// Table 5: the nominal and actual values and the search box used.
+Table table5(const Section4Run& s) {
+  Table t = make_table("table5", "Table 5. Value settings for the simulation experiments",
+                       "The nominal values, the actual values of the simulated mechanism and the search box used by "
+                       "every run of section 4 here (calib/paper_values.cpp table5_actual, calib/global default_box).");
+  const calib::Box box = calib::global::default_box(s.nominal, calib::paper_free_mask());
+  const double printed_lo[12] = {-5, 428, 495, 239, 239, 239, 239, 239, 239, -0.2, -0.2, -0.2};
+  const double printed_hi[12] = {5, 438, 505, 249, 249, 249, 249, 249, 249, 0.2, 0.2, 0.2};
+  for (int k = 0; k < 12; ++k) {
+    const int i = kOrder[static_cast<size_t>(k)];
+    const std::string n(param_name(i));
+    t.rows.push_back(compare_row(n + " nominal", unit_of(i), shortest(s.nominal[i]), s.nominal[i], Reason::kOpen,
+                                 "The nominal value used differs from the printed one."));
+    t.rows.push_back(compare_row(n + " actual", unit_of(i), shortest(s.actual[i]), s.actual[i], Reason::kOpen,
+                                 "The actual value used differs from the printed one."));
+    t.rows.push_back(compare_row(n + " X_min", unit_of(i), shortest(printed_lo[k]), box.lower[i], Reason::kOpen,
+                                 "The search box used differs from the printed one."));
+    t.rows.push_back(compare_row(n + " X_max", unit_of(i), shortest(printed_hi[k]), box.upper[i], Reason::kOpen,
+                                 "The search box used differs from the printed one."));
+  }
+  t.notes.push_back("Section 4 fixes x_a^2 where section 3 fixes y_a^2 (docs/PAPER_NOTES.md); the actual x_a^2 "
+                    "equals its nominal 433 here, so fixing it at the nominal value fixes it at the truth.");
+  return t;
+}
+
+// Table 6: the best J of every method on every cost after the budget.
+Table table6(const Section4Run& s) {
+  Table t = make_table(
+      "table6", "Table 6. All the results of the simulation experiments (best J after the budget)",
+      fmt::format(
+          "GA, PSO and DE (paper section 4.1-4.3 settings: GA N=100, p=1e-4, Pc=0.85, Pm=0.15, tournament 4, "
+          "NR=50; PSO N=100, C1=C2=2, w 0.9 to 0.1, NR=50; DE N=150, F=0.5, CR=0.8; eq. 47 with 'and' per the "
+          "errata) on J1, J2, J3 with 12 free parameters (x_a^1, y_a^1, x_a^2 fixed), {} exact readings of the "
+          "Table 5 mechanism at random reachable workspace points (seed {}), {:.3g} evaluations per run (the "
+          "paper: 5e7), seed {}. Identifiability at the actual values: {}",
+          kSection4Samples, kDataSeed, static_cast<double>(s.settings.budget), s.settings.seed,
+          s.cmp.at_actual.diagnosis));
+  for (Cost c : kCosts) {
+    for (Method m : kMethods) {
+      const double paper = calib::global::paper_table6(m, c);
+      const double ours = s.run(m, c).result.final_cost;
+      const auto [reason, why] = final_j_reason(m, c, ours, paper, s.settings.budget, s.ratio);
+      t.rows.push_back(compare_row(fmt::format("{}, {}", method_label(m), cost_label(c)), j_unit(c),
+                                   fmt::format("{:.4e}", paper), ours, reason, why));
+    }
+  }
+  t.notes.push_back(fmt::format("J2 (= J3) over J1 at the nominal values for these samples: {:.4g}.", s.ratio));
+  return t;
+}
+
+// The row of one method's final J on a figure against the value the text states.
+Row final_row(const Section4Run& s, Method m, Cost c, double paper) {
+  const double ours = s.run(m, c).result.final_cost;
+  if (std::isnan(paper)) {
+    return text_row(fmt::format("final {}, {}", cost_label(c), method_label(m)), "", "(not stated)",
+                    format_value(ours), Reason::kSetup, "The text states no final value for this curve (Table 6 has it).");
+  }
+  auto [reason, why] = final_j_reason(m, c, ours, paper, s.settings.budget, s.ratio);
+  if (c == Cost::kJ1 && m == Method::kGA) {
+    why += " The text's 1.3477e3 also differs from Table 6's 1.3447e3 for the same run (a misprint in one "
+           "of them).";
+  }
+  return compare_row(fmt::format("final {}, {}", cost_label(c), method_label(m)), j_unit(c),
+                     fmt::format("{:.4e}", paper), ours, reason, why);
+}
+
+// The methods from the worst final J to the best, against the paper's GA, PSO, DE.
+Row ranking_row(const Section4Run& s, Cost c) {
+  std::vector<std::pair<double, std::string>> order;
+  for (Method m : kMethods) order.emplace_back(s.run(m, c).result.final_cost, method_label(m));
+  std::sort(order.begin(), order.end(), [](const auto& a, const auto& b) { return a.first > b.first; });
+  const std::string ours_rank = fmt::format("{}, {}, {}", order[0].second, order[1].second, order[2].second);
+  const std::string paper_rank = "GA, PSO, DE";
+  return text_row("worst to best", "", paper_rank, ours_rank,
+                  ours_rank == paper_rank ? Reason::kAgrees : Reason::kSetup,
+                  ours_rank == paper_rank
+                      ? ""
+                      : "With this budget and these samples the ranking differs; GA and PSO are far "
+                        "from converged in both, so their order is not a stable property.");
+}
+
+// Figure 3, 4 or 5 (cost index ci): the convergence of every method on one cost.
+Table convergence_figure(const Section4Run& s, int ci) {
+  const Cost c = kCosts[ci];
+  Table t = make_table(fmt::format("figure{}", 3 + ci),
+                       fmt::format("Figure {}. The performances of the algorithms under function {}", 3 + ci,
+                                   cost_label(c)),
+                       fmt::format("Best {} so far against error-function evaluations for the runs of Table 6 (the "
+                                   "paper plots log10 J). The printed values are the final ones the text of section "
+                                   "4.4 states for this figure.",
+                                   cost_label(c)));
+  t.figure_svg = convergence_svg(s.cmp, c, 3 + ci);
+  const auto finals = calib::printed_figure_finals();
+  for (int mi = 0; mi < 3; ++mi)
+    t.rows.push_back(final_row(s, kMethods[mi], c, finals[static_cast<size_t>(ci)][static_cast<size_t>(mi)]));
+  t.rows.push_back(ranking_row(s, c));
+  return t;
+}
+
+// The note on DE with x_a^1, y_a^1, x_a^2, y_a^2 fixed (the identifiable gauge) on the same samples.
+std::string identifiable_note(const Section4Run& s) {
+  const FreeMask eleven = default_free_mask();
+  const calib::Problem p11 = calib::table5_problem(s.cmp.samples, eleven);
+  const calib::Result r11 = calib::global::solve_global(
+      p11, Cost::kJ3, Method::kDE, calib::global::default_box(s.nominal, eleven), s.settings.budget, s.settings.seed);
+  double err_mm = 0, err_rad = 0;
+  for (int i = 0; i < kNumParams; ++i) {
+    if (!eleven[static_cast<size_t>(i)]) continue;
+    const double e = std::fabs(r11.geometry[i] - s.actual[i]);
+    (is_offset(i) ? err_rad : err_mm) = std::max(is_offset(i) ? err_rad : err_mm, e);
+  }
+  return fmt::format(
+      "DE with x_a^1, y_a^1, x_a^2, y_a^2 fixed (rank {} of 11), same samples and budget: J3 = {}, largest "
+      "error {} mm and {} rad. Fixing the fourth coordinate, not a better optimiser, is what makes the "
+      "answer the actual mechanism.",
+      r11.rank, format_value(r11.final_cost), format_value(err_mm), format_value(err_rad));
+}
+
+// Table 7: DE's J3 solution against the actual values.
+Table table7(const Section4Run& s) {
+  const auto& de = s.run(Method::kDE, Cost::kJ3);
+  const calib::PrintedTable7 pt = calib::printed_table7();
+  Table t = make_table("table7", "Table 7. Calibration results of DE under J3",
+                       "The DE run on J3 of Table 6 (12 free parameters) against the actual values (extra column), "
+                       "and DE with x_a^2 and y_a^2 both fixed (11 free, identifiable) for comparison.");
+  t.extra_column = "actual";
+  Geometry printed_g = s.actual;
+  for (int i : kOrder) {
+    printed_g[i] = pt.de[i];
+    Row r = compare_row(std::string(param_name(i)), unit_of(i), fmt::format("{:.4f}", pt.de[i]),
+                        de.result.geometry[i], Reason::kMethod, kFamily);
+    r.extra_text = shortest(s.actual[i]);
+    t.rows.push_back(r);
+  }
+  t.rows.push_back(compare_row("largest error (lengths and coordinates)", "mm", "0.3530", de.max_error_mm,
+                               Reason::kMethod, kFamily));
+  t.rows.push_back(compare_row("kmrmse of samples", "mm", "0.0371", de.kmrmse_mm, Reason::kMethod, kFamily));
+  // The paper's own solution on this run's samples: its kmrmse is not 0.0371 (errata, Table 7).
+  std::vector<Eigen::Vector2d> xy = s.cmp.samples.xy;
+  const double printed_kmrmse = calib::kmrmse(printed_g, s.cmp.samples.theta_m, xy);
+  t.rows.push_back(compare_row("kmrmse of the paper's printed solution on this run's samples", "mm", "0.0371",
+                               printed_kmrmse, Reason::kPaperMistake,
+                               fmt::format("The printed solution does not have the stated kmrmse: y_a^2 = 0.3076 "
+                                           "is off the similarity family the other entries lie on (the family "
+                                           "needs about 0.71), so it does not fit the readings: {} mm on these "
+                                           "samples, about 0.19 mm on the errata's (docs/PAPER_NOTES.md, Table 7).",
+                                           format_value(printed_kmrmse))));
+  t.notes.push_back(identifiable_note(s));
+  return t;
 }
 
 }  // namespace
@@ -134,160 +289,16 @@ Section4Tables section4_tables(const Section4Settings& settings, const Evaluatio
   calib::global::ComparisonProgress cp;
   if (progress) cp = [&](long done, long total, int, int) { progress(done, total); };
   const calib::global::Comparison cmp = calib::global::run_comparison(st, cp);
-  const Geometry nominal = Geometry::gpm2002_nominal();
-  const Geometry actual = calib::table5_actual();
-  const ClosureCosts at_nominal = closure_costs(nominal, cmp.samples.theta_m);
-  const double ratio = at_nominal.j23 / at_nominal.j1;
-
+  Section4Run s{settings, cmp};
+  const ClosureCosts at_nominal = closure_costs(s.nominal, cmp.samples.theta_m);
+  s.ratio = at_nominal.j23 / at_nominal.j1;
   Section4Tables out;
-  // Table 5: the settings themselves.
-  {
-    Table& t = out.table5;
-    t.id = "table5";
-    t.title = "Table 5. Value settings for the simulation experiments";
-    t.setup = "The nominal values, the actual values of the simulated mechanism and the search box used by "
-              "every run of section 4 here (calib/paper_values.cpp table5_actual, calib/global default_box).";
-    const calib::Box box = calib::global::default_box(nominal, calib::paper_free_mask());
-    const double printed_lo[12] = {-5, 428, 495, 239, 239, 239, 239, 239, 239, -0.2, -0.2, -0.2};
-    const double printed_hi[12] = {5, 438, 505, 249, 249, 249, 249, 249, 249, 0.2, 0.2, 0.2};
-    for (int k = 0; k < 12; ++k) {
-      const int i = kOrder[static_cast<size_t>(k)];
-      const std::string n(param_name(i));
-      t.rows.push_back(compare_row(n + " nominal", unit_of(i), shortest(nominal[i]), nominal[i], Reason::kOpen,
-                                   "The nominal value used differs from the printed one."));
-      t.rows.push_back(compare_row(n + " actual", unit_of(i), shortest(actual[i]), actual[i], Reason::kOpen,
-                                   "The actual value used differs from the printed one."));
-      t.rows.push_back(compare_row(n + " X_min", unit_of(i), shortest(printed_lo[k]), box.lower[i], Reason::kOpen,
-                                   "The search box used differs from the printed one."));
-      t.rows.push_back(compare_row(n + " X_max", unit_of(i), shortest(printed_hi[k]), box.upper[i], Reason::kOpen,
-                                   "The search box used differs from the printed one."));
-    }
-    t.notes.push_back("Section 4 fixes x_a^2 where section 3 fixes y_a^2 (docs/PAPER_NOTES.md); the actual x_a^2 "
-                      "equals its nominal 433 here, so fixing it at the nominal value fixes it at the truth.");
-  }
-
-  // Table 6 and Figures 3-5.
-  const Method methods[3] = {Method::kGA, Method::kPSO, Method::kDE};
-  const Cost costs[3] = {Cost::kJ1, Cost::kJ2, Cost::kJ3};
-  auto find_run = [&](Method m, Cost c) -> const calib::global::ComparisonRun& {
-    for (const auto& r : cmp.runs)
-      if (r.method == m && r.cost == c) return r;
-    throw std::logic_error("paper: comparison run missing");
-  };
-  {
-    Table& t = out.table6;
-    t.id = "table6";
-    t.title = "Table 6. All the results of the simulation experiments (best J after the budget)";
-    t.setup = fmt::format(
-        "GA, PSO and DE (paper section 4.1-4.3 settings: GA N=100, p=1e-4, Pc=0.85, Pm=0.15, tournament 4, "
-        "NR=50; PSO N=100, C1=C2=2, w 0.9 to 0.1, NR=50; DE N=150, F=0.5, CR=0.8; eq. 47 with 'and' per the "
-        "errata) on J1, J2, J3 with 12 free parameters (x_a^1, y_a^1, x_a^2 fixed), {} exact readings of the "
-        "Table 5 mechanism at random reachable workspace points (seed {}), {:.3g} evaluations per run (the "
-        "paper: 5e7), seed {}. Identifiability at the actual values: {}",
-        kSection4Samples, kDataSeed, static_cast<double>(settings.budget), settings.seed, cmp.at_actual.diagnosis);
-    for (Cost c : costs) {
-      for (Method m : methods) {
-        const double paper = calib::global::paper_table6(m, c);
-        const double ours = find_run(m, c).result.final_cost;
-        const auto [reason, why] = final_j_reason(m, c, ours, paper, settings.budget, ratio);
-        t.rows.push_back(compare_row(fmt::format("{}, {}", method_label(m), cost_label(c)), j_unit(c),
-                                     fmt::format("{:.4e}", paper), ours, reason, why));
-      }
-    }
-    t.notes.push_back(fmt::format("J2 (= J3) over J1 at the nominal values for these samples: {:.4g}.", ratio));
-  }
-  const auto finals = calib::printed_figure_finals();
-  Table* figs[3] = {&out.figure3, &out.figure4, &out.figure5};
-  for (int ci = 0; ci < 3; ++ci) {
-    Table& t = *figs[ci];
-    const Cost c = costs[ci];
-    t.id = fmt::format("figure{}", 3 + ci);
-    t.title = fmt::format("Figure {}. The performances of the algorithms under function {}", 3 + ci,
-                          cost_label(c));
-    t.setup = fmt::format("Best {} so far against error-function evaluations for the runs of Table 6 (the "
-                          "paper plots log10 J). The printed values are the final ones the text of section 4.4 "
-                          "states for this figure.",
-                          cost_label(c));
-    t.figure_svg = convergence_svg(cmp, c, 3 + ci);
-    std::vector<std::pair<double, std::string>> order;
-    for (int mi = 0; mi < 3; ++mi) {
-      const Method m = methods[mi];
-      const double ours = find_run(m, c).result.final_cost;
-      order.emplace_back(ours, method_label(m));
-      const double paper = finals[static_cast<size_t>(ci)][static_cast<size_t>(mi)];
-      if (std::isnan(paper)) {
-        t.rows.push_back(text_row(fmt::format("final {}, {}", cost_label(c), method_label(m)), "",
-                                  "(not stated)", format_value(ours), Reason::kSetup,
-                                  "The text states no final value for this curve (Table 6 has it)."));
-        continue;
-      }
-      auto [reason, why] = final_j_reason(m, c, ours, paper, settings.budget, ratio);
-      if (c == Cost::kJ1 && m == Method::kGA) {
-        why += " The text's 1.3477e3 also differs from Table 6's 1.3447e3 for the same run (a misprint in one "
-               "of them).";
-      }
-      t.rows.push_back(compare_row(fmt::format("final {}, {}", cost_label(c), method_label(m)), j_unit(c),
-                                   fmt::format("{:.4e}", paper), ours, reason, why));
-    }
-    std::sort(order.begin(), order.end(), [](const auto& a, const auto& b) { return a.first > b.first; });
-    const std::string ours_rank = fmt::format("{}, {}, {}", order[0].second, order[1].second, order[2].second);
-    const std::string paper_rank = "GA, PSO, DE";
-    t.rows.push_back(text_row("worst to best", "", paper_rank, ours_rank,
-                              ours_rank == paper_rank ? Reason::kAgrees : Reason::kSetup,
-                              ours_rank == paper_rank
-                                  ? ""
-                                  : "With this budget and these samples the ranking differs; GA and PSO are far "
-                                    "from converged in both, so their order is not a stable property."));
-  }
-
-  // Table 7: DE's J3 solution against the actual values.
-  {
-    const auto& de = find_run(Method::kDE, Cost::kJ3);
-    const calib::PrintedTable7 pt = calib::printed_table7();
-    Table& t = out.table7;
-    t.id = "table7";
-    t.title = "Table 7. Calibration results of DE under J3";
-    t.setup = "The DE run on J3 of Table 6 (12 free parameters) against the actual values (extra column), and "
-              "DE with x_a^2 and y_a^2 both fixed (11 free, identifiable) for comparison.";
-    t.extra_column = "actual";
-    Geometry printed_g = actual;
-    for (int i : kOrder) {
-      printed_g[i] = pt.de[i];
-      Row r = compare_row(std::string(param_name(i)), unit_of(i), fmt::format("{:.4f}", pt.de[i]),
-                          de.result.geometry[i], Reason::kMethod, kFamily);
-      r.extra_text = shortest(actual[i]);
-      t.rows.push_back(r);
-    }
-    t.rows.push_back(compare_row("largest error (lengths and coordinates)", "mm", "0.3530", de.max_error_mm,
-                                 Reason::kMethod, kFamily));
-    t.rows.push_back(compare_row("kmrmse of samples", "mm", "0.0371", de.kmrmse_mm, Reason::kMethod, kFamily));
-    // The paper's own solution on this run's samples: its kmrmse is not 0.0371 (errata, Table 7).
-    std::vector<Eigen::Vector2d> xy = cmp.samples.xy;
-    const double printed_kmrmse = calib::kmrmse(printed_g, cmp.samples.theta_m, xy);
-    t.rows.push_back(compare_row("kmrmse of the paper's printed solution on this run's samples", "mm", "0.0371",
-                                 printed_kmrmse, Reason::kPaperMistake,
-                                 fmt::format("The printed solution does not have the stated kmrmse: y_a^2 = 0.3076 "
-                                             "is off the similarity family the other entries lie on (the family "
-                                             "needs about 0.71), so it does not fit the readings: {} mm on these "
-                                             "samples, about 0.19 mm on the errata's (docs/PAPER_NOTES.md, Table 7).",
-                                             format_value(printed_kmrmse))));
-    // The identifiable gauge: DE with y_a^2 fixed at its true value too.
-    const FreeMask eleven = default_free_mask();
-    const calib::Problem p11 = calib::table5_problem(cmp.samples, eleven);
-    const calib::Result r11 = calib::global::solve_global(
-        p11, Cost::kJ3, Method::kDE, calib::global::default_box(nominal, eleven), settings.budget, settings.seed);
-    double err_mm = 0, err_rad = 0;
-    for (int i = 0; i < kNumParams; ++i) {
-      if (!eleven[static_cast<size_t>(i)]) continue;
-      const double e = std::fabs(r11.geometry[i] - actual[i]);
-      (is_offset(i) ? err_rad : err_mm) = std::max(is_offset(i) ? err_rad : err_mm, e);
-    }
-    t.notes.push_back(fmt::format(
-        "DE with x_a^1, y_a^1, x_a^2, y_a^2 fixed (rank {} of 11), same samples and budget: J3 = {}, largest "
-        "error {} mm and {} rad. Fixing the fourth coordinate, not a better optimiser, is what makes the "
-        "answer the actual mechanism.",
-        r11.rank, format_value(r11.final_cost), format_value(err_mm), format_value(err_rad)));
-  }
+  out.table5 = table5(s);
+  out.table6 = table6(s);
+  out.figure3 = convergence_figure(s, 0);
+  out.figure4 = convergence_figure(s, 1);
+  out.figure5 = convergence_figure(s, 2);
+  out.table7 = table7(s);
   return out;
 }
 
@@ -312,17 +323,14 @@ Table table8(long evaluations, std::uint64_t seed) {
   const double j_cal = closure_costs(r.geometry, p.theta_m).j23;
   const double j_act = closure_costs(actual, p.theta_m).j23;
 
-  Table t;
-  t.id = "table8";
-  t.title = "Table 8. The results of the actual calibration";
-  t.setup = fmt::format(
+  Table t = make_table("table8", "Table 8. The results of the actual calibration", fmt::format(
       "Section 4.5 on the twin ({}): the real robot is the MuJoCo twin with the Table 5 actual values, "
       "{}-bit encoders with {:.2g} rad noise; {} readings stop-and-go on a circle of radius {} mm about the "
       "workspace centre, as the paper sampled after its straight line failed. DE on J3 with 12 free "
       "parameters (x_a^1, y_a^1, x_a^2 fixed at nominal), Table 5 box, {:.3g} evaluations (the paper: about "
       "1e6), seed {}.",
       std::filesystem::path(file).filename().string(), sc.twin.encoder.bits, sc.twin.encoder.noise_rad,
-      p.theta_m.size(), sc.sampling ? sc.sampling->radius : 0.0, static_cast<double>(evaluations), seed);
+      p.theta_m.size(), sc.sampling ? sc.sampling->radius : 0.0, static_cast<double>(evaluations), seed));
   t.extra_column = "nominal / twin's actual";
   const std::string robot_differs =
       "A different robot: the paper's GPM2002 is not available, this twin's actual values are Table 5's "
