@@ -182,10 +182,10 @@ void restart_half(Rng& rng, Population& pop) {
 RunRecord minimise_ga(const BatchObjective& obj, const GaSettings& s, const StopRule& stop,
                       uint64_t seed, const ProgressFn& progress) {
   check_settings(s, stop);
-  RunRecord rec;
-  RunLog log(stop, progress, rec);
   Rng rng(seed);
   Population pop(obj, s);
+  RunRecord rec;
+  RunLog log(stop, progress, rec);
   for (long i = 0; i < pop.np; ++i)
     for (int k = 0; k < pop.n; ++k) pop.genes[i * pop.n + k] = random_gene(pop.lay, k, rng);
   bool complete = evaluate_dirty(obj, log, pop).second;
