@@ -30,7 +30,16 @@ struct SampleReadings {
 //        = (|O - B_i| - l_b^i) (O - B_i) / |O - B_i|,      u(t) = (cos t, sin t).
 // Six rows per sample; J1 = sum_j |E1_j|^2. The paper's form, kept as the
 // reference of eq. 36; the solver uses E1LengthResidual below.
-struct E1Residual : SampleReadings {
+//
+// E1 as the solver uses it: the signed length of each E1_i,
+//   e_i = |O - B_i| - l_b^i,       E1_i = e_i (O - B_i) / |O - B_i|,
+// three rows per sample. |E1_i| = |e_i|, so sum e^2 = J1 at every parameter
+// set: the same cost and minimiser as eq. 36's six rows, with half the rows
+// (each E1_i is a vector along O - B_i, whose direction carries no error).
+//
+// Both as one functor: kSixRows, the vectors E1_i (eq. 36); else their signed lengths e_i.
+template <bool kSixRows>
+struct ChainGapResidual : SampleReadings {
   using SampleReadings::SampleReadings;
   template <typename T>
   bool operator()(const T* x, T* r) const {
@@ -40,33 +49,20 @@ struct E1Residual : SampleReadings {
     for (int i = 0; i < 3; ++i) {
       const T wx = c.Ox - c.Bx[i], wy = c.Oy - c.By[i];
       const T dist = sqrt(wx * wx + wy * wy);
-      const T f = (dist - x[lb(i)]) / dist;
-      r[2 * i] = f * wx;
-      r[2 * i + 1] = f * wy;
+      const T e = dist - x[lb(i)];
+      if constexpr (kSixRows) {
+        const T f = e / dist;
+        r[2 * i] = f * wx;
+        r[2 * i + 1] = f * wy;
+      } else {
+        r[i] = e;
+      }
     }
     return true;
   }
 };
-
-// E1 as the solver uses it: the signed length of each E1_i,
-//   e_i = |O - B_i| - l_b^i,       E1_i = e_i (O - B_i) / |O - B_i|,
-// three rows per sample. |E1_i| = |e_i|, so sum e^2 = J1 at every parameter
-// set: the same cost and minimiser as eq. 36's six rows, with half the rows
-// (each E1_i is a vector along O - B_i, whose direction carries no error).
-struct E1LengthResidual : SampleReadings {
-  using SampleReadings::SampleReadings;
-  template <typename T>
-  bool operator()(const T* x, T* r) const {
-    using std::sqrt;
-    const Closure<T> c = closure(x, theta_m_, false, false);
-    if (!c.ok) return false;
-    for (int i = 0; i < 3; ++i) {
-      const T wx = c.Ox - c.Bx[i], wy = c.Oy - c.By[i];
-      r[i] = sqrt(wx * wx + wy * wy) - x[lb(i)];
-    }
-    return true;
-  }
-};
+using E1Residual = ChainGapResidual<true>;
+using E1LengthResidual = ChainGapResidual<false>;
 
 // E2 (eq. 38, row 1 with y_a^1 per docs/EQUATIONS.md): for each chain i,
 //   E2_i = (x - x_a^i - l_a^i cos(theta_m^i + dth^i))^2
