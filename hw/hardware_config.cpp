@@ -30,26 +30,26 @@ std::string parse_backend(const YAML::Node& root, const std::string& path) {
   return backend;
 }
 
+// Throws InputError at node (key path key) unless lo <= v <= hi; what: the explanation.
+void check_within(double v, double lo, double hi, const YAML::Node& node, const std::string& path, const char* key,
+                  const std::string& what) {
+  if (!(v >= lo && v <= hi)) throw InputError(yaml_where(path, node, key) + what);
+}
+
 // The key dither_mm of node d: within [0, 5] mm.
 double parse_dither(const YAML::Node& d, const std::string& path) {
   const double v = yaml_number(d, path, "dither_mm");
-  if (!(v >= 0.0 && v <= 5.0)) {
-    throw InputError(yaml_where(path, d, "dither_mm") +
-                     fmt::format("{} mm is outside [0, 5] mm (the figure each sample is averaged along; "
-                                 "0: hold still)", v));
-  }
+  check_within(v, 0.0, 5.0, d, path, "dither_mm",
+               fmt::format("{} mm is outside [0, 5] mm (the figure each sample is averaged along; 0: hold still)", v));
   return v;
 }
 
 // The key rate_hz of node r: within [10, 2000] Hz.
 double parse_rate(const YAML::Node& r, const std::string& path) {
   const double rate_hz = yaml_positive(r, path, "rate_hz");
-  if (!(rate_hz >= 10.0 && rate_hz <= 2000.0)) {
-    throw InputError(yaml_where(path, r, "rate_hz") +
-                     fmt::format("{} Hz is outside [10, 2000] Hz (the read/write cycle of the "
-                                 "drives; the examples use 250)",
-                                 rate_hz));
-  }
+  check_within(rate_hz, 10.0, 2000.0, r, path, "rate_hz",
+               fmt::format("{} Hz is outside [10, 2000] Hz (the read/write cycle of the drives; the examples use 250)",
+                           rate_hz));
   return rate_hz;
 }
 
