@@ -31,10 +31,12 @@ Eigen::VectorXd sample_residuals(Cost c, const Eigen::Vector3d& theta_m, const G
   return r;
 }
 
-// LM with the robust loss of o.loss (calib/calibrate.hpp: its default scale).
-Result robust_lm(const Problem& problem, LmOptions lm, const RobustLoss& loss) {
+// LM with the robust loss of o.loss (calib/calibrate.hpp: its default scale);
+// true_xy: the samples' true positions for kmrmse, or null.
+Result robust_lm(const Problem& problem, LmOptions lm, const RobustLoss& loss,
+                 const std::vector<Eigen::Vector2d>* true_xy) {
   lm.loss = loss;
-  if (!loss.active() || loss.scale > 0.0) return calibrate_lm(problem, lm);
+  if (!loss.active() || loss.scale > 0.0) return calibrate_lm(problem, lm, true_xy);
   const double tuning = default_tuning(loss.kind);
   Problem p = problem;
   double sigma = lm.encoder_sigma.value_or(0.0);
@@ -43,7 +45,7 @@ Result robust_lm(const Problem& problem, LmOptions lm, const RobustLoss& loss) {
     LmOptions plain = lm;
     plain.loss = {};
     plain.compute_covariance = false;
-    const Result first = calibrate_lm(problem, plain);
+    const Result first = calibrate_lm(problem, plain, true_xy);
     p.start = first.geometry;
     std::vector<double> a;
     for (const Eigen::Vector3d& t : problem.theta_m) {
@@ -55,7 +57,7 @@ Result robust_lm(const Problem& problem, LmOptions lm, const RobustLoss& loss) {
     if (!(sigma > 0.0)) return first;  // exact data: nothing to be robust against
   }
   lm.loss.scale = tuning * sigma;
-  return calibrate_lm(p, lm);
+  return calibrate_lm(p, lm, true_xy);
 }
 
 }  // namespace
@@ -65,9 +67,8 @@ Result calibrate(const Problem& problem, const MethodOptions& o) {
   lm.cost = o.cost;
   lm.encoder_sigma = o.encoder_sigma;
   lm.allow_rank_deficient = o.allow_rank_deficient;
-  lm.true_xy = o.true_xy;
   lm.max_iterations = o.lm_max_iterations;
-  if (o.method == Method::kLM) return robust_lm(problem, lm, o.loss);
+  if (o.method == Method::kLM) return robust_lm(problem, lm, o.loss, o.true_xy);
   if (o.loss.active() && o.method != Method::kDELM)
     throw InputError(fmt::format("--loss {} works with lm or de+lm (the LM stage); {} is not robustified",
                                  loss_name(o.loss), method_name(o.method)));
@@ -91,7 +92,7 @@ Result calibrate(const Problem& problem, const MethodOptions& o) {
   if (!ml) return g;
   Problem refine = problem;
   refine.start = g.geometry;
-  Result r = robust_lm(refine, lm, o.loss);
+  Result r = robust_lm(refine, lm, o.loss, o.true_xy);
   r.method = "de+lm";
   r.evaluations += g.evaluations;
   r.seconds += g.seconds;

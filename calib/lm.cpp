@@ -90,6 +90,14 @@ class FreeStackedResidual final : public ceres::CostFunction {
   const ParamVector& full_;
 };
 
+// The solver slots that problem.free leaves free, in slot order.
+std::vector<int> free_slots(const FreeMask& free) {
+  std::vector<int> idx;
+  for (int i = 0; i < kNumParams; ++i)
+    if (free.test(static_cast<size_t>(i))) idx.push_back(i);
+  return idx;
+}
+
 // Minimum-norm Levenberg-Marquardt for a rank-deficient free set: each step
 // is the damped pseudo-inverse step restricted to the `rank` largest singular
 // directions of the column-scaled Jacobian, so it never moves along the
@@ -97,9 +105,7 @@ class FreeStackedResidual final : public ceres::CostFunction {
 void truncated_svd_lm(const std::vector<std::unique_ptr<ceres::CostFunction>>& f, int rows,
                       const FreeMask& free, int rank, int max_iterations, ParamVector& x,
                       Result& res) {
-  std::vector<int> idx;
-  for (int i = 0; i < kNumParams; ++i)
-    if (free.test(static_cast<size_t>(i))) idx.push_back(i);
+  const std::vector<int> idx = free_slots(free);
   const auto p = static_cast<Eigen::Index>(idx.size());
   Evaluation e = evaluate(f, x, rows, true);
   res.evaluations = 1;
@@ -195,25 +201,19 @@ long polish_gauss_newton(const std::vector<std::unique_ptr<ceres::CostFunction>>
   return evaluations;
 }
 
-}  // namespace
-
-Result calibrate_lm(const Problem& problem, const LmOptions& opt) {
-  const auto t0 = std::chrono::steady_clock::now();
+// Throws InputError for samples, a free set, an iteration budget or a noise that LM cannot use.
+void check_lm_inputs(const Problem& problem, const LmOptions& opt) {
   check_samples(problem);
   check_free_set(problem.free, opt.cost);
   if (opt.max_iterations < 1) throw InputError("--budget: LM needs at least one iteration");
   if (opt.encoder_sigma) check_bound(*opt.encoder_sigma, limits::kEncoderSigma, "--sigma");
+}
 
-  Result res;
-  res.method = "lm";
-  res.cost = opt.cost;
-  res.free = problem.free;
-  res.sigma.fill(kNaN);
-  const size_t n = problem.theta_m.size();
+// The identifiability of problem.free at the start (rank and condition into res); refuses a
+// rank-deficient set unless allowed, and notes rank deficiency or poor conditioning.
+Identifiability note_identifiability(const Problem& problem, const LmOptions& opt, Result& res) {
   const int p = static_cast<int>(problem.free.count());
-
-  // Identifiability first.
-  const Identifiability id = analyse_identifiability(problem.theta_m, problem.start, problem.free);
+  Identifiability id = analyse_identifiability(problem.theta_m, problem.start, problem.free);
   res.rank = id.rank;
   res.condition_number = id.condition_number;
   if (id.rank < p) {
@@ -230,145 +230,236 @@ Result calibrate_lm(const Problem& problem, const LmOptions& opt) {
         "the estimates are very sensitive to noise (spread the samples over the workspace)",
         id.condition_number, kPoorConditioning));
   }
+  return id;
+}
 
-  const int rows = residual_rows(opt.cost);
-  ParamVector x = to_solver(problem.start, opt.cost);
-  std::vector<std::unique_ptr<ceres::CostFunction>> functions;
-  functions.reserve(n);
-  for (const auto& t : problem.theta_m)
-    functions.emplace_back(opt.autodiff ? make_autodiff_residual(opt.cost, t) : make_residual(opt.cost, t));
-
-  std::vector<int> free_index;
-  for (int i = 0; i < kNumParams; ++i)
-    if (problem.free.test(static_cast<size_t>(i))) free_index.push_back(i);
-  std::vector<double> xf;
-  for (int i : free_index) xf.push_back(x[static_cast<size_t>(i)]);
-  FreeStackedResidual stacked(functions, rows, free_index, x);
+// Ceres' problem options: the residual blocks stay owned by the caller.
+ceres::Problem::Options borrowed_blocks() {
   ceres::Problem::Options po;
   po.cost_function_ownership = ceres::DO_NOT_TAKE_OWNERSHIP;
-  ceres::Problem cp(po);
-  const std::unique_ptr<ceres::LossFunction> rho = make_loss_function(opt.loss);
-  const std::unique_ptr<ceres::CostFunction> robust = rho ? make_robust_residual(&stacked, rows, rho.get()) : nullptr;
-  cp.AddResidualBlock(robust ? robust.get() : &stacked, nullptr, xf.data());
+  return po;
+}
 
-  if (res.rank_deficient) {
-    truncated_svd_lm(functions, rows, problem.free, id.rank, opt.max_iterations, x, res);
-  } else {
-    ceres::Solver::Options so;
-    so.trust_region_strategy_type = ceres::LEVENBERG_MARQUARDT;
-    so.linear_solver_type = ceres::DENSE_NORMAL_CHOLESKY;
-    // Start nearly undamped: with Jacobi scaling the damping is 1 / radius
-    // against a normal matrix of unit diagonal whose smallest eigenvalue is
-    // 1 / cond^2 (about 2e-6 for 50 samples, cond ~ 700), so Ceres' default
-    // 1e4 damps the weakest directions for several iterations (J1: 10
-    // iterations instead of 5). Failed steps still raise the damping.
-    so.initial_trust_region_radius = 1e8;
-    so.max_num_iterations = opt.max_iterations;
-    so.function_tolerance = 1e-15;
-    so.gradient_tolerance = 1e-16;
-    so.parameter_tolerance = 1e-14;
-    so.num_threads = 1;
-    so.logging_type = ceres::SILENT;
-    ceres::Solver::Summary summary;
-    ceres::Solve(so, &cp, &summary);
-    // A cost that cannot be evaluated (NaN or infinite: a loss scale or noise
-    // far outside the residuals, issue 36.1) is a failed calibration, said in
-    // one line, not a result.
-    if (summary.termination_type == ceres::FAILURE || !std::isfinite(summary.final_cost))
-      throw Error(fmt::format("the calibration failed: {} (cost function {}, loss {})", summary.message,
-                              cost_name(opt.cost), loss_name(opt.loss)));
-    for (const ceres::IterationSummary& it : summary.iterations)  // Ceres' cost is half the sum of squares
-      res.lm_iterations.push_back({it.iteration, paper_cost(opt.cost, 2.0 * it.cost), it.step_norm,
-                                   it.step_is_successful || it.iteration == 0});
-    for (size_t k = 0; k < free_index.size(); ++k) x[static_cast<size_t>(free_index[k])] = xf[k];
-    res.iterations = static_cast<long>(summary.num_successful_steps + summary.num_unsuccessful_steps);
-    // Each Jacobian evaluation also evaluates the residuals: count both kinds.
-    res.evaluations = summary.num_residual_evaluations + summary.num_jacobian_evaluations;
-    res.converged = summary.termination_type == ceres::CONVERGENCE;
-    // Rejected steps: the cost may have reached its rounding floor short of the
-    // optimum. The polish solves the plain least-squares problem, so it is for
-    // the plain loss only (a robust loss has its own optimum).
-    if (res.converged && !rho && summary.num_unsuccessful_steps > 0)
-      res.evaluations += polish_gauss_newton(functions, rows, free_index, x);
-    if (!res.converged) {
-      res.notes.push_back(fmt::format("Levenberg-Marquardt did not converge: {}", summary.message));
-    }
+// One residual function per sample of problem (autodiff or analytic per opt).
+std::vector<std::unique_ptr<ceres::CostFunction>> sample_functions(const Problem& problem, const LmOptions& opt) {
+  std::vector<std::unique_ptr<ceres::CostFunction>> functions;
+  functions.reserve(problem.theta_m.size());
+  for (const auto& t : problem.theta_m)
+    functions.emplace_back(opt.autodiff ? make_autodiff_residual(opt.cost, t) : make_residual(opt.cost, t));
+  return functions;
+}
+
+// One LM solve's state: the samples' residual functions, the solver vector x (all 15 slots),
+// its free values xf and the Ceres problem over xf (one stacked block, robust when
+// opt.loss is set), which refers to the other members: neither copied nor moved.
+struct LmSolve {
+  LmSolve(const Problem& problem, const LmOptions& opt)
+      : rows(residual_rows(opt.cost)),
+        functions(sample_functions(problem, opt)),
+        x(to_solver(problem.start, opt.cost)),
+        free_index(free_slots(problem.free)),
+        stacked(functions, rows, free_index, x),
+        cp(borrowed_blocks()) {
+    for (int i : free_index) xf.push_back(x[static_cast<size_t>(i)]);
+    rho = make_loss_function(opt.loss);
+    if (rho) robust = make_robust_residual(&stacked, rows, rho.get());
+    cp.AddResidualBlock(robust ? robust.get() : &stacked, nullptr, xf.data());
   }
+  LmSolve(const LmSolve&) = delete;
+  LmSolve& operator=(const LmSolve&) = delete;
 
-  res.geometry = from_solver(x, opt.cost);
-  Evaluation fin = evaluate(functions, x, rows, opt.compute_covariance && !res.rank_deficient);
+  const int rows;
+  std::vector<std::unique_ptr<ceres::CostFunction>> functions;
+  ParamVector x;
+  const std::vector<int> free_index;
+  std::vector<double> xf;
+  FreeStackedResidual stacked;
+  std::unique_ptr<ceres::LossFunction> rho;
+  std::unique_ptr<ceres::CostFunction> robust;
+  ceres::Problem cp;
+};
+
+// Ceres' Levenberg-Marquardt settings for budget max_iterations.
+ceres::Solver::Options solver_options(int max_iterations) {
+  ceres::Solver::Options so;
+  so.trust_region_strategy_type = ceres::LEVENBERG_MARQUARDT;
+  so.linear_solver_type = ceres::DENSE_NORMAL_CHOLESKY;
+  // Start nearly undamped: with Jacobi scaling the damping is 1 / radius
+  // against a normal matrix of unit diagonal whose smallest eigenvalue is
+  // 1 / cond^2 (about 2e-6 for 50 samples, cond ~ 700), so Ceres' default
+  // 1e4 damps the weakest directions for several iterations (J1: 10
+  // iterations instead of 5). Failed steps still raise the damping.
+  so.initial_trust_region_radius = 1e8;
+  so.max_num_iterations = max_iterations;
+  so.function_tolerance = 1e-15;
+  so.gradient_tolerance = 1e-16;
+  so.parameter_tolerance = 1e-14;
+  so.num_threads = 1;
+  so.logging_type = ceres::SILENT;
+  return so;
+}
+
+// Solves s with Ceres LM (and the Gauss-Newton polish where steps were
+// rejected under the plain loss); s.x and the iterations, evaluations and
+// convergence of res follow. Throws Error when the cost cannot be evaluated.
+void solve_ceres(LmSolve& s, const LmOptions& opt, Result& res) {
+  ceres::Solver::Summary summary;
+  ceres::Solve(solver_options(opt.max_iterations), &s.cp, &summary);
+  // A cost that cannot be evaluated (NaN or infinite: a loss scale or noise
+  // far outside the residuals, issue 36.1) is a failed calibration, said in
+  // one line, not a result.
+  if (summary.termination_type == ceres::FAILURE || !std::isfinite(summary.final_cost))
+    throw Error(fmt::format("the calibration failed: {} (cost function {}, loss {})", summary.message,
+                            cost_name(opt.cost), loss_name(opt.loss)));
+  for (const ceres::IterationSummary& it : summary.iterations)  // Ceres' cost is half the sum of squares
+    res.lm_iterations.push_back({it.iteration, paper_cost(opt.cost, 2.0 * it.cost), it.step_norm,
+                                 it.step_is_successful || it.iteration == 0});
+  for (size_t k = 0; k < s.free_index.size(); ++k) s.x[static_cast<size_t>(s.free_index[k])] = s.xf[k];
+  res.iterations = static_cast<long>(summary.num_successful_steps + summary.num_unsuccessful_steps);
+  // Each Jacobian evaluation also evaluates the residuals: count both kinds.
+  res.evaluations = summary.num_residual_evaluations + summary.num_jacobian_evaluations;
+  res.converged = summary.termination_type == ceres::CONVERGENCE;
+  // Rejected steps: the cost may have reached its rounding floor short of the
+  // optimum. The polish solves the plain least-squares problem, so it is for
+  // the plain loss only (a robust loss has its own optimum).
+  if (res.converged && !s.rho && summary.num_unsuccessful_steps > 0)
+    res.evaluations += polish_gauss_newton(s.functions, s.rows, s.free_index, s.x);
+  if (!res.converged) res.notes.push_back(fmt::format("Levenberg-Marquardt did not converge: {}", summary.message));
+}
+
+// The residuals (and, with_jacobian, the Jacobian) at the solution as the
+// solved problem weighs them: under a robust loss each sample's rows and
+// Jacobian rows scaled by its factor W_j (calib/robust_loss.hpp), kept in W.
+struct Weighted {
+  Evaluation e;
+  std::vector<Eigen::MatrixXd> W;
+};
+
+// The solution's residuals weighted as in the solve (Weighted); the paper's cost of the
+// unweighted residuals into res.final_cost. Throws Error for a non-finite geometry or cost.
+Weighted evaluate_solution(const LmSolve& s, const LmOptions& opt, bool with_jacobian, Result& res) {
+  Weighted w{evaluate(s.functions, s.x, s.rows, with_jacobian), {}};
+  Evaluation& fin = w.e;
   res.final_cost = paper_cost(opt.cost, fin.ok ? fin.r.squaredNorm() : kNaN);
   const auto finite = [](double v) { return std::isfinite(v); };
   if (!std::all_of(res.geometry.values.begin(), res.geometry.values.end(), finite) || !std::isfinite(res.final_cost))
     throw Error(fmt::format("the calibration failed: the {} cost is not a finite number at the solution (loss {})",
                             cost_name(opt.cost), loss_name(opt.loss)));
-  std::vector<Eigen::MatrixXd> W;  // robust loss: per-sample factors W_j (calib/robust_loss.hpp)
-  for (size_t j = 0; rho && fin.ok && j < n; ++j) {
-    const auto g = static_cast<Eigen::Index>(j) * rows;
-    W.push_back(robust_factor(*rho, fin.r.segment(g, rows)));
-    if (fin.J.rows() > 0) fin.J.middleRows(g, rows) = W.back() * fin.J.middleRows(g, rows);
-    fin.r.segment(g, rows) = robust_residual(*rho, fin.r.segment(g, rows));
+  for (size_t j = 0; s.rho && fin.ok && j < s.functions.size(); ++j) {
+    const auto g = static_cast<Eigen::Index>(j) * s.rows;
+    w.W.push_back(robust_factor(*s.rho, fin.r.segment(g, s.rows)));
+    if (fin.J.rows() > 0) fin.J.middleRows(g, s.rows) = w.W.back() * fin.J.middleRows(g, s.rows);
+    fin.r.segment(g, s.rows) = robust_residual(*s.rho, fin.r.segment(g, s.rows));
   }
-  const double ssq = fin.ok ? fin.r.squaredNorm() : kNaN;
+  return w;
+}
 
-  // 1-sigma from ceres::Covariance: C0 = (J'J)^-1 on the free parameters.
-  if (opt.compute_covariance && !res.rank_deficient && fin.ok) {
-    ceres::Covariance::Options co;
-    co.algorithm_type = ceres::DENSE_SVD;
-    co.num_threads = 1;
-    ceres::Covariance cov(co);
-    for (size_t k = 0; k < free_index.size(); ++k) xf[k] = x[static_cast<size_t>(free_index[k])];
-    const std::vector<std::pair<const double*, const double*>> blocks = {{xf.data(), xf.data()}};
-    const auto nf = static_cast<Eigen::Index>(free_index.size());
-    Eigen::Matrix<double, Eigen::Dynamic, Eigen::Dynamic, Eigen::RowMajor> Cf(nf, nf);
-    Mat15 C0 = Mat15::Zero();
-    if (cov.Compute(blocks, &cp) && cov.GetCovarianceBlock(xf.data(), xf.data(), Cf.data())) {
-      for (Eigen::Index a = 0; a < nf; ++a)  // embed: zero rows and columns for fixed parameters
-        for (Eigen::Index b = 0; b < nf; ++b) C0(free_index[static_cast<size_t>(a)], free_index[static_cast<size_t>(b)]) = Cf(a, b);
-      Mat15 C;
-      if (opt.encoder_sigma) {
-        // Sandwich with the residuals' covariance under reading noise:
-        // cov(r_j) = sigma^2 R_j R_j', R_j = d r_j / d theta_m (central differences).
-        const double s2 = *opt.encoder_sigma * *opt.encoder_sigma;
-        Mat15 M = Mat15::Zero();
-        const double h = 1e-6;
-        for (size_t j = 0; j < n; ++j) {
-          Eigen::MatrixXd R(rows, 3);
-          for (int k = 0; k < 3; ++k) {
-            Eigen::Vector3d tp = problem.theta_m[j], tm = problem.theta_m[j];
-            tp[k] += h;
-            tm[k] -= h;
-            std::unique_ptr<ceres::CostFunction> fp(make_residual(opt.cost, tp)), fm(make_residual(opt.cost, tm));
-            Eigen::VectorXd rp(rows), rm(rows);
-            const double* params[] = {x.data()};
-            fp->Evaluate(params, rp.data(), nullptr);
-            fm->Evaluate(params, rm.data(), nullptr);
-            R.col(k) = (rp - rm) / (2.0 * h);
-          }
-          if (!W.empty()) R = W[j] * R;
-          const auto Jj = fin.J.middleRows(static_cast<Eigen::Index>(j) * rows, rows);
-          const Eigen::MatrixXd JR = Jj.transpose() * R;
-          M += s2 * JR * JR.transpose();
-        }
-        C = C0 * M * C0;
-      } else if (static_cast<int>(n) > p) {
-        C = (ssq / static_cast<double>(static_cast<int>(n) - p)) * C0;
-      } else {
-        C.setConstant(kNaN);
-        res.notes.push_back("no 1-sigma: as many samples as free parameters leave no residual to "
-                            "estimate the noise from (give --sigma or more samples)");
-      }
-      const Mat15 T = geometry_jacobian(x, opt.cost);
-      const Mat15 Cg = T * C * T.transpose();
-      res.covariance = Cg;
-      for (int i = 0; i < kNumParams; ++i)
-        if (problem.free.test(static_cast<size_t>(i))) res.sigma[static_cast<size_t>(i)] = std::sqrt(std::max(Cg(i, i), 0.0));
-    } else {
-      res.notes.push_back("no 1-sigma: the Jacobian at the solution is numerically singular");
-    }
+// C0 = (J'J)^-1 of the free values from ceres::Covariance at s.x, embedded in
+// the 15 slots (zero rows and columns for fixed ones); false when singular.
+bool unit_covariance(LmSolve& s, Mat15& C0) {
+  ceres::Covariance::Options co;
+  co.algorithm_type = ceres::DENSE_SVD;
+  co.num_threads = 1;
+  ceres::Covariance cov(co);
+  for (size_t k = 0; k < s.free_index.size(); ++k) s.xf[k] = s.x[static_cast<size_t>(s.free_index[k])];
+  const std::vector<std::pair<const double*, const double*>> blocks = {{s.xf.data(), s.xf.data()}};
+  const auto nf = static_cast<Eigen::Index>(s.free_index.size());
+  Eigen::Matrix<double, Eigen::Dynamic, Eigen::Dynamic, Eigen::RowMajor> Cf(nf, nf);
+  C0 = Mat15::Zero();
+  if (!cov.Compute(blocks, &s.cp) || !cov.GetCovarianceBlock(s.xf.data(), s.xf.data(), Cf.data())) return false;
+  for (Eigen::Index a = 0; a < nf; ++a)
+    for (Eigen::Index b = 0; b < nf; ++b) C0(s.free_index[static_cast<size_t>(a)], s.free_index[static_cast<size_t>(b)]) = Cf(a, b);
+  return true;
+}
+
+// R_j = d r_j / d theta_m of one sample's residuals at x (central differences, step 1e-6 rad).
+Eigen::MatrixXd reading_jacobian(Cost cost, const Eigen::Vector3d& theta_m, const ParamVector& x, int rows) {
+  const double h = 1e-6;
+  Eigen::MatrixXd R(rows, 3);
+  for (int k = 0; k < 3; ++k) {
+    Eigen::Vector3d tp = theta_m, tm = theta_m;
+    tp[k] += h;
+    tm[k] -= h;
+    std::unique_ptr<ceres::CostFunction> fp(make_residual(cost, tp)), fm(make_residual(cost, tm));
+    Eigen::VectorXd rp(rows), rm(rows);
+    const double* params[] = {x.data()};
+    fp->Evaluate(params, rp.data(), nullptr);
+    fm->Evaluate(params, rm.data(), nullptr);
+    R.col(k) = (rp - rm) / (2.0 * h);
   }
+  return R;
+}
 
-  if (opt.true_xy && opt.true_xy->size() == n) res.kmrmse_mm = kmrmse(res.geometry, problem.theta_m, *opt.true_xy);
+// The sandwich's middle sum_j J_j' S_j J_j with the residuals' covariance
+// under reading noise sigma, S_j = sigma^2 R_j R_j' (W_j R_j under a robust loss).
+Mat15 reading_noise_meat(const Problem& problem, const LmSolve& s, const Weighted& fin, Cost cost, double sigma) {
+  const double s2 = sigma * sigma;
+  Mat15 M = Mat15::Zero();
+  for (size_t j = 0; j < problem.theta_m.size(); ++j) {
+    Eigen::MatrixXd R = reading_jacobian(cost, problem.theta_m[j], s.x, s.rows);
+    if (!fin.W.empty()) R = fin.W[j] * R;
+    const auto Jj = fin.e.J.middleRows(static_cast<Eigen::Index>(j) * s.rows, s.rows);
+    const Eigen::MatrixXd JR = Jj.transpose() * R;
+    M += s2 * JR * JR.transpose();
+  }
+  return M;
+}
+
+// The 1-sigma and covariance of the estimated parameters (res.sigma,
+// res.covariance) from C0 = (J'J)^-1: the sandwich C0 M C0 when the reading
+// noise is given, else C0 scaled by the residuals' variance (a note when
+// nothing is left to estimate it from, or when J is singular).
+void estimate_covariance(const Problem& problem, const LmOptions& opt, LmSolve& s, const Weighted& fin,
+                         Result& res) {
+  Mat15 C0;
+  if (!unit_covariance(s, C0)) {
+    res.notes.push_back("no 1-sigma: the Jacobian at the solution is numerically singular");
+    return;
+  }
+  const int n = static_cast<int>(problem.theta_m.size());
+  const int p = static_cast<int>(problem.free.count());
+  Mat15 C;
+  if (opt.encoder_sigma) {
+    C = C0 * reading_noise_meat(problem, s, fin, opt.cost, *opt.encoder_sigma) * C0;
+  } else if (n > p) {
+    C = (fin.e.r.squaredNorm() / static_cast<double>(n - p)) * C0;
+  } else {
+    C.setConstant(kNaN);
+    res.notes.push_back("no 1-sigma: as many samples as free parameters leave no residual to "
+                        "estimate the noise from (give --sigma or more samples)");
+  }
+  const Mat15 T = geometry_jacobian(s.x, opt.cost);
+  const Mat15 Cg = T * C * T.transpose();
+  res.covariance = Cg;
+  for (int i = 0; i < kNumParams; ++i)
+    if (problem.free.test(static_cast<size_t>(i))) res.sigma[static_cast<size_t>(i)] = std::sqrt(std::max(Cg(i, i), 0.0));
+}
+
+}  // namespace
+
+Result calibrate_lm(const Problem& problem, const LmOptions& opt, const std::vector<Eigen::Vector2d>* true_xy) {
+  const auto t0 = std::chrono::steady_clock::now();
+  check_lm_inputs(problem, opt);
+  Result res;
+  res.method = "lm";
+  res.cost = opt.cost;
+  res.free = problem.free;
+  res.sigma.fill(kNaN);
+  const Identifiability id = note_identifiability(problem, opt, res);
+
+  LmSolve s(problem, opt);
+  if (res.rank_deficient)
+    truncated_svd_lm(s.functions, s.rows, problem.free, id.rank, opt.max_iterations, s.x, res);
+  else
+    solve_ceres(s, opt, res);
+  res.geometry = from_solver(s.x, opt.cost);
+  const bool with_covariance = opt.compute_covariance && !res.rank_deficient;
+  const Weighted fin = evaluate_solution(s, opt, with_covariance, res);
+  if (with_covariance && fin.e.ok) estimate_covariance(problem, opt, s, fin, res);
+
+  if (!true_xy) true_xy = opt.true_xy;
+  if (true_xy && true_xy->size() == problem.theta_m.size())
+    res.kmrmse_mm = kmrmse(res.geometry, problem.theta_m, *true_xy);
   res.history.emplace_back(res.evaluations, res.final_cost);
   res.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
   return res;

@@ -1,27 +1,33 @@
 #include "calib/paper_values.hpp"
 
+#include <initializer_list>
+#include <utility>
+
 namespace gpm::calib {
 
-Geometry section3_actual() {
+namespace {
+
+// The nominal GPM2002 with the listed parameters (index, value) changed.
+Geometry nominal_with(std::initializer_list<std::pair<int, double>> values) {
   Geometry g = Geometry::gpm2002_nominal();
-  g[kXa2] = 433.04;
-  g[kXa3] = 433.05;
-  g[kYa3] = 499.96;
-  g[kLa1] = 244.1; g[kLa2] = 244.2; g[kLa3] = 244.5;
-  g[kLb1] = 243.8; g[kLb2] = 244.2; g[kLb3] = 244.2;
-  g[kDth1] = g[kDth2] = g[kDth3] = 1.0;
+  for (const auto& [i, v] : values) g[i] = v;
   return g;
 }
 
+}  // namespace
+
+Geometry section3_actual() {
+  return nominal_with({{kXa2, 433.04}, {kXa3, 433.05}, {kYa3, 499.96},
+                       {kLa1, 244.1}, {kLa2, 244.2}, {kLa3, 244.5},
+                       {kLb1, 243.8}, {kLb2, 244.2}, {kLb3, 244.2},
+                       {kDth1, 1.0}, {kDth2, 1.0}, {kDth3, 1.0}});
+}
+
 Geometry table5_actual() {
-  Geometry g = Geometry::gpm2002_nominal();
-  g[kYa2] = 0.3;
-  g[kXa3] = 433.5;
-  g[kYa3] = 499.4;
-  g[kLa1] = 244.1; g[kLa2] = 244.2; g[kLa3] = 243.5;
-  g[kLb1] = 243.8; g[kLb2] = 244.2; g[kLb3] = 244.6;
-  g[kDth1] = 0.01; g[kDth2] = -0.01; g[kDth3] = 0.01;
-  return g;
+  return nominal_with({{kYa2, 0.3}, {kXa3, 433.5}, {kYa3, 499.4},
+                       {kLa1, 244.1}, {kLa2, 244.2}, {kLa3, 243.5},
+                       {kLb1, 243.8}, {kLb2, 244.2}, {kLb3, 244.6},
+                       {kDth1, 0.01}, {kDth2, -0.01}, {kDth3, 0.01}});
 }
 
 FreeMask paper_free_mask() {

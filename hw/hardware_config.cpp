@@ -20,6 +20,104 @@ std::string resolve(const std::string& base_dir, const std::string& p) {
   return path.is_absolute() ? p : (std::filesystem::path(base_dir) / path).lexically_normal().string();
 }
 
+// The key backend (twin or modbus) of root.
+std::string parse_backend(const YAML::Node& root, const std::string& path) {
+  if (!root["backend"]) throw InputError(path + ": missing key 'backend' (twin or modbus)");
+  std::string backend = yaml_string(root["backend"], path, "backend");
+  if (backend != "twin" && backend != "modbus") {
+    throw InputError(yaml_where(path, root["backend"], "backend") +
+                     fmt::format("'{}' is not a backend (valid: twin, modbus)", backend));
+  }
+  return backend;
+}
+
+// Throws InputError at node (key path key) unless lo <= v <= hi; what: the explanation.
+void check_within(double v, double lo, double hi, const YAML::Node& node, const std::string& path, const char* key,
+                  const std::string& what) {
+  if (!(v >= lo && v <= hi)) throw InputError(yaml_where(path, node, key) + what);
+}
+
+// The key dither_mm of node d: within [0, 5] mm.
+double parse_dither(const YAML::Node& d, const std::string& path) {
+  const double v = yaml_number(d, path, "dither_mm");
+  check_within(v, 0.0, 5.0, d, path, "dither_mm",
+               fmt::format("{} mm is outside [0, 5] mm (the figure each sample is averaged along; 0: hold still)", v));
+  return v;
+}
+
+// The key rate_hz of node r: within [10, 2000] Hz.
+double parse_rate(const YAML::Node& r, const std::string& path) {
+  const double rate_hz = yaml_positive(r, path, "rate_hz");
+  check_within(rate_hz, 10.0, 2000.0, r, path, "rate_hz",
+               fmt::format("{} Hz is outside [10, 2000] Hz (the read/write cycle of the drives; the examples use 250)",
+                           rate_hz));
+  return rate_hz;
+}
+
+// The controller model: the robot file of key controller (paths relative to
+// dir), its geometry replaced by that of the file of key calibration when given.
+Robot parse_controller(const YAML::Node& root, const std::string& path, const std::string& dir) {
+  if (!root["controller"]) {
+    throw InputError(path + ": missing key 'controller' (the robot file whose model computes IK, "
+                            "e.g. models/gpm2002.yaml)");
+  }
+  Robot controller = load_robot(resolve(dir, yaml_string(root["controller"], path, "controller")));
+  if (root["calibration"]) {
+    const std::string cal = resolve(dir, yaml_string(root["calibration"], path, "calibration"));
+    const YAML::Node r = load_yaml_file(cal);
+    controller.geometry = geometry_from_yaml(r["geometry"], cal, "geometry");
+    validate_robot(controller, cal);
+  }
+  return controller;
+}
+
+// The key joint_modes of node m into modes: three of position or
+// torque_off, at least two in position mode.
+void parse_joint_modes(const YAML::Node& m, const std::string& path, std::array<JointMode, 3>& modes) {
+  if (!m.IsSequence() || m.size() != 3) {
+    throw InputError(yaml_where(path, m, "joint_modes") +
+                     "expected three modes, each position or torque_off");
+  }
+  for (size_t i = 0; i < 3; ++i) {
+    const std::string kp = fmt::format("joint_modes[{}]", i);
+    const std::string s = yaml_string(m[i], path, kp);
+    if (s == "position") modes[i] = JointMode::kPosition;
+    else if (s == "torque_off") modes[i] = JointMode::kTorqueOff;
+    else throw InputError(yaml_where(path, m[i], kp) + fmt::format("'{}' is not position or torque_off", s));
+  }
+  int n = 0;
+  for (JointMode x : modes) n += x == JointMode::kPosition;
+  if (n < 2) {
+    throw InputError(yaml_where(path, m, "joint_modes") +
+                     "at least two joints must be in position mode (2 degrees of freedom)");
+  }
+}
+
+// The backend's own section into c: twin {scenario} or modbus {register_map}
+// (whose response_timeout must fit within safety.comms_timeout).
+void parse_backend_section(const YAML::Node& root, const std::string& path, const std::string& dir,
+                           HardwareConfig& c) {
+  if (c.backend == "twin") {
+    const YAML::Node t = root["twin"];
+    if (!t) throw InputError(path + ": missing key 'twin' (backend twin needs twin: {scenario: FILE})");
+    yaml_check_keys(t, path, "twin", {"scenario"});
+    if (!t["scenario"]) throw InputError(yaml_where(path, t, "twin") + "missing key 'scenario'");
+    c.twin = twin_config_from_scenario(resolve(dir, yaml_string(t["scenario"], path, "twin.scenario")),
+                                       1.0 / c.rate_hz);
+    return;
+  }
+  const YAML::Node m = root["modbus"];
+  if (!m) throw InputError(path + ": missing key 'modbus' (backend modbus needs modbus: {register_map: FILE})");
+  yaml_check_keys(m, path, "modbus", {"register_map"});
+  if (!m["register_map"]) throw InputError(yaml_where(path, m, "modbus") + "missing key 'register_map'");
+  c.register_map = load_register_map(resolve(dir, yaml_string(m["register_map"], path, "modbus.register_map")));
+  if (c.register_map->response_timeout_s > c.safety.comms_timeout_s) {
+    throw InputError(yaml_where(path, root["safety"], "safety.comms_timeout") +
+                     fmt::format("{} s is shorter than the register map's response_timeout {} s",
+                                 c.safety.comms_timeout_s, c.register_map->response_timeout_s));
+  }
+}
+
 }  // namespace
 
 TwinBackendConfig twin_config_from_scenario(const std::string& scenario_path, double period_s) {
@@ -41,82 +139,13 @@ HardwareConfig load_hardware_config(const std::string& path) {
                    "modbus", "safety"});
   HardwareConfig c;
   c.file = path;
-  if (!root["backend"]) throw InputError(path + ": missing key 'backend' (twin or modbus)");
-  c.backend = yaml_string(root["backend"], path, "backend");
-  if (c.backend != "twin" && c.backend != "modbus") {
-    throw InputError(yaml_where(path, root["backend"], "backend") +
-                     fmt::format("'{}' is not a backend (valid: twin, modbus)", c.backend));
-  }
-  if (const YAML::Node d = root["dither_mm"]) {
-    const double v = yaml_number(d, path, "dither_mm");
-    if (!(v >= 0.0 && v <= 5.0)) {
-      throw InputError(yaml_where(path, d, "dither_mm") +
-                       fmt::format("{} mm is outside [0, 5] mm (the figure each sample is averaged along; "
-                                   "0: hold still)", v));
-    }
-    c.dither_mm = v;
-  }
-  if (root["rate_hz"]) {
-    c.rate_hz = yaml_positive(root["rate_hz"], path, "rate_hz");
-    if (!(c.rate_hz >= 10.0 && c.rate_hz <= 2000.0)) {
-      throw InputError(yaml_where(path, root["rate_hz"], "rate_hz") +
-                       fmt::format("{} Hz is outside [10, 2000] Hz (the read/write cycle of the "
-                                   "drives; the examples use 250)",
-                                   c.rate_hz));
-    }
-  }
-  if (!root["controller"]) {
-    throw InputError(path + ": missing key 'controller' (the robot file whose model computes IK, "
-                            "e.g. models/gpm2002.yaml)");
-  }
-  c.controller = load_robot(resolve(dir, yaml_string(root["controller"], path, "controller")));
-  if (root["calibration"]) {
-    const std::string cal = resolve(dir, yaml_string(root["calibration"], path, "calibration"));
-    const YAML::Node r = load_yaml_file(cal);
-    c.controller.geometry = geometry_from_yaml(r["geometry"], cal, "geometry");
-    validate_robot(c.controller, cal);
-  }
-  if (const YAML::Node m = root["joint_modes"]) {
-    if (!m.IsSequence() || m.size() != 3) {
-      throw InputError(yaml_where(path, m, "joint_modes") +
-                       "expected three modes, each position or torque_off");
-    }
-    for (size_t i = 0; i < 3; ++i) {
-      const std::string kp = fmt::format("joint_modes[{}]", i);
-      const std::string s = yaml_string(m[i], path, kp);
-      if (s == "position") c.modes[i] = JointMode::kPosition;
-      else if (s == "torque_off") c.modes[i] = JointMode::kTorqueOff;
-      else throw InputError(yaml_where(path, m[i], kp) + fmt::format("'{}' is not position or torque_off", s));
-    }
-    int n = 0;
-    for (JointMode x : c.modes) n += x == JointMode::kPosition;
-    if (n < 2) {
-      throw InputError(yaml_where(path, m, "joint_modes") +
-                       "at least two joints must be in position mode (2 degrees of freedom)");
-    }
-  }
+  c.backend = parse_backend(root, path);
+  if (const YAML::Node d = root["dither_mm"]) c.dither_mm = parse_dither(d, path);
+  if (root["rate_hz"]) c.rate_hz = parse_rate(root["rate_hz"], path);
+  c.controller = parse_controller(root, path, dir);
+  if (const YAML::Node m = root["joint_modes"]) parse_joint_modes(m, path, c.modes);
   c.safety = safety_limits_from_yaml(root["safety"], path, "safety");
-  const double period = 1.0 / c.rate_hz;
-  if (c.backend == "twin") {
-    const YAML::Node t = root["twin"];
-    if (!t) throw InputError(path + ": missing key 'twin' (backend twin needs twin: {scenario: FILE})");
-    yaml_check_keys(t, path, "twin", {"scenario"});
-    if (!t["scenario"]) throw InputError(yaml_where(path, t, "twin") + "missing key 'scenario'");
-    c.twin = twin_config_from_scenario(resolve(dir, yaml_string(t["scenario"], path, "twin.scenario")),
-                                       period);
-  } else {
-    const YAML::Node m = root["modbus"];
-    if (!m) throw InputError(path + ": missing key 'modbus' (backend modbus needs modbus: {register_map: FILE})");
-    yaml_check_keys(m, path, "modbus", {"register_map"});
-    if (!m["register_map"]) throw InputError(yaml_where(path, m, "modbus") + "missing key 'register_map'");
-    c.register_map = load_register_map(
-        resolve(dir, yaml_string(m["register_map"], path, "modbus.register_map")));
-    if (c.register_map->response_timeout_s > c.safety.comms_timeout_s) {
-      throw InputError(yaml_where(path, root["safety"], "safety.comms_timeout") +
-                       fmt::format("{} s is shorter than the register map's response_timeout {} s",
-                                   c.safety.comms_timeout_s, c.register_map->response_timeout_s));
-    }
-  }
+  parse_backend_section(root, path, dir, c);
   return c;
 }
 

@@ -53,22 +53,9 @@ double scalar(const YAML::Node& node, const char* key, const std::string& file,
   return x;
 }
 
-}  // namespace
-
-SafetyLimits safety_limits_from_yaml(const YAML::Node& node, const std::string& file,
-                                     const std::string& keypath) {
-  if (!node || node.IsNull()) {
-    throw InputError(fmt::format("{}: missing section '{}' (a hardware config must give every "
-                                 "safety limit before anything moves; keys: {})",
-                                 file, keypath, kKeys));
-  }
-  yaml_check_keys(node, file, keypath,
-                  {"joint_min", "joint_max", "max_velocity", "max_acceleration",
-                   "workspace_centre", "workspace_radius", "workspace_margin", "reach_margin",
-                   "min_transmission", "min_direct", "max_inconsistency", "watchdog_hold",
-                   "watchdog_disable", "comms_timeout", "max_tracking"});
-  const std::string& kp = keypath;
-  SafetyLimits s;
+// The per-joint limits of node (keypath kp) into s: joint range, speed and
+// acceleration, each within what this robot's servo joints can mean.
+void parse_joint_limits(const YAML::Node& node, const std::string& file, const std::string& kp, SafetyLimits& s) {
   s.joint_min = triple(node, "joint_min", file, kp, false);
   s.joint_max = triple(node, "joint_max", file, kp, false);
   for (size_t i = 0; i < 3; ++i) {
@@ -102,6 +89,10 @@ SafetyLimits safety_limits_from_yaml(const YAML::Node& node, const std::string& 
                                    s.max_acceleration[i], kMaxAccelerationRadS2));
     }
   }
+}
+
+// The workspace disc of node (keypath kp) into s: centre, radius and the margin inside it.
+void parse_workspace(const YAML::Node& node, const std::string& file, const std::string& kp, SafetyLimits& s) {
   const YAML::Node c = required(node, "workspace_centre", file, kp);
   if (!c.IsSequence() || c.size() != 2) {
     throw InputError(yaml_where(file, c, kp + ".workspace_centre") +
@@ -120,11 +111,10 @@ SafetyLimits safety_limits_from_yaml(const YAML::Node& node, const std::string& 
     throw InputError(yaml_where(file, node["workspace_margin"], kp + ".workspace_margin") +
                      fmt::format("must be below workspace_radius ({} mm)", s.workspace_radius_mm));
   }
-  s.reach_margin_mm = scalar(node, "reach_margin", file, kp, 0.0, kMaxWorkspaceRadiusMm, "in [0, 500] mm");
-  s.min_transmission = scalar(node, "min_transmission", file, kp, 0.0, 0.999, "in [0, 1)");
-  s.min_direct = scalar(node, "min_direct", file, kp, 0.0, 0.999, "in [0, 1)");
-  s.max_inconsistency_rad =
-      scalar(node, "max_inconsistency", file, kp, 1e-12, 1.0, "in (0, 1] rad");
+}
+
+// The watchdog, comms timeout and tracking bound of node (keypath kp) into s.
+void parse_timing(const YAML::Node& node, const std::string& file, const std::string& kp, SafetyLimits& s) {
   s.watchdog_hold_s = scalar(node, "watchdog_hold", file, kp, 1e-6, 60.0, "in (0, 60] s");
   s.watchdog_disable_s = scalar(node, "watchdog_disable", file, kp, 1e-6, 600.0, "in (0, 600] s");
   if (s.watchdog_disable_s <= s.watchdog_hold_s) {
@@ -135,6 +125,32 @@ SafetyLimits safety_limits_from_yaml(const YAML::Node& node, const std::string& 
   // The one optional key: its default is itself a limit (hw/README.md).
   if (node["max_tracking"])
     s.max_tracking_mm = scalar(node, "max_tracking", file, kp, 0.01, kMaxWorkspaceRadiusMm, "in [0.01, 500] mm");
+}
+
+}  // namespace
+
+SafetyLimits safety_limits_from_yaml(const YAML::Node& node, const std::string& file,
+                                     const std::string& keypath) {
+  if (!node || node.IsNull()) {
+    throw InputError(fmt::format("{}: missing section '{}' (a hardware config must give every "
+                                 "safety limit before anything moves; keys: {})",
+                                 file, keypath, kKeys));
+  }
+  yaml_check_keys(node, file, keypath,
+                  {"joint_min", "joint_max", "max_velocity", "max_acceleration",
+                   "workspace_centre", "workspace_radius", "workspace_margin", "reach_margin",
+                   "min_transmission", "min_direct", "max_inconsistency", "watchdog_hold",
+                   "watchdog_disable", "comms_timeout", "max_tracking"});
+  const std::string& kp = keypath;
+  SafetyLimits s;
+  parse_joint_limits(node, file, kp, s);
+  parse_workspace(node, file, kp, s);
+  s.reach_margin_mm = scalar(node, "reach_margin", file, kp, 0.0, kMaxWorkspaceRadiusMm, "in [0, 500] mm");
+  s.min_transmission = scalar(node, "min_transmission", file, kp, 0.0, 0.999, "in [0, 1)");
+  s.min_direct = scalar(node, "min_direct", file, kp, 0.0, 0.999, "in [0, 1)");
+  s.max_inconsistency_rad =
+      scalar(node, "max_inconsistency", file, kp, 1e-12, 1.0, "in (0, 1] rad");
+  parse_timing(node, file, kp, s);
   return s;
 }
 

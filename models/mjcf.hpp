@@ -59,13 +59,10 @@ struct MjcfEffects {
   double clearance_stiffness_N_per_m = 200.0;     // soft centring spring of each loose pin
   double clearance_damping_N_s_per_m = 2.0;       // damping of each loose pin (two pins in series per link)
   // Limit time constant: 2 steps at 0.25 ms (MuJoCo raises it to 2 timesteps
-  // at longer steps). The tendon limits' effective mass is light, so at
-  // 1 ms the hub gave 0.2-0.6 um beyond 2c under the drives' loads.
+  // at longer steps; why not longer: docs/ARCHITECTURE.md, clearance).
   double clearance_solref_s = 0.0005;
-  // Limit impedance: MuJoCo's soft limits are mass-normalised, and the
-  // default 0.9-0.95 gave way by ~0.2 mm under the servos' preload (measured
-  // on light pin bodies); 0.9999 (as the loop constraints) holds the limits
-  // to well under 1 um.
+  // Limit impedance, as the loop constraints': MuJoCo's default soft limits
+  // give way on light bodies (docs/ARCHITECTURE.md, clearance).
   double clearance_solimp = 0.9999;
   // Hub pin offsets p_i (m, hub frame): the distal pin of passive link i sits
   // at the hub centre + R(phi) p_i (models/hub_pins.hpp); zero = one common pin.

@@ -35,134 +35,176 @@ std::vector<std::string> split_csv_line(const std::string& line) {
   return out;
 }
 
+// The header row of a samples CSV: its column names, its line number and the file's name.
+struct Header {
+  std::vector<std::string> names;
+  int line = 0;
+  std::string file;
+
+  // The column named name, or -1.
+  int find(const std::string& name) const {
+    for (size_t i = 0; i < names.size(); ++i)
+      if (names[i] == name) return static_cast<int>(i);
+    return -1;
+  }
+};
+
+// The header: the first non-empty line of in (line_no counts the lines
+// read). Throws InputError for an empty file or a column named twice.
+Header read_header(std::istream& in, int& line_no, const std::string& file) {
+  Header h;
+  h.file = file;
+  std::string line;
+  while (std::getline(in, line)) {
+    ++line_no;
+    if (line.find_first_not_of(" \t\r") != std::string::npos) {
+      h.names = split_csv_line(line);
+      break;
+    }
+  }
+  if (h.names.empty()) {
+    throw InputError(fmt::format("{}: empty file (expected a header row "
+                                 "sample,theta_m1,theta_m2,theta_m3[,x,y])", file));
+  }
+  h.line = line_no;
+  // A column named twice is refused (issue 36.5): which of the two a reader
+  // takes would otherwise decide the data silently.
+  for (size_t i = 0; i < h.names.size(); ++i) {
+    for (size_t k = 0; k < i; ++k) {
+      if (!h.names[i].empty() && h.names[i] == h.names[k]) {
+        throw InputError(fmt::format("{}:{}: column '{}' appears twice in the header (fields {} and {}); a column "
+                                     "may appear once: keep one of the two",
+                                     file, h.line, h.names[i], k + 1, i + 1));
+      }
+    }
+  }
+  return h;
+}
+
+// The optional triples of drive torques, by column prefix (the three columns or none).
+constexpr const char* kTriples[3] = {"tau", "tau_last", "tau_between"};
+
+// Where each known column stands in the header (-1: absent); a torque
+// triple's first column is -1 when the triple is absent.
+struct Columns {
+  int id = -1, x = -1, y = -1, time = -1;
+  int theta[3] = {-1, -1, -1};
+  int triple[3][3] = {};
+};
+
+// The known columns of h. Throws InputError for a missing theta_m column, x
+// without y (or y without x), or a torque triple with one or two of its columns.
+Columns find_columns(const Header& h) {
+  Columns c;
+  c.id = h.find("sample");
+  for (int k = 0; k < 3; ++k) c.theta[k] = h.find(fmt::format("theta_m{}", k + 1));
+  c.x = h.find("x");
+  c.y = h.find("y");
+  for (int k = 0; k < 3; ++k) {
+    if (c.theta[k] < 0) {
+      throw InputError(fmt::format("{}:{}: missing column 'theta_m{}' (the header must name "
+                                   "theta_m1,theta_m2,theta_m3; sample, x, y are optional)",
+                                   h.file, h.line, k + 1));
+    }
+  }
+  if ((c.x < 0) != (c.y < 0)) {
+    throw InputError(fmt::format("{}:{}: column '{}' without '{}' (give both x and y, or neither)",
+                                 h.file, h.line, c.x < 0 ? "y" : "x", c.x < 0 ? "x" : "y"));
+  }
+  for (int q = 0; q < 3; ++q) {
+    const char* name = kTriples[q];
+    int found = 0;
+    for (int k = 0; k < 3; ++k) found += (c.triple[q][k] = h.find(fmt::format("{}{}", name, k + 1))) >= 0;
+    for (int k = 0; found > 0 && found < 3 && k < 3; ++k)
+      if (c.triple[q][k] < 0)
+        throw InputError(fmt::format("{}:{}: column '{}{}' missing (give {}1,{}2,{}3 all three, or none)", h.file,
+                                     h.line, name, k + 1, name, name, name));
+  }
+  c.time = h.find("t");
+  return c;
+}
+
+// The number in field col of row f (line ln). Throws InputError naming the
+// column for a missing field, text that is not a number, or a non-finite value.
+double field_number(const Header& h, const std::vector<std::string>& f, int col, int ln) {
+  const std::string& name = h.names[static_cast<size_t>(col)];
+  if (col >= static_cast<int>(f.size())) {
+    throw InputError(fmt::format("{}:{}: column '{}' is missing on this row ({} fields, header has {})",
+                                 h.file, ln, name, f.size(), h.names.size()));
+  }
+  const std::string& t = f[static_cast<size_t>(col)];
+  std::string_view sv = t;
+  if (!sv.empty() && sv.front() == '+') sv.remove_prefix(1);
+  double v = 0.0;
+  const auto [p, ec] = std::from_chars(sv.data(), sv.data() + sv.size(), v);
+  if (ec != std::errc() || p != sv.data() + sv.size() || sv.empty())
+    throw InputError(fmt::format("{}:{}: column '{}': '{}' is not a number", h.file, ln, name, t));
+  if (!std::isfinite(v))
+    throw InputError(fmt::format("{}:{}: column '{}': value must be finite, got '{}'", h.file, ln, name, t));
+  return v;
+}
+
+// Strict reader (issue 14.4): throws InputError unless row f (line ln) has
+// exactly the header's field count, so a decimal comma (`1,5`) or a missing
+// field never shifts the columns.
+void check_field_count(const Header& h, const std::vector<std::string>& f, int ln) {
+  if (f.size() == h.names.size()) return;
+  const std::string why = f.size() > h.names.size()
+                              ? std::string("a decimal comma or an extra field?")
+                              : fmt::format("column '{}' is missing on this row", h.names[f.size()]);
+  throw InputError(fmt::format("{}:{}: expected {} fields as in the header (line {}), found {} ({})", h.file, ln,
+                               h.names.size(), h.line, f.size(), why));
+}
+
+// Appends row f (line ln) to s: readings, x,y, torques, time (increasing)
+// and sample id (a whole number; its index when the file has none).
+void append_row(const Header& h, const Columns& c, const std::vector<std::string>& f, int ln, Samples& s) {
+  const auto number = [&](int col) { return field_number(h, f, col, ln); };
+  Eigen::Vector3d t;
+  for (int k = 0; k < 3; ++k) t[k] = number(c.theta[k]);
+  s.theta_m.push_back(t);
+  if (s.has_xy) s.xy.emplace_back(number(c.x), number(c.y));
+  std::vector<Eigen::Vector3d>* triples[3] = {&s.tau, &s.tau_last, &s.tau_between};
+  for (int q = 0; q < 3; ++q)
+    if (c.triple[q][0] >= 0)
+      triples[q]->emplace_back(number(c.triple[q][0]), number(c.triple[q][1]), number(c.triple[q][2]));
+  if (c.time >= 0) {
+    const double t_s = number(c.time);
+    if (!s.t.empty() && !(t_s > s.t.back()))
+      throw InputError(fmt::format("{}:{}: column 't': {} s does not follow {} s of the row before (the times of "
+                                   "the readings must increase)",
+                                   h.file, ln, f[static_cast<size_t>(c.time)], format_exact(s.t.back())));
+    s.t.push_back(t_s);
+  }
+  if (c.id < 0) {
+    s.id.push_back(static_cast<long>(s.theta_m.size() - 1));
+    return;
+  }
+  const double id = number(c.id);
+  if (id != std::floor(id) || std::abs(id) > 9.0e15) {
+    throw InputError(fmt::format("{}:{}: column 'sample': '{}' is not a whole number of at "
+                                 "most 16 digits",
+                                 h.file, ln, f[static_cast<size_t>(c.id)]));
+  }
+  s.id.push_back(static_cast<long>(id));
+}
+
 }  // namespace
 
 Samples parse_samples_csv(const std::string& text, const std::string& file) {
   std::istringstream in(text);
-  std::string line;
   int line_no = 0;
-  // Header: first non-empty line.
-  std::vector<std::string> header;
-  while (std::getline(in, line)) {
-    ++line_no;
-    if (line.find_first_not_of(" \t\r") != std::string::npos) {
-      header = split_csv_line(line);
-      break;
-    }
-  }
-  if (header.empty()) {
-    throw InputError(fmt::format("{}: empty file (expected a header row "
-                                 "sample,theta_m1,theta_m2,theta_m3[,x,y])", file));
-  }
-  const int header_line = line_no;
-  // A column named twice is refused (issue 36.5): which of the two a reader
-  // takes would otherwise decide the data silently.
-  for (size_t i = 0; i < header.size(); ++i) {
-    for (size_t k = 0; k < i; ++k) {
-      if (!header[i].empty() && header[i] == header[k]) {
-        throw InputError(fmt::format("{}:{}: column '{}' appears twice in the header (fields {} and {}); a column "
-                                     "may appear once: keep one of the two",
-                                     file, header_line, header[i], k + 1, i + 1));
-      }
-    }
-  }
-  auto find = [&](const char* name) -> int {
-    for (size_t i = 0; i < header.size(); ++i)
-      if (header[i] == name) return static_cast<int>(i);
-    return -1;
-  };
-  const int c_id = find("sample");
-  const int c_t[3] = {find("theta_m1"), find("theta_m2"), find("theta_m3")};
-  const int c_x = find("x"), c_y = find("y");
-  for (int k = 0; k < 3; ++k) {
-    if (c_t[k] < 0) {
-      throw InputError(fmt::format("{}:{}: missing column 'theta_m{}' (the header must name "
-                                   "theta_m1,theta_m2,theta_m3; sample, x, y are optional)",
-                                   file, header_line, k + 1));
-    }
-  }
-  if ((c_x < 0) != (c_y < 0)) {
-    throw InputError(fmt::format("{}:{}: column '{}' without '{}' (give both x and y, or neither)",
-                                 file, header_line, c_x < 0 ? "y" : "x", c_x < 0 ? "x" : "y"));
-  }
-  // Optional triples of drive torques: the three columns or none.
-  struct Triple {
-    const char* name;
-    int col[3];
-    std::vector<Eigen::Vector3d>* out;
-  };
+  const Header header = read_header(in, line_no, file);
+  const Columns columns = find_columns(header);
   Samples s;
-  Triple triples[3] = {{"tau", {}, &s.tau}, {"tau_last", {}, &s.tau_last}, {"tau_between", {}, &s.tau_between}};
-  for (Triple& tr : triples) {
-    int found = 0;
-    for (int k = 0; k < 3; ++k) found += (tr.col[k] = find(fmt::format("{}{}", tr.name, k + 1).c_str())) >= 0;
-    for (int k = 0; found > 0 && found < 3 && k < 3; ++k)
-      if (tr.col[k] < 0)
-        throw InputError(fmt::format("{}:{}: column '{}{}' missing (give {}1,{}2,{}3 all three, or none)", file,
-                                     header_line, tr.name, k + 1, tr.name, tr.name, tr.name));
-    if (found == 0) tr.out = nullptr;
-  }
-  const int c_time = find("t");
-  s.has_xy = c_x >= 0;
-  auto number = [&](const std::vector<std::string>& f, int col, int ln) {
-    if (col >= static_cast<int>(f.size())) {
-      throw InputError(fmt::format("{}:{}: column '{}' is missing on this row ({} fields, header has {})",
-                                   file, ln, header[static_cast<size_t>(col)], f.size(), header.size()));
-    }
-    const std::string& t = f[static_cast<size_t>(col)];
-    std::string_view sv = t;
-    if (!sv.empty() && sv.front() == '+') sv.remove_prefix(1);
-    double v = 0.0;
-    const auto [p, ec] = std::from_chars(sv.data(), sv.data() + sv.size(), v);
-    if (ec != std::errc() || p != sv.data() + sv.size() || sv.empty()) {
-      throw InputError(fmt::format("{}:{}: column '{}': '{}' is not a number", file, ln,
-                                   header[static_cast<size_t>(col)], t));
-    }
-    if (!std::isfinite(v)) {
-      throw InputError(fmt::format("{}:{}: column '{}': value must be finite, got '{}'", file, ln,
-                                   header[static_cast<size_t>(col)], t));
-    }
-    return v;
-  };
+  s.has_xy = columns.x >= 0;
+  std::string line;
   while (std::getline(in, line)) {
     ++line_no;
     if (line.find_first_not_of(" \t\r") == std::string::npos) continue;
     const auto f = split_csv_line(line);
-    // Strict reader (issue 14.4): every row has exactly the header's field count,
-    // so a decimal comma (`1,5`) or a missing field never shifts the columns.
-    if (f.size() != header.size()) {
-      const std::string why =
-          f.size() > header.size()
-              ? std::string("a decimal comma or an extra field?")
-              : fmt::format("column '{}' is missing on this row", header[f.size()]);
-      throw InputError(fmt::format("{}:{}: expected {} fields as in the header (line {}), found {} ({})",
-                                   file, line_no, header.size(), header_line, f.size(), why));
-    }
-    Eigen::Vector3d t;
-    for (int k = 0; k < 3; ++k) t[k] = number(f, c_t[k], line_no);
-    s.theta_m.push_back(t);
-    if (s.has_xy) s.xy.emplace_back(number(f, c_x, line_no), number(f, c_y, line_no));
-    for (const Triple& tr : triples)
-      if (tr.out) tr.out->emplace_back(number(f, tr.col[0], line_no), number(f, tr.col[1], line_no), number(f, tr.col[2], line_no));
-    if (c_time >= 0) {
-      const double t_s = number(f, c_time, line_no);
-      if (!s.t.empty() && !(t_s > s.t.back()))
-        throw InputError(fmt::format("{}:{}: column 't': {} s does not follow {} s of the row before (the times of "
-                                     "the readings must increase)",
-                                     file, line_no, f[static_cast<size_t>(c_time)], format_exact(s.t.back())));
-      s.t.push_back(t_s);
-    }
-    if (c_id >= 0) {
-      const double id = number(f, c_id, line_no);
-      if (id != std::floor(id) || std::abs(id) > 9.0e15) {
-        throw InputError(fmt::format("{}:{}: column 'sample': '{}' is not a whole number of at "
-                                     "most 16 digits",
-                                     file, line_no, f[static_cast<size_t>(c_id)]));
-      }
-      s.id.push_back(static_cast<long>(id));
-    } else {
-      s.id.push_back(static_cast<long>(s.theta_m.size() - 1));
-    }
+    check_field_count(header, f, line_no);
+    append_row(header, columns, f, line_no, s);
   }
   return s;
 }

@@ -1,3 +1,23 @@
+// Excitation design (excitation.hpp: the criteria). Algorithm:
+//  1. candidates: the reachable grid with margins (candidates.hpp);
+//  2. greedy start (Wynn / sequential D-optimal): starting from a small ridge
+//     M = delta I, add the candidate maximising g' M^-1 g, since
+//     det(M + g g') = det(M) (1 + g' M^-1 g);
+//  3. exchange (Fedorov): swap a chosen pose i for a candidate j while the
+//     criterion improves. For D the determinant ratio of a swap is
+//       det(M - g_i g_i' + g_j g_j') / det M = (1 + d_j)(1 - d_i) + d_ij^2,
+//     d_i = g_i' M^-1 g_i, d_ij = g_i' M^-1 g_j; the best pair is swapped
+//     until no ratio exceeds 1. For worst, the new variances of every swap
+//     follow from two Sherman-Morrison rank-one updates in O(p):
+//       add j:    C1 = C - u_j u_j' / (1 + d_j),             u_j = C g_j
+//       remove i: C2 = C1 + v v' / (1 - g_i' C1 g_i),        v = C1 g_i
+//     so diag(C2) = diag(C) - u_j.^2 / (1 + d_j) + v.^2 / (1 - d_i + d_ij^2 / (1 + d_j)),
+//     v = u_i - u_j d_ij / (1 + d_j). The max is not smooth (ties stall a
+//     steepest exchange), so the exchange first minimises the smooth
+//     surrogates sum_k (s_k^2 C_kk)^q for q = 1 (A-optimal), 4, 16, then the
+//     exact max.
+//  The result is the best design seen on the chosen criterion, so it is never
+//  worse than the greedy start.
 #include "calib/excitation/excitation.hpp"
 
 #include <algorithm>

@@ -94,32 +94,32 @@ AxisRegisters axis_from_yaml(const YAML::Node& n, const std::string& file, const
   return a;
 }
 
-}  // namespace
+// Throws InputError unless host is the IPv4 address of one machine (node: its YAML node).
+void check_host(const std::string& host_text, const YAML::Node& node, const std::string& file) {
+  in_addr addr{};
+  if (inet_pton(AF_INET, host_text.c_str(), &addr) != 1) {
+    throw InputError(yaml_where(file, node, "connection.host") +
+                     fmt::format("'{}' is not an IPv4 address (give the drives' address as "
+                                 "digits, e.g. 192.168.10.11; names are not resolved)",
+                                 host_text));
+  }
+  const std::uint32_t host = ntohl(addr.s_addr);
+  if (host == 0 || host == 0xffffffffu || (host >> 28) == 0xe) {
+    throw InputError(yaml_where(file, node, "connection.host") +
+                     fmt::format("'{}' is not one machine (0.0.0.0, broadcast or multicast): give "
+                                 "the drives' own address, e.g. 192.168.10.11",
+                                 host_text));
+  }
+}
 
-RegisterMap parse_register_map(const std::string& text, const std::string& file) {
-  const YAML::Node root = load_yaml_string(text, file);
-  if (!root.IsMap()) throw InputError(file + ": expected a map with keys connection, word_order, axes");
-  yaml_check_keys(root, file, "", {"connection", "word_order", "axes", "latch"});
-  RegisterMap m;
+// The section connection (host, port, response_timeout) of root into m.
+void parse_connection(const YAML::Node& root, const std::string& file, RegisterMap& m) {
   const YAML::Node c = root["connection"];
   if (!c) throw InputError(file + ": missing key 'connection' (host, port, response_timeout)");
   yaml_check_keys(c, file, "connection", {"host", "port", "response_timeout"});
   if (!c["host"]) throw InputError(yaml_where(file, c, "connection") + "missing key 'host' (an IPv4 address)");
   m.host = yaml_string(c["host"], file, "connection.host");
-  in_addr addr{};
-  if (inet_pton(AF_INET, m.host.c_str(), &addr) != 1) {
-    throw InputError(yaml_where(file, c["host"], "connection.host") +
-                     fmt::format("'{}' is not an IPv4 address (give the drives' address as "
-                                 "digits, e.g. 192.168.10.11; names are not resolved)",
-                                 m.host));
-  }
-  const std::uint32_t host = ntohl(addr.s_addr);
-  if (host == 0 || host == 0xffffffffu || (host >> 28) == 0xe) {
-    throw InputError(yaml_where(file, c["host"], "connection.host") +
-                     fmt::format("'{}' is not one machine (0.0.0.0, broadcast or multicast): give "
-                                 "the drives' own address, e.g. 192.168.10.11",
-                                 m.host));
-  }
+  check_host(m.host, c["host"], file);
   if (!c["port"]) throw InputError(yaml_where(file, c, "connection") + "missing key 'port' (1..65535)");
   m.port = static_cast<int>(yaml_integer(c["port"], file, "connection.port", 1, 65535));
   if (c["response_timeout"]) {
@@ -129,28 +129,42 @@ RegisterMap parse_register_map(const std::string& text, const std::string& file)
                        "must be at most 10 s");
     }
   }
-  if (root["word_order"]) {
-    const std::string w = yaml_string(root["word_order"], file, "word_order");
-    if (w == "high_first") m.word_order = WordOrder::kHighFirst;
-    else if (w == "low_first") m.word_order = WordOrder::kLowFirst;
-    else throw InputError(yaml_where(file, root["word_order"], "word_order") +
-                          fmt::format("'{}' is not high_first or low_first", w));
-  }
+}
+
+// The key word_order (high_first or low_first) of node w.
+WordOrder parse_word_order(const YAML::Node& w_node, const std::string& file) {
+  const std::string w = yaml_string(w_node, file, "word_order");
+  if (w == "high_first") return WordOrder::kHighFirst;
+  if (w == "low_first") return WordOrder::kLowFirst;
+  throw InputError(yaml_where(file, w_node, "word_order") + fmt::format("'{}' is not high_first or low_first", w));
+}
+
+// The section latch {unit_id, register} of node l.
+LatchRegister parse_latch(const YAML::Node& l, const std::string& file) {
+  yaml_check_keys(l, file, "latch", {"unit_id", "register"});
+  if (!l["unit_id"] || !l["register"])
+    throw InputError(yaml_where(file, l, "latch") + "expected {unit_id: 1..247, register: ADDRESS}");
+  LatchRegister latch;
+  latch.unit_id = static_cast<int>(yaml_integer(l["unit_id"], file, "latch.unit_id", 1, 247));
+  latch.address = reg(l["register"], file, "latch.register", false);
+  return latch;
+}
+
+// Every register axis a uses on its unit (32-bit values take two).
+std::vector<int> used_registers(const AxisRegisters& a) {
+  std::vector<int> r{a.position_command, a.position_command + 1, a.actual_position,
+                     a.actual_position + 1, a.status_word, a.control_word};
+  if (a.actual_velocity >= 0) r.insert(r.end(), {a.actual_velocity, a.actual_velocity + 1});
+  if (a.actual_torque >= 0) r.push_back(a.actual_torque);
+  if (a.fault_code >= 0) r.push_back(a.fault_code);
+  if (a.latched_position >= 0) r.insert(r.end(), {a.latched_position, a.latched_position + 1, a.latch_id});
+  return r;
+}
+
+// Throws InputError unless the latch is given with latched_position and
+// latch_id on every axis (or none of the three), and its register is no axis's on its unit.
+void check_latch(const RegisterMap& m, const YAML::Node& root, const std::string& file) {
   const YAML::Node axes = root["axes"];
-  if (!axes || !axes.IsSequence() || axes.size() != 3) {
-    throw InputError(yaml_where(file, axes ? axes : root, "axes") +
-                     "expected a list of three axes (joints 1, 2, 3)");
-  }
-  for (size_t i = 0; i < 3; ++i) m.axes[i] = axis_from_yaml(axes[i], file, fmt::format("axes[{}]", i));
-  if (const YAML::Node l = root["latch"]) {
-    yaml_check_keys(l, file, "latch", {"unit_id", "register"});
-    if (!l["unit_id"] || !l["register"])
-      throw InputError(yaml_where(file, l, "latch") + "expected {unit_id: 1..247, register: ADDRESS}");
-    LatchRegister latch;
-    latch.unit_id = static_cast<int>(yaml_integer(l["unit_id"], file, "latch.unit_id", 1, 247));
-    latch.address = reg(l["register"], file, "latch.register", false);
-    m.latch = latch;
-  }
   for (size_t i = 0; i < 3; ++i) {
     const AxisRegisters& a = m.axes[i];
     const bool has = a.latched_position >= 0 && a.latch_id >= 0;
@@ -159,33 +173,23 @@ RegisterMap parse_register_map(const std::string& text, const std::string& file)
                        "a latch needs the top-level key latch: {unit_id, register} and latched_position "
                        "and latch_id on every axis (or none of the three)");
     }
-    if (m.latch && m.latch->unit_id == a.unit_id) {
-      std::vector<int> r{a.position_command, a.position_command + 1, a.actual_position, a.actual_position + 1,
-                         a.status_word, a.control_word, a.latched_position, a.latched_position + 1, a.latch_id};
-      if (a.actual_velocity >= 0) r.insert(r.end(), {a.actual_velocity, a.actual_velocity + 1});
-      if (a.actual_torque >= 0) r.push_back(a.actual_torque);
-      if (a.fault_code >= 0) r.push_back(a.fault_code);
-      if (std::find(r.begin(), r.end(), m.latch->address) != r.end())
-        throw InputError(yaml_where(file, root["latch"]["register"], "latch.register") +
-                         fmt::format("register {} of unit {} is already used by axes[{}]", m.latch->address,
-                                     a.unit_id, i));
-    }
+    if (!m.latch || m.latch->unit_id != a.unit_id) continue;
+    const std::vector<int> r = used_registers(a);
+    if (std::find(r.begin(), r.end(), m.latch->address) != r.end())
+      throw InputError(yaml_where(file, root["latch"]["register"], "latch.register") +
+                       fmt::format("register {} of unit {} is already used by axes[{}]", m.latch->address,
+                                   a.unit_id, i));
   }
-  // Axes on one unit id (one drive serving several axes) must use distinct registers.
+}
+
+// Axes on one unit id (one drive serving several axes) must use distinct
+// registers: throws InputError for the first register two of them share.
+void check_shared_units(const RegisterMap& m, const YAML::Node& axes, const std::string& file) {
   for (size_t i = 0; i < 3; ++i) {
     for (size_t j = 0; j < i; ++j) {
       if (m.axes[i].unit_id != m.axes[j].unit_id) continue;
-      const auto used = [](const AxisRegisters& a) {
-        std::vector<int> r{a.position_command, a.position_command + 1, a.actual_position,
-                           a.actual_position + 1, a.status_word, a.control_word};
-        if (a.actual_velocity >= 0) r.insert(r.end(), {a.actual_velocity, a.actual_velocity + 1});
-        if (a.actual_torque >= 0) r.push_back(a.actual_torque);
-        if (a.fault_code >= 0) r.push_back(a.fault_code);
-        if (a.latched_position >= 0) r.insert(r.end(), {a.latched_position, a.latched_position + 1, a.latch_id});
-        return r;
-      };
-      for (int ri : used(m.axes[i])) {
-        for (int rj : used(m.axes[j])) {
+      for (int ri : used_registers(m.axes[i])) {
+        for (int rj : used_registers(m.axes[j])) {
           if (ri != rj) continue;
           throw InputError(yaml_where(file, axes[i], fmt::format("axes[{}]", i)) +
                            fmt::format("shares unit_id {} and register {} with axes[{}]: two "
@@ -195,6 +199,26 @@ RegisterMap parse_register_map(const std::string& text, const std::string& file)
       }
     }
   }
+}
+
+}  // namespace
+
+RegisterMap parse_register_map(const std::string& text, const std::string& file) {
+  const YAML::Node root = load_yaml_string(text, file);
+  if (!root.IsMap()) throw InputError(file + ": expected a map with keys connection, word_order, axes");
+  yaml_check_keys(root, file, "", {"connection", "word_order", "axes", "latch"});
+  RegisterMap m;
+  parse_connection(root, file, m);
+  if (root["word_order"]) m.word_order = parse_word_order(root["word_order"], file);
+  const YAML::Node axes = root["axes"];
+  if (!axes || !axes.IsSequence() || axes.size() != 3) {
+    throw InputError(yaml_where(file, axes ? axes : root, "axes") +
+                     "expected a list of three axes (joints 1, 2, 3)");
+  }
+  for (size_t i = 0; i < 3; ++i) m.axes[i] = axis_from_yaml(axes[i], file, fmt::format("axes[{}]", i));
+  if (const YAML::Node l = root["latch"]) m.latch = parse_latch(l, file);
+  check_latch(m, root, file);
+  check_shared_units(m, axes, file);
   return m;
 }
 

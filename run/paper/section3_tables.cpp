@@ -73,10 +73,9 @@ LocalRun run_lm(const Robot& actual, const Geometry& start, const FreeMask& free
   calib::LmOptions o;
   o.cost = cost;
   o.allow_rank_deficient = allow_rank_deficient;
-  o.true_xy = &poses;
   o.compute_covariance = false;
   LocalRun r;
-  r.result = calib::calibrate_lm(p, o);
+  r.result = calib::calibrate_lm(p, o, &poses);
   r.kmrmse = r.result.kmrmse_mm.value_or(NAN);
   return r;
 }
