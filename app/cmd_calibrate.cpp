@@ -193,7 +193,6 @@ void run(const CalibrateOptions& o) {
   // Checked here, not by a CLI11 validator: the message is the Python
   // binding's too (python/bind_calibrate.cpp).
   if (o.sigma_given) mo.encoder_sigma = check_bound(o.sigma, limits::kEncoderSigma, "--sigma");
-  if (samples.has_xy) mo.true_xy = &samples.xy;
   const scenario::FileProcedure proc = scenario::samples_file_procedure(
       samples, robot, problem.start, problem.free, mo,
       o.encoder_bits_given ? std::optional<int>(o.encoder_bits) : std::nullopt, o.static_fit);

@@ -31,12 +31,10 @@ Eigen::VectorXd sample_residuals(Cost c, const Eigen::Vector3d& theta_m, const G
   return r;
 }
 
-// LM with the robust loss of o.loss (calib/calibrate.hpp: its default scale);
-// true_xy: the samples' true positions for kmrmse, or null.
-Result robust_lm(const Problem& problem, LmOptions lm, const RobustLoss& loss,
-                 const std::vector<Eigen::Vector2d>* true_xy) {
+// LM with the robust loss of o.loss (calib/calibrate.hpp: its default scale).
+Result robust_lm(const Problem& problem, LmOptions lm, const RobustLoss& loss) {
   lm.loss = loss;
-  if (!loss.active() || loss.scale > 0.0) return calibrate_lm(problem, lm, true_xy);
+  if (!loss.active() || loss.scale > 0.0) return calibrate_lm(problem, lm);
   const double tuning = default_tuning(loss.kind);
   Problem p = problem;
   double sigma = lm.encoder_sigma.value_or(0.0);
@@ -45,7 +43,7 @@ Result robust_lm(const Problem& problem, LmOptions lm, const RobustLoss& loss,
     LmOptions plain = lm;
     plain.loss = {};
     plain.compute_covariance = false;
-    const Result first = calibrate_lm(problem, plain, true_xy);
+    const Result first = calibrate_lm(problem, plain);
     p.start = first.geometry;
     std::vector<double> a;
     for (const Eigen::Vector3d& t : problem.theta_m) {
@@ -57,7 +55,7 @@ Result robust_lm(const Problem& problem, LmOptions lm, const RobustLoss& loss,
     if (!(sigma > 0.0)) return first;  // exact data: nothing to be robust against
   }
   lm.loss.scale = tuning * sigma;
-  return calibrate_lm(p, lm, true_xy);
+  return calibrate_lm(p, lm);
 }
 
 }  // namespace
@@ -68,7 +66,7 @@ Result calibrate(const Problem& problem, const MethodOptions& o) {
   lm.encoder_sigma = o.encoder_sigma;
   lm.allow_rank_deficient = o.allow_rank_deficient;
   lm.max_iterations = o.lm_max_iterations;
-  if (o.method == Method::kLM) return robust_lm(problem, lm, o.loss, o.true_xy);
+  if (o.method == Method::kLM) return robust_lm(problem, lm, o.loss);
   if (o.loss.active() && o.method != Method::kDELM)
     throw InputError(fmt::format("--loss {} works with lm or de+lm (the LM stage); {} is not robustified",
                                  loss_name(o.loss), method_name(o.method)));
@@ -88,11 +86,12 @@ Result calibrate(const Problem& problem, const MethodOptions& o) {
   // (same minimiser, docs/EQUATIONS.md), then LM refines on ML.
   Result g = global::solve_global(problem, ml ? Cost::kJ3 : o.cost, ml ? Method::kDE : o.method, box, go,
                                  o.progress);
-  if (o.true_xy) g.kmrmse_mm = kmrmse(g.geometry, problem.theta_m, *o.true_xy);
+  if (problem.true_xy.size() == problem.theta_m.size())
+    g.kmrmse_mm = kmrmse(g.geometry, problem.theta_m, problem.true_xy);
   if (!ml) return g;
   Problem refine = problem;
   refine.start = g.geometry;
-  Result r = robust_lm(refine, lm, o.loss, o.true_xy);
+  Result r = robust_lm(refine, lm, o.loss);
   r.method = "de+lm";
   r.evaluations += g.evaluations;
   r.seconds += g.seconds;

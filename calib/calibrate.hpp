@@ -26,7 +26,6 @@ struct MethodOptions {
   std::uint64_t seed = 1;
   std::optional<double> encoder_sigma;
   bool allow_rank_deficient = false;
-  const std::vector<Eigen::Vector2d>* true_xy = nullptr;
   // Robust loss of the LM stage (lm, de+lm). Without a scale: 2.385 sigma
   // (Cauchy) or 1.345 sigma (Huber), the 95 %-efficiency tunings under
   // Gaussian noise, with sigma = encoder_sigma or, when not given, 1.4826 x

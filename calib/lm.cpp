@@ -437,7 +437,7 @@ void estimate_covariance(const Problem& problem, const LmOptions& opt, LmSolve& 
 
 }  // namespace
 
-Result calibrate_lm(const Problem& problem, const LmOptions& opt, const std::vector<Eigen::Vector2d>* true_xy) {
+Result calibrate_lm(const Problem& problem, const LmOptions& opt) {
   const auto t0 = std::chrono::steady_clock::now();
   check_lm_inputs(problem, opt);
   Result res;
@@ -457,9 +457,8 @@ Result calibrate_lm(const Problem& problem, const LmOptions& opt, const std::vec
   const Weighted fin = evaluate_solution(s, opt, with_covariance, res);
   if (with_covariance && fin.e.ok) estimate_covariance(problem, opt, s, fin, res);
 
-  if (!true_xy) true_xy = opt.true_xy;
-  if (true_xy && true_xy->size() == problem.theta_m.size())
-    res.kmrmse_mm = kmrmse(res.geometry, problem.theta_m, *true_xy);
+  if (problem.true_xy.size() == problem.theta_m.size())
+    res.kmrmse_mm = kmrmse(res.geometry, problem.theta_m, problem.true_xy);
   res.history.emplace_back(res.evaluations, res.final_cost);
   res.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
   return res;

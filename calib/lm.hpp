@@ -25,10 +25,6 @@ struct LmOptions {
   // Levenberg-Marquardt step, instead of refusing it.
   bool allow_rank_deficient = false;
   int max_iterations = 200;
-  // Being removed (per-sample data travels as calibrate_lm's argument): read
-  // only when that argument is null; still set on the motion fit's path
-  // (calib/motion_correction.cpp, run/calibration_procedure.cpp).
-  const std::vector<Eigen::Vector2d>* true_xy = nullptr;
   // Compute the covariance (a few ms); off for speed in benchmarks.
   bool compute_covariance = true;
   // Differentiate the residuals with Ceres autodiff (the reference) instead
@@ -46,10 +42,8 @@ struct LmOptions {
 // rank-deficient free set (one line naming the unobservable direction and
 // what to fix) unless allow_rank_deficient. Result.converged is false when LM
 // stops without meeting its tolerances. Result.notes carries warnings (poor
-// conditioning, rank deficiency) for the caller to print. true_xy: the
-// samples' true end-effector positions (mm), one per reading, for
-// Result.kmrmse_mm (eq. 40); null: none.
-Result calibrate_lm(const Problem& problem, const LmOptions& options,
-                    const std::vector<Eigen::Vector2d>* true_xy = nullptr);
+// conditioning, rank deficiency) for the caller to print. Result.kmrmse_mm
+// (eq. 40) where problem.true_xy has one position per reading.
+Result calibrate_lm(const Problem& problem, const LmOptions& options);
 
 }  // namespace gpm::calib

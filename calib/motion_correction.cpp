@@ -423,24 +423,22 @@ MotionFit fit_in_motion(const Problem& problem, const std::vector<Eigen::Vector3
   if (kept.size() < n) {
     Problem sub = problem;
     sub.theta_m.clear();
+    sub.true_xy.clear();
     std::vector<Eigen::Vector3d> sub_omega, sub_tau, sub_alpha;
     std::vector<Eigen::Vector3d> sub_nb;
-    std::vector<Eigen::Vector2d> sub_xy;
     for (std::size_t j : kept) {
       if (!nb.empty()) sub_nb.push_back(nb[j]);
       sub.theta_m.push_back(problem.theta_m[j]);
       sub_omega.push_back(omega[j]);
       sub_tau.push_back(tau[j]);
       if (!alpha.empty()) sub_alpha.push_back(alpha[j]);
-      if (options.true_xy && options.true_xy->size() == n) sub_xy.push_back((*options.true_xy)[j]);
+      if (problem.true_xy.size() == n) sub.true_xy.push_back(problem.true_xy[j]);
     }
-    LmOptions sub_options = options;
-    if (options.true_xy) sub_options.true_xy = sub_xy.empty() ? nullptr : &sub_xy;
     MotionModel sub_model = model;
     sub_model.skip_first = 0;
     sub_model.drop_uncertain = false;
     sub_model.tension_min_N = tension_min;
-    MotionFit fit = fit_in_motion(sub, sub_omega, sub_tau, sub_nb, sub_options, sub_model, sub_alpha);
+    MotionFit fit = fit_in_motion(sub, sub_omega, sub_tau, sub_nb, options, sub_model, sub_alpha);
     for (std::size_t& j : fit.kept) j = kept[j];
     for (int k = 0; k < 3; ++k) {
       double certain = 0.0;

@@ -42,6 +42,9 @@ struct Problem {
   std::vector<Eigen::Vector3d> theta_m;  // encoder readings per sample (rad)
   Geometry start;                        // initial values; fixed parameters at their known values
   FreeMask free;                         // parameters to estimate
+  // The samples' true end-effector positions (mm), one per reading, where
+  // known (simulation, a tracker): Result::kmrmse_mm (eq. 40); empty: unknown.
+  std::vector<Eigen::Vector2d> true_xy;
 };
 
 // Search box of the global solvers (paper Table 5 by default).

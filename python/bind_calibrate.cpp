@@ -114,7 +114,7 @@ CalibrationResult calibrate(const py::handle& readings, const Robot& robot, cons
                 method_value == calib::Method::kLM ? limits::kLmIterations : limits::kEvaluations, "budget");
   }
   check_bound(static_cast<double>(seed), limits::kSeed, "seed");
-  const Samples samples = samples_of(readings, t, tau_last, tau_between);
+  Samples samples = samples_of(readings, t, tau_last, tau_between);
   std::optional<int> bits;
   if (!encoder_bits.is_none())
     bits = static_cast<int>(check_bound(static_cast<double>(encoder_bits.cast<long>()), limits::kEncoderBits, "encoder_bits"));
@@ -141,7 +141,7 @@ CalibrationResult calibrate(const py::handle& readings, const Robot& robot, cons
   if (!sigma.is_none()) {
     mo.encoder_sigma = check_bound(sigma.cast<double>(), limits::kEncoderSigma, "sigma");
   }
-  if (!xy.empty()) mo.true_xy = &xy;
+  if (!xy.empty()) samples.xy = xy, samples.has_xy = true;
 
   const scenario::FileProcedure proc =
       scenario::samples_file_procedure(samples, robot, problem.start, problem.free, mo, bits, static_model);

@@ -97,7 +97,6 @@ calib::LmOptions lm_options(const ProcedureOptions& o) {
   calib::LmOptions lo;
   lo.max_iterations = o.method.lm_max_iterations;
   lo.encoder_sigma = o.sigma_rad > 0.0 ? std::optional<double>(o.sigma_rad) : std::nullopt;
-  lo.true_xy = o.method.true_xy;
   lo.loss = o.method.loss;
   if (lo.loss.active() && !(lo.loss.scale > 0.0)) lo.loss.scale = calib::default_tuning(lo.loss.kind) * o.sigma_rad;
   return lo;
@@ -112,6 +111,7 @@ MotionStage motion_stage(const SampleSeries& s, const CalibrationInputs& in, con
                      "(samples.csv columns tau_last1..3 or tau1..3)");
   MotionStage m;
   m.problem.theta_m = s.theta_m;
+  m.problem.true_xy = s.true_xy;
   m.problem.start = o.start;
   m.problem.free = o.free;
   m.motion = in.motion;
@@ -282,6 +282,7 @@ CalibrationOutcome motion_outcome(MotionStage&& m, const calib::ReadingModel& st
 CalibrationOutcome static_outcome(const SampleSeries& s, const ProcedureOptions& o) {
   calib::Problem problem;
   problem.theta_m = s.theta_m;
+  problem.true_xy = s.true_xy;
   problem.start = o.start;
   problem.free = o.free;
   CalibrationOutcome out;
@@ -357,6 +358,7 @@ SampleSeries sample_series(const Samples& samples) {
   s.t_s = samples.t;
   s.tau = samples.tau_last.empty() ? samples.tau : samples.tau_last;
   s.tau_between = samples.tau_between;
+  if (samples.has_xy) s.true_xy = samples.xy;
   return s;
 }
 

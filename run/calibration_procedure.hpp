@@ -46,6 +46,8 @@ struct SampleSeries {
   // On the fly the mean drive torque over the periods since the sample before
   // (N m; tau_between); empty: the lag's regressor is the torque of the sample before.
   std::vector<Eigen::Vector3d> tau_between;
+  // The true end-effector positions (mm), where known (simulation): kmrmse only.
+  std::vector<Eigen::Vector2d> true_xy;
 };
 
 struct ProcedureOptions {
@@ -61,7 +63,7 @@ struct ProcedureOptions {
   double skip_first_s = kStartTransient_s;  // on the fly: leading samples within this of the first left out
   bool keep_clearance = false;  // the clearance stays in the model where not detected (stated by the user)
   bool test_any_cost = false;   // the model test for every cost (default: the ML cost only, as gpm run)
-  calib::MethodOptions method;  // method, cost, LM iterations, loss, true_xy (kmrmse); encoder_sigma: the static fit's
+  calib::MethodOptions method;  // method, cost, LM iterations, loss; encoder_sigma: the static fit's
 };
 
 struct CalibrationOutcome {

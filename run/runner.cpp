@@ -239,7 +239,7 @@ void calibrate_run(RunOutcome& out, const RunSpec& spec, const CalibrationInputs
   std::vector<Eigen::Vector2d> true_xy;
   std::vector<Eigen::Vector3d> noiseless;
   for (const sim::SampleRecord& r : out.sim.samples) {
-    true_xy.push_back(r.xy_mm);  // the true pose in simulation (kmrmse only then)
+    true_xy.push_back(r.xy_mm);
     noiseless.push_back(readings_from_active(actual.geometry, r.theta_a));
   }
   ProcedureOptions po = procedure_options(spec, out.nominal, actual);
@@ -253,7 +253,6 @@ void calibrate_run(RunOutcome& out, const RunSpec& spec, const CalibrationInputs
   }
 
   stage("calibrating");
-  po.method.true_xy = spec.hardware ? nullptr : &true_xy;
   std::vector<Eigen::Vector3d> used;  // the readings the fit explains
   try {
     // Transmission compliance, latch skew, friction twist and clearance are
@@ -263,7 +262,9 @@ void calibrate_run(RunOutcome& out, const RunSpec& spec, const CalibrationInputs
     // before each reading; samples without that record (stop-and-go,
     // hardware) use the drive torque of the sample.
     const bool torque_history = in_motion && !spec.hardware;
-    CalibrationOutcome c = calibrate_samples(sample_series(out.sim.samples, torque_history), inputs, po);
+    SampleSeries series = sample_series(out.sim.samples, torque_history);
+    if (!spec.hardware) series.true_xy = true_xy;  // the true poses in simulation (kmrmse only then)
+    CalibrationOutcome c = calibrate_samples(series, inputs, po);
     if (c.sigma_rad != out.crb_sigma_rad && out.crb_sigma_rad > 0.0) {
       // The readings' own step: the bound scales with the reading 1-sigma.
       for (double& v : out.crb) v *= c.sigma_rad / out.crb_sigma_rad;

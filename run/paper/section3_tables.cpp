@@ -75,7 +75,8 @@ LocalRun run_lm(const Robot& actual, const Geometry& start, const FreeMask& free
   o.allow_rank_deficient = allow_rank_deficient;
   o.compute_covariance = false;
   LocalRun r;
-  r.result = calib::calibrate_lm(p, o, &poses);
+  p.true_xy = poses;
+  r.result = calib::calibrate_lm(p, o);
   r.kmrmse = r.result.kmrmse_mm.value_or(NAN);
   return r;
 }

@@ -44,7 +44,8 @@ Result expect_recovers(const Geometry& actual, const Geometry& start, const Free
   Problem pb{s.theta_m, start, free};
   LmOptions opt;
   opt.cost = cost;
-  const Result r = calibrate_lm(pb, opt, &s.xy);
+  pb.true_xy = s.xy;
+  const Result r = calibrate_lm(pb, opt);
   EXPECT_TRUE(r.converged) << cost_name(cost);
   for (int i = 0; i < kNumParams; ++i) {
     if (free.test(static_cast<size_t>(i))) {
@@ -137,7 +138,8 @@ TEST(PaperTable4, TwelveParametersWithAllowRankDeficientLandOnTheFamily) {
   LmOptions opt;
   opt.cost = Cost::kML;
   opt.allow_rank_deficient = true;
-  const Result r = calibrate_lm(pb, opt, &s.xy);
+  pb.true_xy = s.xy;
+  const Result r = calibrate_lm(pb, opt);
   EXPECT_TRUE(r.rank_deficient);
   EXPECT_TRUE(r.converged);
   EXPECT_EQ(r.rank, 11);

@@ -75,7 +75,6 @@ TEST(CalibrationProcedure, EstimatedReadingModelTakesTheEstimatesWhereMade) {
 CalibrationOutcome calibrate_file(const Samples& s, bool static_model = false) {
   const Robot robot = load_robot(std::string(GPM_SOURCE_DIR) + "/models/gpm2002.yaml");
   calib::MethodOptions mo;
-  if (s.has_xy) mo.true_xy = &s.xy;
   const FileProcedure p = samples_file_procedure(s, robot, robot.geometry, ~parse_param_list("xa1,ya1,xa2,ya2", "--fix"),
                                                  mo, std::nullopt, static_model);
   EXPECT_EQ(p.options.in_motion, !static_model && taken_on_the_fly(s));
