@@ -14,9 +14,9 @@ set(GPM_INSTALL_CMAKEDIR ${CMAKE_INSTALL_LIBDIR}/cmake/gpm)
 set(GPM_INSTALL_PYTHONDIR ${CMAKE_INSTALL_LIBDIR}/python3/dist-packages)
 
 # The libraries of the package: gpm_<name> is exported as gpm::<name>.
-# gpm_ceres_shared is how gpm_calib links Ceres (calib/CMakeLists.txt).
+# gpm_ceres is how gpm_calib links Ceres (calib/CMakeLists.txt).
 set(GPM_EXPORTED_LIBRARIES
-  gpm_models gpm_calib gpm_ceres_shared gpm_calib_global gpm_calibrate gpm_calib_excitation gpm_calib_monitor
+  gpm_models gpm_calib gpm_ceres gpm_calib_global gpm_calibrate gpm_calib_excitation gpm_calib_monitor
   gpm_sim gpm_hw gpm_hw_zero gpm_report gpm_run)
 
 foreach(_t IN LISTS GPM_EXPORTED_LIBRARIES)
@@ -32,11 +32,8 @@ foreach(_t IN LISTS GPM_EXPORTED_LIBRARIES)
     set_target_properties(${_t} PROPERTIES INTERFACE_INCLUDE_DIRECTORIES "${_inc}")
   endif()
 endforeach()
-# The libraries are built for this machine's instruction set (GPM_PORTABLE
-# OFF): code that includes their headers must use the same Eigen alignment.
-if(NOT GPM_PORTABLE)
-  set_property(TARGET gpm_models APPEND PROPERTY INTERFACE_COMPILE_OPTIONS "$<INSTALL_INTERFACE:-march=native>")
-endif()
+# -march=native is never exported: a GPM_NATIVE build's package refuses
+# consumers instead (gpmConfig.cmake.in; its Eigen layout differs from theirs).
 
 install(TARGETS ${GPM_EXPORTED_LIBRARIES} EXPORT gpmTargets
   ARCHIVE DESTINATION ${CMAKE_INSTALL_LIBDIR}

@@ -17,7 +17,7 @@ seconds=${1:-600}; shift || true
 targets=("$@"); ((${#targets[@]})) || targets=(robot_yaml samples_csv scenario_yaml cli modbus_server calibrate_options)
 san="-fsanitize=address,undefined -fno-sanitize-recover=undefined -fno-omit-frame-pointer -g"
 CC=clang CXX=clang++ cmake -S . -B build-fuzz -G Ninja -DCMAKE_BUILD_TYPE=RelWithDebInfo \
-  -DGPM_FUZZ=ON -DGPM_BUILD_BENCH=OFF -DGPM_PORTABLE=ON \
+  -DGPM_FUZZ=ON -DGPM_BUILD_BENCH=OFF \
   -DCMAKE_CXX_FLAGS="$san" -DCMAKE_EXE_LINKER_FLAGS="$san" >/dev/null
 mkdir -p build-fuzz/artifacts
 for t in "${targets[@]}"; do

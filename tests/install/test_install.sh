@@ -35,19 +35,27 @@ sed -i 's/^name: .*/name: GPM2002-installed/' "$P/share/gpm/models/gpm2002.yaml"
 # The consumer project, against the installed package only.
 launcher=()
 command -v ccache >/dev/null && launcher=(-DCMAKE_CXX_COMPILER_LAUNCHER=ccache)
-check "consumer configure" 0 cmake -S "$SRC/tests/install/consumer" -B "$work/consumer" -G Ninja \
-  -DCMAKE_BUILD_TYPE=Release -DCMAKE_PREFIX_PATH="$P" "${launcher[@]}"
-expect_out "consumer sees gpm_DATA_DIR" "gpm_DATA_DIR $P/share/gpm$"
-check "consumer build" 0 cmake --build "$work/consumer"
-check "consumer install" 0 cmake --install "$work/consumer" --prefix "$P"
-cd "$work"   # outside the source and build trees' data
-check "consumer runs" 0 "$P/bin/gpm_consumer"
-expect_out "consumer data folder" "^models_dir $P/share/gpm/models$"
-expect_out "consumer loads the installed robot" "^robot GPM2002-installed$"
-expect_out "consumer calibrates" "^calibration: converged 1"
-# Built elsewhere, the consumer is pointed at the data by the package's gpm_DATA_DIR.
-check "consumer with GPM_DATA_DIR" 0 env GPM_DATA_DIR="$P/share/gpm" "$work/consumer/gpm_consumer"
-expect_out "GPM_DATA_DIR robot" "^robot GPM2002-installed$"
+if grep -q '^GPM_NATIVE:BOOL=ON' "$BUILD/CMakeCache.txt"; then
+  # A native build's package refuses consumers (cmake/gpmConfig.cmake.in).
+  check "native package refused" 1 cmake -S "$SRC/tests/install/consumer" -B "$work/consumer" -G Ninja \
+    -DCMAKE_BUILD_TYPE=Release -DCMAKE_PREFIX_PATH="$P" "${launcher[@]}"
+  expect_err "refusal names GPM_NATIVE" "GPM_NATIVE"
+  cd "$work"
+else
+  check "consumer configure" 0 cmake -S "$SRC/tests/install/consumer" -B "$work/consumer" -G Ninja \
+    -DCMAKE_BUILD_TYPE=Release -DCMAKE_PREFIX_PATH="$P" "${launcher[@]}"
+  expect_out "consumer sees gpm_DATA_DIR" "gpm_DATA_DIR $P/share/gpm$"
+  check "consumer build" 0 cmake --build "$work/consumer"
+  check "consumer install" 0 cmake --install "$work/consumer" --prefix "$P"
+  cd "$work"   # outside the source and build trees' data
+  check "consumer runs" 0 "$P/bin/gpm_consumer"
+  expect_out "consumer data folder" "^models_dir $P/share/gpm/models$"
+  expect_out "consumer loads the installed robot" "^robot GPM2002-installed$"
+  expect_out "consumer calibrates" "^calibration: converged 1"
+  # Built elsewhere, the consumer is pointed at the data by the package's gpm_DATA_DIR.
+  check "consumer with GPM_DATA_DIR" 0 env GPM_DATA_DIR="$P/share/gpm" "$work/consumer/gpm_consumer"
+  expect_out "GPM_DATA_DIR robot" "^robot GPM2002-installed$"
+fi
 
 # The installed gpm: kin with the installed robot, a scenario of the installed library.
 check "installed gpm kin" 0 "$P/bin/gpm" kin home
