@@ -44,7 +44,7 @@ struct Problem {
   FreeMask free;                         // parameters to estimate
   // The samples' true end-effector positions (mm), one per reading, where
   // known (simulation, a tracker): Result::kmrmse_mm (eq. 40); empty: unknown.
-  std::vector<Eigen::Vector2d> true_xy;
+  std::vector<Eigen::Vector2d> true_xy{};
 };
 
 // Search box of the global solvers (paper Table 5 by default).
