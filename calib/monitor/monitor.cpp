@@ -101,7 +101,10 @@ std::array<double, kNumParams> MonitorSettings::nan_array() {
   return a;
 }
 
-MonitorModel make_monitor_model(const MonitorSettings& s) {
+namespace {
+
+// Throws InputError naming the first setting of s out of its range.
+void check_settings(const MonitorSettings& s) {
   check_reading_model(s.reading, "monitor settings: ");
   require(s.cycle_hz > 0.0 && std::isfinite(s.cycle_hz), "cycle_hz must be > 0");
   require(s.decimation >= 1, "decimation must be >= 1");
@@ -119,9 +122,18 @@ MonitorModel make_monitor_model(const MonitorSettings& s) {
   require(s.min_motion_counts >= 0.0, "min_motion_counts must be >= 0");
   require(s.estimate.any(), "no parameter to estimate");
   require(s.friction_stick_rad_s >= 0.0 && std::isfinite(s.friction_stick_rad_s), "friction_stick_rad_s must be >= 0");
+  require(s.tension_min_N >= 0.0 && std::isfinite(s.tension_min_N), "tension_min_N must be >= 0");
+  require(s.learning_s >= 0.0 && s.learning_s <= 10.0, fmt::format("learning_s {} must be in 0..10 s", s.learning_s));
+  require(s.learning_batch >= kMaxLearn / kMaxLearnBatches && s.learning_batch <= kMaxLearn / 4,
+          fmt::format("learning_batch {} must be in {}..{}", s.learning_batch, kMaxLearn / kMaxLearnBatches,
+                      kMaxLearn / 4));
+  require(s.bias_tau_s > 0.0, "bias_tau_s must be > 0");
+  require(s.scale_floor >= 1.0 && std::isfinite(s.scale_floor), "scale_floor must be finite and >= 1");
+}
 
-  MonitorModel m;
-  m.settings = s;
+// The test's noise, gate and thresholds of m from its settings.
+void set_change_test(MonitorModel& m) {
+  const MonitorSettings& s = m.settings;
   const double count = encoder_step_rad(s.reading.encoder_bits);
   m.sigma_rad = reading_sigma(s.reading);
   m.motion_gate_rad = s.min_motion_counts * (count > 0.0 ? count : s.reading.noise_rad);
@@ -129,10 +141,12 @@ MonitorModel make_monitor_model(const MonitorSettings& s) {
   m.p_window = s.false_alarms_per_hour / m.tests_per_hour;
   require(m.p_window < 0.5, "false_alarms_per_hour is larger than the number of tests per hour");
   m.threshold = chi2_upper_quantile(s.window, 0.5 * m.p_window);
+}
 
-  const double mean_la = (s.geometry.la_(0) + s.geometry.la_(1) + s.geometry.la_(2)) / 3.0;
-  const double mean_l = (mean_la + (s.geometry.lb_(0) + s.geometry.lb_(1) + s.geometry.lb_(2)) / 3.0) / 2.0;
-  const double per_tau = std::isfinite(s.thermal_tau_s) ? 1.0 / s.thermal_tau_s : 0.0;
+// The coordinates of the estimated parameters (scale, growth, drift, prior);
+// true when a length or base coordinate is among them.
+bool add_parameter_states(MonitorModel& m, double mean_la, double mean_l, double per_tau) {
+  const MonitorSettings& s = m.settings;
   bool any_length = false;
   for (int i = 0; i < kNumParams; ++i) {
     if (!s.estimate.test(static_cast<size_t>(i))) continue;
@@ -151,49 +165,64 @@ MonitorModel make_monitor_model(const MonitorSettings& s) {
     m.prior_variance[k] = std::pow(m.scale[k] * prior, 2);
     m.variance_cap[k] = m.prior_variance[k] + drift * drift + std::pow(m.growth[k] * s.thermal_growth_mm, 2);
   }
+  return any_length;
+}
+
+// The common growth rate's coordinate: of order A / tau, changing by A / tau
+// over tau (a random walk of variance (A / tau)^2 per tau).
+void add_rate_state(MonitorModel& m, double per_tau) {
+  m.rate_index = m.n_state++;
+  const double rate = m.settings.thermal_growth_mm * per_tau;
+  m.rate_noise = rate * rate * per_tau;
+  m.prior_variance[static_cast<size_t>(m.rate_index)] = rate * rate;
+  m.variance_cap[static_cast<size_t>(m.rate_index)] = 4.0 * rate * rate;
+}
+
+// The cyclic error's coordinates a_i, b_i = A_i cos(phase_i), A_i sin(phase_i)
+// with a uniform phase: variance A_i^2 / 2 each; constant (no process noise).
+void add_cyclic_states(MonitorModel& m, double mean_la) {
+  m.cyclic_index = m.n_state;
+  for (int c = 0; c < kNumCyclic; ++c) {
+    const auto k = static_cast<size_t>(m.n_state++);
+    const double a = m.settings.reading.cyclic_rad[static_cast<size_t>(c / 2)];
+    m.scale[k] = mean_la;
+    m.prior_variance[k] = std::max(mean_la * mean_la * a * a / 2.0, 1e-30);
+    m.variance_cap[k] = m.prior_variance[k];
+  }
+}
+
+// The passive links' effective play d_i: with learning the stated play is a
+// bound, not a value (a robot better than its data sheet has less): mean
+// d / 2 (make_monitor_data), 1-sigma d / 2; without, 1-sigma d / 4.
+void add_clearance_states(MonitorModel& m) {
+  m.clearance_index = m.n_state;
+  for (int i = 0; i < 3; ++i) {
+    const auto k = static_cast<size_t>(m.n_state++);
+    const double c = m.settings.reading.clearance_mm[static_cast<size_t>(i)];
+    m.scale[k] = 1.0;
+    m.prior_variance[k] = std::max((m.settings.learning_s > 0.0 ? 0.25 : 0.0625) * c * c, 1e-30);
+    m.variance_cap[k] = m.prior_variance[k];
+  }
+}
+
+bool any_positive(const std::array<double, 3>& v) { return v[0] > 0.0 || v[1] > 0.0 || v[2] > 0.0; }
+
+}  // namespace
+
+MonitorModel make_monitor_model(const MonitorSettings& s) {
+  check_settings(s);
+  MonitorModel m;
+  m.settings = s;
+  set_change_test(m);
+  const double mean_la = (s.geometry.la_(0) + s.geometry.la_(1) + s.geometry.la_(2)) / 3.0;
+  const double mean_l = (mean_la + (s.geometry.lb_(0) + s.geometry.lb_(1) + s.geometry.lb_(2)) / 3.0) / 2.0;
+  const double per_tau = std::isfinite(s.thermal_tau_s) ? 1.0 / s.thermal_tau_s : 0.0;
+  const bool any_length = add_parameter_states(m, mean_la, mean_l, per_tau);
   m.n_state = m.n_free;
-  if (any_length && s.thermal_growth_mm > 0.0 && per_tau > 0.0) {
-    // Growth rate of order A / tau, changing by A / tau over tau: a random
-    // walk of variance (A / tau)^2 per tau.
-    m.rate_index = m.n_state++;
-    const double rate = s.thermal_growth_mm * per_tau;
-    m.rate_noise = rate * rate * per_tau;
-    m.prior_variance[static_cast<size_t>(m.rate_index)] = rate * rate;
-    m.variance_cap[static_cast<size_t>(m.rate_index)] = 4.0 * rate * rate;
-  }
-  const ReadingModel& r = s.reading;
-  if (r.cyclic_rad[0] > 0.0 || r.cyclic_rad[1] > 0.0 || r.cyclic_rad[2] > 0.0) {
-    // a_i, b_i = A_i cos(phase_i), A_i sin(phase_i) with a uniform phase:
-    // variance A_i^2 / 2 each; constant (no process noise).
-    m.cyclic_index = m.n_state;
-    for (int c = 0; c < kNumCyclic; ++c) {
-      const auto k = static_cast<size_t>(m.n_state++);
-      const double a = r.cyclic_rad[static_cast<size_t>(c / 2)];
-      m.scale[k] = mean_la;
-      m.prior_variance[k] = std::max(mean_la * mean_la * a * a / 2.0, 1e-30);
-      m.variance_cap[k] = m.prior_variance[k];
-    }
-  }
-  m.has_clearance = r.clearance_mm[0] > 0.0 || r.clearance_mm[1] > 0.0 || r.clearance_mm[2] > 0.0;
-  if (m.has_clearance) {
-    m.clearance_index = m.n_state;
-    for (int i = 0; i < 3; ++i) {
-      const auto k = static_cast<size_t>(m.n_state++);
-      const double c = r.clearance_mm[static_cast<size_t>(i)];
-      m.scale[k] = 1.0;
-      // Learning: the stated play is a bound, not a value (a robot better
-      // than its data sheet has less): mean d / 2 (make_monitor_data), 1-sigma d / 2.
-      m.prior_variance[k] = std::max((s.learning_s > 0.0 ? 0.25 : 0.0625) * c * c, 1e-30);
-      m.variance_cap[k] = m.prior_variance[k];
-    }
-  }
-  require(s.tension_min_N >= 0.0 && std::isfinite(s.tension_min_N), "tension_min_N must be >= 0");
-  require(s.learning_s >= 0.0 && s.learning_s <= 10.0, fmt::format("learning_s {} must be in 0..10 s", s.learning_s));
-  require(s.learning_batch >= kMaxLearn / kMaxLearnBatches && s.learning_batch <= kMaxLearn / 4,
-          fmt::format("learning_batch {} must be in {}..{}", s.learning_batch, kMaxLearn / kMaxLearnBatches,
-                      kMaxLearn / 4));
-  require(s.bias_tau_s > 0.0, "bias_tau_s must be > 0");
-  require(s.scale_floor >= 1.0 && std::isfinite(s.scale_floor), "scale_floor must be finite and >= 1");
+  if (any_length && s.thermal_growth_mm > 0.0 && per_tau > 0.0) add_rate_state(m, per_tau);
+  if (any_positive(s.reading.cyclic_rad)) add_cyclic_states(m, mean_la);
+  m.has_clearance = any_positive(s.reading.clearance_mm);
+  if (m.has_clearance) add_clearance_states(m);
   m.glr_threshold = chi2_upper_quantile(1, 0.5 * m.p_window / (m.n_free * s.window));
   m.chi_normal_quantile = wilson_hilferty_normal_quantile(s.window, m.threshold);
   return m;
@@ -227,92 +256,70 @@ StepResult monitor_step(const MonitorModel& m, MonitorData& d, double t_s, const
   return monitor_step(m, d, t_s, theta_m, Eigen::Vector3d::Zero(), Eigen::Vector3d::Zero());
 }
 
-StepResult monitor_step(const MonitorModel& m, MonitorData& d, double t_s, const Eigen::Vector3d& theta_raw,
-                        const Eigen::Vector3d& omega, const Eigen::Vector3d& tau) {
-  StepResult out;
-  // Motion corrections (calib/motion_correction.hpp): the link angle the
-  // reading stands for.
+namespace {
+
+// A reading corrected by the reading model (calib/reading_model.hpp): the link
+// angles, the torques the transmissions carry and the flank of each mesh.
+struct LinkReading {
+  Eigen::Vector3d theta, carried, flank;
+};
+
+// The link angles readings theta_raw stand for at joint speeds omega and drive
+// torques tau (no acceleration given: no inertia term).
+LinkReading link_reading(const MonitorModel& m, const Eigen::Vector3d& theta_raw, const Eigen::Vector3d& omega,
+                         const Eigen::Vector3d& tau) {
   const ReadingModel& reading = m.settings.reading;
-  Eigen::Vector3d theta_m, carried, flank;
+  LinkReading l;
   for (int i = 0; i < 3; ++i) {
-    carried[i] = transmitted_torque(reading.load, i, tau[i], omega[i], 0.0);  // no acceleration given: no inertia term
-    flank[i] = std::abs(carried[i]) >= kFlankTorqueMinNm ? (carried[i] > 0.0 ? 1.0 : -1.0) : 0.0;
-    theta_m[i] = link_angle(reading, i, theta_raw[i], omega[i], carried[i], flank[i]);
+    l.carried[i] = transmitted_torque(reading.load, i, tau[i], omega[i], 0.0);
+    l.flank[i] = std::abs(l.carried[i]) >= kFlankTorqueMinNm ? (l.carried[i] > 0.0 ? 1.0 : -1.0) : 0.0;
+    l.theta[i] = link_angle(reading, i, theta_raw[i], omega[i], l.carried[i], l.flank[i]);
   }
-  ++d.cycles;
-  ++d.cycles_since_accepted;
-  if (!d.started) {
-    d.started = true;
-    d.t_start = t_s;
-    if (!d.learning) d.learning_end_s = t_s;
-  }
-  // Independence gate (README.md): at most one sample per `decimation`
-  // cycles, and only when every joint has moved, so that the quantisation
-  // errors of accepted samples are not copies of each other.
-  if (!d.has_accepted) {
-    // The first reading is only the reference of the motion gate: a robot
-    // starting from rest gives no sample until every joint moves.
-    d.has_accepted = true;
-    d.last_accepted = theta_raw;
-    d.cycles_since_accepted = 0;
-    return out;
-  }
-  if (d.cycles_since_accepted < m.settings.decimation) return out;
-  if (!moved_enough(m, d, theta_raw)) return out;
+  return l;
+}
+
+// True when the reading model cannot tell some joint's link angle: the
+// friction's twist while the joint sticks, or a mesh crossing its backlash.
+bool uncertain_reading(const MonitorModel& m, const Eigen::Vector3d& omega, const LinkReading& l) {
+  const ReadingModel& reading = m.settings.reading;
   for (int i = 0; i < 3; ++i) {
     const auto k = static_cast<size_t>(i);
     if (reading.compliance_rad_per_Nm[k] * reading.load.coulomb_Nm[k] > 0.5 * m.sigma_rad &&
         std::abs(omega[i]) < m.settings.friction_stick_rad_s)
-      return out;
-    // A reducer with backlash whose mesh crosses its gap: the flank unknown.
-    if (reading.backlash_rad[k] > 0.0 && flank[i] == 0.0) return out;
+      return true;
+    if (reading.backlash_rad[k] > 0.0 && l.flank[i] == 0.0) return true;
   }
+  return false;
+}
 
-  // The oldest sample leaves a full window and updates the filter; while an
-  // alarm waits for its explanation the filter waits too (it must not absorb
-  // the change before it is explained).
-  const int W = m.settings.window;
-  if (d.count >= W && d.pending < 0) {
-    const auto oldest = static_cast<size_t>(slot_of(d, 0));
-    filter_update(m, d, d.t[oldest], d.theta[oldest], d.tension[oldest]);
-    --d.count;
-  }
-
-  // Clearance (ReadingModel::clearance_mm): each passive link acts as
-  // lb_i + d_i sign(T_i), T_i its axial force from the moment balance of
-  // the active link; a sample whose tension sign is uncertain is not used.
-  Eigen::Vector3d tension_sign = Eigen::Vector3d::Zero();
-  if (m.has_clearance) {
-    Eigen::Vector3d theta_a;
-    for (int i = 0; i < 3; ++i) theta_a[i] = theta_m[i] + d.estimate.dth_(i);
-    const std::optional<ForwardResult> fk = forward_kinematics(d.estimate, theta_a);
-    if (!fk) {
-      ++d.skipped;
-      return out;
-    }
-    for (int i = 0; i < 3; ++i) {
-      const double c = reading.clearance_mm[static_cast<size_t>(i)];
-      if (c <= 0.0) continue;
-      const double tension = passive_link_tension(d.estimate, i, theta_a[i], fk->theta_b[i], carried[i]);
-      if (!(std::abs(tension) >= m.settings.tension_min_N)) return out;
-      tension_sign[i] = tension > 0.0 ? 1.0 : -1.0;
-    }
-  }
-
-  // Innovation against the filter (which has seen no sample of the window)
-  // predicted to t_s.
-  double z = 0.0;
-  ParamRow dz;
-  if (!filter_innovation(m, d, t_s, theta_m, tension_sign, z, dz)) {
+// Clearance (ReadingModel::clearance_mm): each passive link acts as
+// lb_i + d_i sign(T_i), T_i its axial force from the moment balance of the
+// active link. The sign of each link's force (0 without a play); nullopt when
+// some sign is uncertain or the pose has no forward kinematics (counted as skipped).
+std::optional<Eigen::Vector3d> tension_signs(const MonitorModel& m, MonitorData& d, const LinkReading& l) {
+  Eigen::Vector3d sign = Eigen::Vector3d::Zero();
+  if (!m.has_clearance) return sign;
+  Eigen::Vector3d theta_a;
+  for (int i = 0; i < 3; ++i) theta_a[i] = l.theta[i] + d.estimate.dth_(i);
+  const std::optional<ForwardResult> fk = forward_kinematics(d.estimate, theta_a);
+  if (!fk) {
     ++d.skipped;
-    return out;
+    return std::nullopt;
   }
-  d.has_accepted = true;
-  d.last_accepted = theta_raw;
-  d.cycles_since_accepted = 0;
-  ++d.accepted;
-  // (The first quarter of the learning phase is not learnt from: the filter
-  // settles there on what the calibration left.)
+  for (int i = 0; i < 3; ++i) {
+    if (m.settings.reading.clearance_mm[static_cast<size_t>(i)] <= 0.0) continue;
+    const double tension = passive_link_tension(d.estimate, i, theta_a[i], fk->theta_b[i], l.carried[i]);
+    if (!(std::abs(tension) >= m.settings.tension_min_N)) return std::nullopt;
+    sign[i] = tension > 0.0 ? 1.0 : -1.0;
+  }
+  return sign;
+}
+
+// The accepted innovation z (sensitivities dz) at t_s: learnt from while
+// learning (not in the first quarter, where the filter settles on what the
+// calibration left), then followed as a slowly varying bias; returns z less
+// the bias before this sample.
+double learn_and_debias(const MonitorModel& m, MonitorData& d, double t_s, double z, const ParamRow& dz) {
   if (d.learning && d.learn_count < kMaxLearn && t_s - d.t_start >= 0.25 * m.settings.learning_s) {
     const auto b = static_cast<size_t>(d.learn_count / m.settings.learning_batch);  // < kMaxLearnBatches
     d.learn_h[b] += dz;
@@ -322,18 +329,113 @@ StepResult monitor_step(const MonitorModel& m, MonitorData& d, double t_s, const
   }
   const double z_tested = z - d.bias;
   if (!d.learning && m.settings.learning_s > 0.0 && d.pending < 0 && d.accepted > 1)
-    // The slowly varying bias (after the sample is tested against the former one).
     d.bias += (z - d.bias) * std::min(1.0, (t_s - d.t_last_accepted) / m.settings.bias_tau_s);
   d.t_last_accepted = t_s;
+  return z_tested;
+}
 
+// Explains the pending alarm with the samples after its crossing (over a
+// short arc the sensitivity columns are nearly collinear), then re-baselines:
+// applies the explained change and opens its variance to its size, so the
+// filter absorbs any remainder; the window (innovations against the old
+// estimate) is dropped and refilled.
+void explain_pending(const MonitorModel& m, MonitorData& d, double t_s) {
+  Alarm& a = d.alarms[static_cast<size_t>((d.alarm_count - 1) % kMaxAlarms)];
+  explain_window(m, d, a);
+  a.explained_s = t_s;
+  d.estimate[a.param] += a.delta;
+  for (int k = 0; k < m.n_free; ++k)
+    if (m.free_index[static_cast<size_t>(k)] == a.param) {
+      const double v = std::pow(a.delta * m.scale[static_cast<size_t>(k)], 2);
+      if (v > d.P(k, k)) d.P(k, k) = v;
+    }
+  d.count = 0;
+  d.statistic = 0.0;
+  d.step_statistic = 0.0;
+  d.pending = -1;
+}
+
+// Records an alarm at t_s by the test further past its threshold, to be
+// explained explain_samples later.
+void raise_alarm(const MonitorModel& m, MonitorData& d, double t_s) {
+  Alarm& a = d.alarms[static_cast<size_t>(d.alarm_count % kMaxAlarms)];
+  a = Alarm{};
+  a.t_s = t_s;
+  const bool step = d.step_statistic / d.glr_threshold > d.statistic / d.chi_threshold;
+  a.kind = step ? AlarmKind::kStep : AlarmKind::kChiSquare;
+  a.statistic = step ? d.step_statistic : d.statistic;
+  a.threshold = step ? d.glr_threshold : d.chi_threshold;
+  ++d.alarm_count;
+  d.pending = std::max(m.settings.explain_samples, 1);
+}
+
+// Appends a tested sample to the window.
+void store_sample(MonitorData& d, double t_s, double z_tested, const ParamRow& dz, const Eigen::Vector3d& theta,
+                  const Eigen::Vector3d& tension_sign) {
   const auto slot = static_cast<size_t>(d.head);
   d.z[slot] = z_tested;
   d.t[slot] = t_s;
   d.dz[slot] = dz;
-  d.theta[slot] = theta_m;
+  d.theta[slot] = theta;
   d.tension[slot] = tension_sign;
   d.head = (d.head + 1) % kMaxWindow;
   ++d.count;
+}
+
+// Counts a servo cycle at t_s; the first starts the clock.
+void count_cycle(MonitorData& d, double t_s) {
+  ++d.cycles;
+  ++d.cycles_since_accepted;
+  if (d.started) return;
+  d.started = true;
+  d.t_start = t_s;
+  if (!d.learning) d.learning_end_s = t_s;
+}
+
+}  // namespace
+
+StepResult monitor_step(const MonitorModel& m, MonitorData& d, double t_s, const Eigen::Vector3d& theta_raw,
+                        const Eigen::Vector3d& omega, const Eigen::Vector3d& tau) {
+  StepResult out;
+  const LinkReading l = link_reading(m, theta_raw, omega, tau);
+  count_cycle(d, t_s);
+  // Independence gate (README.md): at most one sample per `decimation`
+  // cycles, and only when every joint has moved, so that the quantisation
+  // errors of accepted samples are not copies of each other. The first
+  // reading is only the reference of the motion gate: a robot starting from
+  // rest gives no sample until every joint moves.
+  if (!d.has_accepted) {
+    d.has_accepted = true;
+    d.last_accepted = theta_raw;
+    d.cycles_since_accepted = 0;
+    return out;
+  }
+  if (d.cycles_since_accepted < m.settings.decimation || !moved_enough(m, d, theta_raw) ||
+      uncertain_reading(m, omega, l))
+    return out;
+  // The oldest sample leaves a full window and updates the filter; while an
+  // alarm waits for its explanation the filter waits too (it must not absorb
+  // the change before it is explained).
+  const int W = m.settings.window;
+  if (d.count >= W && d.pending < 0) {
+    const auto oldest = static_cast<size_t>(slot_of(d, 0));
+    filter_update(m, d, d.t[oldest], d.theta[oldest], d.tension[oldest]);
+    --d.count;
+  }
+  const std::optional<Eigen::Vector3d> tension_sign = tension_signs(m, d, l);
+  if (!tension_sign) return out;
+  // Innovation against the filter (which has seen no sample of the window) predicted to t_s.
+  double z = 0.0;
+  ParamRow dz;
+  if (!filter_innovation(m, d, t_s, l.theta, *tension_sign, z, dz)) {
+    ++d.skipped;
+    return out;
+  }
+  d.has_accepted = true;
+  d.last_accepted = theta_raw;
+  d.cycles_since_accepted = 0;
+  ++d.accepted;
+  store_sample(d, t_s, learn_and_debias(m, d, t_s, z, dz), dz, l.theta, *tension_sign);
   if (d.learning && (t_s - d.t_start >= m.settings.learning_s || d.learn_count >= kMaxLearn)) {
     finish_learning(m, d, t_s);
     out.learnt = true;
@@ -351,43 +453,15 @@ StepResult monitor_step(const MonitorModel& m, MonitorData& d, double t_s, const
   out.statistic = d.statistic;
   out.step_statistic = d.step_statistic;
   if (d.pending > 0 && --d.pending == 0) {
-    // Explain with explain_samples of motion after the crossing (over a short
-    // arc the sensitivity columns are nearly collinear), then re-baseline:
-    // apply the explained change and open its variance to its size, so the
-    // filter absorbs any remainder from the next samples.
-    Alarm& a = d.alarms[static_cast<size_t>((d.alarm_count - 1) % kMaxAlarms)];
-    explain_window(m, d, a);
-    a.explained_s = t_s;
+    explain_pending(m, d, t_s);
     out.explained = true;
-    d.estimate[a.param] += a.delta;
-    for (int k = 0; k < m.n_free; ++k)
-      if (m.free_index[static_cast<size_t>(k)] == a.param) {
-        const double v = std::pow(a.delta * m.scale[static_cast<size_t>(k)], 2);
-        if (v > d.P(k, k)) d.P(k, k) = v;
-      }
-    // The window's innovations were computed against the old estimate: drop
-    // them (feeding them to the filter would cost a filter update each, a
-    // few hundred microseconds in one cycle) and refill the window.
-    d.count = 0;
-    d.statistic = 0.0;
-    d.step_statistic = 0.0;
-    d.pending = -1;
   } else if (d.pending < 0 && !d.learning && d.filtered >= W &&
              (d.statistic > d.chi_threshold || d.step_statistic > d.glr_threshold)) {
     // (No alarm before the filter has absorbed one window: until then the
     // innovations share the prior's error of the nuisance states, cyclic
     // error and clearance, which the step test does not normalise by.)
-    Alarm& a = d.alarms[static_cast<size_t>(d.alarm_count % kMaxAlarms)];
-    a = Alarm{};
-    a.t_s = t_s;
-    // Report the test that is further past its threshold.
-    const bool step = d.step_statistic / d.glr_threshold > d.statistic / d.chi_threshold;
-    a.kind = step ? AlarmKind::kStep : AlarmKind::kChiSquare;
-    a.statistic = step ? d.step_statistic : d.statistic;
-    a.threshold = step ? d.glr_threshold : d.chi_threshold;
-    ++d.alarm_count;
+    raise_alarm(m, d, t_s);
     out.alarm = true;
-    d.pending = std::max(m.settings.explain_samples, 1);
   }
   return out;
 }
