@@ -54,11 +54,11 @@ struct MonitorReport {
   double false_alarms_per_hour = 0.0, chi_threshold = 0.0;
   int window = 0;
   std::string learning;  // the learning phase in one sentence
-  MonitorReadingRow reading;
-  std::vector<MonitorEventRow> detections;
-  std::vector<MonitorAlarmRow> alarms;
-  std::vector<MonitorParameterRow> parameters;
-  std::vector<double> track_t_s;  // times of the tracks (s)
+  MonitorReadingRow reading{};
+  std::vector<MonitorEventRow> detections{};
+  std::vector<MonitorAlarmRow> alarms{};
+  std::vector<MonitorParameterRow> parameters{};
+  std::vector<double> track_t_s{};  // times of the tracks (s)
 };
 
 // Adds the monitor's section to doc: headings at level, the tracks as figure `figure`.svg.
