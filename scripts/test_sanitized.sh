@@ -7,6 +7,8 @@
 # scripts/test.sh. The MuJoCo-heavy tests (sim/, run/, scenarios) stay out:
 # their time is in MuJoCo, which is not instrumented.
 #   bash scripts/test_sanitized.sh [BUILD_DIR]   (default build-asan)
+# FOLDERS="models calib" narrows it to those test folders' unit tests (no
+# replays, no emulator; CI's selection, which fits its time).
 set -euo pipefail
 cd "$(dirname "$0")/.."
 build=${1:-build-asan}
@@ -16,11 +18,15 @@ cmake -S . -B "$build" -G Ninja -DCMAKE_BUILD_TYPE=RelWithDebInfo -DCMAKE_CXX_FL
   -DGPM_SANITIZE=ON -DGPM_BUILD_BENCH=OFF >/dev/null
 
 # Every test executable of those folders but the two long studies (label long).
+folders=${FOLDERS:-models calib global excitation monitor hw}
+pattern=$(echo "$folders" | sed 's/ \+/\\|/g')
 mapfile -t tests < <(cmake --build "$build" --target help |
-  sed -n 's/^\(test_\(models\|calib\|global\|excitation\|monitor\|hw\)_[a-z0-9_]*\):.*/\1/p' |
+  sed -n "s/^\(test_\($pattern\)_[a-z0-9_]*\):.*/\1/p" |
   grep -v -x -E 'test_excitation_montecarlo|test_monitor_long' | sort -u)
 replays=(robot_yaml samples_csv modbus_server)
-cmake --build "$build" --parallel "$(nproc)" --target "${tests[@]}" "${replays[@]/#/replay_}" gpm-drive-emulator
+extra=("${replays[@]/#/replay_}" gpm-drive-emulator)
+[[ -n ${FOLDERS:-} ]] && replays=() && extra=()
+cmake --build "$build" --parallel "$(nproc)" --target "${tests[@]}" "${extra[@]}"
 
 export ASAN_OPTIONS=detect_leaks=1:abort_on_error=0:strict_string_checks=1
 export UBSAN_OPTIONS=print_stacktrace=1
@@ -35,7 +41,8 @@ done
 for r in "${replays[@]}"; do
   runs+=("replay_$r $build/tests/fuzz $PWD/$build/tests/fuzz/replay_$r $PWD/tests/fuzz/corpus/$r")
 done
-runs+=("emulator_flags $build bash $PWD/tests/hw/test_emulator_flags.sh $PWD/$build/hw/gpm-drive-emulator $PWD")
+[[ -z ${FOLDERS:-} ]] &&
+  runs+=("emulator_flags $build bash $PWD/tests/hw/test_emulator_flags.sh $PWD/$build/hw/gpm-drive-emulator $PWD")
 
 run_one() {  # name dir command...
   local name=$1 dir=$2; shift 2
