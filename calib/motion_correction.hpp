@@ -63,6 +63,7 @@
 
 #include "calib/lm.hpp"
 #include "calib/passive_tension.hpp"
+#include "calib/reading_model.hpp"
 #include "calib/problem.hpp"
 
 namespace gpm::calib {
@@ -97,7 +98,7 @@ struct MotionModel {
   // A geared drive between its motor encoder and its link (each per joint;
   // which ones a robot needs is chosen by the data, calib/reading_model_selection.hpp):
   std::array<bool, 3> backlash{};  // half the lost motion beta_i: theta_a = theta_m - beta_i sgn(tau_mesh_i)
-  double backlash_torque_min_Nm = 0.1;  // |tau_mesh_i| below this: the flank in contact uncertain, the
+  double backlash_torque_min_Nm = kFlankTorqueMinNm;  // |tau_mesh_i| below this: the flank in contact uncertain, the
                                         // sample left out (the link crosses the gap)
   std::array<bool, 3> joint_harmonic{};   // once per joint revolution, a_i sin(theta_m) + b_i cos(theta_m),
                                           // estimated without a prior (the reducer's transmission error)
