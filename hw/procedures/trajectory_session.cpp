@@ -19,11 +19,15 @@ long cycle_count(const TrajectoryPlan& plan, double period_s) {
   return std::max(1L, std::lround(sim::waypoint_duration(plan.path) / period_s));
 }
 
-// Joint-space line from q0 to q1 in 16 steps, for the check of the move to the path's start.
-std::vector<Eigen::Vector3d> joint_line(const Eigen::Vector3d& q0, const Eigen::Vector3d& q1) {
-  std::vector<Eigen::Vector3d> q;
-  for (int k = 0; k <= 16; ++k) q.push_back(q0 + (q1 - q0) * (k / 16.0));
-  return q;
+// Why a pose of the joint-space line q0 -> q1 (the move to the path's start,
+// timed within the limits by Motion) is not allowed; empty when every one is.
+std::string line_violation(const SafetySupervisor& hw, const Eigen::Vector3d& q0, const Eigen::Vector3d& q1,
+                           const std::array<JointMode, 3>& modes) {
+  for (int k = 0; k <= 16; ++k) {
+    const std::string why = hw.check_pose(q0 + (q1 - q0) * (k / 16.0), modes);
+    if (!why.empty()) return why;
+  }
+  return {};
 }
 
 // Throws InputError unless a log that holds samples holds this plan's, all of them.
@@ -140,7 +144,7 @@ SessionResult run_trajectory_session(SafetySupervisor& hw, const TrajectoryPlan&
     Eigen::Vector3d turns = Eigen::Vector3d::Zero();
     for (int i = 0; i < 3; ++i) turns[i] = here[i] + wrap_pi(q[0][i] - here[i]) - q[0][i];
     for (Eigen::Vector3d& qk : q) qk += turns;
-    const std::string why = hw.check_path(joint_line(here, q[0]), plan.modes);
+    const std::string why = line_violation(hw, here, q[0], plan.modes);
     if (!why.empty()) throw InputError(fmt::format("the move to the excitation path's start: {}", why));
     motion.start();
     motion.move_joints(q[0], plan.move_speed_mm_s);
