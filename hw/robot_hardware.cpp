@@ -103,6 +103,7 @@ const HardwareState& RobotHardware::read(double time_s) {
   }
   try {
     HardwareState s = state_data_;
+    s.read_time_s.setConstant(time_s);  // a backend that knows better sets each joint's
     on_read(time_s, s);
     state_data_ = s;
   } catch (const HardwareError& e) {

@@ -43,7 +43,8 @@ class RobotHardware {
   // flag that the loop polls).
   void emergency_stop(const std::string& reason) noexcept;
 
-  // Reads the state at time_s (Inactive or Active). A backend failure enters
+  // Reads the state at time_s (Inactive or Active; each joint's read time is
+  // time_s unless the backend stamps its own). A backend failure enters
   // kError (drives disabled) and rethrows.
   const HardwareState& read(double time_s);
   // Writes a command at time_s (Active only; LifecycleError otherwise). A

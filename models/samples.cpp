@@ -81,15 +81,16 @@ Header read_header(std::istream& in, int& line_no, const std::string& file) {
   return h;
 }
 
-// The optional triples of drive torques, by column prefix (the three columns or none).
-constexpr const char* kTriples[3] = {"tau", "tau_last", "tau_between"};
+// The optional triples of drive torques and read times, by column prefix (the three columns or none).
+constexpr int kNumTriples = 4;
+constexpr const char* kTriples[kNumTriples] = {"tau", "tau_last", "tau_between", "t_read"};
 
 // Where each known column stands in the header (-1: absent); a torque
 // triple's first column is -1 when the triple is absent.
 struct Columns {
   int id = -1, x = -1, y = -1, time = -1;
   int theta[3] = {-1, -1, -1};
-  int triple[3][3] = {};
+  int triple[kNumTriples][3] = {};
 };
 
 // The known columns of h. Throws InputError for a missing theta_m column, x
@@ -111,7 +112,7 @@ Columns find_columns(const Header& h) {
     throw InputError(fmt::format("{}:{}: column '{}' without '{}' (give both x and y, or neither)",
                                  h.file, h.line, c.x < 0 ? "y" : "x", c.x < 0 ? "x" : "y"));
   }
-  for (int q = 0; q < 3; ++q) {
+  for (int q = 0; q < kNumTriples; ++q) {
     const char* name = kTriples[q];
     int found = 0;
     for (int k = 0; k < 3; ++k) found += (c.triple[q][k] = h.find(fmt::format("{}{}", name, k + 1))) >= 0;
@@ -164,8 +165,8 @@ void append_row(const Header& h, const Columns& c, const std::vector<std::string
   for (int k = 0; k < 3; ++k) t[k] = number(c.theta[k]);
   s.theta_m.push_back(t);
   if (s.has_xy) s.xy.emplace_back(number(c.x), number(c.y));
-  std::vector<Eigen::Vector3d>* triples[3] = {&s.tau, &s.tau_last, &s.tau_between};
-  for (int q = 0; q < 3; ++q)
+  std::vector<Eigen::Vector3d>* triples[kNumTriples] = {&s.tau, &s.tau_last, &s.tau_between, &s.t_read};
+  for (int q = 0; q < kNumTriples; ++q)
     if (c.triple[q][0] >= 0)
       triples[q]->emplace_back(number(c.triple[q][0]), number(c.triple[q][1]), number(c.triple[q][2]));
   if (c.time >= 0) {
@@ -215,8 +216,8 @@ Samples read_samples_csv(const std::string& path) {
 }
 
 std::string samples_to_csv(const Samples& s) {
-  const std::pair<const char*, const std::vector<Eigen::Vector3d>*> triples[3] = {
-      {"tau", &s.tau}, {"tau_last", &s.tau_last}, {"tau_between", &s.tau_between}};
+  const std::pair<const char*, const std::vector<Eigen::Vector3d>*> triples[kNumTriples] = {
+      {"tau", &s.tau}, {"tau_last", &s.tau_last}, {"tau_between", &s.tau_between}, {"t_read", &s.t_read}};
   std::string out = s.has_xy ? "sample,theta_m1,theta_m2,theta_m3,x,y" : "sample,theta_m1,theta_m2,theta_m3";
   for (const auto& [name, v] : triples)
     if (!v->empty()) out += fmt::format(",{}1,{}2,{}3", name, name, name);

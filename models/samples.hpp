@@ -2,7 +2,9 @@
 // found by name, others ignored: sample,theta_m1,theta_m2,theta_m3[,x,y] with
 // readings in rad and, where known (simulation), the true end-effector in mm;
 // optional: t (s, when each reading was taken, increasing), the drive torques
-// tau1..3, tau_last1..3, tau_between1..3 (N m; each triple all or none).
+// tau1..3, tau_last1..3, tau_between1..3 (N m) and t_read1..3 (s, when each
+// joint's reading was taken, where the drives are read one after another;
+// each triple all or none).
 #pragma once
 
 #include <string>
@@ -22,6 +24,9 @@ struct Samples {
   // the drive period's just before the reading (tau_last1..3) and the mean over the
   // periods since the sample before (tau_between1..3; sim/sampling.hpp SampleRecord).
   std::vector<Eigen::Vector3d> tau, tau_last, tau_between;
+  // `t_read1..3`: when each joint's reading was taken (s; t is the sample's
+  // instant), empty if the file has none.
+  std::vector<Eigen::Vector3d> t_read;
 
   size_t size() const { return theta_m.size(); }
 };

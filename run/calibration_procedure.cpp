@@ -102,6 +102,16 @@ calib::LmOptions lm_options(const ProcedureOptions& o) {
   return lo;
 }
 
+// Readings taken at their own times carried to joint 1's instant t_1 by their
+// rates: theta_m_i(t_1) = theta_m_i + omega_i (t_1 - t_i) (drives polled one
+// after another; a lag common to the three moves no reading, and the latch
+// skew s_i fits what is left).
+void carry_to_joint1_time(const SampleSeries& s, MotionStage& m) {
+  if (s.read_lag_s.size() != s.theta_m.size()) return;
+  for (std::size_t j = 0; j < s.theta_m.size(); ++j)
+    m.problem.theta_m[j] += m.omega[j].cwiseProduct(s.read_lag_s[j]);
+}
+
 // The motion stage before any fit: problem, rates, torques (on the fly the
 // twist follows the torques the drives applied before the reading, not the
 // one computed from it, which reacts to its quantisation), skipped samples.
@@ -119,6 +129,7 @@ MotionStage motion_stage(const SampleSeries& s, const CalibrationInputs& in, con
   m.tau = s.tau;
   if (m.motion.torque_before && !s.tau_between.empty()) m.motion.torque_between = s.tau_between;
   reading_rates_of(s, o.in_motion, m);
+  carry_to_joint1_time(s, m);
   if (o.in_motion) m.motion.skip_first = start_transient_count(s.t_s, o.skip_first_s);
   m.lo = lm_options(o);
   return m;
@@ -358,6 +369,8 @@ SampleSeries sample_series(const Samples& samples) {
   s.t_s = samples.t;
   s.tau = samples.tau_last.empty() ? samples.tau : samples.tau_last;
   s.tau_between = samples.tau_between;
+  for (const Eigen::Vector3d& t_read : samples.t_read)
+    s.read_lag_s.push_back(Eigen::Vector3d::Constant(t_read[0]) - t_read);
   if (samples.has_xy) s.true_xy = samples.xy;
   return s;
 }

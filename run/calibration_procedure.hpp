@@ -46,6 +46,10 @@ struct SampleSeries {
   // On the fly the mean drive torque over the periods since the sample before
   // (N m; tau_between); empty: the lag's regressor is the torque of the sample before.
   std::vector<Eigen::Vector3d> tau_between;
+  // On the fly, when joint 1's reading was taken less when each joint's was
+  // (s), one per sample, or empty: read at one instant. Each reading is
+  // carried to joint 1's instant by its rate: theta_m_i + omega_i lag_i.
+  std::vector<Eigen::Vector3d> read_lag_s;
   // The true end-effector positions (mm), where known (simulation): kmrmse only.
   std::vector<Eigen::Vector2d> true_xy;
 };

@@ -25,6 +25,7 @@
 #include "hw/procedures/sample_log.hpp"
 #include "hw/procedures/sampling_session.hpp"
 #include "hw/procedures/stop_on_signal.hpp"
+#include "hw/procedures/trajectory_session.hpp"
 #include "models/robot_yaml.hpp"
 #include "models/samples.hpp"
 #include "run/calibration_inputs.hpp"
@@ -74,39 +75,90 @@ std::array<double, kNumParams> scaled_bound(Bound&& bound, double sigma) {
 
 namespace {
 
-// Samples through the hardware interface (hw/): the scenario's poses, the
-// sampling session of hw/procedures/sampling_session.hpp, every sample on disk as taken.
+// The scenario's drives as the hardware's joint modes: the trajectory
+// procedure runs with the drives its path keeps its margin for (servo.modes).
+std::array<hw::JointMode, 3> procedure_modes(const RunSpec& spec, const std::string& scenario_file) {
+  std::array<hw::JointMode, 3> modes{};
+  for (std::size_t i = 0; i < 3; ++i) {
+    const sim::ServoMode m = spec.sim.twin.drives[i].mode;
+    if (m == sim::ServoMode::kTorque)
+      throw InputError(fmt::format("{}: servo.modes: joint {} in torque mode: the hardware interface drives "
+                                   "position or torque_off joints",
+                                   scenario_file, i + 1));
+    modes[i] = m == sim::ServoMode::kPosition ? hw::JointMode::kPosition : hw::JointMode::kTorqueOff;
+  }
+  return modes;
+}
+
+// The on-the-fly plan through hardware: the scenario's excitation path
+// (sim::excitation_plan, its margin for the scenario's drives), one sample
+// per sample_every / servo.rate_hz seconds or per cycle where the hardware
+// is slower.
+hw::TrajectoryPlan trajectory_plan(const RunSpec& spec, const hw::HardwareConfig& cfg, const Robot& actual,
+                                   const std::vector<Eigen::Vector2d>& poses) {
+  hw::TrajectoryPlan plan;
+  plan.path = sim::excitation_plan(spec.sim, actual, poses);
+  plan.modes = procedure_modes(spec, spec.sim.file);
+  const double interval_s = spec.sim.sampling->sample_every / spec.sim.twin.servo_rate_hz;
+  plan.every = std::max(1, static_cast<int>(std::lround(interval_s * cfg.rate_hz)));
+  plan.move_speed_mm_s = spec.sim.sampling->options.move_speed_mm_s;
+  plan.settle = spec.sim.sampling->options.settle;
+  return plan;
+}
+
+// One sample of the file as the runner's record. Through the interface only
+// the readings (and on the fly the torques and times) are known; the pose is
+// the target, and the true angles those of the scenario's actual robot there.
+sim::SampleRecord sample_record(long id, const hw::SampleLog::Recorded& row, const Robot& actual) {
+  sim::SampleRecord rec;
+  rec.id = id;
+  rec.theta_m = row.theta_m;
+  rec.target = row.target;
+  rec.xy_mm = rec.target;
+  rec.theta_a = inverse_kinematics(actual.geometry, rec.target, actual.branch).theta_a;
+  rec.settled = !row.motion;
+  if (row.motion) {
+    rec.t_s = row.motion->t_s;
+    rec.tau = row.motion->tau;
+    rec.tau_last = row.motion->tau_last;
+    rec.tau_between = row.motion->tau_between;
+    rec.read_lag_s = Eigen::Vector3d::Constant(row.motion->t_read[0]) - row.motion->t_read;
+  }
+  return rec;
+}
+
+// Samples through the hardware interface (hw/): the scenario's poses, sampled
+// stop-and-go (hw/procedures/sampling_session.hpp) or on the fly along the
+// excitation path (pattern trajectory: hw/procedures/trajectory_session.hpp),
+// every sample on disk as taken.
 sim::SimulationResult sample_on_hardware(const RunSpec& spec, const std::string& samples_path,
                                          std::string& description) {
   if (samples_path.empty()) throw InputError("gpm run --hardware: no output folder for the samples");
   const hw::HardwareConfig cfg = hw::load_hardware_config(*spec.hardware);
-  hw::SessionPlan plan;
-  plan.poses = sim::plan_poses(*spec.sim.sampling, spec.sim.seed);
-  plan.options = spec.sim.sampling->options;
-  plan.modes = cfg.modes;
-  if (cfg.dither_mm) plan.dither_mm = *cfg.dither_mm;
+  const std::vector<Eigen::Vector2d> poses = sim::plan_poses(*spec.sim.sampling, spec.sim.seed);
+  const bool in_motion = spec.sim.sampling->pattern == sim::PosePattern::kTrajectory;
   sim::SimulationResult r;
   r.actual = sim::make_actual(spec.sim);
   const hw::StopOnSignal signals;  // hw/procedures/stop_on_signal.hpp: drives off, exit 130
-  hw::SampleLog log(samples_path, spec.hardware_resume);
-  {
+  hw::SampleLog log(samples_path, spec.hardware_resume,
+                    in_motion ? hw::SampleColumns::kOnTheFly : hw::SampleColumns::kAtRest);
+  if (in_motion) {
+    const hw::TrajectoryPlan plan = trajectory_plan(spec, cfg, r.actual, poses);
+    auto robot = hw::make_hardware(cfg);
+    description = fmt::format("{} backend from {}", cfg.backend, *spec.hardware);
+    r.sampling_s = hw::run_trajectory_session(*robot, plan, log, signals.flag()).duration_s;
+  } else {
+    hw::SessionPlan plan;
+    plan.poses = poses;
+    plan.options = spec.sim.sampling->options;
+    plan.modes = cfg.modes;
+    if (cfg.dither_mm) plan.dither_mm = *cfg.dither_mm;
     auto robot = hw::make_hardware(cfg);
     description = fmt::format("{} backend from {}", cfg.backend, *spec.hardware);
     hw::run_sampling_session(*robot, plan, log, signals.flag());
   }
   // Every sample of the file (those resumed and those just taken), in id order.
-  for (const auto& [id, row] : log.recorded()) {
-    sim::SampleRecord rec;
-    rec.id = id;
-    rec.theta_m = row.theta_m;
-    rec.target = plan.poses[static_cast<size_t>(id)];
-    // Through the interface only the readings are known; the pose is the
-    // target, and the true angles those of the scenario's actual robot there.
-    rec.xy_mm = rec.target;
-    rec.theta_a = inverse_kinematics(r.actual.geometry, rec.target, r.actual.branch).theta_a;
-    rec.settled = true;
-    r.samples.push_back(rec);
-  }
+  for (const auto& [id, row] : log.recorded()) r.samples.push_back(sample_record(id, row, r.actual));
   return r;
 }
 
@@ -178,6 +230,7 @@ SampleSeries sample_series(const std::vector<sim::SampleRecord>& samples, bool t
     s.t_s.push_back(r.t_s);
     s.tau.push_back(torque_history ? r.tau_last : r.tau);
     if (torque_history) s.tau_between.push_back(r.tau_between);
+    s.read_lag_s.push_back(r.read_lag_s);
   }
   return s;
 }
@@ -259,9 +312,9 @@ void calibrate_run(RunOutcome& out, const RunSpec& spec, const CalibrationInputs
     // estimated jointly with the geometry where inputs.motion says so
     // (run/calibration_procedure.hpp); on the fly (the twin records the
     // drives' torque history) the twist follows the torques the drives applied
-    // before each reading; samples without that record (stop-and-go,
-    // hardware) use the drive torque of the sample.
-    const bool torque_history = in_motion && !spec.hardware;
+    // before each reading (the twin and the drives record them alike);
+    // samples stop-and-go use the drive torque of the sample.
+    const bool torque_history = in_motion;
     SampleSeries series = sample_series(out.sim.samples, torque_history);
     if (!spec.hardware) series.true_xy = true_xy;  // the true poses in simulation (kmrmse only then)
     CalibrationOutcome c = calibrate_samples(series, inputs, po);
@@ -348,9 +401,6 @@ RunOutcome run_scenario(const RunSpec& spec_in, const std::string& scenario_file
     design_sampling(spec.sim, ~spec.calibration.fixed, 0.0);  // given poses: only their number is checked
   if (spec.sim.sampling && spec.sim.sampling->needs_design()) design_poses(spec, stage);
   const bool in_motion = spec.sim.sampling && spec.sim.sampling->pattern == sim::PosePattern::kTrajectory;
-  if (in_motion && spec.hardware)
-    throw InputError(fmt::format("{}: sampling.pattern: trajectory runs on the twin only (the hardware interface "
-                                 "samples stop-and-go); use pattern: designed with --hardware", scenario_file));
   // What the calibration assumes is what its user states (calibration:) and
   // the robot's data sheet, as on a real robot: the twin's effects and
   // design values (the simulated truth) are not read (run/calibration_inputs.hpp).
@@ -360,9 +410,10 @@ RunOutcome run_scenario(const RunSpec& spec_in, const std::string& scenario_file
   if (with_effects && (spec.calibration.method != calib::Method::kLM || spec.calibration.cost != calib::Cost::kML))
     throw InputError(fmt::format("{}: estimating compliance, skew or clearance with the geometry (samples on the fly, or "
                                  "calibration.estimate) needs calibration {{method: lm, cost: ml}}", scenario_file));
-  if (with_effects && spec.hardware)
+  if (with_effects && spec.hardware && !in_motion)
     throw InputError(fmt::format("{}: calibration.estimate needs the drive torques and speeds of each sample, which "
-                                 "the hardware interface does not record yet", scenario_file));
+                                 "the hardware interface records on the fly only (sampling.pattern: trajectory)",
+                                 scenario_file));
   RunOutcome out;
   out.scenario_file = scenario_file;
   out.spec = spec;

@@ -79,6 +79,9 @@ struct SampleRecord {
   // s, when the reading was taken: on the fly the sample id x the sample interval (sample_every drive
   // periods, set by run_simulation); stop-and-go the middle of the averaging window (twin time).
   double t_s = 0.0;
+  // s, when joint 1's reading was taken less when each joint's was: 0 where the three are read at one instant
+  // (the twin, a latch); through drives polled one after another the lag of each (the calibration takes it out).
+  Eigen::Vector3d read_lag_s = Eigen::Vector3d::Zero();
 };
 
 // A twin driven by a controller model, logging as it goes.

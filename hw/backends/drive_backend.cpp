@@ -32,7 +32,11 @@ void DriveBackend::read_axes(double time_s, HardwareState& s) {
     if (id == 0) id = ++latch_id_;  // 0 is what a drive holds before its first latch
     transport_->write(map_.latch->unit_id, map_.latch->address, 1, &id);
   }
+  // Without a latch each drive is polled in turn: its reading is of the
+  // middle of its request, in the cycle's time base.
+  const double cycle_start = clock_.now();
   for (int i = 0; i < 3; ++i) {
+    const double asked = clock_.now();
     const AxisRegisters& a = map_.axes[i];
     const int position = map_.latch ? a.latched_position : a.actual_position;
     // One request for the span of everything read from this axis.
@@ -49,6 +53,7 @@ void DriveBackend::read_axes(double time_s, HardwareState& s) {
     } else {
       for (int addr : addrs) transport_->read(a.unit_id, addr, 1, &r[static_cast<size_t>(addr - lo)]);
     }
+    s.read_time_s[i] = map_.latch ? time_s : time_s + 0.5 * (asked + clock_.now()) - cycle_start;
     auto at = [&](int addr) { return r[static_cast<size_t>(addr - lo)]; };
     if (map_.latch && at(a.latch_id) != id) {
       throw HardwareError(fmt::format("{}: drive {} (unit {}) holds latch {} where latch {} was just "
@@ -69,6 +74,7 @@ void DriveBackend::read_axes(double time_s, HardwareState& s) {
     } else {
       s.velocity[i] = 0.0;
     }
+    s.torque_reported = (i == 0 || s.torque_reported) && a.actual_torque >= 0;
     s.torque[i] = a.actual_torque >= 0
                       ? a.sign * static_cast<std::int16_t>(at(a.actual_torque)) * a.torque_unit_nm
                       : 0.0;

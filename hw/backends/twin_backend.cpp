@@ -39,6 +39,8 @@ void TwinBackend::fill(HardwareState& s) const {
   s.theta_m = last.readings;
   s.velocity = last.velocity;
   s.torque = last.torque;
+  s.torque_reported = true;
+  s.read_time_s.setConstant(last.time_s);  // the twin's encoders latch one instant
   for (int i = 0; i < 3; ++i) {
     s.drive[i] = DriveStatus{};
     s.drive[i].enabled = (mask_ >> i) & 1u;

@@ -23,7 +23,17 @@
 namespace gpm::hw {
 namespace {
 
-constexpr const char* kHeader = "sample,theta_m1,theta_m2,theta_m3,target_x,target_y\n";
+constexpr const char* kHeaderAtRest = "sample,theta_m1,theta_m2,theta_m3,target_x,target_y\n";
+constexpr const char* kHeaderOnTheFly =
+    "sample,theta_m1,theta_m2,theta_m3,target_x,target_y,tau1,tau2,tau3,tau_last1,tau_last2,tau_last3,"
+    "tau_between1,tau_between2,tau_between3,t_read1,t_read2,t_read3,t\n";
+
+const char* header_of(SampleColumns c) { return c == SampleColumns::kOnTheFly ? kHeaderOnTheFly : kHeaderAtRest; }
+
+// ",a,b,c" of a triple, each number exact.
+std::string triple_fields(const Eigen::Vector3d& v) {
+  return fmt::format(",{},{},{}", format_exact(v[0]), format_exact(v[1]), format_exact(v[2]));
+}
 
 // Writes text whole; a regular file is then flushed to disk (fsync), a device
 // or FIFO written in place is not (it cannot be).
@@ -53,7 +63,7 @@ void lock_or_refuse(int fd, const std::string& path) {
 
 }  // namespace
 
-SampleLog::SampleLog(const std::string& path, bool resume) : path_(path) {
+SampleLog::SampleLog(const std::string& path, bool resume, SampleColumns columns) : path_(path), columns_(columns) {
   struct stat st {};
   if (::stat(path.c_str(), &st) == 0 && !S_ISREG(st.st_mode)) {
     open_in_place(st, resume);
@@ -96,7 +106,7 @@ void SampleLog::open_in_place(const struct stat& st, bool resume) {
   if (flags >= 0) ::fcntl(fd_, F_SETFL, flags & ~O_NONBLOCK);
   in_place_ = true;
   try {
-    write_all(fd_, kHeader, path_, false);
+    write_all(fd_, header_of(columns_), path_, false);
   } catch (const HardwareError& e) {
     ::close(fd_);
     fd_ = -1;
@@ -129,10 +139,17 @@ void SampleLog::read_existing(bool resume) {
       throw InputError(fmt::format("{}: cannot drop the torn last line: {}", path, std::strerror(errno)));
   }
   if (text.empty()) {
-    write_all(fd_, kHeader, path, true);  // a file without measurements: start it again
+    write_all(fd_, header_of(columns_), path, true);  // a file without measurements: start it again
     return;
   }
   const Samples s = parse_samples_csv(text, path);
+  const bool on_the_fly = s.t.size() == s.size() && s.tau_last.size() == s.size() && s.tau_between.size() == s.size();
+  if (s.size() > 0 && on_the_fly != (columns_ == SampleColumns::kOnTheFly)) {
+    throw InputError(fmt::format("{}: its samples were taken {} and this session samples {}: the file was recorded "
+                                 "with another plan; choose another output file",
+                                 path, on_the_fly ? "on the fly" : "at rest",
+                                 columns_ == SampleColumns::kOnTheFly ? "on the fly" : "at rest"));
+  }
   // The commanded targets (target_x, target_y: not read by the samples parser,
   // which takes true positions x, y), row by row in file order.
   std::vector<std::vector<std::string>> rows;
@@ -170,15 +187,27 @@ void SampleLog::read_existing(bool resume) {
         throw InputError(fmt::format("{}: line {}: target_x, target_y are not numbers", path, j + 2));
       }
     }
+    if (on_the_fly) {
+      SampleMotion m;
+      m.t_s = s.t[j];
+      m.tau = s.tau.size() == s.size() ? s.tau[j] : s.tau_last[j];
+      m.tau_last = s.tau_last[j];
+      m.tau_between = s.tau_between[j];
+      m.t_read = s.t_read.size() == s.size() ? s.t_read[j] : Eigen::Vector3d::Constant(s.t[j]);
+      r.motion = m;
+    }
     recorded_[s.id[j]] = r;
   }
 }
 
 SampleLog::~SampleLog() {
+  // Best effort on the way out: what was written is in the kernel's cache
+  // whatever fsync says (a session that ends normally has called sync()).
+  if (fd_ >= 0 && !in_place_) (void)::fsync(fd_);
   if (fd_ >= 0) ::close(fd_);
 }
 
-void SampleLog::append(long id, const Eigen::Vector3d& q, const Eigen::Vector2d& target) {
+void SampleLog::write_row(const std::string& row, bool sync) {
   if (closed_) throw HardwareError(fmt::format("{}: sample log is closed", path_));
   if (fd_ < 0) {  // the first sample creates the file (never over one that appeared meanwhile)
     const int fd = ::open(path_.c_str(), O_RDWR | O_APPEND | O_CREAT | O_EXCL | O_CLOEXEC, 0644);
@@ -186,17 +215,40 @@ void SampleLog::append(long id, const Eigen::Vector3d& q, const Eigen::Vector2d&
     lock_or_refuse(fd, path_);  // closes fd when it throws
     fd_ = fd;
     created_ = true;
-    write_all(fd_, kHeader, path_, true);
+    write_all(fd_, header_of(columns_), path_, true);
   }
-  write_all(fd_,
-            fmt::format("{},{},{},{},{},{}\n", id, format_exact(q[0]), format_exact(q[1]),
-                        format_exact(q[2]), format_exact(target.x()), format_exact(target.y())),
-            path_, !in_place_);
+  write_all(fd_, row, path_, sync && !in_place_);
+}
+
+void SampleLog::append(long id, const Eigen::Vector3d& q, const Eigen::Vector2d& target) {
+  if (columns_ != SampleColumns::kAtRest)
+    throw HardwareError(fmt::format("{}: a log of samples on the fly takes their torques and times", path_));
+  write_row(fmt::format("{},{},{},{},{},{}\n", id, format_exact(q[0]), format_exact(q[1]), format_exact(q[2]),
+                        format_exact(target.x()), format_exact(target.y())),
+            true);
   ids_.insert(id);
-  recorded_[id] = Recorded{q, true, target};
+  recorded_[id] = Recorded{q, true, target, std::nullopt};
+}
+
+void SampleLog::append(long id, const Eigen::Vector3d& q, const Eigen::Vector2d& target, const SampleMotion& m) {
+  if (columns_ != SampleColumns::kOnTheFly)
+    throw HardwareError(fmt::format("{}: a log of samples at rest has no torque or time columns", path_));
+  write_row(fmt::format("{},{},{},{},{},{}{}{}{}{},{}\n", id, format_exact(q[0]), format_exact(q[1]),
+                        format_exact(q[2]), format_exact(target.x()), format_exact(target.y()), triple_fields(m.tau),
+                        triple_fields(m.tau_last), triple_fields(m.tau_between), triple_fields(m.t_read),
+                        format_exact(m.t_s)),
+            false);
+  ids_.insert(id);
+  recorded_[id] = Recorded{q, true, target, m};
+}
+
+void SampleLog::sync() {
+  if (fd_ >= 0 && !in_place_ && ::fsync(fd_) != 0)
+    throw HardwareError(fmt::format("{}: fsync failed: {}", path_, std::strerror(errno)));
 }
 
 void SampleLog::close_and_discard_if_empty() {
+  if (fd_ >= 0 && !in_place_) (void)::fsync(fd_);  // as the destructor
   closed_ = true;
   if (created_ && ids_.empty()) {
     std::error_code ec;

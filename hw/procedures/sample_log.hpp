@@ -1,11 +1,14 @@
 // Samples file written as they are taken: each sample is one line appended
 // and flushed to disk (fsync) at once, so a crash or a lost connection loses
 // nothing already measured; a session can resume, skipping recorded samples.
-// Columns: sample,theta_m1,theta_m2,theta_m3,target_x,target_y (docs/ARCHITECTURE.md
-// samples contract; target_* are the commanded poses, not true positions).
+// Columns: sample,theta_m1,theta_m2,theta_m3,target_x,target_y (docs/FORMATS.md
+// samples contract; target_* are the commanded poses, not true positions);
+// samples taken on the fly add the drive torques tau1..3, tau_last1..3,
+// tau_between1..3, each joint's read time t_read1..3 and the sample's time t.
 #pragma once
 
 #include <map>
+#include <optional>
 #include <set>
 #include <string>
 
@@ -15,13 +18,27 @@ struct stat;
 
 namespace gpm::hw {
 
+// Which columns a samples file has.
+enum class SampleColumns { kAtRest, kOnTheFly };
+
+// What the drives report of a sample taken on the fly (sim/sampling.hpp
+// SampleRecord has the same on the twin).
+struct SampleMotion {
+  double t_s = 0.0;                                       // the sample's instant (s, the cycle's time)
+  Eigen::Vector3d t_read = Eigen::Vector3d::Zero();       // when each joint's reading was taken (s)
+  Eigen::Vector3d tau = Eigen::Vector3d::Zero();          // drive torque read with the readings (N m)
+  Eigen::Vector3d tau_last = Eigen::Vector3d::Zero();     // the cycle's before (N m)
+  Eigen::Vector3d tau_between = Eigen::Vector3d::Zero();  // mean over the cycles since the sample before (N m)
+};
+
 class SampleLog {
  public:
-  // One recorded row (for checking a resumed plan).
+  // One recorded row (for checking a resumed plan, and for the calibration).
   struct Recorded {
     Eigen::Vector3d theta_m = Eigen::Vector3d::Zero();
     bool has_target = false;
     Eigen::Vector2d target = Eigen::Vector2d::Zero();
+    std::optional<SampleMotion> motion;  // on the fly
   };
 
   // Opens path for appending and holds an exclusive lock (flock) on it while
@@ -34,7 +51,8 @@ class SampleLog {
   // leaves no file. An existing device or FIFO is written in place (the
   // output policy): the header at once (a refusal here, before anything
   // moves), no lock, no fsync, no resume; a folder or socket is refused.
-  SampleLog(const std::string& path, bool resume);
+  // columns: the file's columns; a resumed file with other columns is refused.
+  SampleLog(const std::string& path, bool resume, SampleColumns columns = SampleColumns::kAtRest);
   ~SampleLog();
   SampleLog(const SampleLog&) = delete;
   SampleLog& operator=(const SampleLog&) = delete;
@@ -43,8 +61,14 @@ class SampleLog {
   bool has(long id) const { return ids_.count(id) > 0; }
   // Number of samples in the file.
   size_t size() const { return ids_.size(); }
-  // Appends one sample and flushes it to disk; throws HardwareError if it cannot.
+  // Appends one sample at rest and flushes it to disk; throws HardwareError if it cannot.
   void append(long id, const Eigen::Vector3d& theta_m, const Eigen::Vector2d& target);
+  // Appends one sample taken on the fly (a log of SampleColumns::kOnTheFly):
+  // written at once (a crash of the process loses nothing), flushed to disk
+  // by sync(), which a loop at the drive rate calls every few samples.
+  void append(long id, const Eigen::Vector3d& theta_m, const Eigen::Vector2d& target, const SampleMotion& motion);
+  // Flushes what was appended to disk (fsync; nothing for a device or FIFO).
+  void sync();
   // Closes the file; removes it if this log created it and it holds no sample.
   void close_and_discard_if_empty();
   const std::string& path() const { return path_; }
@@ -57,12 +81,15 @@ class SampleLog {
   void read_existing(bool resume);
   // Opens the device or FIFO st describes for writing in place.
   void open_in_place(const struct stat& st, bool resume);
+  // Writes one row (creating the file with its header first); sync: fsync it.
+  void write_row(const std::string& row, bool sync);
 
   std::string path_;
   int fd_ = -1;
   bool created_ = false;
   bool closed_ = false;
   bool in_place_ = false;  // a device or FIFO
+  SampleColumns columns_ = SampleColumns::kAtRest;
   std::set<long> ids_;
   std::map<long, Recorded> recorded_;
 };

@@ -155,19 +155,13 @@ void check_plan_poses(const SafetySupervisor& hw, const SessionPlan& plan) {
   }
 }
 
-namespace {
-
-// The session stopped on why: drives off, and one line saying so (once) and
-// where the samples taken so far are.
-HardwareError stopped(SafetySupervisor& hw, const std::string& why, SampleLog& log) {
+HardwareError session_stopped(SafetySupervisor& hw, const std::string& why, const SampleLog& log) {
   hw.emergency_stop(why);
   hw.shutdown();
   const std::string_view tail = ": drives disabled";
   const bool said = why.size() >= tail.size() && why.compare(why.size() - tail.size(), tail.size(), tail) == 0;
   return HardwareError(fmt::format("{}{}; {} samples kept in {}", why, said ? "" : tail, log.size(), log.path()));
 }
-
-}  // namespace
 
 SessionResult run_sampling_session(SafetySupervisor& hw, const SessionPlan& plan, SampleLog& log,
                                    const std::atomic<bool>* stop) {
@@ -182,11 +176,11 @@ SessionResult run_sampling_session(SafetySupervisor& hw, const SessionPlan& plan
     hw.shutdown();
     throw Interrupted(fmt::format("{}; {} samples kept in {}", e.what(), log.size(), log.path()));
   } catch (const CommandRejected& e) {
-    throw stopped(hw, e.what(), log);
+    throw session_stopped(hw, e.what(), log);
   } catch (const HardwareError& e) {
-    throw stopped(hw, e.what(), log);
+    throw session_stopped(hw, e.what(), log);
   } catch (const LifecycleError& e) {
-    throw stopped(hw, e.what(), log);
+    throw session_stopped(hw, e.what(), log);
   }
 }
 

@@ -15,6 +15,7 @@
 #include <Eigen/Core>
 
 #include "hw/hardware_types.hpp"
+#include "hw/hw_errors.hpp"
 #include "hw/safety_limits.hpp"
 #include "hw/safety_supervisor.hpp"
 #include "hw/procedures/sample_log.hpp"
@@ -66,6 +67,11 @@ void check_resumed_plan(const Robot& controller, const SessionPlan& plan, const 
 // for a dither outside [0, 5] mm. Nothing moves: a command that runs sessions
 // later checks their plans with this before its first motion.
 void check_plan_poses(const SafetySupervisor& hw, const SessionPlan& plan);
+
+// A session stopped on why: hw's drives disabled (emergency stop, then
+// shutdown) and the error to throw, one line saying so once and where the
+// samples taken so far are.
+HardwareError session_stopped(SafetySupervisor& hw, const std::string& why, const SampleLog& log);
 
 // Runs the plan on hw (configured or not; left finalized). Samples go to log
 // as they are taken. stop (optional; StopOnSignal::flag) requests a stop.

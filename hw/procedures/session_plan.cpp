@@ -48,6 +48,12 @@ SessionPlan load_poses_plan(const std::string& path) {
 SessionPlan plan_from_scenario(const std::string& path) {
   const sim::Scenario sc = sim::load_scenario(path);
   if (!sc.sampling) throw InputError(path + ": the scenario has no 'sampling' section (poses to sample)");
+  if (sc.sampling->needs_design())
+    throw InputError(fmt::format("{}: sampling.pattern: {}: its poses are designed for the calibration when the "
+                                 "procedure runs; run it with gpm run {} --hardware HW.yaml (gpm sample takes "
+                                 "poses given or drawn: disc, circle, line, list)",
+                                 path, sc.sampling->pattern == sim::PosePattern::kTrajectory ? "trajectory" : "designed",
+                                 path));
   SessionPlan plan;
   plan.poses = sim::plan_poses(*sc.sampling, sc.seed);
   plan.options = sc.sampling->options;

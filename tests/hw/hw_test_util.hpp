@@ -54,6 +54,10 @@ class RecordingBackend final : public RobotHardware {
   bool wall_clock = false;  // report real (not simulated) time
   double read_delay_s = 0.0;  // each read takes this long on clock
   ManualClock* clock = nullptr;
+  // Reports torques (reads so far) x (1, 2, 3) N m, and each joint's reading
+  // taken read_offset_s after the cycle's time (drives polled in turn).
+  bool count_torque = false;
+  Eigen::Vector3d read_offset_s = Eigen::Vector3d::Zero();
 
   double period_s() const override { return period_; }
   bool simulated_time() const override { return !wall_clock; }
@@ -71,6 +75,10 @@ class RecordingBackend final : public RobotHardware {
     s.time_s = t;
     s.theta_m = position_;
     for (auto& d : s.drive) d.enabled = enabled_;
+    ++reads_;
+    s.torque_reported = count_torque;
+    if (count_torque) s.torque = static_cast<double>(reads_) * Eigen::Vector3d(1, 2, 3);
+    s.read_time_s = Eigen::Vector3d::Constant(t) + read_offset_s;
   }
   void on_write(const HardwareCommand& c, double) override {
     if (record) record->push_back(c);
@@ -82,6 +90,7 @@ class RecordingBackend final : public RobotHardware {
   Eigen::Vector3d position_;
   double period_;
   bool enabled_ = false;
+  long reads_ = 0;
 };
 
 // A fresh empty temporary folder for one test, removed with everything in it

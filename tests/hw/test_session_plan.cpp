@@ -42,6 +42,19 @@ TEST(SessionPlan, ScenarioPlan) {
   for (const auto& x : p.poses) EXPECT_LE((x - Eigen::Vector2d(216.5, 250)).norm(), 60.0 + 1e-9);
 }
 
+// A plan whose poses the procedure designs (the main job's trajectory) is
+// not a stop-and-go session: refused, naming the file and the command that runs it.
+TEST(SessionPlan, ADesignedPlanIsReferredToGpmRun) {
+  try {
+    plan_from_scenario(kSrc + "/scenarios/main.yaml");
+    FAIL() << "expected InputError";
+  } catch (const InputError& e) {
+    const std::string what = e.what();
+    EXPECT_NE(what.find("main.yaml: sampling.pattern: trajectory"), std::string::npos) << what;
+    EXPECT_NE(what.find("gpm run"), std::string::npos) << what;
+  }
+}
+
 // Speeds and durations outside physical ranges are refused before anything
 // moves (1e-300 mm/s once recorded at the wrong place, 1e9 s hung).
 TEST(SessionPlan, SettingsOutsidePhysicalRangesAreRefused) {

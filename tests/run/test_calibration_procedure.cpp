@@ -2,7 +2,9 @@
 // on-the-fly scenario made again from its samples.csv alone (the readings,
 // times and drive torques, and the robot file's data sheet, as gpm calibrate
 // does) gives the same result to the last bit; samples without times or
-// torques get the static fit and its model test; missing inputs refused.
+// torques get the static fit and its model test; missing inputs refused;
+// readings of drives polled one after another are carried to joint 1's
+// instant by their read times (t_read1..3), which the latch skew otherwise takes up.
 #include "run/calibration_procedure.hpp"
 
 #include <limits>
@@ -129,6 +131,46 @@ TEST(CalibrationProcedure, MotionModelWithoutTimesOrTorquesRefused) {
   EXPECT_THROW(calibrate_samples(no_t, in, po), InputError);
   EXPECT_THROW(calibrate_samples(no_tau, in, po), InputError);
   EXPECT_THROW(calibrate_samples(short_t, in, po), InputError);
+}
+
+// The fixture's readings as drives polled in turn would give them: joints 2
+// and 3 read lag_2 and lag_3 after joint 1 (linear between the samples, a
+// fraction of the sample interval). With the read times the calibration
+// carries them back (the skew estimates as before, the geometry within its
+// 1-sigma: interpolated readings no longer show the encoders' step, so their
+// noise differs); without, the skew s_i takes up -lag_i.
+TEST(CalibrationProcedure, ReadingsPolledInTurnAreCarriedToJointOnesInstant) {
+  const RunOutcome& o = small_run();
+  const Samples s = parse_samples_csv(sim::samples_csv(o.sim.samples), "samples.csv");
+  ASSERT_TRUE(taken_on_the_fly(s));
+  const double dt = s.t[1] - s.t[0];
+  const Eigen::Vector3d lag(0.0, 0.3 * dt, 0.6 * dt);
+  Samples polled = s;
+  for (std::size_t j = 0; j + 1 < s.size(); ++j) {
+    for (int i = 1; i < 3; ++i) {
+      const double f = lag[i] / dt;
+      polled.theta_m[j][i] = (1 - f) * s.theta_m[j][i] + f * s.theta_m[j + 1][i];
+    }
+    polled.t_read.push_back(Eigen::Vector3d::Constant(s.t[j]) + lag);
+  }
+  // The last sample has no reading after it.
+  polled.theta_m.pop_back(), polled.id.pop_back(), polled.t.pop_back(), polled.tau.pop_back();
+  polled.tau_last.pop_back(), polled.tau_between.pop_back();
+  if (polled.has_xy) polled.xy.pop_back();
+  const CalibrationOutcome base = calibrate_file(s), carried = calibrate_file(polled);
+  Samples unlabelled = polled;
+  unlabelled.t_read.clear();
+  const CalibrationOutcome skewed = calibrate_file(unlabelled);
+  ASSERT_TRUE(base.with_effects && carried.with_effects && skewed.with_effects);
+  for (int k = 0; k < 2; ++k) {
+    EXPECT_NEAR(carried.fit.nu[k], base.fit.nu[k], 0.05 * lag[2]) << "s" << k + 2;
+    EXPECT_NEAR(skewed.fit.nu[k], base.fit.nu[k] - lag[k + 1], 0.2 * lag[k + 1]) << "s" << k + 2;
+  }
+  for (int i = 0; i < kNumParams; ++i) {
+    const double sigma = base.result.sigma[static_cast<size_t>(i)];
+    if (std::isnan(sigma)) continue;
+    EXPECT_NEAR(carried.result.geometry[i], base.result.geometry[i], sigma) << param_name(i);
+  }
 }
 
 }  // namespace

@@ -1,0 +1,200 @@
+// Tests of hw/procedures/trajectory_session.cpp: a path sampled on the fly
+// through the hardware interface records one sample per `every` cycles with
+// the bookkeeping of the twin's sim::sample_along (the torque read with the
+// readings, the cycle's before, the mean since the sample before), each
+// joint's read time, the commanded point; the twin backend follows the path
+// and its samples read back as a file taken on the fly; a path outside the
+// limits, drives that report no torque and a partly recorded file are
+// refused before anything moves; a finished file is kept and nothing moves.
+#include <gtest/gtest.h>
+
+#include <cmath>
+
+#include "hw/hardware_config.hpp"
+#include "hw/procedures/trajectory_session.hpp"
+#include "hw/safety_supervisor.hpp"
+#include "hw_test_util.hpp"
+#include "models/errors.hpp"
+#include "models/kinematics.hpp"
+#include "models/samples.hpp"
+#include "sim/waypoint_path.hpp"
+
+namespace gpm::hw {
+namespace {
+
+const std::string kSrc = GPM_SOURCE_DIR;
+
+Eigen::Vector3d ik_m(const Robot& r, const Eigen::Vector2d& p) {
+  return readings_from_active(r.geometry, inverse_kinematics(r.geometry, p, r.branch).theta_a);
+}
+
+// A short excitation path from home through three poses, slow enough for the example limits.
+TrajectoryPlan small_plan(int every) {
+  TrajectoryPlan plan;
+  const Robot robot;
+  sim::WaypointLimits lim;
+  lim.max_speed_mm_s = 40;
+  lim.max_accel_mm_s2 = 200;
+  lim.max_normal_mm_s2 = 200;
+  plan.path = sim::excitation_path(robot.home, {{236.5, 260}, {206.5, 240}, {226.5, 230}}, lim);
+  plan.every = every;
+  plan.settle = {0.01, 0.0, 1.0};
+  return plan;
+}
+
+struct Rig {
+  Robot robot;
+  std::vector<HardwareCommand> rec;
+  test::RecordingBackend* backend = nullptr;
+  std::unique_ptr<SafetySupervisor> sup;
+  explicit Rig(bool torque = true, const SafetyLimits& lim = test::example_limits()) {
+    auto b = std::make_unique<test::RecordingBackend>(ik_m(robot, robot.home), 0.004);
+    b->record = &rec;
+    b->count_torque = torque;
+    b->read_offset_s = {0.0, 0.0005, 0.001};
+    backend = b.get();
+    sup = std::make_unique<SafetySupervisor>(std::move(b), robot, lim);
+  }
+};
+
+TEST(TrajectorySession, RecordsTheTorqueHistoryAndReadTimesOfEverySample) {
+  test::TempDir dir("traj_history");
+  const TrajectoryPlan plan = small_plan(3);
+  Rig rig;
+  const std::string path = (dir / "s.csv").string();
+  {
+    SampleLog log(path, false, SampleColumns::kOnTheFly);
+    const SessionResult r = run_trajectory_session(*rig.sup, plan, log, nullptr);
+    EXPECT_EQ(r.taken, trajectory_sample_count(plan, 0.004));
+  }
+  const Samples s = read_samples_csv(path);
+  ASSERT_EQ(static_cast<long>(s.size()), trajectory_sample_count(plan, 0.004));
+  ASSERT_EQ(s.t.size(), s.size());
+  ASSERT_EQ(s.t_read.size(), s.size());
+  // The readings are the commands (the backend follows exactly): the
+  // controller's IK of the sample's point, one cycle late (read before the command).
+  const std::vector<Eigen::Vector3d> q = trajectory_commands(rig.robot, plan, 0.004);
+  // Read count r at sample j: the reads before the path, then one per cycle.
+  const double r0 = s.tau[0][0];
+  for (std::size_t j = 1; j < s.size(); ++j) {
+    EXPECT_NEAR(s.t[j] - s.t[j - 1], 3 * 0.004, 1e-12) << j;
+    const double r = r0 + 3.0 * static_cast<double>(j);
+    for (int i = 0; i < 3; ++i) {
+      EXPECT_DOUBLE_EQ(s.tau[j][i], r * (i + 1)) << j;
+      EXPECT_DOUBLE_EQ(s.tau_last[j][i], (r - 1) * (i + 1)) << j;
+      // Mean of the reads since the sample before (it included): r-3, r-2, r-1.
+      EXPECT_DOUBLE_EQ(s.tau_between[j][i], (r - 2) * (i + 1)) << j;
+    }
+    EXPECT_NEAR(s.t_read[j][1] - s.t[j], 0.0005, 1e-9);
+    EXPECT_NEAR(s.t_read[j][2] - s.t[j], 0.001, 1e-9);
+    EXPECT_NEAR((s.theta_m[j] - q[3 * j - 1]).norm(), 0.0, 1e-12) << j;
+  }
+  EXPECT_DOUBLE_EQ(s.t[0], 0.0);
+}
+
+TEST(TrajectorySession, TheTwinFollowsThePathAndItsFileReadsAsTakenOnTheFly) {
+  test::TempDir dir("traj_twin");
+  test::write_text(dir / "hw.yaml", "backend: twin\nrate_hz: 250\ncontroller: " + kSrc +
+                                        "/models/gpm2002.yaml\ntwin: {scenario: " + kSrc +
+                                        "/tests/fixtures/twin_disc.yaml}\n" + test::kSafetyYaml);
+  const HardwareConfig cfg = load_hardware_config((dir / "hw.yaml").string());
+  auto hw = make_hardware(cfg);
+  const TrajectoryPlan plan = small_plan(1);
+  const std::string path = (dir / "s.csv").string();
+  {
+    SampleLog log(path, false, SampleColumns::kOnTheFly);
+    run_trajectory_session(*hw, plan, log, nullptr);
+  }
+  const Samples s = read_samples_csv(path);
+  ASSERT_EQ(static_cast<long>(s.size()), trajectory_sample_count(plan, 0.004));
+  // Where the readings put the end-effector (nominal model) against the
+  // commanded point: the actual robot is 0.3 mm off nominal and the drives lag a little.
+  const Robot nominal;
+  double worst = 0.0, torque = 0.0;
+  for (std::size_t j = 0; j < s.size(); ++j) {
+    const auto fk = forward_kinematics(nominal.geometry, active_from_readings(nominal.geometry, s.theta_m[j]));
+    ASSERT_TRUE(fk.has_value());
+    Eigen::Vector2d p, v;
+    sim::waypoint_at(plan.path, s.t[j], p, v);
+    worst = std::max(worst, (fk->p - p).norm());
+    torque = std::max(torque, s.tau[j].cwiseAbs().maxCoeff());
+    // The twin latches its encoders at one instant, its last drive tick
+    // (2 kHz), at most one drive period before the cycle's time.
+    EXPECT_EQ(s.t_read[j], Eigen::Vector3d::Constant(s.t_read[j][0]));
+    EXPECT_GE(s.t[j] - s.t_read[j][0], -1e-9);
+    EXPECT_LE(s.t[j] - s.t_read[j][0], 0.0005 + 1e-9);
+  }
+  EXPECT_LT(worst, 3.0);
+  EXPECT_GT(torque, 0.0);  // the twin reports its drive torques
+}
+
+TEST(TrajectorySession, APathOutsideTheLimitsIsRefusedBeforeAnythingMoves) {
+  test::TempDir dir("traj_limits");
+  SafetyLimits lim = test::example_limits();
+  lim.max_velocity = {0.05, 0.05, 0.05};
+  Rig rig(true, lim);
+  SampleLog log((dir / "s.csv").string(), false, SampleColumns::kOnTheFly);
+  try {
+    run_trajectory_session(*rig.sup, small_plan(1), log, nullptr);
+    FAIL() << "expected InputError";
+  } catch (const InputError& e) {
+    EXPECT_NE(std::string(e.what()).find("max_velocity"), std::string::npos) << e.what();
+  }
+  EXPECT_TRUE(rig.rec.empty());
+  EXPECT_FALSE(std::filesystem::exists(dir / "s.csv"));
+}
+
+TEST(TrajectorySession, DrivesThatReportNoTorqueAreRefusedBeforeAnythingMoves) {
+  test::TempDir dir("traj_torque");
+  Rig rig(false);
+  SampleLog log((dir / "s.csv").string(), false, SampleColumns::kOnTheFly);
+  try {
+    run_trajectory_session(*rig.sup, small_plan(1), log, nullptr);
+    FAIL() << "expected InputError";
+  } catch (const InputError& e) {
+    EXPECT_NE(std::string(e.what()).find("torque"), std::string::npos) << e.what();
+  }
+  EXPECT_TRUE(rig.rec.empty());
+}
+
+TEST(TrajectorySession, AFinishedFileIsKeptAndAPartOfOneRefused) {
+  test::TempDir dir("traj_resume");
+  const TrajectoryPlan plan = small_plan(2);
+  const std::string path = (dir / "s.csv").string();
+  {
+    Rig rig;
+    SampleLog log(path, false, SampleColumns::kOnTheFly);
+    run_trajectory_session(*rig.sup, plan, log, nullptr);
+  }
+  const std::string full = test::read_text(path);
+  {  // finished: nothing moves, the file stays as it was
+    Rig rig;
+    SampleLog log(path, true, SampleColumns::kOnTheFly);
+    const SessionResult r = run_trajectory_session(*rig.sup, plan, log, nullptr);
+    EXPECT_EQ(r.taken, 0);
+    EXPECT_EQ(r.skipped, trajectory_sample_count(plan, 0.004));
+    EXPECT_TRUE(rig.rec.empty());
+  }
+  EXPECT_EQ(test::read_text(path), full);
+  // The first half of it: refused, nothing moves, the file unchanged.
+  std::string half = full.substr(0, full.find('\n', full.size() / 2) + 1);
+  test::write_text(path, half);
+  Rig rig;
+  SampleLog log(path, true, SampleColumns::kOnTheFly);
+  EXPECT_THROW(run_trajectory_session(*rig.sup, plan, log, nullptr), InputError);
+  EXPECT_TRUE(rig.rec.empty());
+  EXPECT_EQ(test::read_text(path), half);
+}
+
+TEST(TrajectorySession, AFileOfSamplesAtRestIsNotContinuedOnTheFly) {
+  test::TempDir dir("traj_columns");
+  const std::string path = (dir / "s.csv").string();
+  {
+    SampleLog log(path, false, SampleColumns::kAtRest);
+    log.append(0, Eigen::Vector3d(1.1, 3.1, 4.8), Eigen::Vector2d(216.5, 250));
+  }
+  EXPECT_THROW(SampleLog(path, true, SampleColumns::kOnTheFly), InputError);
+}
+
+}  // namespace
+}  // namespace gpm::hw
