@@ -33,9 +33,14 @@ struct DriveStatus {
 // State of the three joints at one instant.
 struct HardwareState {
   double time_s = 0.0;                                 // backend time of the reading
+  // When each joint's reading was taken (s, backend time): time_s for all
+  // where the drives copy their positions at one instant (a latch, the twin);
+  // each reply's time where they are polled one after another.
+  Eigen::Vector3d read_time_s = Eigen::Vector3d::Zero();
   Eigen::Vector3d theta_m = Eigen::Vector3d::Zero();  // encoder readings (rad)
   Eigen::Vector3d velocity = Eigen::Vector3d::Zero(); // rad/s
   Eigen::Vector3d torque = Eigen::Vector3d::Zero();   // N m (0 where the drive does not report it)
+  bool torque_reported = false;                        // the drives report their torque (torque is measured)
   std::array<DriveStatus, kNumChains> drive{};
 };
 
