@@ -107,7 +107,12 @@ const gpm_backend_api* load_table(const std::string& file) {
                                  file, GPM_BACKEND_PLUGIN_ENTRY_NAME));
   }
   const auto entry = reinterpret_cast<gpm_backend_plugin_entry_fn>(sym);
-  const gpm_backend_api* t = entry(GPM_BACKEND_ABI_VERSION);
+  const gpm_backend_api* t = nullptr;
+  try {
+    t = entry(GPM_BACKEND_ABI_VERSION);
+  } catch (...) {
+    throw HardwareError(fmt::format("{}: {} let an exception escape", file, GPM_BACKEND_PLUGIN_ENTRY_NAME));
+  }
   check_table(t, file);
   return t;
 }
@@ -120,23 +125,46 @@ PluginBackend::PluginBackend(PluginBackendConfig config) : config_(std::move(con
   create();
 }
 
-PluginBackend::~PluginBackend() {
-  if (instance_ && active_) api_->deactivate(instance_);
-  destroy();
-}
+PluginBackend::~PluginBackend() { on_shutdown(); }
 
 bool PluginBackend::simulated_time() const { return (api_->flags & GPM_BACKEND_FLAG_SIMULATED_TIME) != 0; }
 
 std::string PluginBackend::describe() const { return fmt::format("plugin {} ({})", name_, config_.library); }
 
 std::string PluginBackend::plugin_error(const gpm_backend* instance) const {
-  return one_line(api_->last_error(instance));
+  try {
+    return one_line(api_->last_error(instance));
+  } catch (...) {
+    return "(last_error let an exception escape)";
+  }
 }
 
-void PluginBackend::check(const char* call, int code) const {
+template <class F>
+int PluginBackend::call(const char* what, F&& f) const {
+  try {
+    return f();
+  } catch (...) {
+    // Not allowed by the ABI; caught where the unwinding reaches here.
+    throw HardwareError(fmt::format("plugin {}: {} let an exception escape (the plugin ABI allows none: catch "
+                                    "everything inside)",
+                                    name_, what));
+  }
+}
+
+template <class F>
+void PluginBackend::check(const char* what, F&& f) const {
+  const int code = call(what, f);
   if (code == GPM_BACKEND_OK) return;
-  throw HardwareError(fmt::format("plugin {}: {} failed ({}, code {}): {}", name_, call, code_name(code), code,
+  throw HardwareError(fmt::format("plugin {}: {} failed ({}, code {}): {}", name_, what, code_name(code), code,
                                   plugin_error(instance_)));
+}
+
+template <class F>
+void PluginBackend::quietly(F&& f) noexcept {
+  try {
+    f();
+  } catch (...) {  // best effort: on the way to a stop or out
+  }
 }
 
 void PluginBackend::create() {
@@ -147,7 +175,7 @@ void PluginBackend::create() {
   a.base_dir = config_.base_dir.c_str();
   a.period_s = config_.period_s;
   gpm_backend* out = nullptr;
-  const int code = api_->create(&a, &out);
+  const int code = call("create", [&] { return api_->create(&a, &out); });
   if (code == GPM_BACKEND_E_CONFIG) {
     throw InputError(fmt::format("{}: plugin.config: backend plugin {} refused its configuration: {}", config_.source,
                                  name_, plugin_error(nullptr)));
@@ -163,7 +191,7 @@ void PluginBackend::create() {
 }
 
 void PluginBackend::destroy() noexcept {
-  if (instance_) api_->destroy(instance_);
+  if (instance_) quietly([&] { api_->destroy(instance_); });
   instance_ = nullptr;
   active_ = false;
 }
@@ -211,29 +239,29 @@ void PluginBackend::on_configure(HardwareState& initial) {
   if (!instance_) create();
   gpm_backend_state st{};
   st.struct_size = sizeof st;
-  check("configure", api_->configure(instance_, &st));
+  check("configure", [&] { return api_->configure(instance_, &st); });
   have_previous_ = false;
   convert(st, initial.time_s, initial);
   last_raw_ = st;
 }
 
 void PluginBackend::on_activate(const HardwareState&) {
-  check("activate", api_->activate(instance_, &last_raw_));
+  check("activate", [&] { return api_->activate(instance_, &last_raw_); });
   active_ = true;
 }
 
 void PluginBackend::on_deactivate() {
   active_ = false;
-  check("deactivate", api_->deactivate(instance_));
+  check("deactivate", [&] { return api_->deactivate(instance_); });
 }
 
 void PluginBackend::on_shutdown() noexcept {
-  if (instance_ && active_) api_->deactivate(instance_);
+  if (instance_ && active_) quietly([&] { api_->deactivate(instance_); });
   destroy();
 }
 
 void PluginBackend::on_error() noexcept {
-  if (instance_) api_->emergency_stop(instance_);
+  if (instance_) quietly([&] { api_->emergency_stop(instance_); });
   active_ = false;
 }
 
@@ -245,7 +273,7 @@ void PluginBackend::on_reset() {
 void PluginBackend::on_read(double time_s, HardwareState& s) {
   gpm_backend_state st{};
   st.struct_size = sizeof st;
-  check("read", api_->read(instance_, time_s, &st));
+  check("read", [&] { return api_->read(instance_, time_s, &st); });
   convert(st, time_s, s);
   last_raw_ = st;
 }
@@ -257,7 +285,7 @@ void PluginBackend::on_write(const HardwareCommand& cmd, double time_s) {
     c.mode[i] = cmd.mode[i] == JointMode::kPosition ? GPM_BACKEND_POSITION : GPM_BACKEND_TORQUE_OFF;
     c.theta_m[i] = cmd.theta_m[i];
   }
-  check("write", api_->write(instance_, time_s, &c));
+  check("write", [&] { return api_->write(instance_, time_s, &c); });
 }
 
 }  // namespace gpm::hw

@@ -59,7 +59,12 @@ class PluginBackend final : public RobotHardware {
   void create();
   void destroy() noexcept;
   std::string plugin_error(const gpm_backend* instance) const;
-  void check(const char* call, int code) const;
+  // The code of the table call f (what: its name); HardwareError if an exception escapes it.
+  template <class F> int call(const char* what, F&& f) const;
+  // Calls f; HardwareError with the plugin's last_error unless it returns GPM_BACKEND_OK.
+  template <class F> void check(const char* what, F&& f) const;
+  // Calls f, ignoring any failure (disabling, shutting down).
+  template <class F> static void quietly(F&& f) noexcept;
   void convert(const gpm_backend_state& in, double host_time_s, HardwareState& out);
 
   PluginBackendConfig config_;

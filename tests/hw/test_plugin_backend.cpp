@@ -5,7 +5,7 @@
 // reads, cycle for cycle; its sampling session agrees with the twin
 // backend's; a plugin of another ABI or API version is refused naming the file
 // and both versions; a plugin that breaks the contract (no table, a null
-// function, error codes, NaN readings, stale read times) gives a
+// function, error codes, NaN readings, stale read times, an exception) gives a
 // HardwareError, never a crash; a plugin built in another build tree against
 // the header alone loads and runs.
 #include <gtest/gtest.h>
@@ -146,6 +146,7 @@ TEST(PluginBackend, SamplePluginRefusesABadConfiguration) {
   EXPECT_NE(e.find("clock"), std::string::npos) << e;
 }
 
+// The plugin backend settings of library, with a scripted plugin's configuration.
 PluginBackendConfig library_config(const std::string& library) {
   PluginBackendConfig c;
   c.library = library;
@@ -239,6 +240,37 @@ TEST(PluginBackend, NanReadingsAndStaleReadTimesAreHardwareErrors) {
   const std::string s = run_until_error(*stale, 20);
   EXPECT_NE(s.find("plugin scripted: axis 3 was read at"), std::string::npos) << s;
   EXPECT_THROW(nan->read(1.0), LifecycleError);  // stopped: no further call reaches the plugin
+}
+
+// The ABI allows no exception across it; one that a C++ plugin lets escape
+// anyway is caught here (GCC, x86-64) and is a HardwareError, drives stopped.
+TEST(PluginBackend, AnEscapingExceptionIsAHardwareError) {
+  const test::TempDir dir("plugin_throw");
+  const long stops = scripted_counter("gpm_test_plugin_emergency_stops");
+  auto hw = make_hardware(config_of(dir, "throw.yaml", scripted_yaml(", throw_read: 3")));
+  const std::string e = run_until_error(*hw, 20);
+  EXPECT_NE(e.find("plugin scripted: read let an exception escape"), std::string::npos) << e;
+  EXPECT_EQ(hw->state(), LifecycleState::kError);
+  EXPECT_GT(scripted_counter("gpm_test_plugin_emergency_stops"), stops);
+}
+
+// A plugin that reports no velocity: the backend differentiates the readings
+// over their read times (ideal drives read exactly the last command).
+TEST(PluginBackend, VelocityNotReportedIsTheDifferenceOfTheReadings) {
+  PluginBackendConfig c = library_config(GPM_SCRIPTED_PLUGIN);
+  c.period_s = 0.002;
+  PluginBackend b(c);
+  b.configure();
+  b.activate();
+  HardwareCommand cmd = hold_command(b.last_state().theta_m);
+  b.read(0.002);
+  cmd.theta_m[1] += 0.001;
+  b.write(cmd, 0.004);
+  const HardwareState& s = b.read(0.004);
+  EXPECT_NEAR(s.velocity[1], 0.001 / 0.002, 1e-9);
+  EXPECT_EQ(s.velocity[0], 0.0);
+  EXPECT_FALSE(s.torque_reported);
+  EXPECT_EQ(s.read_time_s, Eigen::Vector3d(0.004, 0.004, 0.004));
 }
 
 // Four poses around home, as in tests/hw/test_sampling_session.cpp.

@@ -8,9 +8,11 @@
 // fail: create|configure|activate|read|write with code: C (default 1) at the
 // call number after: N (default 0: the first); nan_after: N (reads from the
 // N-th on give a NaN on axis 2); stale_after: N (axis 3 read 5 s before the
-// reading's time).
+// reading's time); throw_read: N (the N-th read lets a C++ exception escape,
+// which the ABI forbids).
 #include <cmath>
 #include <exception>
+#include <stdexcept>
 #include <string>
 
 #include <yaml-cpp/yaml.h>
@@ -29,7 +31,7 @@ struct gpm_backend {
   bool enabled[3] = {false, false, false};
   std::string fail;
   int code = GPM_BACKEND_E_FAILED;
-  long after = 0, nan_after = -1, stale_after = -1;
+  long after = 0, nan_after = -1, stale_after = -1, throw_read = -1;
   long reads = 0, writes = 0;
   std::string error;
 };
@@ -58,6 +60,7 @@ int32_t t_create(const gpm_backend_create_args* a, gpm_backend** out) {
     if (c["after"]) b->after = c["after"].as<long>();
     if (c["nan_after"]) b->nan_after = c["nan_after"].as<long>();
     if (c["stale_after"]) b->stale_after = c["stale_after"].as<long>();
+    if (c["throw_read"]) b->throw_read = c["throw_read"].as<long>();
     if (b->fail == "create") {
       create_error = "key 'fail': scripted refusal of the configuration";
       const int code = b->code;
@@ -109,6 +112,7 @@ int32_t t_deactivate(gpm_backend* b) {
 
 [[maybe_unused]] int32_t t_read(gpm_backend* b, double t, gpm_backend_state* s) {
   if (const int32_t c = scripted(b, "read", b->reads)) return c;
+  if (b->reads == b->throw_read) throw std::runtime_error("scripted exception");
   fill(b, t, s);
   ++b->reads;
   return GPM_BACKEND_OK;
