@@ -127,6 +127,21 @@ TEST(PluginBackend, SamplePluginRunsTheLifecycleBehindTheSupervisor) {
   EXPECT_THROW(card->configure(), LifecycleError);
 }
 
+// The example hardware file (hw/plugin/examples/motion_card.yaml), its
+// relative paths made absolute and its library the one of this build.
+TEST(PluginBackend, ExampleHardwareFileLoadsAndConfigures) {
+  const test::TempDir dir("plugin_example");
+  std::string text = test::read_text(kSrc + "/hw/plugin/examples/motion_card.yaml");
+  for (size_t at; (at = text.find("../../../")) != std::string::npos;) text.replace(at, 9, kSrc + "/");
+  const std::string lib = kSrc + "/build/hw/libgpm_motion_card.so";
+  ASSERT_NE(text.find(lib), std::string::npos);
+  text.replace(text.find(lib), lib.size(), GPM_MOTION_CARD_PLUGIN);
+  auto hw = make_hardware(config_of(dir, "motion_card.yaml", text));
+  hw->configure();
+  EXPECT_EQ(hw->state(), LifecycleState::kInactive);
+  EXPECT_EQ(hw->period_s(), 1.0 / 250);
+}
+
 TEST(PluginBackend, SamplePluginWithoutTorqueSaysSo) {
   const test::TempDir dir("plugin_torque");
   auto card = make_hardware(config_of(dir, "card.yaml", card_yaml(", report_torque: false")));
