@@ -41,10 +41,12 @@ install(TARGETS ${GPM_EXPORTED_LIBRARIES} EXPORT gpmTargets
 install(TARGETS gpm gpm-drive-emulator RUNTIME DESTINATION ${CMAKE_INSTALL_BINDIR})
 install(TARGETS gpm-render RUNTIME DESTINATION ${CMAKE_INSTALL_BINDIR} OPTIONAL)
 
-# Public headers, in the layout the sources include them by (models/robot.hpp).
+# Public headers, in the layout the sources include them by (models/robot.hpp);
+# the C header of backend plugins too (hw/plugin/gpm_backend_plugin.h: a
+# plugin built elsewhere needs that file alone).
 foreach(_dir models calib sim hw report run)
   install(DIRECTORY ${PROJECT_SOURCE_DIR}/${_dir}/ DESTINATION ${GPM_INSTALL_INCLUDEDIR}/${_dir}
-    FILES_MATCHING PATTERN "*.hpp")
+    FILES_MATCHING PATTERN "*.hpp" PATTERN "*.h")
 endforeach()
 
 # Data: the nominal robot, the scenario library and the hardware examples the

@@ -20,13 +20,71 @@ std::string resolve(const std::string& base_dir, const std::string& p) {
   return path.is_absolute() ? p : (std::filesystem::path(base_dir) / path).lexically_normal().string();
 }
 
-// The key backend (twin or modbus) of root.
+// p taken from base_dir as an absolute path (a plugin is handed paths that
+// do not depend on the working folder, and dlopen never searches for it).
+std::string resolve_absolute(const std::string& base_dir, const std::string& p) {
+  return std::filesystem::absolute(resolve(base_dir, p)).lexically_normal().string();
+}
+
+// The map node as one line of YAML flow text ({key: value, ...}).
+std::string flow_text(const YAML::Node& node) {
+  YAML::Emitter e;
+  e.SetMapFormat(YAML::Flow);
+  e.SetSeqFormat(YAML::Flow);
+  e << YAML::Clone(node);
+  return e.c_str();
+}
+
+// The section plugin: {library, config} of root into c (paths from dir;
+// the library and a config file must exist).
+void parse_plugin_section(const YAML::Node& root, const std::string& path, const std::string& dir,
+                          HardwareConfig& c) {
+  const YAML::Node p = root["plugin"];
+  if (!p) {
+    throw InputError(path + ": missing key 'plugin' (backend plugin needs plugin: {library: FILE.so, config: FILE "
+                            "or {...}})");
+  }
+  if (!p.IsMap()) throw InputError(yaml_where(path, p, "plugin") + "expected a map {library: FILE.so, config: ...}");
+  yaml_check_keys(p, path, "plugin", {"library", "config"});
+  if (!p["library"]) {
+    throw InputError(yaml_where(path, p, "plugin") +
+                     "missing key 'library' (a shared library built against hw/plugin/gpm_backend_plugin.h)");
+  }
+  PluginBackendConfig pc;
+  pc.library = resolve_absolute(dir, yaml_string(p["library"], path, "plugin.library"));
+  if (!std::filesystem::is_regular_file(pc.library)) {
+    throw InputError(yaml_where(path, p["library"], "plugin.library") +
+                     fmt::format("no file {} (a shared library built against hw/plugin/gpm_backend_plugin.h)",
+                                 pc.library));
+  }
+  pc.base_dir = std::filesystem::absolute(dir.empty() ? "." : dir).lexically_normal().string();
+  if (pc.base_dir.size() > 1 && pc.base_dir.back() == '/') pc.base_dir.pop_back();
+  if (const YAML::Node k = p["config"]) {
+    if (k.IsMap()) {
+      pc.config_text = flow_text(k);
+    } else if (k.IsScalar()) {
+      pc.config_path = resolve_absolute(dir, yaml_string(k, path, "plugin.config"));
+      if (!std::filesystem::is_regular_file(*pc.config_path)) {
+        throw InputError(yaml_where(path, k, "plugin.config") + fmt::format("no file {}", *pc.config_path));
+      }
+      pc.base_dir = std::filesystem::path(*pc.config_path).parent_path().string();
+    } else {
+      throw InputError(yaml_where(path, k, "plugin.config") +
+                       "expected a file name or a map (the plugin's own configuration)");
+    }
+  }
+  pc.source = path;
+  pc.period_s = 1.0 / c.rate_hz;
+  c.plugin = std::move(pc);
+}
+
+// The key backend (twin, modbus or plugin) of root.
 std::string parse_backend(const YAML::Node& root, const std::string& path) {
-  if (!root["backend"]) throw InputError(path + ": missing key 'backend' (twin or modbus)");
+  if (!root["backend"]) throw InputError(path + ": missing key 'backend' (twin, modbus or plugin)");
   std::string backend = yaml_string(root["backend"], path, "backend");
-  if (backend != "twin" && backend != "modbus") {
+  if (backend != "twin" && backend != "modbus" && backend != "plugin") {
     throw InputError(yaml_where(path, root["backend"], "backend") +
-                     fmt::format("'{}' is not a backend (valid: twin, modbus)", backend));
+                     fmt::format("'{}' is not a backend (valid: twin, modbus, plugin)", backend));
   }
   return backend;
 }
@@ -93,10 +151,12 @@ void parse_joint_modes(const YAML::Node& m, const std::string& path, std::array<
   }
 }
 
-// The backend's own section into c: twin {scenario} or modbus {register_map}
-// (whose response_timeout must fit within safety.comms_timeout).
+// The backend's own section into c: twin {scenario}, modbus {register_map}
+// (whose response_timeout must fit within safety.comms_timeout) or plugin
+// {library, config}.
 void parse_backend_section(const YAML::Node& root, const std::string& path, const std::string& dir,
                            HardwareConfig& c) {
+  if (c.backend == "plugin") return parse_plugin_section(root, path, dir, c);
   if (c.backend == "twin") {
     const YAML::Node t = root["twin"];
     if (!t) throw InputError(path + ": missing key 'twin' (backend twin needs twin: {scenario: FILE})");
@@ -136,7 +196,7 @@ HardwareConfig load_hardware_config(const std::string& path) {
   if (!root.IsMap()) throw InputError(path + ": expected a map with keys backend, rate_hz, controller, safety, ...");
   yaml_check_keys(root, path, "",
                   {"backend", "rate_hz", "controller", "calibration", "joint_modes", "dither_mm", "twin",
-                   "modbus", "safety"});
+                   "modbus", "plugin", "safety"});
   HardwareConfig c;
   c.file = path;
   c.backend = parse_backend(root, path);
@@ -154,6 +214,8 @@ std::unique_ptr<SafetySupervisor> make_hardware(const HardwareConfig& c, Clock& 
   std::unique_ptr<RobotHardware> backend;
   if (c.backend == "twin") {
     backend = std::make_unique<TwinBackend>(*c.twin);
+  } else if (c.backend == "plugin") {
+    backend = std::make_unique<PluginBackend>(*c.plugin);
   } else {
     const RegisterMap& m = *c.register_map;
     backend = std::make_unique<DriveBackend>(

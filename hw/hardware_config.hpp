@@ -1,9 +1,10 @@
-// Hardware file (YAML): which backend drives the robot (`twin` or `modbus`),
-// the cycle rate, the controller model that computes IK (a robot file,
-// optionally with the geometry of a calibration result), per-joint modes and
-// the safety limits (all required). Switching backend is a config change only.
+// Hardware file (YAML): which backend drives the robot (`twin`, `modbus` or
+// `plugin`), the cycle rate, the controller model that computes IK (a robot
+// file, optionally with the geometry of a calibration result), per-joint
+// modes and the safety limits (all required). Switching backend is a config
+// change only.
 //
-//   backend: twin | modbus
+//   backend: twin | modbus | plugin
 //   rate_hz: 250
 //   controller: ../models/gpm2002.yaml
 //   calibration: result.yaml          # optional
@@ -11,6 +12,9 @@
 //   dither_mm: 0.25                   # optional: sampling's dither figure (0: hold still)
 //   twin: {scenario: ../scenarios/simulate_disc.yaml}   # backend twin
 //   modbus: {register_map: drives.yaml}                 # backend modbus
+//   plugin: {library: libmycard.so, config: card.yaml}  # backend plugin: a shared library of
+//                                     # the C ABI hw/plugin/gpm_backend_plugin.h; config (optional)
+//                                     # a file the plugin reads or a map handed to it as YAML text
 //   safety: {...}                                       # hw/safety_limits.hpp
 #pragma once
 
@@ -19,6 +23,7 @@
 #include <string>
 
 #include "hw/hardware_types.hpp"
+#include "hw/backends/plugin_backend.hpp"
 #include "hw/backends/register_map.hpp"
 #include "hw/safety_limits.hpp"
 #include "hw/safety_supervisor.hpp"
@@ -29,7 +34,7 @@ namespace gpm::hw {
 
 struct HardwareConfig {
   std::string file;
-  std::string backend;  // "twin" or "modbus"
+  std::string backend;  // "twin", "modbus" or "plugin"
   double rate_hz = 250.0;
   Robot controller;
   std::array<JointMode, 3> modes{JointMode::kPosition, JointMode::kPosition, JointMode::kPosition};
@@ -39,6 +44,7 @@ struct HardwareConfig {
   SafetyLimits safety;
   std::optional<TwinBackendConfig> twin;   // backend twin
   std::optional<RegisterMap> register_map; // backend modbus
+  std::optional<PluginBackendConfig> plugin; // backend plugin
 };
 
 // Loads and validates a hardware file; relative paths are taken from its
@@ -51,7 +57,8 @@ HardwareConfig load_hardware_config(const std::string& path);
 TwinBackendConfig twin_config_from_scenario(const std::string& scenario_path, double period_s);
 
 // The configured backend behind a safety supervisor (not yet configured);
-// clock is real time for both (tests inject one).
+// clock is real time for all (tests inject one). A plugin is loaded and its
+// versions checked here (InputError: hw/backends/plugin_backend.hpp).
 std::unique_ptr<SafetySupervisor> make_hardware(const HardwareConfig& config, Clock& clock = steady_clock());
 
 }  // namespace gpm::hw

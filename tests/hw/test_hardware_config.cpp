@@ -1,6 +1,10 @@
 // Tests of hw/hardware_config.cpp: the examples load; a config without its
-// safety limits is refused; bad values name the key.
+// safety limits is refused; bad values name the key; the plugin section's
+// paths are taken from the hardware file's folder and its map handed on as
+// YAML text.
 #include <gtest/gtest.h>
+
+#include <filesystem>
 
 #include "hw/hardware_config.hpp"
 #include "hw_test_util.hpp"
@@ -59,7 +63,7 @@ TEST(HardwareConfig, MissingSafetyIsRefused) {
 TEST(HardwareConfig, BadBackendNamesValidOnes) {
   const test::TempDir dir("cfg2");
   test::write_text(dir / "hw.yaml", "backend: ethercat\n");
-  EXPECT_NE(error_of((dir / "hw.yaml").string()).find("not a backend (valid: twin, modbus)"),
+  EXPECT_NE(error_of((dir / "hw.yaml").string()).find("not a backend (valid: twin, modbus, plugin)"),
             std::string::npos);
 }
 
@@ -72,6 +76,58 @@ TEST(HardwareConfig, RateOutsideTenTo8000HzIsRefused) {
     test::write_text(dir / "hw.yaml", t);
     const std::string e = error_of((dir / "hw.yaml").string());
     EXPECT_NE(e.find("outside [10, 8000] Hz"), std::string::npos) << rate << ": " << e;
+  }
+}
+
+// A hardware file of backend plugin in dir with the given plugin section.
+std::string plugin_yaml(const std::string& section) {
+  return "backend: plugin\nrate_hz: 500\ncontroller: " + kSrc + "/models/gpm2002.yaml\n" + section +
+         test::kSafetyYaml;
+}
+
+TEST(HardwareConfig, PluginSectionPathsAreTakenFromTheHardwareFile) {
+  const test::TempDir dir("cfg_plugin");
+  std::filesystem::create_directories(dir / "lib");
+  std::filesystem::create_directories(dir / "card");
+  test::write_text(dir / "lib/libcard.so", "");
+  test::write_text(dir / "card/card.yaml", "axes: 3\n");
+  test::write_text(dir / "hw.yaml", plugin_yaml("plugin: {library: lib/libcard.so, config: card/card.yaml}\n"));
+  const HardwareConfig c = load_hardware_config((dir / "hw.yaml").string());
+  ASSERT_TRUE(c.plugin.has_value());
+  const std::filesystem::path root = std::filesystem::absolute(dir.path());
+  EXPECT_EQ(c.plugin->library, (root / "lib/libcard.so").string());
+  EXPECT_EQ(c.plugin->config_path, (root / "card/card.yaml").string());
+  EXPECT_EQ(c.plugin->base_dir, (root / "card").string());  // the config file's own folder
+  EXPECT_FALSE(c.plugin->config_text.has_value());
+  EXPECT_DOUBLE_EQ(c.plugin->period_s, 1.0 / 500);
+  // A map is handed on as one line of YAML; its paths are the hardware file's.
+  test::write_text(dir / "hw.yaml",
+                   plugin_yaml("plugin:\n  library: lib/libcard.so\n  config:\n    scenario: s.yaml\n"
+                               "    gains: [1, 2.5]\n"));
+  const HardwareConfig m = load_hardware_config((dir / "hw.yaml").string());
+  EXPECT_EQ(m.plugin->config_text, "{scenario: s.yaml, gains: [1, 2.5]}");
+  EXPECT_EQ(m.plugin->base_dir, root.lexically_normal().string());
+  EXPECT_FALSE(m.plugin->config_path.has_value());
+}
+
+TEST(HardwareConfig, BadPluginSectionIsOneLineNamingTheKey) {
+  const test::TempDir dir("cfg_plugin_bad");
+  test::write_text(dir / "libcard.so", "");
+  const std::pair<std::string, std::string> cases[] = {
+      {"", "missing key 'plugin'"},
+      {"plugin: libcard.so\n", "plugin: expected a map"},
+      {"plugin: {config: c.yaml}\n", "missing key 'library'"},
+      {"plugin: {library: libcard.so, libary: x}\n", "libary"},
+      {"plugin: {library: libnone.so}\n", "plugin.library: no file"},
+      {"plugin: {library: libcard.so, config: none.yaml}\n", "plugin.config: no file"},
+      {"plugin: {library: libcard.so, config: [1, 2]}\n", "plugin.config: expected a file name or a map"},
+  };
+  for (const auto& [section, words] : cases) {
+    test::write_text(dir / "hw.yaml", plugin_yaml(section));
+    const std::string e = error_of((dir / "hw.yaml").string());
+    EXPECT_NE(e.find(words), std::string::npos) << section << ": " << e;
+    EXPECT_NE(e.find("hw.yaml"), std::string::npos) << e;
+    EXPECT_EQ(e.find('\n'), std::string::npos) << e;
   }
 }
 

@@ -22,7 +22,7 @@ expect() {  # name, condition (shell test)
 
 check "install" 0 cmake --install "$BUILD" --prefix "$P"
 for f in bin/gpm bin/gpm-drive-emulator lib/libgpm_models.a lib/libgpm_calib.a lib/libgpm_sim.a \
-         include/gpm/models/robot_yaml.hpp include/gpm/calib/lm.hpp include/gpm/calib/excitation/excitation.hpp \
+         include/gpm/models/robot_yaml.hpp include/gpm/calib/lm.hpp include/gpm/hw/plugin/gpm_backend_plugin.h include/gpm/calib/excitation/excitation.hpp \
          lib/cmake/gpm/gpmConfig.cmake lib/cmake/gpm/gpmConfigVersion.cmake lib/cmake/gpm/gpmTargets.cmake \
          share/gpm/models/gpm2002.yaml share/gpm/scenarios/main.yaml share/gpm/hw/examples/twin.yaml; do
   expect "installed $f" "[[ -s '$P/$f' ]]"
