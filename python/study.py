@@ -42,15 +42,6 @@ def _worker_address():
         return "local"
 
 
-def _log_start(seed):
-    """Tells the Dask scheduler robot `seed` started here (a second start is a retry)."""
-    try:
-        from distributed import get_worker
-        get_worker().log_event("gpm-study", {"seed": int(seed)})
-    except (ImportError, ValueError):
-        pass
-
-
 def _accuracy(summary, which, key):
     a = (summary.get("accuracy") or {}).get(which)
     return float("nan") if a is None or a.get(key) is None else a[key]
@@ -112,7 +103,6 @@ def robot_row(seed, summary, failure=None):
 
 def run_robot(text, seed, base_dir):
     """Runs robot `seed` (its scenario text) through gpm.run: its row. Any error is the row's failure."""
-    _log_start(seed)
     t0 = time.perf_counter()
     try:
         row = robot_row(seed, _gpm.run(text, base_dir=base_dir))
@@ -147,7 +137,8 @@ def _run_local(jobs, threads, report):
 
 
 def _run_dask(jobs, client, retries, report):
-    """Runs the jobs on the client's cluster; a task that failed outright (a lost worker too often) is a failed row."""
+    """Runs the jobs on the client's cluster; a task that failed outright (a lost worker too often) is a failed
+    row. Returns the seeds run more than once (their worker was lost, or the task was retried)."""
     from distributed import as_completed
     texts, seeds, bases = (list(x) for x in zip(*jobs))
     futures = client.map(run_robot, texts, seeds, bases, pure=False, retries=retries,
@@ -161,16 +152,16 @@ def _run_dask(jobs, client, retries, report):
             row.update(seconds=float("nan"), worker="")
         report(row)
 
+    def lost_workers(dask_scheduler, keys):  # runs on the scheduler (pickled by value: no gpm there)
+        return {k: dask_scheduler.tasks[k].suspicious for k in keys if k in dask_scheduler.tasks}
 
-def _dask_retried(client):
-    """Seeds started more than once on the cluster (their worker was lost, or the task was retried)."""
-    starts = {}
+    retried = set()
     try:
-        for _, msg in client.get_events("gpm-study"):
-            starts[msg["seed"]] = starts.get(msg["seed"], 0) + 1
-    except Exception:  # an older scheduler without events: no record
-        return []
-    return sorted(s for s, n in starts.items() if n > 1)
+        lost = client.run_on_scheduler(lost_workers, keys=list(seed_of))
+        retried |= {seed_of[k] for k, n in lost.items() if n > 0}
+    except Exception:  # a scheduler that keeps no such record: none known
+        pass
+    return sorted(retried)
 
 
 def _seeds(scenario, count, seeds):
@@ -213,8 +204,7 @@ def population(scenario, count=None, client=None, seeds=None, keep_effects=False
             print(_progress_line(row, len(rows), len(jobs)), file=sys.stderr, flush=True)
 
     if client is not None:
-        _run_dask(jobs, client, retries, report)
-        retried = _dask_retried(client)
+        retried = _run_dask(jobs, client, retries, report)
     else:
         _run_local(jobs, threads or os.cpu_count() or 1, report)
         retried = []
