@@ -59,11 +59,12 @@ def main():
     p.add_argument("--count", type=int, default=8, help="robots of the study (part 2)")
     a = p.parse_args()
 
+    print("load average at the start: {:.1f} {:.1f} {:.1f} ({} cores)".format(*os.getloadavg(), os.cpu_count()))
     rows, cpu, wall = cpu_by_stage(a.scenario)
     print(f"one robot of {os.path.relpath(a.scenario, ROOT)}: {cpu:.2f} s CPU, {wall:.2f} s wall")
-    print(f"  {'stage':<55} {'CPU s':>7} {'wall s':>7}")
+    print(f"  {'stage':<58} {'CPU s':>7} {'wall s':>7}")
     for name, c, w in rows:
-        print(f"  {name:<55} {c:7.2f} {w:7.2f}")
+        print(f"  {name:<58} {c:7.2f} {w:7.2f}")
 
     with tempfile.TemporaryDirectory(prefix="gpm-bench-dask-") as d:
         t1, one = study_seconds(a.study_scenario, a.count, 1, d)
@@ -74,6 +75,7 @@ def main():
     print(f"  2 workers: {t2:7.1f} s  {60 * a.count / t2:6.2f} robots/min")
     print(f"  speed ratio 2 workers / 1 worker: {t1 / t2:.2f}; same numbers bit for bit: {same}")
     print(f"  failed robots: {len(one.failed)} and {len(two.failed)}")
+    print("load average at the end: {:.1f} {:.1f} {:.1f}".format(*os.getloadavg()))
 
 
 if __name__ == "__main__":

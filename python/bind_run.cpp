@@ -36,6 +36,7 @@ struct ScenarioSource {
   std::string base_dir;  // resolves the relative paths it names
 };
 
+// The scenario argument of gpm.run as a file or text; base_dir only with text.
 ScenarioSource scenario_source(const py::object& scenario, const py::object& base_dir) {
   ScenarioSource s;
   if (py::isinstance<py::str>(scenario) && scenario.cast<std::string>().find('\n') != std::string::npos) {
@@ -124,6 +125,7 @@ scenario::RunSpec run_spec(const ScenarioSource& src, const py::object& seed, co
   return spec;
 }
 
+// gpm.run: the spec with the GIL held, then the run, its outputs and its summary without it.
 py::object run(const py::object& scenario, const py::object& out_dir, const py::object& seed, const py::object& robot,
                const py::object& effects, const py::object& count, const py::object& base_dir,
                const py::object& progress) {

@@ -43,11 +43,13 @@ def _worker_address():
 
 
 def _accuracy(summary, which, key):
+    """summary["accuracy"][which][key], NaN where the run did not measure it."""
     a = (summary.get("accuracy") or {}).get(which)
     return float("nan") if a is None or a.get(key) is None else a[key]
 
 
 def _number(v):
+    """A number of summary.json (null: not finite) as a float."""
     return float("nan") if v is None else v
 
 
@@ -114,6 +116,7 @@ def run_robot(text, seed, base_dir):
 
 
 def _progress_line(row, done, total):
+    """The progress line of a finished robot (as `gpm study population` prints it)."""
     if row["failed"]:
         what = f"failed: {row['failure']}"
     else:
@@ -285,6 +288,7 @@ class Population:
         }
 
     def summary_line(self):
+        """One line: robots, failures, retries, time and throughput, accuracy, coverage of the stated 1-sigma."""
         s = self.summary()
         retried = f", retried: robots {s['retried']}" if s["retried"] else ""
         return (f"{s['robots']} robots ({s['failed']} failed{retried}) in {s['seconds']:.1f} s "
@@ -333,6 +337,7 @@ class Population:
 
 
 def _csv_cell(v):
+    """One CSV cell: a float in its exact shortest form, text quoted where it must be."""
     if isinstance(v, float):
         return repr(v)
     s = str(v)

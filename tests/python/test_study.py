@@ -3,7 +3,7 @@
 # LocalCluster of two worker processes (127.0.0.1, no dashboard); each row is
 # gpm.run's summary of that robot's scenario; a robot whose run fails is a row
 # with its seed and reason; the table, the progress lines and the figure.
-import pathlib
+import json
 import sys
 import tempfile
 
@@ -11,7 +11,7 @@ import pytest
 
 import gpm
 import gpm.study
-from conftest import ROOT
+from conftest import ROOT, run_gpm
 
 TINY = ROOT / "tests" / "python" / "population_tiny.yaml"
 
@@ -46,6 +46,22 @@ def test_rows_are_the_robots_runs(serial):
     alone = gpm.study.robot_row(301, gpm.run(text, base_dir=TINY.parent))
     assert repr(alone) == repr(serial.numbers()[1])
     assert alone["estimated"] == 11 and alone["positioning_rms_um"] > 0
+
+
+def test_rows_equal_the_command_lines_study(serial, scratch):
+    # The C++ study (run/population_study.cpp) of the same robot: the same numbers to the last bit.
+    code, _, err = run_gpm("study", "population", TINY, "--seeds", 301, "--threads", 1, "-o", scratch)
+    assert code == 0, err
+    cpp = json.loads((scratch / "population.json").read_text())["robots"][0]
+    row = serial.rows[1]
+    assert cpp["seed"] == row["seed"] == 301 and cpp["failure"] is None
+    assert cpp["positioning_um"]["rms"] == row["positioning_rms_um"]
+    assert cpp["positioning_um"]["stated_sigma_rms"] == row["stated_sigma_rms_um"]
+    assert cpp["static_rms_um"]["calibrated"] == row["calibrated_static_rms_um"]
+    assert cpp["floor_ratio"] == row["floor_ratio"]
+    assert cpp["within_3_sigma"] == row["within_3_sigma"] and cpp["estimated"] == row["estimated"]
+    for name, p in cpp["parameters"].items():
+        assert (p["error"], p["sigma"]) == (row["err_" + name], row["std_" + name]), name
 
 
 def test_serial_threads_and_cluster_agree_bit_for_bit(serial, cluster):
