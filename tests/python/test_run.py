@@ -91,3 +91,16 @@ def test_bad_scenarios_raise_input_error(scratch):
     with pytest.raises(gpm.InputError, match="file"):
         gpm.run(TINY, scratch / "file")
     assert issubclass(gpm.InputError, ValueError)
+
+
+def test_an_exception_of_progress_stops_the_run():
+    class Stop(Exception):
+        pass
+
+    def stop(stage):
+        raise Stop(stage)
+
+    with pytest.raises(Stop, match="simulating the twin"):
+        gpm.run(TINY, progress=stop)
+    with pytest.raises(gpm.InputError, match="NUL"):
+        gpm.run("m\x00.yaml")
