@@ -4,13 +4,20 @@
 //   gpm study montecarlo   noisy trials: empirical RMS error over the bound, per cost
 //   gpm study effects      each physical effect of the realistic twin: its bias on calibration
 //   gpm study population   a scenario over N robots of the class: the accuracy a user gets, and its 1-sigma
+//                          (--scheduler ADDRESS: on a Dask cluster, by the Python module's gpm.study)
 #include <cmath>
 #include <cstdio>
+#include <cerrno>
+#include <cstdlib>
+#include <cstring>
 #include <filesystem>
 #include <memory>
 #include <string>
+#include <vector>
 
 #include <fmt/format.h>
+#include <spawn.h>
+#include <sys/wait.h>
 
 #include "app/commands.hpp"
 #include "app/number_options.hpp"
@@ -46,6 +53,8 @@ struct StudyOptions {
   int population_count = 30;    // study population: robots
   std::string seeds;            // study population: these robots' seeds instead of --count
   bool keep_effects = false;    // study population: the scenario's effects, not randomized
+  std::string scheduler;        // study population: a running Dask scheduler's address (empty: threads here)
+  bool threads_given = false;   // study population: --threads was given
 };
 
 // "table5", "section3" (paper values, calib/paper_values.hpp) or a robot file.
@@ -198,10 +207,61 @@ void run_effects(const StudyOptions& o) {
              out);
 }
 
+extern "C" char** environ;
+
+// The folder holding the gpm Python module beside this executable: the build
+// tree's build/python for build/app/gpm, PREFIX/lib/python3/dist-packages for
+// PREFIX/bin/gpm; empty when neither holds it (the interpreter's own path then).
+std::string python_module_dir() {
+  std::error_code ec;
+  const std::filesystem::path exe = std::filesystem::read_symlink("/proc/self/exe", ec);
+  if (ec) return {};
+  const std::filesystem::path prefix = exe.parent_path().parent_path();
+  for (const auto& dir : {prefix / "python", prefix / "lib" / "python3" / "dist-packages"}) {
+    for (const auto& entry : std::filesystem::directory_iterator(dir, ec)) {
+      const std::string name = entry.path().filename().string();
+      if (name.starts_with("gpm.") && name.ends_with(".so")) return dir.string();
+    }
+  }
+  return {};
+}
+
+// `--scheduler ADDRESS`: the study runs on that Dask cluster through the
+// Python module (python/study.py main), in the interpreter the module is
+// built for ($GPM_PYTHON, default Debian's /usr/bin/python3); its exit code is ours.
+void run_population_dask(const StudyOptions& o) {
+  const char* env_python = std::getenv("GPM_PYTHON");
+  const std::string python = env_python && *env_python ? env_python : "/usr/bin/python3";
+  std::vector<std::string> args = {python, "-c", "import sys, gpm.study; sys.exit(gpm.study.main(sys.argv[1:]))",
+                                   o.scenario, "-o", o.out, "--scheduler", o.scheduler};
+  if (o.seeds.empty()) args.insert(args.end(), {"--count", std::to_string(o.population_count)});
+  else args.insert(args.end(), {"--seeds", o.seeds});
+  if (o.keep_effects) args.emplace_back("--keep-effects");
+  const std::string dir = python_module_dir();
+  if (!dir.empty()) {
+    const char* old = std::getenv("PYTHONPATH");
+    ::setenv("PYTHONPATH", (old && *old ? dir + ":" + old : dir).c_str(), 1);
+  }
+  std::vector<char*> argv;
+  for (std::string& a : args) argv.push_back(a.data());
+  argv.push_back(nullptr);
+  std::fflush(stdout);
+  pid_t pid = 0;
+  if (const int err = ::posix_spawn(&pid, python.c_str(), nullptr, nullptr, argv.data(), environ); err != 0)
+    throw InputError(fmt::format("--scheduler: cannot run the Python interpreter {} (set GPM_PYTHON): {}", python,
+                                 std::strerror(err)));
+  int status = 0;
+  while (::waitpid(pid, &status, 0) < 0 && errno == EINTR) {
+  }
+  set_exit(WIFEXITED(status) ? WEXITSTATUS(status) : 1);
+}
+
 // Population study (run/population_study.hpp): the scenario over N robots of the class.
 void run_population(const StudyOptions& o) {
   if (std::filesystem::exists(o.out) && !std::filesystem::is_directory(o.out))
     throw InputError(fmt::format("-o: '{}' exists and is not a folder", o.out));
+  if (!o.scheduler.empty() && o.threads_given)
+    throw InputError("--threads: not with --scheduler (the Dask workers run the robots; give dask-worker --nthreads)");
   scenario::PopulationOptions po;
   po.count = o.population_count;
   po.keep_effects = o.keep_effects;
@@ -209,6 +269,7 @@ void run_population(const StudyOptions& o) {
   if (!o.seeds.empty())
     for (const std::string& s : split_unique_list(o.seeds, "--seeds"))
       po.seeds.push_back(static_cast<std::uint64_t>(parse_bounded(s, limits::kSeed, "--seeds")));
+  if (!o.scheduler.empty()) return run_population_dask(o);
   fmt::print("population study: {} robots of {} on {} thread(s){}\n", po.seeds.empty() ? po.count : static_cast<int>(po.seeds.size()),
              o.scenario, po.threads, po.keep_effects ? " (the scenario's effects)" : " (every effect drawn per robot)");
   std::fflush(stdout);
@@ -290,8 +351,16 @@ void add_study(CLI::App& app) {
   population->add_option("--seeds", o->seeds, "Comma-separated seeds of the robots to run instead (re-run chosen ones)");
   population->add_flag("--keep-effects", o->keep_effects,
                        "Keep the scenario's effects (only the geometry differs between robots)");
-  population->add_option("--threads", o->threads, "Robots in parallel")->capture_default_str()->transform(number_in(limits::kThreads));
-  population->callback([o] { run_population(*o); });
+  auto* threads = population->add_option("--threads", o->threads, "Robots in parallel")
+                      ->capture_default_str()
+                      ->transform(number_in(limits::kThreads));
+  population->add_option("--scheduler", o->scheduler,
+                         "A running Dask scheduler (tcp://HOST:8786): the robots run on its workers through the "
+                         "Python module (python/README.md); writes population.json, .csv, .png, robot_SEED.yaml");
+  population->callback([o, threads] {
+    o->threads_given = threads->count() > 0;
+    run_population(*o);
+  });
 }
 
 }  // namespace gpm::cli

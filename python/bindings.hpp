@@ -17,4 +17,10 @@ void bind_design(pybind11::module_& m);
 // gpm.simulate, Simulation.
 void bind_simulate(pybind11::module_& m);
 
+// gpm.run, population_robot_scenario, scenario_seed.
+void bind_run(pybind11::module_& m);
+
+// gpm.study (python/study.py): needs bind_run's functions.
+void bind_study(pybind11::module_& m);
+
 }  // namespace gpm::python

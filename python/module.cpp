@@ -24,7 +24,9 @@ manipulator (millimetres and radians).
   result = gpm.calibrate(readings, robot)    # ML cost, Ceres LM
   result.geometry, result.std, result.diagnostics, result.save("result.yaml")
 
-Also: gpm.simulate(scenario) (MuJoCo twin), gpm.design (calibration poses),
+Also: gpm.run(scenario) (the whole `gpm run`), gpm.study.population (a
+population of robots on local threads or a Dask cluster),
+gpm.simulate(scenario) (MuJoCo twin), gpm.design (calibration poses),
 gpm.crb and gpm.pose_bounds (Cramer-Rao bounds), Robot.ik / fk / jacobian /
 conditioning. Bad input raises gpm.InputError (a ValueError).
 )doc";
@@ -41,4 +43,6 @@ conditioning. Bad input raises gpm.InputError (a ValueError).
   gpm::python::bind_calibrate(m);
   gpm::python::bind_design(m);
   gpm::python::bind_simulate(m);
+  gpm::python::bind_run(m);
+  gpm::python::bind_study(m);
 }

@@ -1,0 +1,82 @@
+"""Benchmark of gpm.run and gpm.study.population (python/bind_run.cpp, python/study.py).
+
+1. One robot of a scenario (default scenarios/main.yaml, the main job): its
+   CPU time by stage (the stages gpm.run reports), and its wall time.
+2. A small population study on a Dask LocalCluster of one worker process,
+   then of two (one thread each, 127.0.0.1), in this one run: the speed
+   ratio 2 workers / 1 worker and the throughput in robots per minute, with
+   the check that both give the same numbers bit for bit.
+
+    PYTHONPATH=build/python /usr/bin/python3 bench/population_dask.py [--scenario S] [--study-scenario S]
+        [--count N]
+
+The machine is shared: run it on a quiet one (the ratio is only as good as
+the second core is free).
+"""
+import argparse
+import os
+import pathlib
+import tempfile
+import time
+
+import gpm
+import gpm.study
+
+ROOT = pathlib.Path(__file__).resolve().parents[1]
+
+
+def cpu_by_stage(scenario):
+    """(rows of (stage, cpu s, wall s), total cpu s, total wall s) of one gpm.run of scenario."""
+    marks = []
+
+    def stage(name):
+        marks.append((name, time.process_time(), time.perf_counter()))
+
+    c0, w0 = time.process_time(), time.perf_counter()
+    marks.append(("parsing the scenario", c0, w0))
+    gpm.run(scenario, progress=stage)
+    c1, w1 = time.process_time(), time.perf_counter()
+    marks.append(("end", c1, w1))
+    rows = [(a[0], b[1] - a[1], b[2] - a[2]) for a, b in zip(marks, marks[1:])]
+    return rows, c1 - c0, w1 - w0
+
+
+def study_seconds(scenario, count, workers, local_dir):
+    """(wall s, Population) of a study of count robots on a LocalCluster of `workers` processes."""
+    from distributed import Client, LocalCluster
+    with LocalCluster(n_workers=workers, threads_per_worker=1, processes=True, host="127.0.0.1",
+                      dashboard_address=None, local_directory=local_dir) as cluster, Client(cluster) as client:
+        client.wait_for_workers(workers)
+        t0 = time.perf_counter()
+        pop = gpm.study.population(scenario, count, client=client, progress=False)
+        return time.perf_counter() - t0, pop
+
+
+def main():
+    p = argparse.ArgumentParser(description=__doc__.splitlines()[0])
+    p.add_argument("--scenario", default=str(ROOT / "scenarios" / "main.yaml"), help="the one robot of part 1")
+    p.add_argument("--study-scenario", default=str(ROOT / "tests" / "fixtures" / "population_small.yaml"))
+    p.add_argument("--count", type=int, default=8, help="robots of the study (part 2)")
+    a = p.parse_args()
+
+    print("load average at the start: {:.1f} {:.1f} {:.1f} ({} cores)".format(*os.getloadavg(), os.cpu_count()))
+    rows, cpu, wall = cpu_by_stage(a.scenario)
+    print(f"one robot of {os.path.relpath(a.scenario, ROOT)}: {cpu:.2f} s CPU, {wall:.2f} s wall")
+    print(f"  {'stage':<58} {'CPU s':>7} {'wall s':>7}")
+    for name, c, w in rows:
+        print(f"  {name:<58} {c:7.2f} {w:7.2f}")
+
+    with tempfile.TemporaryDirectory(prefix="gpm-bench-dask-") as d:
+        t1, one = study_seconds(a.study_scenario, a.count, 1, d)
+        t2, two = study_seconds(a.study_scenario, a.count, 2, d)
+    same = repr(one.numbers()) == repr(two.numbers())
+    print(f"study of {a.count} robots of {os.path.relpath(a.study_scenario, ROOT)} on a Dask LocalCluster:")
+    print(f"  1 worker:  {t1:7.1f} s  {60 * a.count / t1:6.2f} robots/min")
+    print(f"  2 workers: {t2:7.1f} s  {60 * a.count / t2:6.2f} robots/min")
+    print(f"  speed ratio 2 workers / 1 worker: {t1 / t2:.2f}; same numbers bit for bit: {same}")
+    print(f"  failed robots: {len(one.failed)} and {len(two.failed)}")
+    print("load average at the end: {:.1f} {:.1f} {:.1f}".format(*os.getloadavg()))
+
+
+if __name__ == "__main__":
+    main()
