@@ -26,6 +26,11 @@ namespace {
 namespace fs = std::filesystem;
 const std::string kBase = gpm::scenarios_dir();
 
+std::string test_text(const fs::path& p) {
+  std::ifstream in(p);
+  return std::string(std::istreambuf_iterator<char>(in), {});
+}
+
 std::string scenario(const std::string& calibration, const std::string& expect) {
   return "robot: robots/table5_frame.yaml\nseed: 3\n"
          "actual: {geometry: {xa3: 433.5, ya3: 499.4, la1: 244.1, lb2: 244.2, dth1: 0.01, dth3: -0.01}}\n"
@@ -225,6 +230,23 @@ TEST(Runner, TheMainProcedureRunsThroughTheHardwareInterfaceAsAccuratelyAsInProc
               in_process.rms_um, through.rms_um, through.stated_sigma_rms_um);
   EXPECT_LE(through.rms_um, 1.5 * in_process.rms_um);
   EXPECT_LE(through.rms_um, through.stated_sigma_rms_um);
+#ifdef GPM_MOTION_CARD_PLUGIN
+  // The same through the sample plugin (a motion card over the same twin,
+  // behind the C ABI): the same readings, so the same result to the last bit.
+  std::string text = test_text(fs::path(kBase).parent_path() / "hw/plugin/examples/motion_card_main.yaml");
+  text.replace(text.find("../../../build/hw/libgpm_motion_card.so"), 39, GPM_MOTION_CARD_PLUGIN);
+  for (std::size_t at = text.find("../../../"); at != std::string::npos; at = text.find("../../../"))
+    text.replace(at, 9, fs::path(kBase).parent_path().string() + "/");
+  fs::create_directories(dir);
+  std::ofstream(dir / "card.yaml") << text;
+  on_hw.hardware = (dir / "card.yaml").string();
+  const RunOutcome card = run_scenario(on_hw, "main.yaml", {}, (dir / "card_samples.csv").string());
+  fs::remove_all(dir);
+  ASSERT_TRUE(card.calibration);
+  EXPECT_EQ(card.sim.samples.size(), hw.sim.samples.size());
+  for (int i = 0; i < kNumParams; ++i)
+    EXPECT_EQ(card.calibration->geometry[i], hw.calibration->geometry[i]) << param_name(i);
+#endif
 }
 
 }  // namespace

@@ -1,0 +1,52 @@
+#!/usr/bin/env bash
+# The main job's procedure (scenarios/main.yaml: the excitation path sampled
+# on the fly) through Modbus TCP and gpm-drive-emulator (loopback, ephemeral
+# port, --stepped: the plant advances one command period per client cycle,
+# so the samples depend on the commands, not on the load): the run passes,
+# records the torques and read times of every sample, and its calibrated
+# model's positioning error over the workspace is within 1.5x the twin
+# backend's on the same robot (the drives report torque in 0.01 N m steps).
+# Everything in a fresh temporary folder that is removed.
+set -u
+GPM="$1"; EMU="$2"; SRC="$3"
+tmp=$(mktemp -d); emu_pid=""
+cleanup() { [[ -n "$emu_pid" ]] && kill "$emu_pid" 2>/dev/null && wait "$emu_pid" 2>/dev/null; rm -rf "$tmp"; }
+trap cleanup EXIT
+fail=0; passed=0
+ok() { passed=$((passed+1)); }
+bad() { echo "FAIL $1"; fail=$((fail+1)); }
+
+"$GPM" run "$SRC/scenarios/main.yaml" --hardware "$SRC/hw/examples/twin_main.yaml" -o "$tmp/twin" --quiet \
+  >"$tmp/twin.out" 2>&1 && ok || { bad "twin backend run"; cat "$tmp/twin.out"; }
+
+mkfifo "$tmp/emu.fifo"
+"$EMU" --map "$SRC/hw/examples/register_map_emulator.yaml" --scenario "$SRC/scenarios/main.yaml" \
+  --port 0 --stepped --command-period 0.00025 --comms-watchdog 5 >"$tmp/emu.fifo" 2>"$tmp/emu.err" &
+emu_pid=$!
+line=""; read -r -t 60 line <"$tmp/emu.fifo" || { bad "emulator did not start"; cat "$tmp/emu.err"; }
+port=${line##*:}
+sed -e "s/port: 1502/port: $port/" -e "s/response_timeout: [0-9.]*/response_timeout: 1/" \
+  "$SRC/hw/examples/register_map_emulator.yaml" >"$tmp/map.yaml"
+# The main job's hardware file with the emulator's drives and limits generous
+# in time (a CI host shares its cores; what is tested is the function).
+sed -e "s|^backend: twin|backend: modbus|" -e "s|^controller: .*|controller: $SRC/models/gpm2002.yaml|" \
+    -e "s|^twin:|modbus:|" -e "s|^  scenario: .*|  register_map: $tmp/map.yaml|" \
+    -e "s|^  watchdog_hold: [0-9.]*|  watchdog_hold: 1|" -e "s|^  watchdog_disable: [0-9.]*|  watchdog_disable: 4|" \
+    -e "s|^  comms_timeout: [0-9.]*|  comms_timeout: 2|" "$SRC/hw/examples/twin_main.yaml" >"$tmp/modbus.yaml"
+"$GPM" run "$SRC/scenarios/main.yaml" --hardware "$tmp/modbus.yaml" -o "$tmp/modbus" --quiet \
+  >"$tmp/modbus.out" 2>&1 && ok || { bad "modbus run"; cat "$tmp/modbus.out"; }
+grep -q "through modbus backend" "$tmp/modbus.out" && ok || bad "modbus run says how it sampled"
+
+python3 - "$tmp/twin/summary.json" "$tmp/modbus/summary.json" "$tmp/modbus/samples.csv" <<'PY' && ok || bad "modbus accuracy"
+import csv, json, sys
+twin, modbus = (json.load(open(p)) for p in sys.argv[1:3])
+rows = list(csv.DictReader(open(sys.argv[3])))
+assert len(rows) > 5000 and all(k in rows[0] for k in ("t", "tau_last1", "tau_between3", "t_read2")), len(rows)
+def after(s):
+    return s["accuracy"]["calibrated"]["static_rms_um"]
+print(f"static RMS calibrated: twin backend {after(twin):.2f} um, modbus {after(modbus):.2f} um")
+sys.exit(0 if after(modbus) <= 1.5 * after(twin) else 1)
+PY
+
+echo "$passed passed, $fail failed"
+[[ $fail -eq 0 ]]
