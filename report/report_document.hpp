@@ -1,6 +1,8 @@
 // A report built once and written twice: Markdown (figures as SVG files
 // beside it) and a self-contained HTML page (figures inline), staged in an
-// output folder that commits all files or none.
+// output folder that commits all files or none. Text may mark code or file
+// names with backticks (`gpm run`): Markdown keeps them, HTML sets them as
+// <code>; no other Markdown syntax reaches the HTML page.
 #pragma once
 
 #include <string>
@@ -19,6 +21,9 @@ class ReportDocument {
   void heading(int level, const std::string& text);
   // Adds a paragraph of plain text.
   void paragraph(const std::string& text);
+  // Adds the lead: the one paragraph a reader sees first (bold in Markdown,
+  // a larger paragraph of class "lead" in HTML).
+  void lead(const std::string& text);
   // Adds a bulleted list.
   void bullets(const std::vector<std::string>& items);
   // Adds a table; every row has header.size() cells.
@@ -40,7 +45,7 @@ class ReportDocument {
 
  private:
   struct Block {
-    enum class Kind { kHeading, kParagraph, kBullets, kTable, kFigure, kPre } kind;
+    enum class Kind { kHeading, kParagraph, kLead, kBullets, kTable, kFigure, kPre } kind;
     int level = 0;
     std::string text;                            // heading, paragraph, caption, pre
     std::string name, svg;                       // figure
@@ -49,5 +54,12 @@ class ReportDocument {
   };
   std::vector<Block> blocks_;
 };
+
+// A table cell or header as GitHub-flavoured Markdown writes it: `|` escaped
+// as `\|` and line breaks as spaces, so every row keeps its cell count.
+std::string markdown_cell(const std::string& text);
+
+// Escaped HTML of text with `code` spans set as <code>.
+std::string inline_html(const std::string& text);
 
 }  // namespace gpm::report
