@@ -49,8 +49,9 @@ std::string unit_symbols(const std::string& text) {
   return out;
 }
 
-// The run library's text as a reader reads it: units with their symbols and
-// C exponents as powers of ten ("7.31e-05" becomes "7.31×10⁻⁵").
+// The run library's text as a reader reads it: units with their symbols, C
+// exponents as powers of ten ("7.31e-05" becomes "7.31×10⁻⁵") and ratios
+// with a times sign ("x2.63" becomes "×2.63").
 std::string with_unit_symbols(const std::string& text) {
   static const std::regex number(R"((^|[^0-9A-Za-z_.])(-?[0-9]+(?:\.[0-9]+)?)e([+-]?[0-9]+)\b)");
   std::string out;
@@ -63,11 +64,17 @@ std::string with_unit_symbols(const std::string& text) {
     at = g[0].second;
   }
   out.append(at, text.cend());
+  // "x2.63" and "5.32x the" are ratios: "×2.63", "5.32× the".
+  static const std::regex times_before(R"((^|[\s(])x([0-9]))"), times_after(R"(([0-9])x(\s|$|[,;:)]))");
+  out = std::regex_replace(std::regex_replace(out, times_before, "$1×$2"), times_after, "$1×$2");
   return unit_symbols(out);
 }
 
 // A distance in µm as a reader says it: mm from 1000 µm on, 3 significant digits.
-std::string distance(double um) { return std::abs(um) >= 1000.0 ? sig(um / 1000.0) + " mm" : sig(um) + " µm"; }
+// (Number and unit joined by a no-break space: a line never starts with the unit.)
+std::string distance(double um) {
+  return std::abs(um) >= 1000.0 ? sig(um / 1000.0) + "\u00a0mm" : sig(um) + "\u00a0µm";
+}
 
 // The calibration method and cost in words ("lm on ml" is for the terminal).
 std::string method_words(const std::string& method, const std::string& cost) {
@@ -387,7 +394,10 @@ void add_verdict(ReportDocument& d, const RunReport& o) {
     if (!c.passed) failed.push_back(fmt::format("{}: {}", c.name, with_unit_symbols(c.detail)));
   std::string verdict =
       o.checks.empty()      ? "Verdict: no expectations stated."
-      : failed.empty()      ? fmt::format("Verdict: passed: all {} expectations of the scenario held.", o.checks.size())
+      : failed.empty()      ? fmt::format("Verdict: passed: {} of the scenario held.",
+                                          o.checks.size() == 1   ? std::string("its one expectation")
+                                          : o.checks.size() == 2 ? std::string("both expectations")
+                                                                 : fmt::format("all {} expectations", o.checks.size()))
                             : fmt::format("Verdict: FAILED: {} of {} expectations did not hold (below).", failed.size(),
                                           o.checks.size());
   if (o.model_test) verdict += " " + model_test_sentence(o, *o.model_test);

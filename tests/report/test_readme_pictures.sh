@@ -33,7 +33,7 @@ def sig(v):
     return f"{v:.{max(0, 3 - whole)}f}"
 def distance(um):
     return sig(um / 1000) + " mm" if abs(um) >= 1000 else sig(um) + " µm"
-lead = f["lead"] or ""
+lead = (f["lead"] or "").replace("\u00a0", " ")  # a number and its unit joined by a no-break space
 for want in (f"stood {distance(f['nominal_static_rms_um'])} from", f"it stands {distance(f['calibrated_static_rms_um'])} away"):
     print("ok" if want in lead else f"the lead '{lead}' does not say '{want}'")
 PY

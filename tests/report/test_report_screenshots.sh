@@ -43,7 +43,7 @@ cat >"$tmp/check.js" <<'JS'
   else {
     const r = lead.getBoundingClientRect();
     if (r.bottom > window.innerHeight) bad.push(`lead sentence below the first screen (${r.bottom} > ${window.innerHeight} px)`);
-    if (!/nominal model.*[0-9.]+ (mm|µm) .*calibrated.*[0-9.]+ (mm|µm) away/.test(lead.textContent))
+    if (!/nominal model.*[0-9.]+\s(mm|µm)\s.*calibrated.*[0-9.]+\s(mm|µm) away/.test(lead.textContent))
       bad.push(`the lead has no before/after numbers: ${lead.textContent}`);
   }
   const out = document.createElement('pre');

@@ -123,9 +123,12 @@ std::string lead(const std::string& md) {
   return a == std::string::npos || b == std::string::npos ? "" : md.substr(a + 4, b - a - 4);
 }
 
+// md with its no-break spaces (between a number and its unit) as spaces.
+std::string spaced(const std::string& md) { return std::regex_replace(md, std::regex("\u00a0"), " "); }
+
 TEST(RunReport, LeadsWithBeforeAndAfterAtTheToolTip) {
   const RunReport o = testing::run_report_example();
-  const std::string md = build_run_report(o).markdown();
+  const std::string md = spaced(build_run_report(o).markdown());
   // 9681.94 µm -> 9.68 mm, 28.15 µm, 9681.94 / 28.15 = 343.9, 28.15 / 10.71 = 2.63; 8 test poses, 10.07 s.
   EXPECT_EQ(lead(md),
             "With its nominal model the robot's tool tip stood 9.68 mm from where it was sent (RMS over 8 test "
@@ -141,6 +144,7 @@ TEST(RunReport, LeadsWithBeforeAndAfterAtTheToolTip) {
   refused.refused = "rank 10 of 11";
   refused.calibration.reset();
   EXPECT_EQ(lead(build_run_report(refused).markdown()).rfind("The calibration was refused", 0), 0u);
+  EXPECT_NE(build_run_report(o).markdown().find("9.68\u00a0mm"), std::string::npos) << "a line never starts with a unit";
 }
 
 TEST(RunReport, AFailedModelTestCoveredByTheStatedSigmaReadsAsSuch) {
@@ -152,7 +156,7 @@ TEST(RunReport, AFailedModelTestCoveredByTheStatedSigmaReadsAsSuch) {
                             "5.32x the encoder noise throughout: an unmodelled effect; sample with the redundant joint "
                             "torque-off, or model the effect";
   o.calibration->notes.push_back(o.model_test->diagnosis);
-  const std::string md = build_run_report(o).markdown();
+  const std::string md = spaced(build_run_report(o).markdown());
   // sqrt(2.844e5 / 10058) = 5.318; chi2/dof 28.28.
   EXPECT_NE(md.find("Verdict: passed: all 4 expectations of the scenario held. Model test: the readings scatter 5.32× "
                     "the encoders' noise (χ²/dof 28.3, p < 0.001), more than noise alone explains, so the model "
@@ -167,9 +171,9 @@ TEST(RunReport, AFailedModelTestCoveredByTheStatedSigmaReadsAsSuch) {
 
   // Not covered: the stated 1-sigma understates the error and the cause is named, once.
   o.positioning_um = std::array<double, 4>{30.0, 60.0, 10.0, 3.0};
-  const std::string bad = build_run_report(o).markdown();
+  const std::string bad = spaced(build_run_report(o).markdown());
   EXPECT_NE(bad.find("The stated 1σ understates the error: the positioning error is 3.0× it. Likely cause: residuals are "
-                     "5.32x the encoder noise throughout"),
+                     "5.32× the encoder noise throughout"),
             std::string::npos)
       << bad;
   EXPECT_EQ(count(bad, std::regex("χ²|chi2 [0-9]")), 2u);
@@ -201,8 +205,7 @@ TEST(RunReport, EveryTableIsValidMarkdownAndNoMarkdownLeaksIntoHtml) {
 
 TEST(RunReport, ParameterCellsCarryTheirUnitAndTheDigitsTheirSigmaSupports) {
   const RunReport o = testing::run_report_example();
-  // The number and its unit are joined by a no-break space; read as a space here.
-  const std::string md = std::regex_replace(build_run_report(o).markdown(), std::regex("\u00a0"), " ");
+  const std::string md = spaced(build_run_report(o).markdown());
   // la1: actual 244.5 mm, 1-sigma 1e-3 mm -> 4 decimals; estimate -2.5 sigma off; CRB 0.8 sigma.
   EXPECT_NE(md.find("| la1 (mm) | 244 | 244.5000 | 244.4975 | 1.0 µm | -2.5 µm | 0.80 µm | 3.1 |"),
             std::string::npos)
