@@ -25,7 +25,8 @@ gpm=$build/app/gpm
 [[ -x $gpm ]] || { echo "readme_pictures: $gpm: not built (bash scripts/build.sh builds it)" >&2; exit 2; }
 tmp=$(mktemp -d); trap 'rm -rf "$tmp"' EXIT
 
-"$gpm" run "$root/scenarios/main.yaml" -o "$tmp/main" --quiet || {
+# From the root, so the report names the scenario as a reader of the README finds it.
+(cd "$root" && "$gpm" run scenarios/main.yaml -o "$tmp/main" --quiet) || {
   echo "readme_pictures: gpm run scenarios/main.yaml failed; the pictures are left as they were" >&2; exit 1; }
 bash "$root/scripts/screenshot_report.sh" "$tmp/main/report.html" "$root/docs/img/report.png" 1500
 python3 "$root/scripts/readme_figures.py" "$root" "$tmp/main" >"$root/docs/img/report.json.tmp"
