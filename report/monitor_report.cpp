@@ -27,7 +27,7 @@ void add_settings(ReportDocument& doc, const MonitorReport& m) {
                             counted(m.alarms.size(), "alarm"),
                             m.truth_known ? fmt::format(" ({} false)", m.false_alarms) : "",
                             m.false_alarms_per_hour, m.chi_threshold, m.window));
-  doc.paragraph(fmt::format("Learning: {}.", m.learning));
+  doc.paragraph(fmt::format("Learning: {}.", readable_text(m.learning)));
   const MonitorReadingRow& r = m.reading;
   doc.paragraph(fmt::format(
       "Reading model assumed (joints 1, 2, 3): latch skew {} µs; compliance {} rad/N m; drive friction {} N m "
@@ -44,7 +44,7 @@ void add_detections(ReportDocument& doc, const std::vector<MonitorEventRow>& det
   for (const MonitorEventRow& d : detections)
     rows.push_back({std::to_string(d.event), fmt::format("{:.3f}", d.at_s),
                     d.detected_s ? fmt::format("{:.3f}", *d.detected_s) : "missed",
-                    d.detected_s ? fmt::format("{:.3f}", *d.detected_s - d.at_s) : "", d.explanation});
+                    d.detected_s ? fmt::format("{:.3f}", *d.detected_s - d.at_s) : "", readable_text(d.explanation)});
   doc.table({"event", "at (s)", "detected (s)", "delay (s)", "explanation"}, rows);
 }
 
@@ -54,7 +54,7 @@ void add_alarms(ReportDocument& doc, const std::vector<MonitorAlarmRow>& alarms,
   for (std::size_t k = 0; k < alarms.size() && k < 20; ++k) {
     const MonitorAlarmRow& a = alarms[k];
     rows.push_back({fmt::format("{:.3f}", a.t_s), a.kind, fmt::format("{:.1f}", a.statistic),
-                    fmt::format("{:.1f}", a.threshold), a.explanation});
+                    fmt::format("{:.1f}", a.threshold), readable_text(a.explanation)});
   }
   doc.heading(level, alarms.size() > 20 ? fmt::format("Alarms (first 20 of {})", alarms.size()) : "Alarms");
   doc.table({"t (s)", "test", "statistic", "threshold", "explanation"}, rows);
@@ -145,8 +145,11 @@ std::string monitor_lead(const MonitorReport& m) {
   double worst = 0.0;
   for (const MonitorEventRow& d : m.detections)
     if (d.detected_s) ++found, worst = std::max(worst, *d.detected_s - d.at_s);
-  if (!m.detections.empty())
-    s += fmt::format("; it found {} of the scenario's {}", found, counted(m.detections.size(), "event")) +
+  if (m.detections.size() == 1)
+    s += found ? fmt::format("; it detected the scenario's event {:.2f} s after it began", worst)
+               : std::string("; it missed the scenario's event");
+  else if (!m.detections.empty())
+    s += fmt::format("; it detected {} of the scenario's {} events", found, m.detections.size()) +
          (found > 0 ? fmt::format(", each within {:.2f} s", worst) : std::string());
   return s + ".";
 }

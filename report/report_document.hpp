@@ -59,6 +59,11 @@ class ReportDocument {
 // as `\|` and line breaks as spaces, so every row keeps its cell count.
 std::string markdown_cell(const std::string& text);
 
+// Text written for a terminal (units in ASCII, C exponents, "x" for times)
+// as a report shows it: "28.15 um" -> "28.15 µm" (and urad, after a
+// number), "7.31e-05" -> "7.31×10⁻⁵", "x2.63" -> "×2.63", "5.3x the" -> "5.3× the".
+std::string readable_text(const std::string& text);
+
 // Escaped HTML of text with `code` spans set as <code>.
 std::string inline_html(const std::string& text);
 

@@ -22,53 +22,10 @@ std::string num(double v, int digits = 6) {
 
 std::string unit(int i) { return is_offset(i) ? "rad" : "mm"; }
 
-// Units are written with their symbols (µm, µrad, σ) in every output: the
-// Markdown and the SVG files are UTF-8 like the HTML page.
-
-// Text from the run library (expectation details, calibration notes) writes
-// units in ASCII for terminals: "28.15 um" becomes "28.15 µm" here, and
-// "urad" "µrad", wherever the unit follows a number.
-std::string unit_symbols(const std::string& text) {
-  std::string out;
-  for (size_t i = 0; i < text.size(); ++i) {
-    const bool after_number = !out.empty() && (std::isdigit(static_cast<unsigned char>(out.back())) ||
-                                               (out.back() == ' ' && out.size() > 1 &&
-                                                std::isdigit(static_cast<unsigned char>(out[out.size() - 2]))));
-    for (const char* unit : {"urad", "um"}) {
-      const std::string u = unit;
-      const size_t end = i + u.size();
-      const bool whole = end == text.size() || !std::isalnum(static_cast<unsigned char>(text[end]));
-      if (after_number && whole && text.compare(i, u.size(), u) == 0) {
-        out += "µ" + u.substr(1);
-        i = end;
-        break;
-      }
-    }
-    if (i < text.size()) out += text[i];
-  }
-  return out;
-}
-
-// The run library's text as a reader reads it: units with their symbols, C
-// exponents as powers of ten ("7.31e-05" becomes "7.31×10⁻⁵") and ratios
-// with a times sign ("x2.63" becomes "×2.63").
-std::string with_unit_symbols(const std::string& text) {
-  static const std::regex number(R"((^|[^0-9A-Za-z_.])(-?[0-9]+(?:\.[0-9]+)?)e([+-]?[0-9]+)\b)");
-  std::string out;
-  auto at = text.cbegin();
-  for (std::sregex_iterator m(text.begin(), text.end(), number), end; m != end; ++m) {
-    const std::smatch& g = *m;
-    const double v = std::stod(g[2].str() + "e" + g[3].str());
-    const size_t shown = g[2].str().find('.') == std::string::npos ? 1 : g[2].str().size() - g[2].str().find('.');
-    out.append(at, g[0].first).append(g[1].str()).append(sci(v, static_cast<int>(std::max<size_t>(1, shown))));
-    at = g[0].second;
-  }
-  out.append(at, text.cend());
-  // "x2.63" and "5.32x the" are ratios: "×2.63", "5.32× the".
-  static const std::regex times_before(R"((^|[\s(])x([0-9]))"), times_after(R"(([0-9])x(\s|$|[,;:)]))");
-  out = std::regex_replace(std::regex_replace(out, times_before, "$1×$2"), times_after, "$1×$2");
-  return unit_symbols(out);
-}
+// Text from the run library reads as a reader reads it (readable_text,
+// report/report_document.hpp): "28.15 um" as "28.15 µm", "7.31e-05" as
+// "7.31×10⁻⁵", "x2.63" as "×2.63".
+std::string with_unit_symbols(const std::string& text) { return readable_text(text); }
 
 // A distance in µm as a reader says it: mm from 1000 µm on, 3 significant digits.
 // (Number and unit joined by a no-break space: a line never starts with the unit.)

@@ -69,6 +69,7 @@ constexpr const char* kCheckScript = R"JS(
   out.id = 'verdict';
   out.textContent = `figures ${figures.length}\n` + (bad.length ? bad.join('\n') : 'OK');
   document.body.appendChild(out);
+  parent.postMessage(out.textContent, '*');  // to the frame's page (verdict())
 })();
 )JS";
 
@@ -97,8 +98,8 @@ struct ScratchDir {
   }
 };
 
-// Runs chromium headless on page.html in dir with `action` (--dump-dom or
-// --screenshot=FILE); returns its standard output.
+// Runs chromium headless on page.html in dir in a window `width` x 900 px
+// with `action` (--dump-dom or --screenshot=FILE); returns its standard output.
 std::string run_chromium(const std::string& chromium, const fs::path& dir, int width, const std::string& action) {
   const std::string d = dir.string();
   // HOME and XDG folders point into dir so nothing is written elsewhere.
@@ -116,14 +117,21 @@ std::string run_chromium(const std::string& chromium, const fs::path& dir, int w
   return out;
 }
 
-// The verdict of the measuring script on html at a window width.
+// The verdict of the measuring script on html at a window width. A
+// headless window is at least 500 px wide, so the page is measured in a
+// frame of that width (its innerWidth) inside a page that shows the
+// frame's verdict, which --dump-dom prints.
 std::string verdict(const std::string& chromium, const std::string& html, int width) {
   ScratchDir dir;
   std::string page = html;
   const size_t end = page.rfind("</body>");
   page.insert(end == std::string::npos ? page.size() : end, std::string("<script>") + kCheckScript + "</script>");
-  std::ofstream(dir.path / "page.html") << page;
-  const std::string dom = run_chromium(chromium, dir.path, width, "--dump-dom");
+  std::ofstream(dir.path / "checked.html") << page;
+  std::ofstream(dir.path / "page.html")
+      << "<html><body style=\"margin:0\"><pre id=\"verdict\"></pre><script>addEventListener('message', (e) => { "
+         "document.getElementById('verdict').textContent = e.data; });</script><iframe src=\"checked.html\" width=\""
+      << width << "\" height=\"900\" style=\"border:0;display:block\"></iframe></body></html>";
+  const std::string dom = run_chromium(chromium, dir.path, width + 40, "--virtual-time-budget=5000 --dump-dom");
   const size_t a = dom.find("<pre id=\"verdict\">"), b = dom.find("</pre>", a);
   if (a == std::string::npos || b == std::string::npos) {
     std::ifstream err(dir.path / "stderr.txt");

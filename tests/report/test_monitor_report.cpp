@@ -27,7 +27,7 @@ MonitorReport twin_run() {
   m.learning = "no learning phase";
   m.reading.skew_s = {1e-6, 2e-6, 3e-6};
   m.reading.thermal_time_constant_s = 60;
-  m.detections = {{0, 1.0, 1.25, "la1 grew"}, {1, 1.5, std::nullopt, ""}};
+  m.detections = {{0, 1.0, 1.25, "la1 grew by 1.0e-03 mm"}, {1, 1.5, std::nullopt, ""}};
   for (int k = 0; k < 21; ++k) m.alarms.push_back({0.1 * k, "step", 40.0, 30.0, "la1"});
   m.parameters = {{"la1", 244.0, 244.001, 0.0005, 1e3, {0.0, 0.001}}, {"dth1", 0.0, 1e-6, 1e-6, 244e3, {0.0, 1e-6}}};
   m.track_t_s = {0.0, 2.0};
@@ -42,7 +42,7 @@ TEST(MonitorReport, SettingsEventsAlarmsAndFinalEstimates) {
                     "false-alarm rate 0.01 per hour (chi-square threshold 321.5 over 250 samples)."),
             std::string::npos);
   EXPECT_NE(md.find("latch skew 1, 2, 3 µs"), std::string::npos);
-  EXPECT_NE(md.find("| 0 | 1.000 | 1.250 | 0.250 | la1 grew |\n| 1 | 1.500 | missed |  |  |\n"), std::string::npos);
+  EXPECT_NE(md.find("| 0 | 1.000 | 1.250 | 0.250 | la1 grew by 0.0010 mm |\n| 1 | 1.500 | missed |  |  |\n"), std::string::npos);
   EXPECT_NE(md.find("## Alarms (first 20 of 21)"), std::string::npos);
   EXPECT_NE(md.find("| la1 | 244.00000 | 244.00100 | 1.00 | 0.50 |\n| dth1 | 0.0000000 | 0.0000010 | 0.24 | 0.24 |\n"), std::string::npos);
   ASSERT_EQ(doc.figure_files().size(), 1u);
@@ -67,7 +67,7 @@ TEST(MonitorReport, GpmMonitorsReportIsTitledAndHoldsTheSection) {
   const ReportDocument doc = monitor_report("op", twin_run());
   const std::string md = doc.markdown();
   EXPECT_EQ(md.rfind("# gpm monitor: op\n\n**Over 2.0 s of normal operation the drift monitor raised 21 alarms (1 of "
-                     "them false), the first at 0.00 s; it found 1 of the scenario's 2 events, each within 0.25 s.**",
+                     "them false), the first at 0.00 s; it detected 1 of the scenario's 2 events, each within 0.25 s.**",
                      0),
             0u)
       << md;
@@ -80,7 +80,8 @@ TEST(MonitorReport, OneAlarmIsOneAlarm) {
   m.alarms.resize(1);
   m.detections.resize(1);
   const std::string md = monitor_report("op", m).markdown();
-  EXPECT_NE(md.find("raised 1 alarm (1 of them false), the first at 0.00 s; it found 1 of the scenario's 1 event,"),
+  EXPECT_NE(md.find("raised 1 alarm (1 of them false), the first at 0.00 s; it detected the scenario's event 0.25 s "
+                    "after it began."),
             std::string::npos)
       << md;
   EXPECT_NE(md.find("cycles at 1000 Hz), 1 alarm (1 false)"), std::string::npos);
