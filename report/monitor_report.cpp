@@ -11,9 +11,15 @@
 namespace gpm::report {
 namespace {
 
+// v to 3 significant digits, trailing zeros dropped ("1", "0.25"), a power of ten outside 1e-3 .. 1e6.
+std::string g3(double v) {
+  const double a = std::abs(v);
+  return a == 0.0 || (a >= 1e-3 && a < 1e6) ? fmt::format("{:.3g}", v) : sci(v, 3);
+}
+
 // "a, b, c" of a per-joint value times scale, 3 significant digits.
 std::string three(const std::array<double, 3>& v, double scale) {
-  return fmt::format("{:.3g}, {:.3g}, {:.3g}", v[0] * scale, v[1] * scale, v[2] * scale);
+  return fmt::format("{}, {}, {}", g3(v[0] * scale), g3(v[1] * scale), g3(v[2] * scale));
 }
 
 // "1 alarm", "2 alarms".

@@ -97,11 +97,11 @@ std::string inline_html(const std::string& text) {
   for (size_t open = text.find('`'); open != std::string::npos; open = text.find('`', at)) {
     const size_t close = text.find('`', open + 1);
     if (close == std::string::npos) break;  // an unpaired backtick stays as text
-    out += xml_escape(text.substr(at, open - at)) + "<code>" + xml_escape(text.substr(open + 1, close - open - 1)) +
-           "</code>";
+    out += xml_escape(readable_text(text.substr(at, open - at))) + "<code>" +
+           xml_escape(text.substr(open + 1, close - open - 1)) + "</code>";
     at = close + 1;
   }
-  return out + xml_escape(text.substr(at));
+  return out + xml_escape(readable_text(text.substr(at)));
 }
 
 namespace {

@@ -2,7 +2,8 @@
 // beside it) and a self-contained HTML page (figures inline), staged in an
 // output folder that commits all files or none. Text may mark code or file
 // names with backticks (`gpm run`): Markdown keeps them, HTML sets them as
-// <code>; no other Markdown syntax reaches the HTML page.
+// <code>; no other Markdown syntax reaches the HTML page, and its text
+// shows C exponents as powers of ten and ASCII units with their symbols.
 #pragma once
 
 #include <string>
@@ -64,7 +65,8 @@ std::string markdown_cell(const std::string& text);
 // number), "7.31e-05" -> "7.31×10⁻⁵", "x2.63" -> "×2.63", "5.3x the" -> "5.3× the".
 std::string readable_text(const std::string& text);
 
-// Escaped HTML of text with `code` spans set as <code>.
+// Escaped HTML of text with `code` spans set as <code>, the rest as
+// readable_text shows it (the Markdown keeps numbers as machines read them).
 std::string inline_html(const std::string& text);
 
 }  // namespace gpm::report

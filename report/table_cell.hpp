@@ -22,7 +22,10 @@ inline std::string table_cell(double v, const char* f) {
 inline std::string sig(double v, int digits = 3) {
   if (!std::isfinite(v)) return "-";
   if (v == 0.0) return "0";
-  const int whole = static_cast<int>(std::floor(std::log10(std::abs(v)))) + 1;
+  int whole = static_cast<int>(std::floor(std::log10(std::abs(v)))) + 1;
+  // 99.99 at 3 digits rounds to 100, a digit more before the point: "100", not "100.0".
+  if (std::abs(std::stod(fmt::format("{:.{}f}", v, std::clamp(digits - whole, 0, 12)))) >= std::pow(10.0, whole))
+    ++whole;
   const std::string s = fmt::format("{:.{}f}", v, std::clamp(digits - whole, 0, 12));
   return s == "-0" ? "0" : s;
 }
@@ -45,10 +48,11 @@ inline std::string sci(double v, int digits = 3) {
 }
 
 // v to a tenth of its 1-sigma (sigma 1e-3 -> 4 decimals); without a usable
-// sigma, 8 significant digits.
+// sigma, up to 8 significant digits, trailing zeros dropped.
 inline std::string value_to_sigma(double v, double sigma) {
   if (!std::isfinite(v)) return "-";
-  if (!(std::isfinite(sigma) && sigma > 0.0)) return sig(v, 8);
+  if (!(std::isfinite(sigma) && sigma > 0.0))
+    return v == 0.0 || (std::abs(v) >= 1e-3 && std::abs(v) < 1e6) ? fmt::format("{:.8g}", v) : sci(v, 8);
   return fmt::format("{:.{}f}", v, std::clamp(static_cast<int>(std::ceil(-std::log10(sigma))) + 1, 0, 10));
 }
 
