@@ -99,7 +99,7 @@ std::string paper_lead(const PaperDocument& p) {
     for (const auto& [r, n] : c.by_reason) all.by_reason[r] += n;
   }
   std::string why;
-  for (const auto& [r, n] : all.by_reason) why += fmt::format("{}{} {}", why.empty() ? "" : ", ", n, paper_reason_name(r));
+  for (const auto& [r, n] : all.by_reason) why += fmt::format("{}{}: {}", why.empty() ? "" : ", ", paper_reason_name(r), n);
   return fmt::format("Of the {} quantities of the paper's {} tables and figures reproduced here, {} agree with the "
                      "printed values{}.",
                      all.rows, p.tables.size(), all.agree,
@@ -118,7 +118,7 @@ ReportDocument paper_document(const PaperDocument& p) {
       "value, this run's, their difference and why they differ; the numbered sentences under each table say "
       "why. Reasons: paper mistake (an erratum), property of the method (what the mathematics or the solver "
       "does), different setup (the paper's robot, samples or budget are not available), open question.",
-      sci(static_cast<double>(p.budget), 3), p.seed, p.seconds));
+      sci(static_cast<double>(p.budget), 2), p.seed, p.seconds));
   std::vector<std::vector<std::string>> summary;
   for (const PaperTable& t : p.tables) {
     const Counts c = count(t);
