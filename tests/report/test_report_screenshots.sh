@@ -5,7 +5,8 @@
 # in a 1280x800 window and a 390x844 phone, and a script in the page fails
 # the test when the page scrolls sideways (scrollWidth > innerWidth),
 # Markdown or machine formatting shows as text, or the first screen lacks
-# the before/after sentence; a screenshot of each window must be a PNG of
+# the before/after sentence; every table of report.md has its header's cell
+# count; a screenshot of each window must be a PNG of
 # that size with something drawn. The report of `gpm monitor
 # scenarios/monitor_offset_jump.yaml` (report/monitor_report.cpp, 60 s of
 # operation in about 2 s) likewise on the phone, its lead the alarms.
@@ -20,6 +21,30 @@ if [[ -z $chromium ]]; then echo "SKIP: chromium is not installed (scripts/setup
 
 check "gpm run report_small" 0 "$GPM" run "$SRC/tests/fixtures/report_small.yaml" -o "$tmp/run" --quiet
 check "gpm monitor monitor_offset_jump" 0 "$GPM" monitor "$SRC/scenarios/monitor_offset_jump.yaml" -o "$tmp/monitor"
+
+# Every GFM table of both report.md files: each row has its header's cell count
+# (cells split at pipes not escaped by a backslash; tests/report/report_text_checks.hpp).
+for report in run monitor; do
+  python3 - "$tmp/$report/report.md" >"$tmp/tables.txt" <<'PY'
+import re, sys
+lines = open(sys.argv[1], encoding="utf-8").read().split("\n")
+def cells(line):
+    c = re.split(r"(?<!\\)\|", line)
+    return len(c) - (line.strip().startswith("|")) - (line.strip().endswith("|"))
+tables = 0
+for i in range(len(lines) - 1):
+    if "|" in lines[i] and re.match(r"^\s*\|?\s*:?-+:?\s*(\|\s*:?-+:?\s*)*\|?\s*$", lines[i + 1]):
+        tables += 1
+        j = i + 1
+        while j < len(lines) and "|" in lines[j]:
+            if cells(lines[j]) != cells(lines[i]):
+                print(f"row of {cells(lines[j])} cells under {cells(lines[i])}: {lines[j]}")
+            j += 1
+print(f"tables {tables}")
+PY
+  holds "$report report.md: every table row has its header's cell count" grep -qx "tables [1-9][0-9]*" "$tmp/tables.txt"
+  [[ $(wc -l <"$tmp/tables.txt") -eq 1 ]] && passed=$((passed+1)) || { echo "FAIL $report report.md:"; cat "$tmp/tables.txt"; fail=$((fail+1)); }
+done
 
 # The page's verdict, written into the DOM that --dump-dom prints.
 cat >"$tmp/check.js" <<'JS'
