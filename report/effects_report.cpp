@@ -40,12 +40,12 @@ std::string per_case_plot(const EffectsReport& e, double EffectsRow::*field, con
 std::string effects_paragraph(const RealisticEffects& fx) {
   return fmt::format(
       "Each effect of the realistic twin alone at its realistic value (transmission compliance {:g} rad/N m, "
-      "passive clearance {:g} um, friction {:g} N m + {:g} N m s/rad, thermal {:g}/K x {:g} K with time constant "
+      "passive clearance {:g} µm, friction {:g} N m + {:g} N m s/rad, thermal {:g}/K x {:g} K with time constant "
       "{:g} s, encoder cyclic error {:g} rad, encoder latch skew {:g} / {:g} s), all of them together, and none "
       "(ideal); then the geared machine's effects the preset leaves out, drawn once from their plausible ranges "
       "behind a 10:1 reducer (drive_train, encoder_motor), and with the preset (every); all on the same actual "
       "robot (the scenario's seed) for each procedure. Errors are estimated minus "
-      "actual; offsets are counted in um at the 244 mm link. The floor is the static RMS error of the controller "
+      "actual; offsets are counted in µm at the 244 mm link. The floor is the static RMS error of the controller "
       "given the actual parameters on the same twin; calibrated / floor is what the calibration leaves on the "
       "table. CRB sigma: the Cramer-Rao bound the run reports (on the fly: jointly with the nuisance values it "
       "estimates, and carrying the encoders' cyclic error with its data-sheet prior; stop-and-go: for the encoder "

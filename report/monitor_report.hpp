@@ -64,7 +64,10 @@ struct MonitorReport {
 // Adds the monitor's section to doc: headings at level, the tracks as figure `figure`.svg.
 void add_monitor_section(ReportDocument& doc, const MonitorReport& m, int level, const std::string& figure);
 
-// gpm monitor's report: its title, the monitor's section (level-2 headings) and the tracks as tracks.svg.
+// The monitor's run in one sentence: alarms (false ones), the first, the events found and how fast.
+std::string monitor_lead(const MonitorReport& m);
+
+// gpm monitor's report: its title, the lead, the monitor's section (level-2 headings) and the tracks as tracks.svg.
 ReportDocument monitor_report(const std::string& scenario_name, const MonitorReport& m);
 
 }  // namespace gpm::report

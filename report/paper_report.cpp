@@ -6,6 +6,7 @@
 #include <fmt/format.h>
 
 #include "report/svg_plot.hpp"
+#include "report/table_cell.hpp"
 
 namespace gpm::report {
 
@@ -89,18 +90,35 @@ std::string paper_convergence_svg(int figure, const std::string& cost, const std
   return svg_plot(series, o);
 }
 
+// The lead: how many printed values this run reproduces and why the others differ.
+std::string paper_lead(const PaperDocument& p) {
+  Counts all;
+  for (const PaperTable& t : p.tables) {
+    const Counts c = count(t);
+    all.rows += c.rows, all.agree += c.agree;
+    for (const auto& [r, n] : c.by_reason) all.by_reason[r] += n;
+  }
+  std::string why;
+  for (const auto& [r, n] : all.by_reason) why += fmt::format("{}{}: {}", why.empty() ? "" : ", ", paper_reason_name(r), n);
+  return fmt::format("Of the {} quantities of the paper's {} tables and figures reproduced here, {} agree with the "
+                     "printed values{}.",
+                     all.rows, p.tables.size(), all.agree,
+                     why.empty() ? std::string() : "; the others differ for a stated reason (" + why + ")");
+}
+
 ReportDocument paper_document(const PaperDocument& p) {
   ReportDocument d;
   d.heading(1, "The paper reproduced: printed values beside this run's");
+  d.lead(paper_lead(p));
   d.paragraph(fmt::format(
       "Every experiment of the chapter (docs/PAPER_NOTES.md) run as the paper ran it, on the MuJoCo twin "
       "(Tables 1 and 8, the paper's real robot) or on generated data (Tables 2-7, the paper's simulations), "
-      "with the corrections of docs/PAPER_NOTES.md applied. Budget {:.3g} error-function evaluations per "
-      "GA/PSO/DE run (the paper: 5e7; `gpm paper --budget 5e7`), seed {}, {:.0f} s. Each row gives the printed "
+      "with the corrections of docs/PAPER_NOTES.md applied. Budget {} error-function evaluations per "
+      "GA/PSO/DE run (the paper: 5×10⁷; `gpm paper --budget 5e7`), seed {}, {:.0f} s. Each row gives the printed "
       "value, this run's, their difference and why they differ; the numbered sentences under each table say "
       "why. Reasons: paper mistake (an erratum), property of the method (what the mathematics or the solver "
       "does), different setup (the paper's robot, samples or budget are not available), open question.",
-      static_cast<double>(p.budget), p.seed, p.seconds));
+      sci(static_cast<double>(p.budget), 2), p.seed, p.seconds));
   std::vector<std::vector<std::string>> summary;
   for (const PaperTable& t : p.tables) {
     const Counts c = count(t);

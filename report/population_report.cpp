@@ -68,7 +68,7 @@ std::string summary_text(const PopulationReport& p) {
   const PopulationSummary& s = p.summary;
   return fmt::format(
       "{} robots of `{}` ({}), {} failed. Positioning error of the calibrated model over a disc round home "
-      "(noise-free, three drives holding the readings it commands): median of the robots' RMS {} um, worst robot {} um. Parameters within 3 "
+      "(noise-free, three drives holding the readings it commands): median of the robots' RMS {} µm, worst robot {} µm. Parameters within 3 "
       "of their stated 1-sigma: {} %; the worst parameter {} sigma. Positioning error over its stated 1-sigma "
       "(median over robots, 1 when the 1-sigma is honest): {}. Model test passes on {} % of the robots.",
       s.robots, p.name,
@@ -98,7 +98,7 @@ std::string positioning_plot(const PopulationReport& p) {
     sigma.x.push_back(f), sigma.y.push_back(ok[k]->stated_sigma_rms_um);
   }
   PlotOptions po = titled_plot("Positioning error of the calibrated model, over the population",
-                               "fraction of robots (sorted by their error)", "um");
+                               "fraction of robots (sorted by their error)", "µm");
   po.log_y = true;
   return svg_plot({rms, sigma}, po);
 }
@@ -155,9 +155,21 @@ std::string population_markdown(const PopulationReport& p) {
   return doc.markdown();
 }
 
+// The lead: where the calibrated robots put their tool tips, and whether their stated 1-sigma holds.
+std::string population_lead(const PopulationReport& p) {
+  const PopulationSummary& s = p.summary;
+  return fmt::format("Each calibrated from its own encoder readings, the {} robots put the tool tip within {} µm of "
+                     "where it is sent (RMS; median over the robots, worst robot {} µm){}; the error is {}× the 1σ "
+                     "each calibration states (median; 1 is honest).",
+                     s.robots - s.failed, sig(s.positioning_median_um, 3), sig(s.positioning_max_um, 3),
+                     s.failed > 0 ? fmt::format(", {} failed", s.failed) : std::string(),
+                     sig(s.normalised_positioning_median, 2));
+}
+
 ReportDocument population_report(const PopulationReport& p) {
   ReportDocument doc;
   doc.heading(1, fmt::format("Population study: {}", p.name));
+  doc.lead(population_lead(p));
   doc.paragraph(summary_text(p));
   doc.paragraph(
       "Each robot is the scenario with its own seed: its actual geometry and (randomized) every effect per chain "

@@ -1,6 +1,9 @@
 // A report built once and written twice: Markdown (figures as SVG files
 // beside it) and a self-contained HTML page (figures inline), staged in an
-// output folder that commits all files or none.
+// output folder that commits all files or none. Text may mark code or file
+// names with backticks (`gpm run`): Markdown keeps them, HTML sets them as
+// <code>; no other Markdown syntax reaches the HTML page, and its text
+// shows C exponents as powers of ten and ASCII units with their symbols.
 #pragma once
 
 #include <string>
@@ -19,6 +22,9 @@ class ReportDocument {
   void heading(int level, const std::string& text);
   // Adds a paragraph of plain text.
   void paragraph(const std::string& text);
+  // Adds the lead: the one paragraph a reader sees first (bold in Markdown,
+  // a larger paragraph of class "lead" in HTML).
+  void lead(const std::string& text);
   // Adds a bulleted list.
   void bullets(const std::vector<std::string>& items);
   // Adds a table; every row has header.size() cells.
@@ -40,7 +46,7 @@ class ReportDocument {
 
  private:
   struct Block {
-    enum class Kind { kHeading, kParagraph, kBullets, kTable, kFigure, kPre } kind;
+    enum class Kind { kHeading, kParagraph, kLead, kBullets, kTable, kFigure, kPre } kind;
     int level = 0;
     std::string text;                            // heading, paragraph, caption, pre
     std::string name, svg;                       // figure
@@ -49,5 +55,18 @@ class ReportDocument {
   };
   std::vector<Block> blocks_;
 };
+
+// A table cell or header as GitHub-flavoured Markdown writes it: `|` escaped
+// as `\|` and line breaks as spaces, so every row keeps its cell count.
+std::string markdown_cell(const std::string& text);
+
+// Text written for a terminal (units in ASCII, C exponents, "x" for times)
+// as a report shows it: "28.15 um" -> "28.15 µm" (and urad, after a
+// number), "7.31e-05" -> "7.31×10⁻⁵", "x2.63" -> "×2.63", "5.3x the" -> "5.3× the".
+std::string readable_text(const std::string& text);
+
+// Escaped HTML of text with `code` spans set as <code>, the rest as
+// readable_text shows it (the Markdown keeps numbers as machines read them).
+std::string inline_html(const std::string& text);
 
 }  // namespace gpm::report

@@ -1,13 +1,16 @@
 #include "report/run_report.hpp"
 
+#include <algorithm>
 #include <cctype>
 #include <cmath>
 #include <limits>
+#include <regex>
 
 #include <fmt/format.h>
 
 #include "models/kinematics.hpp"
 #include "report/svg_plot.hpp"
+#include "report/table_cell.hpp"
 
 namespace gpm::report {
 namespace {
@@ -19,31 +22,28 @@ std::string num(double v, int digits = 6) {
 
 std::string unit(int i) { return is_offset(i) ? "rad" : "mm"; }
 
-// Units are written with their symbols (µm, µrad, σ) in every output: the
-// Markdown and the SVG files are UTF-8 like the HTML page.
+// Text from the run library reads as a reader reads it (readable_text,
+// report/report_document.hpp): "28.15 um" as "28.15 µm", "7.31e-05" as
+// "7.31×10⁻⁵", "x2.63" as "×2.63".
+std::string with_unit_symbols(const std::string& text) { return readable_text(text); }
 
-// Text from the run library (expectation details, calibration notes) writes
-// units in ASCII for terminals: "28.15 um" becomes "28.15 µm" here, and
-// "urad" "µrad", wherever the unit follows a number.
-std::string with_unit_symbols(const std::string& text) {
-  std::string out;
-  for (size_t i = 0; i < text.size(); ++i) {
-    const bool after_number = !out.empty() && (std::isdigit(static_cast<unsigned char>(out.back())) ||
-                                               (out.back() == ' ' && out.size() > 1 &&
-                                                std::isdigit(static_cast<unsigned char>(out[out.size() - 2]))));
-    for (const char* unit : {"urad", "um"}) {
-      const std::string u = unit;
-      const size_t end = i + u.size();
-      const bool whole = end == text.size() || !std::isalnum(static_cast<unsigned char>(text[end]));
-      if (after_number && whole && text.compare(i, u.size(), u) == 0) {
-        out += "µ" + u.substr(1);
-        i = end;
-        break;
-      }
-    }
-    if (i < text.size()) out += text[i];
-  }
-  return out;
+// A distance in µm as a reader says it: mm from 1000 µm on, 3 significant digits.
+// (Number and unit joined by a no-break space: a line never starts with the unit.)
+std::string distance(double um) {
+  return std::abs(um) >= 1000.0 ? sig(um / 1000.0) + "\u00a0mm" : sig(um) + "\u00a0µm";
+}
+
+// The calibration method and cost in words ("lm on ml" is for the terminal).
+std::string method_words(const std::string& method, const std::string& cost) {
+  const std::string m = method == "lm"      ? "Levenberg-Marquardt"
+                        : method == "de"    ? "differential evolution"
+                        : method == "ga"    ? "a genetic algorithm"
+                        : method == "pso"   ? "particle swarm optimisation"
+                        : method == "de+lm" ? "differential evolution, then Levenberg-Marquardt"
+                                            : method;
+  std::string c = cost;
+  for (char& ch : c) ch = static_cast<char>(std::toupper(static_cast<unsigned char>(ch)));
+  return m + (cost == "ml" ? " on the maximum-likelihood residual" : " on the paper's cost " + c);
 }
 
 // At most about `limit` points of a long series are drawn: every k-th.
@@ -124,6 +124,34 @@ std::string residual_figure(const RunReport& o) {
                                     "sample", "residual (µrad)"));
 }
 
+// The LM record counted as the terminal counts it: passes (each starts
+// with an entry that tried no step), the steps tried in all and those of
+// the last pass (the terminal's "iterations").
+struct LmCount {
+  int passes = 0, steps = 0, last_pass_steps = 0;
+};
+LmCount lm_count(const RunCalibration& r) {
+  LmCount c;
+  for (const RunLmIteration& it : r.lm_iterations) {
+    if (!(it.step_norm > 0.0)) {
+      ++c.passes;
+      c.last_pass_steps = 0;
+    } else {
+      ++c.steps;
+      ++c.last_pass_steps;
+    }
+  }
+  return c;
+}
+
+// "7 iterations", or "38 iterations in 5 passes (7 in the last)": the
+// terminal's count is the last pass's.
+std::string lm_count_text(const RunCalibration& r) {
+  const LmCount c = lm_count(r);
+  if (c.passes <= 1) return fmt::format("{} iteration{}", r.iterations, r.iterations == 1 ? "" : "s");
+  return fmt::format("{} iterations in {} passes ({} in the last)", c.steps, c.passes, r.iterations);
+}
+
 // Two panels over the LM iterations: J, and the length of each step tried.
 // J spanning more than a decade is drawn on a log axis; a warm start that
 // changes J by a small fraction as J - J_final on a linear axis, so the
@@ -135,7 +163,7 @@ std::string lm_convergence_figure(const RunCalibration& r) {
   const bool log_j = j_min > 0.0 && j_max > 10.0 * j_min;
   const double j_ref = log_j || !std::isfinite(j_min) ? 0.0 : r.final_cost;
   Series cost, cost_rejected, step, step_rejected;
-  cost.label = fmt::format("J ({} on {}) after each iteration", r.method, r.cost);
+  cost.label = "cost J after each iteration";
   cost.style = Series::Style::kLineMarkers;
   step.label = "step accepted";
   step.style = Series::Style::kLineMarkers;
@@ -152,8 +180,7 @@ std::string lm_convergence_figure(const RunCalibration& r) {
     (it.accepted ? step : step_rejected).y.push_back(it.step_norm);
   }
   PlotOptions pc;
-  pc.title = fmt::format("Levenberg-Marquardt: {} iterations, final J = {:.6g}",
-                         r.lm_iterations.empty() ? 0 : r.lm_iterations.size() - 1, r.final_cost);
+  pc.title = "Levenberg-Marquardt: " + lm_count_text(r);
   pc.x_label = "iteration";
   pc.y_label = log_j ? "cost J" : "J − final J";
   pc.log_y = log_j;
@@ -184,7 +211,7 @@ std::string lm_convergence_figure(const RunCalibration& r) {
 // The global methods' record: best J against error-function evaluations.
 std::string history_figure(const RunCalibration& r) {
   Series s;
-  s.label = fmt::format("{} on {}", r.method, r.cost);
+  s.label = method_words(r.method, r.cost);
   s.style = Series::Style::kLineMarkers;
   for (const auto& [e, j] : r.history) s.x.push_back(static_cast<double>(e)), s.y.push_back(j);
   PlotOptions po = titled_plot("Convergence", "error-function evaluations", "best cost J");
@@ -240,16 +267,100 @@ std::string tracking_figure(const RunReport& o) {
   return svg_plot(all, po);
 }
 
-// The verdict, the failed expectations and where the samples came from.
+// The worst parameter error in Cramér-Rao sigmas (NaN: none known).
+double worst_crb_ratio(const RunReport& o) {
+  double worst = std::numeric_limits<double>::quiet_NaN();
+  if (!o.calibration) return worst;
+  for (int i = 0; i < kNumParams; ++i) {
+    const double crb = o.crb[static_cast<size_t>(i)];
+    if (!o.calibration->free.test(static_cast<size_t>(i)) || !(crb > 0.0)) continue;
+    const double k = std::abs(o.calibration->geometry[i] - o.actual[i]) / crb;
+    if (!(k <= worst)) worst = k;
+  }
+  return worst;
+}
+
+// The lead: how far the tool tip stood from where it was sent, before and
+// after, in one sentence a manager reads (or why there is no after).
+std::string lead_sentence(const RunReport& o) {
+  const std::string readings =
+      o.hardware_description.empty() && o.robot_time_s > 0.0
+          ? fmt::format("{} s of its own encoder readings ({} samples)", sig(o.robot_time_s, 2), o.sample_xy.size())
+          : fmt::format("{} samples of its own encoder readings", o.sample_xy.size());
+  if (o.refused) return "The calibration was refused (see Calibration below); the robot keeps its nominal model.";
+  if (o.before && o.after) {
+    std::string s = fmt::format(
+        "With its nominal model the robot's tool tip stood {} from where it was sent (RMS over {} test poses); "
+        "calibrated from {}, it stands {} away: {}× closer",
+        distance(o.before->static_rms_um), o.test_poses.empty() ? std::string("the") : std::to_string(o.test_poses.size()),
+        readings, distance(o.after->static_rms_um), ratio_text(o.before->static_rms_um / o.after->static_rms_um));
+    if (o.floor)
+      s += fmt::format(", and {}× the error of a controller that knew the true parameters ({})",
+                       ratio_text(o.after->static_rms_um / o.floor->static_rms_um), distance(o.floor->static_rms_um));
+    return s + ".";
+  }
+  if (o.calibration && o.positioning_um)
+    return fmt::format("Calibrated from {}, the model places the tool tip within {} (RMS over an 80 mm disc round "
+                       "home) of where it is sent.",
+                       readings, distance((*o.positioning_um)[0]));
+  if (o.calibration) {
+    const double k = worst_crb_ratio(o);
+    return fmt::format("Calibrated from {}{}.", readings,
+                       std::isfinite(k) ? fmt::format(": every parameter within {} Cramér-Rao σ of its true value",
+                                                      sig(k, 2))
+                                        : std::string());
+  }
+  return "No calibration in this run.";
+}
+
+// The model test in the verdict's voice: passed; or failed, and whether the
+// stated 1-sigma covers it (the positioning error against it) and the
+// scenario expects it.
+std::string model_test_sentence(const RunReport& o, const RunModelTest& t) {
+  const std::string numbers =
+      fmt::format("χ²/dof {}, p {}", sig(t.chi2 / t.dof, 3), t.p_value < 1e-3 ? "< 0.001" : "= " + sig(t.p_value, 2));
+  if (t.passed)
+    return fmt::format("Model test passed: the readings scatter no more than the encoders' noise explains ({}).",
+                       numbers);
+  bool expected = false;
+  for (const RunCheck& c : o.checks) expected = expected || (c.name == "model_test" && c.passed);
+  const double ratio = std::sqrt(t.chi2 / t.dof);
+  std::string s = fmt::format("Model test: the readings scatter {}× the encoders' noise ({}), more than noise alone "
+                              "explains, so the model leaves some effect out{}.",
+                              sig(ratio, 3), numbers, expected ? ", as this scenario expects" : "");
+  if (o.positioning_um && (*o.positioning_um)[3] <= 1.5)
+    return s + fmt::format(" The stated 1σ accounts for it: the calibrated model's positioning error is {}× its stated "
+                           "1σ (1 is honest), so the result stands as stated.",
+                           sig((*o.positioning_um)[3], 2));
+  if (o.positioning_um)
+    s += fmt::format(" The stated 1σ understates the error: the positioning error is {}× it.",
+                     sig((*o.positioning_um)[3], 2));
+  // The diagnosis without its own chi-square numbers ("model test failed (...): cause").
+  const size_t cause = t.diagnosis.find("): ");
+  return s + " Likely cause: " +
+         with_unit_symbols(cause == std::string::npos ? t.diagnosis : t.diagnosis.substr(cause + 3)) + ".";
+}
+
+// The title, the lead sentence, the verdict with the model test, the failed
+// expectations and where the samples came from.
 void add_verdict(ReportDocument& d, const RunReport& o) {
   d.heading(1, fmt::format("gpm run: {}", o.name));
+  d.lead(lead_sentence(o));
   std::vector<std::string> failed;
   for (const RunCheck& c : o.checks)
     if (!c.passed) failed.push_back(fmt::format("{}: {}", c.name, with_unit_symbols(c.detail)));
-  d.paragraph(fmt::format("Scenario {}. Verdict: {} ({} expectations checked, {} failed). Run time {:.1f} s.",
-                          o.scenario_file, failed.empty() ? "PASSED" : "FAILED", o.checks.size(),
-                          failed.size(), o.seconds));
+  std::string verdict =
+      o.checks.empty()      ? "Verdict: no expectations stated."
+      : failed.empty()      ? fmt::format("Verdict: passed: {} of the scenario held.",
+                                          o.checks.size() == 1   ? std::string("its one expectation")
+                                          : o.checks.size() == 2 ? std::string("both expectations")
+                                                                 : fmt::format("all {} expectations", o.checks.size()))
+                            : fmt::format("Verdict: FAILED: {} of {} expectations did not hold (below).", failed.size(),
+                                          o.checks.size());
+  if (o.model_test) verdict += " " + model_test_sentence(o, *o.model_test);
+  d.paragraph(verdict);
   if (!failed.empty()) d.bullets(failed);
+  d.paragraph(fmt::format("Scenario `{}`, run in {} s.", o.scenario_file, sig(o.seconds, 3)));
   if (!o.hardware_description.empty()) {
     d.paragraph(fmt::format("Samples taken through the hardware interface ({}). Errors are against the scenario's "
                             "actual robot, the truth when that hardware simulates this scenario.",
@@ -262,10 +373,9 @@ void add_positioning(ReportDocument& d, const std::array<double, 4>& p) {
   d.heading(2, "Positioning error of the calibrated model");
   d.paragraph(fmt::format(
       "Over a disc of 80 mm round home (points 10 mm apart), the readings the calibrated model commands and where "
-      "the actual robot stands when its three drives hold them, noise-free: RMS {:.2f} µm, max {:.2f} µm. The "
-      "calibration's covariance states {:.2f} µm per axis (RMS over the points); error / stated 1-sigma {:.2f} "
-      "(1 when the 1-sigma is honest).",
-      p[0], p[1], p[2], p[3]));
+      "the actual robot stands when its three drives hold them, noise-free: RMS {}, max {}. The calibration's "
+      "covariance states {} per axis (RMS over the points); error / stated 1σ {} (1 when the 1σ is honest).",
+      distance(p[0]), distance(p[1]), distance(p[2]), sig(p[3], 2)));
 }
 
 // The accuracy table of the nominal, calibrated and actual controller models and their ratios.
@@ -277,49 +387,60 @@ void add_accuracy(ReportDocument& d, const RunReport& o) {
   std::vector<std::vector<std::string>> rows;
   for (const RunAccuracy* a : {&*o.before, o.after ? &*o.after : nullptr, o.floor ? &*o.floor : nullptr}) {
     if (!a) continue;
-    rows.push_back({a->label, fmt::format("{:.2f}", a->static_rms_um), fmt::format("{:.2f}", a->static_max_um),
-                    fmt::format("{:.2f}", a->path_rms_um), fmt::format("{:.2f}", a->path_max_um),
-                    fmt::format("{:.4f}", a->static_preload_rms_nm), fmt::format("{:.4f}", a->path_preload_rms_nm)});
+    rows.push_back({a->label, sig(a->static_rms_um), sig(a->static_max_um), sig(a->path_rms_um),
+                    sig(a->path_max_um), sig(a->static_preload_rms_nm), sig(a->path_preload_rms_nm)});
   }
   d.table({"controller model", "static RMS (µm)", "static max (µm)", "path RMS (µm)", "path max (µm)",
            "static preload RMS (N m)", "path preload RMS (N m)"},
           rows);
   if (o.after) {
-    d.paragraph(fmt::format("Static accuracy improved ×{:.3g}; path tracking ×{:.3g}; preload ×{:.3g}.",
-                            o.before->static_rms_um / o.after->static_rms_um,
-                            o.before->path_rms_um / o.after->path_rms_um,
-                            o.before->static_preload_rms_nm / std::max(1e-12, o.after->static_preload_rms_nm)));
+    d.paragraph(fmt::format("Static error {}× smaller after calibration; path tracking {}×; preload {}×.",
+                            ratio_text(o.before->static_rms_um / o.after->static_rms_um),
+                            ratio_text(o.before->path_rms_um / o.after->path_rms_um),
+                            ratio_text(o.before->static_preload_rms_nm /
+                                       std::max(1e-12, o.after->static_preload_rms_nm))));
+    const RunAccuracy& ref = o.floor ? *o.floor : *o.after;
+    d.paragraph(fmt::format(
+        "Static RMS is the tool tip at rest; path RMS is the tool tip while it moves, where the drives' lag behind "
+        "the moving target adds an error no calibration removes ({} a path RMS of {} against {} at rest).",
+        o.floor ? "the controller given the true parameters has" : "the calibrated model has",
+        distance(ref.path_rms_um), distance(ref.static_rms_um)));
   }
   if (o.after && o.floor) {
-    d.paragraph(fmt::format("The `actual` row is the floor: the controller given the true parameters. Calibrated "
-                            "static RMS is {:.2f}× the floor. Sampling took {:.2f} s of robot time.",
-                            o.after->static_rms_um / std::max(1e-12, o.floor->static_rms_um), o.robot_time_s));
+    d.paragraph(fmt::format("The row “actual” is the floor: the controller given the true parameters. The calibrated "
+                            "static RMS is {}× the floor. Sampling took {} s of robot time.",
+                            sig(o.after->static_rms_um / std::max(1e-12, o.floor->static_rms_um), 3),
+                            sig(o.robot_time_s, 3)));
   }
 }
 
-// The chi-square test of the residuals against the encoder noise.
-void add_model_test(ReportDocument& d, const RunModelTest& t) {
-  d.paragraph(fmt::format("Model test: χ² = {:.4g} for {:.0f} degrees of freedom (encoder σ {:.3g} rad), "
-                          "p = {:.3g}: {}.",
-                          t.chi2, t.dof, t.sigma_rad, t.p_value,
-                          t.passed ? "the residuals are as small as the encoders explain" : t.diagnosis));
+// Cells of the parameter table for mm and rad parameters: the spread (1σ,
+// error, bound) in µm or µrad with its unit in the cell, the values to a
+// tenth of the estimate's 1σ.
+std::string spread_cell(double v, int i) {
+  if (!std::isfinite(v)) return "-";
+  return sig(v * (is_offset(i) ? 1e6 : 1e3), 2) + (is_offset(i) ? "\u00a0µrad" : "\u00a0µm");
+}
+std::string value_cell(double v, double sigma) {
+  return std::isfinite(sigma) && sigma > 0.0 ? value_to_sigma(v, sigma) : num(v, 8);
 }
 
 // The parameter table: nominal, actual, estimated, 1-sigma, error and the Cramer-Rao bound.
 void add_parameters(ReportDocument& d, const RunReport& o, const RunCalibration& r) {
-  d.paragraph(fmt::format("{} on {} from {} encoder samples, {} free parameters (fixed: {}). Cramér-Rao bound (CRB) "
-                          "at encoder σ {:.3g} rad per sample.",
-                          r.method, r.cost, o.sample_xy.size(), r.free.count(),
-                          format_param_list(~r.free), o.crb_sigma_rad));
+  d.paragraph(fmt::format("{} from {} encoder samples, {} free parameters (fixed: {}). The Cramér-Rao bound (CRB) is "
+                          "the smallest 1σ any unbiased estimate could have at the encoders' σ of {} µrad per "
+                          "sample.",
+                          method_words(r.method, r.cost), o.sample_xy.size(), r.free.count(),
+                          format_param_list(~r.free), sig(o.crb_sigma_rad * 1e6, 3)));
   std::vector<std::vector<std::string>> rows;
   for (int i = 0; i < kNumParams; ++i) {
-    const bool free = r.free.test(static_cast<size_t>(i));
-    const double err = r.geometry[i] - o.actual[i];
+    const size_t k = static_cast<size_t>(i);
+    const bool free = r.free.test(k);
+    const double err = r.geometry[i] - o.actual[i], s = free ? r.sigma[k] : o.crb[k];
     rows.push_back({std::string(param_name(i)) + " (" + unit(i) + ")", num(o.nominal.geometry[i], 8),
-                    num(o.actual[i], 10), num(r.geometry[i], 10),
-                    free ? num(r.sigma[static_cast<size_t>(i)], 3) : "fixed", free ? num(err, 3) : "-",
-                    free ? num(o.crb[static_cast<size_t>(i)], 3) : "-",
-                    free ? num(std::abs(err) / o.crb[static_cast<size_t>(i)], 3) : "-"});
+                    value_cell(o.actual[i], s), value_cell(r.geometry[i], s), free ? spread_cell(r.sigma[k], i) : "fixed",
+                    free ? spread_cell(err, i) : "-", free ? spread_cell(o.crb[k], i) : "-",
+                    free ? sig(std::abs(err) / o.crb[k], 2) : "-"});
   }
   d.table({"parameter", "nominal", "actual", "estimated", "1σ", "error", "CRB σ", "|error| / CRB σ"}, rows);
 }
@@ -328,9 +449,9 @@ void add_parameters(ReportDocument& d, const RunReport& o, const RunCalibration&
 void add_diagnostics(ReportDocument& d, const RunReport& o, const RunCalibration& r) {
   d.heading(3, "Diagnostics");
   d.table({"cost J", "iterations", "evaluations", "rank", "condition number", "kmrmse (mm)", "seconds", "converged"},
-          {{num(r.final_cost, 4), std::to_string(r.iterations), std::to_string(r.evaluations),
-            std::to_string(r.rank), num(r.condition_number, 4), r.kmrmse_mm ? num(*r.kmrmse_mm, 4) : "-",
-            num(r.seconds, 3), r.converged ? "yes" : "no"}});
+          {{sci(r.final_cost, 4), lm_count_text(r), std::to_string(r.evaluations), std::to_string(r.rank),
+            sci(r.condition_number, 3), r.kmrmse_mm ? sci(*r.kmrmse_mm, 3) : "-", sig(r.seconds, 3),
+            r.converged ? "yes" : "no"}});
   std::vector<std::string> notes;
   for (const std::string& n : r.notes)
     if (!(o.model_test && n == o.model_test->diagnosis)) notes.push_back(with_unit_symbols(n));
@@ -388,7 +509,6 @@ ReportDocument build_run_report(const RunReport& o) {
   add_verdict(d, o);
   if (o.positioning_um) add_positioning(d, *o.positioning_um);
   if (o.before) add_accuracy(d, o);
-  if (o.model_test) add_model_test(d, *o.model_test);
   add_calibration(d, o);
   if (!o.checks.empty()) add_expectations(d, o.checks);
   add_figures(d, o);

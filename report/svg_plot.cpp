@@ -9,8 +9,11 @@
 namespace gpm::report {
 namespace {
 
-constexpr const char* kPalette[] = {"#1f77b4", "#d62728", "#2ca02c", "#ff7f0e",
-                                    "#9467bd", "#8c564b", "#e377c2", "#17becf"};
+// The first eight are matplotlib's (earlier figures keep their colours),
+// then four more of the same lightness told apart from them.
+constexpr const char* kPalette[] = {"#1f77b4", "#d62728", "#2ca02c", "#ff7f0e", "#9467bd", "#8c564b",
+                                    "#e377c2", "#17becf", "#7f7f7f", "#bcbd22", "#000080", "#808000"};
+constexpr size_t kPaletteSize = sizeof(kPalette) / sizeof(kPalette[0]);
 
 std::string tick_label(double v, bool log_y) {
   if (log_y) return fmt::format("1e{}", static_cast<int>(std::lround(v)));
@@ -127,6 +130,8 @@ void fit_range(Frame& f, const std::vector<Series>& series, const PlotOptions& o
     }
   }
   if (!std::isfinite(x0)) x0 = 0, x1 = 1, y0 = 0, y1 = 1;
+  for (const XMark& m : o.x_marks)
+    if (std::isfinite(m.x)) x0 = std::min(x0, m.x), x1 = std::max(x1, m.x);
   if (!o.x_categories.empty()) x0 = -0.5, x1 = static_cast<double>(o.x_categories.size()) - 0.5;
   if (x1 - x0 <= 0) x0 -= 0.5, x1 += 0.5;
   if (y1 - y0 <= 0) y0 -= std::max(0.5, std::abs(y0) * 0.1), y1 += std::max(0.5, std::abs(y1) * 0.1);
@@ -285,7 +290,7 @@ std::string series_svg(const Frame& f, const Series& s, const std::string& color
 
 // Series k's colour: its own, or the palette's.
 std::string color_of(const std::vector<Series>& series, size_t k) {
-  return series[k].color.empty() ? std::string(kPalette[k % 8]) : series[k].color;
+  return series[k].color.empty() ? std::string(kPalette[k % kPaletteSize]) : series[k].color;
 }
 
 // The legend below the plot, in the order the series were given.
@@ -302,7 +307,31 @@ std::string legend_svg(const Frame& f, const std::vector<Series>& series, const 
   return svg;
 }
 
+// The vertical marks, each labelled at the plot's top (a row further down
+// for each mark, so labels of close marks do not overlap), on the side
+// facing the plot's centre.
+std::string x_marks_svg(const Frame& f, const PlotOptions& o) {
+  std::string svg;
+  double row = 0;
+  for (const XMark& m : o.x_marks) {
+    if (!std::isfinite(m.x)) continue;
+    const double X = f.px(m.x);
+    svg += fmt::format("<line x1=\"{0:.2f}\" y1=\"{1:.1f}\" x2=\"{0:.2f}\" y2=\"{2:.1f}\" stroke=\"{3}\" "
+                       "stroke-width=\"1.5\"{4}/>\n",
+                       X, f.top, f.top + f.ph, m.color, m.dashed ? " stroke-dasharray=\"5,3\"" : "");
+    if (m.label.empty()) continue;
+    const bool right_half = X > f.left + f.pw / 2;
+    svg += fmt::format("<text x=\"{:.2f}\" y=\"{:.1f}\" text-anchor=\"{}\" fill=\"{}\" font-size=\"10\">{}</text>\n",
+                       X + (right_half ? -4.0 : 4.0), f.top + 12 + 12 * row, right_half ? "end" : "start", m.color,
+                       xml_escape(m.label));
+    row = row >= 4 ? 0 : row + 1;
+  }
+  return svg;
+}
+
 }  // namespace
+
+const char* palette_color(size_t k) { return kPalette[k % kPaletteSize]; }
 
 std::string svg_plot(const std::vector<Series>& series, const PlotOptions& o) {
   const Frame f = frame_of(series, o);
@@ -312,6 +341,7 @@ std::string svg_plot(const std::vector<Series>& series, const PlotOptions& o) {
     if (series[k].style == Series::Style::kBand) svg += series_svg(f, series[k], color_of(series, k));
   for (size_t k = 0; k < series.size(); ++k)
     if (series[k].style != Series::Style::kBand) svg += series_svg(f, series[k], color_of(series, k));
+  svg += x_marks_svg(f, o);
   svg += legend_svg(f, series, o);
   svg += "</svg>\n";
   return svg;

@@ -32,6 +32,14 @@ struct Series {
   std::vector<std::string> point_labels;
 };
 
+// A vertical line across the plot at x, labelled at its top (an alarm, an event).
+struct XMark {
+  double x = 0.0;
+  std::string label;
+  std::string color = "#d62728";
+  bool dashed = true;
+};
+
 struct PlotOptions {
   std::string title;
   std::string x_label;
@@ -43,6 +51,8 @@ struct PlotOptions {
   int height = 420;           // the plot; the legend below it adds its own height
   // Optional category labels for x = 0, 1, 2, ... (e.g. parameter names).
   std::vector<std::string> x_categories;
+  // Vertical marks drawn over the series (the x range includes them).
+  std::vector<XMark> x_marks;
 };
 
 // SVG text of a chart of the series.
@@ -57,6 +67,9 @@ PlotOptions workspace_plot(const std::string& title);
 // One SVG of several charts (svg_plot output) stacked top to bottom, as
 // panels sharing a caption; as wide as the widest.
 std::string svg_stack(const std::vector<std::string>& charts);
+
+// The palette's colour k (12 colours told apart also in print; k wraps).
+const char* palette_color(size_t k);
 
 // "Nice" tick positions covering [lo, hi], about `target` of them.
 std::vector<double> nice_ticks(double lo, double hi, int target);

@@ -4,6 +4,8 @@
 
 #include <fmt/format.h>
 
+#include "report/table_cell.hpp"
+
 namespace gpm::report {
 namespace {
 
@@ -16,7 +18,7 @@ bool is_main_run(const ZeroReport& z, const ZeroRun& r) {
 std::vector<std::string> run_cells(const ZeroReport& z, const ZeroRun& r) {
   const std::string start = r.start ? fmt::format("{:.2f}, {:.2f}", r.start->x(), r.start->y()) : "as found";
   std::string err = "unknown";
-  if (z.actual && r.ok) err = fmt::format("{:.2e}", (r.offsets - *z.actual).cwiseAbs().maxCoeff());
+  if (z.actual && r.ok) err = sig((r.offsets - *z.actual).cwiseAbs().maxCoeff() * 1e6, 3);
   return {r.label, r.method, start, r.initial.allFinite() ? zero_offsets_text(r.initial) : "-",
           r.ok ? zero_offsets_text(r.offsets) : "stopped: " + r.error, err, std::to_string(r.motions),
           std::to_string(r.circles), fmt::format("{:.1f}", r.robot_s), fmt::format("{:.1f}", r.wall_s)};
@@ -53,7 +55,7 @@ ReportDocument zero_report(const ZeroReport& z) {
   std::vector<std::vector<std::string>> table;
   for (const ZeroRun& r : z.runs) table.push_back(run_cells(z, r));
   d.table({"run", "method", "start (mm, commanded)", "initial estimate (rad)", "result (rad)",
-           "max error vs actual (rad)", "motions", "circles", "robot s", "wall s"},
+           "max error vs actual (µrad)", "motions", "circles", "robot s", "wall s"},
           table);
   add_spread(d, z);
   return d;

@@ -1,5 +1,6 @@
 #!/usr/bin/env bash
-# Screenshot of the main job's report for the README (docs/img/report.png):
+# Screenshot of the main job's report for the README (docs/img/report.png;
+# scripts/readme_pictures.sh runs it and records the figures it shows):
 # headless Chromium renders out/main/report.html (made by scripts/run.sh when
 # missing) in a 1000 px window, cropped to its first HEIGHT px (default 1500:
 # the accuracy and parameter tables). The PNG is written beside the target and

@@ -15,7 +15,7 @@ PACKAGES=(
   python3-scipy python3-numpy
   python3-dev pybind11-dev python3-pybind11 python3-pytest
   python3-distributed python3-dask python3-pandas python3-matplotlib  # gpm.study on Dask (python/README.md)
-  chromium  # headless browser: the report test (tests/report/test_html_in_browser.cpp), scripts/screenshot_report.sh
+  chromium  # headless browser: the report tests (tests/report/test_html_in_browser.cpp, test_report_screenshots.sh), scripts/readme_pictures.sh
 )
 
 missing=()

@@ -26,7 +26,7 @@ TEST(PaperReport, SummaryRowsAndNumberedReasons) {
   EXPECT_EQ(paper_reason_cell(p.tables[0], p.tables[0].rows[0]), "agrees");
   EXPECT_EQ(paper_reason_cell(p.tables[0], p.tables[0].rows[2]), "[1] paper mistake");
   const std::string md = paper_document(p).markdown();
-  EXPECT_NE(md.find("Budget 2e+04 error-function evaluations"), std::string::npos);
+  EXPECT_NE(md.find("Budget 20000 error-function evaluations"), std::string::npos);
   EXPECT_NE(md.find("| Table 2 | 3 | 1 | 2 paper mistake |"), std::string::npos);
   const std::string table =
       "| quantity | unit | paper | this run | actual | difference | why |\n"

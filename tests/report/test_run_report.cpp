@@ -1,12 +1,16 @@
-// Tests of report/run_report.cpp: the figures of a run report show what they
-// claim (every LM iteration, the Cramér-Rao bound as a band, the base joints
-// and home, a legend inside the figure) and units carry their symbols.
+// Tests of report/run_report.cpp: the lead sentence (before, after, at the
+// tool tip), the verdict with the model test in one voice, valid Markdown
+// tables and no Markdown in the HTML, iterations counted as the terminal
+// counts them; the figures show what they claim (every LM iteration, the
+// Cramér-Rao bound as a band, the base joints and home, a legend inside the
+// figure) and units carry their symbols.
 #include "report/run_report.hpp"
 
 #include <regex>
 
 #include <gtest/gtest.h>
 
+#include "report_text_checks.hpp"
 #include "run_report_fixture.hpp"
 
 namespace gpm::report {
@@ -111,6 +115,127 @@ TEST(RunReport, UnitsAreWrittenWithTheirSymbols) {
     EXPECT_NE(text.find("900 µrad at sample 17"), std::string::npos);
     EXPECT_FALSE(std::regex_search(text, std::regex("[0-9] ?u(m|rad)\\b"))) << "an ASCII unit after a number";
   }
+}
+
+// The Markdown's lead: the bold paragraph after the title.
+std::string lead(const std::string& md) {
+  const size_t a = md.find("\n\n**"), b = md.find("**\n", a + 4);
+  return a == std::string::npos || b == std::string::npos ? "" : md.substr(a + 4, b - a - 4);
+}
+
+// md with its no-break spaces (between a number and its unit) as spaces.
+std::string spaced(const std::string& md) { return std::regex_replace(md, std::regex("\u00a0"), " "); }
+
+TEST(RunReport, LeadsWithBeforeAndAfterAtTheToolTip) {
+  const RunReport o = testing::run_report_example();
+  const std::string md = spaced(build_run_report(o).markdown());
+  // 9681.94 µm -> 9.68 mm, 28.15 µm, 9681.94 / 28.15 = 343.9, 28.15 / 10.71 = 2.63; 8 test poses, 10.07 s.
+  EXPECT_EQ(lead(md),
+            "With its nominal model the robot's tool tip stood 9.68 mm from where it was sent (RMS over 8 test "
+            "poses); calibrated from 10 s of its own encoder readings (3000 samples), it stands 28.1 µm away: 344× "
+            "closer, and 2.63× the error of a controller that knew the true parameters (10.7 µm).");
+  EXPECT_EQ(md.rfind("# gpm run: example\n\n**With its nominal model", 0), 0u);  // the first paragraph
+  // The path against the static error, in one sentence.
+  EXPECT_NE(md.find("path RMS is the tool tip while it moves, where the drives' lag behind the moving target adds an "
+                    "error no calibration removes (the controller given the true parameters has a path RMS of 11.8 µm "
+                    "against 10.7 µm at rest)"),
+            std::string::npos);
+  RunReport refused = o;
+  refused.refused = "rank 10 of 11";
+  refused.calibration.reset();
+  EXPECT_EQ(lead(build_run_report(refused).markdown()).rfind("The calibration was refused", 0), 0u);
+  EXPECT_NE(build_run_report(o).markdown().find("9.68\u00a0mm"), std::string::npos) << "a line never starts with a unit";
+}
+
+TEST(RunReport, AFailedModelTestCoveredByTheStatedSigmaReadsAsSuch) {
+  RunReport o = testing::run_report_example();
+  for (RunCheck& c : o.checks) c.passed = true;
+  o.checks.push_back({"model_test", "chi2 2.844e+05 for 10058 degrees of freedom (fails; expected to fail)", true});
+  o.positioning_um = std::array<double, 4>{9.3, 20.1, 10.1, 0.92};
+  o.model_test->diagnosis = "model test failed (chi2 2.844e+05 for 10058 degrees of freedom, p = 0): residuals are "
+                            "5.32x the encoder noise throughout: an unmodelled effect; sample with the redundant joint "
+                            "torque-off, or model the effect";
+  o.calibration->notes.push_back(o.model_test->diagnosis);
+  const std::string md = spaced(build_run_report(o).markdown());
+  // sqrt(2.844e5 / 10058) = 5.318; chi2/dof 28.28.
+  EXPECT_NE(md.find("Verdict: passed: all 4 expectations of the scenario held. Model test: the readings scatter 5.32× "
+                    "the encoders' noise (χ²/dof 28.3, p < 0.001), more than noise alone explains, so the model "
+                    "leaves some effect out, as this scenario expects. The stated 1σ accounts for it: the calibrated "
+                    "model's positioning error is 0.92× its stated 1σ (1 is honest), so the result stands as stated."),
+            std::string::npos)
+      << md;
+  // The chi-square once, and no advice to do what the procedure already does.
+  EXPECT_EQ(count(md, std::regex("χ²|chi2 [0-9]")), 2u) << "the verdict and the expectation's detail";
+  EXPECT_EQ(md.find("sample with the redundant joint torque-off"), std::string::npos);
+  EXPECT_EQ(md.find("PASSED"), std::string::npos);
+
+  // Not covered: the stated 1-sigma understates the error and the cause is named, once.
+  o.positioning_um = std::array<double, 4>{30.0, 60.0, 10.0, 3.0};
+  const std::string bad = spaced(build_run_report(o).markdown());
+  EXPECT_NE(bad.find("The stated 1σ understates the error: the positioning error is 3.0× it. Likely cause: residuals are "
+                     "5.32× the encoder noise throughout"),
+            std::string::npos)
+      << bad;
+  EXPECT_EQ(count(bad, std::regex("χ²|chi2 [0-9]")), 2u);
+
+  o.model_test->passed = true;
+  EXPECT_NE(build_run_report(o).markdown().find("Model test passed: the readings scatter no more than the encoders' "
+                                                 "noise explains (χ²/dof 28.3, p < 0.001)."),
+            std::string::npos);
+}
+
+TEST(RunReport, EveryTableIsValidMarkdownAndNoMarkdownLeaksIntoHtml) {
+  RunReport o = testing::run_report_example();
+  o.positioning_um = std::array<double, 4>{9.3, 20.1, 10.1, 0.92};
+  const ReportDocument d = build_run_report(o);
+  int tables = 0;
+  const auto errors = testing::markdown_table_errors(d.markdown(), &tables);
+  EXPECT_TRUE(errors.empty()) << errors.front();
+  EXPECT_EQ(tables, 4);  // accuracy, parameters, diagnostics, expectations
+  EXPECT_NE(d.markdown().find("| parameter | nominal | actual | estimated | 1σ | error | CRB σ | \\|error\\| / CRB σ |"),
+            std::string::npos);
+  const auto leaks = testing::leaked_markdown(d.html("example"));
+  EXPECT_TRUE(leaks.empty()) << leaks.front();
+  // The note's C exponents as powers of ten; the method in words.
+  EXPECT_NE(d.markdown().find("latch skew s2 -5.53×10⁻⁵ s"), std::string::npos);
+  EXPECT_NE(d.markdown().find("Levenberg-Marquardt on the maximum-likelihood residual from 3000 encoder samples"),
+            std::string::npos);
+  EXPECT_EQ(d.markdown().find("lm on ml"), std::string::npos);
+}
+
+TEST(RunReport, ParameterCellsCarryTheirUnitAndTheDigitsTheirSigmaSupports) {
+  const RunReport o = testing::run_report_example();
+  const std::string md = spaced(build_run_report(o).markdown());
+  // la1: actual 244.5 mm, 1-sigma 1e-3 mm -> 4 decimals; estimate -2.5 sigma off; CRB 0.8 sigma.
+  EXPECT_NE(md.find("| la1 (mm) | 244 | 244.5000 | 244.4975 | 1.0 µm | -2.5 µm | 0.80 µm | 3.1 |"),
+            std::string::npos)
+      << md;
+  // dth1: 1-sigma 2e-6 rad -> 7 decimals, spreads in µrad.
+  EXPECT_NE(md.find("| dth1 (rad) | 0 | 0.0100000 | 0.0099950 | 2.0 µrad | -5.0 µrad | 1.6 µrad | 3.1 |"),
+            std::string::npos);
+  EXPECT_NE(md.find("| xa1 (mm) | 0 | 0 | 0 | fixed | - | - | - |"), std::string::npos);
+}
+
+TEST(RunReport, IterationsAreCountedAsTheTerminalCountsThem) {
+  // Three passes (each restarts with an entry that tries no step): the
+  // terminal prints the last pass's iterations, the report says so.
+  RunReport o = testing::run_report_example();
+  std::vector<RunLmIteration> all;
+  for (int pass = 0; pass < 3; ++pass)
+    for (RunLmIteration it : testing::lm_record(pass == 2 ? 4 : 12, pass == 2 ? std::vector<int>{} : std::vector<int>{3, 6})) {
+      it.iteration += all.empty() ? 0 : all.back().iteration + 1;
+      all.push_back(it);
+    }
+  o.calibration->lm_iterations = all;
+  o.calibration->iterations = 4;  // Ceres: the last pass's steps
+  const ReportDocument d = build_run_report(o);
+  const std::string text = "28 iterations in 3 passes (4 in the last)";  // 12 + 12 + 4 steps
+  EXPECT_NE(figure(d, "convergence.svg").find("Levenberg-Marquardt: " + text), std::string::npos);
+  EXPECT_NE(d.markdown().find("| " + text + " |"), std::string::npos);
+  o.calibration->lm_iterations = testing::lm_record(12);
+  o.calibration->iterations = 12;
+  EXPECT_NE(figure(build_run_report(o), "convergence.svg").find("Levenberg-Marquardt: 12 iterations<"),
+            std::string::npos);
 }
 
 }  // namespace
