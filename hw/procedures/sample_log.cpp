@@ -15,7 +15,9 @@
 #include <fmt/format.h>
 
 #include "hw/hw_errors.hpp"
+#include "models/bounds.hpp"
 #include "models/errors.hpp"
+#include "models/measured_data.hpp"
 #include "models/robot_yaml.hpp"
 #include "models/samples.hpp"
 #include "models/yaml_util.hpp"
@@ -23,7 +25,8 @@
 namespace gpm::hw {
 namespace {
 
-constexpr const char* kHeader = "sample,theta_m1,theta_m2,theta_m3,target_x,target_y\n";
+// The header line (models/measured_data.hpp: how any output knows a sampling log).
+const std::string kHeader = std::string(kSamplingLogHeader) + "\n";
 
 // Writes text whole; a regular file is then flushed to disk (fsync), a device
 // or FIFO written in place is not (it cannot be).
@@ -104,34 +107,54 @@ void SampleLog::open_in_place(const struct stat& st, bool resume) {
   }
 }
 
-void SampleLog::read_existing(bool resume) {
-  const std::string& path = path_;
+namespace {
+
+// The whole file open on fd, at most limits::kMaxCsvBytes (as every samples
+// reader, models/bounds.hpp); throws InputError naming path otherwise.
+std::string read_bounded(int fd, const std::string& path) {
   std::string text;
   char buf[65536];
-  for (;;) {
-    const ssize_t n = ::pread(fd_, buf, sizeof buf, static_cast<off_t>(text.size()));
+  while (text.size() <= limits::kMaxCsvBytes) {
+    const ssize_t n = ::pread(fd, buf, sizeof buf, static_cast<off_t>(text.size()));
     if (n < 0 && errno == EINTR) continue;
     if (n < 0) throw InputError(fmt::format("{}: cannot read: {}", path, std::strerror(errno)));
     if (n == 0) break;
     text.append(buf, static_cast<size_t>(n));
   }
-  const size_t first_line = text.find('\n');
-  const bool has_rows = first_line != std::string::npos && first_line + 1 < text.size();
-  if (has_rows && !resume) {
+  if (text.size() > limits::kMaxCsvBytes)
+    throw InputError(fmt::format("{}: larger than {} MiB, the limit of a samples file (is it the right file?)", path,
+                                 limits::kMaxCsvBytes >> 20));
+  return text;
+}
+
+}  // namespace
+
+void SampleLog::read_existing(bool resume) {
+  const std::string& path = path_;
+  std::string text = read_bounded(fd_, path);
+  // Nothing is changed in the file before it is known to be a sampling log
+  // whose rows are read: another file is refused as it is.
+  if (kHeader.compare(0, text.size(), text) == 0) {
+    // Empty, or a header begun or written (a session stopped before its
+    // first sample): no measurement; started again.
+    if (text.size() == kHeader.size()) return;
+    if (::ftruncate(fd_, 0) != 0) throw InputError(fmt::format("{}: cannot start it again: {}", path, std::strerror(errno)));
+    write_all(fd_, kHeader, path, true);
+    return;
+  }
+  if (text.compare(0, kHeader.size(), kHeader) != 0) {
+    throw InputError(fmt::format("{}: exists and is not a samples log (its first line is not {}): it is left as it "
+                                 "is; choose another output file",
+                                 path, kSamplingLogHeader));
+  }
+  if (!resume) {
     throw InputError(fmt::format("{}: file exists (it may hold measurements): pass --resume to "
                                  "continue it, or choose another output file",
                                  path));
   }
-  if (!text.empty() && text.back() != '\n') {
-    // A torn last line (crash while writing): drop it, keep the rest.
-    text.erase(text.rfind('\n') == std::string::npos ? 0 : text.rfind('\n') + 1);
-    if (::ftruncate(fd_, static_cast<off_t>(text.size())) != 0)
-      throw InputError(fmt::format("{}: cannot drop the torn last line: {}", path, std::strerror(errno)));
-  }
-  if (text.empty()) {
-    write_all(fd_, kHeader, path, true);  // a file without measurements: start it again
-    return;
-  }
+  // A torn last line (crash while writing) is dropped once the rest is read.
+  const size_t read = text.size(), kept = text.rfind('\n') + 1;
+  text.resize(kept);
   const Samples s = parse_samples_csv(text, path);
   // The commanded targets (target_x, target_y: not read by the samples parser,
   // which takes true positions x, y), row by row in file order.
@@ -172,6 +195,8 @@ void SampleLog::read_existing(bool resume) {
     }
     recorded_[s.id[j]] = r;
   }
+  if (kept != read && ::ftruncate(fd_, static_cast<off_t>(kept)) != 0)
+    throw InputError(fmt::format("{}: cannot drop the torn last line: {}", path, std::strerror(errno)));
 }
 
 SampleLog::~SampleLog() {

@@ -25,11 +25,13 @@ class SampleLog {
   };
 
   // Opens path for appending and holds an exclusive lock (flock) on it while
-  // open: a second log on the same file is refused (InputError). Without
-  // resume a file holding measurements is refused (InputError: never
-  // overwrite them); a file without any row is started again. With resume its
-  // complete rows are kept (a torn last line from a crash is dropped) and
-  // their ids skipped; an id found twice is refused. A file that does not
+  // open: a second log on the same file is refused (InputError). An existing
+  // file is read (at most limits::kMaxCsvBytes) and left as it is unless it is
+  // a sampling log (first line kSamplingLogHeader, models/measured_data.hpp):
+  // an empty file or a header alone is started again; without resume a log
+  // holding rows is refused (InputError: never overwrite them). With resume
+  // its complete rows are kept (a torn last line from a crash is dropped once
+  // the rest is read) and their ids skipped; an id found twice is refused. A file that does not
   // exist is created by the first append, so a session that records nothing
   // leaves no file. An existing device or FIFO is written in place (the
   // output policy): the header at once (a refusal here, before anything
