@@ -65,7 +65,8 @@ SampleLog::SampleLog(const std::string& path, bool resume) : path_(path) {
   fd_ = ::open(path.c_str(), O_RDWR | O_APPEND | O_CLOEXEC);
   if (fd_ < 0) {
     if (errno != ENOENT) throw InputError(fmt::format("{}: cannot open: {}", path, std::strerror(errno)));
-    return;  // created with the first sample: a session that takes none leaves no file
+    create_now();
+    return;
   }
   lock_or_refuse(fd_, path);
   try {
@@ -74,6 +75,23 @@ SampleLog::SampleLog(const std::string& path, bool resume) : path_(path) {
     ::close(fd_);
     fd_ = -1;
     throw;
+  }
+}
+
+void SampleLog::create_now() {
+  // Created with its header before anything moves: a folder that cannot be
+  // written (read-only, full, missing) is refused here, not after the first
+  // motion; the file is removed again if no sample is recorded.
+  const int fd = ::open(path_.c_str(), O_RDWR | O_APPEND | O_CREAT | O_EXCL | O_CLOEXEC, 0644);
+  if (fd < 0) throw InputError(fmt::format("{}: cannot create: {}", path_, std::strerror(errno)));
+  lock_or_refuse(fd, path_);  // closes fd when it throws
+  fd_ = fd;
+  created_ = true;
+  try {
+    write_all(fd_, kHeader, path_, true);
+  } catch (const HardwareError& e) {
+    close_and_discard_if_empty();
+    throw InputError(e.what());
   }
 }
 
@@ -200,19 +218,12 @@ void SampleLog::read_existing(bool resume) {
 }
 
 SampleLog::~SampleLog() {
-  if (fd_ >= 0) ::close(fd_);
+  if (!closed_) close_and_discard_if_empty();
 }
 
 void SampleLog::append(long id, const Eigen::Vector3d& q, const Eigen::Vector2d& target) {
   if (closed_) throw HardwareError(fmt::format("{}: sample log is closed", path_));
-  if (fd_ < 0) {  // the first sample creates the file (never over one that appeared meanwhile)
-    const int fd = ::open(path_.c_str(), O_RDWR | O_APPEND | O_CREAT | O_EXCL | O_CLOEXEC, 0644);
-    if (fd < 0) throw HardwareError(fmt::format("{}: cannot create: {}", path_, std::strerror(errno)));
-    lock_or_refuse(fd, path_);  // closes fd when it throws
-    fd_ = fd;
-    created_ = true;
-    write_all(fd_, kHeader, path_, true);
-  }
+  if (fd_ < 0) throw HardwareError(fmt::format("{}: sample log is not open", path_));
   write_all(fd_,
             fmt::format("{},{},{},{},{},{}\n", id, format_exact(q[0]), format_exact(q[1]),
                         format_exact(q[2]), format_exact(target.x()), format_exact(target.y())),

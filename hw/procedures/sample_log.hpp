@@ -32,8 +32,10 @@ class SampleLog {
   // holding rows is refused (InputError: never overwrite them). With resume
   // its complete rows are kept (a torn last line from a crash is dropped once
   // the rest is read) and their ids skipped; an id found twice is refused. A file that does not
-  // exist is created by the first append, so a session that records nothing
-  // leaves no file. An existing device or FIFO is written in place (the
+  // exist is created with its header at once (InputError when it cannot be:
+  // refused before anything moves) and removed again when the log is closed
+  // or destroyed without a sample, so a session that records nothing leaves
+  // no file. An existing device or FIFO is written in place (the
   // output policy): the header at once (a refusal here, before anything
   // moves), no lock, no fsync, no resume; a folder or socket is refused.
   SampleLog(const std::string& path, bool resume);
@@ -47,7 +49,8 @@ class SampleLog {
   size_t size() const { return ids_.size(); }
   // Appends one sample and flushes it to disk; throws HardwareError if it cannot.
   void append(long id, const Eigen::Vector3d& theta_m, const Eigen::Vector2d& target);
-  // Closes the file; removes it if this log created it and it holds no sample.
+  // Closes the file; removes it if this log created it and it holds no
+  // sample (the destructor does the same).
   void close_and_discard_if_empty();
   const std::string& path() const { return path_; }
   // The rows of the file by id: those found when it was opened and those
@@ -57,6 +60,8 @@ class SampleLog {
  private:
   // Reads the rows of the file open on fd_ (locked), see the constructor.
   void read_existing(bool resume);
+  // Creates the file with its header and locks it (see the constructor).
+  void create_now();
   // Opens the device or FIFO st describes for writing in place.
   void open_in_place(const struct stat& st, bool resume);
 

@@ -67,7 +67,7 @@ cp -a "$D" "$tmp/D2" && tail -n 1 "$tmp/measured.csv" >>"$tmp/D2/samples.csv"
 head -n 3 "$tmp/measured.csv" >"$tmp/dup.csv" && sed -n 3p "$tmp/measured.csv" >>"$tmp/dup.csv"
 # F: an output folder whose files are also inputs.
 F="$tmp/F"; mkdir "$F"
-cp "$tmp/measured.csv" "$F/samples.csv"
+"$GPM" study samples --n 12 -o "$F/samples.csv" >/dev/null  # a simulation's samples, not measured
 cp "$tmp/sim.yaml" "$F/actual.yaml"
 for f in estimates.csv report.md offsets.yaml calibration.yaml summary.json; do cp "$SRC/models/gpm2002.yaml" "$F/$f"; done
 sed "s|^robot: .*|robot: $F/calibration.yaml|" "$tmp/hwrun.yaml" >"$tmp/robotF.yaml"
@@ -108,14 +108,15 @@ resume a file with an id twice         |2| sample 19 appears twice              
 sample --resume with an id twice       |2| sample 1 appears twice                      | $tmp/dup.csv | "$GPM" sample --hardware "$tmp/twin.yaml" --poses "$tmp/poses2.yaml" -o "$tmp/dup.csv" --resume
 bad hardware file                      |2| 'nonsense' is not a backend                 | - | "$GPM" run "$tmp/hwrun.yaml" -o "$tmp/NEW" --hardware "$tmp/bad.yaml"
 # 2b: a gpm sample log is measured data wherever it lies: never replaced, only resumed
-simulate over a gpm sample log         |2| holds measured samples (a hardware sampling log | $tmp/S/samples.csv | "$GPM" simulate "$tmp/sim.yaml" -o "$tmp/S"
-run over a gpm sample log              |2| holds measured samples (a hardware sampling log | $tmp/S/samples.csv | "$GPM" run "$tmp/hwrun.yaml" -o "$tmp/S"
-study samples over a gpm sample log    |2| holds measured samples (a hardware sampling log | $tmp/S/samples.csv | "$GPM" study samples --n 12 -o "$tmp/S/samples.csv"
-calibrate over a gpm sample log        |2| holds measured samples (a hardware sampling log | $tmp/S/samples.csv | "$GPM" calibrate --data "$tmp/measured.csv" -o "$tmp/S/samples.csv"
+simulate over a gpm sample log         |2| a hardware sampling log: first line      | $tmp/S/samples.csv | "$GPM" simulate "$tmp/sim.yaml" -o "$tmp/S"
+run over a gpm sample log              |2| a hardware sampling log: first line      | $tmp/S/samples.csv | "$GPM" run "$tmp/hwrun.yaml" -o "$tmp/S"
+study samples over a gpm sample log    |2| a hardware sampling log: first line      | $tmp/S/samples.csv | "$GPM" study samples --n 12 -o "$tmp/S/samples.csv"
+calibrate over a gpm sample log        |2| a hardware sampling log: first line      | $tmp/S/samples.csv | "$GPM" calibrate --data "$tmp/measured.csv" -o "$tmp/S/samples.csv"
 hardware run over a gpm sample log     |2| no hardware session recorded it             | $tmp/S/samples.csv | "$GPM" run "$tmp/hwrun.yaml" -o "$tmp/S" --hardware "$tmp/twin.yaml"
 a second gpm sample without --resume   |2| pass --resume to continue it                | $tmp/S/samples.csv | "$GPM" sample --hardware "$tmp/twin.yaml" --poses "$tmp/poses2.yaml" -o "$tmp/S/samples.csv"
 sample into a file that is no log      |2| is not a samples log                        | $tmp/notes.txt | "$GPM" sample --hardware "$tmp/twin.yaml" --poses "$tmp/poses2.yaml" -o "$tmp/notes.txt"
 sample --resume a file that is no log  |2| is not a samples log                        | $tmp/ab.csv | "$GPM" sample --hardware "$tmp/twin.yaml" --poses "$tmp/poses2.yaml" -o "$tmp/ab.csv" --resume
+sample into a missing folder           |2| nodir/x.csv: cannot create                  | - | "$GPM" sample --hardware "$tmp/twin.yaml" --poses "$tmp/poses2.yaml" -o "$tmp/nodir/x.csv"
 the log's session resumes it           |0|                                             | - | "$GPM" sample --hardware "$tmp/twin.yaml" --poses "$tmp/poses2.yaml" -o "$tmp/S/samples.csv" --resume
 # 3: an input that is also an output, found by file identity before any work
 simulate D/samples.csv -o D            |2| samples.csv: is also an input               | $F/samples.csv | "$GPM" simulate "$F/samples.csv" -o "$F"

@@ -141,6 +141,22 @@ TEST(SampleLog, AnotherFileIsLeftAsItIs) {
   EXPECT_EQ(test::read_text(path), "sample,theta_m1,theta_m2,theta_m3,target_x,target_y\n");
 }
 
+// A log that cannot be created (missing folder; a read-only or full one
+// alike) is refused when it is opened, before a session moves anything (the
+// file used to be created by the first sample, after the first motion).
+TEST(SampleLog, AFileThatCannotBeCreatedIsRefusedAtOnce) {
+  const test::TempDir dir("log_missing");
+  const auto path = (dir / "no_such_folder" / "s.csv").string();
+  EXPECT_NE(error_of(path, false).find("no_such_folder/s.csv: cannot create: No such file or directory"),
+            std::string::npos);
+  const auto made = (dir / "s.csv").string();
+  {
+    SampleLog log(made, false);
+    EXPECT_EQ(test::read_text(made), "sample,theta_m1,theta_m2,theta_m3,target_x,target_y\n");  // made at once
+  }
+  EXPECT_FALSE(std::filesystem::exists(made));  // and removed: nothing was recorded
+}
+
 // A resumed log is read with the bound of every samples reader (64 MiB,
 // models/bounds.hpp): a larger one is refused and left as it is.
 TEST(SampleLog, ResumeIsBoundedLikeEverySamplesReader) {
