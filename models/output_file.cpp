@@ -99,19 +99,6 @@ void write_text(const std::string& file, const std::string& text, const std::str
   if (!out) throw InputError(fmt::format("{}: write failed (disk full?)", given));
 }
 
-// A FIFO nobody reads would block the writer's open(2) forever: refused at
-// once (opening it without blocking fails with ENXIO then).
-void refuse_fifo_without_reader(const std::string& fifo, const std::string& given) {
-  const int fd = ::open(fifo.c_str(), O_WRONLY | O_NONBLOCK | O_CLOEXEC);
-  if (fd >= 0) {
-    ::close(fd);
-    return;
-  }
-  const int err = errno;
-  throw InputError(fmt::format("{}: cannot write: {}", given,
-                               err == ENXIO ? "no process reads this FIFO" : reason(err)));
-}
-
 extern "C" void on_signal(int) {
   remove_registered_temporaries();
   static const char msg[] = "gpm: interrupted\n";
@@ -235,7 +222,6 @@ OutputFile::OutputFile(const std::string& path, const std::vector<std::string>& 
     if (S_ISDIR(st.st_mode)) throw InputError(fmt::format("{}: is a folder, not a file name", path));
     if (S_ISSOCK(st.st_mode)) throw InputError(fmt::format("{}: is a socket, not a file", path));
     if (!S_ISREG(st.st_mode)) {  // device or FIFO: written in place, never replaced
-      if (S_ISFIFO(st.st_mode)) refuse_fifo_without_reader(target_, path);
       in_place_ = true;
       write_path_ = target_;
       return;

@@ -131,7 +131,6 @@ sample to /dev/null                    |0|                                      
 sample to /dev/full                    |2| /dev/full: write failed: No space left      | - | "$GPM" sample --hardware "$tmp/twin.yaml" --poses "$tmp/poses2.yaml" -o /dev/full
 sample --resume to a device            |2| is a device or FIFO                         | - | "$GPM" sample --hardware "$tmp/twin.yaml" --poses "$tmp/poses2.yaml" -o /dev/null --resume
 sample to a FIFO nobody reads          |2| no process reads this FIFO                  | - | "$GPM" sample --hardware "$tmp/twin.yaml" --poses "$tmp/poses2.yaml" -o "$tmp/fifo"
-study samples to a FIFO nobody reads   |2| no process reads this FIFO                  | - | timeout 60 "$GPM" study samples --n 12 -o "$tmp/fifo"
 # 7: everything a command will command is checked before the first motion
 monitor --hardware, path outside       |2| operation.path is outside the safety limits | - | "$GPM" monitor "$tmp/opfar.yaml" --hardware "$tmp/twin.yaml" -o "$tmp/M"
 zero, a --start outside the limits     |2| is outside the safety limits                | - | "$GPM" zero --hardware "$tmp/twin.yaml" --start 219.5,252.5 --start 330,250 -o "$tmp/Z"

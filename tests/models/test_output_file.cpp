@@ -111,21 +111,6 @@ TEST(OutputFile, FifoIsWrittenInPlace) {
   EXPECT_TRUE(S_ISFIFO(st.st_mode));
 }
 
-// A FIFO nobody reads: refused at once with one line (the writer's open(2)
-// used to wait for a reader forever).
-TEST(OutputFile, FifoNobodyReadsIsRefusedAtOnce) {
-  const TempDir d("fifo_noreader");
-  const std::string f = d / "pipe";
-  ASSERT_EQ(::mkfifo(f.c_str(), 0600), 0);
-  std::string why;
-  try {
-    write_output_file(f, "nobody reads this");
-  } catch (const InputError& e) {
-    why = e.what();
-  }
-  EXPECT_NE(why.find("pipe: cannot write: no process reads this FIFO"), std::string::npos) << why;
-}
-
 TEST(OutputFile, SymlinkIsFollowedNotReplaced) {
   const TempDir d("link");
   fs::create_directories(d.path / "sub");
