@@ -128,7 +128,7 @@ void add_run(CLI::App& app) {
       hw::load_hardware_config(*spec.hardware);
       measured.emplace(opt->out, "gpm run --hardware", "samples.csv");
     } else {
-      check_output_folder(opt->out, {});  // not a file, not a hardware session's folder
+      check_output_folder(opt->out, scenario::run_output_names());  // not a file, no measured folder nor log
     }
     const std::string samples_path = measured ? measured->samples_path() : std::string();
     const bool show = !opt->quiet && ::isatty(STDERR_FILENO);

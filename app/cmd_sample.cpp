@@ -30,9 +30,10 @@ void run_sample(const SampleArgs& a) {
     throw InputError("gpm sample: give exactly one of --poses POSES.yaml or --scenario S.yaml");
   }
   // Never one of the inputs, nor the samples file of a gpm run --hardware
-  // folder (models/measured_data.hpp), before anything is read.
+  // folder (models/measured_data.hpp), before anything is read; a sampling
+  // log is continued by hw::SampleLog's rules (--resume, one session at a time).
   declare_output(a.out);
-  refuse_measured_file(a.out);
+  refuse_measured_file(a.out, nullptr, /*sampling_session=*/true);
   const hw::HardwareConfig config = hw::load_hardware_config(a.hardware);
   hw::SessionPlan plan = a.poses.empty() ? hw::plan_from_scenario(a.scenario) : hw::load_poses_plan(a.poses);
   plan.modes = config.modes;

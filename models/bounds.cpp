@@ -1,10 +1,14 @@
 // Documented ranges of user numbers and input file sizes (models/bounds.hpp).
 #include "models/bounds.hpp"
 
+#include <fcntl.h>
+#include <sys/stat.h>
+#include <unistd.h>
+
+#include <cerrno>
 #include <charconv>
 #include <cmath>
-#include <filesystem>
-#include <fstream>
+#include <cstring>
 
 #include <fmt/format.h>
 
@@ -13,6 +17,15 @@
 
 namespace gpm {
 namespace {
+
+// What a file that is not a regular one is, for messages.
+const char* file_kind(mode_t mode) {
+  if (S_ISFIFO(mode)) return "a FIFO (named pipe)";
+  if (S_ISCHR(mode)) return "a character device";
+  if (S_ISBLK(mode)) return "a block device";
+  if (S_ISSOCK(mode)) return "a socket";
+  return "a special file";
+}
 
 // A limit as a reader writes it: 2000, 1e10, 9007199254740992, 1e-12.
 std::string limit_text(double x) {
@@ -92,20 +105,33 @@ std::vector<std::string> split_unique_list(std::string_view list, std::string_vi
 }
 
 std::string read_input_file(const std::string& path, std::size_t max_bytes) {
-  std::error_code ec;
-  if (std::filesystem::is_directory(path, ec)) {
-    throw InputError(fmt::format("{}: is a folder, not a file", path));
+  // Opened without blocking: a FIFO with no writer would wait forever in
+  // open(2); it is refused below, as is every other non-regular file.
+  const int fd = ::open(path.c_str(), O_RDONLY | O_NONBLOCK | O_CLOEXEC);
+  if (fd < 0) throw InputError(fmt::format("{}: cannot open file (does it exist and is it readable?)", path));
+  struct stat st {};
+  if (::fstat(fd, &st) != 0 || !S_ISREG(st.st_mode)) {
+    ::close(fd);
+    if (S_ISDIR(st.st_mode)) throw InputError(fmt::format("{}: is a folder, not a file", path));
+    throw InputError(fmt::format("{}: is {}, not a regular file (inputs are read from files); give the file itself",
+                                 path, file_kind(st.st_mode)));
   }
-  std::ifstream in(path, std::ios::binary);
-  if (!in) throw InputError(fmt::format("{}: cannot open file (does it exist and is it readable?)", path));
-  // Read in chunks up to one byte past the limit: an endless device
-  // (/dev/zero) or a huge file is refused without being held in memory.
+  // Read in chunks up to one byte past the limit: a file that grows while it
+  // is read is refused without being held in memory.
   std::string text;
   char chunk[65536];
-  while (in && text.size() <= max_bytes) {
-    in.read(chunk, sizeof chunk);
-    text.append(chunk, static_cast<std::size_t>(in.gcount()));
+  while (text.size() <= max_bytes) {
+    const ssize_t n = ::read(fd, chunk, sizeof chunk);
+    if (n < 0 && errno == EINTR) continue;
+    if (n < 0) {
+      const int err = errno;
+      ::close(fd);
+      throw InputError(fmt::format("{}: cannot read: {}", path, std::strerror(err)));
+    }
+    if (n == 0) break;
+    text.append(chunk, static_cast<std::size_t>(n));
   }
+  ::close(fd);
   if (text.size() > max_bytes) {
     throw InputError(fmt::format("{}: larger than {} MiB, the limit for this kind of file (is it the right file?)",
                                  path, max_bytes >> 20));

@@ -87,9 +87,10 @@ double yaml_within(const YAML::Node& node, const std::string& file, std::string_
 // (items I and J); give each once" (issue 36.12).
 std::vector<std::string> split_unique_list(std::string_view list, std::string_view where);
 
-// The content of a file given as input, at most max_bytes: throws InputError
-// "FILE: ..." when it cannot be opened, is a folder, or holds more (a device
-// such as /dev/zero is refused once max_bytes have been read).
+// The content of a regular file given as input, at most max_bytes: throws
+// InputError "FILE: ..." when it cannot be opened, is a folder, a FIFO, a
+// device or a socket (opened without blocking: a FIFO without a writer is
+// refused at once), or holds more.
 std::string read_input_file(const std::string& path, std::size_t max_bytes);
 
 }  // namespace gpm

@@ -170,7 +170,24 @@ void refuse_measured_folder(const std::string& dir, const MeasuredFolder* owner)
   if (const std::optional<Marker> m = read_marker(dir)) throw InputError(refusal(dir, *m));
 }
 
-void refuse_measured_file(const std::string& path, const MeasuredFolder* owner) {
+bool is_sampling_log(const std::string& path) {
+  const int fd = ::open(path.c_str(), O_RDONLY | O_NONBLOCK | O_CLOEXEC);
+  if (fd < 0) return false;
+  struct stat st {};
+  char buf[512] = {};
+  ssize_t n = 0;
+  if (::fstat(fd, &st) == 0 && S_ISREG(st.st_mode)) n = ::pread(fd, buf, sizeof buf, 0);
+  ::close(fd);
+  const std::string head(buf, n > 0 ? static_cast<size_t>(n) : 0);
+  const size_t eol = head.find('\n');
+  if (eol == std::string::npos || static_cast<size_t>(st.st_size) <= eol + 1) return false;  // no row after it
+  std::string line = head.substr(0, eol);
+  if (!line.empty() && line.back() == '\r') line.pop_back();
+  const std::string at_rest = kSamplingLogHeader;
+  return line == at_rest || line == at_rest + kSamplingLogOnTheFlyColumns;
+}
+
+void refuse_measured_file(const std::string& path, const MeasuredFolder* owner, bool sampling_session) {
   std::error_code ec;
   fs::path p = fs::weakly_canonical(fs::path(path), ec);
   if (ec) p = fs::path(path);
@@ -181,6 +198,10 @@ void refuse_measured_file(const std::string& path, const MeasuredFolder* owner) 
     throw InputError(fmt::format("{}: is the measured samples file of {} ({} session, {}): it is never replaced, "
                                  "and only that session continues it (--resume); choose another output",
                                  path, dir, m->kind, marker_path(dir)));
+  if (!sampling_session && is_sampling_log(p.string()))
+    throw InputError(fmt::format("{}: holds measured samples (a hardware sampling log: first line {}): it is never "
+                                 "replaced, only gpm sample --resume continues it; choose another output",
+                                 path, kSamplingLogHeader));
 }
 
 }  // namespace gpm

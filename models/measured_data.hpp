@@ -10,7 +10,12 @@
 //   (OutputFolder, check_output_folder), its samples file is never replaced
 //   (OutputFile) nor appended by another session (gpm sample); only a session
 //   of the same kind, with --resume, continues it, and never two at once.
-// Every refusal is one InputError line naming the folder.
+// - A hardware sampling log (gpm sample -o FILE, wherever FILE lies) is
+//   known by its first line (kSamplingLogHeader): once it holds a row it is
+//   never replaced by an output of any command (OutputFile, OutputFolder,
+//   check_output_folder); only a sampling session appends to it (hw::SampleLog:
+//   with --resume, one at a time).
+// Every refusal is one InputError line naming the folder or file.
 #pragma once
 
 #include <string>
@@ -19,6 +24,12 @@ namespace gpm {
 
 // The marker's file name inside a folder holding measured samples.
 inline constexpr const char* kMeasuredMarker = ".gpm-measured";
+// The first line of a hardware sampling log (hw/procedures/sample_log.hpp);
+// a log of samples taken on the fly continues it with
+// kSamplingLogOnTheFlyColumns.
+inline constexpr const char* kSamplingLogHeader = "sample,theta_m1,theta_m2,theta_m3,target_x,target_y";
+inline constexpr const char* kSamplingLogOnTheFlyColumns =
+    ",tau1,tau2,tau3,tau_last1,tau_last2,tau_last3,tau_between1,tau_between2,tau_between3,t_read1,t_read2,t_read3,t";
 
 class MeasuredFolder {
  public:
@@ -53,8 +64,17 @@ class MeasuredFolder {
 // "DIR: a hardware session is recording into this folder now ...".
 void refuse_measured_folder(const std::string& dir, const MeasuredFolder* owner = nullptr);
 
+// True when path (links followed) is a regular file whose first line is
+// kSamplingLogHeader (alone or continued by kSamplingLogOnTheFlyColumns) and
+// which holds more than that line: measured samples.
+bool is_sampling_log(const std::string& path);
+
 // Throws InputError when path is the samples file named by the marker of its
-// folder (links followed) and owner is not that folder's session.
-void refuse_measured_file(const std::string& path, const MeasuredFolder* owner = nullptr);
+// folder (links followed) and owner is not that folder's session, or, unless
+// sampling_session (the caller appends to a log by hw::SampleLog's rules), when
+// path is a sampling log holding samples (is_sampling_log) and owner does not
+// hold its folder.
+void refuse_measured_file(const std::string& path, const MeasuredFolder* owner = nullptr,
+                          bool sampling_session = false);
 
 }  // namespace gpm

@@ -205,7 +205,10 @@ void check_output_folder(const std::string& dir, const std::vector<std::string>&
   if (fs::exists(dir, ec) && !fs::is_directory(dir, ec))
     throw InputError(fmt::format("{}: exists and is not a folder", dir));
   refuse_measured_folder(dir, owner);
-  for (const std::string& n : names) declare_output((fs::path(dir) / n).string());
+  for (const std::string& n : names) {
+    declare_output((fs::path(dir) / n).string());
+    refuse_measured_file((fs::path(dir) / n).string(), owner);  // e.g. a gpm sample log named DIR/samples.csv
+  }
 }
 
 OutputFile::OutputFile(const std::string& path, const std::vector<std::string>& inputs) : path_(path) {
@@ -351,6 +354,7 @@ std::string OutputFolder::staged_path(const std::string& name) {
   for (const std::string& n : names_)
     if (n == name) return p;
   declare_output((fs::path(dir_) / name).string());  // against the inputs tracked, before it is written
+  refuse_measured_file((fs::path(target_) / name).string(), owner_);  // a sampling log there is never replaced
   names_.push_back(name);
   register_temporary(p);
   return p;

@@ -15,7 +15,9 @@
 #include <fmt/format.h>
 
 #include "hw/hw_errors.hpp"
+#include "models/bounds.hpp"
 #include "models/errors.hpp"
+#include "models/measured_data.hpp"
 #include "models/robot_yaml.hpp"
 #include "models/samples.hpp"
 #include "models/yaml_util.hpp"
@@ -23,16 +25,26 @@
 namespace gpm::hw {
 namespace {
 
-constexpr const char* kHeaderAtRest = "sample,theta_m1,theta_m2,theta_m3,target_x,target_y\n";
-constexpr const char* kHeaderOnTheFly =
-    "sample,theta_m1,theta_m2,theta_m3,target_x,target_y,tau1,tau2,tau3,tau_last1,tau_last2,tau_last3,"
-    "tau_between1,tau_between2,tau_between3,t_read1,t_read2,t_read3,t\n";
+// The header lines (models/measured_data.hpp: how any output knows a sampling log).
+const std::string kHeaderAtRest = std::string(kSamplingLogHeader) + "\n";
+const std::string kHeaderOnTheFly = std::string(kSamplingLogHeader) + kSamplingLogOnTheFlyColumns + "\n";
 
-const char* header_of(SampleColumns c) { return c == SampleColumns::kOnTheFly ? kHeaderOnTheFly : kHeaderAtRest; }
+const std::string& header_of(SampleColumns c) { return c == SampleColumns::kOnTheFly ? kHeaderOnTheFly : kHeaderAtRest; }
 
 // ",a,b,c" of a triple, each number exact.
 std::string triple_fields(const Eigen::Vector3d& v) {
   return fmt::format(",{},{},{}", format_exact(v[0]), format_exact(v[1]), format_exact(v[2]));
+}
+
+// text is empty or the beginning of a header (a session stopped before its first sample).
+bool is_header_begun(const std::string& text) {
+  return kHeaderAtRest.compare(0, text.size(), text) == 0 || kHeaderOnTheFly.compare(0, text.size(), text) == 0;
+}
+
+// text begins with a whole header line of either kind.
+bool starts_with_header(const std::string& text) {
+  return text.compare(0, kHeaderAtRest.size(), kHeaderAtRest) == 0 ||
+         text.compare(0, kHeaderOnTheFly.size(), kHeaderOnTheFly) == 0;
 }
 
 // Writes text whole; a regular file is then flushed to disk (fsync), a device
@@ -72,7 +84,8 @@ SampleLog::SampleLog(const std::string& path, bool resume, SampleColumns columns
   fd_ = ::open(path.c_str(), O_RDWR | O_APPEND | O_CLOEXEC);
   if (fd_ < 0) {
     if (errno != ENOENT) throw InputError(fmt::format("{}: cannot open: {}", path, std::strerror(errno)));
-    return;  // created with the first sample: a session that takes none leaves no file
+    create_now();
+    return;
   }
   lock_or_refuse(fd_, path);
   try {
@@ -81,6 +94,23 @@ SampleLog::SampleLog(const std::string& path, bool resume, SampleColumns columns
     ::close(fd_);
     fd_ = -1;
     throw;
+  }
+}
+
+void SampleLog::create_now() {
+  // Created with its header before anything moves: a folder that cannot be
+  // written (read-only, full, missing) is refused here, not after the first
+  // motion; the file is removed again if no sample is recorded.
+  const int fd = ::open(path_.c_str(), O_RDWR | O_APPEND | O_CREAT | O_EXCL | O_CLOEXEC, 0644);
+  if (fd < 0) throw InputError(fmt::format("{}: cannot create: {}", path_, std::strerror(errno)));
+  lock_or_refuse(fd, path_);  // closes fd when it throws
+  fd_ = fd;
+  created_ = true;
+  try {
+    write_all(fd_, header_of(columns_), path_, true);
+  } catch (const HardwareError& e) {
+    close_and_discard_if_empty();
+    throw InputError(e.what());
   }
 }
 
@@ -114,34 +144,54 @@ void SampleLog::open_in_place(const struct stat& st, bool resume) {
   }
 }
 
-void SampleLog::read_existing(bool resume) {
-  const std::string& path = path_;
+namespace {
+
+// The whole file open on fd, at most limits::kMaxCsvBytes (as every samples
+// reader, models/bounds.hpp); throws InputError naming path otherwise.
+std::string read_bounded(int fd, const std::string& path) {
   std::string text;
   char buf[65536];
-  for (;;) {
-    const ssize_t n = ::pread(fd_, buf, sizeof buf, static_cast<off_t>(text.size()));
+  while (text.size() <= limits::kMaxCsvBytes) {
+    const ssize_t n = ::pread(fd, buf, sizeof buf, static_cast<off_t>(text.size()));
     if (n < 0 && errno == EINTR) continue;
     if (n < 0) throw InputError(fmt::format("{}: cannot read: {}", path, std::strerror(errno)));
     if (n == 0) break;
     text.append(buf, static_cast<size_t>(n));
   }
-  const size_t first_line = text.find('\n');
-  const bool has_rows = first_line != std::string::npos && first_line + 1 < text.size();
-  if (has_rows && !resume) {
+  if (text.size() > limits::kMaxCsvBytes)
+    throw InputError(fmt::format("{}: larger than {} MiB, the limit of a samples file (is it the right file?)", path,
+                                 limits::kMaxCsvBytes >> 20));
+  return text;
+}
+
+}  // namespace
+
+void SampleLog::read_existing(bool resume) {
+  const std::string& path = path_;
+  std::string text = read_bounded(fd_, path);
+  // Nothing is changed in the file before it is known to be a sampling log
+  // whose rows are read: another file is refused as it is.
+  if (is_header_begun(text)) {
+    // Empty, or a header begun or written (a session stopped before its
+    // first sample): no measurement; started again with this session's header.
+    if (text == header_of(columns_)) return;
+    if (::ftruncate(fd_, 0) != 0) throw InputError(fmt::format("{}: cannot start it again: {}", path, std::strerror(errno)));
+    write_all(fd_, header_of(columns_), path, true);
+    return;
+  }
+  if (!starts_with_header(text)) {
+    throw InputError(fmt::format("{}: exists and is not a samples log (its first line is not {}): it is left as it "
+                                 "is; choose another output file",
+                                 path, kSamplingLogHeader));
+  }
+  if (!resume) {
     throw InputError(fmt::format("{}: file exists (it may hold measurements): pass --resume to "
                                  "continue it, or choose another output file",
                                  path));
   }
-  if (!text.empty() && text.back() != '\n') {
-    // A torn last line (crash while writing): drop it, keep the rest.
-    text.erase(text.rfind('\n') == std::string::npos ? 0 : text.rfind('\n') + 1);
-    if (::ftruncate(fd_, static_cast<off_t>(text.size())) != 0)
-      throw InputError(fmt::format("{}: cannot drop the torn last line: {}", path, std::strerror(errno)));
-  }
-  if (text.empty()) {
-    write_all(fd_, header_of(columns_), path, true);  // a file without measurements: start it again
-    return;
-  }
+  // A torn last line (crash while writing) is dropped once the rest is read.
+  const size_t read = text.size(), kept = text.rfind('\n') + 1;
+  text.resize(kept);
   const Samples s = parse_samples_csv(text, path);
   const bool on_the_fly = s.t.size() == s.size() && s.tau_last.size() == s.size() && s.tau_between.size() == s.size();
   if (s.size() > 0 && on_the_fly != (columns_ == SampleColumns::kOnTheFly)) {
@@ -198,25 +248,17 @@ void SampleLog::read_existing(bool resume) {
     }
     recorded_[s.id[j]] = r;
   }
+  if (kept != read && ::ftruncate(fd_, static_cast<off_t>(kept)) != 0)
+    throw InputError(fmt::format("{}: cannot drop the torn last line: {}", path, std::strerror(errno)));
 }
 
 SampleLog::~SampleLog() {
-  // Best effort on the way out: what was written is in the kernel's cache
-  // whatever fsync says (a session that ends normally has called sync()).
-  if (fd_ >= 0 && !in_place_) (void)::fsync(fd_);
-  if (fd_ >= 0) ::close(fd_);
+  if (!closed_) close_and_discard_if_empty();
 }
 
 void SampleLog::write_row(const std::string& row, bool sync) {
   if (closed_) throw HardwareError(fmt::format("{}: sample log is closed", path_));
-  if (fd_ < 0) {  // the first sample creates the file (never over one that appeared meanwhile)
-    const int fd = ::open(path_.c_str(), O_RDWR | O_APPEND | O_CREAT | O_EXCL | O_CLOEXEC, 0644);
-    if (fd < 0) throw HardwareError(fmt::format("{}: cannot create: {}", path_, std::strerror(errno)));
-    lock_or_refuse(fd, path_);  // closes fd when it throws
-    fd_ = fd;
-    created_ = true;
-    write_all(fd_, header_of(columns_), path_, true);
-  }
+  if (fd_ < 0) throw HardwareError(fmt::format("{}: sample log is not open", path_));
   write_all(fd_, row, path_, sync && !in_place_);
 }
 
@@ -248,8 +290,8 @@ void SampleLog::sync() {
 }
 
 void SampleLog::close_and_discard_if_empty() {
-  if (fd_ >= 0 && !in_place_) (void)::fsync(fd_);  // as the destructor
   closed_ = true;
+  if (fd_ >= 0 && !in_place_) (void)::fsync(fd_);  // what was appended reaches the disk
   if (created_ && ids_.empty()) {
     std::error_code ec;
     std::filesystem::remove(path_, ec);

@@ -42,13 +42,17 @@ class SampleLog {
   };
 
   // Opens path for appending and holds an exclusive lock (flock) on it while
-  // open: a second log on the same file is refused (InputError). Without
-  // resume a file holding measurements is refused (InputError: never
-  // overwrite them); a file without any row is started again. With resume its
-  // complete rows are kept (a torn last line from a crash is dropped) and
-  // their ids skipped; an id found twice is refused. A file that does not
-  // exist is created by the first append, so a session that records nothing
-  // leaves no file. An existing device or FIFO is written in place (the
+  // open: a second log on the same file is refused (InputError). An existing
+  // file is read (at most limits::kMaxCsvBytes) and left as it is unless it is
+  // a sampling log (first line kSamplingLogHeader, models/measured_data.hpp):
+  // an empty file or a header alone is started again; without resume a log
+  // holding rows is refused (InputError: never overwrite them). With resume
+  // its complete rows are kept (a torn last line from a crash is dropped once
+  // the rest is read) and their ids skipped; an id found twice is refused. A file that does not
+  // exist is created with its header at once (InputError when it cannot be:
+  // refused before anything moves) and removed again when the log is closed
+  // or destroyed without a sample, so a session that records nothing leaves
+  // no file. An existing device or FIFO is written in place (the
   // output policy): the header at once (a refusal here, before anything
   // moves), no lock, no fsync, no resume; a folder or socket is refused.
   // columns: the file's columns; a resumed file with other columns is refused.
@@ -69,7 +73,8 @@ class SampleLog {
   void append(long id, const Eigen::Vector3d& theta_m, const Eigen::Vector2d& target, const SampleMotion& motion);
   // Flushes what was appended to disk (fsync; nothing for a device or FIFO).
   void sync();
-  // Closes the file; removes it if this log created it and it holds no sample.
+  // Flushes and closes the file; removes it if this log created it and it
+  // holds no sample (the destructor does the same).
   void close_and_discard_if_empty();
   const std::string& path() const { return path_; }
   // The rows of the file by id: those found when it was opened and those
@@ -79,9 +84,11 @@ class SampleLog {
  private:
   // Reads the rows of the file open on fd_ (locked), see the constructor.
   void read_existing(bool resume);
+  // Creates the file with its header and locks it (see the constructor).
+  void create_now();
   // Opens the device or FIFO st describes for writing in place.
   void open_in_place(const struct stat& st, bool resume);
-  // Writes one row (creating the file with its header first); sync: fsync it.
+  // Writes one row to the open file; sync: fsync it.
   void write_row(const std::string& row, bool sync);
 
   std::string path_;

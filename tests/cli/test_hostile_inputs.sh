@@ -31,6 +31,8 @@ awk -F, 'BEGIN{OFS=","} {print $0, (NR == 1 ? "theta_m1" : $2)}' "$tmp/s.csv" >"
 awk -F, 'BEGIN{OFS=","} NR == 2 {v = $2} NR > 1 {$2 = v} {print}' "$tmp/s.csv" >"$tmp/const.csv"
 "$GPM" study samples --actual table5 --n 11 --radius 80 --seed 3 -o "$tmp/s11.csv" >/dev/null
 cal=("$GPM" calibrate --data "$tmp/s.csv" -o "$tmp/r.yaml")
+mkfifo "$tmp/fifo"
+truncate -s 65M "$tmp/big.csv"  # sparse
 
 # A gpm run scenario with the calibration section $1; a monitor scenario with $1 events.
 run_scenario() {
@@ -94,8 +96,18 @@ row "effects count 1e6" 2 "--count: must be a whole number from 12 to 2000 poses
   "$GPM" study effects --count 1000000 -o "$tmp/eff"
 monitor_scenario 1001
 row "1001 events" 2 "events: 1001 events; at most 1000 in one scenario" "$GPM" monitor "$tmp/mon.yaml" -o "$tmp/mon"
-row "model /dev/zero" 2 "/dev/zero: larger than 4 MiB" "$GPM" kin home --model /dev/zero
-row "data /dev/zero" 2 "/dev/zero: larger than 64 MiB" "$GPM" calibrate --data /dev/zero -o "$tmp/r.yaml"
+row "model /dev/zero" 2 "/dev/zero: is a character device, not a regular file" "$GPM" kin home --model /dev/zero
+row "data /dev/zero" 2 "/dev/zero: is a character device, not a regular file" \
+  "$GPM" calibrate --data /dev/zero -o "$tmp/r.yaml"
+row "data larger than 64 MiB" 2 "big.csv: larger than 64 MiB" "$GPM" calibrate --data "$tmp/big.csv" -o "$tmp/r.yaml"
+# --- a FIFO as an input: refused at once (was: open(2) waited for a writer
+# forever; timeout 60 stands in for forever, exit 124) ---
+row "model is a FIFO" 2 "fifo: is a FIFO (named pipe), not a regular file" \
+  timeout 60 "$GPM" kin home --model "$tmp/fifo"
+row "data is a FIFO" 2 "fifo: is a FIFO (named pipe)" timeout 60 "$GPM" calibrate --data "$tmp/fifo" -o "$tmp/r.yaml"
+row "scenario is a FIFO" 2 "fifo: is a FIFO (named pipe)" timeout 60 "$GPM" simulate "$tmp/fifo" -o "$tmp/simf"
+row "hardware file is a FIFO" 2 "fifo: is a FIFO (named pipe)" \
+  timeout 60 "$GPM" sample --hardware "$tmp/fifo" --poses "$tmp/fifo" -o "$tmp/sf.csv"
 row "model is a folder" 2 "$tmp: is a folder, not a file" "$GPM" kin home --model "$tmp"
 
 # --- 36.12: empty numbers, negative seeds, repeated list items ---

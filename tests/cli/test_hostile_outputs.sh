@@ -67,13 +67,19 @@ cp -a "$D" "$tmp/D2" && tail -n 1 "$tmp/measured.csv" >>"$tmp/D2/samples.csv"
 head -n 3 "$tmp/measured.csv" >"$tmp/dup.csv" && sed -n 3p "$tmp/measured.csv" >>"$tmp/dup.csv"
 # F: an output folder whose files are also inputs.
 F="$tmp/F"; mkdir "$F"
-cp "$tmp/measured.csv" "$F/samples.csv"
+"$GPM" study samples --n 12 -o "$F/samples.csv" >/dev/null  # a simulation's samples, not measured
 cp "$tmp/sim.yaml" "$F/actual.yaml"
 for f in estimates.csv report.md offsets.yaml calibration.yaml summary.json; do cp "$SRC/models/gpm2002.yaml" "$F/$f"; done
 sed "s|^robot: .*|robot: $F/calibration.yaml|" "$tmp/hwrun.yaml" >"$tmp/robotF.yaml"
 op "$F/summary.json" 40 >"$tmp/opF.yaml"
 mkfifo "$tmp/fifo"
 EMU_FLAGS="--map $SRC/hw/examples/register_map_emulator.yaml --scenario $SRC/tests/fixtures/twin_disc.yaml --port 0"
+
+# S: a gpm sample log in a folder of its own (measured, no marker: known by its header).
+mkdir "$tmp/S"
+check "gpm sample log" 0 "$GPM" sample --hardware "$tmp/twin.yaml" --poses "$tmp/poses2.yaml" -o "$tmp/S/samples.csv"
+printf 'notes without a newline' >"$tmp/notes.txt"
+printf 'a,b\nc' >"$tmp/ab.csv"
 
 # name | exit | fragment of the stderr line | byte-identical file | command
 while IFS='|' read -r name want frag guard cmd; do
@@ -101,6 +107,17 @@ the hardware run itself resumes        |0|                                      
 resume a file with an id twice         |2| sample 19 appears twice                     | $tmp/D2/samples.csv | "$GPM" run "$tmp/hwrun.yaml" -o "$tmp/D2" --hardware "$tmp/twin.yaml" --resume
 sample --resume with an id twice       |2| sample 1 appears twice                      | $tmp/dup.csv | "$GPM" sample --hardware "$tmp/twin.yaml" --poses "$tmp/poses2.yaml" -o "$tmp/dup.csv" --resume
 bad hardware file                      |2| 'nonsense' is not a backend                 | - | "$GPM" run "$tmp/hwrun.yaml" -o "$tmp/NEW" --hardware "$tmp/bad.yaml"
+# 2b: a gpm sample log is measured data wherever it lies: never replaced, only resumed
+simulate over a gpm sample log         |2| a hardware sampling log: first line      | $tmp/S/samples.csv | "$GPM" simulate "$tmp/sim.yaml" -o "$tmp/S"
+run over a gpm sample log              |2| a hardware sampling log: first line      | $tmp/S/samples.csv | "$GPM" run "$tmp/hwrun.yaml" -o "$tmp/S"
+study samples over a gpm sample log    |2| a hardware sampling log: first line      | $tmp/S/samples.csv | "$GPM" study samples --n 12 -o "$tmp/S/samples.csv"
+calibrate over a gpm sample log        |2| a hardware sampling log: first line      | $tmp/S/samples.csv | "$GPM" calibrate --data "$tmp/measured.csv" -o "$tmp/S/samples.csv"
+hardware run over a gpm sample log     |2| no hardware session recorded it             | $tmp/S/samples.csv | "$GPM" run "$tmp/hwrun.yaml" -o "$tmp/S" --hardware "$tmp/twin.yaml"
+a second gpm sample without --resume   |2| pass --resume to continue it                | $tmp/S/samples.csv | "$GPM" sample --hardware "$tmp/twin.yaml" --poses "$tmp/poses2.yaml" -o "$tmp/S/samples.csv"
+sample into a file that is no log      |2| is not a samples log                        | $tmp/notes.txt | "$GPM" sample --hardware "$tmp/twin.yaml" --poses "$tmp/poses2.yaml" -o "$tmp/notes.txt"
+sample --resume a file that is no log  |2| is not a samples log                        | $tmp/ab.csv | "$GPM" sample --hardware "$tmp/twin.yaml" --poses "$tmp/poses2.yaml" -o "$tmp/ab.csv" --resume
+sample into a missing folder           |2| nodir/x.csv: cannot create                  | - | "$GPM" sample --hardware "$tmp/twin.yaml" --poses "$tmp/poses2.yaml" -o "$tmp/nodir/x.csv"
+the log's session resumes it           |0|                                             | - | "$GPM" sample --hardware "$tmp/twin.yaml" --poses "$tmp/poses2.yaml" -o "$tmp/S/samples.csv" --resume
 # 3: an input that is also an output, found by file identity before any work
 simulate D/samples.csv -o D            |2| samples.csv: is also an input               | $F/samples.csv | "$GPM" simulate "$F/samples.csv" -o "$F"
 simulate D/actual.yaml -o D            |2| actual.yaml: is also an input               | $F/actual.yaml | "$GPM" simulate "$F/actual.yaml" -o "$F"

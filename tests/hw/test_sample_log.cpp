@@ -9,6 +9,7 @@
 
 #include "hw/procedures/sample_log.hpp"
 #include "hw_test_util.hpp"
+#include "models/bounds.hpp"
 #include "models/errors.hpp"
 #include "models/samples.hpp"
 
@@ -108,6 +109,64 @@ TEST(SampleLog, ResumeRefusesAnIdTwice) {
     EXPECT_NE(std::string(e.what()).find("sample 0 appears twice"), std::string::npos) << e.what();
   }
   EXPECT_EQ(test::read_text(path), text);
+}
+
+std::string error_of(const std::string& path, bool resume) {
+  try {
+    SampleLog log(path, resume);
+  } catch (const InputError& e) {
+    return e.what();
+  }
+  return "";
+}
+
+// A file that is not a sampling log (first line other than the log's header)
+// is left byte for byte as it is, with or without --resume (the torn-line
+// rule once truncated such a file: "notes" without a newline became empty,
+// the last line of "a,b\nc" was dropped before the header was checked).
+TEST(SampleLog, AnotherFileIsLeftAsItIs) {
+  const test::TempDir dir("log_other");
+  const auto path = (dir / "s.csv").string();
+  for (const std::string& text : {std::string("notes without a newline"), std::string("a,b\nc"),
+                                 std::string("sample,theta_m1,theta_m2,theta_m3,x,y\n0,1,2,3,4,5\n1,1,2")}) {
+    for (const bool resume : {false, true}) {
+      test::write_text(path, text);
+      EXPECT_NE(error_of(path, resume).find("is not a samples log"), std::string::npos) << text;
+      EXPECT_EQ(test::read_text(path), text);
+    }
+  }
+  // A header begun (a session stopped while writing it) holds nothing: started again.
+  test::write_text(path, "sample,theta_m1,th");
+  { SampleLog log(path, false); }
+  EXPECT_EQ(test::read_text(path), "sample,theta_m1,theta_m2,theta_m3,target_x,target_y\n");
+}
+
+// A log that cannot be created (missing folder; a read-only or full one
+// alike) is refused when it is opened, before a session moves anything (the
+// file used to be created by the first sample, after the first motion).
+TEST(SampleLog, AFileThatCannotBeCreatedIsRefusedAtOnce) {
+  const test::TempDir dir("log_missing");
+  const auto path = (dir / "no_such_folder" / "s.csv").string();
+  EXPECT_NE(error_of(path, false).find("no_such_folder/s.csv: cannot create: No such file or directory"),
+            std::string::npos);
+  const auto made = (dir / "s.csv").string();
+  {
+    SampleLog log(made, false);
+    EXPECT_EQ(test::read_text(made), "sample,theta_m1,theta_m2,theta_m3,target_x,target_y\n");  // made at once
+  }
+  EXPECT_FALSE(std::filesystem::exists(made));  // and removed: nothing was recorded
+}
+
+// A resumed log is read with the bound of every samples reader (64 MiB,
+// models/bounds.hpp): a larger one is refused and left as it is.
+TEST(SampleLog, ResumeIsBoundedLikeEverySamplesReader) {
+  const test::TempDir dir("log_big");
+  const auto path = (dir / "s.csv").string();
+  test::write_text(path, "sample,theta_m1,theta_m2,theta_m3,target_x,target_y\n0,1,2,3,4,5\n");
+  const auto size = static_cast<off_t>(limits::kMaxCsvBytes) + 1;
+  ASSERT_EQ(::truncate(path.c_str(), size), 0);  // sparse: no 64 MiB written
+  EXPECT_NE(error_of(path, true).find("larger than 64 MiB"), std::string::npos);
+  EXPECT_EQ(std::filesystem::file_size(path), static_cast<std::uintmax_t>(size));
 }
 
 // A device or FIFO: the header is written at once (a refusal, InputError,

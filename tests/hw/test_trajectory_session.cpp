@@ -141,6 +141,8 @@ TEST(TrajectorySession, APathOutsideTheLimitsIsRefusedBeforeAnythingMoves) {
     EXPECT_NE(std::string(e.what()).find("max_velocity"), std::string::npos) << e.what();
   }
   EXPECT_TRUE(rig.rec.empty());
+  EXPECT_EQ(log.size(), 0u);
+  log.close_and_discard_if_empty();  // as the command does on its way out
   EXPECT_FALSE(std::filesystem::exists(dir / "s.csv"));
 }
 

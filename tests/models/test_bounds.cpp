@@ -2,7 +2,12 @@
 // 36.8, 36.12) and the bounded reading of input files.
 #include "models/bounds.hpp"
 
+#include <sys/stat.h>
+#include <unistd.h>
+
 #include <cmath>
+#include <filesystem>
+#include <fstream>
 #include <functional>
 
 #include <gtest/gtest.h>
@@ -59,11 +64,26 @@ TEST(Bounds, YamlWithinNamesFileLineAndKey) {
             "s.yaml:1: calibration.budget: must be a whole number from 1 to 1e10 evaluations, got 1e12");
 }
 
-TEST(Bounds, ReadInputFileRefusesEndlessAndOversizedInput) {
-  EXPECT_NE(error_of([] { read_input_file("/dev/zero", 1024); }).find("/dev/zero: larger than"), std::string::npos);
+TEST(Bounds, ReadInputFileRefusesDevicesFifosAndOversizedInput) {
+  EXPECT_NE(error_of([] { read_input_file("/dev/zero", 1024); }).find("/dev/zero: is a character device"),
+            std::string::npos);
+  EXPECT_NE(error_of([] { read_input_file("/dev/null", 1024); }).find("/dev/null: is a character device"),
+            std::string::npos);
   EXPECT_NE(error_of([] { read_input_file("/", 1024); }).find("/: is a folder"), std::string::npos);
   EXPECT_NE(error_of([] { read_input_file("/nonexistent/x.yaml", 1024); }).find("cannot open"), std::string::npos);
-  EXPECT_EQ(read_input_file("/dev/null", 1024), "");
+  // A FIFO nobody writes: refused at once (open(2) without O_NONBLOCK waits for a writer forever).
+  const std::string fifo = (std::filesystem::temp_directory_path() / ("gpm_bounds_fifo" + std::to_string(::getpid()))).string();
+  ASSERT_EQ(::mkfifo(fifo.c_str(), 0600), 0);
+  const std::string fifo_error = error_of([&] { read_input_file(fifo, 1024); });
+  std::filesystem::remove(fifo);
+  EXPECT_NE(fifo_error.find(": is a FIFO (named pipe), not a regular file"), std::string::npos) << fifo_error;
+  // One byte over the limit is refused, the limit itself is read.
+  const std::string big = (std::filesystem::temp_directory_path() / ("gpm_bounds_big" + std::to_string(::getpid()))).string();
+  { std::ofstream(big) << std::string(1024, 'x'); }
+  EXPECT_EQ(read_input_file(big, 1024).size(), 1024u);
+  const std::string over = error_of([&] { read_input_file(big, 1023); });
+  std::filesystem::remove(big);
+  EXPECT_NE(over.find("larger than"), std::string::npos) << over;
 }
 
 }  // namespace

@@ -104,5 +104,48 @@ TEST(MeasuredFolder, SamplesNoSessionRecordedAreNotContinued) {
             std::string::npos);
 }
 
+// A sampling log (gpm sample -o FILE, anywhere) is known by its first line:
+// once it holds a row no output replaces it (a file, a folder's file, before
+// any work), only a sampling session continues it; a header alone, another
+// CSV and a link to a log are told apart.
+TEST(SamplingLog, NoOutputReplacesALogHoldingSamples) {
+  const TempDir d("log");
+  const std::string log = d / "samples.csv", text = std::string(kSamplingLogHeader) + "\n0,1,3,5,216.5,250\n";
+  put(log, text);
+  EXPECT_TRUE(is_sampling_log(log));
+  const std::string why = refusal([&] { write_output_file(log, "x"); });
+  EXPECT_NE(why.find("holds measured samples (a hardware sampling log"), std::string::npos) << why;
+  EXPECT_NE(refusal([&] { check_output_folder(d.path.string(), {"samples.csv", "summary.json"}); }), "");
+  EXPECT_NE(refusal([&] { OutputFolder f(d.path.string()); f.add("samples.csv", "x"); }), "");
+  fs::create_symlink(log, d / "link.csv");
+  EXPECT_NE(refusal([&] { write_output_file(d / "link.csv", "x"); }), "");
+  EXPECT_EQ(refusal([&] { refuse_measured_file(log, nullptr, /*sampling_session=*/true); }), "");
+  EXPECT_EQ(slurp(log), text);
+  // Not measured: the header alone, a simulation's samples, a folder.
+  put(d / "header.csv", std::string(kSamplingLogHeader) + "\n");
+  put(d / "sim.csv", "sample,theta_m1,theta_m2,theta_m3,x,y\n0,1,3,5,216.5,250\n");
+  EXPECT_FALSE(is_sampling_log(d / "header.csv"));
+  EXPECT_FALSE(is_sampling_log(d / "sim.csv"));
+  EXPECT_FALSE(is_sampling_log(d.path.string()));
+  EXPECT_NO_THROW(write_output_file(d / "header.csv", "x"));
+  EXPECT_NO_THROW(write_output_file(d / "sim.csv", "x"));
+}
+
+// A log of samples taken on the fly (its header continued by the torque and
+// time columns) is measured data as well; a header with other columns is not.
+TEST(SamplingLog, ALogOfSamplesOnTheFlyIsMeasuredDataToo) {
+  const TempDir d("log_fly");
+  const std::string head = std::string(kSamplingLogHeader) + kSamplingLogOnTheFlyColumns;
+  const std::string log = d / "fly.csv", text = head + "\n0,1,3,5,216.5,250,0,0,0,0,0,0,0,0,0,0,0,0,0\n";
+  put(log, text);
+  EXPECT_TRUE(is_sampling_log(log));
+  EXPECT_NE(refusal([&] { write_output_file(log, "x"); }), "");
+  EXPECT_EQ(slurp(log), text);
+  put(d / "other.csv", std::string(kSamplingLogHeader) + ",extra\n0,1,3,5,216.5,250,7\n");
+  EXPECT_FALSE(is_sampling_log(d / "other.csv"));
+  put(d / "fly_header.csv", head + "\n");
+  EXPECT_FALSE(is_sampling_log(d / "fly_header.csv"));
+}
+
 }  // namespace
 }  // namespace gpm
