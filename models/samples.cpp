@@ -3,6 +3,7 @@
 #include <charconv>
 #include <cmath>
 #include <sstream>
+#include <unordered_map>
 
 #include <fmt/format.h>
 
@@ -199,6 +200,7 @@ Samples parse_samples_csv(const std::string& text, const std::string& file) {
   const Columns columns = find_columns(header);
   Samples s;
   s.has_xy = columns.x >= 0;
+  std::unordered_map<long, int> line_of_id;  // each sample is recorded once
   std::string line;
   while (std::getline(in, line)) {
     ++line_no;
@@ -206,6 +208,12 @@ Samples parse_samples_csv(const std::string& text, const std::string& file) {
     const auto f = split_csv_line(line);
     check_field_count(header, f, line_no);
     append_row(header, columns, f, line_no, s);
+    const auto [it, fresh] = line_of_id.emplace(s.id.back(), line_no);
+    if (!fresh) {
+      throw InputError(fmt::format("{}:{}: sample {} appears twice (first at line {}): each sample is one row; the "
+                                   "file was edited or joined from others",
+                                   file, line_no, s.id.back(), it->second));
+    }
   }
   return s;
 }

@@ -221,11 +221,7 @@ void SampleLog::read_existing(bool resume) {
     if (rows[0][k] == "target_y") cy = static_cast<int>(k);
   }
   for (size_t j = 0; j < s.size(); ++j) {
-    if (!ids_.insert(s.id[j]).second) {
-      throw InputError(fmt::format("{}: sample {} appears twice (a session records each sample once): the file "
-                                   "was edited or joined from others; choose another output file",
-                                   path, s.id[j]));
-    }
+    ids_.insert(s.id[j]);  // each id once: parse_samples_csv refuses an id twice
     Recorded r;
     r.theta_m = s.theta_m[j];
     if (cx >= 0 && cy >= 0 && j + 1 < rows.size() &&

@@ -48,7 +48,7 @@ class SampleLog {
   // an empty file or a header alone is started again; without resume a log
   // holding rows is refused (InputError: never overwrite them). With resume
   // its complete rows are kept (a torn last line from a crash is dropped once
-  // the rest is read) and their ids skipped; an id found twice is refused. A file that does not
+  // the rest is read) and their ids skipped; an id found twice is refused (parse_samples_csv). A file that does not
   // exist is created with its header at once (InputError when it cannot be:
   // refused before anything moves) and removed again when the log is closed
   // or destroyed without a sample, so a session that records nothing leaves

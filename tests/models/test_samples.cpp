@@ -122,5 +122,14 @@ TEST(Samples, ColumnNamedTwiceRefused) {
             std::string::npos);
 }
 
+TEST(Samples, SampleIdTwiceRefused) {
+  // Issue 36: a file joined from two sessions used to be calibrated with both copies.
+  EXPECT_EQ(error_of("sample,theta_m1,theta_m2,theta_m3\n0,1,2,3\n1,1,2,3\n0,1,2,4\n"),
+            "s.csv:4: sample 0 appears twice (first at line 2): each sample is one row; the file was edited or "
+            "joined from others");
+  // Without a sample column the ids are the row indices: never twice.
+  EXPECT_EQ(error_of("theta_m1,theta_m2,theta_m3\n1,2,3\n1,2,3\n"), "");
+}
+
 }  // namespace
 }  // namespace gpm
