@@ -130,6 +130,8 @@ ActualSpec parse_actual(const YAML::Node& n, const Ctx& c, const std::string& ba
         const std::string name = yaml_string(k[i], c.file, ci.path);
         const auto idx = param_index(name);
         if (!idx) fail(ci, k[i], fmt::format("unknown parameter '{}' (did you mean {}?)", name, nearest_param_name(name)));
+        if (a.keep.test(static_cast<size_t>(*idx)))
+          fail(ci, k[i], fmt::format("'{}' is listed twice; name each kept parameter once", name));
         a.keep.set(static_cast<size_t>(*idx));
       }
     }

@@ -131,6 +131,8 @@ TEST(Scenario, ErrorsNameTheKeyPath) {
             std::string::npos);
   EXPECT_NE(error_of(std::string(kMinimal) + "actual: {perturb: {link_mm: -1}}").find("actual.perturb.link_mm: must be zero or positive"),
             std::string::npos);
+  EXPECT_NE(error_of(std::string(kMinimal) + "actual: {perturb: {keep: [xa1, ya1, xa1]}}").find("actual.perturb.keep[2]: 'xa1' is listed twice"),
+            std::string::npos);
   EXPECT_NE(error_of(std::string(kMinimal) + "encoder: {bits: 17.5}").find("encoder.bits"), std::string::npos);
   EXPECT_NE(error_of("seed: 1\n").find("nothing to simulate"), std::string::npos);
   EXPECT_NE(error_of("sampling: {pattern: list, poses: [[1, 2], [3]]}").find("sampling.poses[1]"), std::string::npos);
