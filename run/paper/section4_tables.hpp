@@ -10,6 +10,8 @@
 #include <functional>
 #include <string>
 
+#include <Eigen/Core>
+
 #include "run/paper/paper_table.hpp"
 
 namespace gpm::paper {
@@ -31,6 +33,21 @@ using EvaluationProgress = std::function<void(long done, long total)>;
 // parameters, and builds Tables 5-7 and Figures 3-5. Throws InputError for a
 // budget < 1.
 Section4Tables section4_tables(const Section4Settings& settings, const EvaluationProgress& progress = {});
+
+// Whether Table 8's printed J3 at the nominal values (2.1517e5) fits its
+// printed calibrated values (eq. 43): J3 at the nominal values for exact
+// readings of the printed calibrated mechanism at 50 poses on circles.
+struct Table8Consistency {
+  double radius_lo_mm = 0.0, radius_hi_mm = 0.0;     // circles about `centre`, every pose reachable
+  double j3_lo = 0.0, j3_hi = 0.0, j3_median = 0.0;  // over those radii (mm^4)
+  int circles_anywhere = 0;                          // reachable circles anywhere (10 mm grid of centres)
+  double radius_anywhere_lo_mm = 0.0, radius_anywhere_hi_mm = 0.0;  // their radii
+  double j3_anywhere_lo = 0.0;                       // the lowest J3 over them (mm^4)
+};
+
+// The comparison above, circles about `centre` (the paper: the workspace
+// centre) every 5 mm of radius; well under a second.
+Table8Consistency table8_consistency(const Eigen::Vector2d& centre);
 
 // Table 8 on the twin (scenarios/paper_table8_robot.yaml): samples
 // simulated, then DE on J3 with 12 free parameters for `evaluations`.
