@@ -1,5 +1,6 @@
 #include "app/cli_main.hpp"
 
+#include <algorithm>
 #include <cstdio>
 #include <cstdlib>
 #include <exception>
@@ -11,6 +12,7 @@
 #include <fmt/ranges.h>
 #include <glog/logging.h>
 
+#include "app/cli_text.hpp"
 #include "app/commands.hpp"
 #include "models/data_dir.hpp"
 #include "models/errors.hpp"
@@ -19,7 +21,90 @@
 namespace gpm::cli {
 namespace {
 int g_exit = 0;
+
+// Edit distance between a and b (insertions, deletions, substitutions).
+std::size_t edit_distance(const std::string& a, const std::string& b) {
+  std::vector<std::size_t> row(b.size() + 1);
+  for (std::size_t j = 0; j <= b.size(); ++j) row[j] = j;
+  for (std::size_t i = 1; i <= a.size(); ++i) {
+    std::size_t diagonal = row[0];
+    row[0] = i;
+    for (std::size_t j = 1; j <= b.size(); ++j) {
+      const std::size_t up = row[j];
+      row[j] = std::min({row[j] + 1, row[j - 1] + 1, diagonal + (a[i - 1] == b[j - 1] ? 0 : 1)});
+      diagonal = up;
+    }
+  }
+  return row[b.size()];
 }
+
+// The subcommand names close to word: within 2 edits (1 for short words), or
+// starting with it; nearest first.
+std::vector<std::string> close_names(const std::string& word, const std::vector<std::string>& names) {
+  std::vector<std::pair<std::size_t, std::string>> near;
+  for (const std::string& n : names) {
+    const std::size_t d = edit_distance(word, n);
+    const bool prefix = word.size() >= 2 && n.rfind(word, 0) == 0;
+    if (d <= (word.size() <= 3 ? 1u : 2u) || prefix) near.emplace_back(prefix ? 0 : d, n);
+  }
+  std::stable_sort(near.begin(), near.end(), [](const auto& x, const auto& y) { return x.first < y.first; });
+  std::vector<std::string> out;
+  for (const auto& [d, n] : near) out.push_back(n);
+  return out;
+}
+
+// A level of subcommands takes no positional argument of its own (gpm, gpm kin, gpm study).
+bool takes_positionals(const CLI::App& level) {
+  for (const CLI::Option* o : level.get_options())
+    if (o->get_positional()) return true;
+  return false;
+}
+
+// The error line for the first word of argv that names no subcommand where one
+// is expected (gpm kin hom: "did you mean 'home'?"), or for a level that
+// needs a subcommand and got none; empty when the words name subcommands
+// (options and the rest are CLI11's to parse).
+std::string unknown_subcommand(CLI::App& app, int argc, char** argv) {
+  CLI::App* level = &app;
+  std::string path = "gpm";
+  for (int i = 1;; ++i) {
+    const std::vector<CLI::App*> subs = level->get_subcommands({});
+    if (subs.empty() || takes_positionals(*level)) return {};
+    std::vector<std::string> names;
+    for (const CLI::App* sub : subs) names.push_back(sub->get_name());
+    const std::string valid = fmt::format("{}", fmt::join(names, ", "));
+    if (i >= argc) {
+      if (level->get_require_subcommand_min() == 0) return {};
+      return fmt::format("{}: name a subcommand: {} (see {} --help)", path, valid, path);
+    }
+    const std::string word = argv[i];
+    if (!word.empty() && word[0] == '-') return {};
+    const auto next = std::find_if(subs.begin(), subs.end(), [&](const CLI::App* s) { return s->get_name() == word; });
+    if (next == subs.end()) {
+      const std::vector<std::string> near = close_names(word, names);
+      const std::string hint = near.empty() ? "" : fmt::format("did you mean '{}'? ", fmt::join(near, "' or '"));
+      return fmt::format("unknown subcommand '{}' of {}; {}valid: {} (see {} --help)", cut(word), path, hint, valid,
+                         path);
+    }
+    level = *next;
+    path += " " + word;
+  }
+}
+
+// msg with every word longer than 40 characters cut (a 300-digit argument is
+// not echoed whole in CLI11's messages).
+std::string cut_long_words(const std::string& msg) {
+  std::string out;
+  std::size_t i = 0;
+  while (i < msg.size()) {
+    const std::size_t end = std::min(msg.find(' ', i), msg.size());
+    out += cut(msg.substr(i, end - i));
+    if (end < msg.size()) out += ' ';
+    i = end + 1;
+  }
+  return out;
+}
+}  // namespace
 
 void set_exit(int code) { g_exit = code; }
 int exit_code() { return g_exit; }
@@ -42,18 +127,9 @@ int run_app(CLI::App& app, int argc, char** argv) {
   FLAGS_minloglevel = google::GLOG_FATAL;
   FLAGS_logtostderr = true;
   if (!google::IsGoogleLoggingInitialized()) google::InitGoogleLogging(argv[0]);
-  if (argc >= 2 && argv[1][0] != '-') {
-    std::vector<std::string> names;
-    bool known = false;
-    for (const CLI::App* sub : app.get_subcommands({})) {
-      names.push_back(sub->get_name());
-      known = known || sub->get_name() == argv[1];
-    }
-    if (!known) {
-      std::fprintf(stderr, "gpm: error: unknown subcommand '%s'; valid: %s (see gpm --help)\n", argv[1],
-                   fmt::format("{}", fmt::join(names, ", ")).c_str());
-      return 2;
-    }
+  if (const std::string wrong = unknown_subcommand(app, argc, argv); !wrong.empty()) {
+    std::fprintf(stderr, "gpm: error: %s\n", wrong.c_str());
+    return 2;
   }
   try {
     app.parse(argc, argv);
@@ -64,7 +140,7 @@ int run_app(CLI::App& app, int argc, char** argv) {
   } catch (const CLI::CallForVersion& e) {
     return app.exit(e);
   } catch (const CLI::ParseError& e) {
-    std::fprintf(stderr, "gpm: error: %s (see gpm --help)\n", e.what());
+    std::fprintf(stderr, "gpm: error: %s (see gpm --help)\n", cut_long_words(e.what()).c_str());
     return 2;
   } catch (const gpm::InputError& e) {
     std::fprintf(stderr, "gpm: error: %s\n", e.what());
