@@ -22,37 +22,6 @@ namespace gpm::cli {
 namespace {
 int g_exit = 0;
 
-// Edit distance between a and b (insertions, deletions, substitutions).
-std::size_t edit_distance(const std::string& a, const std::string& b) {
-  std::vector<std::size_t> row(b.size() + 1);
-  for (std::size_t j = 0; j <= b.size(); ++j) row[j] = j;
-  for (std::size_t i = 1; i <= a.size(); ++i) {
-    std::size_t diagonal = row[0];
-    row[0] = i;
-    for (std::size_t j = 1; j <= b.size(); ++j) {
-      const std::size_t up = row[j];
-      row[j] = std::min({row[j] + 1, row[j - 1] + 1, diagonal + (a[i - 1] == b[j - 1] ? 0 : 1)});
-      diagonal = up;
-    }
-  }
-  return row[b.size()];
-}
-
-// The subcommand names close to word: within 2 edits (1 for short words), or
-// starting with it; nearest first.
-std::vector<std::string> close_names(const std::string& word, const std::vector<std::string>& names) {
-  std::vector<std::pair<std::size_t, std::string>> near;
-  for (const std::string& n : names) {
-    const std::size_t d = edit_distance(word, n);
-    const bool prefix = word.size() >= 2 && n.rfind(word, 0) == 0;
-    if (d <= (word.size() <= 3 ? 1u : 2u) || prefix) near.emplace_back(prefix ? 0 : d, n);
-  }
-  std::stable_sort(near.begin(), near.end(), [](const auto& x, const auto& y) { return x.first < y.first; });
-  std::vector<std::string> out;
-  for (const auto& [d, n] : near) out.push_back(n);
-  return out;
-}
-
 // A level of subcommands takes no positional argument of its own (gpm, gpm kin, gpm study).
 bool takes_positionals(const CLI::App& level) {
   for (const CLI::Option* o : level.get_options())

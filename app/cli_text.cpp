@@ -4,11 +4,42 @@
 #include <algorithm>
 #include <cctype>
 #include <cstdlib>
+#include <utility>
 
 #include <fmt/format.h>
 #include <unistd.h>
 
 namespace gpm::cli {
+
+// Edit distance between a and b (insertions, deletions, substitutions).
+std::size_t edit_distance(const std::string& a, const std::string& b) {
+  std::vector<std::size_t> row(b.size() + 1);
+  for (std::size_t j = 0; j <= b.size(); ++j) row[j] = j;
+  for (std::size_t i = 1; i <= a.size(); ++i) {
+    std::size_t diagonal = row[0];
+    row[0] = i;
+    for (std::size_t j = 1; j <= b.size(); ++j) {
+      const std::size_t up = row[j];
+      row[j] = std::min({row[j] + 1, row[j - 1] + 1, diagonal + (a[i - 1] == b[j - 1] ? 0 : 1)});
+      diagonal = up;
+    }
+  }
+  return row[b.size()];
+}
+
+std::vector<std::string> close_names(const std::string& word, const std::vector<std::string>& names) {
+  std::vector<std::pair<std::size_t, std::string>> near;
+  for (const std::string& n : names) {
+    const std::size_t d = edit_distance(word, n);
+    const bool prefix = word.size() >= 2 && n.rfind(word, 0) == 0;
+    if (d <= (word.size() <= 3 ? 1u : 2u) || prefix) near.emplace_back(prefix ? 0 : d, n);
+  }
+  std::stable_sort(near.begin(), near.end(), [](const auto& x, const auto& y) { return x.first < y.first; });
+  std::vector<std::string> out;
+  for (const auto& [d, n] : near) out.push_back(n);
+  return out;
+}
+
 
 bool locale_is_utf8(const char* lc_all, const char* lc_ctype, const char* lang) {
   const char* chosen = nullptr;

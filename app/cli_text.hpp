@@ -6,6 +6,7 @@
 
 #include <cstddef>
 #include <string>
+#include <vector>
 
 namespace gpm::cli {
 
@@ -28,5 +29,12 @@ std::string count_of(std::size_t n, const std::string& noun, const std::string& 
 // text itself when it has at most max characters, else its first max
 // characters and "…" (a 300-digit argument is not echoed whole).
 std::string cut(const std::string& text, std::size_t max = 40);
+
+// Edit distance between a and b (insertions, deletions, substitutions).
+std::size_t edit_distance(const std::string& a, const std::string& b);
+
+// The names close to word (for "did you mean"): within 2 edits (1 for words
+// of up to 3 characters), or starting with it; nearest first.
+std::vector<std::string> close_names(const std::string& word, const std::vector<std::string>& names);
 
 }  // namespace gpm::cli

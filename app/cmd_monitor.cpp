@@ -16,6 +16,7 @@
 #include <fmt/format.h>
 
 #include "app/commands.hpp"
+#include "app/data_files.hpp"
 #include "calib/result_yaml.hpp"
 #include "models/errors.hpp"
 #include "models/output_file.hpp"
@@ -170,13 +171,16 @@ void add_monitor(CLI::App& app) {
   auto opt = std::make_shared<MonitorOptions>();
   auto* cmd = app.add_subcommand(
       "monitor", "Drift monitoring in normal operation: alarms (what changed, when) and tracked parameters");
-  cmd->add_option("scenario", opt->scenario, "Scenario file with operation: (and events:), see scenarios/SCHEMA.md")
+  cmd->add_option("scenario", opt->scenario, "Scenario with operation: (and events:): a YAML file, or a name from the scenario library (gpm help scenarios); its keys: gpm help schema")
       ->required();
   cmd->add_option("-o,--out", opt->out, "Output folder: alarms.csv, estimates.csv, summary.json, report.md")->required();
   cmd->add_option("--model", opt->model, "The controller's model (robot or calibration result file); default: the scenario's robot");
   cmd->add_option("--hardware", opt->hardware,
-                  "Hardware file (hw/): monitor the operation through the twin backend or the drives");
-  cmd->callback([opt] { run_monitor_command(*opt); });
+                  "Hardware file (gpm help hardware): monitor the operation through the robot interface (backend twin, modbus or plugin)");
+  cmd->callback([opt] {
+    opt->scenario = resolve_scenario(opt->scenario);  // a file, or a library name
+    run_monitor_command(*opt);
+  });
 }
 
 }  // namespace gpm::cli

@@ -10,6 +10,7 @@
 #include <unistd.h>
 
 #include "app/commands.hpp"
+#include "app/data_files.hpp"
 #include "hw/hardware_config.hpp"
 #include "hw/hw_errors.hpp"
 #include "hw/procedures/stop_on_signal.hpp"
@@ -100,14 +101,18 @@ void print_summary(const scenario::RunOutcome& o, const std::string& dir) {
 
 void add_run(CLI::App& app) {
   auto opt = std::make_shared<RunOptions>();
-  auto* cmd = app.add_subcommand("run", "Simulate, calibrate, compensate and report a scenario (exit 1 if an expectation fails)");
-  cmd->add_option("scenario", opt->scenario, "Scenario file (YAML; see scenarios/SCHEMA.md)")->required();
+  auto* cmd = app.add_subcommand(
+      "run", "Simulate, calibrate, compensate and report a scenario (exit 1 if an expectation fails); writes DIR/summary.json, "
+             "report.html, report.md, calibration.yaml, samples.csv, trajectory.csv, actual.yaml, model.xml and figures "
+             "(gpm help formats)");
+  cmd->add_option("scenario", opt->scenario, "Scenario: a YAML file, or a name from the scenario library (gpm help scenarios); its keys: gpm help schema")->required();
   cmd->add_option("-o,--out", opt->out, "Output folder")->required();
   cmd->add_option("--hardware", opt->hardware,
-                  "Hardware file (hw/examples): take the samples through the robot interface (twin or modbus)");
+                  "Hardware file (gpm help hardware): take the samples through the robot interface (backend twin, modbus or plugin)");
   cmd->add_flag("-q,--quiet", opt->quiet, "No progress lines");
   cmd->add_flag("--resume", opt->resume, "With --hardware: continue DIR/samples.csv of a stopped run (same plan)");
   cmd->callback([opt] {
+    opt->scenario = resolve_scenario(opt->scenario);  // a file, or a library name (gpm run main)
     // Every file DIR gets, against every input the run reads (scenario, the
     // files it names, hardware file): refused before anything is parsed.
     for (const std::string& name : scenario::run_output_names())

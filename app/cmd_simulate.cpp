@@ -8,6 +8,7 @@
 #include <fmt/format.h>
 
 #include "app/commands.hpp"
+#include "app/data_files.hpp"
 #include "models/errors.hpp"
 #include "models/output_file.hpp"
 #include "calib/model_test.hpp"
@@ -29,10 +30,11 @@ void add_simulate(CLI::App& app) {
   auto opt = std::make_shared<SimulateOptions>();
   auto* cmd = app.add_subcommand(
       "simulate", "Simulate a scenario on the MuJoCo twin: DIR/samples.csv, trajectory.csv, actual.yaml, model.xml");
-  cmd->add_option("scenario", opt->scenario, "Scenario file (YAML, see scenarios/SCHEMA.md)")->required();
+  cmd->add_option("scenario", opt->scenario, "Scenario: a YAML file, or a name from the scenario library (gpm help scenarios); its keys: gpm help schema")->required();
   cmd->add_option("-o,--out", opt->out, "Output folder")->required();
   cmd->callback([opt] {
     const auto t0 = std::chrono::steady_clock::now();
+    opt->scenario = resolve_scenario(opt->scenario);  // a file, or a library name
     // DIR's files against every input (the scenario and the files it names),
     // and not a hardware session's folder: before anything is read.
     check_output_folder(opt->out, sim::simulation_output_names());

@@ -20,6 +20,7 @@
 #include <sys/wait.h>
 
 #include "app/commands.hpp"
+#include "app/data_files.hpp"
 #include "app/number_options.hpp"
 #include "calib/crb.hpp"
 #include "calib/identifiability.hpp"
@@ -342,7 +343,7 @@ void add_study(CLI::App& app) {
   auto* population = study->add_subcommand(
       "population", "A scenario over N robots of the class (actual geometry and every effect drawn per robot): the "
                     "positioning error of each calibrated model, and its parameter errors in their stated 1-sigma");
-  population->add_option("scenario", o->scenario, "Scenario file (e.g. scenarios/main.yaml)")->required();
+  population->add_option("scenario", o->scenario, "Scenario: a YAML file, or a name from the scenario library (e.g. main; gpm help scenarios)")->required();
   population->add_option("-o,--output", o->out, "Output folder (population.md/.html/.json, figures, robot_SEED.yaml)")
       ->required();
   population->add_option("--count", o->population_count, "Robots (seeds: the scenario's seed + 0 .. count - 1)")
@@ -356,9 +357,10 @@ void add_study(CLI::App& app) {
                       ->transform(number_in(limits::kThreads));
   population->add_option("--scheduler", o->scheduler,
                          "A running Dask scheduler (tcp://HOST:8786): the robots run on its workers through the "
-                         "Python module (python/README.md); writes population.json, .csv, .png, robot_SEED.yaml");
+                         "Python module (gpm.study); writes population.json, .csv, .png, robot_SEED.yaml");
   population->callback([o, threads] {
     o->threads_given = threads->count() > 0;
+    o->scenario = resolve_scenario(o->scenario);  // a file, or a library name
     run_population(*o);
   });
 }

@@ -272,7 +272,7 @@ void run_zero(const ZeroArgs& a) {
 void add_zero(CLI::App& app) {
   auto args = std::make_shared<ZeroArgs>();
   auto* cmd = app.add_subcommand("zero", "Zero-offset auto-calibration on the moving robot (paper section 2.4)");
-  cmd->add_option("--hardware", args->hardware, "hardware file (backend twin or modbus, safety limits)")->required();
+  cmd->add_option("--hardware", args->hardware, "hardware file (backend twin, modbus or plugin, safety limits; gpm help hardware)")->required();
   cmd->add_option("--model", args->model, "robot file replacing the hardware file's controller (links, bases, home = O)");
   cmd->add_option("--start", args->starts, "X,Y (mm): jog here first and take it as the initial estimate; repeat for several runs");
   cmd->add_option("--method", args->method, "grid (paper steps 5-7) or direct (least squares on E)");
