@@ -14,6 +14,7 @@
 
 #include "app/cli_text.hpp"
 #include "app/commands.hpp"
+#include "app/written_files.hpp"
 #include "models/data_dir.hpp"
 #include "models/errors.hpp"
 #include "models/output_file.hpp"
@@ -89,6 +90,7 @@ void not_available(const std::string& name, const std::string& issue) {
 }
 
 int run_app(CLI::App& app, int argc, char** argv) {
+  mark_command_start();  // files written from now on are listed (app/written_files.hpp)
   install_output_signal_cleanup();
   track_command_files(true);  // every input against every output, by identity (models/output_file.hpp)
   // Ceres logs through glog; the toolkit reports solver problems itself

@@ -17,6 +17,7 @@
 
 #include "app/commands.hpp"
 #include "app/data_files.hpp"
+#include "app/written_files.hpp"
 #include "calib/result_yaml.hpp"
 #include "models/errors.hpp"
 #include "models/output_file.hpp"
@@ -64,12 +65,12 @@ ReadingChoice reading_of(const MonitorOptions& opt, const sim::Scenario& s, cons
                                                                                          : s.controller.data_sheet;
   const YAML::Node stated = load_yaml_file(opt.scenario)["monitor"];
   ReadingChoice r{scenario::parse_monitor_reading_model(stated, opt.scenario, sheet),
-                  stated ? fmt::format("the scenario's monitor: ({})", opt.scenario)
-                         : "data_sheet (the default; a scenario states its own with monitor:)"};
+                  stated ? fmt::format("as stated under monitor: in {}", opt.scenario)
+                         : "from the robot's data sheet (the default; a scenario states its own under monitor:)"};
   if (!opt.model.empty())
     if (const YAML::Node n = load_yaml_file(opt.model)["monitor"]) {
       r.model = scenario::parse_monitor_reading_model(n, opt.model, sheet);
-      r.from = fmt::format("the calibration result's monitor: ({})", opt.model);
+      r.from = fmt::format("as the calibration estimated it (monitor: in {})", opt.model);
     }
   return r;
 }
@@ -137,13 +138,13 @@ void print_summary(const MonitorOptions& opt, const sim::Scenario& s, const scen
   fmt::print("scenario   {} ({})\n", s.name, opt.scenario);
   fmt::print("operation  {:.1f} s, {} servo cycles, {:.1f} s wall\n", o.simulated_s, o.cycles, o.wall_s);
   if (!o.hardware.empty()) fmt::print("hardware   {}\n", o.hardware);
-  fmt::print("readings   {}\n", reading_from);
+  fmt::print("readings   noise model {}\n", reading_from);
   fmt::print("learning   {}\n", scenario::learning_text(o));
   print_alarms(o);
   for (const auto& c : checks)
     if (!c.passed) fmt::print("FAILED     {}: {}\n", c.name, c.detail);
   fmt::print("verdict    {} ({} checks, {} failed)\n", failed ? "FAILED" : "PASSED", checks.size(), failed);
-  fmt::print("report     {}/report.html (and report.md, alarms.csv, estimates.csv, summary.json)\n", opt.out);
+  print_written(opt.out);  // report.html, report.md, alarms.csv, estimates.csv, summary.json, figures
   if (failed) set_exit(1);
 }
 

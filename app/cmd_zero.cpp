@@ -20,6 +20,7 @@
 
 #include "app/commands.hpp"
 #include "app/number_options.hpp"
+#include "app/written_files.hpp"
 #include "models/measured_data.hpp"
 #include "models/output_file.hpp"
 #include "report/report_document.hpp"
@@ -213,6 +214,7 @@ void write_zero_outputs(const ZeroSession& s, const std::optional<Eigen::Vector3
   doc.stage(out, "report", "gpm zero: zero-offset auto-calibration");
   if (const auto mean = mean_offsets(a, s.runs)) out.add("offsets.yaml", offsets_yaml(s.config.controller, *mean, s.runs));
   out.commit();
+  print_written(a.out, 6);  // report.md, report.html, offsets.yaml, trace.csv
 }
 
 // Sets the exit code of how the session ended (130 interrupted, 1 a run stopped) with one line on stderr.
