@@ -62,13 +62,14 @@ std::string unknown_subcommand(CLI::App& app, int argc, char** argv) {
 }
 
 // msg with every word longer than 40 characters cut (a 300-digit argument is
-// not echoed whole in CLI11's messages).
+// not echoed whole in CLI11's messages); words a validator already cut are kept.
 std::string cut_long_words(const std::string& msg) {
   std::string out;
   std::size_t i = 0;
   while (i < msg.size()) {
     const std::size_t end = std::min(msg.find(' ', i), msg.size());
-    out += cut(msg.substr(i, end - i));
+    const std::string word = msg.substr(i, end - i);
+    out += word.find("\u2026") == std::string::npos ? cut(word) : word;  // a validator's cut stays
     if (end < msg.size()) out += ' ';
     i = end + 1;
   }
