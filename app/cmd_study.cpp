@@ -19,6 +19,7 @@
 #include <spawn.h>
 #include <sys/wait.h>
 
+#include "app/cli_text.hpp"
 #include "app/commands.hpp"
 #include "app/data_files.hpp"
 #include "app/progress_mode.hpp"
@@ -208,8 +209,8 @@ void run_effects(const StudyOptions& o) {
   status->update(fmt::format("0 of {} runs done", runs));
   const auto study = scenario::run_effects_study(procedures, so, [&](const scenario::EffectsRow& r) {
     status->update(fmt::format("{} of {} runs done", ++done, runs));
-    fmt::print("  {:<17} {:<15} calibrated / floor {:>7.2f}, worst {} {:.1f} um{} ({:.1f} s)\n", r.procedure,
-               r.effect, r.floor_ratio, r.worst_param, r.worst_error_um, r.failure ? " [" + *r.failure + "]" : "",
+    fmt::print("  {:<17} {:<15} calibrated / floor {:>7.2f}, worst {} {:.1f} {}{} ({:.1f} s)\n", r.procedure,
+               r.effect, r.floor_ratio, r.worst_param, r.worst_error_um, um(), r.failure ? " [" + *r.failure + "]" : "",
                r.seconds);
     std::fflush(stdout);
   });
@@ -294,9 +295,9 @@ void run_population(const StudyOptions& o) {
         if (r.failure)
           fmt::print("  [{}/{}] robot {}: failed: {} ({:.0f} s)\n", done, total, r.seed, *r.failure, r.seconds);
         else
-          fmt::print("  [{}/{}] robot {}: positioning {:.2f} um RMS (stated 1-sigma {:.2f}), worst parameter {:.1f} "
+          fmt::print("  [{}/{}] robot {}: positioning {:.2f} {} RMS (stated 1-sigma {:.2f}), worst parameter {:.1f} "
                      "sigma ({}), model test {} ({:.0f} s)\n",
-                     done, total, r.seed, r.positioning.rms_um, r.positioning.stated_sigma_rms_um, r.worst_sigma_ratio,
+                     done, total, r.seed, r.positioning.rms_um, um(), r.positioning.stated_sigma_rms_um, r.worst_sigma_ratio,
                      r.worst_param, r.model_test_passed ? (*r.model_test_passed ? "passes" : "fails") : "-", r.seconds);
         std::fflush(stdout);
       });
