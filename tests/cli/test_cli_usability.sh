@@ -74,6 +74,11 @@ check "unknown name" 2 "$GPM" simulate simulat_disk -o sim3
 expect_err "unknown name: did you mean" "scenario 'simulat_disk': no such file here nor in the scenario library .*; did you mean 'simulate_disc'\?"
 expect_err "unknown name lists the library" "library names: .*, main, "
 holds "unknown name wrote nothing" test ! -e sim3
+# gpm run and gpm monitor resolve the name too (refused after the scenario is read: nothing runs).
+check "run main.yaml by name" 2 "$GPM" run main.yaml -o run --resume
+expect_err "run read the library's main.yaml" "give --hardware HW.yaml \(or hardware: in .*scenarios/main.yaml\)"
+check "monitor by name" 2 "$GPM" monitor monitor_offset_jump -o mon --model "$tmp/none.yaml"
+expect_err "monitor read the library's scenario, then the model" "none.yaml"
 check "a path is not looked up" 2 "$GPM" simulate ./main.yaml -o sim3
 expect_err "a path names the file" "main.yaml: cannot open file"
 
