@@ -2,9 +2,11 @@
 #include "app/progress_mode.hpp"
 
 #include <chrono>
+#include <csignal>
 #include <cstdio>
 
 #include <fmt/format.h>
+#include <pthread.h>
 #include <unistd.h>
 
 namespace gpm::cli {
@@ -64,6 +66,13 @@ std::unique_ptr<StatusReporter> StatusReporter::on_stderr(std::string what, Prog
 StatusReporter::~StatusReporter() { finish(); }
 
 void StatusReporter::start_heartbeat() {
+  // The thread blocks the stop signals (it inherits the mask at creation), so
+  // that SIGINT, SIGTERM and SIGHUP reach the thread that does the work (and
+  // interrupt its waits on drives and files).
+  sigset_t stop, previous;
+  sigemptyset(&stop);
+  for (int sig : {SIGINT, SIGTERM, SIGHUP}) sigaddset(&stop, sig);
+  pthread_sigmask(SIG_BLOCK, &stop, &previous);
   heartbeat_ = std::thread([this] {
     std::unique_lock<std::mutex> lock(mutex_);
     while (!finished_) {
@@ -71,6 +80,7 @@ void StatusReporter::start_heartbeat() {
       if (!finished_) write_line_locked(clock_());
     }
   });
+  pthread_sigmask(SIG_SETMASK, &previous, nullptr);
 }
 
 void StatusReporter::write_line_locked(double now) {
