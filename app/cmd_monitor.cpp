@@ -7,7 +7,6 @@
 // (run/monitor_run.hpp). Bad input exits 2 with one line.
 #include <cmath>
 #include <cstdio>
-#include <unistd.h>
 #include <limits>
 #include <memory>
 #include <optional>
@@ -17,6 +16,7 @@
 
 #include "app/commands.hpp"
 #include "app/data_files.hpp"
+#include "app/progress_mode.hpp"
 #include "app/written_files.hpp"
 #include "calib/result_yaml.hpp"
 #include "models/errors.hpp"
@@ -36,6 +36,7 @@ struct MonitorOptions {
   std::string out;
   std::string model;
   std::string hardware;
+  std::string progress;  // --progress (app/progress_mode.hpp)
 };
 
 // The monitor's starting 1-sigma per parameter: a calibration result's, NaN where unknown.
@@ -81,10 +82,10 @@ std::optional<scenario::MonitorOutcome> run_operation(const MonitorOptions& opt,
                                                       const Robot& controller,
                                                       const std::array<double, kNumParams>& prior,
                                                       const scenario::MonitorReadingModel& reading) {
-  // Progress on a terminal only (a log file gets the summary alone).
-  const bool tty = isatty(STDERR_FILENO) != 0;
-  const auto progress = [tty](double t, double T) {
-    if (tty) std::fprintf(stderr, "\rgpm monitor: %.0f of %.0f s of operation", t, T);
+  // Progress on stderr (--progress; app/progress_mode.hpp).
+  const auto status = StatusReporter::on_stderr("gpm monitor", progress_mode(opt.progress));
+  const auto progress = [&status](double t, double T) {
+    status->update(fmt::format("{:.0f} of {:.0f} s of operation", t, T));
   };
   try {
     std::optional<scenario::MonitorOutcome> o;
@@ -96,14 +97,14 @@ std::optional<scenario::MonitorOutcome> run_operation(const MonitorOptions& opt,
       try {
         o = scenario::run_monitor_hardware(s, opt.hardware, controller, prior, reading, progress, signals.flag());
       } catch (const hw::Interrupted& e) {
-        if (tty) std::fprintf(stderr, "\n");
+        status->finish();
         std::fprintf(stderr, "gpm monitor: %s: %s (drives disabled; nothing written)\n",
                      hw::StopOnSignal::signal_name(), e.what());
         set_exit(hw::kInterruptedExit);
         return std::nullopt;
       }
     }
-    if (tty) std::fprintf(stderr, "\n");
+    status->finish();
     return o;
   } catch (const sim::SimError& e) {
     throw InputError(fmt::format("{}: {}", opt.scenario, e.what()));
@@ -178,6 +179,7 @@ void add_monitor(CLI::App& app) {
   cmd->add_option("--model", opt->model, "The controller's model (robot or calibration result file); default: the scenario's robot");
   cmd->add_option("--hardware", opt->hardware,
                   "Hardware file (gpm help hardware): monitor the operation through the robot interface (backend twin, modbus or plugin)");
+  add_progress_option(cmd, opt->progress);
   cmd->callback([opt] {
     opt->scenario = resolve_scenario(opt->scenario);  // a file, or a library name
     run_monitor_command(*opt);
