@@ -1,5 +1,6 @@
 #include "app/cli_main.hpp"
 
+#include <algorithm>
 #include <cstdio>
 #include <cstdlib>
 #include <exception>
@@ -11,7 +12,9 @@
 #include <fmt/ranges.h>
 #include <glog/logging.h>
 
+#include "app/cli_text.hpp"
 #include "app/commands.hpp"
+#include "app/written_files.hpp"
 #include "models/data_dir.hpp"
 #include "models/errors.hpp"
 #include "models/output_file.hpp"
@@ -19,7 +22,60 @@
 namespace gpm::cli {
 namespace {
 int g_exit = 0;
+
+// A level of subcommands takes no positional argument of its own (gpm, gpm kin, gpm study).
+bool takes_positionals(const CLI::App& level) {
+  for (const CLI::Option* o : level.get_options())
+    if (o->get_positional()) return true;
+  return false;
 }
+
+// The error line for the first word of argv that names no subcommand where one
+// is expected (gpm kin hom: "did you mean 'home'?"), or for a level that
+// needs a subcommand and got none; empty when the words name subcommands
+// (options and the rest are CLI11's to parse).
+std::string unknown_subcommand(CLI::App& app, int argc, char** argv) {
+  CLI::App* level = &app;
+  std::string path = "gpm";
+  for (int i = 1;; ++i) {
+    const std::vector<CLI::App*> subs = level->get_subcommands({});
+    if (subs.empty() || takes_positionals(*level)) return {};
+    std::vector<std::string> names;
+    for (const CLI::App* sub : subs) names.push_back(sub->get_name());
+    const std::string valid = fmt::format("{}", fmt::join(names, ", "));
+    if (i >= argc) {
+      if (level->get_require_subcommand_min() == 0) return {};
+      return fmt::format("{}: name a subcommand: {} (see {} --help)", path, valid, path);
+    }
+    const std::string word = argv[i];
+    if (!word.empty() && word[0] == '-') return {};
+    const auto next = std::find_if(subs.begin(), subs.end(), [&](const CLI::App* s) { return s->get_name() == word; });
+    if (next == subs.end()) {
+      const std::vector<std::string> near = close_names(word, names);
+      const std::string hint = near.empty() ? "" : fmt::format("did you mean '{}'? ", fmt::join(near, "' or '"));
+      return fmt::format("unknown subcommand '{}' of {}; {}valid: {} (see {} --help)", cut(word), path, hint, valid,
+                         path);
+    }
+    level = *next;
+    path += " " + word;
+  }
+}
+
+// msg with every word longer than 40 characters cut (a 300-digit argument is
+// not echoed whole in CLI11's messages); words a validator already cut are kept.
+std::string cut_long_words(const std::string& msg) {
+  std::string out;
+  std::size_t i = 0;
+  while (i < msg.size()) {
+    const std::size_t end = std::min(msg.find(' ', i), msg.size());
+    const std::string word = msg.substr(i, end - i);
+    out += word.find("\u2026") == std::string::npos ? cut(word) : word;  // a validator's cut stays
+    if (end < msg.size()) out += ' ';
+    i = end + 1;
+  }
+  return out;
+}
+}  // namespace
 
 void set_exit(int code) { g_exit = code; }
 int exit_code() { return g_exit; }
@@ -35,6 +91,7 @@ void not_available(const std::string& name, const std::string& issue) {
 }
 
 int run_app(CLI::App& app, int argc, char** argv) {
+  mark_command_start();  // files written from now on are listed (app/written_files.hpp)
   install_output_signal_cleanup();
   track_command_files(true);  // every input against every output, by identity (models/output_file.hpp)
   // Ceres logs through glog; the toolkit reports solver problems itself
@@ -42,18 +99,9 @@ int run_app(CLI::App& app, int argc, char** argv) {
   FLAGS_minloglevel = google::GLOG_FATAL;
   FLAGS_logtostderr = true;
   if (!google::IsGoogleLoggingInitialized()) google::InitGoogleLogging(argv[0]);
-  if (argc >= 2 && argv[1][0] != '-') {
-    std::vector<std::string> names;
-    bool known = false;
-    for (const CLI::App* sub : app.get_subcommands({})) {
-      names.push_back(sub->get_name());
-      known = known || sub->get_name() == argv[1];
-    }
-    if (!known) {
-      std::fprintf(stderr, "gpm: error: unknown subcommand '%s'; valid: %s (see gpm --help)\n", argv[1],
-                   fmt::format("{}", fmt::join(names, ", ")).c_str());
-      return 2;
-    }
+  if (const std::string wrong = unknown_subcommand(app, argc, argv); !wrong.empty()) {
+    std::fprintf(stderr, "gpm: error: %s\n", wrong.c_str());
+    return 2;
   }
   try {
     app.parse(argc, argv);
@@ -64,7 +112,7 @@ int run_app(CLI::App& app, int argc, char** argv) {
   } catch (const CLI::CallForVersion& e) {
     return app.exit(e);
   } catch (const CLI::ParseError& e) {
-    std::fprintf(stderr, "gpm: error: %s (see gpm --help)\n", e.what());
+    std::fprintf(stderr, "gpm: error: %s (see gpm --help)\n", cut_long_words(e.what()).c_str());
     return 2;
   } catch (const gpm::InputError& e) {
     std::fprintf(stderr, "gpm: error: %s\n", e.what());

@@ -11,6 +11,7 @@
 
 #include "app/commands.hpp"
 #include "app/number_options.hpp"
+#include "app/written_files.hpp"
 #include "calib/global/comparison.hpp"
 #include "calib/paper_values.hpp"
 #include "models/bounds.hpp"
@@ -83,10 +84,11 @@ void run_compare(const CompareArgs& a) {
   for (calib::Cost cost : st.costs)
     out.add(fmt::format("convergence_{}.svg", calib::cost_name(cost)), report::compare_svg(data, std::string(calib::cost_name(cost))));
   out.commit();
-  std::printf("%s", fmt::format("gpm compare: {} runs in {:.1f} s -> {}/table6.md, runs.csv, "
-                                "history.csv, convergence_*.svg\n{}\n",
-                                c.runs.size(), c.seconds, a.out_dir, c.at_actual.diagnosis)
+  std::printf("%s", fmt::format("gpm compare: {} runs in {:.1f} s\n{}\n", c.runs.size(), c.seconds,
+                                c.at_actual.diagnosis)
                         .c_str());
+  std::fflush(stdout);
+  print_written(a.out_dir);  // table6.md, runs.csv, history.csv, convergence_*.svg
 }
 
 }  // namespace

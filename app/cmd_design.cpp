@@ -16,6 +16,7 @@
 #include "app/commands.hpp"
 #include "app/json_output.hpp"
 #include "app/number_options.hpp"
+#include "app/written_files.hpp"
 #include "calib/excitation/excitation.hpp"
 #include "calib/excitation/layouts.hpp"
 #include "calib/excitation/pose_list.hpp"
@@ -178,7 +179,7 @@ void run_compare(const DesignCliOptions& o) {
                r.bounds.worst_param >= 0 ? param_name(r.bounds.worst_param) : "-", report::design_bound_text(r.bounds.mean_mm));
   fmt::print("optimised is {:.1f}x better on the worst bound than the best other layout\n",
              ex::improvement_over_best_other(rows));
-  fmt::print("wrote {}/design_comparison.md, .html, .csv, .svg, design_layouts.svg, optimised_poses.yaml\n", o.out);
+  print_written(o.out, 6);  // design_comparison.md, .html, .csv, .svg, design_layouts.svg, optimised_poses.yaml
 }
 
 }  // namespace

@@ -7,7 +7,6 @@
 // (run/monitor_run.hpp). Bad input exits 2 with one line.
 #include <cmath>
 #include <cstdio>
-#include <unistd.h>
 #include <limits>
 #include <memory>
 #include <optional>
@@ -16,6 +15,9 @@
 #include <fmt/format.h>
 
 #include "app/commands.hpp"
+#include "app/data_files.hpp"
+#include "app/progress_mode.hpp"
+#include "app/written_files.hpp"
 #include "calib/result_yaml.hpp"
 #include "models/errors.hpp"
 #include "models/output_file.hpp"
@@ -34,6 +36,7 @@ struct MonitorOptions {
   std::string out;
   std::string model;
   std::string hardware;
+  std::string progress;  // --progress (app/progress_mode.hpp)
 };
 
 // The monitor's starting 1-sigma per parameter: a calibration result's, NaN where unknown.
@@ -63,12 +66,12 @@ ReadingChoice reading_of(const MonitorOptions& opt, const sim::Scenario& s, cons
                                                                                          : s.controller.data_sheet;
   const YAML::Node stated = load_yaml_file(opt.scenario)["monitor"];
   ReadingChoice r{scenario::parse_monitor_reading_model(stated, opt.scenario, sheet),
-                  stated ? fmt::format("the scenario's monitor: ({})", opt.scenario)
-                         : "data_sheet (the default; a scenario states its own with monitor:)"};
+                  stated ? fmt::format("as stated under monitor: in {}", opt.scenario)
+                         : "from the robot's data sheet (the default; a scenario states its own under monitor:)"};
   if (!opt.model.empty())
     if (const YAML::Node n = load_yaml_file(opt.model)["monitor"]) {
       r.model = scenario::parse_monitor_reading_model(n, opt.model, sheet);
-      r.from = fmt::format("the calibration result's monitor: ({})", opt.model);
+      r.from = fmt::format("as the calibration estimated it (monitor: in {})", opt.model);
     }
   return r;
 }
@@ -79,10 +82,10 @@ std::optional<scenario::MonitorOutcome> run_operation(const MonitorOptions& opt,
                                                       const Robot& controller,
                                                       const std::array<double, kNumParams>& prior,
                                                       const scenario::MonitorReadingModel& reading) {
-  // Progress on a terminal only (a log file gets the summary alone).
-  const bool tty = isatty(STDERR_FILENO) != 0;
-  const auto progress = [tty](double t, double T) {
-    if (tty) std::fprintf(stderr, "\rgpm monitor: %.0f of %.0f s of operation", t, T);
+  // Progress on stderr (--progress; app/progress_mode.hpp).
+  const auto status = StatusReporter::on_stderr("gpm monitor", progress_mode(opt.progress));
+  const auto progress = [&status](double t, double T) {
+    status->update(fmt::format("{:.0f} of {:.0f} s of operation", t, T));
   };
   try {
     std::optional<scenario::MonitorOutcome> o;
@@ -94,14 +97,14 @@ std::optional<scenario::MonitorOutcome> run_operation(const MonitorOptions& opt,
       try {
         o = scenario::run_monitor_hardware(s, opt.hardware, controller, prior, reading, progress, signals.flag());
       } catch (const hw::Interrupted& e) {
-        if (tty) std::fprintf(stderr, "\n");
+        status->finish();
         std::fprintf(stderr, "gpm monitor: %s: %s (drives disabled; nothing written)\n",
                      hw::StopOnSignal::signal_name(), e.what());
         set_exit(hw::kInterruptedExit);
         return std::nullopt;
       }
     }
-    if (tty) std::fprintf(stderr, "\n");
+    status->finish();
     return o;
   } catch (const sim::SimError& e) {
     throw InputError(fmt::format("{}: {}", opt.scenario, e.what()));
@@ -136,13 +139,13 @@ void print_summary(const MonitorOptions& opt, const sim::Scenario& s, const scen
   fmt::print("scenario   {} ({})\n", s.name, opt.scenario);
   fmt::print("operation  {:.1f} s, {} servo cycles, {:.1f} s wall\n", o.simulated_s, o.cycles, o.wall_s);
   if (!o.hardware.empty()) fmt::print("hardware   {}\n", o.hardware);
-  fmt::print("readings   {}\n", reading_from);
+  fmt::print("readings   noise model {}\n", reading_from);
   fmt::print("learning   {}\n", scenario::learning_text(o));
   print_alarms(o);
   for (const auto& c : checks)
     if (!c.passed) fmt::print("FAILED     {}: {}\n", c.name, c.detail);
   fmt::print("verdict    {} ({} checks, {} failed)\n", failed ? "FAILED" : "PASSED", checks.size(), failed);
-  fmt::print("report     {}/report.html (and report.md, alarms.csv, estimates.csv, summary.json)\n", opt.out);
+  print_written(opt.out);  // report.html, report.md, alarms.csv, estimates.csv, summary.json, figures
   if (failed) set_exit(1);
 }
 
@@ -170,13 +173,17 @@ void add_monitor(CLI::App& app) {
   auto opt = std::make_shared<MonitorOptions>();
   auto* cmd = app.add_subcommand(
       "monitor", "Drift monitoring in normal operation: alarms (what changed, when) and tracked parameters");
-  cmd->add_option("scenario", opt->scenario, "Scenario file with operation: (and events:), see scenarios/SCHEMA.md")
+  cmd->add_option("scenario", opt->scenario, "Scenario with operation: (and events:): a YAML file, or a name from the scenario library (gpm help scenarios); its keys: gpm help schema")
       ->required();
   cmd->add_option("-o,--out", opt->out, "Output folder: alarms.csv, estimates.csv, summary.json, report.md")->required();
   cmd->add_option("--model", opt->model, "The controller's model (robot or calibration result file); default: the scenario's robot");
   cmd->add_option("--hardware", opt->hardware,
-                  "Hardware file (hw/): monitor the operation through the twin backend or the drives");
-  cmd->callback([opt] { run_monitor_command(*opt); });
+                  "Hardware file (gpm help hardware): monitor the operation through the robot interface (backend twin, modbus or plugin)");
+  add_progress_option(cmd, opt->progress);
+  cmd->callback([opt] {
+    opt->scenario = resolve_scenario(opt->scenario);  // a file, or a library name
+    run_monitor_command(*opt);
+  });
 }
 
 }  // namespace gpm::cli

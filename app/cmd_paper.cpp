@@ -1,7 +1,6 @@
 // gpm paper: every experiment of the paper run as the paper ran it, written
 // as DIR/paper.md, paper.html (figures beside) and paper.json: the printed
 // values beside this run's, and why each differs (run/paper/).
-#include <unistd.h>
 
 #include <cmath>
 #include <cstdio>
@@ -11,6 +10,8 @@
 
 #include "app/commands.hpp"
 #include "app/number_options.hpp"
+#include "app/progress_mode.hpp"
+#include "app/written_files.hpp"
 #include "models/errors.hpp"
 #include "models/output_file.hpp"
 #include "run/paper/paper_document.hpp"
@@ -25,6 +26,7 @@ struct PaperArgs {
   double budget = 5e6;
   unsigned long long seed = 1;
   int jobs = 0;
+  std::string progress;  // --progress (app/progress_mode.hpp)
 };
 
 void run_paper_command(const PaperArgs& a) {
@@ -34,16 +36,12 @@ void run_paper_command(const PaperArgs& a) {
   s.seed = a.seed;
   s.parallel_runs = a.jobs;
   OutputFolder out(a.out_dir);  // a bad folder fails before the runs; all files or none
-  paper::PaperProgress progress;
-  if (isatty(STDERR_FILENO)) {
-    progress = [](const std::string& stage, double f) {
-      const std::string pct = f > 0 ? fmt::format("{:.0f}%", 100 * f) : "";
-      std::fprintf(stderr, "\r\033[Kgpm paper: %s %s", stage.c_str(), pct.c_str());
-      std::fflush(stderr);
-    };
-  }
+  const auto status = StatusReporter::on_stderr("gpm paper", progress_mode(a.progress));
+  const paper::PaperProgress progress = [&status](const std::string& stage, double f) {
+    status->update(f > 0 ? fmt::format("{} {:.0f}%", stage, 100 * f) : stage);
+  };
   const paper::PaperRun run = paper::run_paper(s, progress);
-  if (progress) std::fprintf(stderr, "\r\033[K");
+  status->finish();
   paper::stage_paper(run, out);
   out.commit();
   int rows = 0, agree = 0;
@@ -54,9 +52,11 @@ void run_paper_command(const PaperArgs& a) {
     }
   }
   std::printf("%s", fmt::format("gpm paper: {} tables and figures, {} rows ({} agree, {} differ, each explained) "
-                                "in {:.0f} s -> {}/paper.md, paper.html, paper.json\n",
-                                run.tables.size(), rows, agree, rows - agree, run.seconds, a.out_dir)
+                                "in {:.0f} s\n",
+                                run.tables.size(), rows, agree, rows - agree, run.seconds)
                         .c_str());
+  std::fflush(stdout);
+  print_written(a.out_dir);  // paper.md, paper.html, paper.json and the figures
 }
 
 }  // namespace
@@ -72,6 +72,7 @@ void add_paper(CLI::App& app) {
   cmd->add_option("--seed", args->seed, "Seed of every stochastic run")->capture_default_str()->transform(number_in(limits::kSeed));
   cmd->add_option("-j,--jobs", args->jobs, "GA/PSO/DE runs at once (0 = all cores); results do not depend on it")
       ->capture_default_str();
+  add_progress_option(cmd, args->progress);
   cmd->callback([args] { run_paper_command(*args); });
 }
 

@@ -7,9 +7,12 @@
 #include <string>
 
 #include <fmt/format.h>
-#include <unistd.h>
 
+#include "app/cli_text.hpp"
 #include "app/commands.hpp"
+#include "app/data_files.hpp"
+#include "app/progress_mode.hpp"
+#include "app/written_files.hpp"
 #include "hw/hardware_config.hpp"
 #include "hw/hw_errors.hpp"
 #include "hw/procedures/stop_on_signal.hpp"
@@ -28,6 +31,7 @@ struct RunOptions {
   std::string out;
   std::string hardware;
   bool quiet = false;
+  std::string progress;  // --progress (app/progress_mode.hpp)
   bool resume = false;
 };
 
@@ -51,33 +55,34 @@ void print_summary(const scenario::RunOutcome& o, const std::string& dir) {
   }
   if (o.refused) fmt::print("refused    {}\n", *o.refused);
   if (o.positioning) {
-    fmt::print("position   calibrated model over the 80 mm disc: RMS {:.2f} um, max {:.2f} um (stated 1-sigma {:.2f} "
-               "um per axis; error / 1-sigma {:.2f}, 1 when honest)\n",
+    fmt::print("position   calibrated model over the 80 mm disc: RMS {:.2f} {u}, max {:.2f} {u} (stated 1-sigma {:.2f} "
+               "{u} per axis; error / 1-sigma {:.2f}, 1 when honest)\n",
                o.positioning->rms_um, o.positioning->max_um, o.positioning->stated_sigma_rms_um,
-               o.positioning->normalised_rms);
+               o.positioning->normalised_rms, fmt::arg("u", um()));
   }
   if (o.before) {
-    fmt::print("accuracy   nominal model:    static RMS {:9.2f} um, max {:9.2f} um; path RMS {:9.2f} um\n",
-               o.before->static_rms_um, o.before->static_max_um, o.before->path_rms_um);
+    fmt::print("accuracy   nominal model:    static RMS {:9.2f} {u}, max {:9.2f} {u}; path RMS {:9.2f} {u}\n",
+               o.before->static_rms_um, o.before->static_max_um, o.before->path_rms_um, fmt::arg("u", um()));
   }
   if (o.after) {
-    fmt::print("           calibrated model: static RMS {:9.2f} um, max {:9.2f} um; path RMS {:9.2f} um\n",
-               o.after->static_rms_um, o.after->static_max_um, o.after->path_rms_um);
+    fmt::print("           calibrated model: static RMS {:9.2f} {u}, max {:9.2f} {u}; path RMS {:9.2f} {u}\n",
+               o.after->static_rms_um, o.after->static_max_um, o.after->path_rms_um, fmt::arg("u", um()));
   }
   if (o.floor) {
-    fmt::print("           actual (floor):   static RMS {:9.2f} um, max {:9.2f} um; path RMS {:9.2f} um\n",
-               o.floor->static_rms_um, o.floor->static_max_um, o.floor->path_rms_um);
+    fmt::print("           actual (floor):   static RMS {:9.2f} {u}, max {:9.2f} {u}; path RMS {:9.2f} {u}\n",
+               o.floor->static_rms_um, o.floor->static_max_um, o.floor->path_rms_um, fmt::arg("u", um()));
   }
   if (o.hardware_description.empty()) fmt::print("robot time {:.2f} s of sampling\n", o.sim.sampling_s);
   if (o.model_test) {
-    fmt::print("model test chi2 {:.4g} for {:.0f} degrees of freedom, p = {:.3g}: {}\n", o.model_test->chi2,
+    fmt::print("model test {} {:.4g} for {:.0f} degrees of freedom, p = {:.3g}: {}\n", chi2(), o.model_test->chi2,
                o.model_test->dof, o.model_test->p_value,
                o.model_test->passed ? "the residuals are as small as the encoders explain"
                                     : "fails (see the report's notes for the likely cause)");
   }
   if (o.monitor) {
     const scenario::MonitorOutcome& m = *o.monitor;
-    fmt::print("monitor    {:.1f} s of operation, {} alarms ({} false)\n", m.simulated_s, m.alarms.size(), m.false_alarms);
+    fmt::print("monitor    {:.1f} s of operation, {} ({} false)\n", m.simulated_s, count_of(m.alarms.size(), "alarm"),
+               m.false_alarms);
     fmt::print("learning   {}\n", scenario::learning_text(m));
     for (const auto& d : m.detections)
       fmt::print("event {}    at {:.3f} s {}\n", d.event, d.at_s,
@@ -93,21 +98,26 @@ void print_summary(const scenario::RunOutcome& o, const std::string& dir) {
   }
   fmt::print("verdict    {} ({} checks, {} failed) in {:.1f} s\n", failed ? "FAILED" : "PASSED", o.checks.size(),
              failed, o.seconds);
-  if (o.spec.outputs.report) fmt::print("report     {}/report.html (and report.md)\n", dir);
+  print_written(dir);  // summary.json, report.html, ...: every file of DIR this run wrote
 }
 
 }  // namespace
 
 void add_run(CLI::App& app) {
   auto opt = std::make_shared<RunOptions>();
-  auto* cmd = app.add_subcommand("run", "Simulate, calibrate, compensate and report a scenario (exit 1 if an expectation fails)");
-  cmd->add_option("scenario", opt->scenario, "Scenario file (YAML; see scenarios/SCHEMA.md)")->required();
+  auto* cmd = app.add_subcommand(
+      "run", "Simulate, calibrate, compensate and report a scenario (exit 1 if an expectation fails); writes DIR/summary.json, "
+             "report.html, report.md, calibration.yaml, samples.csv, trajectory.csv, actual.yaml, model.xml and figures "
+             "(gpm help formats)");
+  cmd->add_option("scenario", opt->scenario, "Scenario: a YAML file, or a name from the scenario library (gpm help scenarios); its keys: gpm help schema")->required();
   cmd->add_option("-o,--out", opt->out, "Output folder")->required();
   cmd->add_option("--hardware", opt->hardware,
-                  "Hardware file (hw/examples): take the samples through the robot interface (twin or modbus)");
-  cmd->add_flag("-q,--quiet", opt->quiet, "No progress lines");
+                  "Hardware file (gpm help hardware): take the samples through the robot interface (backend twin, modbus or plugin)");
+  cmd->add_flag("-q,--quiet", opt->quiet, "No progress on stderr (--progress=none)");
+  add_progress_option(cmd, opt->progress);
   cmd->add_flag("--resume", opt->resume, "With --hardware: continue DIR/samples.csv of a stopped run (same plan)");
   cmd->callback([opt] {
+    opt->scenario = resolve_scenario(opt->scenario);  // a file, or a library name (gpm run main)
     // Every file DIR gets, against every input the run reads (scenario, the
     // files it names, hardware file): refused before anything is parsed.
     for (const std::string& name : scenario::run_output_names())
@@ -131,11 +141,10 @@ void add_run(CLI::App& app) {
       check_output_folder(opt->out, scenario::run_output_names());  // not a file, no measured folder nor log
     }
     const std::string samples_path = measured ? measured->samples_path() : std::string();
-    const bool show = !opt->quiet && ::isatty(STDERR_FILENO);
     std::optional<scenario::RunOutcome> ran;
     try {  // a stopped hardware session: drives disabled, samples kept (hw/README.md)
-      scenario::Progress stages;  // none when quiet or not on a terminal
-      if (show) stages = [](const std::string& stage) { std::fprintf(stderr, "gpm run: %s ...\n", stage.c_str()); };
+      const auto status = StatusReporter::on_stderr("gpm run", progress_mode(opt->quiet ? "none" : opt->progress));
+      const scenario::Progress stages = [&status](const std::string& stage) { status->update(stage); };
       ran = scenario::run_scenario(spec, opt->scenario, stages, samples_path);
     } catch (const hw::HardwareError& e) {
       const bool interrupted = dynamic_cast<const hw::Interrupted*>(&e) != nullptr;
@@ -154,6 +163,7 @@ void add_run(CLI::App& app) {
       out.commit();
       std::fprintf(stderr, "gpm: error: %s; %zu samples kept in %s/samples.csv\n", e.what(), e.samples.size(),
                    opt->out.c_str());
+      print_written(opt->out);
       set_exit(1);
       return;
     }

@@ -8,6 +8,7 @@
 #include <fmt/format.h>
 
 #include "app/commands.hpp"
+#include "app/data_files.hpp"
 #include "hw/hardware_config.hpp"
 #include "hw/hw_errors.hpp"
 #include "hw/procedures/sampling_session.hpp"
@@ -25,7 +26,8 @@ struct SampleArgs {
   bool resume = false;
 };
 
-void run_sample(const SampleArgs& a) {
+void run_sample(SampleArgs a) {
+  if (!a.scenario.empty()) a.scenario = resolve_scenario(a.scenario);  // a file, or a library name
   if (a.poses.empty() == a.scenario.empty()) {
     throw InputError("gpm sample: give exactly one of --poses POSES.yaml or --scenario S.yaml");
   }
@@ -69,9 +71,9 @@ void run_sample(const SampleArgs& a) {
 void add_sample(CLI::App& app) {
   auto args = std::make_shared<SampleArgs>();
   auto* cmd = app.add_subcommand("sample", "Run a calibration sampling session on the twin or real drives (hardware file)");
-  cmd->add_option("--hardware", args->hardware, "hardware file (backend twin or modbus, safety limits)")->required();
+  cmd->add_option("--hardware", args->hardware, "hardware file (backend twin, modbus or plugin, safety limits; gpm help hardware)")->required();
   cmd->add_option("--poses", args->poses, "poses file: poses: [[x, y], ...] (mm)");
-  cmd->add_option("--scenario", args->scenario, "scenario whose sampling plan gives the poses");
+  cmd->add_option("--scenario", args->scenario, "scenario whose sampling plan gives the poses (a file or a library name: gpm help scenarios)");
   cmd->add_option("-o,--output", args->out, "samples CSV, appended as samples are taken")->required();
   cmd->add_flag("--resume", args->resume, "continue an existing samples file, skipping recorded poses");
   cmd->callback([args] { run_sample(*args); });

@@ -7,7 +7,11 @@
 
 #include <fmt/format.h>
 
+#include "app/cli_text.hpp"
 #include "app/commands.hpp"
+#include "app/data_files.hpp"
+#include "app/progress_mode.hpp"
+#include "app/written_files.hpp"
 #include "models/errors.hpp"
 #include "models/output_file.hpp"
 #include "calib/model_test.hpp"
@@ -21,6 +25,7 @@ namespace {
 struct SimulateOptions {
   std::string scenario;
   std::string out;
+  std::string progress;  // --progress (app/progress_mode.hpp)
 };
 
 }  // namespace
@@ -29,10 +34,12 @@ void add_simulate(CLI::App& app) {
   auto opt = std::make_shared<SimulateOptions>();
   auto* cmd = app.add_subcommand(
       "simulate", "Simulate a scenario on the MuJoCo twin: DIR/samples.csv, trajectory.csv, actual.yaml, model.xml");
-  cmd->add_option("scenario", opt->scenario, "Scenario file (YAML, see scenarios/SCHEMA.md)")->required();
+  cmd->add_option("scenario", opt->scenario, "Scenario: a YAML file, or a name from the scenario library (gpm help scenarios); its keys: gpm help schema")->required();
   cmd->add_option("-o,--out", opt->out, "Output folder")->required();
+  add_progress_option(cmd, opt->progress);
   cmd->callback([opt] {
     const auto t0 = std::chrono::steady_clock::now();
+    opt->scenario = resolve_scenario(opt->scenario);  // a file, or a library name
     // DIR's files against every input (the scenario and the files it names),
     // and not a hardware session's folder: before anything is read.
     check_output_folder(opt->out, sim::simulation_output_names());
@@ -42,7 +49,7 @@ void add_simulate(CLI::App& app) {
                               calib::reading_sigma(calib::encoder_step_rad(s.twin.encoder.bits), s.twin.encoder.noise_rad));
     sim::SimulationResult r;
     try {
-      Progress progress = Progress::terminal("gpm simulate", "simulated s");  // on a terminal only
+      Progress progress = counting_progress(progress_mode(opt->progress), "gpm simulate", "simulated s");
       r = sim::simulate_to_folder(s, opt->out, &progress);  // trajectory.csv streamed, all files or none
     } catch (const sim::SimError& e) {
       throw InputError(fmt::format("{}: {}", opt->scenario, e.what()));
@@ -50,13 +57,20 @@ void add_simulate(CLI::App& app) {
     const double wall = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
     int unsettled = 0;
     for (const auto& smp : r.samples) unsettled += smp.settled ? 0 : 1;
+    const bool on_the_fly = s.sampling && s.sampling->pattern == sim::PosePattern::kTrajectory;
     fmt::print("scenario         {}\n", s.name);
-    fmt::print("samples          {} ({} did not settle)\n", r.samples.size(), unsettled);
+    if (on_the_fly)  // never at rest by design: "settled" does not apply
+      fmt::print("samples          {} (taken on the fly along the excitation path)\n", r.samples.size());
+    else if (unsettled == 0)
+      fmt::print("samples          {} (each taken at rest)\n", r.samples.size());
+    else
+      fmt::print("samples          {} ({} of them not at rest within the settle timeout: marked settled = 0)\n",
+                 r.samples.size(), unsettled);
     fmt::print("trajectory rows  {}\n", r.log.count);
     fmt::print("simulated        {:.3f} s in {:.3f} s wall\n", r.simulated_s, wall);
-    fmt::print("loop closure     max gap {:.3g} um\n", r.max_violation_m * 1e6);
+    fmt::print("loop closure     max gap {:.3g} {}\n", r.max_violation_m * 1e6, um());
     fmt::print("drive torque     max {:.3f} N m\n", r.max_torque);
-    fmt::print("wrote            {}/samples.csv, trajectory.csv, actual.yaml, model.xml\n", opt->out);
+    print_written(opt->out, 17);  // samples.csv, trajectory.csv, actual.yaml, model.xml
   });
 }
 

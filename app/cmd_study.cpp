@@ -19,7 +19,11 @@
 #include <spawn.h>
 #include <sys/wait.h>
 
+#include "app/cli_text.hpp"
 #include "app/commands.hpp"
+#include "app/data_files.hpp"
+#include "app/progress_mode.hpp"
+#include "app/written_files.hpp"
 #include "app/number_options.hpp"
 #include "calib/crb.hpp"
 #include "calib/identifiability.hpp"
@@ -55,6 +59,7 @@ struct StudyOptions {
   bool keep_effects = false;    // study population: the scenario's effects, not randomized
   std::string scheduler;        // study population: a running Dask scheduler's address (empty: threads here)
   bool threads_given = false;   // study population: --threads was given
+  std::string progress;         // montecarlo, effects, population: --progress (app/progress_mode.hpp)
 };
 
 // "table5", "section3" (paper values, calib/paper_values.hpp) or a robot file.
@@ -127,7 +132,10 @@ void run_montecarlo(const StudyOptions& o) {
     if (!cost) throw InputError(fmt::format("--costs: '{}' is not one of j1, j2, j3, ml", c));
     mc.costs.push_back(*cost);
   }
+  const auto status = StatusReporter::on_stderr("gpm study montecarlo", progress_mode(o.progress));
+  status->update(fmt::format("{} trials of {} samples", mc.trials, mc.samples));
   const auto rows = calib::run_montecarlo(mc);
+  status->finish();
   fmt::print("Monte-Carlo: {} trials, {} samples in a disc of {} mm around home, sigma {} rad, {} free\n",
              mc.trials, mc.samples, mc.radius_mm, mc.sigma, mc.free.count());
   fmt::print("empirical RMS error / Cramer-Rao bound per parameter (reported 1-sigma / bound in brackets)\n");
@@ -195,16 +203,22 @@ void run_effects(const StudyOptions& o) {
   const auto procedures = scenario::default_study_procedures();
   fmt::print("effects study: {} effect cases x {} procedures on {} thread(s)\n", so.cases.size(), procedures.size(),
              so.threads);
-  const auto study = scenario::run_effects_study(procedures, so, [](const scenario::EffectsRow& r) {
-    fmt::print("  {:<17} {:<15} calibrated / floor {:>7.2f}, worst {} {:.1f} um{} ({:.1f} s)\n", r.procedure,
-               r.effect, r.floor_ratio, r.worst_param, r.worst_error_um, r.failure ? " [" + *r.failure + "]" : "",
+  const auto status = StatusReporter::on_stderr("gpm study effects", progress_mode(o.progress));
+  const std::size_t runs = so.cases.size() * procedures.size();
+  std::size_t done = 0;
+  status->update(fmt::format("0 of {} runs done", runs));
+  const auto study = scenario::run_effects_study(procedures, so, [&](const scenario::EffectsRow& r) {
+    status->update(fmt::format("{} of {} runs done", ++done, runs));
+    fmt::print("  {:<17} {:<15} calibrated / floor {:>7.2f}, worst {} {:.1f} {}{} ({:.1f} s)\n", r.procedure,
+               r.effect, r.floor_ratio, r.worst_param, r.worst_error_um, um(), r.failure ? " [" + *r.failure + "]" : "",
                r.seconds);
     std::fflush(stdout);
   });
+  status->finish();
   scenario::write_effects_study(study, out);
   fmt::print("{}", scenario::effects_markdown_table(study));
-  fmt::print("{} runs in {:.0f} s -> {}/effects.md, effects.html, effects.json\n", study.rows.size(), study.seconds,
-             out);
+  fmt::print("{} runs in {:.0f} s\n", study.rows.size(), study.seconds);
+  print_written(out);  // effects.md, effects.html, effects.json, figures
 }
 
 extern "C" char** environ;
@@ -273,21 +287,25 @@ void run_population(const StudyOptions& o) {
   fmt::print("population study: {} robots of {} on {} thread(s){}\n", po.seeds.empty() ? po.count : static_cast<int>(po.seeds.size()),
              o.scenario, po.threads, po.keep_effects ? " (the scenario's effects)" : " (every effect drawn per robot)");
   std::fflush(stdout);
+  const auto status = StatusReporter::on_stderr("gpm study population", progress_mode(o.progress));
+  status->update("robots running");
   const auto study = scenario::run_population_study(
-      o.scenario, po, [](const scenario::PopulationRobot& r, int done, int total) {
+      o.scenario, po, [&status](const scenario::PopulationRobot& r, int done, int total) {
+        status->update(fmt::format("{} of {} robots done", done, total));
         if (r.failure)
           fmt::print("  [{}/{}] robot {}: failed: {} ({:.0f} s)\n", done, total, r.seed, *r.failure, r.seconds);
         else
-          fmt::print("  [{}/{}] robot {}: positioning {:.2f} um RMS (stated 1-sigma {:.2f}), worst parameter {:.1f} "
+          fmt::print("  [{}/{}] robot {}: positioning {:.2f} {} RMS (stated 1-sigma {:.2f}), worst parameter {:.1f} "
                      "sigma ({}), model test {} ({:.0f} s)\n",
-                     done, total, r.seed, r.positioning.rms_um, r.positioning.stated_sigma_rms_um, r.worst_sigma_ratio,
+                     done, total, r.seed, r.positioning.rms_um, um(), r.positioning.stated_sigma_rms_um, r.worst_sigma_ratio,
                      r.worst_param, r.model_test_passed ? (*r.model_test_passed ? "passes" : "fails") : "-", r.seconds);
         std::fflush(stdout);
       });
+  status->finish();
   scenario::write_population_study(study, o.out);
   fmt::print("{}", scenario::population_markdown(study));
-  fmt::print("{} robots in {:.0f} s -> {}/population.md, population.html, population.json, robot_SEED.yaml\n",
-             study.robots.size(), study.seconds, o.out);
+  fmt::print("{} robots in {:.0f} s\n", study.robots.size(), study.seconds);
+  print_written(o.out);  // population.md, .html, .json, figures, robot_SEED.yaml
 }
 
 }  // namespace
@@ -325,6 +343,7 @@ void add_study(CLI::App& app) {
   mc->add_flag("--check", o->check, "Exit 1 unless the rms ratio is within the goals (ml 1.05, j3 1.2)");
   mc->add_flag("--check-each", o->check_each,
                "Exit 1 unless every parameter's ratio is within the goals (needs ~500 trials to beat sampling noise)");
+  add_progress_option(mc, o->progress);
   mc->callback([o] { run_montecarlo(*o); });
 
   auto* effects = study->add_subcommand(
@@ -337,12 +356,13 @@ void add_study(CLI::App& app) {
                       "encoder_cyclic, encoder_skew, all, drive_train, encoder_motor, every)");
   effects->add_option("--count", o->effects_count, "Poses per calibration, 12 to 2000 (default: each procedure's own)");
   effects->add_option("--threads", o->threads, "Runs in parallel")->capture_default_str();
+  add_progress_option(effects, o->progress);
   effects->callback([o] { run_effects(*o); });
 
   auto* population = study->add_subcommand(
       "population", "A scenario over N robots of the class (actual geometry and every effect drawn per robot): the "
                     "positioning error of each calibrated model, and its parameter errors in their stated 1-sigma");
-  population->add_option("scenario", o->scenario, "Scenario file (e.g. scenarios/main.yaml)")->required();
+  population->add_option("scenario", o->scenario, "Scenario: a YAML file, or a name from the scenario library (e.g. main; gpm help scenarios)")->required();
   population->add_option("-o,--output", o->out, "Output folder (population.md/.html/.json, figures, robot_SEED.yaml)")
       ->required();
   population->add_option("--count", o->population_count, "Robots (seeds: the scenario's seed + 0 .. count - 1)")
@@ -356,9 +376,11 @@ void add_study(CLI::App& app) {
                       ->transform(number_in(limits::kThreads));
   population->add_option("--scheduler", o->scheduler,
                          "A running Dask scheduler (tcp://HOST:8786): the robots run on its workers through the "
-                         "Python module (python/README.md); writes population.json, .csv, .png, robot_SEED.yaml");
+                         "Python module (gpm.study); writes population.json, .csv, .png, robot_SEED.yaml");
+  add_progress_option(population, o->progress);
   population->callback([o, threads] {
     o->threads_given = threads->count() > 0;
+    o->scenario = resolve_scenario(o->scenario);  // a file, or a library name
     run_population(*o);
   });
 }

@@ -20,6 +20,7 @@
 
 #include "app/commands.hpp"
 #include "app/number_options.hpp"
+#include "app/written_files.hpp"
 #include "models/measured_data.hpp"
 #include "models/output_file.hpp"
 #include "report/report_document.hpp"
@@ -213,6 +214,7 @@ void write_zero_outputs(const ZeroSession& s, const std::optional<Eigen::Vector3
   doc.stage(out, "report", "gpm zero: zero-offset auto-calibration");
   if (const auto mean = mean_offsets(a, s.runs)) out.add("offsets.yaml", offsets_yaml(s.config.controller, *mean, s.runs));
   out.commit();
+  print_written(a.out, 6);  // report.md, report.html, offsets.yaml, trace.csv
 }
 
 // Sets the exit code of how the session ended (130 interrupted, 1 a run stopped) with one line on stderr.
@@ -272,7 +274,7 @@ void run_zero(const ZeroArgs& a) {
 void add_zero(CLI::App& app) {
   auto args = std::make_shared<ZeroArgs>();
   auto* cmd = app.add_subcommand("zero", "Zero-offset auto-calibration on the moving robot (paper section 2.4)");
-  cmd->add_option("--hardware", args->hardware, "hardware file (backend twin or modbus, safety limits)")->required();
+  cmd->add_option("--hardware", args->hardware, "hardware file (backend twin, modbus or plugin, safety limits; gpm help hardware)")->required();
   cmd->add_option("--model", args->model, "robot file replacing the hardware file's controller (links, bases, home = O)");
   cmd->add_option("--start", args->starts, "X,Y (mm): jog here first and take it as the initial estimate; repeat for several runs");
   cmd->add_option("--method", args->method, "grid (paper steps 5-7) or direct (least squares on E)");

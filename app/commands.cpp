@@ -20,6 +20,7 @@ void add_commands(CLI::App& app, const std::function<void(CLI::App&)>& add_rende
   add_zero(app);
   add_monitor(app);
   add_paper(app);
+  add_help(app);
   check_number_options(app);  // every number option: no empty text, NaN, infinity (issue 36.12)
 }
 

@@ -33,6 +33,8 @@ void add_sample(CLI::App& app);
 void add_zero(CLI::App& app);
 void add_monitor(CLI::App& app);
 void add_paper(CLI::App& app);
+// gpm help [TOPIC]: the installed documents and scenario library (app/cmd_help.cpp).
+void add_help(CLI::App& app);
 
 // Registers every subcommand of gpm on app (with the version flag), in the
 // order of `gpm --help`; render through add_render_command (gpm registers an

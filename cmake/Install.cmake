@@ -1,7 +1,7 @@
 # `cmake --install build --prefix P` (issue 18.4): the programs (gpm,
 # gpm-render, gpm-drive-emulator), the libraries and their public headers, a
 # CMake package (find_package(gpm CONFIG) -> gpm::models, gpm::calib, ...), the
-# data folder P/share/gpm/{models,scenarios,hw/examples} that the installed
+# data folder P/share/gpm/{models,scenarios,hw/examples,docs} that the installed
 # programs find by their own location (models/data_dir.hpp), and the Python
 # module into P/lib/python3/dist-packages. Included last by the top-level
 # CMakeLists.txt, so that every target exists.
@@ -57,6 +57,12 @@ install(DIRECTORY ${PROJECT_SOURCE_DIR}/scenarios/ DESTINATION ${GPM_INSTALL_DAT
   FILES_MATCHING PATTERN "*.yaml" PATTERN "*.md")
 install(DIRECTORY ${PROJECT_SOURCE_DIR}/hw/examples/ DESTINATION ${GPM_INSTALL_DATADIR}/hw/examples
   FILES_MATCHING PATTERN "*.yaml")
+# The documents `gpm help TOPIC` prints (app/data_files.cpp; the scenario
+# schema is installed with the scenarios above).
+install(FILES ${PROJECT_SOURCE_DIR}/docs/CLI.md ${PROJECT_SOURCE_DIR}/docs/FORMATS.md
+  ${PROJECT_SOURCE_DIR}/docs/PROCEDURES.md ${PROJECT_SOURCE_DIR}/docs/MONITORING.md
+  ${PROJECT_SOURCE_DIR}/docs/OWN_ROBOT.md DESTINATION ${GPM_INSTALL_DATADIR}/docs)
+install(FILES ${PROJECT_SOURCE_DIR}/hw/README.md DESTINATION ${GPM_INSTALL_DATADIR}/hw)
 
 # The CMake package.
 install(EXPORT gpmTargets NAMESPACE gpm:: DESTINATION ${GPM_INSTALL_CMAKEDIR})

@@ -42,11 +42,11 @@ check "result is a robot file" 0 "$GPM" kin home --model "$tmp/cal/calibration.y
 # has skew 5e-05 s on encoder 2): an edited skew reaches the monitor.
 sed 's/^  skew_s: .*/  skew_s: [0, 3.25e-05, -1.5e-05]/' "$tmp/cal/calibration.yaml" >"$tmp/result.yaml"
 check "monitor --model" 0 "$GPM" monitor "$tmp/op.yaml" --model "$tmp/result.yaml" -o "$tmp/mon"
-expect_out "names the result" "readings   the calibration result's monitor: \(.*result.yaml\)"
+expect_out "names the result" "readings   noise model as the calibration estimated it \(monitor: in .*result.yaml\)"
 flat() { tr -d ' \n' <"$1"; }
 holds "summary has the result's skew" grep -q '"skew_s":\[0.0,3.25e-05,-1.5e-05\]' <(flat "$tmp/mon/summary.json")
 check "monitor, robot file as model" 0 "$GPM" monitor "$tmp/op.yaml" --model "$SCEN/../models/gpm2002.yaml" -o "$tmp/mon2"
-expect_out "names the scenario" "readings   the scenario's monitor: \(.*op.yaml\)"
+expect_out "names the scenario" "readings   noise model as stated under monitor: in .*op.yaml"
 holds "summary has the statement's skew" grep -q '"skew_s":\[0.0,5e-05,0.0001\]' <(flat "$tmp/mon2/summary.json")
 
 # A bad value in the result: exit 2, one line with the file and key, nothing written.

@@ -64,7 +64,7 @@ holds "old file untouched" grep -qx old "$tmp/keep/samples.csv"
 # the torque-off joint's reading shows it, and 1 mm stops the run.
 sed 's/actual: .*/actual: {geometry: {dth2: 0.1}}/; s/path: .*/servo: {modes: [torque_off, position, position], max_tracking_mm: 1}/' \
   "$tmp/short.yaml" >"$tmp/track.yaml"
-check "tracking stop" 1 "$GPM" simulate "$tmp/track.yaml" -o "$tmp/track"
+check "tracking stop" 1 "$GPM" simulate "$tmp/track.yaml" -o "$tmp/track" --progress=none  # the error line alone
 expect_err "tracking stop line" "^gpm: error: tracking: at t = .* beyond servo.max_tracking_mm 1 mm: drives stopped$"
 holds "one line" test "$(wc -l <"$tmp/err")" -eq 1
 holds "samples kept" grep -q '^sample,theta_m1' "$tmp/track/samples.csv"

@@ -134,6 +134,22 @@ run_scenario "{estimate: [skew, skew]}"
 row "scenario estimate repeated" 2 "calibration.estimate[1]: 'skew' is listed twice" \
   "$GPM" run "$tmp/sc.yaml" -o "$tmp/run"
 
+# --- numbers are decimal; a long argument is not echoed whole (cut to 40 characters and "…") ---
+row "fk hex angle" 2 "angles: must be a decimal number (digits, optional fraction and exponent: 12, -0.5, 1e6), got '0x1'" \
+  "$GPM" kin fk 0x1 3.11 4.82
+row "ik hex float" 2 "xy: must be a decimal number" "$GPM" kin ik 0x1p3 250
+row "radius with digit separator" 2 "--radius: must be a decimal number" "$GPM" study samples --radius 1_0 -o "$tmp/n.csv"
+row "budget hex" 2 "--budget: must be a whole number from 1 to 1e10 evaluations, got '0x10'" \
+  "$GPM" paper -o "$tmp/paper" --budget 0x10
+long=$(printf '9%.0s' {1..300})
+row "300 digits, bounded flag" 2 "--n: must be a whole number from 1 to 100000 samples, got '$(printf '9%.0s' {1..40})…'" \
+  "$GPM" study samples --n "$long" -o "$tmp/n.csv"
+row "300 digits, plain int flag" 2 "--count = $(printf '9%.0s' {1..40})… (see gpm --help)" \
+  "$GPM" design --count "$long" -o "$tmp/design"
+row "300 letters as a number" 2 "got '$(printf 'x%.0s' {1..40})…'" "$GPM" kin fk "$(printf 'x%.0s' {1..300})" 0 0
+row "300-character subcommand" 2 "unknown subcommand '$(printf 'k%.0s' {1..40})…' of gpm" "$GPM" "$(printf 'k%.0s' {1..300})"
+holds "no error line echoes 300 characters" test "$(wc -c <"$tmp/err")" -lt 300
+
 # Nothing a refused command could have made is left.
 for f in r.yaml run cmp n.csv eff mon paper design; do
   holds "nothing left: $f" test ! -e "$tmp/$f"
