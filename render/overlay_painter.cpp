@@ -6,6 +6,7 @@
 #include <fmt/format.h>
 
 #include "models/mjcf.hpp"
+#include "render/mechanism_pose.hpp"
 #include "report/table_cell.hpp"
 
 namespace gpm::render {
@@ -140,9 +141,9 @@ void OverlayPainter::add_geoms(mjvScene* scn, double t, const sim::LogRow& row) 
     add_line(scn, desired_[k - 1], desired_[k], OverlayStyle::kPathZ_m, OverlayStyle::kDesiredRgba, line_px_);
   const double trace_z = OverlayStyle::kPathZ_m + 0.001;
   size_t k = 1;
-  for (; k < trace_.size() && trace_[k].first <= t; ++k)
+  for (; k < trace_.size() && trace_[k].first <= t + kSameTime_s; ++k)
     add_line(scn, trace_[k - 1].second, trace_[k].second, trace_z, OverlayStyle::kTraceRgba, line_px_);
-  if (!trace_.empty() && trace_[k - 1].first <= t)
+  if (!trace_.empty() && trace_[k - 1].first <= t + kSameTime_s)
     add_line(scn, trace_[k - 1].second, row.actual, trace_z, OverlayStyle::kTraceRgba, line_px_);
   add_error_arrow(scn, row);
   // End-effector marker at the true position (the last geom).

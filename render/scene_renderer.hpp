@@ -52,7 +52,7 @@ struct Card {
 };
 
 // Background of a card (RGB, 0..1): no scene frame is this uniform.
-inline constexpr std::array<float, 3> kCardRgb = {0.09f, 0.11f, 0.16f};
+inline constexpr std::array<float, 3> kCardRgb = {0.06f, 0.10f, 0.24f};
 
 // Where the 2-D overlays of a panel are (image pixels, x from the left, y
 // from the top), for tests and tools.
