@@ -9,6 +9,7 @@
 // frame, output path or suffix) exits 2 with one line before anything is
 // simulated where possible; no partial file is left behind.
 #include <algorithm>
+#include <cctype>
 #include <cstdio>
 #include <memory>
 #include <optional>
@@ -88,7 +89,7 @@ std::string sampling_text(const scenario::RunOutcome& o) {
   const std::optional<sim::SamplingPlan>& plan = o.spec.sim.sampling;
   const size_t poses = plan ? std::max<size_t>(static_cast<size_t>(std::max(0, plan->count)), plan->poses.size()) : 0;
   if (o.in_motion && poses > 0)
-    return fmt::format("{} readings on the fly through {} designed poses ({:.1f} s of robot motion)",
+    return fmt::format("{} readings taken on the fly along a path through {} designed poses ({:.1f} s of robot motion)",
                        o.sim.samples.size(), poses, o.sim.sampling_s);
   return fmt::format("{} samples {} ({:.1f} s of robot motion)", o.sim.samples.size(),
                      o.in_motion ? "on the fly" : "at standstill", o.sim.sampling_s);
@@ -108,7 +109,9 @@ render::Card opening_card(const Story& story, const std::string& file) {
   if (!o.sim.samples.empty())
     c.rows.push_back({"", sampling_text(o) + ","});
   const calib::Method m = o.spec.calibration.method;
-  c.rows.push_back({"", fmt::format("then the {} calibration ({})", calib::cost_name(o.spec.calibration.cost),
+  std::string cost(calib::cost_name(o.spec.calibration.cost));
+  std::transform(cost.begin(), cost.end(), cost.begin(), [](unsigned char ch) { return std::toupper(ch); });
+  c.rows.push_back({"", fmt::format("then the {} calibration ({})", cost,
                                     m == calib::Method::kLM ? "Levenberg-Marquardt" : calib::method_name(m))});
   c.rows.push_back({""});
   for (size_t i = 0; i < story.parts.size(); ++i)

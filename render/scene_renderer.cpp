@@ -205,37 +205,67 @@ struct SceneRenderer::Impl {
               1.0f, rgb[0], rgb[1], rgb[2], &con);
   }
 
-  // A card's title (big font) and rows, from the top left, within a margin.
-  void draw_card(const Card& card) {
-    const int w = frame.width, h = frame.height;
-    const int margin = std::max(2 * pad, w / 24), cw = std::max(1, con.charWidth[static_cast<int>('0')]);
-    int top = h - margin;
-    for (const std::string& l : wrap(mjFONT_BIG, card.title, w - 2 * margin)) {
-      card_line(mjFONT_BIG, l, margin, top, kCardTitleRgb);
-      top -= con.charHeightBig + con.charHeightBig / 4;
-    }
-    top -= pitch / 2;
-    // Table columns: each as wide as its widest cell (last cells excepted), 2 digits apart.
-    std::vector<int> col_w;
-    const int f = card.large ? mjFONT_BIG : mjFONT_NORMAL;
-    const int row_pitch = card.large ? con.charHeightBig + con.charHeightBig / 3 : pitch;
+  // Widths of a card's table columns in font f (each its widest cell + 2
+  // digits; last cells excepted) and of its widest table row.
+  int card_columns(const Card& card, int f, std::vector<int>& col_w) const {
+    const int cw = std::max(1, con.charWidth[static_cast<int>('0')]);
+    col_w.clear();
     for (const auto& row : card.rows)
       for (size_t c = 0; c + 1 < row.size(); ++c) {
         if (col_w.size() <= c) col_w.resize(c + 1, 0);
         col_w[c] = std::max(col_w[c], font_px(f, row[c]) + 2 * cw);
       }
+    int widest = 0;
+    for (const auto& row : card.rows) {
+      int x = 0;
+      for (size_t c = 0; c + 1 < row.size(); ++c) x += col_w[c];
+      if (row.size() > 1) widest = std::max(widest, x + font_px(f, row.back()));
+    }
+    return widest;
+  }
+
+  // Lays a card out (title in font tf, rows in bf) from the top left within
+  // a margin, drawing it if draw; returns the height it takes (px).
+  int lay_out_card(const Card& card, int tf, int bf, bool draw) {
+    const int w = frame.width, h = frame.height;
+    const int margin = std::max(2 * pad, w / 24);
+    const auto line_pitch = [&](int f) {
+      return f == mjFONT_BIG ? con.charHeightBig + con.charHeightBig / 3 : pitch;
+    };
+    int top = h - margin;
+    for (const std::string& l : wrap(tf, card.title, w - 2 * margin)) {
+      if (draw) card_line(tf, l, margin, top, kCardTitleRgb);
+      top -= line_pitch(tf);
+    }
+    top -= pitch / 2;
+    std::vector<int> col_w;
+    card_columns(card, bf, col_w);
     for (const auto& row : card.rows) {
       int x = margin;
       for (size_t c = 0; c + 1 < row.size(); ++c) {
-        card_line(f, row[c], x, top, c == 0 ? kCardLabelRgb : kCardTextRgb);
+        if (draw) card_line(bf, row[c], x, top, c == 0 ? kCardLabelRgb : kCardTextRgb);
         x += col_w[c];
       }
-      const std::string last = row.empty() ? "" : row.back();
-      for (const std::string& l : wrap(f, last, w - margin - x)) {
-        card_line(f, l, x, top, kCardTextRgb);
-        top -= row_pitch;
+      for (const std::string& l : wrap(bf, row.empty() ? "" : row.back(), w - margin - x)) {
+        if (draw) card_line(bf, l, x, top, kCardTextRgb);
+        top -= line_pitch(bf);
       }
     }
+    return h - top + margin;
+  }
+
+  // A card in the largest fonts that fit: the title big, the rows big too
+  // for a large card whose table rows fit the width; the title in the normal
+  // font when the card is otherwise too tall.
+  void draw_card(const Card& card) {
+    const int avail_w = frame.width - 2 * std::max(2 * pad, frame.width / 24);
+    std::vector<int> col_w;
+    const int bf = card.large && card_columns(card, mjFONT_BIG, col_w) <= avail_w &&
+                           lay_out_card(card, mjFONT_BIG, mjFONT_BIG, false) <= frame.height
+                       ? mjFONT_BIG
+                       : mjFONT_NORMAL;
+    const int tf = lay_out_card(card, mjFONT_BIG, bf, false) <= frame.height ? mjFONT_BIG : mjFONT_NORMAL;
+    lay_out_card(card, tf, bf, true);
   }
 
   ~Impl() {
