@@ -54,8 +54,6 @@ TEST(SceneRenderer, FrameIsNotBlank) {
 // The marker's centroid lies within 3 pixels of the pinhole projection of the
 // true end-effector position, computed from the camera's lookat, distance and
 // field of view alone, at several instants along the run.
-// KNOWN FAILING (issue 6 open): at the small test sizes the marker disc is a few
-// pixels under the text box and not pure magenta, so find_marker counts none.
 TEST(SceneRenderer, MarkerIsWhereTheCameraProjectionOfTheTruePositionSays) {
   const auto& r = run_of(kCircleScenario);
   for (const auto& [w, h] : {std::pair{240, 180}, std::pair{320, 320}}) {
@@ -105,8 +103,6 @@ TEST(SceneRenderer, SameRunRendersIdenticalFrames) {
   EXPECT_NE(b.render(0.05).rgb, first) << "another instant must differ";
 }
 
-// KNOWN FAILING (issue 6 open): at the small test sizes the marker disc is a few
-// pixels under the text box and not pure magenta, so find_marker counts none.
 // At 640x480 with the top camera the text, the legend and the scale bar sit
 // in a column left of the mechanism: every base joint, elbow and the
 // end-effector (with the base markers' radius, at the height of the marker)
@@ -285,8 +281,6 @@ TEST(SceneRenderer, HighQualityKeepsTheGeometry) {
   EXPECT_LT((testing::find_marker(fh).centre - testing::find_marker(fl).centre).norm(), 1.0);
 }
 
-// KNOWN FAILING (issue 6 open): at the small test sizes the marker disc is a few
-// pixels under the text box and not pure magenta, so find_marker counts none.
 TEST(SceneRenderer, ObliqueCameraShowsTheMarkerToo) {
   const auto& r = run_of(kCircleScenario);
   RenderOptions o = small();
