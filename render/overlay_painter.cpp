@@ -19,6 +19,7 @@ constexpr size_t kMaxPolylinePoints = 1500;
 constexpr double kBaseRadius_m = 0.022;
 constexpr double kBaseHalfHeight_m = 0.004;
 constexpr double kMarkerHalfHeight_m = 0.001;
+constexpr double kLeastMm = 1e-6;  // 1 nm: distances below it are written "< 0.001 um"
 constexpr double kBarbRad = 0.5235987755982988;  // 30 degrees
 constexpr std::array<float, 4> kFloorRgba = {0.13f, 0.14f, 0.16f, 1.0f};
 
@@ -73,6 +74,7 @@ std::array<float, 4> lighter(const std::array<float, 3>& c, float w) {
 
 std::string distance_text(double mm) {
   if (!std::isfinite(mm)) return "-";
+  if (mm != 0.0 && std::abs(mm) < kLeastMm) return "< 0.001 um";  // 3 digits of 1e-11 um say nothing
   const std::string um = report::sig(mm * 1000.0, 3);
   if (std::abs(std::stod(um)) < 1000.0) return um + " um";  // 999.6 um rounds to 1000: mm
   return report::sig(mm, 3) + " mm";

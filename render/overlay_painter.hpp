@@ -45,7 +45,8 @@ struct ErrorArrow {
 
 // A distance as the overlay writes it: 3 significant digits, in um below
 // 1 mm, else in mm ("9.26 um", "252 um", "9.70 mm"; the overlay font has
-// no micro sign); "-" when not finite.
+// no micro sign); "< 0.001 um" for a nonzero distance under 1 nm; "-" when
+// not finite.
 std::string distance_text(double mm);
 
 // Overlay of one run. Holds the decimated desired path and trace.

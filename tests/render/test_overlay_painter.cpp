@@ -126,6 +126,8 @@ TEST(OverlayPainter, DistancesHaveThreeSignificantDigitsAndTheirUnit) {
   EXPECT_EQ(distance_text(9.68), "9.68 mm");
   EXPECT_EQ(distance_text(12.0768), "12.1 mm");
   EXPECT_EQ(distance_text(0.0), "0 um");
+  EXPECT_EQ(distance_text(1.28e-5), "0.0128 um");
+  EXPECT_EQ(distance_text(2.8e-14), "< 0.001 um") << "the sampling's first row: no 12-decimal noise";
   EXPECT_EQ(distance_text(std::nan("")), "-");
 }
 
