@@ -1,12 +1,15 @@
 // gpm render SCENARIO.yaml -o VIDEO.mp4: simulates the scenario on the twin
 // and renders its motion off-screen (render/): H.264 MP4 and PNG frames.
 // A `gpm run` scenario (with calibration: or compensation:) is run as gpm
-// run does and shown as a story: the nominal controller on the test path,
-// the sampling, then the calibrated controller on the test path.
+// run does and shown as a story: an opening card (robot, procedure, what
+// is shown), the nominal controller on the test path, the sampling, the
+// calibrated controller on the test path, and a closing card with the
+// errors before and after, measured in that run.
 // Options override the scenario's `render` section. Bad input (size, camera,
 // frame, output path or suffix) exits 2 with one line before anything is
 // simulated where possible; no partial file is left behind.
 #include <algorithm>
+#include <cctype>
 #include <cstdio>
 #include <memory>
 #include <optional>
@@ -19,11 +22,14 @@
 #include <yaml-cpp/yaml.h>
 
 #include "app/commands.hpp"
+#include "calib/problem.hpp"
 #include "models/errors.hpp"
 #include "models/mjcf.hpp"
 #include "models/output_file.hpp"
 #include "models/progress.hpp"
 #include "models/yaml_util.hpp"
+#include "render/overlay_painter.hpp"
+#include "report/table_cell.hpp"
 #include "render/render_options.hpp"
 #include "render/scene_renderer.hpp"
 #include "render/video_job.hpp"
@@ -68,7 +74,77 @@ bool is_run_scenario(const std::string& file) {
 struct Story {
   scenario::RunOutcome outcome;
   std::vector<std::vector<render::RunView>> parts;
+  render::Cards cards;
 };
+
+// A caption on one line ("1/3 nominal model test path").
+std::string one_line(std::string caption) {
+  std::replace(caption.begin(), caption.end(), '\n', ' ');
+  return caption;
+}
+
+// How the samples were taken: "9100 readings on the fly through 40 designed
+// poses (9.1 s of robot motion)".
+std::string sampling_text(const scenario::RunOutcome& o) {
+  const std::optional<sim::SamplingPlan>& plan = o.spec.sim.sampling;
+  const size_t poses = plan ? std::max<size_t>(static_cast<size_t>(std::max(0, plan->count)), plan->poses.size()) : 0;
+  if (o.in_motion && poses > 0)
+    return fmt::format("{} readings taken on the fly along a path through {} designed poses ({:.1f} s of robot motion)",
+                       o.sim.samples.size(), poses, o.sim.sampling_s);
+  return fmt::format("{} samples {} ({:.1f} s of robot motion)", o.sim.samples.size(),
+                     o.in_motion ? "on the fly" : "at standstill", o.sim.sampling_s);
+}
+
+// The opening card: the robot, the procedure (the scenario's description and
+// its sampling and calibration) and the parts shown.
+render::Card opening_card(const Story& story, const std::string& file) {
+  const scenario::RunOutcome& o = story.outcome;
+  const YAML::Node root = load_yaml_file(file);
+  const std::string description =
+      root["description"] && root["description"].IsScalar() ? root["description"].as<std::string>() : o.spec.sim.name;
+  render::Card c;
+  c.title = fmt::format("{}: calibration on its digital twin", o.nominal.name);
+  c.rows.push_back({"robot", fmt::format("{}, a 3-RRR planar parallel robot, simulated in MuJoCo", o.nominal.name)});
+  c.rows.push_back({"procedure", description});
+  if (!o.sim.samples.empty())
+    c.rows.push_back({"", sampling_text(o) + ","});
+  const calib::Method m = o.spec.calibration.method;
+  std::string cost(calib::cost_name(o.spec.calibration.cost));
+  std::transform(cost.begin(), cost.end(), cost.begin(), [](unsigned char ch) { return std::toupper(ch); });
+  c.rows.push_back({"", fmt::format("then the {} calibration ({})", cost,
+                                    m == calib::Method::kLM ? "Levenberg-Marquardt" : calib::method_name(m))});
+  c.rows.push_back({""});
+  for (size_t i = 0; i < story.parts.size(); ++i)
+    c.rows.push_back({i == 0 ? "shown" : "", one_line(story.parts[i].front().label)});
+  if (o.before && o.after) c.rows.push_back({"", "then the errors before and after, measured in this run"});
+  c.rows.push_back({"", "cyan arrow: the tracking error, magnified as the panel states"});
+  c.seconds = 5.0;
+  return c;
+}
+
+// The closing card: the nominal and calibrated models' static positioning and
+// tracking errors, as this run measured them (none without both).
+std::optional<render::Card> closing_card(const scenario::RunOutcome& o) {
+  if (!o.before || !o.after) return std::nullopt;
+  const auto d = [](double um) { return render::distance_text(um / 1000.0); };
+  render::Card c;
+  c.title = fmt::format("{}: before and after calibration", o.nominal.name);
+  c.rows.push_back({"error (RMS)", "nominal", "calibrated"});
+  c.rows.push_back({fmt::format("at {} poses", o.before->static_error_um.size()), d(o.before->static_rms_um),
+                    d(o.after->static_rms_um)});
+  c.rows.push_back({"on the path", d(o.before->path_rms_um), d(o.after->path_rms_um)});
+  c.rows.push_back({""});
+  if (o.refused) c.rows.push_back({fmt::format("calibration refused: {}", *o.refused)});
+  else if (o.after->static_rms_um > 0)
+    c.rows.push_back({fmt::format("Standing still, the error is {}x smaller.",
+                                  report::ratio_text(o.before->static_rms_um / o.after->static_rms_um))});
+  if (!o.sim.samples.empty())
+    c.rows.push_back({fmt::format("The sampling took {:.1f} s of robot motion.", o.sim.sampling_s)});
+  c.rows.push_back({"Measured on the twin in this run."});
+  c.seconds = 5.0;
+  c.large = true;
+  return c;
+}
 
 std::unique_ptr<Story> run_story(const std::string& file) {
   scenario::RunSpec spec = scenario::load_run_spec(file);
@@ -95,6 +171,8 @@ std::unique_ptr<Story> run_story(const std::string& file) {
     story->parts.push_back(view(fmt::format("{}/{} sampling for\nthe calibration", ++k, n), o.sim.log));
   if (after) story->parts.push_back(view(fmt::format("{}/{} calibrated model\ntest path", ++k, n), o.after->path_log));
   if (story->parts.empty()) throw InputError(fmt::format("{}: the run has no motion to show", file));
+  story->cards.opening = opening_card(*story, file);
+  story->cards.closing = closing_card(o);
   return story;
 }
 
@@ -152,18 +230,26 @@ std::vector<std::vector<render::RunView>> simulation_parts(const std::vector<sim
 void print_render_summary(const RenderCliOptions& opt, const render::RenderOptions& o,
                           const std::vector<std::string>& files, const render::VideoSummary& v, bool story,
                           const std::vector<std::vector<render::RunView>>& parts,
-                          const std::vector<render::FrameRequest>& pngs) {
+                          const std::vector<render::FrameRequest>& pngs, const render::Cards& cards) {
   fmt::print("scenario         {}\n", fmt::join(files, " | "));
   fmt::print("frames           {} at {} fps, {}x{}, camera {}, quality {}\n", v.frames, o.fps, v.width, v.height,
              o.camera, render::quality_name(o.quality));
   if (story) {
-    for (size_t i = 0; i < parts.size(); ++i) {
-      std::string caption = parts[i].front().label;
-      std::replace(caption.begin(), caption.end(), '\n', ' ');
-      fmt::print("part             {} from frame {}\n", caption, v.part_first[i]);
+    for (const render::Segment& g : v.segments) {
+      if (g.kind == render::Segment::Kind::kPart)
+        fmt::print("part             {} from frame {}\n", one_line(parts[static_cast<size_t>(g.part)].front().label),
+                   g.first);
+      else
+        fmt::print("card             {} from frame {}\n",
+                   g.kind == render::Segment::Kind::kOpening ? "opening" : "closing", g.first);
     }
   }
   fmt::print("rendered         {:.1f} frames/s ({:.2f} s wall, {})\n", v.frames_per_s, v.wall_s, v.gl_renderer);
+  if (cards.closing) {
+    for (const auto& row : cards.closing->rows)
+      if (row.size() == 3 && row[1] != "nominal")
+        fmt::print("error RMS        {}: {} nominal, {} calibrated\n", row[0], row[1], row[2]);
+  }
   if (!opt.out.empty()) fmt::print("wrote            {} ({})\n", opt.out, v.codec);
   for (const render::FrameRequest& p : pngs) fmt::print("wrote            {} (frame {})\n", p.path, p.frame);
 }
@@ -183,20 +269,22 @@ void run_render(const RenderCliOptions& opt, bool fps_given, bool speed_given) {
   std::unique_ptr<Story> ran;
   std::vector<sim::SimulationResult> results;
   std::vector<std::vector<render::RunView>> parts;
+  render::Cards cards;
   if (story) {
     ran = run_story(opt.scenario);
     parts = ran->parts;
+    cards = ran->cards;
   } else {
     parts = simulation_parts(scenarios, files, results);
   }
   // A progress line on a terminal (frames, fps, ETA); PNG-only renders are short.
   int total = 0;
-  for (int c : render::part_frame_counts(parts, o)) total += c;
+  for (const render::Segment& g : render::video_segments(parts, o, cards)) total += g.count;
   Progress progress = Progress::terminal("gpm render", "frames", opt.out.empty() ? 0 : total);
   render::VideoJobOptions job;
   job.progress = opt.out.empty() ? nullptr : &progress;
-  const render::VideoSummary v = render::render_parts(parts, o, opt.out, pngs, job);
-  print_render_summary(opt, o, files, v, story, parts, pngs);
+  const render::VideoSummary v = render::render_parts(parts, o, opt.out, pngs, job, cards);
+  print_render_summary(opt, o, files, v, story, parts, pngs, cards);
 }
 
 }  // namespace

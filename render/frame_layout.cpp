@@ -34,4 +34,17 @@ double top_px_per_mm(double distance_m, double z_m, double fovy_deg, int panel_h
   return f / (distance_m - z_m) * 1e-3;
 }
 
+double error_gain(std::vector<double> errors_mm, double px_per_mm, double target_px) {
+  if (errors_mm.empty() || !(px_per_mm > 0) || !(target_px > 0)) return 1.0;
+  const auto q = errors_mm.begin() + static_cast<std::ptrdiff_t>(0.95 * static_cast<double>(errors_mm.size() - 1));
+  std::nth_element(errors_mm.begin(), q, errors_mm.end());
+  if (!(*q > 0)) return 1.0;
+  const double most = std::min(1e5, target_px / (*q * px_per_mm));
+  if (most < 1.0) return 1.0;
+  const double decade = std::pow(10.0, std::floor(std::log10(most) + 1e-12));
+  for (const double m : {5.0, 2.0})
+    if (m * decade <= most * (1 + 1e-12)) return m * decade;
+  return decade;
+}
+
 }  // namespace gpm::render

@@ -4,6 +4,8 @@
 // covers it. Pure geometry, no OpenGL.
 #pragma once
 
+#include <vector>
+
 #include "render/camera_set.hpp"
 
 namespace gpm::render {
@@ -23,5 +25,11 @@ double scale_bar_mm(double px_per_mm, double max_px);
 // looking straight down from distance_m above the plane with vertical field
 // fovy_deg, in a viewport panel_h pixels high (pinhole).
 double top_px_per_mm(double distance_m, double z_m, double fovy_deg, int panel_h);
+
+// The magnification of a run's error vector: the largest round number (1, 2
+// or 5 x 10^k, from 1 to 1e5) at which the 95th percentile of errors_mm is drawn at most target_px
+// long at px_per_mm (1 if there is no error), so that a 10 mm and a 10 um
+// error both read as an arrow of tens of pixels.
+double error_gain(std::vector<double> errors_mm, double px_per_mm, double target_px);
 
 }  // namespace gpm::render

@@ -8,8 +8,10 @@
 namespace gpm::render {
 
 const sim::LogRow& row_at(const sim::TrajectoryLog& log, double t) {
+  // Within a nanosecond counts as at t: a frame time summed otherwise than the
+  // log's times (a part logged from 15.545 s) picks the same row.
   const auto it = std::upper_bound(log.rows.begin(), log.rows.end(), t,
-                                   [](double v, const sim::LogRow& r) { return v < r.t; });
+                                   [](double v, const sim::LogRow& r) { return v + kSameTime_s < r.t; });
   if (it == log.rows.begin()) return log.rows.front();
   return *(it - 1);
 }

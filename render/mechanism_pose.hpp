@@ -13,8 +13,11 @@
 
 namespace gpm::render {
 
-// The log row shown at time t: the last row with row.t <= t (the first row
-// before the log starts). The log must not be empty.
+// Times within this are the same instant (rows are at least a servo period apart).
+inline constexpr double kSameTime_s = 1e-9;
+
+// The log row shown at time t: the last row with row.t <= t + kSameTime_s
+// (the first row before the log starts). The log must not be empty.
 const sim::LogRow& row_at(const sim::TrajectoryLog& log, double t);
 
 // Joint angles of the actual robot with the end-effector at row.actual (IK on

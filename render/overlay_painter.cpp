@@ -6,6 +6,8 @@
 #include <fmt/format.h>
 
 #include "models/mjcf.hpp"
+#include "render/mechanism_pose.hpp"
+#include "report/table_cell.hpp"
 
 namespace gpm::render {
 namespace {
@@ -17,6 +19,8 @@ constexpr size_t kMaxPolylinePoints = 1500;
 constexpr double kBaseRadius_m = 0.022;
 constexpr double kBaseHalfHeight_m = 0.004;
 constexpr double kMarkerHalfHeight_m = 0.001;
+constexpr double kLeastMm = 1e-6;  // 1 nm: distances below it are written "< 0.001 um"
+constexpr double kBarbRad = 0.5235987755982988;  // 30 degrees
 constexpr std::array<float, 4> kFloorRgba = {0.13f, 0.14f, 0.16f, 1.0f};
 
 template <class T, class F>
@@ -68,9 +72,17 @@ std::array<float, 4> lighter(const std::array<float, 3>& c, float w) {
 
 }  // namespace
 
+std::string distance_text(double mm) {
+  if (!std::isfinite(mm)) return "-";
+  if (mm != 0.0 && std::abs(mm) < kLeastMm) return "< 0.001 um";  // 3 digits of 1e-11 um say nothing
+  const std::string um = report::sig(mm * 1000.0, 3);
+  if (std::abs(std::stod(um)) < 1000.0) return um + " um";  // 999.6 um rounds to 1000: mm
+  return report::sig(mm, 3) + " mm";
+}
+
 OverlayPainter::OverlayPainter(const Robot& actual, const sim::TrajectoryLog& log, double spacing_mm,
-                               double marker_radius_mm, double line_px)
-    : actual_(actual), marker_radius_m_(marker_radius_mm * kMetresPerMm), line_px_(line_px) {
+                               double marker_radius_mm, double line_px, ErrorArrow arrow)
+    : actual_(actual), marker_radius_m_(marker_radius_mm * kMetresPerMm), line_px_(line_px), arrow_(arrow) {
   std::vector<Eigen::Vector2d> desired;
   std::vector<std::pair<double, Eigen::Vector2d>> trace;
   desired.reserve(log.rows.size());
@@ -99,7 +111,7 @@ void OverlayPainter::paint_model(mjModel* m) {
 }
 
 int OverlayPainter::max_geoms() const {
-  return 1 + 3 + 1 + static_cast<int>(desired_.size() + trace_.size()) + 2;
+  return 1 + 3 + 1 + static_cast<int>(desired_.size() + trace_.size()) + 2 + 3;
 }
 
 void OverlayPainter::add_geoms(mjvScene* scn, double t, const sim::LogRow& row) const {
@@ -131,11 +143,12 @@ void OverlayPainter::add_geoms(mjvScene* scn, double t, const sim::LogRow& row) 
     add_line(scn, desired_[k - 1], desired_[k], OverlayStyle::kPathZ_m, OverlayStyle::kDesiredRgba, line_px_);
   const double trace_z = OverlayStyle::kPathZ_m + 0.001;
   size_t k = 1;
-  for (; k < trace_.size() && trace_[k].first <= t; ++k)
+  for (; k < trace_.size() && trace_[k].first <= t + kSameTime_s; ++k)
     add_line(scn, trace_[k - 1].second, trace_[k].second, trace_z, OverlayStyle::kTraceRgba, line_px_);
-  if (!trace_.empty() && trace_[k - 1].first <= t)
+  if (!trace_.empty() && trace_[k - 1].first <= t + kSameTime_s)
     add_line(scn, trace_[k - 1].second, row.actual, trace_z, OverlayStyle::kTraceRgba, line_px_);
-  // End-effector marker at the true position.
+  add_error_arrow(scn, row);
+  // End-effector marker at the true position (the last geom).
   const mjtNum size[3] = {marker_radius_m_, marker_radius_m_, kMarkerHalfHeight_m};
   const mjtNum pos[3] = {row.actual.x() * kMetresPerMm, row.actual.y() * kMetresPerMm,
                          OverlayStyle::kMarkerTopZ_m - kMarkerHalfHeight_m};
@@ -146,11 +159,27 @@ void OverlayPainter::add_geoms(mjvScene* scn, double t, const sim::LogRow& row) 
   }
 }
 
-std::array<std::string, 2> OverlayPainter::text(const sim::LogRow& row) {
-  const double err_um = (row.actual - row.desired).norm() * 1000.0;
-  return {"time\nerror\nenc 1\nenc 2\nenc 3",
-          fmt::format("{:.3f} s\n{:.1f} um\n{:.5f} rad\n{:.5f} rad\n{:.5f} rad", row.t, err_um,
-                      row.readings[0], row.readings[1], row.readings[2])};
+void OverlayPainter::add_error_arrow(mjvScene* scn, const sim::LogRow& row) const {
+  const Eigen::Vector2d shaft = arrow_.gain * (row.actual - row.desired);
+  const double len = shaft.norm();
+  if (!(arrow_.gain > 0) || !(len > 0)) return;
+  const Eigen::Vector2d tip = row.desired + shaft;
+  // The head: two barbs at +-30 degrees, at most 40 % of the shaft.
+  const double head = std::min(arrow_.head_mm, 0.4 * len);
+  const Eigen::Vector2d back = -shaft / len * head;
+  const Eigen::Vector2d side(-back.y(), back.x());
+  const double c = std::cos(kBarbRad), s = std::sin(kBarbRad);
+  add_line(scn, row.desired, tip, OverlayStyle::kErrorZ_m, OverlayStyle::kErrorRgba, 1.5 * line_px_);
+  add_line(scn, tip, tip + c * back + s * side, OverlayStyle::kErrorZ_m, OverlayStyle::kErrorRgba, 1.5 * line_px_);
+  add_line(scn, tip, tip + c * back - s * side, OverlayStyle::kErrorZ_m, OverlayStyle::kErrorRgba, 1.5 * line_px_);
+}
+
+std::array<std::string, 2> OverlayPainter::text(const sim::LogRow& row, double t0, double gain) {
+  const std::string arrow = gain > 0 ? fmt::format("x{:.0f}", gain) : "none";
+  return {"time\nerror\narrow\nenc 1\nenc 2\nenc 3",
+          fmt::format("{:.3f} s\n{}\n{}\n{:.5f} rad\n{:.5f} rad\n{:.5f} rad", row.t - t0,
+                      distance_text((row.actual - row.desired).norm()), arrow, row.readings[0], row.readings[1],
+                      row.readings[2])};
 }
 
 }  // namespace gpm::render

@@ -29,6 +29,13 @@ constexpr double kMaxColumnFrac = 0.5;  // the text column takes at most this sh
 constexpr int kSwatchChars = 3;         // legend swatch length, in digit widths
 constexpr const char* kLegendDesired = "desired path";
 constexpr const char* kLegendActual = "actual trace";
+constexpr const char* kLegendError = "error arrow";
+constexpr const char* kWidestScaleLabel = "500 mm; error 500 um";
+constexpr double kErrorArrowFrac = 0.25;  // the 95th percentile error arrow: at most this share of the height
+constexpr double kErrorHeadPx = 9.0;
+constexpr std::array<float, 3> kCardTitleRgb = {1.0f, 0.85f, 0.05f};
+constexpr std::array<float, 3> kCardLabelRgb = {0.70f, 0.74f, 0.80f};
+constexpr std::array<float, 3> kCardTextRgb = {0.97f, 0.97f, 0.97f};
 
 int font_scale_for(int height) {
   if (height < 360) return mjFONTSCALE_50;
@@ -50,6 +57,7 @@ struct RunSlot {
   std::array<int, 4> viewport{};
   double px_per_mm = 0.0;  // in the plane of the traces (top camera)
   double scale_mm = 0.0;   // scale bar length (0: none)
+  double gain = 1.0;       // magnification of the error arrow
   OverlayLayout layout;    // filled as drawn
 };
 
@@ -96,7 +104,7 @@ struct SceneRenderer::Impl {
   bool con_made = false;
   int font = mjFONTSCALE_100;
   int column = 0;  // text column width (px); 0: text over the scene
-  int pad = 4, line_h = 16;
+  int pad = 4, line_h = 16, pitch = 20;  // pitch: mjr_overlay's line spacing
   std::vector<unsigned char> bottom_up;
   FrameImage frame;
 
@@ -114,7 +122,8 @@ struct SceneRenderer::Impl {
     // Scale bar: a white bar of scale_mm with end ticks, its length written under it.
     int bottom = pad;
     if (s.scale_mm > 0) {
-      const std::string label = fmt::format("{:g} mm", s.scale_mm);
+      const std::string label = s.gain > 1 ? fmt::format("{:g} mm; error {}", s.scale_mm, distance_text(s.scale_mm / s.gain))
+                                           : fmt::format("{:g} mm", s.scale_mm);
       mjr_overlay(mjFONT_NORMAL, mjGRID_BOTTOMLEFT, mjrRect{x0, 0, column, h}, label.c_str(), nullptr, &con);
       bottom += line_h + 2 * pad;
       const int len = static_cast<int>(std::lround(s.scale_mm * s.px_per_mm));
@@ -129,22 +138,134 @@ struct SceneRenderer::Impl {
       mjr_rectangle(mjrRect{bx + len - bar_h, bottom, bar_h, tick_h}, 1.0f, 1.0f, 1.0f, 1.0f);
       bottom += tick_h + 2 * pad;
     }
-    // Legend: a swatch of each trace's colour left of its name.
+    // Legend: a swatch of each overlay's colour left of its name.
     const int swatch = kSwatchChars * cw;
-    const std::string names = fmt::format("{}\n{}", kLegendDesired, kLegendActual);
-    const int legend_h = 2 * line_h + 2 * pad;
+    const std::string names = fmt::format("{}\n{}\n{}", kLegendDesired, kLegendActual, kLegendError);
+    const int legend_h = 3 * pitch + pad;
     mjr_rectangle(mjrRect{x0 + pad, bottom, swatch + 2 * pad, legend_h}, 0.0f, 0.0f, 0.0f, 0.6f);
     mjr_overlay(mjFONT_NORMAL, mjGRID_BOTTOMLEFT, mjrRect{x0 + swatch + 3 * pad, bottom - pad, column, h},
                 names.c_str(), nullptr, &con);
-    const auto& d = OverlayStyle::kDesiredRgba;
-    const auto& t = OverlayStyle::kTraceRgba;
     const int sw_h = std::max(3, line_h / 5);
-    const int row_actual = bottom + pad + line_h / 2, row_desired = row_actual + line_h;
-    mjr_rectangle(mjrRect{x0 + 2 * pad, row_desired - sw_h / 2, swatch, sw_h}, d[0], d[1], d[2], 1.0f);
-    mjr_rectangle(mjrRect{x0 + 2 * pad, row_actual - sw_h / 2, swatch, sw_h}, t[0], t[1], t[2], 1.0f);
-    s.layout.legend_rows = {h - 1 - row_desired, h - 1 - row_actual};
+    const int row_error = bottom + pad + pitch / 2;
+    const std::array<int, 3> rows = {row_error + 2 * pitch, row_error + pitch, row_error};
+    const std::array<const std::array<float, 4>*, 3> colours = {&OverlayStyle::kDesiredRgba, &OverlayStyle::kTraceRgba,
+                                                                &OverlayStyle::kErrorRgba};
+    for (size_t i = 0; i < 3; ++i) {
+      const auto& c = *colours[i];
+      mjr_rectangle(mjrRect{x0 + 2 * pad, rows[i] - sw_h / 2, swatch, sw_h}, c[0], c[1], c[2], 1.0f);
+      s.layout.legend_rows[i] = h - 1 - rows[i];
+    }
     s.layout.legend_x0 = x0 + 2 * pad;
     s.layout.legend_x1 = x0 + 2 * pad + swatch;
+  }
+
+  // The frame drawn, read into `frame` (top row first).
+  void read_frame() {
+    const mjrRect full = {0, 0, frame.width, frame.height};
+    mjr_readPixels(bottom_up.data(), nullptr, full, &con);
+    const size_t row_bytes = static_cast<size_t>(frame.width) * 3;
+    for (int y = 0; y < frame.height; ++y) {
+      std::memcpy(frame.rgb.data() + static_cast<size_t>(y) * row_bytes,
+                  bottom_up.data() + static_cast<size_t>(frame.height - 1 - y) * row_bytes, row_bytes);
+    }
+  }
+
+  // Width (px) of the longest line of t in font f (mjFONT_NORMAL or mjFONT_BIG).
+  int font_px(int f, const std::string& t) const {
+    const int* cw = f == mjFONT_BIG ? con.charWidthBig : con.charWidth;
+    int w = 0, best = 0;
+    for (const char c : t) {
+      if (c == '\n') w = 0;
+      else if (c > 0 && c < 127) best = std::max(best, w += cw[static_cast<int>(c)]);
+    }
+    return best;
+  }
+
+  // t broken at spaces into lines at most max_px wide in font f (a longer word stays whole).
+  std::vector<std::string> wrap(int f, const std::string& t, int max_px) const {
+    std::vector<std::string> lines;
+    std::string line, word;
+    const auto flush_word = [&] {
+      if (word.empty()) return;
+      if (!line.empty() && font_px(f, line + " " + word) > max_px) lines.push_back(line), line.clear();
+      line = line.empty() ? word : line + " " + word;
+      word.clear();
+    };
+    for (const char c : t) c == ' ' ? flush_word() : void(word += c);
+    flush_word();
+    if (!line.empty() || lines.empty()) lines.push_back(line);
+    return lines;
+  }
+
+  // One line of text in font f, its left end at x and its top at top (OpenGL pixels, bottom-up).
+  void card_line(int f, const std::string& t, int x, int top, const std::array<float, 3>& rgb) {
+    if (t.empty()) return;
+    const int th = f == mjFONT_BIG ? con.charHeightBig : con.charHeight;
+    mjr_label(mjrRect{x, top - th, font_px(f, t) + 2, th}, f, t.c_str(), kCardRgb[0], kCardRgb[1], kCardRgb[2],
+              1.0f, rgb[0], rgb[1], rgb[2], &con);
+  }
+
+  // Widths of a card's table columns in font f (each its widest cell + 2
+  // digits; last cells excepted) and of its widest table row.
+  int card_columns(const Card& card, int f, std::vector<int>& col_w) const {
+    const int cw = std::max(1, con.charWidth[static_cast<int>('0')]);
+    col_w.clear();
+    for (const auto& row : card.rows)
+      for (size_t c = 0; c + 1 < row.size(); ++c) {
+        if (col_w.size() <= c) col_w.resize(c + 1, 0);
+        col_w[c] = std::max(col_w[c], font_px(f, row[c]) + 2 * cw);
+      }
+    int widest = 0;
+    for (const auto& row : card.rows) {
+      int x = 0;
+      for (size_t c = 0; c + 1 < row.size(); ++c) x += col_w[c];
+      if (row.size() > 1) widest = std::max(widest, x + font_px(f, row.back()));
+    }
+    return widest;
+  }
+
+  // Lays a card out (title in font tf, rows in bf) from the top left within
+  // a margin, drawing it if draw; returns the height it takes (px).
+  int lay_out_card(const Card& card, int tf, int bf, bool draw) {
+    const int w = frame.width, h = frame.height;
+    const int margin = std::max(2 * pad, w / 24);
+    const auto line_pitch = [&](int f) {
+      return f == mjFONT_BIG ? con.charHeightBig + con.charHeightBig / 3 : pitch;
+    };
+    int top = h - margin;
+    for (const std::string& l : wrap(tf, card.title, w - 2 * margin)) {
+      if (draw) card_line(tf, l, margin, top, kCardTitleRgb);
+      top -= line_pitch(tf);
+    }
+    top -= pitch / 2;
+    std::vector<int> col_w;
+    card_columns(card, bf, col_w);
+    for (const auto& row : card.rows) {
+      int x = margin;
+      for (size_t c = 0; c + 1 < row.size(); ++c) {
+        if (draw) card_line(bf, row[c], x, top, c == 0 ? kCardLabelRgb : kCardTextRgb);
+        x += col_w[c];
+      }
+      for (const std::string& l : wrap(bf, row.empty() ? "" : row.back(), w - margin - x)) {
+        if (draw) card_line(bf, l, x, top, kCardTextRgb);
+        top -= line_pitch(bf);
+      }
+    }
+    return h - top + margin;
+  }
+
+  // A card in the largest fonts that fit: the title big, the rows big too
+  // for a large card whose table rows fit the width; the title in the normal
+  // font when the card is otherwise too tall.
+  void draw_card(const Card& card) {
+    const int avail_w = frame.width - 2 * std::max(2 * pad, frame.width / 24);
+    std::vector<int> col_w;
+    const int bf = card.large && card_columns(card, mjFONT_BIG, col_w) <= avail_w &&
+                           lay_out_card(card, mjFONT_BIG, mjFONT_BIG, false) <= frame.height
+                       ? mjFONT_BIG
+                       : mjFONT_NORMAL;
+    const int tf = lay_out_card(card, mjFONT_BIG, bf, false) <= frame.height ? mjFONT_BIG : mjFONT_NORMAL;
+    lay_out_card(card, tf, bf, true);
   }
 
   ~Impl() {
@@ -189,14 +310,7 @@ struct SceneRenderer::Impl {
   }
 
   // Width (px) of the longest line of t in the context's font.
-  int text_px(const std::string& t) const {
-    int w = 0, best = 0;
-    for (const char c : t) {
-      if (c == '\n') w = 0;
-      else if (c > 0 && c < 127) best = std::max(best, w += con.charWidth[static_cast<int>(c)]);
-    }
-    return best;
-  }
+  int text_px(const std::string& t) const { return font_px(mjFONT_NORMAL, t); }
 
   // The text column (frame_layout.hpp): as wide as its longest line; used
   // when it leaves at least half the panel to the mechanism and its lines fit
@@ -205,17 +319,18 @@ struct SceneRenderer::Impl {
     const int cw = std::max(1, con.charWidth[static_cast<int>('0')]);
     pad = std::max(2, cw / 2);
     line_h = std::max(1, con.charHeight);
+    pitch = line_h + line_h / 4;  // measured
     int width = text_px("enc 1") + text_px("-3.14159 rad") + 3 * cw;  // the two columns of the data block
     for (const auto& s : slots) width = std::max(width, text_px(s->view.label) + 2 * cw);
     width = std::max(width, kSwatchChars * cw + text_px(std::string(kLegendDesired)) + 4 * cw);
-    // Height: caption, 5 data lines, 2 legend lines, the scale bar's label and ticks, margins.
+    width = std::max(width, text_px(kWidestScaleLabel) + 2 * cw);
+    // Height: caption, 6 data lines, 3 legend lines, the scale bar's label and ticks, margins.
     int label_lines = 0;
     for (const auto& s : slots)
       if (!s->view.label.empty())
         label_lines = std::max(label_lines, 1 + static_cast<int>(std::count(s->view.label.begin(),
                                                                              s->view.label.end(), '\n')));
-    const int pitch = line_h + line_h / 4;  // mjr_overlay's line spacing, measured
-    const int column_h = (label_lines + 5 + 2 + 1) * pitch + std::max(6, line_h / 2) + 6 * pad;
+    const int column_h = (label_lines + 6 + 3 + 1) * pitch + std::max(6, line_h / 2) + 6 * pad;
     column = width <= kMaxColumnFrac * panel_w && column_h <= height ? width : 0;
   }
 
@@ -232,8 +347,13 @@ struct SceneRenderer::Impl {
         0.5 * options.height / std::tan(0.5 * fovy * kPi / 180.0) / std::max(s.camera.distance, 1e-3);
     const double mm_per_px = 1.0 / (px_per_m * kMetresPerMm);
     const double line_px = std::max(1.5, options.height / 320.0);
+    std::vector<double> errors;
+    errors.reserve(s.view.log->rows.size());
+    for (const sim::LogRow& r : s.view.log->rows) errors.push_back((r.actual - r.desired).norm());
+    s.gain = error_gain(std::move(errors), 1.0 / mm_per_px, kErrorArrowFrac * options.height);
+    const ErrorArrow arrow{s.gain, kErrorHeadPx * options.height / 480.0 * mm_per_px};
     s.painter = std::make_unique<OverlayPainter>(s.view.actual, *s.view.log, std::max(0.2, 1.5 * mm_per_px),
-                                                 std::max(2.0, kMarkerRadiusPx * mm_per_px), line_px);
+                                                 std::max(2.0, kMarkerRadiusPx * mm_per_px), line_px, arrow);
     // Scale bar in the plane of the traces, top camera only (elsewhere the scale varies across the image).
     if (options.camera == "top" && column > 0) {
       const int cw = std::max(1, con.charWidth[static_cast<int>('0')]);
@@ -295,7 +415,7 @@ const FrameImage& SceneRenderer::render(double t) {
     s->painter->add_geoms(&s->scene, t, row);
     const mjrRect vp = {s->viewport[0], s->viewport[1], s->viewport[2], s->viewport[3]};
     mjr_render(vp, &s->scene, &im.con);
-    const auto text = OverlayPainter::text(row);
+    const auto text = OverlayPainter::text(row, t0_, s->gain);
     if (im.column > 0) {
       im.draw_column(*s, text);
     } else {
@@ -304,15 +424,26 @@ const FrameImage& SceneRenderer::render(double t) {
         mjr_overlay(mjFONT_NORMAL, mjGRID_TOPRIGHT, vp, s->view.label.c_str(), nullptr, &im.con);
     }
   }
-  const mjrRect full = {0, 0, im.frame.width, im.frame.height};
-  mjr_readPixels(im.bottom_up.data(), nullptr, full, &im.con);
-  const size_t row_bytes = static_cast<size_t>(im.frame.width) * 3;
-  for (int y = 0; y < im.frame.height; ++y) {
-    std::memcpy(im.frame.rgb.data() + static_cast<size_t>(y) * row_bytes,
-                im.bottom_up.data() + static_cast<size_t>(im.frame.height - 1 - y) * row_bytes, row_bytes);
-  }
+  im.read_frame();
   return im.frame;
 }
+
+const FrameImage& SceneRenderer::render_card(const Card& card) {
+  Impl& im = *impl_;
+  im.context.make_current();
+  mjr_setBuffer(mjFB_OFFSCREEN, &im.con);
+  mjr_rectangle(mjrRect{0, 0, im.frame.width, im.frame.height}, kCardRgb[0], kCardRgb[1], kCardRgb[2], 1.0f);
+  im.draw_card(card);
+  im.read_frame();
+  return im.frame;
+}
+
+std::array<std::string, 2> SceneRenderer::text(size_t i, double t) const {
+  const RunSlot& s = *impl_->slots.at(i);
+  return OverlayPainter::text(row_at(*s.view.log, t), t0_, s.gain);
+}
+
+double SceneRenderer::arrow_gain(size_t i) const { return impl_->slots.at(i)->gain; }
 
 const mjvCamera& SceneRenderer::camera(size_t i) const { return impl_->slots.at(i)->camera; }
 

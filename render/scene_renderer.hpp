@@ -40,6 +40,20 @@ void check_render_setup(const std::string& model_xml, const RenderOptions& optio
 // joints, elbows, end-effector and desired path over every log, with a margin.
 Framing framing_of(const std::vector<RunView>& runs);
 
+// A card: a whole frame of text before or after the runs (what the video
+// shows, the figures measured). Each row is a line of text, or with more
+// than one cell the row of a table whose columns line up; the last cell of
+// a row wraps at the frame's right margin.
+struct Card {
+  std::string title;
+  std::vector<std::vector<std::string>> rows;
+  double seconds = 4.0;  // on screen (video seconds)
+  bool large = false;    // the rows in the big font too (a short card)
+};
+
+// Background of a card (RGB, 0..1): no scene frame is this uniform.
+inline constexpr std::array<float, 3> kCardRgb = {0.06f, 0.10f, 0.24f};
+
 // Where the 2-D overlays of a panel are (image pixels, x from the left, y
 // from the top), for tests and tools.
 struct OverlayLayout {
@@ -47,7 +61,7 @@ struct OverlayLayout {
   double scale_mm = 0.0;  // length the scale bar stands for (0: no bar; top camera with a column only)
   double px_per_mm = 0.0;  // its pixels per mm, in the plane of the traces
   int scale_x = 0, scale_y = 0, scale_len = 0;  // the bar: left end, row, length (px)
-  std::array<int, 2> legend_rows{};  // rows of the desired-path and actual-trace swatches
+  std::array<int, 3> legend_rows{};  // rows of the desired-path, actual-trace and error-arrow swatches
   int legend_x0 = 0, legend_x1 = 0;  // swatch columns [x0, x1)
 };
 
@@ -62,8 +76,19 @@ class SceneRenderer {
   SceneRenderer(const SceneRenderer&) = delete;
   SceneRenderer& operator=(const SceneRenderer&) = delete;
 
-  // The frame at simulated time t (each run shows its log row at t).
+  // The frame at simulated time t (each run shows its log row at t; the
+  // clock reads t - start_time(): each part of a video from 0).
   const FrameImage& render(double t);
+
+  // A card (title and rows on a plain background) in the frame's size.
+  const FrameImage& render_card(const Card& card);
+
+  // The data block run i's panel shows at time t (labels, values), as
+  // render(t) draws it.
+  std::array<std::string, 2> text(size_t i, double t) const;
+
+  // The magnification of run i's error arrow (frame_layout.hpp: error_gain).
+  double arrow_gain(size_t i) const;
 
   // The camera of run i (as built by make_camera) and the viewport it draws in
   // (left, bottom, width, height in OpenGL pixels, bottom-up).

@@ -79,6 +79,26 @@ std::vector<int> part_frame_counts(const std::vector<std::vector<RunView>>& part
   return n;
 }
 
+std::vector<Segment> video_segments(const std::vector<std::vector<RunView>>& parts, const RenderOptions& options,
+                                    const Cards& cards) {
+  std::vector<Segment> out;
+  int n = 0;
+  const auto card = [&](Segment::Kind kind, const std::optional<Card>& c) {
+    if (!c) return;
+    const int count = std::max(1, static_cast<int>(std::lround(c->seconds * options.fps)));
+    out.push_back(Segment{kind, -1, n, count});
+    n += count;
+  };
+  card(Segment::Kind::kOpening, cards.opening);
+  const std::vector<int> counts = part_frame_counts(parts, options);
+  for (size_t i = 0; i < counts.size(); ++i) {
+    out.push_back(Segment{Segment::Kind::kPart, static_cast<int>(i), n, counts[i]});
+    n += counts[i];
+  }
+  card(Segment::Kind::kClosing, cards.closing);
+  return out;
+}
+
 VideoSummary render_video(const std::vector<RunView>& runs, const RenderOptions& options,
                           const std::string& mp4_path, const std::vector<FrameRequest>& pngs,
                           const VideoJobOptions& job) {
@@ -87,14 +107,15 @@ VideoSummary render_video(const std::vector<RunView>& runs, const RenderOptions&
 
 VideoSummary render_parts(const std::vector<std::vector<RunView>>& parts, const RenderOptions& options,
                           const std::string& mp4_path, const std::vector<FrameRequest>& pngs,
-                          const VideoJobOptions& job) {
+                          const VideoJobOptions& job, const Cards& cards) {
   if (!(options.fps > 0)) throw InputError(fmt::format("fps must be positive, got {}", options.fps));
   if (!(options.speed > 0)) throw InputError(fmt::format("speed must be positive, got {}", options.speed));
   if (parts.empty()) throw InputError("render: nothing to show (no part)");
-  const std::vector<int> counts = part_frame_counts(parts, options);
+  const std::vector<Segment> segments = video_segments(parts, options, cards);
   std::vector<int> first;
-  int n = 0;
-  for (int c : counts) first.push_back(n), n += c;
+  for (const Segment& g : segments)
+    if (g.kind == Segment::Kind::kPart) first.push_back(g.first);
+  const int n = segments.back().first + segments.back().count;
   for (const FrameRequest& p : pngs) {
     if (p.frame >= n)
       throw InputError(fmt::format("--frame-png {}: the video has {} frames (0..{})", p.frame, n, n - 1));
@@ -124,13 +145,17 @@ VideoSummary render_parts(const std::vector<std::vector<RunView>>& parts, const 
   const auto start = std::chrono::steady_clock::now();
   int rendered = 0;
   std::string gl;
-  for (size_t part = 0; part < parts.size(); ++part) {
-    if (part > 0) renderer = std::make_unique<SceneRenderer>(parts[part], options, region);
+  for (const Segment& g : segments) {
+    const size_t part = static_cast<size_t>(std::max(0, g.part));
+    if (g.kind == Segment::Kind::kPart && part > 0)
+      renderer = std::make_unique<SceneRenderer>(parts[part], options, region);
     const double t0 = renderer->start_time();
-    for (int j = 0; j < counts[part]; ++j) {
-      const int k = first[part] + j;
+    for (int j = 0; j < g.count; ++j) {
+      const int k = g.first + j;
       if (!wanted[static_cast<size_t>(k)]) continue;
-      const FrameImage& img = renderer->render(frame_time(t0, j, options.fps, options.speed));
+      const FrameImage& img = g.kind == Segment::Kind::kOpening   ? renderer->render_card(*cards.opening)
+                              : g.kind == Segment::Kind::kClosing ? renderer->render_card(*cards.closing)
+                                                                  : renderer->render(frame_time(t0, j, options.fps, options.speed));
       if (queue) queue->push(img, k);
       else consume(img, k);
       ++rendered;
@@ -152,6 +177,7 @@ VideoSummary render_parts(const std::vector<std::vector<RunView>>& parts, const 
   s.gl_renderer = gl;
   s.codec = encoder ? encoder->codec_name() : "";
   s.part_first = first;
+  s.segments = segments;
   return s;
 }
 

@@ -9,6 +9,7 @@
 //   render_video({run_view(nominal, "nominal"), run_view(calibrated, "calibrated")}, o, "cmp.mp4", {});
 #pragma once
 
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -40,6 +41,27 @@ void check_output_suffix(const std::string& path, const std::string& suffix, con
 // Parses "N:FILE" (e.g. "12:frame.png"); throws InputError naming `what`.
 FrameRequest parse_frame_request(const std::string& text, const std::string& what);
 
+// Cards around the parts of a video: an opening card before the first part
+// and a closing card after the last (none if unset).
+struct Cards {
+  std::optional<Card> opening, closing;
+};
+
+// A stretch of a video: a card, or a part (render_parts) shown over its
+// whole log; frames [first, first + count).
+struct Segment {
+  enum class Kind { kOpening, kPart, kClosing };
+  Kind kind = Kind::kPart;
+  int part = -1;  // the part's index (kPart)
+  int first = 0, count = 0;
+};
+
+// The segments of a video: the opening card, the parts, the closing card,
+// one after the other (the timeline, no rendering); a card lasts
+// round(seconds * fps) frames, at least 1.
+std::vector<Segment> video_segments(const std::vector<std::vector<RunView>>& parts, const RenderOptions& options,
+                                    const Cards& cards = {});
+
 struct VideoSummary {
   int frames = 0;
   int width = 0, height = 0;
@@ -48,6 +70,7 @@ struct VideoSummary {
   std::string gl_renderer;
   std::string codec;
   std::vector<int> part_first;  // render_parts: first frame of each part
+  std::vector<Segment> segments;  // cards and parts (video_segments)
 };
 
 // How frames reach the encoder: rendered and encoded one after the other
@@ -71,13 +94,13 @@ VideoSummary render_video(const std::vector<RunView>& runs, const RenderOptions&
 
 // Renders parts one after the other into one video (e.g. the story of a
 // calibration run: the nominal controller on the test path, the sampling,
-// the calibrated controller), each over its whole log, all framed alike (the
-// region covering every part); each part is one run or two side by side.
-// Frame indices of pngs count over the whole video. Part i starts at frame
-// sum of frames of parts before it (returned in VideoSummary::part_first).
+// the calibrated controller), each over its whole log with its clock from
+// 0, all framed alike (the region covering every part); each part is one
+// run or two side by side; the cards before and after. Frame indices of
+// pngs count over the whole video (VideoSummary::segments, part_first).
 VideoSummary render_parts(const std::vector<std::vector<RunView>>& parts, const RenderOptions& options,
                           const std::string& mp4_path, const std::vector<FrameRequest>& pngs,
-                          const VideoJobOptions& job = {});
+                          const VideoJobOptions& job = {}, const Cards& cards = {});
 
 // Frames each part of render_parts would have (the timeline, no rendering).
 std::vector<int> part_frame_counts(const std::vector<std::vector<RunView>>& parts, const RenderOptions& options);

@@ -56,9 +56,10 @@ rm -f C.MP4
 # Off a terminal (here stderr is a file) no progress line is written.
 if [[ ! -s "$tmp/err" ]]; then passed=$((passed+1)); else echo "FAIL stderr not empty off a terminal:"; cat "$tmp/err"; fail=$((fail+1)); fi
 
-# A gpm run scenario is shown as a story: the nominal controller on the test
-# path (a 0.4 s circle: 9 frames at 20 fps), the sampling, then the
-# calibrated controller on the same path (9 frames), in that order.
+# A gpm run scenario is shown as a story: an opening card (5 s: 100 frames at
+# 20 fps), the nominal controller on the test path (a 0.4 s circle: 9
+# frames), the sampling, the calibrated controller on the same path (9
+# frames) and a closing card (100 frames), in that order.
 cat >run.yaml <<'YAML'
 name: render_story
 seed: 3
@@ -70,16 +71,37 @@ compensation: {count: 2, radius: 20, path: {shape: circle, centre: [216.5, 250],
 render: {size: 320x240, fps: 20}
 YAML
 check "story" 0 "$GPM" render run.yaml -o story.mp4
-parts=$(sed -nE 's/^part +([0-9])\/3 ([a-z]+) .* from frame ([0-9]+)$/\1 \2 \3/p' "$tmp/out" | tr '\n' ';')
+parts=$(sed -nE 's/^(part|card) +([0-9]\/3 )?([a-z]+) .*from frame ([0-9]+)$/\2\3 \4/p' "$tmp/out" | tr '\n' ';')
 total=$(sed -nE 's/^frames +([0-9]+) at.*/\1/p' "$tmp/out")
-if [[ "$parts" == "1 nominal 0;2 sampling 9;3 calibrated $((total - 9));" ]]; then passed=$((passed+1))
+if [[ "$parts" == "opening 0;1/3 nominal 100;2/3 sampling 109;3/3 calibrated $((total - 109));closing $((total - 100));" ]]; then passed=$((passed+1))
 else echo "FAIL story parts: '$parts' (total $total)"; cat "$tmp/out"; fail=$((fail+1)); fi
+cp "$tmp/out" story_out.txt
+# The closing card's figures are what gpm run measures for this scenario
+# (summary.json), 3 significant digits, um below 1 mm.
+check "gpm run of the story" 0 "$GPM" run run.yaml -o run_dir --quiet
+python3 - run_dir/summary.json story_out.txt >card_check.txt <<'PY'
+import json, math, sys
+acc = json.load(open(sys.argv[1]))["accuracy"]
+def sig(v):
+    whole = math.floor(math.log10(abs(v))) + 1 if v else 1
+    return f"{v:.{max(0, 3 - whole)}f}"
+def distance(um):
+    return sig(um) + " um" if float(sig(um)) < 1000 else sig(um / 1000) + " mm"
+want = [f"error RMS        at 2 poses: {distance(acc['nominal']['static_rms_um'])} nominal, "
+        f"{distance(acc['calibrated']['static_rms_um'])} calibrated",
+        f"error RMS        on the path: {distance(acc['nominal']['path_rms_um'])} nominal, "
+        f"{distance(acc['calibrated']['path_rms_um'])} calibrated"]
+got = [l.rstrip("\n") for l in open(sys.argv[2]) if l.startswith("error RMS")]
+print("ok" if got == want else f"closing card {got}, gpm run {want}")
+PY
+if [[ "$(cat card_check.txt)" == ok ]]; then passed=$((passed+1)); else echo "FAIL $(cat card_check.txt)"; fail=$((fail+1)); fi
+rm -rf run_dir story_out.txt card_check.txt
 probe=$(ffprobe -v error -count_frames -select_streams v:0 -show_entries stream=nb_read_frames -of csv=p=0 story.mp4)
 if [[ "$probe" == "$total" ]]; then passed=$((passed+1)); else echo "FAIL story frames: ffprobe $probe, summary $total"; fail=$((fail+1)); fi
 # --simulation-only: the sampling alone, as many frames as the story's second part.
 check "simulation only" 0 "$GPM" render run.yaml -o sim.mp4 --simulation-only
 n=$(sed -nE 's/^frames +([0-9]+) at.*/\1/p' "$tmp/out")
-if [[ "$n" -eq $((total - 18)) ]] && ! grep -q '^part' "$tmp/out"; then passed=$((passed+1)); else echo "FAIL simulation only: $n frames, want $((total - 18))"; fail=$((fail+1)); fi
+if [[ "$n" -eq $((total - 218)) ]] && ! grep -qE '^(part|card)' "$tmp/out"; then passed=$((passed+1)); else echo "FAIL simulation only: $n frames, want $((total - 218))"; fail=$((fail+1)); fi
 rm -f story.mp4 sim.mp4 run.yaml
 
 # Output policy (models/output_file.hpp): the scenario is never overwritten, a

@@ -15,6 +15,7 @@
 #include <mujoco/mujoco.h>
 
 #include "render/frame_image.hpp"
+#include "render/scene_renderer.hpp"
 #include "sim/scenario.hpp"
 #include "sim/simulate.hpp"
 
@@ -83,6 +84,26 @@ inline Blob find_marker(const FrameImage& img, int x0 = 0, int x1 = -1) {
   }
   if (b.pixels) b.centre /= b.pixels;
   return b;
+}
+
+// Share of the pixels of img within tol (each channel) of the card background.
+inline double card_share(const FrameImage& img, int tol = 8) {
+  long n = 0;
+  for (int y = 0; y < img.height; ++y)
+    for (int x = 0; x < img.width; ++x) {
+      const std::uint8_t* p = img.at(x, y);
+      bool near = true;
+      for (int c = 0; c < 3; ++c) near = near && std::abs(p[c] - std::lround(255.0 * kCardRgb[c])) <= tol;
+      n += near ? 1 : 0;
+    }
+  return static_cast<double>(n) / (static_cast<double>(img.width) * img.height);
+}
+
+// A copy of log with every time shifted by dt (a part that starts later).
+inline sim::TrajectoryLog shifted(const sim::TrajectoryLog& log, double dt) {
+  sim::TrajectoryLog out = log;
+  for (sim::LogRow& r : out.rows) r.t += dt;
+  return out;
 }
 
 // Output of a shell command (stdout), and its exit status.

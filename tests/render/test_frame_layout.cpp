@@ -1,6 +1,7 @@
 // Tests of render/frame_layout.cpp against hand-worked cases: the region
 // that puts the mechanism right of the text column, the round scale-bar
-// lengths, and the pinhole scale of the top camera.
+// lengths, the pinhole scale of the top camera, and the error arrow's
+// magnification.
 #include "render/frame_layout.hpp"
 
 #include <cmath>
@@ -50,6 +51,32 @@ TEST(FrameLayout, TopCameraScale) {
   EXPECT_NEAR(top_px_per_mm(1.0, 0.0, 90.0, 480), 0.24, 1e-12);
   // 0.2 m above the plane is 0.8 m from the camera: 0.3 px/mm.
   EXPECT_NEAR(top_px_per_mm(1.0, 0.2, 90.0, 480), 0.3, 1e-12);
+}
+
+// Issue 35: a 10 mm and a 10 um error both read. At 0.58 px/mm (640x480,
+// the main job's framing) with a 120 px target: 120 / (10 x 0.58) = 20.7,
+// so x20 (116 px); 120 / (0.01 x 0.58) = 20690, so x20000 (116 px).
+TEST(FrameLayout, ErrorGainMakesBothAMillimetreAndAMicrometreErrorRead) {
+  EXPECT_DOUBLE_EQ(error_gain(std::vector<double>(50, 10.0), 0.58, 120.0), 20.0);
+  EXPECT_DOUBLE_EQ(error_gain(std::vector<double>(50, 0.01), 0.58, 120.0), 20000.0);
+  for (const double e : {10.0, 1.0, 0.252, 0.01, 0.0093}) {
+    const double px = e * error_gain(std::vector<double>(9, e), 0.58, 120.0) * 0.58;
+    EXPECT_LE(px, 120.0 + 1e-9) << e;
+    EXPECT_GT(px, 120.0 / 2.5 - 1e-9) << e << ": a 1-2-5 step loses at most 2.5x";
+  }
+  // 1, 2 or 5 x 10^k: 120 / (0.252 x 0.58) = 821 -> 500.
+  EXPECT_DOUBLE_EQ(error_gain({0.252}, 0.58, 120.0), 500.0);
+}
+
+TEST(FrameLayout, ErrorGainLooksAtThe95thPercentileAndStaysInRange) {
+  // 100 errors of 1 mm and 3 spikes of 50 mm: the 95th percentile is 1 mm.
+  std::vector<double> e(100, 1.0);
+  e.insert(e.end(), {50.0, 50.0, 50.0});
+  EXPECT_DOUBLE_EQ(error_gain(e, 1.0, 100.0), 100.0);
+  EXPECT_DOUBLE_EQ(error_gain({200.0}, 1.0, 100.0), 1.0) << "never below 1";
+  EXPECT_DOUBLE_EQ(error_gain({1e-9}, 1.0, 100.0), 1e5) << "at most 1e5";
+  EXPECT_DOUBLE_EQ(error_gain({0.0, 0.0}, 1.0, 100.0), 1.0) << "no error: no magnification";
+  EXPECT_DOUBLE_EQ(error_gain({}, 1.0, 100.0), 1.0);
 }
 
 }  // namespace

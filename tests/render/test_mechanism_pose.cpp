@@ -19,7 +19,10 @@ TEST(MechanismPose, RowAtPicksTheLastRowNotAfterT) {
   EXPECT_EQ(row_at(log, -1.0).t, 0.0);
   EXPECT_EQ(row_at(log, 0.0).t, 0.0);
   EXPECT_DOUBLE_EQ(row_at(log, 0.25).t, 0.2);
-  EXPECT_DOUBLE_EQ(row_at(log, 0.3).t, 0.2);  // the row logged at 0.1 * 3 > 0.3 is after t
+  // The row logged at 0.1 * 3 = 0.30000000000000004 is at 0.3 (within kSameTime_s),
+  // as the frame time of a part logged from elsewhere is summed otherwise.
+  EXPECT_DOUBLE_EQ(row_at(log, 0.3).t, 0.1 * 3);
+  EXPECT_DOUBLE_EQ(row_at(log, 0.3 - 2 * kSameTime_s).t, 0.2);
   EXPECT_DOUBLE_EQ(row_at(log, 9.0).t, 0.4);
 }
 

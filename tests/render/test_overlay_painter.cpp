@@ -1,5 +1,6 @@
 // Tests of render/overlay_painter.cpp: decimated path and trace, geoms
-// within the scene's capacity, chain colours, and the text.
+// within the scene's capacity, chain colours, the magnified error arrow,
+// and the text (clock from the part's start, distances in um / mm).
 #include <set>
 
 #include <gtest/gtest.h>
@@ -102,15 +103,61 @@ TEST(OverlayPainter, ChainsGetDistinctColours) {
   EXPECT_EQ(colours.size(), 6u);
 }
 
-TEST(OverlayPainter, TextShowsTimeErrorInMicrometresAndReadings) {
+TEST(OverlayPainter, TextShowsTheClockFromThePartsStartTheErrorAndReadings) {
   sim::LogRow r;
-  r.t = 1.25;
+  r.t = 16.795;
   r.desired = {100.0, 200.0};
   r.actual = {100.003, 200.004};  // 5 um away
   r.readings = {1.1, 3.2, 4.75};
-  const auto t = OverlayPainter::text(r);
-  EXPECT_EQ(t[0], "time\nerror\nenc 1\nenc 2\nenc 3");
-  EXPECT_EQ(t[1], "1.250 s\n5.0 um\n1.10000 rad\n3.20000 rad\n4.75000 rad");
+  const auto t = OverlayPainter::text(r, 15.545, 2000.0);
+  EXPECT_EQ(t[0], "time\nerror\narrow\nenc 1\nenc 2\nenc 3");
+  EXPECT_EQ(t[1], "1.250 s\n5.00 um\nx2000\n1.10000 rad\n3.20000 rad\n4.75000 rad");
+  r.actual = {100.0, 212.0768};  // the "error 12076.8 um"
+  EXPECT_EQ(OverlayPainter::text(r, 16.795)[1], "0.000 s\n12.1 mm\nnone\n1.10000 rad\n3.20000 rad\n4.75000 rad");
+}
+
+// 3 significant digits; um below 1 mm (rounding included), mm from there on.
+TEST(OverlayPainter, DistancesHaveThreeSignificantDigitsAndTheirUnit) {
+  EXPECT_EQ(distance_text(0.00926), "9.26 um");
+  EXPECT_EQ(distance_text(0.0099), "9.90 um");
+  EXPECT_EQ(distance_text(0.2524), "252 um");
+  EXPECT_EQ(distance_text(0.9994), "999 um");
+  EXPECT_EQ(distance_text(0.9996), "1.00 mm");
+  EXPECT_EQ(distance_text(9.68), "9.68 mm");
+  EXPECT_EQ(distance_text(12.0768), "12.1 mm");
+  EXPECT_EQ(distance_text(0.0), "0 um");
+  EXPECT_EQ(distance_text(1.28e-5), "0.0128 um");
+  EXPECT_EQ(distance_text(2.8e-14), "< 0.001 um") << "the sampling's first row: no 12-decimal noise";
+  EXPECT_EQ(distance_text(std::nan("")), "-");
+}
+
+// The arrow: three cyan lines (shaft and two barbs); the shaft runs from the
+// desired point to desired + gain x (actual - desired); no arrow at gain 0.
+TEST(OverlayPainter, ErrorArrowIsTheErrorVectorTimesTheGain) {
+  const sim::TrajectoryLog log = straight_log(101, 10.0);  // actual 10 um above desired
+  const OverlayPainter p(Robot{}, log, 1.0, 3.0, 2.0, ErrorArrow{1000.0, 2.0});
+  const sim::ModelPtr m = sim::load_model_from_xml(mjcf_from_robot(Robot{}));
+  Scene s(m.get(), p.max_geoms());
+  const sim::LogRow& row = log.rows[50];
+  p.add_geoms(&s.scn, row.t, row);
+  ASSERT_EQ(s.count(OverlayStyle::kErrorRgba), 3);
+  const mjvGeom* shaft = nullptr;
+  for (int i = 0; i < s.scn.ngeom && !shaft; ++i)
+    if (std::equal(OverlayStyle::kErrorRgba.begin(), OverlayStyle::kErrorRgba.end(), s.scn.geoms[i].rgba))
+      shaft = &s.scn.geoms[i];
+  // A line connector (mjv_makeConnector): from pos, along the frame's z axis, size[2] long (m).
+  EXPECT_NEAR(shaft->pos[0], row.desired.x() * 1e-3, 1e-6);
+  EXPECT_NEAR(shaft->pos[1], row.desired.y() * 1e-3, 1e-6);
+  EXPECT_NEAR(shaft->pos[2], OverlayStyle::kErrorZ_m, 1e-6);
+  EXPECT_NEAR(shaft->size[2], 10.0 * 1e-3, 1e-6) << "10 um x 1000 = 10 mm";
+  EXPECT_NEAR(shaft->mat[5], 1.0, 1e-6) << "upwards (+y), as the error";
+  EXPECT_EQ(s.count(OverlayStyle::kMarkerRgba), 1);
+  EXPECT_TRUE(std::equal(OverlayStyle::kMarkerRgba.begin(), OverlayStyle::kMarkerRgba.end(),
+                         s.scn.geoms[s.scn.ngeom - 1].rgba)) << "the marker stays the last geom";
+  const OverlayPainter none(Robot{}, log, 1.0, 3.0, 2.0);
+  Scene s0(m.get(), none.max_geoms());
+  none.add_geoms(&s0.scn, row.t, row);
+  EXPECT_EQ(s0.count(OverlayStyle::kErrorRgba), 0);
 }
 
 }  // namespace

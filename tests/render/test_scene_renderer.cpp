@@ -2,9 +2,11 @@
 // end-effector marker where the camera's projection of the true position
 // says, chains in their colours, reproducible frames, side-by-side panels,
 // the text column with the legend and the scale bar clear of the mechanism,
-// and bad input.
+// the clock from the start of what is shown, the magnified error arrow,
+// cards, and bad input.
 #include <set>
 
+#include <fmt/format.h>
 #include <gtest/gtest.h>
 
 #include "models/errors.hpp"
@@ -52,8 +54,6 @@ TEST(SceneRenderer, FrameIsNotBlank) {
 // The marker's centroid lies within 3 pixels of the pinhole projection of the
 // true end-effector position, computed from the camera's lookat, distance and
 // field of view alone, at several instants along the run.
-// KNOWN FAILING (issue 6 open): at the small test sizes the marker disc is a few
-// pixels under the text box and not pure magenta, so find_marker counts none.
 TEST(SceneRenderer, MarkerIsWhereTheCameraProjectionOfTheTruePositionSays) {
   const auto& r = run_of(kCircleScenario);
   for (const auto& [w, h] : {std::pair{240, 180}, std::pair{320, 320}}) {
@@ -103,8 +103,6 @@ TEST(SceneRenderer, SameRunRendersIdenticalFrames) {
   EXPECT_NE(b.render(0.05).rgb, first) << "another instant must differ";
 }
 
-// KNOWN FAILING (issue 6 open): at the small test sizes the marker disc is a few
-// pixels under the text box and not pure magenta, so find_marker counts none.
 // At 640x480 with the top camera the text, the legend and the scale bar sit
 // in a column left of the mechanism: every base joint, elbow and the
 // end-effector (with the base markers' radius, at the height of the marker)
@@ -144,6 +142,8 @@ TEST(SceneRenderer, LegendAndScaleBarInAColumnClearOfTheMechanism) {
   const int xs = (l.legend_x0 + l.legend_x1) / 2;
   EXPECT_LT((colour_at(xs, l.legend_rows[0]) - 255.0 * Eigen::Vector3d(d[0], d[1], d[2])).norm(), 3.0);
   EXPECT_LT((colour_at(xs, l.legend_rows[1]) - 255.0 * Eigen::Vector3d(t[0], t[1], t[2])).norm(), 3.0);
+  const auto& e = OverlayStyle::kErrorRgba;
+  EXPECT_LT((colour_at(xs, l.legend_rows[2]) - 255.0 * Eigen::Vector3d(e[0], e[1], e[2])).norm(), 3.0);
   EXPECT_LT(l.legend_x1, l.column);
 
   // Scale bar: a round length (1, 2 or 5 x 10^k mm) ...
@@ -163,6 +163,80 @@ TEST(SceneRenderer, LegendAndScaleBarInAColumnClearOfTheMechanism) {
   EXPECT_NEAR(white, want_px, 1.0);
   EXPECT_LT(l.scale_x + l.scale_len, l.column);
   EXPECT_GT(want_px, 0.3 * l.column) << "a bar long enough to read";
+}
+
+// Issue 35: the clock reads the time since the start of what is shown. A run
+// logged from 15.545 s shows "0.000 s" at its start, and frame for frame the
+// same image as the same run logged from 0.
+TEST(SceneRenderer, ClockStartsAtZeroWhereverTheLogStarts) {
+  const auto& r = run_of(kLineScenario);
+  const sim::TrajectoryLog late = testing::shifted(r.log, 15.545);
+  const RunView v = run_view(r, "line");
+  const RunView lv{"line", r.actual, r.model_xml, &late};
+  SceneRenderer at0({v}, small(640, 480)), at15({lv}, small(640, 480));
+  const double t0 = r.log.rows.front().t, span = r.log.rows.back().t - t0;
+  ASSERT_NEAR(t0, 0.0, 1e-9);
+  EXPECT_EQ(at15.text(0, 15.545)[1].substr(0, 8), "0.000 s\n");
+  EXPECT_EQ(at15.text(0, 15.545 + span)[1].substr(0, 8), fmt::format("{:.3f} s\n", late.rows.back().t - 15.545));
+  for (const double t : {0.0, 0.5 * span, span}) {
+    EXPECT_EQ(at15.text(0, 15.545 + t), at0.text(0, t));
+    const std::vector<std::uint8_t> want = at0.render(t).rgb;
+    EXPECT_EQ(at15.render(15.545 + t).rgb, want) << "t = " << t;
+  }
+}
+
+// Issue 35: the error arrow makes a 10 mm and a 10 um error both read: drawn
+// from the desired point, gain x error long, at least 40 px at 640x480 in
+// either case (the cyan pixels right of the text column, measured from the
+// pinhole projection of the desired point), the gain stated in the text.
+TEST(SceneRenderer, ErrorArrowReadsForAMillimetreAndAMicrometreError) {
+  const auto& r = run_of(kCircleScenario);
+  for (const double e_mm : {10.0, 0.01}) {
+    sim::TrajectoryLog log = r.log;
+    for (sim::LogRow& row : log.rows) row.actual = row.desired + Eigen::Vector2d(0.0, -e_mm);  // straight down
+    SceneRenderer sr({RunView{"", r.actual, r.model_xml, &log}}, small(640, 480));
+    const double t = 0.3;
+    const FrameImage& f = sr.render(t);
+    const OverlayLayout l = sr.layout(0);
+    const double gain = sr.arrow_gain(0);
+    const sim::LogRow& row = row_at(log, t);
+    const Eigen::Vector2d from = testing::project_top(
+        sr.camera(0), sr.fovy_deg(0), 640, 480,
+        Eigen::Vector3d(row.desired.x() * 1e-3, row.desired.y() * 1e-3, OverlayStyle::kErrorZ_m));
+    const Eigen::Vector2d to = testing::project_top(
+        sr.camera(0), sr.fovy_deg(0), 640, 480,
+        Eigen::Vector3d(row.desired.x() * 1e-3, (row.desired.y() - gain * e_mm) * 1e-3, OverlayStyle::kErrorZ_m));
+    double reach = 0.0;
+    int cyan = 0;
+    for (int y = 0; y < f.height; ++y)
+      for (int x = l.column; x < f.width; ++x) {
+        const std::uint8_t* p = f.at(x, y);
+        if (p[0] < 90 && p[1] > 170 && p[2] > 170) {
+          ++cyan;
+          reach = std::max(reach, (Eigen::Vector2d(x + 0.5, y + 0.5) - from).norm());
+        }
+      }
+    EXPECT_GT(cyan, 30) << e_mm << " mm";
+    EXPECT_NEAR(reach, (to - from).norm(), 3.0) << e_mm << " mm at x" << gain;
+    EXPECT_GE(reach, 40.0) << e_mm << " mm at x" << gain;
+    EXPECT_NE(sr.text(0, t)[1].find(fmt::format("\nx{:.0f}\n", gain)), std::string::npos) << sr.text(0, t)[1];
+  }
+}
+
+// A card: the background colour over most of the frame, the title in its
+// colour; no scene frame is so uniform.
+TEST(SceneRenderer, CardsAreTextOnAPlainBackground) {
+  const auto& r = run_of(kCircleScenario);
+  SceneRenderer sr({run_view(r, "")}, small(320, 240));
+  const Card card{"GPM2002: before and after", {{"error", "nominal", "calibrated"}, {"at 12 poses", "9.68 mm", "10.2 um"}}};
+  const FrameImage& f = sr.render_card(card);
+  EXPECT_GT(testing::card_share(f), 0.8);
+  EXPECT_LT(testing::card_share(f), 0.99) << "text is drawn";
+  int title = 0;
+  for (int y = 0; y < f.height / 4; ++y)
+    for (int x = 0; x < f.width; ++x) title += f.at(x, y)[0] > 180 && f.at(x, y)[2] < 90 ? 1 : 0;
+  EXPECT_GT(title, 40) << "a yellow title at the top";
+  EXPECT_LT(testing::card_share(sr.render(0.3)), 0.2);
 }
 
 // Panels too narrow for a column keep the text over the scene.
@@ -207,8 +281,6 @@ TEST(SceneRenderer, HighQualityKeepsTheGeometry) {
   EXPECT_LT((testing::find_marker(fh).centre - testing::find_marker(fl).centre).norm(), 1.0);
 }
 
-// KNOWN FAILING (issue 6 open): at the small test sizes the marker disc is a few
-// pixels under the text box and not pure magenta, so find_marker counts none.
 TEST(SceneRenderer, ObliqueCameraShowsTheMarkerToo) {
   const auto& r = run_of(kCircleScenario);
   RenderOptions o = small();

@@ -1,8 +1,10 @@
 // Tests of render/video_job.cpp: the frame timeline, whole videos with PNG
 // snapshots, reproducibility, the overlapped pipeline against the sequential
-// one, videos in parts, and all-or-nothing failures.
+// one, videos in parts with their cards and clocks, and all-or-nothing
+// failures.
 #include <fstream>
 #include <iterator>
+#include <memory>
 
 #include <fmt/format.h>
 #include <gtest/gtest.h>
@@ -118,6 +120,85 @@ TEST(VideoJob, PartsPlayOneAfterTheOther) {
   std::vector<RunView> all = {run_view(a, ""), run_view(b, "")};
   SceneRenderer alone({run_view(b, "second")}, o, framing_of(all));
   EXPECT_EQ(read_png((d / "p.png").string()).rgb, alone.render(b.log.rows.front().t).rgb);
+  fs::remove_all(d);
+}
+
+// Issue 35: a story opens with a card and closes with one, and each part's
+// clock starts from 0. Frames at every segment's start and end: taken from
+// the MP4 by ffmpeg, the cards' are the card background over most of the
+// frame and the parts' are not; saved exactly (--frame-png), a card's equals
+// the card rendered alone, and a part's equals the part's run logged from 0
+// rendered alone (the second part is logged from 15.545 s, as the calibrated
+// controller's test path of a run is: with the clock not reset, its frames
+// would show 15.545 s). The overlay's text says "0.000 s" at every part's
+// start.
+TEST(VideoJob, CardsOpenAndCloseAStoryAndEachPartsClockStartsAtZero) {
+  const auto& a = run_of(testing::kCircleScenario);
+  const auto& b = run_of(testing::kLineScenario);
+  const sim::TrajectoryLog late = testing::shifted(b.log, 15.545);
+  const fs::path d = testing::fresh_dir("job_cards");
+  const RenderOptions o = tiny();
+  const std::vector<std::vector<RunView>> parts = {{run_view(a, "1/2 first")},
+                                                   {RunView{"2/2 second", b.actual, b.model_xml, &late}}};
+  Cards cards;
+  cards.opening = Card{"GPM2002", {{"robot", "a 3-RRR planar parallel robot"}}, 0.5};
+  cards.closing = Card{"before and after", {{"", "nominal", "calibrated"}, {"at 12 poses", "9.68 mm", "10.2 um"}}, 0.5};
+
+  const std::vector<Segment> g = video_segments(parts, o, cards);
+  const std::vector<int> n = part_frame_counts(parts, o);
+  ASSERT_EQ(g.size(), 4u);
+  EXPECT_EQ(g[0].kind, Segment::Kind::kOpening);
+  EXPECT_EQ(g[1].kind, Segment::Kind::kPart);
+  EXPECT_EQ(g[2].kind, Segment::Kind::kPart);
+  EXPECT_EQ(g[3].kind, Segment::Kind::kClosing);
+  const int total = 10 + n[0] + n[1] + 10;  // 0.5 s cards at 20 fps
+  EXPECT_EQ(std::vector<int>({g[0].first, g[1].first, g[2].first, g[3].first}),
+            std::vector<int>({0, 10, 10 + n[0], 10 + n[0] + n[1]}));
+  EXPECT_EQ(g[3].first + g[3].count, total);
+
+  std::vector<FrameRequest> pngs;
+  for (const Segment& s : g)
+    for (const int k : {s.first, s.first + s.count - 1})
+      pngs.push_back({k, (d / fmt::format("f{}.png", k)).string()});
+  const VideoSummary v = render_parts(parts, o, (d / "v.mp4").string(), pngs, {}, cards);
+  EXPECT_EQ(v.frames, total);
+  EXPECT_EQ(v.part_first, (std::vector<int>{10, 10 + n[0]}));
+  EXPECT_EQ(testing::probe((d / "v.mp4").string()), fmt::format("h264,160,120,20/1,{}\n", total));
+
+  // The frames as the video holds them (decoded by ffmpeg).
+  std::string select;
+  for (const FrameRequest& p : pngs) select += fmt::format("{}eq(n\\,{})", select.empty() ? "" : "+", p.frame);
+  int status = -1;
+  testing::shell(fmt::format("{} -v error -i '{}' -vf \"select={}\" -vsync 0 '{}'", GPM_FFMPEG, (d / "v.mp4").string(),
+                             select, (d / "dec%d.png").string()),
+                 &status);
+  ASSERT_EQ(status, 0);
+  std::vector<RunView> all = {run_view(a, ""), run_view(b, "")};
+  const Framing region = framing_of(all);
+  std::vector<std::unique_ptr<SceneRenderer>> alone;  // each part alone, logged from 0
+  for (size_t p = 0; p < 2; ++p)
+    alone.push_back(std::make_unique<SceneRenderer>(
+        std::vector<RunView>{run_view(p == 0 ? a : b, parts[p].front().label)}, o, region));
+  for (size_t i = 0; i < pngs.size(); ++i) {
+    const Segment& s = g[i / 2];
+    const int j = pngs[i].frame - s.first;  // frame within its segment
+    const FrameImage decoded = read_png((d / fmt::format("dec{}.png", i + 1)).string());
+    const FrameImage saved = read_png(pngs[i].path);
+    if (s.kind != Segment::Kind::kPart) {
+      EXPECT_GT(testing::card_share(decoded), 0.7) << "frame " << pngs[i].frame << ": a card";
+      EXPECT_EQ(saved.rgb, alone[0]->render_card(s.kind == Segment::Kind::kOpening ? *cards.opening : *cards.closing).rgb);
+      continue;
+    }
+    EXPECT_LT(testing::card_share(decoded), 0.2) << "frame " << pngs[i].frame << ": a part, not a card";
+    const auto& run = s.part == 0 ? a : b;  // logged from 0
+    const double t = frame_time(run.log.rows.front().t, j, o.fps, o.speed);
+    EXPECT_EQ(saved.rgb, alone[static_cast<size_t>(s.part)]->render(t).rgb) << "frame " << pngs[i].frame << " (part " << s.part << ", frame " << j
+                                              << "): not the part's own clock";
+    if (j == 0) {
+      SceneRenderer shown(parts[static_cast<size_t>(s.part)], o, region);
+      EXPECT_EQ(shown.text(0, shown.start_time())[1].substr(0, 8), "0.000 s\n") << "part " << s.part;
+    }
+  }
   fs::remove_all(d);
 }
 
