@@ -17,6 +17,7 @@
 #include "models/errors.hpp"
 #include "python/bindings.hpp"
 #include "python/convert.hpp"
+#include "python/errors.hpp"
 #include "calib/calibrate.hpp"
 #include "models/robot_yaml.hpp"
 #include "models/samples.hpp"
@@ -53,7 +54,9 @@ py::dict diagnostics(const calib::Result& r) {
   d["seconds"] = r.seconds;
   d["converged"] = r.converged;
   d["rank_deficient"] = r.rank_deficient;
-  d["notes"] = r.notes;
+  py::list notes;
+  for (const auto& note : r.notes) notes.append(python_words(note));
+  d["notes"] = notes;
   return d;
 }
 
@@ -65,7 +68,7 @@ py::dict model_test_dict(const calib::ModelTest& t) {
   d["p_value"] = t.p_value;
   d["sigma_rad"] = t.sigma_rad;
   d["passed"] = t.passed;
-  if (!t.passed) d["diagnosis"] = t.diagnosis;
+  if (!t.passed) d["diagnosis"] = python_words(t.diagnosis);
   return d;
 }
 
@@ -85,7 +88,11 @@ Samples samples_of(const py::handle& readings, const py::object& t, const py::ob
   const std::size_t n = s.theta_m.size();
   for (std::size_t j = 0; j < n; ++j) s.id.push_back(static_cast<long>(j));
   if (!t.is_none()) {
-    s.t = t.cast<std::vector<double>>();
+    const auto times = py::array_t<double, py::array::c_style | py::array::forcecast>::ensure(t);
+    if (!times || times.ndim() != 1)
+      throw InputTypeError(fmt::format("t: expected an (n,) array of times in s, one per row of readings, got {}",
+                                       type_name(t)));
+    s.t.assign(times.data(), times.data() + times.size());
     if (s.t.size() != n) throw InputError(fmt::format("t: {} times for {} rows of readings", s.t.size(), n));
     for (std::size_t j = 0; j < n; ++j)
       if (!std::isfinite(s.t[j]) || (j > 0 && !(s.t[j] > s.t[j - 1])))
@@ -97,27 +104,25 @@ Samples samples_of(const py::handle& readings, const py::object& t, const py::ob
   return s;
 }
 
-CalibrationResult calibrate(const py::handle& readings, const Robot& robot, const py::object& fix,
+CalibrationResult calibrate(const py::handle& readings, const py::object& robot_object, const py::object& fix,
                             const std::string& cost_text, const std::string& method, const py::object& sigma,
-                            bool allow_rank_deficient, const py::object& budget, long seed,
+                            bool allow_rank_deficient, const py::object& budget, const py::object& seed_arg,
                             const py::object& true_xy, const py::object& t, const py::object& tau_last,
                             const py::object& tau_between, const py::object& encoder_bits, bool static_model) {
   // Checks in the order of app/cmd_calibrate.cpp, with its messages; the
   // argument is named as in Python (cost=, method=, ...).
+  const Robot robot = robot_arg(robot_object, "robot");
   const auto cost = calib::parse_cost(cost_text);
   if (!cost) throw InputError(fmt::format("cost: '{}' is not one of j1, j2, j3, ml", cost_text));
   const calib::Method method_value = calib::parse_method(method, "method");
-  std::optional<long> budget_value;
-  if (!budget.is_none()) {
-    budget_value = budget.cast<long>();
-    check_bound(static_cast<double>(*budget_value),
-                method_value == calib::Method::kLM ? limits::kLmIterations : limits::kEvaluations, "budget");
-  }
-  check_bound(static_cast<double>(seed), limits::kSeed, "seed");
+  std::optional<long long> budget_value;
+  if (!budget.is_none())
+    budget_value = whole_arg(budget, "budget",
+                             method_value == calib::Method::kLM ? limits::kLmIterations : limits::kEvaluations);
+  const long long seed = whole_arg(seed_arg, "seed", limits::kSeed);
   Samples samples = samples_of(readings, t, tau_last, tau_between);
   std::optional<int> bits;
-  if (!encoder_bits.is_none())
-    bits = static_cast<int>(check_bound(static_cast<double>(encoder_bits.cast<long>()), limits::kEncoderBits, "encoder_bits"));
+  if (!encoder_bits.is_none()) bits = static_cast<int>(whole_arg(encoder_bits, "encoder_bits", limits::kEncoderBits));
   calib::Problem problem;
   problem.theta_m = samples.theta_m;
   problem.free = ~param_set(fix, "fix");
@@ -136,10 +141,10 @@ CalibrationResult calibrate(const py::handle& readings, const Robot& robot, cons
   mo.allow_rank_deficient = allow_rank_deficient;
   if (budget_value) {
     if (method_value == calib::Method::kLM) mo.lm_max_iterations = static_cast<int>(*budget_value);
-    else mo.budget = *budget_value;
+    else mo.budget = static_cast<long>(*budget_value);
   }
   if (!sigma.is_none()) {
-    mo.encoder_sigma = check_bound(sigma.cast<double>(), limits::kEncoderSigma, "sigma");
+    mo.encoder_sigma = number_arg(sigma, "sigma", limits::kEncoderSigma);
   }
   if (!xy.empty()) samples.xy = xy, samples.has_xy = true;
 
@@ -159,7 +164,7 @@ CalibrationResult calibrate(const py::handle& readings, const Robot& robot, cons
     out.model_test = c.model_test;
   }
   for (const auto& note : out.result.notes) {
-    if (PyErr_WarnEx(PyExc_RuntimeWarning, note.c_str(), 1) != 0) throw py::error_already_set();
+    if (PyErr_WarnEx(PyExc_RuntimeWarning, python_words(note).c_str(), 1) != 0) throw py::error_already_set();
   }
   return out;
 }
@@ -272,8 +277,10 @@ Every calibration ends with the chi-square model test of its residuals
 against the reading 1-sigma: diagnostics["model_test"].
 
 Bad input raises gpm.InputError (a ValueError) with the command line's
-message (fewer samples than free parameters, circles that do not meet,
-a rank-deficient free set naming what to fix, unknown names). A solve that
+message in Python's words (fewer samples than free parameters, circles that
+do not meet, a rank-deficient free set naming what to fix, unknown names;
+budget, seed, sigma, encoder_bits out of range name their valid range); an
+argument of the wrong type raises gpm.InputTypeError (also a TypeError). A solve that
 does not converge returns normally with .converged False; the solver's
 warnings are issued as RuntimeWarning. The GIL is released while solving.
 )doc");

@@ -15,6 +15,7 @@
 #include "models/samples.hpp"
 #include "python/bindings.hpp"
 #include "python/convert.hpp"
+#include "python/errors.hpp"
 
 namespace gpm::python {
 namespace {
@@ -88,6 +89,9 @@ void bind_robot_data(py::class_<Robot>& robot) {
       .def(py::init([](const py::object& geometry, const std::string& name) {
              Robot r;
              r.name = name;
+             if (!geometry.is_none() && !py::isinstance<py::dict>(geometry))
+               throw InputTypeError(fmt::format("geometry: expected a dict of parameters (e.g. {{\"la1\": 244.1}}), "
+                                                "got {}", type_name(geometry)));
              if (!geometry.is_none()) r.geometry = geometry_from_dict(geometry.cast<py::dict>(), r.geometry, "geometry");
              validate_robot(r, "Robot(geometry=...)");
              return r;
