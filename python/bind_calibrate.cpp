@@ -169,6 +169,28 @@ CalibrationResult calibrate(const py::handle& readings, const py::object& robot_
   return out;
 }
 
+// CalibrationResult's repr: the solve and the model test in a line each, then
+// the estimated parameters with their 1-sigma, three to a line.
+std::string result_repr(const CalibrationResult& c) {
+  const calib::Result& r = c.result;
+  std::string out = fmt::format("<gpm.CalibrationResult {} ({}): {} free, {} in {} iterations, J = {:.4g}, rank {}",
+                                r.method, calib::cost_name(r.cost), r.free.count(),
+                                r.converged ? "converged" : "NOT converged", r.iterations, r.final_cost, r.rank);
+  if (r.kmrmse_mm) out += fmt::format(", kmrmse {:.4g} mm", *r.kmrmse_mm);
+  if (c.model_test) {
+    const calib::ModelTest& t = *c.model_test;
+    out += fmt::format("\n  model test {}: chi2/dof = {:.4g} for {:g} dof, p = {:.3g} (reading sigma {:.3g} rad)",
+                       t.passed ? "passed" : "failed", t.chi2 / t.dof, t.dof, t.p_value, t.sigma_rad);
+  }
+  int k = 0;
+  for (int i = 0; i < kNumParams; ++i) {
+    if (!r.free.test(static_cast<size_t>(i))) continue;
+    out += (k++ % 3 == 0 ? "\n  " : "   ");
+    out += fmt::format("{:<4} {:.6f} \u00b1 {:.2g}", param_name(i), r.geometry[i], r.sigma[static_cast<size_t>(i)]);
+  }
+  return out + ">";
+}
+
 // gpm.CalibrationResult: the estimate, its 1-sigma and diagnostics, and the result file.
 void bind_result_class(py::module_& m) {
   py::class_<CalibrationResult>(m, "CalibrationResult", R"doc(
@@ -199,6 +221,10 @@ result file by `gpm calibrate` (docs/FORMATS.md file contracts).
           "Dict: method, cost_function, cost (final J), iterations, evaluations, rank, free_parameters, "
           "condition_number, kmrmse_mm (when true_xy was given), seconds, converged, rank_deficient, notes, and "
           "model_test (chi2, dof, chi2_per_dof, p_value, sigma_rad, passed, diagnosis when failed; when made).")
+      .def_property_readonly(
+          "start", [](const CalibrationResult& c) { return geometry_dict(c.base.geometry); },
+          "Dict of the 15 parameters the calibration started from (the robot given to gpm.calibrate; the "
+          "nominal GPM2002, or load_result's robot, for a loaded result).")
       .def_property_readonly(
           "fixed", [](const CalibrationResult& c) { return param_names(~c.result.free); },
           "Names of the parameters held fixed.")
@@ -233,11 +259,20 @@ result file by `gpm calibrate` (docs/FORMATS.md file contracts).
             write_file_atomic(path_arg(path, "path"), result_text(c));
           },
           py::arg("path"), "Writes the result file (YAML) atomically; it can serve as a robot model.")
-      .def("__repr__", [](const CalibrationResult& c) {
-        return fmt::format("<gpm.CalibrationResult {} ({}), {} free, J = {:.6g}, {}>", c.result.method,
-                           calib::cost_name(c.result.cost), c.result.free.count(), c.result.final_cost,
-                           c.result.converged ? "converged" : "NOT converged");
-      });
+      .def_property_readonly(
+          "convergence",
+          [](const CalibrationResult& c) {
+            py::dict d;
+            py::list it, cost, accepted;
+            for (const auto& i : c.result.lm_iterations) it.append(i.iteration), cost.append(i.cost), accepted.append(i.accepted);
+            d["iteration"] = it;
+            d["cost"] = cost;
+            d["accepted"] = accepted;
+            return d;
+          },
+          "Dict of the last LM solve, one entry per iteration: iteration, cost (J after the step), accepted "
+          "(False: the step raised J and was rejected); empty lists for a global method or a loaded result.")
+      .def("__repr__", &result_repr);
 }
 
 // gpm.calibrate: the calibration procedure of gpm calibrate.

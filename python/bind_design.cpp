@@ -89,7 +89,15 @@ nominal geometry (calib/excitation/excitation.hpp).
             write_file_atomic(path_arg(path, "path"), ex::pose_list_yaml(d.design.poses, comment));
           },
           py::arg("path"), py::arg("comment") = "gpm.design",
-          "Writes the pose list atomically; the file is a scenario: gpm.simulate(path) samples the poses.");
+          "Writes the pose list atomically; the file is a scenario: gpm.simulate(path) samples the poses.")
+      .def("__repr__", [](const PyDesign& d) {
+        const ex::Bounds& b = d.design.bounds;
+        return fmt::format("<gpm.Design {} poses by the {} criterion from {} candidates ({} exchanges): worst bound "
+                           "{:.4g} mm ({}), mean {:.4g} mm; the greedy start's worst {:.4g} mm>",
+                           d.design.poses.size(), ex::criterion_name(d.options.criterion), d.design.candidates,
+                           d.design.exchanges, b.worst_mm, b.worst_param >= 0 ? param_name(b.worst_param) : "none",
+                           b.mean_mm, d.design.start_bounds.worst_mm);
+      });
 }
 
 // gpm.design: the excitation design of gpm design.

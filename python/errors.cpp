@@ -140,6 +140,8 @@ void register_errors(py::module_& m) {
       "An argument of the wrong type: a gpm.InputError and a TypeError naming the keyword and the type it takes.");
   g_sim_error = new_exception(m, "SimError", py::make_tuple(py::handle(g_error)),
                               "The physics of the twin diverged (a gpm.Error, a RuntimeError).");
+  m.def("_python_words", [](const std::string& message) { return python_words(message); }, py::arg("message"),
+        "The library's message in Python's words (keywords for command-line flags); for tests.");
   py::register_exception_translator([](std::exception_ptr p) {
     try {
       if (p) std::rethrow_exception(p);

@@ -44,4 +44,5 @@ the wrong type gpm.InputTypeError, also a TypeError), naming the keyword.
   gpm::python::bind_simulate(m);
   gpm::python::bind_run(m);
   gpm::python::bind_study(m);
+  gpm::python::bind_plots(m);
 }

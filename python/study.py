@@ -287,6 +287,12 @@ class Population:
             "robots_per_minute": 60.0 * len(self.rows) / self.seconds if self.seconds > 0 else float("nan"),
         }
 
+    def __repr__(self):
+        s = self.summary()
+        return (f"<gpm.study.Population {s['robots']} robots ({s['failed']} failed): positioning median "
+                f"{s['positioning_median_um']:.3g} um, worst {s['positioning_worst_um']:.3g} um; within the stated "
+                f"1-sigma {100 * s['coverage_1_sigma']:.0f}% (normal 68%); {s['seconds']:.1f} s>")
+
     def summary_line(self):
         """One line: robots, failures, retries, time and throughput, accuracy, coverage of the stated 1-sigma."""
         s = self.summary()
