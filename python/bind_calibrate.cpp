@@ -105,13 +105,17 @@ Samples samples_of(const py::handle& readings, const py::object& t, const py::ob
 }
 
 CalibrationResult calibrate(const py::handle& readings, const py::object& robot_object, const py::object& fix,
-                            const std::string& cost_text, const std::string& method, const py::object& sigma,
-                            bool allow_rank_deficient, const py::object& budget, const py::object& seed_arg,
+                            const py::object& cost_arg, const py::object& method_arg, const py::object& sigma,
+                            const py::object& rank_deficient_arg, const py::object& budget, const py::object& seed_arg,
                             const py::object& true_xy, const py::object& t, const py::object& tau_last,
-                            const py::object& tau_between, const py::object& encoder_bits, bool static_model) {
+                            const py::object& tau_between, const py::object& encoder_bits, const py::object& static_arg) {
   // Checks in the order of app/cmd_calibrate.cpp, with its messages; the
   // argument is named as in Python (cost=, method=, ...).
   const Robot robot = robot_arg(robot_object, "robot");
+  const std::string cost_text = text_arg(cost_arg, "cost", "one of j1, j2, j3, ml");
+  const std::string method = text_arg(method_arg, "method", "one of lm, ga, pso, de, de+lm");
+  const bool allow_rank_deficient = flag_arg(rank_deficient_arg, "allow_rank_deficient");
+  const bool static_model = flag_arg(static_arg, "static_model");
   const auto cost = calib::parse_cost(cost_text);
   if (!cost) throw InputError(fmt::format("cost: '{}' is not one of j1, j2, j3, ml", cost_text));
   const calib::Method method_value = calib::parse_method(method, "method");

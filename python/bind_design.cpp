@@ -105,11 +105,11 @@ void bind_design_function(py::module_& m) {
   m.def(
       "design",
       [](const py::object& robot, const py::object& count, const py::object& sigma, const py::object& fix,
-         const std::string& criterion, const py::object& grid_step, const py::object& guard) {
+         const py::object& criterion, const py::object& grid_step, const py::object& guard) {
         auto out = std::make_shared<PyDesign>();
         out->options = ex::checked_design_options(
             number_arg(count, "count", limits::kDesignPoses), number_arg(sigma, "sigma", limits::kEncoderSigma),
-            ~param_set(fix, "fix"), criterion, number_arg(grid_step, "grid_step", limits::kGridStep),
+            ~param_set(fix, "fix"), text_arg(criterion, "criterion", "d or worst"), number_arg(grid_step, "grid_step", limits::kGridStep),
             number_arg(guard, "guard", limits::kDesignGuard), false);
         const Robot r = robot.is_none() ? Robot{} : robot_arg(robot, "robot");
         py::gil_scoped_release unlocked;

@@ -86,7 +86,8 @@ namespace {
 // gpm.Robot's constructor and its data: name, geometry, home, branch, limits, data sheet.
 void bind_robot_data(py::class_<Robot>& robot) {
   robot
-      .def(py::init([](const py::object& geometry, const std::string& name) {
+      .def(py::init([](const py::object& geometry, const py::object& name_arg) {
+             const std::string name = text_arg(name_arg, "name", "the robot's name");
              Robot r;
              r.name = name;
              if (!geometry.is_none() && !py::isinstance<py::dict>(geometry))

@@ -189,7 +189,8 @@ cannot use its samples).
 
   m.def(
       "population_robot_scenario",
-      [](const py::object& scenario_file, const py::object& seed_arg, bool keep_effects) {
+      [](const py::object& scenario_file, const py::object& seed_arg, const py::object& keep_effects_arg) {
+        const bool keep_effects = flag_arg(keep_effects_arg, "keep_effects");
         const long long seed = whole_arg(seed_arg, "seed", limits::kSeed);
         return scenario::population_robot_scenario(path_arg(scenario_file, "scenario_file"),
                                                    static_cast<std::uint64_t>(seed), keep_effects);

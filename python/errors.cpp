@@ -181,6 +181,18 @@ long long whole_arg(const py::handle& v, std::string_view name, const Bound& b) 
   return x;
 }
 
+std::string text_arg(const py::handle& v, std::string_view name, std::string_view valid) {
+  if (!py::isinstance<py::str>(v))
+    throw InputTypeError(fmt::format("{}: expected a str, {}, got {}", name, valid, type_name(v)));
+  return v.cast<std::string>();
+}
+
+bool flag_arg(const py::handle& v, std::string_view name) {
+  if (PyBool_Check(v.ptr())) return v.ptr() == Py_True;
+  if (type_name(v) == "numpy.bool_") return PyObject_IsTrue(v.ptr()) == 1;
+  throw InputTypeError(fmt::format("{}: expected True or False, got {}", name, type_name(v)));
+}
+
 double number_arg(const py::handle& v, std::string_view name, const Bound& b) {
   const bool number = !PyBool_Check(v.ptr()) && !py::isinstance<py::str>(v) && !PyComplex_Check(v.ptr()) &&
                       (PyLong_Check(v.ptr()) || PyFloat_Check(v.ptr()) || py::hasattr(v, "__float__"));

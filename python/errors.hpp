@@ -42,6 +42,13 @@ long long whole_arg(const pybind11::handle& v, std::string_view name, const Boun
 // real number, InputError naming the valid range when out of it.
 double number_arg(const pybind11::handle& v, std::string_view name, const Bound& b);
 
+// The str v of the argument `name`; InputTypeError naming `valid` (e.g. "one
+// of j1, j2, j3, ml") for any other type.
+std::string text_arg(const pybind11::handle& v, std::string_view name, std::string_view valid);
+
+// The bool v (True, False or a NumPy bool) of the argument `name`; InputTypeError otherwise.
+bool flag_arg(const pybind11::handle& v, std::string_view name);
+
 // The Python type name of v, for messages ("str", "numpy.ndarray").
 std::string type_name(const pybind11::handle& v);
 

@@ -126,3 +126,48 @@ def test_warnings_and_diagnoses_are_in_python_words_too(readings):
     assert not test["passed"] and test["diagnosis"].startswith("model test failed")
     texts = [test["diagnosis"], *r.diagnostics["notes"], *(str(w.message) for w in caught)]
     assert all(FLAG not in t for t in texts), texts
+
+
+HOSTILE = [None, "x", "", 1.5, -1, 0, 10**30, -10**30, [1], ["la1"], {}, object(), float("nan"), float("inf"),
+           True, 1j, np.int64(3), b"ml"]
+
+
+def entry_points(readings):
+    robot = gpm.load_robot()
+    poses = [[216.5, 250.0]] * 12
+    return {
+        "calibrate": (lambda **k: gpm.calibrate(readings, robot, **k),
+                      ["fix", "cost", "method", "sigma", "allow_rank_deficient", "budget", "seed", "true_xy", "t",
+                       "tau_last", "tau_between", "encoder_bits", "static_model"]),
+        "design": (lambda **k: gpm.design(**{"grid_step": 20.0, **k}),
+                   ["robot", "count", "sigma", "fix", "criterion", "grid_step", "guard"]),
+        "crb": (lambda **k: gpm.crb(robot, **({} if {"poses", "readings"} & set(k) else {"readings": readings}), **k),
+                ["readings", "sigma", "fix", "poses"]),
+        "pose_bounds": (lambda **k: gpm.pose_bounds(robot, **{"poses": poses, **k}), ["poses", "sigma", "fix"]),
+        "Robot": (lambda **k: gpm.Robot(**k), ["geometry", "name"]),
+        "load_robot": (lambda **k: gpm.load_robot(**k), ["path"]),
+        "population_robot_scenario": (
+            lambda **k: gpm.population_robot_scenario(**{"scenario_file": gpm.scenarios_dir() + "/main.yaml",
+                                                         "seed": 1, **k}),
+            ["scenario_file", "seed", "keep_effects"]),
+    }
+
+
+def test_hostile_values_of_every_keyword_raise_value_or_type_errors_naming_it(readings):
+    # Each call answers, or raises gpm.InputError (a ValueError; gpm.InputTypeError also a TypeError)
+    # whose message names the keyword first, or names a file; never a RuntimeError or a signature dump.
+    import warnings
+    with warnings.catch_warnings():
+        warnings.simplefilter("ignore")
+        for name, (call, keys) in entry_points(readings).items():
+            for key in keys:
+                for value in HOSTILE:
+                    if key == "grid_step" and value in (1.5, 3):  # valid, and a fine grid takes minutes
+                        continue
+                    try:
+                        call(**{key: value})
+                    except gpm.InputError as e:
+                        text = str(e)
+                        assert "\n" not in text and "incompatible function arguments" not in text, (name, key, text)
+                        if isinstance(e, TypeError):
+                            assert text.startswith(key + ":"), (name, key, value, text)
