@@ -61,39 +61,42 @@ std::string python_list(const std::string& list) {
   return out + "]";
 }
 
-// One flag of w replaced in text (text holds no quoted command).
+// One flag of w replaced in text (text holds no quoted command). A flag
+// starts the text or follows a space, bracket or quote (not a path's "a--b")
+// and ends before anything but a letter, digit or hyphen (--fix, not --fixed).
 std::string replace_flag(const std::string& text, const Word& w) {
-  const std::string flag = std::regex_replace(std::string("--") + w.flag, std::regex("-"), "\\-");
+  const std::string flag = std::string("(^|[\\s(\\[`'\"])--") + w.flag;
   const std::string end = "(?![a-z0-9-])";
+  const std::string key = std::string("$1") + w.key;
   switch (w.kind) {
     case Kind::kBool:
-      return std::regex_replace(text, std::regex(flag + end), std::string(w.key) + "=True");
+      return std::regex_replace(text, std::regex(flag + end), key + "=True");
     case Kind::kCommandOnly:
-      return std::regex_replace(text, std::regex(flag + end), "gpm calibrate --" + std::string(w.flag));
+      return std::regex_replace(text, std::regex(flag + end), "$1gpm calibrate --" + std::string(w.flag));
     case Kind::kText: {
-      const std::string valued = std::regex_replace(
-          text, std::regex(flag + " (" + w.values + ")" + end), std::string(w.key) + "=\"$1\"");
-      return std::regex_replace(valued, std::regex(flag + end), w.key);
+      const std::string valued =
+          std::regex_replace(text, std::regex(flag + " (" + w.values + ")" + end), key + "=\"$2\"");
+      return std::regex_replace(valued, std::regex(flag + end), key);
     }
     case Kind::kList: {
       std::string out;
       const std::regex list(flag + " ([a-z0-9]+(?:,[a-z0-9]+)*)" + end);
-      auto it = std::sregex_iterator(text.begin(), text.end(), list);
       std::size_t last = 0;
-      for (; it != std::sregex_iterator(); ++it) {
+      for (auto it = std::sregex_iterator(text.begin(), text.end(), list); it != std::sregex_iterator(); ++it) {
         out += text.substr(last, static_cast<std::size_t>(it->position()) - last);
-        out += std::string(w.key) + "=" + python_list((*it)[1].str());
+        out += (*it)[1].str() + w.key + "=" + python_list((*it)[2].str());
         last = static_cast<std::size_t>(it->position() + it->length());
       }
       out += text.substr(last);
-      return std::regex_replace(out, std::regex(flag + end), w.key);
+      return std::regex_replace(out, std::regex(flag + end), key);
     }
     case Kind::kName:
       break;
   }
-  return std::regex_replace(text, std::regex(flag + end), w.key);
+  return std::regex_replace(text, std::regex(flag + end), key);
 }
 
+// Every flag of kWords replaced in text (text holds no quoted command).
 std::string translate_plain(std::string text) {
   if (text.find("--") == std::string::npos) return text;
   for (const Word& w : kWords) text = replace_flag(text, w);

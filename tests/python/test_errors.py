@@ -38,6 +38,8 @@ def test_the_exception_classes():
     ("give at least 12 (gpm design --count 12); --sigma too", "give at least 12 (gpm design --count 12); sigma too"),
     ("take samples with `gpm run --hardware`", "take samples with `gpm run --hardware`"),
     ("--fixed-point and --modelling are other words", "--fixed-point and --modelling are other words"),
+    ("/tmp/a--fix.yaml: cannot open file (--fix)", "/tmp/a--fix.yaml: cannot open file (fix)"),
+    ("'--sigma' and [--seed]", "'sigma' and [seed]"),
 ])
 def test_flags_become_keywords(flags, python):
     assert gpm._python_words(flags) == python
