@@ -4,6 +4,7 @@
 // static fit, then the model test) with the checks and messages of `gpm
 // calibrate` (app/cmd_calibrate.cpp), and the result file (calib/result_yaml.hpp).
 #include <cmath>
+#include <limits>
 #include <optional>
 #include <string>
 
@@ -11,6 +12,8 @@
 #include <pybind11/stl.h>
 
 #include "calib/lm.hpp"
+#include "calib/parameterization.hpp"
+#include "calib/residuals.hpp"
 #include "calib/result_yaml.hpp"
 #include "calib/sample_check.hpp"
 #include "models/bounds.hpp"
@@ -32,7 +35,23 @@ struct CalibrationResult {
   calib::Result result;
   Robot base;
   std::optional<calib::ModelTest> model_test;  // gpm.calibrate's (none from load_result)
+  std::vector<Eigen::Vector3d> readings;       // those the static model was fitted to (empty: none, or in motion)
 };
+
+// The normalised ML residuals r_j / sigma of the readings at the estimate
+// (calib/residuals.hpp; sigma: the model test's), whose squares sum to the
+// model test's chi2; None without readings (a loaded result, a fit in motion).
+py::object normalised_residuals(const CalibrationResult& c) {
+  if (c.readings.empty() || !c.model_test) return py::none();
+  const calib::ParamVector x = calib::to_solver(c.result.geometry, calib::Cost::kML);
+  py::array_t<double> out(static_cast<py::ssize_t>(c.readings.size()));
+  for (std::size_t j = 0; j < c.readings.size(); ++j) {
+    double r = 0.0;
+    if (!calib::MlResidual(c.readings[j])(x.data(), &r)) r = std::numeric_limits<double>::infinity();
+    out.mutable_at(static_cast<py::ssize_t>(j)) = r / c.model_test->sigma_rad;
+  }
+  return out;
+}
 
 // The result file's text: the result and, where made, the model test (as gpm calibrate writes it).
 std::string result_text(const CalibrationResult& c) {
@@ -159,13 +178,14 @@ CalibrationResult calibrate(const py::handle& readings, const py::object& robot_
                    "the samples were taken on the fly, but their motion model needs method lm with cost ml: "
                    "calibrated with the static model", 1) != 0)
     throw py::error_already_set();
-  CalibrationResult out{{}, robot, std::nullopt};
+  CalibrationResult out{{}, robot, std::nullopt, {}};
   {
     py::gil_scoped_release unlocked;
     calib::check_samples(problem);
     scenario::CalibrationOutcome c = scenario::calibrate_samples(scenario::sample_series(samples), proc.inputs, proc.options);
     out.result = std::move(c.result);
     out.model_test = c.model_test;
+    if (!proc.options.in_motion) out.readings = samples.theta_m;
   }
   for (const auto& note : out.result.notes) {
     if (PyErr_WarnEx(PyExc_RuntimeWarning, python_words(note).c_str(), 1) != 0) throw py::error_already_set();
@@ -276,6 +296,10 @@ result file by `gpm calibrate` (docs/FORMATS.md file contracts).
           },
           "Dict of the last LM solve, one entry per iteration: iteration, cost (J after the step), accepted "
           "(False: the step raised J and was rejected); empty lists for a global method or a loaded result.")
+      .def_property_readonly("residuals", &normalised_residuals,
+                             "(n,) ML residual of each reading at the estimate over the model test's reading "
+                             "1-sigma (their squares sum to diagnostics['model_test']['chi2']); None for a loaded "
+                             "result or a calibration with the motion model.")
       .def("__repr__", &result_repr);
 }
 
@@ -330,7 +354,7 @@ void bind_load_result(py::module_& m) {
   m.def(
       "load_result",
       [](const py::object& path, const py::object& robot) {
-        CalibrationResult c{calib::load_result(path_arg(path, "path")), Robot{}, std::nullopt};
+        CalibrationResult c{calib::load_result(path_arg(path, "path")), Robot{}, std::nullopt, {}};
         if (!robot.is_none()) c.base = robot.cast<Robot>();
         return c;
       },

@@ -10,7 +10,7 @@ import math
 import os
 
 DPI = 100                      # the pixels of a saved figure are its size in inches x DPI
-CALIBRATION_SIZE = (13.0, 4.5)  # inches: 1300 x 450 px
+CALIBRATION_SIZE = (12.0, 8.0)  # inches: 1200 x 800 px
 SIMULATION_SIZE = (12.0, 5.0)   # inches: 1200 x 500 px
 ANGLES = ("dth1", "dth2", "dth3")
 
@@ -41,17 +41,37 @@ def _reference(result, truth):
     return {**result.start, **geometry}, "truth"
 
 
+def _residuals(axes, result):
+    """The normalised residual of each reading with the +-1 and +-3 bands of the model test's sigma."""
+    z = result.residuals
+    test = result.diagnostics.get("model_test")
+    if z is None or not test:
+        axes.text(0.5, 0.5, "no residuals: a loaded result or a fit with the motion model", ha="center",
+                  transform=axes.transAxes)
+    else:
+        axes.axhspan(-1, 1, color="tab:green", alpha=0.15, label="within 1 sigma")
+        for v in (-3, 3):
+            axes.axhline(v, color="tab:red", lw=0.8, ls="--")
+        axes.plot(range(len(z)), z, ".", color="tab:blue", ms=5, label="reading")
+        axes.legend(loc="upper right", fontsize="small")
+        axes.set(title=f"residuals: model test {'passed' if test['passed'] else 'failed'}, "
+                       f"chi2/dof {test['chi2_per_dof']:.3g}")
+    axes.set(xlabel="sample", ylabel="ML residual / reading 1-sigma")
+
+
 def calibration(result, path=None, truth=None):
     """Plots the calibration: each estimated parameter's error (against truth, a gpm.Robot or dict of the
     actual parameters, when given; else its change from the start) in units of its stated 1-sigma, with the
-    +-1 and +-3 sigma bands; the 1-sigma themselves (um for lengths, urad for offsets); and the cost J of
-    every LM iteration. Returns the matplotlib Figure (1300 x 450 px); saves it to path when given."""
+    +-1 and +-3 sigma bands; the 1-sigma themselves (um for lengths, urad for offsets); the residual of
+    each reading in units of the reading 1-sigma; and the cost J of every LM iteration. Returns the
+    matplotlib Figure (1200 x 800 px); saves it to path when given."""
     reference, what = _reference(result, truth)
     names = result.free
     sigma = result.std
     ratio = [(result.geometry[n] - reference[n]) / sigma[n] if sigma[n] > 0 else math.nan for n in names]
     fig = _figure(CALIBRATION_SIZE)
-    a, s, c = fig.subplots(1, 3, width_ratios=(1.3, 1.0, 1.0))
+    (a, s), (z, c) = fig.subplots(2, 2)
+    _residuals(z, result)
     y = range(len(names))
     a.axvspan(-1, 1, color="tab:green", alpha=0.15, label="within 1 sigma")
     for x in (-3, 3):
@@ -70,7 +90,6 @@ def calibration(result, path=None, truth=None):
     s.invert_yaxis()
     s.set(xlabel="stated 1-sigma (um for lengths, urad for offsets)", title="parameter 1-sigma")
     conv = result.convergence
-    test = result.diagnostics.get("model_test")
     if conv["iteration"]:
         costs = [max(v, 1e-300) for v in conv["cost"]]
         c.semilogy(conv["iteration"], costs, color="gray", lw=0.8)
@@ -85,8 +104,7 @@ def calibration(result, path=None, truth=None):
         c.text(0.5, 0.5, f"{result.diagnostics['method']}: no LM iterations recorded", ha="center",
                transform=c.transAxes)
     c.set(xlabel="LM iteration", ylabel=f"cost J ({result.diagnostics['cost_function']})",
-          title=f"{result.diagnostics['iterations']} iterations"
-                + (f", chi2/dof {test['chi2_per_dof']:.3g}" if test else ""))
+          title=f"convergence: {result.diagnostics['iterations']} iterations")
     return _finish(fig, path)
 
 

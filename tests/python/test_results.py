@@ -76,6 +76,9 @@ def test_loaded_result_repr_has_no_model_test(result, scratch):
     result.save(scratch / "r.yaml")
     loaded = gpm.load_result(scratch / "r.yaml")
     assert "model test" not in repr(loaded) and f"{result.diagnostics['free_parameters']} free" in repr(loaded)
+    assert loaded.residuals is None and loaded.convergence["iteration"] == []
+    loaded.plot(scratch / "loaded.png")  # the panels without data say so
+    assert png_size(scratch / "loaded.png") == (1200, 800)
 
 
 def test_design_repr_holds_its_bounds():
@@ -96,10 +99,10 @@ def test_population_repr_holds_its_summary():
                          "within the stated 1-sigma 67% (normal 68%); 12.5 s>")
 
 
-def test_calibration_plot_is_a_png_of_1300_by_450_px(result, run, scratch):
+def test_calibration_plot_is_a_png_of_1200_by_800_px(result, run, scratch):
     path = scratch / "calibration.png"
     fig = result.plot(path, truth=run.actual)
-    assert png_size(path) == (1300, 450)
+    assert png_size(path) == (1200, 800)
     assert_not_blank(path)
     # The first panel's bars are (estimate - truth) / 1-sigma, one per estimated parameter.
     from matplotlib.patches import Rectangle
@@ -108,16 +111,26 @@ def test_calibration_plot_is_a_png_of_1300_by_450_px(result, run, scratch):
     np.testing.assert_allclose(bars, expected, rtol=1e-12)
     labels = [t.get_text() for t in fig.axes[0].get_yticklabels()]
     assert labels == result.free
+    # The third panel draws each reading's normalised residual.
+    drawn = {l.get_label(): l for l in fig.axes[2].get_lines()}
+    np.testing.assert_array_equal(drawn["reading"].get_ydata(), result.residuals)
+
+
+def test_residuals_are_those_of_the_model_test(result, run):
+    # Their squares sum to the model test's chi-square (computed apart, in calib/model_test.cpp).
+    z = result.residuals
+    assert z.shape == (len(run.readings),)
+    assert np.sum(z ** 2) == pytest.approx(result.diagnostics["model_test"]["chi2"], rel=1e-12)
 
 
 def test_calibration_plot_without_path_returns_the_figure_and_writes_nothing(result, scratch):
     import matplotlib.figure
     fig = result.plot()
     assert isinstance(fig, matplotlib.figure.Figure)
-    assert tuple(fig.get_size_inches() * fig.dpi) == (1300, 450)
+    assert tuple(fig.get_size_inches() * fig.dpi) == (1200, 800)
     assert "start" in fig.axes[0].get_xlabel()
     # the convergence panel draws every LM iteration
-    lines = fig.axes[2].get_lines()
+    lines = fig.axes[3].get_lines()
     assert len(lines[0].get_xdata()) == len(result.convergence["iteration"]) == len(result.convergence["cost"]) > 1
     assert not list(scratch.iterdir())
 
