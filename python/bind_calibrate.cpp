@@ -4,6 +4,7 @@
 // static fit, then the model test) with the checks and messages of `gpm
 // calibrate` (app/cmd_calibrate.cpp), and the result file (calib/result_yaml.hpp).
 #include <cmath>
+#include <limits>
 #include <optional>
 #include <string>
 
@@ -11,12 +12,15 @@
 #include <pybind11/stl.h>
 
 #include "calib/lm.hpp"
+#include "calib/parameterization.hpp"
+#include "calib/residuals.hpp"
 #include "calib/result_yaml.hpp"
 #include "calib/sample_check.hpp"
 #include "models/bounds.hpp"
 #include "models/errors.hpp"
 #include "python/bindings.hpp"
 #include "python/convert.hpp"
+#include "python/errors.hpp"
 #include "calib/calibrate.hpp"
 #include "models/robot_yaml.hpp"
 #include "models/samples.hpp"
@@ -31,7 +35,23 @@ struct CalibrationResult {
   calib::Result result;
   Robot base;
   std::optional<calib::ModelTest> model_test;  // gpm.calibrate's (none from load_result)
+  std::vector<Eigen::Vector3d> readings;       // those the static model was fitted to (empty: none, or in motion)
 };
+
+// The normalised ML residuals r_j / sigma of the readings at the estimate
+// (calib/residuals.hpp; sigma: the model test's), whose squares sum to the
+// model test's chi2; None without readings (a loaded result, a fit in motion).
+py::object normalised_residuals(const CalibrationResult& c) {
+  if (c.readings.empty() || !c.model_test) return py::none();
+  const calib::ParamVector x = calib::to_solver(c.result.geometry, calib::Cost::kML);
+  py::array_t<double> out(static_cast<py::ssize_t>(c.readings.size()));
+  for (std::size_t j = 0; j < c.readings.size(); ++j) {
+    double r = 0.0;
+    if (!calib::MlResidual(c.readings[j])(x.data(), &r)) r = std::numeric_limits<double>::infinity();
+    out.mutable_at(static_cast<py::ssize_t>(j)) = r / c.model_test->sigma_rad;
+  }
+  return out;
+}
 
 // The result file's text: the result and, where made, the model test (as gpm calibrate writes it).
 std::string result_text(const CalibrationResult& c) {
@@ -53,7 +73,9 @@ py::dict diagnostics(const calib::Result& r) {
   d["seconds"] = r.seconds;
   d["converged"] = r.converged;
   d["rank_deficient"] = r.rank_deficient;
-  d["notes"] = r.notes;
+  py::list notes;
+  for (const auto& note : r.notes) notes.append(python_words(note));
+  d["notes"] = notes;
   return d;
 }
 
@@ -65,7 +87,7 @@ py::dict model_test_dict(const calib::ModelTest& t) {
   d["p_value"] = t.p_value;
   d["sigma_rad"] = t.sigma_rad;
   d["passed"] = t.passed;
-  if (!t.passed) d["diagnosis"] = t.diagnosis;
+  if (!t.passed) d["diagnosis"] = python_words(t.diagnosis);
   return d;
 }
 
@@ -85,7 +107,11 @@ Samples samples_of(const py::handle& readings, const py::object& t, const py::ob
   const std::size_t n = s.theta_m.size();
   for (std::size_t j = 0; j < n; ++j) s.id.push_back(static_cast<long>(j));
   if (!t.is_none()) {
-    s.t = t.cast<std::vector<double>>();
+    const auto times = py::array_t<double, py::array::c_style | py::array::forcecast>::ensure(t);
+    if (!times || times.ndim() != 1)
+      throw InputTypeError(fmt::format("t: expected an (n,) array of times in s, one per row of readings, got {}",
+                                       type_name(t)));
+    s.t.assign(times.data(), times.data() + times.size());
     if (s.t.size() != n) throw InputError(fmt::format("t: {} times for {} rows of readings", s.t.size(), n));
     for (std::size_t j = 0; j < n; ++j)
       if (!std::isfinite(s.t[j]) || (j > 0 && !(s.t[j] > s.t[j - 1])))
@@ -97,27 +123,29 @@ Samples samples_of(const py::handle& readings, const py::object& t, const py::ob
   return s;
 }
 
-CalibrationResult calibrate(const py::handle& readings, const Robot& robot, const py::object& fix,
-                            const std::string& cost_text, const std::string& method, const py::object& sigma,
-                            bool allow_rank_deficient, const py::object& budget, long seed,
+CalibrationResult calibrate(const py::handle& readings, const py::object& robot_object, const py::object& fix,
+                            const py::object& cost_arg, const py::object& method_arg, const py::object& sigma,
+                            const py::object& rank_deficient_arg, const py::object& budget, const py::object& seed_arg,
                             const py::object& true_xy, const py::object& t, const py::object& tau_last,
-                            const py::object& tau_between, const py::object& encoder_bits, bool static_model) {
+                            const py::object& tau_between, const py::object& encoder_bits, const py::object& static_arg) {
   // Checks in the order of app/cmd_calibrate.cpp, with its messages; the
   // argument is named as in Python (cost=, method=, ...).
+  const Robot robot = robot_arg(robot_object, "robot");
+  const std::string cost_text = text_arg(cost_arg, "cost", "one of j1, j2, j3, ml");
+  const std::string method = text_arg(method_arg, "method", "one of lm, ga, pso, de, de+lm");
+  const bool allow_rank_deficient = flag_arg(rank_deficient_arg, "allow_rank_deficient");
+  const bool static_model = flag_arg(static_arg, "static_model");
   const auto cost = calib::parse_cost(cost_text);
   if (!cost) throw InputError(fmt::format("cost: '{}' is not one of j1, j2, j3, ml", cost_text));
   const calib::Method method_value = calib::parse_method(method, "method");
-  std::optional<long> budget_value;
-  if (!budget.is_none()) {
-    budget_value = budget.cast<long>();
-    check_bound(static_cast<double>(*budget_value),
-                method_value == calib::Method::kLM ? limits::kLmIterations : limits::kEvaluations, "budget");
-  }
-  check_bound(static_cast<double>(seed), limits::kSeed, "seed");
+  std::optional<long long> budget_value;
+  if (!budget.is_none())
+    budget_value = whole_arg(budget, "budget",
+                             method_value == calib::Method::kLM ? limits::kLmIterations : limits::kEvaluations);
+  const long long seed = whole_arg(seed_arg, "seed", limits::kSeed);
   Samples samples = samples_of(readings, t, tau_last, tau_between);
   std::optional<int> bits;
-  if (!encoder_bits.is_none())
-    bits = static_cast<int>(check_bound(static_cast<double>(encoder_bits.cast<long>()), limits::kEncoderBits, "encoder_bits"));
+  if (!encoder_bits.is_none()) bits = static_cast<int>(whole_arg(encoder_bits, "encoder_bits", limits::kEncoderBits));
   calib::Problem problem;
   problem.theta_m = samples.theta_m;
   problem.free = ~param_set(fix, "fix");
@@ -136,10 +164,10 @@ CalibrationResult calibrate(const py::handle& readings, const Robot& robot, cons
   mo.allow_rank_deficient = allow_rank_deficient;
   if (budget_value) {
     if (method_value == calib::Method::kLM) mo.lm_max_iterations = static_cast<int>(*budget_value);
-    else mo.budget = *budget_value;
+    else mo.budget = static_cast<long>(*budget_value);
   }
   if (!sigma.is_none()) {
-    mo.encoder_sigma = check_bound(sigma.cast<double>(), limits::kEncoderSigma, "sigma");
+    mo.encoder_sigma = number_arg(sigma, "sigma", limits::kEncoderSigma);
   }
   if (!xy.empty()) samples.xy = xy, samples.has_xy = true;
 
@@ -150,18 +178,41 @@ CalibrationResult calibrate(const py::handle& readings, const Robot& robot, cons
                    "the samples were taken on the fly, but their motion model needs method lm with cost ml: "
                    "calibrated with the static model", 1) != 0)
     throw py::error_already_set();
-  CalibrationResult out{{}, robot, std::nullopt};
+  CalibrationResult out{{}, robot, std::nullopt, {}};
   {
     py::gil_scoped_release unlocked;
     calib::check_samples(problem);
     scenario::CalibrationOutcome c = scenario::calibrate_samples(scenario::sample_series(samples), proc.inputs, proc.options);
     out.result = std::move(c.result);
     out.model_test = c.model_test;
+    if (!proc.options.in_motion) out.readings = samples.theta_m;
   }
   for (const auto& note : out.result.notes) {
-    if (PyErr_WarnEx(PyExc_RuntimeWarning, note.c_str(), 1) != 0) throw py::error_already_set();
+    if (PyErr_WarnEx(PyExc_RuntimeWarning, python_words(note).c_str(), 1) != 0) throw py::error_already_set();
   }
   return out;
+}
+
+// CalibrationResult's repr: the solve and the model test in a line each, then
+// the estimated parameters with their 1-sigma, three to a line.
+std::string result_repr(const CalibrationResult& c) {
+  const calib::Result& r = c.result;
+  std::string out = fmt::format("<gpm.CalibrationResult {} ({}): {} free, {} in {} iterations, J = {:.4g}, rank {}",
+                                r.method, calib::cost_name(r.cost), r.free.count(),
+                                r.converged ? "converged" : "NOT converged", r.iterations, r.final_cost, r.rank);
+  if (r.kmrmse_mm) out += fmt::format(", kmrmse {:.4g} mm", *r.kmrmse_mm);
+  if (c.model_test) {
+    const calib::ModelTest& t = *c.model_test;
+    out += fmt::format("\n  model test {}: chi2/dof = {:.4g} for {:g} dof, p = {:.3g} (reading sigma {:.3g} rad)",
+                       t.passed ? "passed" : "failed", t.chi2 / t.dof, t.dof, t.p_value, t.sigma_rad);
+  }
+  int k = 0;
+  for (int i = 0; i < kNumParams; ++i) {
+    if (!r.free.test(static_cast<size_t>(i))) continue;
+    out += (k++ % 3 == 0 ? "\n  " : "   ");
+    out += fmt::format("{:<4} {:.6f} \u00b1 {:.2g}", param_name(i), r.geometry[i], r.sigma[static_cast<size_t>(i)]);
+  }
+  return out + ">";
 }
 
 // gpm.CalibrationResult: the estimate, its 1-sigma and diagnostics, and the result file.
@@ -194,6 +245,10 @@ result file by `gpm calibrate` (docs/FORMATS.md file contracts).
           "Dict: method, cost_function, cost (final J), iterations, evaluations, rank, free_parameters, "
           "condition_number, kmrmse_mm (when true_xy was given), seconds, converged, rank_deficient, notes, and "
           "model_test (chi2, dof, chi2_per_dof, p_value, sigma_rad, passed, diagnosis when failed; when made).")
+      .def_property_readonly(
+          "start", [](const CalibrationResult& c) { return geometry_dict(c.base.geometry); },
+          "Dict of the 15 parameters the calibration started from (the robot given to gpm.calibrate; the "
+          "nominal GPM2002, or load_result's robot, for a loaded result).")
       .def_property_readonly(
           "fixed", [](const CalibrationResult& c) { return param_names(~c.result.free); },
           "Names of the parameters held fixed.")
@@ -228,11 +283,24 @@ result file by `gpm calibrate` (docs/FORMATS.md file contracts).
             write_file_atomic(path_arg(path, "path"), result_text(c));
           },
           py::arg("path"), "Writes the result file (YAML) atomically; it can serve as a robot model.")
-      .def("__repr__", [](const CalibrationResult& c) {
-        return fmt::format("<gpm.CalibrationResult {} ({}), {} free, J = {:.6g}, {}>", c.result.method,
-                           calib::cost_name(c.result.cost), c.result.free.count(), c.result.final_cost,
-                           c.result.converged ? "converged" : "NOT converged");
-      });
+      .def_property_readonly(
+          "convergence",
+          [](const CalibrationResult& c) {
+            py::dict d;
+            py::list it, cost, accepted;
+            for (const auto& i : c.result.lm_iterations) it.append(i.iteration), cost.append(i.cost), accepted.append(i.accepted);
+            d["iteration"] = it;
+            d["cost"] = cost;
+            d["accepted"] = accepted;
+            return d;
+          },
+          "Dict of the last LM solve, one entry per iteration: iteration, cost (J after the step), accepted "
+          "(False: the step raised J and was rejected); empty lists for a global method or a loaded result.")
+      .def_property_readonly("residuals", &normalised_residuals,
+                             "(n,) ML residual of each reading at the estimate over the model test's reading "
+                             "1-sigma (their squares sum to diagnostics['model_test']['chi2']); None for a loaded "
+                             "result or a calibration with the motion model.")
+      .def("__repr__", &result_repr);
 }
 
 // gpm.calibrate: the calibration procedure of gpm calibrate.
@@ -272,8 +340,10 @@ Every calibration ends with the chi-square model test of its residuals
 against the reading 1-sigma: diagnostics["model_test"].
 
 Bad input raises gpm.InputError (a ValueError) with the command line's
-message (fewer samples than free parameters, circles that do not meet,
-a rank-deficient free set naming what to fix, unknown names). A solve that
+message in Python's words (fewer samples than free parameters, circles that
+do not meet, a rank-deficient free set naming what to fix, unknown names;
+budget, seed, sigma, encoder_bits out of range name their valid range); an
+argument of the wrong type raises gpm.InputTypeError (also a TypeError). A solve that
 does not converge returns normally with .converged False; the solver's
 warnings are issued as RuntimeWarning. The GIL is released while solving.
 )doc");
@@ -284,7 +354,7 @@ void bind_load_result(py::module_& m) {
   m.def(
       "load_result",
       [](const py::object& path, const py::object& robot) {
-        CalibrationResult c{calib::load_result(path_arg(path, "path")), Robot{}, std::nullopt};
+        CalibrationResult c{calib::load_result(path_arg(path, "path")), Robot{}, std::nullopt, {}};
         if (!robot.is_none()) c.base = robot.cast<Robot>();
         return c;
       },

@@ -17,6 +17,7 @@
 #include "models/robot_yaml.hpp"
 #include "python/bindings.hpp"
 #include "python/convert.hpp"
+#include "python/errors.hpp"
 
 namespace gpm::python {
 namespace {
@@ -88,18 +89,29 @@ nominal geometry (calib/excitation/excitation.hpp).
             write_file_atomic(path_arg(path, "path"), ex::pose_list_yaml(d.design.poses, comment));
           },
           py::arg("path"), py::arg("comment") = "gpm.design",
-          "Writes the pose list atomically; the file is a scenario: gpm.simulate(path) samples the poses.");
+          "Writes the pose list atomically; the file is a scenario: gpm.simulate(path) samples the poses.")
+      .def("__repr__", [](const PyDesign& d) {
+        const ex::Bounds& b = d.design.bounds;
+        return fmt::format("<gpm.Design {} poses by the {} criterion from {} candidates ({} exchanges): worst bound "
+                           "{:.4g} mm ({}), mean {:.4g} mm; the greedy start's worst {:.4g} mm>",
+                           d.design.poses.size(), ex::criterion_name(d.options.criterion), d.design.candidates,
+                           d.design.exchanges, b.worst_mm, b.worst_param >= 0 ? param_name(b.worst_param) : "none",
+                           b.mean_mm, d.design.start_bounds.worst_mm);
+      });
 }
 
 // gpm.design: the excitation design of gpm design.
 void bind_design_function(py::module_& m) {
   m.def(
       "design",
-      [](const py::object& robot, double count, double sigma, const py::object& fix, const std::string& criterion,
-         double grid_step, double guard) {
+      [](const py::object& robot, const py::object& count, const py::object& sigma, const py::object& fix,
+         const py::object& criterion, const py::object& grid_step, const py::object& guard) {
         auto out = std::make_shared<PyDesign>();
-        out->options = ex::checked_design_options(count, sigma, ~param_set(fix, "fix"), criterion, grid_step, guard, false);
-        const Robot r = robot.is_none() ? Robot{} : robot.cast<Robot>();
+        out->options = ex::checked_design_options(
+            number_arg(count, "count", limits::kDesignPoses), number_arg(sigma, "sigma", limits::kEncoderSigma),
+            ~param_set(fix, "fix"), text_arg(criterion, "criterion", "d or worst"), number_arg(grid_step, "grid_step", limits::kGridStep),
+            number_arg(guard, "guard", limits::kDesignGuard), false);
+        const Robot r = robot.is_none() ? Robot{} : robot_arg(robot, "robot");
         py::gil_scoped_release unlocked;
         out->design = ex::design_poses(r, out->options);
         return out;
@@ -133,11 +145,12 @@ std::vector<Eigen::Vector3d> crb_readings(const Robot& robot, const py::object& 
 }
 
 // gpm.crb's dict: free names, std per name, covariance and Fisher information.
-py::dict crb_dict(const Robot& robot, const py::object& readings, double sigma, const py::object& fix,
-                  const py::object& poses) {
+py::dict crb_dict(const py::object& robot_object, const py::object& readings, const py::object& sigma_arg,
+                  const py::object& fix, const py::object& poses) {
+  const Robot robot = robot_arg(robot_object, "robot");
   if (readings.is_none() == poses.is_none())
     throw InputError("crb: give exactly one of readings= (n, 3) rad or poses= (n, 2) mm");
-  check_bound(sigma, limits::kEncoderSigma, "sigma");
+  const double sigma = number_arg(sigma_arg, "sigma", limits::kEncoderSigma);
   const FreeMask free = ~param_set(fix, "fix");
   const std::vector<Eigen::Vector3d> theta = crb_readings(robot, readings, poses);
   if (theta.size() < free.count())
@@ -161,10 +174,11 @@ py::dict crb_dict(const Robot& robot, const py::object& readings, double sigma, 
 void bind_bounds(py::module_& m) {
   m.def(
       "pose_bounds",
-      [](const Robot& robot, const py::handle& poses, double sigma, const py::object& fix) {
+      [](const py::object& robot, const py::handle& poses, const py::object& sigma, const py::object& fix) {
         const auto p = points_from_array(poses, "poses");
         const FreeMask free = ~param_set(fix, "fix");
-        return bounds_dict(ex::pose_bounds(robot, free, p, check_bound(sigma, limits::kEncoderSigma, "sigma")));
+        return bounds_dict(ex::pose_bounds(robot_arg(robot, "robot"), free, p,
+                                           number_arg(sigma, "sigma", limits::kEncoderSigma)));
       },
       py::arg("robot"), py::arg("poses"), py::arg("sigma") = 1e-4,
       py::arg("fix") = std::vector<std::string>{"xa1", "ya1", "xa2", "ya2"},

@@ -15,6 +15,7 @@
 #include "models/samples.hpp"
 #include "python/bindings.hpp"
 #include "python/convert.hpp"
+#include "python/errors.hpp"
 
 namespace gpm::python {
 namespace {
@@ -85,9 +86,13 @@ namespace {
 // gpm.Robot's constructor and its data: name, geometry, home, branch, limits, data sheet.
 void bind_robot_data(py::class_<Robot>& robot) {
   robot
-      .def(py::init([](const py::object& geometry, const std::string& name) {
+      .def(py::init([](const py::object& geometry, const py::object& name_arg) {
+             const std::string name = text_arg(name_arg, "name", "the robot's name");
              Robot r;
              r.name = name;
+             if (!geometry.is_none() && !py::isinstance<py::dict>(geometry))
+               throw InputTypeError(fmt::format("geometry: expected a dict of parameters (e.g. {{\"la1\": 244.1}}), "
+                                                "got {}", type_name(geometry)));
              if (!geometry.is_none()) r.geometry = geometry_from_dict(geometry.cast<py::dict>(), r.geometry, "geometry");
              validate_robot(r, "Robot(geometry=...)");
              return r;

@@ -18,6 +18,7 @@
 #include "models/yaml_util.hpp"
 #include "python/bindings.hpp"
 #include "python/convert.hpp"
+#include "python/errors.hpp"
 #include "run/population_study.hpp"
 #include "run/run_spec.hpp"
 #include "run/runner.hpp"
@@ -73,7 +74,7 @@ std::vector<std::string> apply_overrides(YAML::Node& root, const ScenarioSource&
   std::vector<std::string> names;
   if (!seed.is_none()) {
     if (!py::isinstance<py::int_>(seed) || py::isinstance<py::bool_>(seed))
-      throw InputError("seed: expected an integer >= 0");
+      throw InputTypeError(fmt::format("seed: expected an integer >= 0, got {}", type_name(seed)));
     root["seed"] = yaml_of(seed, "seed");
     names.push_back("seed=" + py::str(seed).cast<std::string>());
   }
@@ -87,13 +88,13 @@ std::vector<std::string> apply_overrides(YAML::Node& root, const ScenarioSource&
   }
   if (!effects.is_none()) {
     if (!py::isinstance<py::str>(effects) && !py::isinstance<py::dict>(effects))
-      throw InputError("effects: expected a preset name (ideal, realistic, randomized) or a dict of the effects section");
+      throw InputTypeError("effects: expected a preset name (ideal, realistic, randomized) or a dict of the effects section");
     root["effects"] = yaml_of(effects, "effects");
     names.push_back("effects");
   }
   if (!count.is_none()) {
     if (!py::isinstance<py::int_>(count) || py::isinstance<py::bool_>(count))
-      throw InputError("count: expected an integer (sampling.count)");
+      throw InputTypeError(fmt::format("count: expected an integer (sampling.count), got {}", type_name(count)));
     if (!root["sampling"] || !root["sampling"].IsMap())
       throw InputError(fmt::format("count: {} has no sampling section whose count it could set", src.label));
     root["sampling"]["count"] = yaml_of(count, "count");
@@ -137,7 +138,7 @@ py::object run(const py::object& scenario, const py::object& out_dir, const py::
     check_output_folder(*dir, {});  // not a file, not a hardware session's folder: refused before the run
   }
   if (!progress.is_none() && !PyCallable_Check(progress.ptr()))
-    throw InputError("progress: expected a callable taking the stage's name");
+    throw InputTypeError("progress: expected a callable taking the stage's name");
   scenario::Progress stages;  // the callable, with the GIL taken for it
   if (!progress.is_none())
     stages = [&progress](const std::string& stage) {
@@ -188,8 +189,9 @@ cannot use its samples).
 
   m.def(
       "population_robot_scenario",
-      [](const py::object& scenario_file, long long seed, bool keep_effects) {
-        if (seed < 0) throw InputError("seed: expected an integer >= 0");
+      [](const py::object& scenario_file, const py::object& seed_arg, const py::object& keep_effects_arg) {
+        const bool keep_effects = flag_arg(keep_effects_arg, "keep_effects");
+        const long long seed = whole_arg(seed_arg, "seed", limits::kSeed);
         return scenario::population_robot_scenario(path_arg(scenario_file, "scenario_file"),
                                                    static_cast<std::uint64_t>(seed), keep_effects);
       },

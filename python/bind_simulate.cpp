@@ -1,6 +1,7 @@
 // gpm.simulate and gpm.Simulation: one run of a scenario on the MuJoCo twin
 // (sim/simulate.hpp, sim/scenario.hpp), its samples and trajectory as NumPy
 // views into the run's records.
+#include <algorithm>
 #include <memory>
 #include <string>
 
@@ -67,6 +68,19 @@ py::dict trajectory_dict(py::object self) {
   return d;
 }
 
+// Simulation's repr: the samples, the time, the trajectory and the physics' figures in two lines.
+std::string simulation_repr(const Simulation& s) {
+  const sim::SimulationResult& r = s.result;
+  const auto settled = std::count_if(r.samples.begin(), r.samples.end(), [](const auto& x) { return x.settled; });
+  const Geometry& a = r.actual.geometry;
+  return fmt::format(
+      "<gpm.Simulation '{}': {} samples ({} settled) in {:.3f} s of robot time, {:.3f} s simulated, {} trajectory "
+      "rows\n  max torque {:.4g} N m, max loop-closure violation {:.3g} m; actual la=({:.4f}, {:.4f}, {:.4f}) "
+      "dth=({:.5f}, {:.5f}, {:.5f})>",
+      s.scenario.name, r.samples.size(), settled, r.sampling_s, r.simulated_s, r.log.rows.size(), r.max_torque,
+      r.max_violation_m, a[kLa1], a[kLa2], a[kLa3], a[kDth1], a[kDth2], a[kDth3]);
+}
+
 }  // namespace
 
 void bind_simulate(py::module_& m) {
@@ -109,13 +123,19 @@ of them or this object lives.
           "max_torque", [](const Simulation& s) { return s.result.max_torque; }, "Largest joint torque (N m).")
       .def_property_readonly(
           "simulated_s", [](const Simulation& s) { return s.result.simulated_s; }, "Simulated time (s).")
+      .def_property_readonly(
+          "sampling_s", [](const Simulation& s) { return s.result.sampling_s; },
+          "Robot time of the sampling, from the first move to the last reading (s).")
+      .def_property_readonly(
+          "name", [](const Simulation& s) { return s.scenario.name; }, "The scenario's name.")
       .def(
           "save", [](const Simulation& s, const py::object& dir) {
             sim::write_simulation(s.result, path_arg(dir, "dir"));
           },
           py::arg("dir"),
           "Writes samples.csv, trajectory.csv, actual.yaml and model.xml into dir, all or nothing (as `gpm "
-          "simulate -o DIR`).");
+          "simulate -o DIR`).")
+      .def("__repr__", &simulation_repr);
 
   m.def(
       "simulate",

@@ -23,4 +23,8 @@ void bind_run(pybind11::module_& m);
 // gpm.study (python/study.py): needs bind_run's functions.
 void bind_study(pybind11::module_& m);
 
+// gpm._plots (python/plots.py): CalibrationResult.plot and Simulation.plot;
+// needs bind_calibrate's and bind_simulate's classes.
+void bind_plots(pybind11::module_& m);
+
 }  // namespace gpm::python

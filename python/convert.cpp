@@ -6,6 +6,7 @@
 #include <fmt/format.h>
 
 #include "models/errors.hpp"
+#include "python/errors.hpp"
 
 namespace gpm::python {
 
@@ -27,7 +28,7 @@ Geometry geometry_from_dict(const py::dict& d, const Geometry& base, const std::
     }
     if (!py::isinstance<py::float_>(value) && !py::isinstance<py::int_>(value) &&
         !py::hasattr(value, "__float__"))
-      throw InputError(fmt::format("{}: {} must be a number in mm or rad", what, name));
+      throw InputTypeError(fmt::format("{}: {} must be a number in mm or rad, got {}", what, name, type_name(value)));
     const double v = value.cast<double>();
     if (!std::isfinite(v)) throw InputError(fmt::format("{}: {} must be a finite number, got {}", what, name, v));
     g[*idx] = v;
@@ -38,18 +39,26 @@ Geometry geometry_from_dict(const py::dict& d, const Geometry& base, const std::
 FreeMask param_set(const py::object& names, const std::string& what) {
   if (names.is_none()) return FreeMask{};
   if (py::isinstance<py::str>(names)) return parse_param_list(names.cast<std::string>(), what);
+  if (!py::isinstance<py::iterable>(names))
+    throw InputTypeError(fmt::format("{}: expected a list of parameter names (e.g. [\"xa1\", \"ya1\"]) or one "
+                                     "comma-separated str, got {}", what, type_name(names)));
   std::string list;
   bool first = true;
   for (const auto& item : names) {
-    if (!py::isinstance<py::str>(item)) {
-      throw InputError(fmt::format("{}: expected parameter names (str), got {}", what,
-                                   std::string(py::str(py::type::of(item).attr("__name__")))));
-    }
+    if (!py::isinstance<py::str>(item))
+      throw InputTypeError(fmt::format("{}: expected parameter names (str), got {}", what, type_name(item)));
     if (!first) list += ",";
     list += item.cast<std::string>();
     first = false;
   }
   return parse_param_list(list, what);
+}
+
+Robot robot_arg(const py::handle& v, const std::string& what) {
+  if (!py::isinstance<Robot>(v))
+    throw InputTypeError(fmt::format("{}: expected a gpm.Robot (gpm.load_robot(path) or gpm.Robot()), got {}", what,
+                                     type_name(v)));
+  return v.cast<Robot>();
 }
 
 py::list param_names(const FreeMask& mask) {
@@ -65,7 +74,11 @@ namespace {
 py::array_t<double, py::array::c_style> rows_array(const py::handle& a, size_t cols, const std::string& what,
                                                    const char* example) {
   auto arr = py::array_t<double, py::array::c_style | py::array::forcecast>::ensure(a);
-  if (!arr) throw InputError(fmt::format("{}: expected an array of numbers of shape (n, {}), e.g. {}", what, cols, example));
+  if (!arr) {
+    PyErr_Clear();
+    throw InputTypeError(fmt::format("{}: expected an array of numbers of shape (n, {}), e.g. {}, got {}", what, cols,
+                                     example, type_name(a)));
+  }
   if (arr.ndim() == 1 && static_cast<size_t>(arr.shape(0)) == cols) arr = arr.reshape({py::ssize_t{1}, static_cast<py::ssize_t>(cols)});
   if (arr.ndim() != 2 || static_cast<size_t>(arr.shape(1)) != cols) {
     std::string shape = "(";
@@ -89,10 +102,9 @@ std::string path_arg(const py::object& path, const std::string& what) {
   try {
     s = fspath(path);
   } catch (const py::error_already_set&) {
-    throw InputError(fmt::format("{}: expected a path (str or os.PathLike), got {}", what,
-                                 std::string(py::str(py::type::of(path).attr("__name__")))));
+    throw InputTypeError(fmt::format("{}: expected a path (str or os.PathLike), got {}", what, type_name(path)));
   }
-  if (!py::isinstance<py::str>(s)) throw InputError(fmt::format("{}: expected a text path, got bytes", what));
+  if (!py::isinstance<py::str>(s)) throw InputTypeError(fmt::format("{}: expected a text path, got bytes", what));
   const std::string text = s.cast<std::string>();
   if (text.empty()) throw InputError(fmt::format("{}: the path is empty", what));
   if (text.find('\0') != std::string::npos)

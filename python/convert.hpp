@@ -29,6 +29,9 @@ Geometry geometry_from_dict(const py::dict& d, const Geometry& base, const std::
 // names the argument in errors ("fix[2]: unknown parameter ...").
 FreeMask param_set(const py::object& names, const std::string& what);
 
+// The gpm.Robot v of the argument `what`; throws InputTypeError naming it for any other type.
+Robot robot_arg(const py::handle& v, const std::string& what);
+
 // Names of the set bits of mask, in index order.
 py::list param_names(const FreeMask& mask);
 

@@ -1,16 +1,17 @@
 // The gpm Python module: the toolkit's library (robot model, kinematics,
 // calibration, excitation design, Cramer-Rao bounds, the MuJoCo twin) on
-// NumPy arrays. Errors: gpm::InputError -> gpm.InputError (a ValueError) with
-// the command line's message; sim::SimError -> gpm.SimError (a RuntimeError);
-// any other gpm::Error -> gpm.Error (a RuntimeError).
+// NumPy arrays. Errors (python/errors.hpp): gpm::InputError -> gpm.InputError
+// (a ValueError) with the library's message in Python's words (keywords for
+// flags); an argument of the wrong type -> gpm.InputTypeError (also a
+// TypeError); sim::SimError -> gpm.SimError and any other gpm::Error ->
+// gpm.Error (RuntimeErrors).
 #include <string>
 
 #include <pybind11/pybind11.h>
 
-#include "models/errors.hpp"
 #include "models/parameters.hpp"
 #include "python/bindings.hpp"
-#include "sim/mujoco_util.hpp"
+#include "python/errors.hpp"
 
 namespace py = pybind11;
 
@@ -28,12 +29,10 @@ Also: gpm.run(scenario) (the whole `gpm run`), gpm.study.population (a
 population of robots on local threads or a Dask cluster),
 gpm.simulate(scenario) (MuJoCo twin), gpm.design (calibration poses),
 gpm.crb and gpm.pose_bounds (Cramer-Rao bounds), Robot.ik / fk / jacobian /
-conditioning. Bad input raises gpm.InputError (a ValueError).
+conditioning. Bad input raises gpm.InputError (a ValueError; an argument of
+the wrong type gpm.InputTypeError, also a TypeError), naming the keyword.
 )doc";
-  // Registered base first: pybind11 tries the most recent translator first.
-  py::register_exception<gpm::Error>(m, "Error", PyExc_RuntimeError);
-  py::register_exception<gpm::InputError>(m, "InputError", PyExc_ValueError);
-  py::register_exception<gpm::sim::SimError>(m, "SimError", PyExc_RuntimeError);
+  gpm::python::register_errors(m);
 
   py::list names;
   for (int i = 0; i < gpm::kNumParams; ++i) names.append(std::string(gpm::param_name(i)));
@@ -45,4 +44,5 @@ conditioning. Bad input raises gpm.InputError (a ValueError).
   gpm::python::bind_simulate(m);
   gpm::python::bind_run(m);
   gpm::python::bind_study(m);
+  gpm::python::bind_plots(m);
 }

@@ -167,17 +167,30 @@ def _run_dask(jobs, client, retries, report):
     return sorted(retried)
 
 
+def _whole(value, name, lo, hi, none_ok=False):
+    """value as an int within lo .. hi; gpm.InputTypeError (a TypeError) for a non-integer,
+    gpm.InputError (a ValueError) out of range, each naming the keyword `name` and the valid values."""
+    if value is None and none_ok:
+        return None
+    if isinstance(value, bool) or not hasattr(value, "__index__"):
+        raise _gpm.InputTypeError(f"{name}: expected an integer from {lo} to {hi}, got {type(value).__name__}")
+    value = value.__index__()
+    if not lo <= value <= hi:
+        raise _gpm.InputError(f"{name}: must be an integer from {lo} to {hi}, got {value}")
+    return value
+
+
 def _seeds(scenario, count, seeds):
     """The robots' seeds (given, or the scenario's seed + 0 .. count - 1); checks the scenario file whole."""
     first = _gpm.scenario_seed(scenario)
     if seeds is not None:
-        seeds = [int(s) for s in seeds]
-        if not seeds or any(s < 0 for s in seeds) or len(set(seeds)) != len(seeds):
+        if isinstance(seeds, (str, bytes)) or not hasattr(seeds, "__iter__"):
+            raise _gpm.InputTypeError(f"seeds: expected a list of distinct integers >= 0, got {type(seeds).__name__}")
+        seeds = [_whole(s, "seeds", 0, 2**53) for s in seeds]
+        if not seeds or len(set(seeds)) != len(seeds):
             raise _gpm.InputError(f"seeds: expected distinct integers >= 0, got {seeds}")
         return seeds
-    if isinstance(count, bool) or not isinstance(count, int) or not 1 <= count <= 100000:
-        raise _gpm.InputError(f"count: expected an integer 1 .. 100000, got {count!r}")
-    return [first + k for k in range(count)]
+    return [first + k for k in range(_whole(count, "count", 1, 100000))]
 
 
 def population(scenario, count=None, client=None, seeds=None, keep_effects=False, threads=None, retries=2,
@@ -193,6 +206,8 @@ def population(scenario, count=None, client=None, seeds=None, keep_effects=False
     """
     scenario = os.path.abspath(os.fspath(scenario))
     seeds = _seeds(scenario, count, seeds)
+    threads = _whole(threads, "threads", 1, 64, none_ok=True)
+    retries = _whole(retries, "retries", 0, 100)
     base_dir = os.path.dirname(scenario)
     jobs = [(_gpm.population_robot_scenario(scenario, s, keep_effects), s, base_dir) for s in seeds]
     rows, t0 = [], time.perf_counter()
@@ -286,6 +301,12 @@ class Population:
             "seconds": self.seconds,
             "robots_per_minute": 60.0 * len(self.rows) / self.seconds if self.seconds > 0 else float("nan"),
         }
+
+    def __repr__(self):
+        s = self.summary()
+        return (f"<gpm.study.Population {s['robots']} robots ({s['failed']} failed): positioning median "
+                f"{s['positioning_median_um']:.3g} um, worst {s['positioning_worst_um']:.3g} um; within the stated "
+                f"1-sigma {100 * s['coverage_1_sigma']:.0f}% (normal 68%); {s['seconds']:.1f} s>")
 
     def summary_line(self):
         """One line: robots, failures, retries, time and throughput, accuracy, coverage of the stated 1-sigma."""

@@ -32,11 +32,20 @@ def study_block(readme):
     return blocks[0]
 
 
-def test_calibration_example_runs_as_written():
+def test_calibration_example_runs_as_written(scratch, monkeypatch):
     blocks = [b for b in python_blocks("python/README.md") if "gpm.study" not in b]
     assert len(blocks) == 1
     assert len(blocks[0].strip().splitlines()) <= 10
-    assert "converged: True" in run_block(blocks[0], "python/README.md")
+    monkeypatch.chdir(scratch)  # the block writes calibration.png
+    out = run_block(blocks[0], "python/README.md")
+    assert "converged: True" in out
+    assert (scratch / "calibration.png").read_bytes()[:4] == b"\x89PNG"
+    # The repr the README shows is the block's output, line for line (up to its "...").
+    shown = re.search(r"`print\(result\)` shows\n\n```text\n(.*?)```", (ROOT / "python/README.md").read_text(), re.S)
+    lines = [l for l in shown.group(1).splitlines() if l.strip() != "..."]
+    assert len(lines) == 3
+    for line in lines:
+        assert line in out.splitlines(), (line, out)
 
 
 def test_study_block_is_the_same_in_both_readmes():

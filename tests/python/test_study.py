@@ -91,9 +91,19 @@ def test_failed_robots_are_reported_with_seed_and_reason(monkeypatch, capsys, cl
 
 
 def test_bad_input_before_any_run(scratch):
-    for kwargs, message in [(dict(count=0), "count"), (dict(seeds=[5, 5]), "seeds"), (dict(seeds=[-1]), "seeds")]:
-        with pytest.raises(gpm.InputError, match=message):
+    for kwargs, message in [(dict(count=0), "count"), (dict(seeds=[5, 5]), "seeds"), (dict(seeds=[-1]), "seeds"),
+                            (dict(count=10**19), "^count: must be an integer from 1 to 100000, got 1"),
+                            (dict(count=2, threads=0), "^threads: must be an integer from 1 to 64, got 0"),
+                            (dict(count=2, retries=-1), "^retries: must be an integer from 0 to 100")]:
+        with pytest.raises(gpm.InputError, match=message) as e:
             gpm.study.population(TINY, **kwargs)
+        assert not isinstance(e.value, TypeError)
+    for kwargs, message in [(dict(count="2"), "^count: expected an integer from 1 to 100000, got str"),
+                            (dict(seeds=["a"]), "^seeds: expected an integer"), (dict(seeds=5), "^seeds: expected a list"),
+                            (dict(count=2, threads=1.5), "^threads: expected an integer from 1 to 64, got float")]:
+        with pytest.raises(TypeError, match=message) as e:
+            gpm.study.population(TINY, **kwargs)
+        assert isinstance(e.value, gpm.InputTypeError)
     with pytest.raises(gpm.InputError, match="missing.yaml"):
         gpm.study.population(scratch / "missing.yaml", 2)
 
