@@ -22,6 +22,7 @@
 #include <yaml-cpp/yaml.h>
 
 #include "app/commands.hpp"
+#include "app/data_files.hpp"
 #include "calib/problem.hpp"
 #include "models/errors.hpp"
 #include "models/mjcf.hpp"
@@ -292,7 +293,7 @@ void run_render(const RenderCliOptions& opt, bool fps_given, bool speed_given) {
 void add_render(CLI::App& app) {
   auto opt = std::make_shared<RenderCliOptions>();
   auto* cmd = app.add_subcommand("render", kRenderDescription);
-  cmd->add_option("scenario", opt->scenario, "Scenario file (YAML, see scenarios/SCHEMA.md and render/README.md)")
+  cmd->add_option("scenario", opt->scenario, "Scenario file (YAML, see gpm help schema), or a scenario of the library by name (gpm help scenarios)")
       ->required();
   cmd->add_option("-o,--out", opt->out, "Output video (H.264 MP4; the name must end in .mp4)");
   CLI::Option* fps = cmd->add_option("--fps", opt->fps, "Video frames per second (default 30)");
@@ -304,7 +305,11 @@ void add_render(CLI::App& app) {
   cmd->add_option("--beside", opt->beside, "A second scenario shown side by side (e.g. the calibrated controller)");
   cmd->add_flag("--simulation-only", opt->simulation_only,
                 "For a gpm run scenario: only its simulation (the sampling), not the story of the run");
-  cmd->callback([opt, fps, speed] { run_render(*opt, fps->count() > 0, speed->count() > 0); });
+  cmd->callback([opt, fps, speed] {
+    opt->scenario = resolve_scenario(opt->scenario);  // a file, or a library name (gpm render main)
+    if (!opt->beside.empty()) opt->beside = resolve_scenario(opt->beside);
+    run_render(*opt, fps->count() > 0, speed->count() > 0);
+  });
 }
 
 }  // namespace gpm::cli

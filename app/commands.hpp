@@ -25,7 +25,8 @@ void add_run(CLI::App& app);
 void add_render(CLI::App& app);  // in gpm-render (app/render_main.cpp) only
 inline constexpr const char* kRenderDescription =
     "Render an off-screen MP4 video (and PNG frames) of a scenario's motion; a gpm run scenario as its story "
-    "(nominal controller, sampling, calibrated controller)";
+    "(an opening card, the nominal controller, the sampling, the calibrated controller, a closing card with the "
+    "before and after errors)";
 void add_compare(CLI::App& app);
 void add_study(CLI::App& app);
 void add_design(CLI::App& app);

@@ -12,7 +12,7 @@
 
 namespace gpm::calib {
 
-// Section 3.3 "actual" values (Tables 2-4): offsets 1.0 rad; la = 244.1,
+// Section 3.3 "actual" values (Tables 3-4; Table 2 is set up on the nominal mechanism): offsets 1.0 rad; la = 244.1,
 // 244.2, 244.5 (docs/EQUATIONS.md: 243.5 is a misprint in section 3), lb = 243.8, 244.2,
 // 244.2; A2 = (433.04, 0), A3 = (433.05, 499.96); A1 nominal.
 Geometry section3_actual();

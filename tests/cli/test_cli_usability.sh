@@ -79,6 +79,8 @@ check "run main.yaml by name" 2 "$GPM" run main.yaml -o run --resume
 expect_err "run read the library's main.yaml" "give --hardware HW.yaml \(or hardware: in .*scenarios/main.yaml\)"
 check "monitor by name" 2 "$GPM" monitor monitor_offset_jump -o mon --model "$tmp/none.yaml"
 expect_err "monitor read the library's scenario, then the model" "none.yaml"
+check "render by name" 2 "$GPM" render simulate_disc --frame-png 0:frame.jpg
+expect_err "render read the library's scenario, then the suffix" "frame.jpg.*\.png"
 check "a path is not looked up" 2 "$GPM" simulate ./main.yaml -o sim3
 expect_err "a path names the file" "main.yaml: cannot open file"
 

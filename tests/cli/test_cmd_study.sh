@@ -20,7 +20,8 @@ check "calibrate 3 samples" 2 "$GPM" calibrate --data "$tmp/s3.csv" -o "$tmp/r.y
 expect_err "calibrate 3 samples message" "3 samples for 11 free parameters; need at least 11"
 
 # 20 copies of one sample: enough rows, rank 1.
-{ head -1 "$tmp/s20.csv"; for _ in $(seq 20); do sed -n 2p "$tmp/s20.csv"; done; } >"$tmp/same.csv"
+# Twenty samples of one pose (ids 0..19: a sample id may appear once).
+{ head -1 "$tmp/s20.csv"; for k in $(seq 0 19); do sed -n 2p "$tmp/s20.csv" | sed "s/^[^,]*,/$k,/"; done; } >"$tmp/same.csv"
 check "crb coincident" 2 "$GPM" study crb --data "$tmp/same.csv" --sigma 1e-4
 expect_err "crb coincident message" "are not identifiable from encoder angles \(rank 1 of 11\)"
 [[ ! -s "$tmp/out" ]] && passed=$((passed+1)) || { echo "FAIL crb coincident printed a table"; fail=$((fail+1)); }

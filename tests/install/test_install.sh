@@ -66,6 +66,10 @@ expect_out "json robot" '"robot": "GPM2002-installed"'
 check "installed scenario" 0 "$P/bin/gpm" simulate "$P/share/gpm/scenarios/simulate_circle.yaml" -o "$work/sim"
 expect "scenario samples" "[[ \$(wc -l <'$work/sim/samples.csv') -gt 1 ]]"
 check "drive emulator" 0 "$P/bin/gpm-drive-emulator" --help
+# gpm help prints the installed documents (an installed user has no source tree).
+check "installed gpm help schema" 0 "$P/bin/gpm" help schema
+expect "help schema is the installed SCHEMA" "'$P/bin/gpm' help schema | cmp -s - '$P/share/gpm/scenarios/SCHEMA.md'"
+check "installed gpm help formats" 0 "$P/bin/gpm" help formats
 # The install moves as a whole.
 mv "$P" "$work/moved"
 check "moved gpm kin" 0 "$work/moved/bin/gpm" kin home
