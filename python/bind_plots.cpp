@@ -11,14 +11,6 @@ namespace gpm::python {
 extern const char* const kPlotsSource;
 extern const char* const kPlotsFile;
 
-void bind_plots(pybind11::module_& m) {
-  namespace py = pybind11;
-  py::module_ plots = m.def_submodule("_plots");
-  py::dict ns = plots.attr("__dict__");
-  ns["__file__"] = kPlotsFile;
-  ns["_gpm"] = m;
-  const py::module_ builtins = py::module_::import("builtins");
-  builtins.attr("exec")(builtins.attr("compile")(kPlotsSource, kPlotsFile, "exec"), ns);
-}
+void bind_plots(pybind11::module_& m) { exec_submodule(m, "_plots", kPlotsSource, kPlotsFile); }
 
 }  // namespace gpm::python

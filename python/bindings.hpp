@@ -26,5 +26,8 @@ void bind_study(pybind11::module_& m);
 // gpm._plots (python/plots.py): CalibrationResult.plot and Simulation.plot;
 // needs bind_calibrate's and bind_simulate's classes.
 void bind_plots(pybind11::module_& m);
+// Runs Python source (named file in tracebacks) into submodule `name` of m,
+// with _gpm bound to m (the module being built); returns the submodule.
+pybind11::module_ exec_submodule(pybind11::module_& m, const char* name, const char* source, const char* file);
 
 }  // namespace gpm::python
