@@ -163,15 +163,9 @@ HardwareError session_stopped(SafetySupervisor& hw, const std::string& why, cons
   return HardwareError(fmt::format("{}{}; {} samples kept in {}", why, said ? "" : tail, log.size(), log.path()));
 }
 
-SessionResult run_sampling_session(SafetySupervisor& hw, const SessionPlan& plan, SampleLog& log,
-                                   const std::atomic<bool>* stop) {
-  check_plan_poses(hw, plan);
-  check_resumed_plan(hw.controller(), plan, log);
-  Runner runner(hw, plan, stop);
+void rethrow_session_error(SafetySupervisor& hw, const SampleLog& log) {
   try {
-    SessionResult r = runner.run(log);
-    hw.shutdown();
-    return r;
+    throw;
   } catch (const Interrupted& e) {
     hw.shutdown();
     throw Interrupted(fmt::format("{}; {} samples kept in {}", e.what(), log.size(), log.path()));
@@ -181,6 +175,20 @@ SessionResult run_sampling_session(SafetySupervisor& hw, const SessionPlan& plan
     throw session_stopped(hw, e.what(), log);
   } catch (const LifecycleError& e) {
     throw session_stopped(hw, e.what(), log);
+  }
+}
+
+SessionResult run_sampling_session(SafetySupervisor& hw, const SessionPlan& plan, SampleLog& log,
+                                   const std::atomic<bool>* stop) {
+  check_plan_poses(hw, plan);
+  check_resumed_plan(hw.controller(), plan, log);
+  Runner runner(hw, plan, stop);
+  try {
+    SessionResult r = runner.run(log);
+    hw.shutdown();
+    return r;
+  } catch (...) {
+    rethrow_session_error(hw, log);
   }
 }
 

@@ -73,6 +73,12 @@ void check_plan_poses(const SafetySupervisor& hw, const SessionPlan& plan);
 // samples taken so far are.
 HardwareError session_stopped(SafetySupervisor& hw, const std::string& why, const SampleLog& log);
 
+// Called in a catch block of a session's motion: rethrows what is being
+// handled as the session ends on it. Interrupted: hw shut down, the message
+// naming where the samples are kept; CommandRejected, HardwareError,
+// LifecycleError: session_stopped; anything else as it is.
+[[noreturn]] void rethrow_session_error(SafetySupervisor& hw, const SampleLog& log);
+
 // Runs the plan on hw (configured or not; left finalized). Samples go to log
 // as they are taken. stop (optional; StopOnSignal::flag) requests a stop.
 // Procedure convention (hw/README.md): returns what it did when it finished;

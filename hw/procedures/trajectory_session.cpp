@@ -157,18 +157,11 @@ SessionResult run_trajectory_session(SafetySupervisor& hw, const TrajectoryPlan&
     r.duration_s = motion.now();
     hw.shutdown();
     return r;
-  } catch (const InputError&) {
+  } catch (const InputError&) {  // refused before moving (the torque, the move to the start)
     hw.shutdown();
     throw;
-  } catch (const Interrupted& e) {
-    hw.shutdown();
-    throw Interrupted(fmt::format("{}; {} samples kept in {}", e.what(), log.size(), log.path()));
-  } catch (const CommandRejected& e) {
-    throw session_stopped(hw, e.what(), log);
-  } catch (const HardwareError& e) {
-    throw session_stopped(hw, e.what(), log);
-  } catch (const LifecycleError& e) {
-    throw session_stopped(hw, e.what(), log);
+  } catch (...) {
+    rethrow_session_error(hw, log);
   }
 }
 
