@@ -287,10 +287,11 @@ void SampleLog::sync() {
 
 void SampleLog::close_and_discard_if_empty() {
   closed_ = true;
-  if (fd_ >= 0 && !in_place_) (void)::fsync(fd_);  // what was appended reaches the disk
   if (created_ && ids_.empty()) {
     std::error_code ec;
     std::filesystem::remove(path_, ec);
+  } else if (fd_ >= 0 && !in_place_) {
+    (void)::fsync(fd_);  // what was appended reaches the disk
   }
   if (fd_ >= 0) ::close(fd_);
   fd_ = -1;
