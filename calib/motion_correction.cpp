@@ -386,232 +386,328 @@ Eigen::MatrixXd newey_west_sandwich(const Eigen::MatrixXd& A, const Eigen::Matri
   return A * (B / (L + 1.0)) * A;
 }
 
-// calibrate_in_motion with the torque changes nb (torques_before of the
-// whole sequence; empty without model.torque_before) given.
-MotionFit fit_in_motion(const Problem& problem, const std::vector<Eigen::Vector3d>& omega,
-                        const std::vector<Eigen::Vector3d>& tau, const std::vector<Eigen::Vector3d>& nb,
-                        const LmOptions& options, const MotionModel& model, const std::vector<Eigen::Vector3d>& alpha) {
-  const std::size_t n = problem.theta_m.size();
-  if (omega.size() != n || tau.size() != n)
+// The samples of one fit in motion (one entry per sample each): raw readings
+// theta_m (rad), joint speeds omega, drive torques tau, their changes nb
+// (torques_before; empty: none) and accelerations alpha (empty: 0).
+struct MotionSamples {
+  const std::vector<Eigen::Vector3d>& theta_m;
+  const std::vector<Eigen::Vector3d>& omega;
+  const std::vector<Eigen::Vector3d>& tau;
+  const std::vector<Eigen::Vector3d>& nb;
+  const std::vector<Eigen::Vector3d>& alpha;
+};
+
+// The regressors of the reading effects over the samples (see SampleRegressors),
+// the clearance's at the start geometry and with its force threshold.
+struct EffectRegressors {
+  std::vector<Eigen::Vector3d> fric, tau_t, clr, flank;
+  double tension_min = 0.0;
+};
+
+// Throws InputError when the samples' sizes differ or the cost is not ML.
+void check_motion_inputs(const MotionSamples& s, const LmOptions& options) {
+  const std::size_t n = s.theta_m.size();
+  if (s.omega.size() != n || s.tau.size() != n)
     throw InputError(fmt::format("calibration in motion: {} readings but {} joint speeds and {} torques", n,
-                                 omega.size(), tau.size()));
+                                 s.omega.size(), s.tau.size()));
   if (options.cost != Cost::kML)
     throw InputError("calibration in motion: the reading corrections need the ML cost (--cost ml)");
-  // A nuisance value no sample excites is not estimated: a latch skew without
-  // joint speed, or a compliance whose torque never varies (a torque-off joint
-  // transmits none; a joint held at a constant torque twists by a constant
-  // angle, which the zero offset dth absorbs).
+  if (!s.alpha.empty() && s.alpha.size() != n)
+    throw InputError(fmt::format("calibration in motion: {} readings but {} joint accelerations", n, s.alpha.size()));
+}
+
+// EffectRegressors of samples s for model at geometry start.
+EffectRegressors effect_regressors(const Geometry& start, const MotionSamples& s, const MotionModel& model) {
+  EffectRegressors e;
   // Coulomb friction F_i on the motor side of the transmission: the
   // transmitted torque is tau_i - F_i sign(omega_i), so the link twists by
   // c_i F_i sign(omega_i) less than c_i tau_i says (the sign smoothed over
   // model.load.friction_speed_rad_s, within which the friction builds up).
-  const std::vector<Eigen::Vector3d> fric = friction_regressors(model, omega);
-  if (!alpha.empty() && alpha.size() != n)
-    throw InputError(fmt::format("calibration in motion: {} readings but {} joint accelerations", n, alpha.size()));
-  // Clearance regressors at the start geometry, recomputed at every pass.
-  const std::vector<Eigen::Vector3d> tau_t = transmitted_torques(model, omega, tau, alpha);
+  e.fric = friction_regressors(model, s.omega);
+  e.tau_t = transmitted_torques(model, s.omega, s.tau, s.alpha);
   std::vector<std::optional<PassiveForces>> forces;
-  if (model.clearance) forces = passive_forces(problem.start, problem.theta_m, tau_t);
-  const double tension_min = effective_tension_min(model, forces);
-  std::vector<Eigen::Vector3d> clr(n, Eigen::Vector3d::Zero());
-  if (model.clearance) clr = clearance_regressors(forces, tension_min);
-  const std::vector<Eigen::Vector3d> flank = flank_regressors(model, omega, tau, alpha);
-  // Samples left out: the leading ones, and (with the clearance) those in
-  // which some chain's force sign is uncertain, and those where a mesh with
-  // backlash crosses its gap; the fit runs on the rest.
-  std::vector<std::size_t> kept = kept_samples(model, clr, flank);
-  if (kept.size() < n) {
-    Problem sub = problem;
-    sub.theta_m.clear();
-    sub.true_xy.clear();
-    std::vector<Eigen::Vector3d> sub_omega, sub_tau, sub_alpha;
-    std::vector<Eigen::Vector3d> sub_nb;
-    for (std::size_t j : kept) {
-      if (!nb.empty()) sub_nb.push_back(nb[j]);
-      sub.theta_m.push_back(problem.theta_m[j]);
-      sub_omega.push_back(omega[j]);
-      sub_tau.push_back(tau[j]);
-      if (!alpha.empty()) sub_alpha.push_back(alpha[j]);
-      if (problem.true_xy.size() == n) sub.true_xy.push_back(problem.true_xy[j]);
-    }
-    MotionModel sub_model = model;
-    sub_model.skip_first = 0;
-    sub_model.drop_uncertain = false;
-    sub_model.tension_min_N = tension_min;
-    MotionFit fit = fit_in_motion(sub, sub_omega, sub_tau, sub_nb, options, sub_model, sub_alpha);
-    for (std::size_t& j : fit.kept) j = kept[j];
-    for (int k = 0; k < 3; ++k) {
-      double certain = 0.0;
-      for (std::size_t j = 0; j < n; ++j) certain += clr[j][k] != 0.0 ? 1.0 : 0.0;
-      fit.clearance_used[static_cast<std::size_t>(k)] = certain / static_cast<double>(n);
-    }
-    return fit;
-  }
-  // The cyclic error is estimated under its prior, which needs the reading noise.
-  MotionModel with_prior = model;
-  if (!options.encoder_sigma) with_prior.cyclic_prior_rad = 0.0;
-  const double prior_weight = with_prior.cyclic_prior_rad > 0.0 ? *options.encoder_sigma / with_prior.cyclic_prior_rad : 0.0;
-  const std::vector<int> cols = excited_columns(with_prior, omega, tau, fric, clr, nb, flank);
-  const int q = static_cast<int>(cols.size());
+  if (model.clearance) forces = passive_forces(start, s.theta_m, e.tau_t);
+  e.tension_min = effective_tension_min(model, forces);
+  e.clr.assign(s.theta_m.size(), Eigen::Vector3d::Zero());
+  if (model.clearance) e.clr = clearance_regressors(forces, e.tension_min);
+  e.flank = flank_regressors(model, s.omega, s.tau, s.alpha);
+  return e;
+}
 
+// A MotionFit with every nuisance 1-sigma NaN (not estimated).
+MotionFit unestimated_fit() {
   MotionFit fit;
-  fit.nu_sigma.fill(std::numeric_limits<double>::quiet_NaN());
-  fit.friction_sigma.fill(std::numeric_limits<double>::quiet_NaN());
-  fit.clearance_sigma.fill(std::numeric_limits<double>::quiet_NaN());
-  fit.torque_before_sigma.fill(std::numeric_limits<double>::quiet_NaN());
-  fit.cyclic_sigma.fill(std::numeric_limits<double>::quiet_NaN());
-  fit.backlash_sigma.fill(std::numeric_limits<double>::quiet_NaN());
-  for (auto& h : fit.harmonic_sigma) h.fill(std::numeric_limits<double>::quiet_NaN());
+  constexpr double nan = std::numeric_limits<double>::quiet_NaN();
+  fit.nu_sigma.fill(nan);
+  fit.friction_sigma.fill(nan);
+  fit.clearance_sigma.fill(nan);
+  fit.torque_before_sigma.fill(nan);
+  fit.cyclic_sigma.fill(nan);
+  fit.backlash_sigma.fill(nan);
+  for (auto& h : fit.harmonic_sigma) h.fill(nan);
   fit.noise_sigma.clearance = fit.clearance_sigma;
   fit.noise_sigma.torque_before = fit.torque_before_sigma;
   fit.noise_sigma.backlash = fit.backlash_sigma;
   fit.noise_sigma.harmonic = fit.harmonic_sigma;
+  return fit;
+}
+
+// The nuisance vector (layout kSkew ... kHarmonic) written into fit's named values.
+void unpack_nuisance(const std::array<double, kNuisance>& nu_all, MotionFit& fit) {
+  const auto at = [&nu_all](int first) { return nu_all.begin() + first; };
+  std::copy_n(at(kSkew), 5, fit.nu.begin());  // the skews and the compliances
+  std::copy_n(at(kFriction), 3, fit.friction.begin());
+  std::copy_n(at(kClearance), 3, fit.clearance.begin());
+  std::copy_n(at(kBefore), 3, fit.torque_before.begin());
+  std::copy_n(at(kFirstCyclic), 6, fit.cyclic.begin());
+  std::copy_n(at(kBacklash), 3, fit.backlash.begin());
+  for (std::size_t o = 0; o < 3; ++o) std::copy_n(at(kHarmonic + 6 * static_cast<int>(o)), 6, fit.harmonic[o].begin());
+}
+
+// The readings of s corrected with fit's nuisance values for the twist, skew,
+// friction, torque change, cyclic error, backlash and harmonics (not the clearance).
+std::vector<Eigen::Vector3d> twist_corrected(const MotionFit& fit, const MotionSamples& s, const EffectRegressors& e,
+                                             double gear_ratio) {
+  std::vector<Eigen::Vector3d> out = correct_readings(s.theta_m, s.omega, s.tau, fit.nu);
+  for (std::size_t j = 0; j < out.size(); ++j)
+    for (int k = 0; k < 3; ++k) {
+      const auto i = static_cast<std::size_t>(k);
+      out[j][k] += fit.friction[i] * e.fric[j][k];
+      if (!s.nb.empty()) out[j][k] -= fit.torque_before[i] * s.nb[j][k];
+      const double raw = s.theta_m[j][k];
+      out[j][k] -= fit.cyclic[i] * std::sin(raw) + fit.cyclic[i + 3] * std::cos(raw);
+      out[j][k] -= fit.backlash[i] * e.flank[j][k];
+      for (std::size_t o = 0; o < 3; ++o) {
+        const double a = harmonic_angle(static_cast<int>(o), raw, gear_ratio);
+        out[j][k] -= fit.harmonic[o][i] * std::sin(a) + fit.harmonic[o][i + 3] * std::cos(a);
+      }
+    }
+  return out;
+}
+
+// twist_corrected plus the clearance d_i times its regressors.
+std::vector<Eigen::Vector3d> fully_corrected(const MotionFit& fit, const MotionSamples& s, const EffectRegressors& e,
+                                             double gear_ratio) {
+  std::vector<Eigen::Vector3d> out = twist_corrected(fit, s, e, gear_ratio);
+  for (std::size_t j = 0; j < out.size(); ++j)
+    for (int k = 0; k < 3; ++k) out[j][k] += fit.clearance[static_cast<std::size_t>(k)] * e.clr[j][k];
+  return out;
+}
+
+// Row `row` of the nuisance Jacobian (excited columns cols) into Jn and of the
+// six cyclic columns into Jc, at solver vector x and corrected readings th.
+void fill_nuisance_row(const ParamVector& x, const Eigen::Vector3d& th, const SampleRegressors& reg, double gear_ratio,
+                       const std::vector<int>& cols, Eigen::Index row, Eigen::MatrixXd& Jn, Eigen::MatrixXd& Jc,
+                       Eigen::Index first = 0) {
+  const std::array<double, kNuisance> all = nuisance_row(reading_sensitivity(x, th), reg, gear_ratio);
+  for (std::size_t c = 0; c < cols.size(); ++c)
+    Jn(row, first + static_cast<Eigen::Index>(c)) = all[static_cast<std::size_t>(cols[c])];
+  for (int c = 0; c < 6; ++c) Jc(row, c) = all[static_cast<std::size_t>(kFirstCyclic + c)];
+}
+
+// The fit's linearisation at one geometry: the free geometry columns Jg, the
+// excited nuisance columns Jn, the cyclic columns Jc and the ML residuals r.
+struct Linearisation {
+  Eigen::MatrixXd Jg, Jn, Jc;
+  Eigen::VectorXd r;
+};
+
+// Linearisation at geometry g of the corrected readings th (raw readings and
+// regressors from s and e), for the free parameters free_index and columns cols.
+Linearisation linearise(const Geometry& g, const std::vector<Eigen::Vector3d>& th, const MotionSamples& s,
+                        const EffectRegressors& e, const std::vector<int>& free_index, const std::vector<int>& cols,
+                        double gear_ratio) {
+  const auto n = static_cast<Eigen::Index>(th.size());
+  const ParamVector x = to_solver(g, Cost::kML);
+  const Eigen::MatrixXd J_all = ml_jacobian(th, g);
+  Linearisation l{Eigen::MatrixXd(n, static_cast<Eigen::Index>(free_index.size())),
+                  Eigen::MatrixXd(n, static_cast<Eigen::Index>(cols.size())), Eigen::MatrixXd(n, 6), Eigen::VectorXd(n)};
+  for (std::size_t k = 0; k < free_index.size(); ++k) l.Jg.col(static_cast<Eigen::Index>(k)) = J_all.col(free_index[k]);
+  for (std::size_t j = 0; j < th.size(); ++j) {
+    l.r[static_cast<Eigen::Index>(j)] = ml_residual(x, th[j]);
+    const SampleRegressors reg{s.omega[j], s.tau[j], e.fric[j], e.clr[j], s.nb.empty() ? Eigen::Vector3d::Zero() : s.nb[j],
+                               s.theta_m[j], e.flank[j]};
+    fill_nuisance_row(x, th[j], reg, gear_ratio, cols, static_cast<Eigen::Index>(j), l.Jn, l.Jc);
+  }
+  return l;
+}
+
+// [Jg, Jn] with the cyclic prior's rows (append_cyclic_prior).
+Eigen::MatrixXd joint_jacobian(const Linearisation& l, const std::vector<int>& cols, double prior_weight) {
+  Eigen::MatrixXd J(l.r.size(), l.Jg.cols() + l.Jn.cols());
+  J << l.Jg, l.Jn;
+  append_cyclic_prior(cols, l.Jg.cols(), prior_weight, J, nullptr, nullptr);
+  return J;
+}
+
+// One joint Gauss-Newton step of geometry and nuisance values at l, applied
+// to nu_all; returns the largest change of the residuals it makes, as a
+// fraction of |r| (column-scaled: seconds, rad/N m and mm differ by orders).
+double nuisance_step(const Linearisation& l, const std::vector<int>& cols, double prior_weight,
+                     std::array<double, kNuisance>& nu_all) {
+  Eigen::MatrixXd J(l.r.size(), l.Jg.cols() + l.Jn.cols());
+  J << l.Jg, l.Jn;
+  Eigen::VectorXd rp = l.r;
+  append_cyclic_prior(cols, l.Jg.cols(), prior_weight, J, &rp, &nu_all);
+  Eigen::VectorXd scale = J.colwise().norm().transpose();
+  for (Eigen::Index c = 0; c < scale.size(); ++c) scale[c] = scale[c] > 0.0 ? scale[c] : 1.0;
+  const Eigen::MatrixXd Js = J * scale.cwiseInverse().asDiagonal();
+  const Eigen::VectorXd step = scale.cwiseInverse().asDiagonal() * Js.colPivHouseholderQr().solve(-rp);
+  double change = 0.0;
+  for (std::size_t c = 0; c < cols.size(); ++c) {
+    const Eigen::Index i = l.Jg.cols() + static_cast<Eigen::Index>(c);
+    nu_all[static_cast<std::size_t>(cols[c])] += step[i];
+    change = std::max(change, std::abs(step[i]) * scale[i] / (l.r.norm() + 1e-300));
+  }
+  return change;
+}
+
+// Every LM iteration of every pass, numbered on (the report's convergence
+// figure): appends pass to all.
+void append_iterations(std::vector<LmIteration>& all, const std::vector<LmIteration>& pass) {
+  const int next = all.empty() ? 0 : all.back().iteration + 1;
+  for (LmIteration it : pass) {
+    it.iteration += next;
+    all.push_back(it);
+  }
+}
+
+// The joint covariance sigma^2 (J' J)^-1 of [J_g, J_nu] at l (the misfit's
+// sandwich in its place when model.sandwich and the residuals exceed the
+// noise; the considered cyclic error added): its geometry block replaces
+// fit.result's, its nuisance diagonal gives the nuisance 1-sigma.
+void joint_covariance(const Linearisation& l, const std::vector<int>& cols, double prior_weight,
+                      const std::vector<int>& free_index, const LmOptions& options, const MotionModel& model,
+                      MotionFit& fit) {
+  const Eigen::MatrixXd J = joint_jacobian(l, cols, prior_weight);
+  const Eigen::Index m = J.cols(), ng = l.Jg.cols();
+  const auto q = static_cast<int>(cols.size());
+  const double dof = static_cast<double>(l.r.size()) - static_cast<double>(m);
+  const double s2 = options.encoder_sigma ? (*options.encoder_sigma) * (*options.encoder_sigma)
+                                          : (dof > 0 ? l.r.squaredNorm() / dof : std::numeric_limits<double>::quiet_NaN());
+  const Eigen::MatrixXd A = (J.transpose() * J).ldlt().solve(Eigen::MatrixXd::Identity(m, m));
+  Eigen::MatrixXd C = s2 * A;
+  for (int c = 0; c < q; ++c)
+    if (double* slot = noise_sigma_slot(fit, cols[static_cast<std::size_t>(c)])) *slot = std::sqrt(C(ng + c, ng + c));
+  if (options.encoder_sigma && dof > 0) fit.chi2_per_dof = l.r.squaredNorm() / s2 / dof;
+  if (model.sandwich && options.encoder_sigma && dof > 0 && misfit(l.r.squaredNorm() / s2, dof)) {
+    // The residuals exceed the noise: what the model leaves out moves the
+    // estimate as much as it moves the residuals, correlated along the path.
+    const Eigen::MatrixXd S = newey_west_sandwich(A, J.topRows(l.r.size()), l.r);
+    fit.sandwich_inflation = std::sqrt(S.diagonal().head(ng).sum() / C.diagonal().head(ng).sum());
+    if (fit.sandwich_inflation > 1.0) C = S, fit.sandwich_used = true;
+  }
+  if (considers_cyclic(model)) add_considered(A, J, l.Jc, model.cyclic_prior_rad, C);
+  auto& cov = *fit.result.covariance;
+  cov.setZero();
+  for (std::size_t a = 0; a < free_index.size(); ++a)
+    for (std::size_t b = 0; b < free_index.size(); ++b)
+      cov(free_index[a], free_index[b]) = C(static_cast<Eigen::Index>(a), static_cast<Eigen::Index>(b));
+  for (std::size_t a = 0; a < free_index.size(); ++a)
+    fit.result.sigma[static_cast<std::size_t>(free_index[a])] = std::sqrt(C(static_cast<Eigen::Index>(a), static_cast<Eigen::Index>(a)));
+  for (int c = 0; c < q; ++c) nuisance_sigma_slot(fit, cols[static_cast<std::size_t>(c)]) = std::sqrt(C(ng + c, ng + c));
+}
+
+// The indices of the free parameters of mask free.
+std::vector<int> free_indices(const FreeMask& free) {
+  std::vector<int> out;
+  for (int k = 0; k < kNumParams; ++k)
+    if (free[k]) out.push_back(k);
+  return out;
+}
+
+MotionFit fit_in_motion(const Problem& problem, const MotionSamples& s, const LmOptions& options,
+                        const MotionModel& model);
+
+// fit_in_motion on the samples kept only (indices into s), with the force
+// threshold of all of them; the fit's indices and clearance shares are of all.
+MotionFit fit_on_kept(const Problem& problem, const MotionSamples& s, const LmOptions& options,
+                      const MotionModel& model, const EffectRegressors& e, const std::vector<std::size_t>& kept) {
+  const std::size_t n = s.theta_m.size();
+  Problem sub = problem;
+  sub.theta_m.clear();
+  sub.true_xy.clear();
+  std::vector<Eigen::Vector3d> omega, tau, nb, alpha;
+  for (std::size_t j : kept) {
+    if (!s.nb.empty()) nb.push_back(s.nb[j]);
+    sub.theta_m.push_back(s.theta_m[j]);
+    omega.push_back(s.omega[j]);
+    tau.push_back(s.tau[j]);
+    if (!s.alpha.empty()) alpha.push_back(s.alpha[j]);
+    if (problem.true_xy.size() == n) sub.true_xy.push_back(problem.true_xy[j]);
+  }
+  MotionModel sub_model = model;
+  sub_model.skip_first = 0;
+  sub_model.drop_uncertain = false;
+  sub_model.tension_min_N = e.tension_min;
+  MotionFit fit = fit_in_motion(sub, MotionSamples{sub.theta_m, omega, tau, nb, alpha}, options, sub_model);
+  for (std::size_t& j : fit.kept) j = kept[j];
+  for (std::size_t k = 0; k < 3; ++k) {
+    double certain = 0.0;
+    for (std::size_t j = 0; j < n; ++j) certain += e.clr[j][static_cast<Eigen::Index>(k)] != 0.0 ? 1.0 : 0.0;
+    fit.clearance_used[k] = certain / static_cast<double>(n);
+  }
+  return fit;
+}
+
+// calibrate_in_motion on samples s (the torque changes nb given: torques_before
+// of the whole sequence; empty without model.torque_before). Passes of an LM
+// fit of the geometry on readings corrected with the nuisance values, then a
+// joint Gauss-Newton step of both, until the step is negligible.
+MotionFit fit_in_motion(const Problem& problem, const MotionSamples& s, const LmOptions& options,
+                        const MotionModel& model) {
+  check_motion_inputs(s, options);
+  EffectRegressors e = effect_regressors(problem.start, s, model);
+  // Samples left out: the leading ones, and (with the clearance) those in
+  // which some chain's force sign is uncertain, and those where a mesh with
+  // backlash crosses its gap; the fit runs on the rest.
+  std::vector<std::size_t> kept = kept_samples(model, e.clr, e.flank);
+  if (kept.size() < s.theta_m.size()) return fit_on_kept(problem, s, options, model, e, kept);
+  // A nuisance value no sample excites is not estimated: a latch skew without
+  // joint speed, or a compliance whose torque never varies (a torque-off joint
+  // transmits none; a joint held at a constant torque twists by a constant
+  // angle, which the zero offset dth absorbs). The cyclic error is estimated
+  // under its prior, which needs the reading noise.
+  MotionModel with_prior = model;
+  if (!options.encoder_sigma) with_prior.cyclic_prior_rad = 0.0;
+  const double prior_weight = with_prior.cyclic_prior_rad > 0.0 ? *options.encoder_sigma / with_prior.cyclic_prior_rad : 0.0;
+  const std::vector<int> cols = excited_columns(with_prior, s.omega, s.tau, e.fric, e.clr, s.nb, e.flank);
+  const std::vector<int> free_index = free_indices(problem.free);
+  MotionFit fit = unestimated_fit();
   Problem p = problem;
   LmOptions lm = options;
-  const bool want_covariance = options.compute_covariance;
   lm.compute_covariance = false;
-  Eigen::MatrixXd Jg_free, Jn, Jc;  // Jc: the cyclic error's columns (considered, not estimated)
-  Eigen::VectorXd r;
-  std::vector<int> free_index;
-  for (int k = 0; k < kNumParams; ++k)
-    if (problem.free[k]) free_index.push_back(k);
-
-  std::array<double, kNuisance> nu_all{};  // nu, then c_i F_i, the clearances d_i, h_i, the cyclic a_i, b_i
-  // The readings corrected for the twist, skew and friction (without the clearance).
-  auto twist_corrected = [&]() {
-    std::copy_n(nu_all.begin(), 5, fit.nu.begin());
-    std::copy_n(nu_all.begin() + 5, 3, fit.friction.begin());
-    std::copy_n(nu_all.begin() + 8, 3, fit.clearance.begin());
-    std::copy_n(nu_all.begin() + 11, 3, fit.torque_before.begin());
-    std::copy_n(nu_all.begin() + kFirstCyclic, 6, fit.cyclic.begin());
-    std::copy_n(nu_all.begin() + kBacklash, 3, fit.backlash.begin());
-    for (std::size_t o = 0; o < 3; ++o) std::copy_n(nu_all.begin() + kHarmonic + 6 * o, 6, fit.harmonic[o].begin());
-    std::vector<Eigen::Vector3d> out = correct_readings(problem.theta_m, omega, tau, fit.nu);
-    for (std::size_t j = 0; j < n; ++j)
-      for (int k = 0; k < 3; ++k) {
-        const auto i = static_cast<std::size_t>(k);
-        out[j][k] += fit.friction[i] * fric[j][k];
-        if (!nb.empty()) out[j][k] -= fit.torque_before[i] * nb[j][k];
-        const double raw = problem.theta_m[j][k];
-        out[j][k] -= fit.cyclic[i] * std::sin(raw) + fit.cyclic[i + 3] * std::cos(raw);
-        out[j][k] -= fit.backlash[i] * flank[j][k];
-        for (std::size_t o = 0; o < 3; ++o) {
-          const double a = harmonic_angle(static_cast<int>(o), raw, model.gear_ratio);
-          out[j][k] -= fit.harmonic[o][i] * std::sin(a) + fit.harmonic[o][i + 3] * std::cos(a);
-        }
-      }
-    return out;
-  };
-  auto corrected = [&]() {
-    std::vector<Eigen::Vector3d> out = twist_corrected();
-    for (std::size_t j = 0; j < n; ++j)
-      for (int k = 0; k < 3; ++k) out[j][k] += fit.clearance[static_cast<std::size_t>(k)] * clr[j][k];
-    return out;
-  };
-  // Every LM iteration of every pass, numbered on (the report's convergence
-  // figure): each pass restarts from the last geometry on re-corrected readings.
+  std::array<double, kNuisance> nu_all{};
   std::vector<LmIteration> iterations;
-  const auto keep_iterations = [&iterations](const std::vector<LmIteration>& pass) {
-    const int next = iterations.empty() ? 0 : iterations.back().iteration + 1;
-    for (LmIteration it : pass) {
-      it.iteration += next;
-      iterations.push_back(it);
-    }
-  };
+  Linearisation l;
   for (fit.passes = 1; fit.passes <= std::max(1, model.max_passes); ++fit.passes) {
     if (model.clearance && fit.passes > 1)
-      clr = clearance_regressors(passive_forces(p.start, twist_corrected(), tau_t), tension_min);
-    p.theta_m = corrected();
+      e.clr = clearance_regressors(passive_forces(p.start, twist_corrected(fit, s, e, model.gear_ratio), e.tau_t), e.tension_min);
+    p.theta_m = fully_corrected(fit, s, e, model.gear_ratio);
     fit.result = calibrate_lm(p, lm);
-    keep_iterations(fit.result.lm_iterations);
+    append_iterations(iterations, fit.result.lm_iterations);
     p.start = fit.result.geometry;  // warm start for the next pass
-    // Linearisation at this fit.
-    const ParamVector x = to_solver(fit.result.geometry, Cost::kML);
-    const Eigen::MatrixXd J_all = ml_jacobian(p.theta_m, fit.result.geometry);
-    Jg_free.resize(static_cast<Eigen::Index>(n), static_cast<Eigen::Index>(free_index.size()));
-    for (std::size_t k = 0; k < free_index.size(); ++k) Jg_free.col(static_cast<Eigen::Index>(k)) = J_all.col(free_index[k]);
-    Jn.resize(static_cast<Eigen::Index>(n), q);
-    Jc.resize(static_cast<Eigen::Index>(n), 6);
-    r.resize(static_cast<Eigen::Index>(n));
-    for (std::size_t j = 0; j < n; ++j) {
-      const Eigen::Vector3d& th = p.theta_m[j];
-      r[static_cast<Eigen::Index>(j)] = ml_residual(x, th);
-      const SampleRegressors reg{omega[j], tau[j], fric[j], clr[j], nb.empty() ? Eigen::Vector3d::Zero() : nb[j],
-                                 problem.theta_m[j], flank[j]};
-      const std::array<double, kNuisance> all = nuisance_row(reading_sensitivity(x, th), reg, model.gear_ratio);
-      for (int c = 0; c < q; ++c) Jn(static_cast<Eigen::Index>(j), c) = all[static_cast<std::size_t>(cols[static_cast<std::size_t>(c)])];
-      for (int c = 0; c < 6; ++c) Jc(static_cast<Eigen::Index>(j), c) = all[static_cast<std::size_t>(kFirstCyclic + c)];
-    }
-    if (q == 0) break;
-    // Joint Gauss-Newton step, column-scaled (seconds, rad/N m and mm differ by orders).
-    Eigen::MatrixXd J(static_cast<Eigen::Index>(n), Jg_free.cols() + q);
-    J << Jg_free, Jn;
-    Eigen::VectorXd rp = r;
-    append_cyclic_prior(cols, Jg_free.cols(), prior_weight, J, &rp, &nu_all);
-    Eigen::VectorXd scale = J.colwise().norm().transpose();
-    for (Eigen::Index c = 0; c < scale.size(); ++c) scale[c] = scale[c] > 0.0 ? scale[c] : 1.0;
-    const Eigen::MatrixXd Js = J * scale.cwiseInverse().asDiagonal();
-    const Eigen::VectorXd step = scale.cwiseInverse().asDiagonal() * Js.colPivHouseholderQr().solve(-rp);
-    double change = 0.0;
-    for (int c = 0; c < q; ++c) {
-      const double d = step[Jg_free.cols() + c];
-      nu_all[static_cast<std::size_t>(cols[static_cast<std::size_t>(c)])] += d;
-      change = std::max(change, std::abs(d) * scale[Jg_free.cols() + c] / (r.norm() + 1e-300));
-    }
+    l = linearise(fit.result.geometry, p.theta_m, s, e, free_index, cols, model.gear_ratio);
+    if (cols.empty()) break;
     // Converged when the nuisance step moves the residuals by a negligible fraction.
+    const double change = nuisance_step(l, cols, prior_weight, nu_all);
+    unpack_nuisance(nu_all, fit);
     if (change < 1e-6) break;
   }
   fit.passes = std::min(fit.passes, std::max(1, model.max_passes));
-  fit.corrected = corrected();
+  fit.corrected = fully_corrected(fit, s, e, model.gear_ratio);
   fit.kept = std::move(kept);
-  fit.tension_min_N = tension_min;
-  for (std::size_t j = 0; j < n; ++j)
+  fit.tension_min_N = e.tension_min;
+  for (std::size_t j = 0; j < s.theta_m.size(); ++j)
     for (int k = 0; k < 3; ++k)
-      if (clr[j][k] != 0.0) fit.clearance_used[static_cast<std::size_t>(k)] += 1.0 / static_cast<double>(n);
+      if (e.clr[j][k] != 0.0) fit.clearance_used[static_cast<std::size_t>(k)] += 1.0 / static_cast<double>(s.theta_m.size());
   p.theta_m = fit.corrected;
-  lm.compute_covariance = want_covariance;
+  lm.compute_covariance = options.compute_covariance;
   fit.result = calibrate_lm(p, lm);
-  keep_iterations(fit.result.lm_iterations);
+  append_iterations(iterations, fit.result.lm_iterations);
   fit.result.lm_iterations = std::move(iterations);
-  if (want_covariance && q > 0 && fit.result.covariance) {
-    // Joint covariance sigma^2 (J' J)^-1 of [J_g, J_nu]; its geometry block
-    // replaces the geometry-only one, its nuisance diagonal gives nu_sigma.
-    Eigen::MatrixXd J(static_cast<Eigen::Index>(n), Jg_free.cols() + q);
-    J << Jg_free, Jn;
-    append_cyclic_prior(cols, Jg_free.cols(), prior_weight, J, nullptr, nullptr);
-    const Eigen::Index m = J.cols();
-    const double dof = static_cast<double>(n) - static_cast<double>(m);
-    const double s2 = options.encoder_sigma ? (*options.encoder_sigma) * (*options.encoder_sigma)
-                                            : (dof > 0 ? r.squaredNorm() / dof : std::numeric_limits<double>::quiet_NaN());
-    const Eigen::MatrixXd A = (J.transpose() * J).ldlt().solve(Eigen::MatrixXd::Identity(m, m));
-    Eigen::MatrixXd C = s2 * A;
-    for (int c = 0; c < q; ++c) {
-      const Eigen::Index i = Jg_free.cols() + c;
-      if (double* slot = noise_sigma_slot(fit, cols[static_cast<std::size_t>(c)]))
-        *slot = std::sqrt(C(i, i));
-    }
-    if (options.encoder_sigma && dof > 0) fit.chi2_per_dof = r.squaredNorm() / s2 / dof;
-    if (model.sandwich && options.encoder_sigma && dof > 0 && misfit(r.squaredNorm() / s2, dof)) {
-      // The residuals exceed the noise: what the model leaves out moves the
-      // estimate as much as it moves the residuals, correlated along the path.
-      const Eigen::MatrixXd S = newey_west_sandwich(A, J.topRows(static_cast<Eigen::Index>(n)), r);
-      fit.sandwich_inflation = std::sqrt(S.diagonal().head(Jg_free.cols()).sum() /
-                                         C.diagonal().head(Jg_free.cols()).sum());
-      if (fit.sandwich_inflation > 1.0) C = S, fit.sandwich_used = true;
-    }
-    if (considers_cyclic(model)) add_considered(A, J, Jc, model.cyclic_prior_rad, C);
-    auto& cov = *fit.result.covariance;
-    cov.setZero();
-    for (std::size_t a = 0; a < free_index.size(); ++a)
-      for (std::size_t b = 0; b < free_index.size(); ++b)
-        cov(free_index[a], free_index[b]) = C(static_cast<Eigen::Index>(a), static_cast<Eigen::Index>(b));
-    for (std::size_t a = 0; a < free_index.size(); ++a)
-      fit.result.sigma[static_cast<std::size_t>(free_index[a])] = std::sqrt(C(static_cast<Eigen::Index>(a), static_cast<Eigen::Index>(a)));
-    for (int c = 0; c < q; ++c) {
-      const Eigen::Index i = Jg_free.cols() + c;
-      nuisance_sigma_slot(fit, cols[static_cast<std::size_t>(c)]) = std::sqrt(C(i, i));
-    }
-  }
+  if (options.compute_covariance && !cols.empty() && fit.result.covariance)
+    joint_covariance(l, cols, prior_weight, free_index, options, model, fit);
   return fit;
 }
 
@@ -620,7 +716,8 @@ MotionFit fit_in_motion(const Problem& problem, const std::vector<Eigen::Vector3
 MotionFit calibrate_in_motion(const Problem& problem, const std::vector<Eigen::Vector3d>& omega,
                               const std::vector<Eigen::Vector3d>& tau, const LmOptions& options,
                               const MotionModel& model, const std::vector<Eigen::Vector3d>& alpha) {
-  return fit_in_motion(problem, omega, tau, torques_before(model, tau), options, model, alpha);
+  const std::vector<Eigen::Vector3d> nb = torques_before(model, tau);
+  return fit_in_motion(problem, MotionSamples{problem.theta_m, omega, tau, nb, alpha}, options, model);
 }
 
 std::array<double, kNumParams> motion_crb(const Geometry& truth, const FreeMask& free,
@@ -651,9 +748,7 @@ std::array<double, kNumParams> motion_crb(const Geometry& truth, const FreeMask&
   }
   const std::vector<Eigen::Vector3d> fric = friction_regressors(model, w);
   const std::vector<int> cols = excited_columns(model, w, t, fric, c, nb, flank);
-  std::vector<int> free_index;
-  for (int k = 0; k < kNumParams; ++k)
-    if (free[k]) free_index.push_back(k);
+  const std::vector<int> free_index = free_indices(free);
   const Eigen::MatrixXd J_all = ml_jacobian(th, truth);
   const auto m = static_cast<Eigen::Index>(free_index.size() + cols.size());
   Eigen::MatrixXd J(static_cast<Eigen::Index>(th.size()), m), Jc(static_cast<Eigen::Index>(th.size()), 6);
@@ -662,10 +757,7 @@ std::array<double, kNumParams> motion_crb(const Geometry& truth, const FreeMask&
     const auto row = static_cast<Eigen::Index>(j);
     for (std::size_t k = 0; k < free_index.size(); ++k) J(row, static_cast<Eigen::Index>(k)) = J_all(row, free_index[k]);
     const SampleRegressors reg{w[j], t[j], fric[j], c[j], nb.empty() ? Eigen::Vector3d::Zero() : nb[j], th[j], flank[j]};
-    const std::array<double, kNuisance> all = nuisance_row(reading_sensitivity(x, th[j]), reg, model.gear_ratio);
-    for (std::size_t k = 0; k < cols.size(); ++k)
-      J(row, static_cast<Eigen::Index>(free_index.size() + k)) = all[static_cast<std::size_t>(cols[k])];
-    for (int c = 0; c < 6; ++c) Jc(row, c) = all[static_cast<std::size_t>(kFirstCyclic + c)];
+    fill_nuisance_row(x, th[j], reg, model.gear_ratio, cols, row, J, Jc, static_cast<Eigen::Index>(free_index.size()));
   }
   if (model.cyclic_prior_rad > 0.0 && sigma > 0.0)
     append_cyclic_prior(cols, static_cast<Eigen::Index>(free_index.size()), sigma / model.cyclic_prior_rad, J, nullptr,
