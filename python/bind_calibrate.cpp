@@ -215,6 +215,46 @@ std::string result_repr(const CalibrationResult& c) {
   return out + ">";
 }
 
+// CalibrationResult.std: the 1-sigma of each estimated parameter by name.
+py::dict sigma_dict(const CalibrationResult& c) {
+  py::dict d;
+  for (int i = 0; i < kNumParams; ++i)
+    if (c.result.free.test(static_cast<size_t>(i)))
+      d[py::str(std::string(param_name(i)))] = c.result.sigma[static_cast<size_t>(i)];
+  return d;
+}
+
+// CalibrationResult.diagnostics: the solver's diagnostics and the model test.
+py::dict diagnostics_dict(const CalibrationResult& c) {
+  py::dict d = diagnostics(c.result);
+  if (c.model_test) d["model_test"] = model_test_dict(*c.model_test);
+  return d;
+}
+
+// CalibrationResult.covariance: 15 x 15 array, or None.
+py::object covariance_array(const CalibrationResult& c) {
+  if (!c.result.covariance) return py::none();
+  return matrix_array(*c.result.covariance);
+}
+
+// CalibrationResult.robot: the input robot with the estimated geometry.
+Robot calibrated_robot(const CalibrationResult& c) {
+  Robot r = c.base;
+  r.geometry = c.result.geometry;
+  return r;
+}
+
+// CalibrationResult.convergence: the LM iterations as lists.
+py::dict convergence_dict(const CalibrationResult& c) {
+  py::dict d;
+  py::list it, cost, accepted;
+  for (const auto& i : c.result.lm_iterations) it.append(i.iteration), cost.append(i.cost), accepted.append(i.accepted);
+  d["iteration"] = it;
+  d["cost"] = cost;
+  d["accepted"] = accepted;
+  return d;
+}
+
 // gpm.CalibrationResult: the estimate, its 1-sigma and diagnostics, and the result file.
 void bind_result_class(py::module_& m) {
   py::class_<CalibrationResult>(m, "CalibrationResult", R"doc(
@@ -227,21 +267,11 @@ result file by `gpm calibrate` (docs/FORMATS.md file contracts).
           "Dict of all 15 parameters (estimated and fixed), mm and rad.")
       .def_property_readonly(
           "std",
-          [](const CalibrationResult& c) {
-            py::dict d;
-            for (int i = 0; i < kNumParams; ++i)
-              if (c.result.free.test(static_cast<size_t>(i)))
-                d[py::str(std::string(param_name(i)))] = c.result.sigma[static_cast<size_t>(i)];
-            return d;
-          },
+          &sigma_dict,
           "Dict of the 1-sigma of each estimated parameter (NaN when unknown).")
       .def_property_readonly(
           "diagnostics",
-          [](const CalibrationResult& c) {
-            py::dict d = diagnostics(c.result);
-            if (c.model_test) d["model_test"] = model_test_dict(*c.model_test);
-            return d;
-          },
+          &diagnostics_dict,
           "Dict: method, cost_function, cost (final J), iterations, evaluations, rank, free_parameters, "
           "condition_number, kmrmse_mm (when true_xy was given), seconds, converged, rank_deficient, notes, and "
           "model_test (chi2, dof, chi2_per_dof, p_value, sigma_rad, passed, diagnosis when failed; when made).")
@@ -260,19 +290,12 @@ result file by `gpm calibrate` (docs/FORMATS.md file contracts).
           "Whether the solver met its tolerances (the command line exits 1 when not).")
       .def_property_readonly(
           "covariance",
-          [](const CalibrationResult& c) -> py::object {
-            if (!c.result.covariance) return py::none();
-            return matrix_array(*c.result.covariance);
-          },
+          &covariance_array,
           "15 x 15 covariance of the parameters in docs/FORMATS.md order (zero rows and columns for fixed ones), or "
           "None when the solver computed none.")
       .def_property_readonly(
           "robot",
-          [](const CalibrationResult& c) {
-            Robot r = c.base;
-            r.geometry = c.result.geometry;
-            return r;
-          },
+          &calibrated_robot,
           "The calibrated robot: the input robot (name, home, branches, limits) with the estimated geometry.")
       .def(
           "to_yaml", [](const CalibrationResult& c) { return result_text(c); },
@@ -285,15 +308,7 @@ result file by `gpm calibrate` (docs/FORMATS.md file contracts).
           py::arg("path"), "Writes the result file (YAML) atomically; it can serve as a robot model.")
       .def_property_readonly(
           "convergence",
-          [](const CalibrationResult& c) {
-            py::dict d;
-            py::list it, cost, accepted;
-            for (const auto& i : c.result.lm_iterations) it.append(i.iteration), cost.append(i.cost), accepted.append(i.accepted);
-            d["iteration"] = it;
-            d["cost"] = cost;
-            d["accepted"] = accepted;
-            return d;
-          },
+          &convergence_dict,
           "Dict of the last LM solve, one entry per iteration: iteration, cost (J after the step), accepted "
           "(False: the step raised J and was rejected); empty lists for a global method or a loaded result.")
       .def_property_readonly("residuals", &normalised_residuals,

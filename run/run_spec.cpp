@@ -96,6 +96,67 @@ MonitorReadingModel reading_model_preset(const YAML::Node& n, const std::string&
   throw InputError(yaml_where(file, n, key) + fmt::format("'{}' is not a reading model preset (valid: ideal, data_sheet)", name));
 }
 
+// calibration.fix: the parameters held at their start value (a list of names, each once).
+FreeMask parse_fixed(const YAML::Node& fix, const std::string& file) {
+  if (!fix.IsSequence())
+    throw InputError(yaml_where(file, fix, "calibration.fix") + "expected a list of parameter names, e.g. [xa1, ya1, xa2, ya2]");
+  FreeMask fixed;
+  for (size_t k = 0; k < fix.size(); ++k) {
+    const std::string key = fmt::format("calibration.fix[{}]", k);
+    const std::string name = yaml_string(fix[k], file, key);
+    const auto idx = param_index(name);
+    if (!idx)
+      throw InputError(yaml_where(file, fix[k], key) +
+                       fmt::format("unknown parameter '{}' (did you mean {}?)", name, nearest_param_name(name)));
+    if (fixed.test(static_cast<size_t>(*idx)))
+      throw InputError(yaml_where(file, fix[k], key) + fmt::format("'{}' is listed twice; list each parameter once", name));
+    fixed.set(static_cast<size_t>(*idx));
+  }
+  return fixed;
+}
+
+// calibration.estimate: the reading effects estimated beside the geometry (a list, each once; [] none).
+void parse_estimated_effects(const YAML::Node& est, const std::string& file, CalibrationSpec& c) {
+  if (!est.IsSequence())
+    throw InputError(yaml_where(file, est, "calibration.estimate") + "expected a list of compliance, skew, friction, clearance (or [])");
+  c.estimate_compliance = false;
+  c.estimate_skew = false;
+  c.estimate_friction = false;
+  c.estimate_clearance = false;
+  for (size_t k = 0; k < est.size(); ++k) {
+    const std::string key = fmt::format("calibration.estimate[{}]", k);
+    const std::string what = yaml_string(est[k], file, key);
+    for (size_t e = 0; e < k; ++e)
+      if (est[e].IsScalar() && est[e].Scalar() == what)
+        throw InputError(yaml_where(file, est[k], key) +
+                         fmt::format("'{}' is listed twice (also calibration.estimate[{}]); list each effect once", what, e));
+    if (what == "compliance") c.estimate_compliance = true;
+    else if (what == "skew") c.estimate_skew = true;
+    else if (what == "friction") c.estimate_friction = true;
+    else if (what == "clearance") c.estimate_clearance = true;
+    else throw InputError(yaml_where(file, est[k], key) + fmt::format("unknown effect '{}' (valid: compliance, skew, friction, clearance)", what));
+  }
+}
+
+// calibration.start and calibration.reference_at: where the fit starts.
+void parse_start(const YAML::Node& n, const std::string& file, CalibrationSpec& c) {
+  if (n["start"]) {
+    const std::string s = yaml_string(n["start"], file, "calibration.start");
+    if (s != "nominal" && s != "reference") {
+      throw InputError(yaml_where(file, n["start"], "calibration.start") +
+                       fmt::format("'{}' is not nominal or reference", s));
+    }
+    c.start_reference = s == "reference";
+  }
+  if (n["reference_at"]) {
+    if (!c.start_reference) {
+      throw InputError(yaml_where(file, n["reference_at"], "calibration.reference_at") +
+                       "needs start: reference (it says where the reference readings are taken)");
+    }
+    c.reference_at = point(n["reference_at"], file, "calibration.reference_at");
+  }
+}
+
 CalibrationSpec parse_calibration(const YAML::Node& n, const std::string& file, const DataSheet& sheet) {
   CalibrationSpec c;
   c.drive_friction = stated_drive_friction(sheet);
@@ -116,24 +177,7 @@ CalibrationSpec parse_calibration(const YAML::Node& n, const std::string& file, 
     c.method = calib::parse_method(yaml_string(n["method"], file, "calibration.method"),
                                    where.substr(0, where.size() - 2));  // calib adds ": unknown method ..."
   }
-  if (const YAML::Node fix = n["fix"]) {
-    if (!fix.IsSequence()) {
-      throw InputError(yaml_where(file, fix, "calibration.fix") + "expected a list of parameter names, e.g. [xa1, ya1, xa2, ya2]");
-    }
-    c.fixed.reset();
-    for (size_t k = 0; k < fix.size(); ++k) {
-      const std::string key = fmt::format("calibration.fix[{}]", k);
-      const std::string name = yaml_string(fix[k], file, key);
-      const auto idx = param_index(name);
-      if (!idx) {
-        throw InputError(yaml_where(file, fix[k], key) +
-                         fmt::format("unknown parameter '{}' (did you mean {}?)", name, nearest_param_name(name)));
-      }
-      if (c.fixed.test(static_cast<size_t>(*idx)))
-        throw InputError(yaml_where(file, fix[k], key) + fmt::format("'{}' is listed twice; list each parameter once", name));
-      c.fixed.set(static_cast<size_t>(*idx));
-    }
-  }
+  if (const YAML::Node fix = n["fix"]) c.fixed = parse_fixed(fix, file);
   // The budget counts LM iterations or a global method's evaluations, each
   // with its bound (docs/CLI.md, Limits; issue 36.8).
   if (n["budget"]) {
@@ -152,27 +196,7 @@ CalibrationSpec parse_calibration(const YAML::Node& n, const std::string& file, 
   if (n["drive_friction"])
     c.drive_friction = parse_drive_friction(n["drive_friction"], file, "calibration.drive_friction",
                                             c.drive_friction, true);
-  if (const YAML::Node est = n["estimate"]) {
-    if (!est.IsSequence())
-      throw InputError(yaml_where(file, est, "calibration.estimate") + "expected a list of compliance, skew, friction, clearance (or [])");
-    c.estimate_compliance = false;
-    c.estimate_skew = false;
-    c.estimate_friction = false;
-    c.estimate_clearance = false;
-    for (size_t k = 0; k < est.size(); ++k) {
-      const std::string key = fmt::format("calibration.estimate[{}]", k);
-      const std::string what = yaml_string(est[k], file, key);
-      for (size_t e = 0; e < k; ++e)
-        if (est[e].IsScalar() && est[e].Scalar() == what)
-          throw InputError(yaml_where(file, est[k], key) +
-                           fmt::format("'{}' is listed twice (also calibration.estimate[{}]); list each effect once", what, e));
-      if (what == "compliance") c.estimate_compliance = true;
-      else if (what == "skew") c.estimate_skew = true;
-      else if (what == "friction") c.estimate_friction = true;
-      else if (what == "clearance") c.estimate_clearance = true;
-      else throw InputError(yaml_where(file, est[k], key) + fmt::format("unknown effect '{}' (valid: compliance, skew, friction, clearance)", what));
-    }
-  }
+  if (const YAML::Node est = n["estimate"]) parse_estimated_effects(est, file, c);
   if (n["loss"]) {
     try {
       c.loss = calib::parse_loss(yaml_string(n["loss"], file, "calibration.loss"), "calibration.loss");
@@ -181,21 +205,7 @@ CalibrationSpec parse_calibration(const YAML::Node& n, const std::string& file, 
     }
   }
   if (n["allow_rank_deficient"]) c.allow_rank_deficient = yaml_bool(n["allow_rank_deficient"], file, "calibration.allow_rank_deficient");
-  if (n["start"]) {
-    const std::string s = yaml_string(n["start"], file, "calibration.start");
-    if (s != "nominal" && s != "reference") {
-      throw InputError(yaml_where(file, n["start"], "calibration.start") +
-                       fmt::format("'{}' is not nominal or reference", s));
-    }
-    c.start_reference = s == "reference";
-  }
-  if (n["reference_at"]) {
-    if (!c.start_reference) {
-      throw InputError(yaml_where(file, n["reference_at"], "calibration.reference_at") +
-                       "needs start: reference (it says where the reference readings are taken)");
-    }
-    c.reference_at = point(n["reference_at"], file, "calibration.reference_at");
-  }
+  parse_start(n, file, c);
   return c;
 }
 

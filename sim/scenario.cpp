@@ -188,6 +188,32 @@ void parse_encoder(const YAML::Node& n, const Ctx& c, EncoderModel& e) {
   if (n["noise_rad"]) e.noise_rad = non_negative(n["noise_rad"], c.at("noise_rad"));
 }
 
+// sampling.path_margin: the planner's margins from singular poses and the reach border.
+void parse_path_margin(const YAML::Node& m, const Ctx& c, PathMargin& margin) {
+  const Ctx cm = c.at("path_margin");
+  if (!m.IsMap()) fail(cm, m, "expected a map {singularity, reach_mm, tolerance: {base_mm, link_mm, offset_rad}}");
+  yaml_check_keys(m, c.file, cm.path, {"singularity", "reach_mm", "tolerance"});
+  opt_bounded(m, "singularity", cm, 0.0, 0.9, "(a normalised measure)", margin.singularity);
+  opt_bounded(m, "reach_mm", cm, 0.0, 100.0, "mm", margin.reach_mm);
+  if (const YAML::Node t = m["tolerance"]) {
+    const Ctx ct = cm.at("tolerance");
+    if (!t.IsMap()) fail(ct, t, "expected a map {base_mm, link_mm, offset_rad}");
+    yaml_check_keys(t, c.file, ct.path, {"base_mm", "link_mm", "offset_rad"});
+    opt_bounded(t, "base_mm", ct, 0.0, 20.0, "mm", margin.tolerance.base_mm);
+    opt_bounded(t, "link_mm", ct, 0.0, 20.0, "mm", margin.tolerance.link_mm);
+    opt_bounded(t, "offset_rad", ct, 0.0, 0.2, "rad", margin.tolerance.offset_rad);
+  }
+}
+
+// sampling.settle: when a drive counts as at rest.
+void parse_settle(const YAML::Node& s, const Ctx& c, SettleCriterion& settle) {
+  const Ctx cs = c.at("settle");
+  yaml_check_keys(s, c.file, cs.path, {"velocity_rad_s", "hold_s", "timeout_s"});
+  opt_bounded(s, "velocity_rad_s", cs, 1e-6, 1.0, "rad/s", settle.velocity_rad_s);
+  opt_bounded(s, "hold_s", cs, 1e-4, 10.0, "s", settle.hold_s);
+  opt_bounded(s, "timeout_s", cs, 1e-3, 60.0, "s", settle.timeout_s);
+}
+
 SamplingPlan parse_sampling(const YAML::Node& n, const Ctx& c) {
   yaml_check_keys(n, c.file, c.path,
                   {"pattern", "centre", "radius", "count", "from", "to", "poses", "move_speed_mm_s",
@@ -230,21 +256,7 @@ SamplingPlan parse_sampling(const YAML::Node& n, const Ctx& c) {
       for (size_t i = 0; i < n["poses"].size(); ++i)
         p.poses.push_back(point(n["poses"][i], Ctx{c.file, fmt::format("{}[{}]", cp.path, i)}));
     }
-    if (const YAML::Node m = n["path_margin"]) {
-      const Ctx cm = c.at("path_margin");
-      if (!m.IsMap()) fail(cm, m, "expected a map {singularity, reach_mm, tolerance: {base_mm, link_mm, offset_rad}}");
-      yaml_check_keys(m, c.file, cm.path, {"singularity", "reach_mm", "tolerance"});
-      opt_bounded(m, "singularity", cm, 0.0, 0.9, "(a normalised measure)", p.margin.singularity);
-      opt_bounded(m, "reach_mm", cm, 0.0, 100.0, "mm", p.margin.reach_mm);
-      if (const YAML::Node t = m["tolerance"]) {
-        const Ctx ct = cm.at("tolerance");
-        if (!t.IsMap()) fail(ct, t, "expected a map {base_mm, link_mm, offset_rad}");
-        yaml_check_keys(t, c.file, ct.path, {"base_mm", "link_mm", "offset_rad"});
-        opt_bounded(t, "base_mm", ct, 0.0, 20.0, "mm", p.margin.tolerance.base_mm);
-        opt_bounded(t, "link_mm", ct, 0.0, 20.0, "mm", p.margin.tolerance.link_mm);
-        opt_bounded(t, "offset_rad", ct, 0.0, 0.2, "rad", p.margin.tolerance.offset_rad);
-      }
-    }
+    if (const YAML::Node m = n["path_margin"]) parse_path_margin(m, c, p.margin);
     if (p.pattern == PosePattern::kTrajectory) {
       opt_bounded(n, "max_speed_mm_s", c, 1.0, 1000.0, "mm/s", p.path_limits.max_speed_mm_s);
       opt_bounded(n, "max_accel_mm_s2", c, 10.0, 20000.0, "mm/s^2", p.path_limits.max_accel_mm_s2);
@@ -265,13 +277,7 @@ SamplingPlan parse_sampling(const YAML::Node& n, const Ctx& c) {
   }
   opt_bounded(n, "move_speed_mm_s", c, 1.0, 2000.0, "mm/s", p.options.move_speed_mm_s);
   opt_bounded(n, "average_s", c, 1e-4, 10.0, "s", p.options.average_s);
-  if (const YAML::Node s = n["settle"]) {
-    const Ctx cs = c.at("settle");
-    yaml_check_keys(s, c.file, cs.path, {"velocity_rad_s", "hold_s", "timeout_s"});
-    opt_bounded(s, "velocity_rad_s", cs, 1e-6, 1.0, "rad/s", p.options.settle.velocity_rad_s);
-    opt_bounded(s, "hold_s", cs, 1e-4, 10.0, "s", p.options.settle.hold_s);
-    opt_bounded(s, "timeout_s", cs, 1e-3, 60.0, "s", p.options.settle.timeout_s);
-  }
+  if (const YAML::Node s = n["settle"]) parse_settle(s, c, p.options.settle);
   return p;
 }
 
@@ -414,66 +420,30 @@ bool uses_randomized_preset(const YAML::Node& fx) {
 
 }  // namespace
 
-Scenario scenario_from_yaml(const YAML::Node& root, const std::string& file, const std::string& base_dir) {
-  const Ctx c{file, ""};
-  if (!root.IsMap()) fail(c, root, "expected a map of sections (see scenarios/SCHEMA.md)");
-  yaml_check_keys(root, file, "",
-                  {"name", "description", "robot", "seed", "actual", "physics", "servo", "encoder",
-                   "sampling", "path", "log", "effects", "operation", "events", "calibration", "compensation", "expect",
-                   "hardware", "outputs", "render", "monitor"});
-  Scenario s;
-  s.file = file;
-  s.name = root["name"] ? yaml_string(root["name"], file, "name")
-                        : std::filesystem::path(file).stem().string();
-  if (const YAML::Node r = root["robot"]) {
-    if (r.IsMap()) {
-      s.controller = robot_from_yaml(r, file, "robot");
-    } else {
-      s.controller = robot_file_at(r, file, "robot", base_dir);
-    }
-  } else {
-    s.controller = load_robot(gpm::models_dir() + "/gpm2002.yaml");
+// effects: the twin's reading and drive effects (and, for a randomized
+// preset, masses drawn within the data sheet's tolerance with the drives
+// tuned to them); checked against the robot's transmission.
+void parse_twin_effects(const YAML::Node& fx, const std::string& file, Scenario& s) {
+  s.twin.effects = parse_effects(fx, file, s.seed, s.controller.data_sheet);
+  if (uses_randomized_preset(fx)) {  // the actual masses too lie anywhere in the data sheet's tolerance
+    Rng rng(derive_seed(s.seed, Stream::kRandomizedMasses));
+    const double armature = s.twin.mjcf.armature_kg_m2;
+    draw_masses_within(rng, s.controller.data_sheet, s.twin.mjcf);
+    // The drives are tuned to the rotor they turn (a drive's auto-tuning
+    // keeps its velocity-loop bandwidth kv / J): kv follows the drawn inertia.
+    for (ServoDrive& d : s.twin.drives) d.kv *= s.twin.mjcf.armature_kg_m2 / armature;
   }
-  if (root["seed"]) s.seed = static_cast<std::uint64_t>(yaml_integer(root["seed"], file, "seed", 0, (1LL << 53)));
-  if (root["actual"]) s.actual = parse_actual(root["actual"], c.at("actual"), base_dir);
-  else s.actual.keep = FreeMask{}.set(kXa1).set(kYa1).set(kXa2).set(kYa2);
-  if (const YAML::Node p = root["physics"]) {
-    yaml_check_keys(p, file, "physics", {"timestep_s"});
-    opt_bounded(p, "timestep_s", c.at("physics"), 1e-5, 2e-3, "s", s.twin.mjcf.timestep_s);
-    s.twin.mjcf.solref_timeconst_s = std::max(s.twin.mjcf.solref_timeconst_s, 2.0 * s.twin.mjcf.timestep_s);
+  try {
+    check_transmission(s.controller, s.twin);
+  } catch (const InputError& e) {
+    throw InputError(yaml_where(file, fx, "") + e.what());
   }
-  if (root["servo"]) {
-    parse_servo(root["servo"], c.at("servo"), s.twin);
-    opt_bounded(root["servo"], "max_tracking_mm", c.at("servo"), 0.0, 1000.0, "mm (0: not watched)", s.max_tracking_mm);
-  }
-  const double ratio = 1.0 / (s.twin.servo_rate_hz * s.twin.mjcf.timestep_s);
-  if (std::abs(ratio - std::round(ratio)) > 1e-9 * ratio || std::round(ratio) < 1.0) {
-    const YAML::Node at = root["servo"] && root["servo"]["rate_hz"] ? root["servo"]["rate_hz"] : root;
-    fail(c.at("servo.rate_hz"), at,
-         fmt::format("{} Hz must divide the physics rate {} Hz (1 / physics.timestep_s)",
-                     s.twin.servo_rate_hz, 1.0 / s.twin.mjcf.timestep_s));
-  }
-  if (root["encoder"]) parse_encoder(root["encoder"], c.at("encoder"), s.twin.encoder);
-  if (const YAML::Node fx = root["effects"]) {
-    s.twin.effects = parse_effects(fx, file, s.seed, s.controller.data_sheet);
-    if (uses_randomized_preset(fx)) {  // the actual masses too lie anywhere in the data sheet's tolerance
-      Rng rng(derive_seed(s.seed, Stream::kRandomizedMasses));
-      const double armature = s.twin.mjcf.armature_kg_m2;
-      draw_masses_within(rng, s.controller.data_sheet, s.twin.mjcf);
-      // The drives are tuned to the rotor they turn (a drive's auto-tuning
-      // keeps its velocity-loop bandwidth kv / J): kv follows the drawn inertia.
-      for (ServoDrive& d : s.twin.drives) d.kv *= s.twin.mjcf.armature_kg_m2 / armature;
-    }
-    try {
-      check_transmission(s.controller, s.twin);
-    } catch (const InputError& e) {
-      throw InputError(yaml_where(file, fx, "") + e.what());
-    }
-  }
-  if (root["sampling"]) s.sampling = parse_sampling(root["sampling"], c.at("sampling"));
-  if (root["path"]) s.path = parse_path(root["path"], c.at("path"));
-  // trajectory.csv at kDefaultLogRateHz unless log.every or log.rate_hz says otherwise
-  // (log.every: 1 is the servo rate).
+}
+
+// log: trajectory.csv's rate (kDefaultLogRateHz unless log.every or log.rate_hz
+// says otherwise; log.every: 1 is the servo rate) into s.log_every.
+void parse_log(const YAML::Node& root, const Ctx& c, Scenario& s) {
+  const std::string& file = c.file;
   double log_rate_hz = kDefaultLogRateHz;
   if (const YAML::Node l = root["log"]) {
     yaml_check_keys(l, file, "log", {"every", "rate_hz"});
@@ -490,6 +460,55 @@ Scenario scenario_from_yaml(const YAML::Node& root, const std::string& file, con
   }
   if (!root["log"] || !root["log"]["every"])
     s.log_every = std::max(1, static_cast<int>(std::lround(s.twin.servo_rate_hz / log_rate_hz)));
+}
+
+// robot: the controller's robot (a map, or a robot file relative to base_dir; default the GPM2002).
+Robot parse_robot_section(const YAML::Node& r, const std::string& file, const std::string& base_dir) {
+  if (!r) return load_robot(gpm::models_dir() + "/gpm2002.yaml");
+  return r.IsMap() ? robot_from_yaml(r, file, "robot") : robot_file_at(r, file, "robot", base_dir);
+}
+
+// Fails unless the servo rate divides the physics rate.
+void check_servo_divides_physics(const YAML::Node& root, const Ctx& c, const Scenario& s) {
+  const double ratio = 1.0 / (s.twin.servo_rate_hz * s.twin.mjcf.timestep_s);
+  if (std::abs(ratio - std::round(ratio)) > 1e-9 * ratio || std::round(ratio) < 1.0) {
+    const YAML::Node at = root["servo"] && root["servo"]["rate_hz"] ? root["servo"]["rate_hz"] : root;
+    fail(c.at("servo.rate_hz"), at,
+         fmt::format("{} Hz must divide the physics rate {} Hz (1 / physics.timestep_s)",
+                     s.twin.servo_rate_hz, 1.0 / s.twin.mjcf.timestep_s));
+  }
+}
+
+Scenario scenario_from_yaml(const YAML::Node& root, const std::string& file, const std::string& base_dir) {
+  const Ctx c{file, ""};
+  if (!root.IsMap()) fail(c, root, "expected a map of sections (see scenarios/SCHEMA.md)");
+  yaml_check_keys(root, file, "",
+                  {"name", "description", "robot", "seed", "actual", "physics", "servo", "encoder",
+                   "sampling", "path", "log", "effects", "operation", "events", "calibration", "compensation", "expect",
+                   "hardware", "outputs", "render", "monitor"});
+  Scenario s;
+  s.file = file;
+  s.name = root["name"] ? yaml_string(root["name"], file, "name")
+                        : std::filesystem::path(file).stem().string();
+  s.controller = parse_robot_section(root["robot"], file, base_dir);
+  if (root["seed"]) s.seed = static_cast<std::uint64_t>(yaml_integer(root["seed"], file, "seed", 0, (1LL << 53)));
+  if (root["actual"]) s.actual = parse_actual(root["actual"], c.at("actual"), base_dir);
+  else s.actual.keep = FreeMask{}.set(kXa1).set(kYa1).set(kXa2).set(kYa2);
+  if (const YAML::Node p = root["physics"]) {
+    yaml_check_keys(p, file, "physics", {"timestep_s"});
+    opt_bounded(p, "timestep_s", c.at("physics"), 1e-5, 2e-3, "s", s.twin.mjcf.timestep_s);
+    s.twin.mjcf.solref_timeconst_s = std::max(s.twin.mjcf.solref_timeconst_s, 2.0 * s.twin.mjcf.timestep_s);
+  }
+  if (root["servo"]) {
+    parse_servo(root["servo"], c.at("servo"), s.twin);
+    opt_bounded(root["servo"], "max_tracking_mm", c.at("servo"), 0.0, 1000.0, "mm (0: not watched)", s.max_tracking_mm);
+  }
+  check_servo_divides_physics(root, c, s);
+  if (root["encoder"]) parse_encoder(root["encoder"], c.at("encoder"), s.twin.encoder);
+  if (const YAML::Node fx = root["effects"]) parse_twin_effects(fx, file, s);
+  if (root["sampling"]) s.sampling = parse_sampling(root["sampling"], c.at("sampling"));
+  if (root["path"]) s.path = parse_path(root["path"], c.at("path"));
+  parse_log(root, c, s);
   if (root["operation"]) s.operation = parse_operation(root["operation"], c.at("operation"));
   if (const YAML::Node ev = root["events"]) {
     if (!s.operation) fail(c.at("events"), ev, "events happen during operation: give an 'operation' section");
