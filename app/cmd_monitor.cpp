@@ -4,7 +4,10 @@
 // the drift monitor in the servo loop (starting from the 1-sigma of a
 // calibration result given as the model); writes
 // DIR/alarms.csv, estimates.csv, summary.json and report.md/html
-// (run/monitor_run.hpp). Bad input exits 2 with one line.
+// (run/monitor_run.hpp). Bad input exits 2 with one line. Through hardware,
+// DIR and the record (alarms.csv, estimates.csv) are opened before the robot
+// moves and written as the monitor records; what was recorded is kept when
+// the rest cannot be written, the hardware stops or a signal interrupts.
 #include <fcntl.h>
 #include <unistd.h>
 
