@@ -1,5 +1,6 @@
 #include "models/output_file.hpp"
 
+#include <algorithm>
 #include <atomic>
 #include <cerrno>
 #include <csignal>
@@ -386,6 +387,20 @@ void OutputFolder::commit() {
   }
   names_.clear();
   committed_ = true;
+}
+
+void OutputFolder::keep_only(const std::vector<std::string>& keep) {
+  std::vector<std::string> kept;
+  for (const std::string& n : names_) {
+    if (std::find(keep.begin(), keep.end(), n) != keep.end()) {
+      kept.push_back(n);
+      continue;
+    }
+    const std::string p = (fs::path(stage_) / n).string();
+    ::unlink(p.c_str());
+    unregister_temporary(p);
+  }
+  names_ = kept;
 }
 
 }  // namespace gpm

@@ -117,6 +117,9 @@ class OutputFolder {
   std::string staged_path(const std::string& name);
   // Moves every staged file into dir; throws InputError naming the file.
   void commit();
+  // Drops every staged file but those named in keep (commit() then moves
+  // only these: what a command that could not write all its files keeps).
+  void keep_only(const std::vector<std::string>& keep);
   // The folder.
   const std::string& dir() const { return dir_; }
 

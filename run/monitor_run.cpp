@@ -99,17 +99,108 @@ void apply_reading_model(calib::monitor::MonitorSettings& ms, const MonitorReadi
   ms.scale_floor = reading.scale_floor;
 }
 
-MonitorOutcome run_monitor(const sim::Scenario& s, const Robot& controller,
-                           const std::array<double, kNumParams>& prior_sigma, const MonitorReadingModel& reading,
-                           const MonitorProgress& progress) {
-  namespace mon = calib::monitor;
-  const auto wall0 = std::chrono::steady_clock::now();
+namespace {
+
+namespace mon = calib::monitor;
+
+// The outcome's description of the run (scenario and the controller's model), before it starts.
+MonitorOutcome outcome_of(const sim::Scenario& s, const Robot& controller) {
   if (!s.operation)
     throw InputError(fmt::format("{}: gpm monitor needs an 'operation' section (the robot's normal job)", s.file));
   MonitorOutcome out;
   out.scenario_file = s.file;
   out.scenario = s;
   out.controller = controller;
+  return out;
+}
+
+// Makes the outcome's monitor: the controller's model with its 1-sigma, the
+// scenario's encoder, read at cycle_hz, the reading model `reading`.
+void make_monitor(MonitorOutcome& out, const sim::Scenario& s, const std::array<double, kNumParams>& prior_sigma,
+                  double cycle_hz, const MonitorReadingModel& reading) {
+  mon::MonitorSettings ms;
+  ms.geometry = out.controller.geometry;
+  ms.prior_sigma = prior_sigma;
+  ms.reading.encoder_bits = s.twin.encoder.bits;
+  ms.reading.noise_rad = s.twin.encoder.noise_rad;
+  ms.cycle_hz = cycle_hz;
+  // At most 200 samples per second whatever the servo rate (the independence
+  // gate of calib/monitor/README.md: closer samples share quantisation errors).
+  ms.decimation = std::max(1, static_cast<int>(std::lround(ms.cycle_hz / 200.0)));
+  apply_reading_model(ms, reading);
+  out.reading = reading;
+  out.model = mon::make_monitor_model(ms);
+}
+
+// When a monitoring loop records an estimate (every `every` s from 0) and
+// reports its progress (every second from 1 s).
+struct Cadence {
+  double every = 0.1;
+  double next_estimate = 0.0, next_progress = 1.0;
+  // True (once) when an estimate is due at time t.
+  bool estimate_due(double t) {
+    if (t < next_estimate) return false;
+    next_estimate += every;
+    return true;
+  }
+  // True (once) when progress is due at time t.
+  bool progress_due(double t) {
+    if (t < next_progress) return false;
+    next_progress += 1.0;
+    return true;
+  }
+};
+
+// Adds the monitor's last alarm to the outcome when the step r explained one;
+// true when it did.
+bool take_alarm(MonitorOutcome& out, const mon::MonitorData& md, const mon::StepResult& r) {
+  if (!r.explained) return false;
+  const mon::Alarm& a = mon::last_alarm(md);
+  out.alarms.push_back(
+      {a.t_s, mon::alarm_kind_name(a.kind), a.statistic, a.threshold, mon::describe_alarm(a), a.param, a.delta});
+  return true;
+}
+
+// Flushes the monitor at end_s (the time monitored) and keeps its learning
+// phase, thresholds and counts in the outcome.
+void close_monitor(MonitorOutcome& out, mon::MonitorData& md, double end_s) {
+  mon::monitor_flush(out.model, md);
+  out.simulated_s = end_s;
+  out.learning_end_s = md.learning ? out.simulated_s : md.learning_end_s;
+  out.learned = md.learned;
+  out.learning_start_s = md.t_start;
+  out.chi_threshold = md.chi_threshold;
+  out.step_threshold = md.glr_threshold;
+  out.cycles = md.cycles;
+  out.accepted = md.accepted;
+}
+
+// Each alarm detects the latest event begun before it (within the window);
+// the others are false alarms.
+void match_detections(MonitorOutcome& out, const std::vector<sim::GeometryEvent>& events) {
+  for (std::size_t e = 0; e < events.size(); ++e) out.detections.push_back({static_cast<int>(e), events[e].at_s, {}, ""});
+  for (const MonitorAlarm& a : out.alarms) {
+    int match = -1;
+    for (std::size_t e = 0; e < events.size(); ++e)
+      if (events[e].at_s <= a.t_s && a.t_s <= events[e].at_s + events[e].over_s + kDetectionWindowS &&
+          (match < 0 || events[e].at_s >= events[static_cast<std::size_t>(match)].at_s))
+        match = static_cast<int>(e);
+    if (match < 0) {
+      ++out.false_alarms;
+      continue;
+    }
+    MonitorDetection& d = out.detections[static_cast<std::size_t>(match)];
+    if (!d.detected_s) d.detected_s = a.t_s, d.explanation = a.explanation;
+  }
+}
+
+}  // namespace
+
+MonitorOutcome run_monitor(const sim::Scenario& s, const Robot& controller,
+                           const std::array<double, kNumParams>& prior_sigma, const MonitorReadingModel& reading,
+                           const MonitorProgress& progress) {
+  const auto wall0 = std::chrono::steady_clock::now();
+  MonitorOutcome out = outcome_of(s, controller);
   out.actual = sim::make_actual(s);
   check_events_assemble(s, controller, out.actual);
 
@@ -125,25 +216,8 @@ MonitorOutcome run_monitor(const sim::Scenario& s, const Robot& controller,
   sim::Session session = sim::make_session(twin, state, ctrl, nullptr);
   session.max_tracking_mm = s.max_tracking_mm;  // the twin loop's tracking watch (servo.max_tracking_mm)
 
-  mon::MonitorSettings ms;
-  ms.geometry = controller.geometry;
-  ms.prior_sigma = prior_sigma;
-  ms.reading.encoder_bits = s.twin.encoder.bits;
-  ms.reading.noise_rad = s.twin.encoder.noise_rad;
-  ms.cycle_hz = s.twin.servo_rate_hz;
-  // At most 200 samples per second whatever the servo rate (the independence
-  // gate of calib/monitor/README.md: closer samples share quantisation errors).
-  ms.decimation = std::max(1, static_cast<int>(std::lround(ms.cycle_hz / 200.0)));
-  apply_reading_model(ms, reading);
-  out.reading = reading;
-  out.model = mon::make_monitor_model(ms);
+  make_monitor(out, s, prior_sigma, s.twin.servo_rate_hz, reading);
   mon::MonitorData md = mon::make_monitor_data(out.model);
-
-  const double period = 1.0 / s.twin.servo_rate_hz;
-  const double loop = sim::path_duration(path);
-  const long ticks = std::lround(s.operation->duration_s / period);
-  const double estimate_every = std::max(0.1, s.operation->duration_s / 2000.0);
-  double next_estimate = 0.0, next_progress = 1.0;
   const FreeMask gauge = ~default_free_mask();  // xa1 ya1 xa2 ya2
   const bool regauge = (gauge & out.model.settings.estimate).none();
   auto truth_at = [&](double t) {
@@ -154,55 +228,20 @@ MonitorOutcome run_monitor(const sim::Scenario& s, const Robot& controller,
     const mon::Estimate e = mon::monitor_estimate(out.model, md);
     out.estimates.push_back({t, e.value, e.sigma, truth_at(t)});
   };
+  const double period = 1.0 / s.twin.servo_rate_hz, loop = sim::path_duration(path);
+  const long ticks = std::lround(s.operation->duration_s / period);
+  Cadence cadence{std::max(0.1, s.operation->duration_s / 2000.0)};
   for (long k = 0; k <= ticks; ++k) {
-    const double t = k * period;
-    const sim::PathPoint desired = sim::path_at(path, std::fmod(t, loop));
-    const sim::TwinSnapshot snap = sim::advance(session, desired);
-    const mon::StepResult r = mon::monitor_step(out.model, md, snap.time_s, snap.readings, snap.motor_velocity, snap.torque);
-    if (r.explained) {
-      const mon::Alarm& a = mon::last_alarm(md);
-      out.alarms.push_back({a.t_s, mon::alarm_kind_name(a.kind), a.statistic, a.threshold, mon::describe_alarm(a),
-                            a.param, a.delta});
-    }
-    if (snap.time_s >= next_estimate) {
-      record_estimate(snap.time_s);
-      next_estimate += estimate_every;
-    }
-    if (progress && snap.time_s >= next_progress) {
-      progress(snap.time_s, s.operation->duration_s);
-      next_progress += 1.0;
-    }
+    const sim::TwinSnapshot snap = sim::advance(session, sim::path_at(path, std::fmod(k * period, loop)));
+    take_alarm(out, md, mon::monitor_step(out.model, md, snap.time_s, snap.readings, snap.motor_velocity, snap.torque));
+    if (cadence.estimate_due(snap.time_s)) record_estimate(snap.time_s);
+    if (progress && cadence.progress_due(snap.time_s)) progress(snap.time_s, s.operation->duration_s);
   }
-  mon::monitor_flush(out.model, md);
-  out.simulated_s = state.data->time;
-  out.learning_end_s = md.learning ? out.simulated_s : md.learning_end_s;
-  out.learned = md.learned;
-  out.learning_start_s = md.t_start;
-  out.chi_threshold = md.chi_threshold;
-  out.step_threshold = md.glr_threshold;
-  out.cycles = md.cycles;
-  out.accepted = md.accepted;
+  close_monitor(out, md, state.data->time);
   record_estimate(out.simulated_s);
   out.final_estimate = mon::monitor_estimate(out.model, md);
   out.final_truth = truth_at(out.simulated_s);
-
-  // Each alarm detects the latest event begun before it (within the window);
-  // the others are false alarms.
-  const auto& events = s.twin.events;
-  for (std::size_t e = 0; e < events.size(); ++e) out.detections.push_back({static_cast<int>(e), events[e].at_s, {}, ""});
-  for (const MonitorAlarm& a : out.alarms) {
-    int match = -1;
-    for (std::size_t e = 0; e < events.size(); ++e)
-      if (events[e].at_s <= a.t_s && a.t_s <= events[e].at_s + events[e].over_s + kDetectionWindowS &&
-          (match < 0 || events[e].at_s >= events[static_cast<std::size_t>(match)].at_s))
-        match = static_cast<int>(e);
-    if (match < 0) {
-      ++out.false_alarms;
-      continue;
-    }
-    MonitorDetection& d = out.detections[static_cast<std::size_t>(match)];
-    if (!d.detected_s) d.detected_s = a.t_s, d.explanation = a.explanation;
-  }
+  match_detections(out, s.twin.events);
   out.wall_s = std::chrono::duration<double>(std::chrono::steady_clock::now() - wall0).count();
   return out;
 }
@@ -231,125 +270,132 @@ std::optional<MonitorOutcome> monitor_after_calibration(const RunOutcome& run) {
   return run_monitor(s, run.calibrated, prior, reading_model_after_calibration(run));
 }
 
-MonitorOutcome run_monitor_hardware(const sim::Scenario& s, const std::string& hardware_file, const Robot& controller,
-                                    const std::array<double, kNumParams>& prior_sigma, const MonitorReadingModel& reading,
-                                    const MonitorProgress& progress, const std::atomic<bool>* stop, hw::Clock& clock) {
-  namespace mon = calib::monitor;
-  const auto wall0 = std::chrono::steady_clock::now();
-  if (!s.operation)
-    throw InputError(fmt::format("{}: gpm monitor needs an 'operation' section (the robot's normal job)", s.file));
-  if (!s.twin.events.empty())
-    throw InputError(fmt::format("{}: events: change the in-process twin only; drop them to monitor through {}", s.file,
-                                 hardware_file));
-  const hw::HardwareConfig config = hw::load_hardware_config(hardware_file);
-  MonitorOutcome out;
-  out.scenario_file = s.file;
-  out.scenario = s;
-  out.controller = controller;
-  out.actual = controller;
-  out.truth_known = false;
+namespace {
 
-  // Joint targets along the path (encoder space: theta_a - dth, paper eq. 35),
-  // all checked against the reach of the controller's model before anything moves.
-  const sim::Path& path = s.operation->path;
-  const double loop = sim::path_duration(path);
-  auto target = [&](double t) {
+// The joint targets along the operation path of s for the controller's model
+// (encoder space: theta_a - dth, paper eq. 35), at path time t.
+struct JointTargets {
+  const sim::Path& path;
+  const Robot& controller;
+  double loop = 0.0;  // the path's duration (s)
+
+  Eigen::Vector3d operator()(double t) const {
     const Eigen::Vector2d p = sim::path_at(path, std::fmod(t, loop)).p;
     const JointAngles q = inverse_kinematics(controller.geometry, p, controller.branch);
     Eigen::Vector3d m;
     for (int i = 0; i < 3; ++i) m[i] = q.theta_a[i] - controller.geometry.dth_(i);
     return m;
-  };
+  }
+};
+
+// Throws InputError naming the first point of the operation path (of 201 along
+// it) the controller's model cannot reach.
+void check_path_reach(const sim::Scenario& s, const Robot& controller) {
+  const sim::Path& path = s.operation->path;
   for (int k = 0; k <= 200; ++k) {
-    const Eigen::Vector2d p = sim::path_at(path, loop * k / 200.0).p;
+    const Eigen::Vector2d p = sim::path_at(path, sim::path_duration(path) * k / 200.0).p;
     const Reach r = check_reach(controller, p);
     if (!r.ok)
       throw InputError(fmt::format("{}: operation.path: point ({:.3f}, {:.3f}): {}", s.file, p.x(), p.y(), r.reason));
   }
-  mon::MonitorSettings ms;
-  ms.geometry = controller.geometry;
-  ms.prior_sigma = prior_sigma;
-  ms.reading.encoder_bits = s.twin.encoder.bits;
-  ms.reading.noise_rad = s.twin.encoder.noise_rad;
-  ms.cycle_hz = config.rate_hz;
-  ms.decimation = std::max(1, static_cast<int>(std::lround(ms.cycle_hz / 200.0)));
-  apply_reading_model(ms, reading);
-  out.reading = reading;
-  out.model = mon::make_monitor_model(ms);
-  auto md = std::make_unique<mon::MonitorData>(mon::make_monitor_data(out.model));
+}
 
-  std::unique_ptr<hw::SafetySupervisor> robot = hw::make_hardware(config, clock);
-  // Every command of the path (a loop and its return to the start, at full
-  // speed, one per cycle) against the hardware's limits, before anything moves.
-  {
-    const double period = robot->period_s();
-    const long n = std::lround(std::min(loop, s.operation->duration_s) / period) + 3;
-    std::vector<Eigen::Vector3d> q;
-    q.reserve(static_cast<std::size_t>(n) + 1);
-    for (long k = 0; k <= n; ++k) {
-      Eigen::Vector3d m = target(static_cast<double>(k) * period);
-      if (!q.empty())
-        for (int i = 0; i < 3; ++i) m[i] = q.back()[i] + wrap_pi(m[i] - q.back()[i]);
-      q.push_back(m);
-    }
-    const std::string why = robot->check_path(q, config.modes);
-    if (!why.empty())
-      throw InputError(fmt::format("{}: operation.path is outside the safety limits of {} (nothing moved): {}", s.file,
-                                   hardware_file, why));
+// Every command of the path (a loop and its return to the start, at full
+// speed, one per cycle) against the hardware's limits, before anything moves;
+// throws InputError naming the scenario, the hardware file and why.
+void check_path_limits(const hw::SafetySupervisor& robot, const hw::HardwareConfig& config, const JointTargets& target,
+                       const sim::Scenario& s, const std::string& hardware_file) {
+  const double period = robot.period_s();
+  const long n = std::lround(std::min(target.loop, s.operation->duration_s) / period) + 3;
+  std::vector<Eigen::Vector3d> q;
+  q.reserve(static_cast<std::size_t>(n) + 1);
+  for (long k = 0; k <= n; ++k) {
+    Eigen::Vector3d m = target(static_cast<double>(k) * period);
+    if (!q.empty())
+      for (int i = 0; i < 3; ++i) m[i] = q.back()[i] + wrap_pi(m[i] - q.back()[i]);
+    q.push_back(m);
   }
+  const std::string why = robot.check_path(q, config.modes);
+  if (!why.empty())
+    throw InputError(fmt::format("{}: operation.path is outside the safety limits of {} (nothing moved): {}", s.file,
+                                 hardware_file, why));
+}
 
-  out.hardware = robot->describe();
-  hw::Motion motion(*robot, config.modes, 0.5, stop);
+// The path's speed runs in and out over kRunInS (cosine law: no jump in the
+// commanded acceleration): the fraction of full speed at robot time tau of total.
+constexpr double kRunInS = 1.0;
+double run_in_speed(double tau, double total) {
+  const double u = std::min({tau, total - tau, kRunInS}) / kRunInS;
+  return 0.5 * (1.0 - std::cos(std::numbers::pi * std::max(u, 0.0)));
+}
+
+// Moves the robot to the path's start, follows the path for the operation's
+// duration (with the run in and out) while the monitor reads every cycle
+// (alarms and estimates into out, record called after each), settles and
+// shuts the robot down; returns the time monitored (s, robot time). stop:
+// polled every cycle (hw::Interrupted, drives disabled).
+double follow_on_hardware(MonitorOutcome& out, mon::MonitorData& md, hw::SafetySupervisor& robot,
+                          const hw::HardwareConfig& config, const JointTargets& target, const MonitorProgress& progress,
+                          const std::atomic<bool>* stop, const MonitorRecord& record) {
+  const double duration = out.scenario.operation->duration_s;
+  hw::Motion motion(robot, config.modes, 0.5, stop);
   motion.start();
   motion.move_joints(motion.wrap_near(target(0.0)), 100.0);
-  // The path's speed runs in and out over kRunInS (cosine law: no jump in
-  // the commanded acceleration); the monitor's time is the robot's.
-  constexpr double kRunInS = 1.0;
-  const double period = robot->period_s();
-  const double total = s.operation->duration_s + kRunInS;
+  // The monitor's time is the robot's.
+  const double period = robot.period_s();
+  const double total = duration + kRunInS;
   const long ticks = std::lround(total / period);
-  auto speed = [&](double tau) {
-    const double u = std::min({tau, total - tau, kRunInS}) / kRunInS;
-    return 0.5 * (1.0 - std::cos(std::numbers::pi * std::max(u, 0.0)));
-  };
-  const double estimate_every = std::max(0.1, total / 2000.0);
-  double next_estimate = 0.0, next_progress = 1.0, t_path = 0.0;
+  Cadence cadence{std::max(0.1, total / 2000.0)};
+  double t_path = 0.0;
   for (long k = 0; k <= ticks; ++k) {
     const double t = k * period;  // robot time
-    t_path += speed(t) * period;
+    t_path += run_in_speed(t, total) * period;
     motion.cycle(motion.wrap_near(target(t_path)));
     const hw::HardwareState& st = motion.state();
-    const mon::StepResult r = mon::monitor_step(out.model, *md, t, st.theta_m, st.velocity, st.torque);
-    if (r.explained) {
-      const mon::Alarm& a = mon::last_alarm(*md);
-      out.alarms.push_back({a.t_s, mon::alarm_kind_name(a.kind), a.statistic, a.threshold, mon::describe_alarm(a),
-                            a.param, a.delta});
-    }
-    if (t >= next_estimate) {
-      const mon::Estimate e = mon::monitor_estimate(out.model, *md);
+    bool recorded = take_alarm(out, md, mon::monitor_step(out.model, md, t, st.theta_m, st.velocity, st.torque));
+    if (cadence.estimate_due(t)) {
+      const mon::Estimate e = mon::monitor_estimate(out.model, md);
       out.estimates.push_back({t, e.value, e.sigma, std::nullopt});  // no truth through hardware
-      next_estimate += estimate_every;
+      recorded = true;
     }
-    if (progress && t >= next_progress) {
-      progress(t, s.operation->duration_s);
-      next_progress += 1.0;
-    }
+    if (recorded && record) record(out);
+    if (progress && cadence.progress_due(t)) progress(t, duration);
   }
   motion.settle(sim::SettleCriterion{}, "the end of the operation");
   motion.finish();
-  robot->shutdown();
-  mon::monitor_flush(out.model, *md);
-  out.simulated_s = ticks * period;
-  out.learning_end_s = md->learning ? out.simulated_s : md->learning_end_s;
-  out.learned = md->learned;
-  out.learning_start_s = md->t_start;
-  out.chi_threshold = md->chi_threshold;
-  out.step_threshold = md->glr_threshold;
-  out.cycles = md->cycles;
-  out.accepted = md->accepted;
-  (void)t_path;
+  robot.shutdown();
+  return static_cast<double>(ticks) * period;
+}
+
+}  // namespace
+
+MonitorOutcome run_monitor_hardware(const sim::Scenario& s, const std::string& hardware_file, const Robot& controller,
+                                    const std::array<double, kNumParams>& prior_sigma, const MonitorReadingModel& reading,
+                                    const MonitorProgress& progress, const std::atomic<bool>* stop, hw::Clock& clock,
+                                    const MonitorRecord& record) {
+  const auto wall0 = std::chrono::steady_clock::now();
+  MonitorOutcome out = outcome_of(s, controller);
+  if (!s.twin.events.empty())
+    throw InputError(fmt::format("{}: events: change the in-process twin only; drop them to monitor through {}", s.file,
+                                 hardware_file));
+  const hw::HardwareConfig config = hw::load_hardware_config(hardware_file);
+  out.actual = controller;
+  out.truth_known = false;
+  // Every joint target checked against the reach of the controller's model
+  // and the hardware's limits, the record opened, before anything moves.
+  const JointTargets target{s.operation->path, controller, sim::path_duration(s.operation->path)};
+  check_path_reach(s, controller);
+  make_monitor(out, s, prior_sigma, config.rate_hz, reading);
+  auto md = std::make_unique<mon::MonitorData>(mon::make_monitor_data(out.model));
+  std::unique_ptr<hw::SafetySupervisor> robot = hw::make_hardware(config, clock);
+  check_path_limits(*robot, config, target, s, hardware_file);
+  if (record) record(out);
+  out.hardware = robot->describe();
+  const double monitored_s = follow_on_hardware(out, *md, *robot, config, target, progress, stop, record);
+  close_monitor(out, *md, monitored_s);
   out.final_estimate = mon::monitor_estimate(out.model, *md);
   out.estimates.push_back({out.simulated_s, out.final_estimate.value, out.final_estimate.sigma, std::nullopt});
+  if (record) record(out);
   out.final_truth = controller.geometry;
   out.false_alarms = -1;  // unknown: which alarms are real is for the user to find out
   out.wall_s = std::chrono::duration<double>(std::chrono::steady_clock::now() - wall0).count();
@@ -431,26 +477,38 @@ std::vector<MonitorCheck> check_monitor(const MonitorOutcome& o, const MonitorEx
   return out;
 }
 
+std::string monitor_alarms_header() { return "t_s,kind,statistic,threshold,explanation\n"; }
+
+std::string monitor_alarm_row(const MonitorAlarm& a) {
+  return fmt::format("{:.6f},{},{:.6g},{:.6g},{}\n", a.t_s, a.kind, a.statistic, a.threshold, csv_field(a.explanation));
+}
+
 std::string monitor_alarms_csv(const MonitorOutcome& o) {
-  std::string alarms = "t_s,kind,statistic,threshold,explanation\n";
-  for (const MonitorAlarm& a : o.alarms)
-    alarms += fmt::format("{:.6f},{},{:.6g},{:.6g},{}\n", a.t_s, a.kind, a.statistic, a.threshold, csv_field(a.explanation));
+  std::string alarms = monitor_alarms_header();
+  for (const MonitorAlarm& a : o.alarms) alarms += monitor_alarm_row(a);
   return alarms;
 }
 
-std::string monitor_estimates_csv(const MonitorOutcome& o) {
+std::string monitor_estimates_header(const MonitorOutcome& o) {
   const FreeMask est = o.model.settings.estimate;
-  std::string estimates = "t_s";
+  std::string header = "t_s";
   for (int k = 0; k < kNumParams; ++k)
-    if (est[static_cast<std::size_t>(k)]) estimates += fmt::format(",{0},{0}_std", param_name(k));
-  estimates += "\n";
-  for (const MonitorEstimateRow& r : o.estimates) {
-    estimates += fmt::format("{:.6f}", r.t_s);
-    for (int k = 0; k < kNumParams; ++k)
-      if (est[static_cast<std::size_t>(k)])
-        estimates += fmt::format(",{:.12g},{:.6g}", r.value[static_cast<std::size_t>(k)], r.sigma[static_cast<std::size_t>(k)]);
-    estimates += "\n";
-  }
+    if (est[static_cast<std::size_t>(k)]) header += fmt::format(",{0},{0}_std", param_name(k));
+  return header + "\n";
+}
+
+std::string monitor_estimate_row(const MonitorOutcome& o, const MonitorEstimateRow& r) {
+  const FreeMask est = o.model.settings.estimate;
+  std::string row = fmt::format("{:.6f}", r.t_s);
+  for (int k = 0; k < kNumParams; ++k)
+    if (est[static_cast<std::size_t>(k)])
+      row += fmt::format(",{:.12g},{:.6g}", r.value[static_cast<std::size_t>(k)], r.sigma[static_cast<std::size_t>(k)]);
+  return row + "\n";
+}
+
+std::string monitor_estimates_csv(const MonitorOutcome& o) {
+  std::string estimates = monitor_estimates_header(o);
+  for (const MonitorEstimateRow& r : o.estimates) estimates += monitor_estimate_row(o, r);
   return estimates;
 }
 
@@ -530,13 +588,19 @@ const std::vector<std::string>& monitor_output_names() {
   return names;
 }
 
-void write_monitor(const MonitorOutcome& o, const std::string& dir) {
-  OutputFolder folder(dir, {o.scenario_file});
-  folder.add("alarms.csv", monitor_alarms_csv(o));
-  folder.add("estimates.csv", monitor_estimates_csv(o));
+void stage_monitor(const MonitorOutcome& o, OutputFolder& folder, bool with_record) {
+  if (with_record) {
+    folder.add("alarms.csv", monitor_alarms_csv(o));
+    folder.add("estimates.csv", monitor_estimates_csv(o));
+  }
   folder.add("summary.json", monitor_summary(o).dump(2) + "\n");
   report::monitor_report(o.scenario.name, monitor_report_data(o))
       .stage(folder, "report", fmt::format("gpm monitor: {}", o.scenario.name));
+}
+
+void write_monitor(const MonitorOutcome& o, const std::string& dir) {
+  OutputFolder folder(dir, {o.scenario_file});
+  stage_monitor(o, folder);
   folder.commit();
 }
 

@@ -14,6 +14,7 @@
 #include <nlohmann/json.hpp>
 
 #include "calib/monitor/monitor.hpp"
+#include "models/output_file.hpp"
 #include "hw/clock.hpp"
 #include "models/robot.hpp"
 #include "report/report_document.hpp"
@@ -81,6 +82,14 @@ inline constexpr double kDetectionWindowS = 10.0;
 
 using MonitorProgress = std::function<void(double t_s, double duration_s)>;
 
+// The outcome so far, as the monitor records it through hardware: called once
+// before anything moves (it may throw InputError then: nothing has moved),
+// then after each alarm or estimate is added (it must not throw), the last
+// time with the final estimate (gpm monitor writes the rows to its output
+// folder as they come: nothing monitored is lost to a report that cannot be
+// written afterwards).
+using MonitorRecord = std::function<void(const MonitorOutcome& so_far)>;
+
 // Runs the scenario's operation on the twin with the monitor in the loop.
 // controller: the model the robot runs (and the monitor starts from);
 // prior_sigma: its 1-sigma per parameter (NaN: the monitor's defaults);
@@ -102,13 +111,15 @@ MonitorOutcome run_monitor(const sim::Scenario& scenario, const Robot& controlle
 // actual mechanism is unknown here: detections and final errors are left
 // out (truth_known false). stop (optional) is polled every cycle: a request
 // disables the drives and throws hw::Interrupted with what was monitored so far
-// lost only from memory (nothing is written yet). InputError for a bad file
-// or a path outside the safety limits, before anything moves. clock: the
-// time of the hardware loop (tests share a ManualClock with the drive emulator).
+// kept as far as record kept it. InputError for a bad file, a path outside
+// the safety limits or a record that cannot be written, before anything
+// moves. clock: the time of the hardware loop (tests share a ManualClock with
+// the drive emulator). record (optional): see MonitorRecord.
 MonitorOutcome run_monitor_hardware(const sim::Scenario& scenario, const std::string& hardware_file,
                                     const Robot& controller, const std::array<double, kNumParams>& prior_sigma,
                                     const MonitorReadingModel& reading, const MonitorProgress& progress = {},
-                                    const std::atomic<bool>* stop = nullptr, hw::Clock& clock = hw::steady_clock());
+                                    const std::atomic<bool>* stop = nullptr, hw::Clock& clock = hw::steady_clock(),
+                                    const MonitorRecord& record = {});
 
 // Sets the monitor's reading model (skew, compliance, motor-side friction,
 // cyclic encoder error, pin clearance, thermal time constant, learning phase
@@ -139,9 +150,20 @@ std::vector<MonitorCheck> check_monitor(const MonitorOutcome& outcome, const Mon
 
 // Writes DIR/alarms.csv, estimates.csv, summary.json and report.md, all or nothing.
 void write_monitor(const MonitorOutcome& outcome, const std::string& dir);
+// Stages write_monitor's files in folder (alarms.csv and estimates.csv only
+// with_record: a caller that wrote them as they came leaves them); the caller commits.
+void stage_monitor(const MonitorOutcome& outcome, OutputFolder& folder, bool with_record = true);
 // The files write_monitor writes into DIR (for the check of DIR against
 // every input before the run: check_output_folder).
 const std::vector<std::string>& monitor_output_names();
+
+// The rows of alarms.csv and estimates.csv, one at a time (each ends in a
+// newline): the headers, and one alarm's or estimate's row (the parameters
+// o's monitor estimates).
+std::string monitor_alarms_header();
+std::string monitor_alarm_row(const MonitorAlarm& alarm);
+std::string monitor_estimates_header(const MonitorOutcome& o);
+std::string monitor_estimate_row(const MonitorOutcome& o, const MonitorEstimateRow& row);
 
 // The parts of write_monitor's output, for gpm run: alarms.csv
 // (t_s,kind,statistic,threshold,explanation), estimates.csv (t_s, then each

@@ -314,17 +314,81 @@ void DriveEmulator::tick_if_due(double now) {
   if (s.next_tick < now) s.next_tick = now + options_.tick_s;
 }
 
+void DriveEmulator::drop_client(int fd) {
+  Impl& s = *impl_;
+  ::close(fd);
+  s.clients.erase(std::remove(s.clients.begin(), s.clients.end(), fd), s.clients.end());
+  if (s.clients.empty()) clients_gone_.notify_all();
+}
+
+bool DriveEmulator::count_write() {
+  Impl& s = *impl_;
+  const EmulatorFaults& f = options_.faults;
+  ++s.writes;
+  auto hit = [&](long after) { return after >= 0 && s.writes >= after; };
+  if (hit(f.drop_after_writes)) {
+    s.dropped = true;
+    close_clients();
+    ::close(listen_fd_);
+    listen_fd_ = -1;
+    return false;
+  }
+  if (hit(f.delay_after_writes)) s.delaying = true;
+  if (hit(f.fault_after_writes)) s.fault[static_cast<size_t>(f.fault_axis)] = true;
+  if (hit(f.garbage_after_writes)) s.garbage[static_cast<size_t>(f.garbage_axis)] = true;
+  if (hit(f.slip_after_writes)) s.slipped[static_cast<size_t>(f.slip_axis)] = true;
+  if (hit(f.stall_after_writes)) s.stalled = true;
+  return true;
+}
+
+bool DriveEmulator::hold_reply() {
+  Impl& s = *impl_;
+  const EmulatorFaults& f = options_.faults;
+  if (s.stalled) {  // swallowed: no reply, the server held for stall_s
+    mutex_.unlock();
+    clock_.sleep_until(clock_.now() + f.stall_s);
+    mutex_.lock();
+    return false;
+  }
+  if (s.delaying) {
+    mutex_.unlock();
+    clock_.sleep_until(clock_.now() + f.delay_s);
+    mutex_.lock();
+  }
+  return true;
+}
+
+void DriveEmulator::reply(int fd, const std::uint8_t* q, int length, bool latch_write) {
+  Impl& s = *impl_;
+  modbus_set_socket(s.ctx, fd);
+  const auto it = s.units.find(q[6]);
+  if (it == s.units.end()) {
+    if (modbus_reply_exception(s.ctx, q, MODBUS_EXCEPTION_GATEWAY_PATH) < 0) drop_client(fd);
+    return;
+  }
+  if (modbus_reply(s.ctx, q, length, it->second) < 0) {  // the client does not read: dropped
+    drop_client(fd);
+    return;
+  }
+  // A write that covers the latch register (its value is in the mapping now).
+  if (latch_write && map_.latch->address < it->second->nb_registers) {
+    const std::uint16_t id = it->second->tab_registers[map_.latch->address];
+    for (const AxisRegisters& a : map_.axes) {  // every axis at once, from the same plant tick
+      std::uint16_t* r = s.regs(a.unit_id);
+      r[a.latched_position] = r[a.actual_position];
+      r[a.latched_position + 1] = r[a.actual_position + 1];
+      r[a.latch_id] = id;
+    }
+  }
+}
+
 void DriveEmulator::handle_request(int fd) {
   Impl& s = *impl_;
   std::uint8_t q[MODBUS_TCP_MAX_ADU_LENGTH] = {};
   modbus_set_socket(s.ctx, fd);
   const int rc = modbus_receive(s.ctx, q);
   if (rc <= 0) {
-    if (rc < 0) {
-      ::close(fd);
-      s.clients.erase(std::remove(s.clients.begin(), s.clients.end(), fd), s.clients.end());
-      if (s.clients.empty()) clients_gone_.notify_all();
-    }
+    if (rc < 0) drop_client(fd);
     return;
   }
   const double now = clock_.now();
@@ -334,9 +398,8 @@ void DriveEmulator::handle_request(int fd) {
   // first, whether or not the serving loop has come to it yet).
   const int unit = q[6], function = q[7];
   const int addr = (q[8] << 8) | q[9];
-  const int count = function == MODBUS_FC_WRITE_SINGLE_REGISTER ? 1
-                    : function == MODBUS_FC_WRITE_MULTIPLE_REGISTERS ? ((q[10] << 8) | q[11])
-                                                                     : 0;
+  const bool write = function == MODBUS_FC_WRITE_SINGLE_REGISTER || function == MODBUS_FC_WRITE_MULTIPLE_REGISTERS;
+  const int count = function == MODBUS_FC_WRITE_SINGLE_REGISTER ? 1 : write ? ((q[10] << 8) | q[11]) : 0;
   const bool latch_write = map_.latch && unit == map_.latch->unit_id && addr <= map_.latch->address &&
                            map_.latch->address < addr + count;
   if (s.serving && !options_.stepped) {
@@ -345,59 +408,9 @@ void DriveEmulator::handle_request(int fd) {
     s.plant_t += options_.command_period_s;
     tick(s.plant_t);
   }
-  const EmulatorFaults& f = options_.faults;
-  if (function == MODBUS_FC_WRITE_SINGLE_REGISTER || function == MODBUS_FC_WRITE_MULTIPLE_REGISTERS) {
-    ++s.writes;
-    auto hit = [&](long after) { return after >= 0 && s.writes >= after; };
-    if (hit(f.drop_after_writes)) {
-      s.dropped = true;
-      close_clients();
-      ::close(listen_fd_);
-      listen_fd_ = -1;
-      return;
-    }
-    if (hit(f.delay_after_writes)) s.delaying = true;
-    if (hit(f.fault_after_writes)) s.fault[static_cast<size_t>(f.fault_axis)] = true;
-    if (hit(f.garbage_after_writes)) s.garbage[static_cast<size_t>(f.garbage_axis)] = true;
-    if (hit(f.slip_after_writes)) s.slipped[static_cast<size_t>(f.slip_axis)] = true;
-    if (hit(f.stall_after_writes)) s.stalled = true;
-  }
-  if (s.stalled) {  // swallowed: no reply, the server held for stall_s
-    mutex_.unlock();
-    clock_.sleep_until(clock_.now() + f.stall_s);
-    mutex_.lock();
-    return;
-  }
-  if (s.delaying) {
-    mutex_.unlock();
-    clock_.sleep_until(clock_.now() + f.delay_s);
-    mutex_.lock();
-  }
-  modbus_set_socket(s.ctx, fd);
-  const auto it = s.units.find(unit);
-  auto drop = [&] {  // the reply could not be sent (the client does not read): drop it
-    ::close(fd);
-    s.clients.erase(std::remove(s.clients.begin(), s.clients.end(), fd), s.clients.end());
-    if (s.clients.empty()) clients_gone_.notify_all();
-  };
-  if (it == s.units.end()) {
-    if (modbus_reply_exception(s.ctx, q, MODBUS_EXCEPTION_GATEWAY_PATH) < 0) drop();
-  } else {
-    if (modbus_reply(s.ctx, q, rc, it->second) < 0) {
-      drop();
-      return;
-    }
-    // A write that covers the latch register (its value is in the mapping now).
-    if (latch_write && map_.latch->address < it->second->nb_registers) {
-      const std::uint16_t id = it->second->tab_registers[map_.latch->address];
-      for (const AxisRegisters& a : map_.axes) {  // every axis at once, from the same plant tick
-        std::uint16_t* r = s.regs(a.unit_id);
-        r[a.latched_position] = r[a.actual_position];
-        r[a.latched_position + 1] = r[a.actual_position + 1];
-        r[a.latch_id] = id;
-      }
-    }
-  }
+  if (write && !count_write()) return;
+  if (!hold_reply()) return;
+  reply(fd, q, rc, latch_write);
 }
 
 std::string DriveEmulator::serve_bytes(std::string_view bytes, double t_s) {

@@ -13,6 +13,7 @@
 #include <array>
 #include <atomic>
 #include <condition_variable>
+#include <cstdint>
 #include <memory>
 #include <mutex>
 #include <string>
@@ -133,7 +134,20 @@ class DriveEmulator {
   void tick(double t);
   // Runs a plant tick if one is due at now (on the emulator's clock).
   void tick_if_due(double now);
+  // Reads one request from client fd and answers it (faults injected as the
+  // options say); a client that hung up or does not read is dropped.
   void handle_request(int fd);
+  // Closes client fd and forgets it (waking wait_until_no_clients when none is left).
+  void drop_client(int fd);
+  // Counts a write request and switches on the faults due after it; false
+  // when the fault drops every connection (no reply).
+  bool count_write();
+  // Holds the reply as a stall or delay fault says (the lock released while
+  // held); false when stalled (no reply).
+  bool hold_reply();
+  // Answers request q (length bytes) on fd from its unit's registers, and
+  // latches every axis's position when it writes the latch register.
+  void reply(int fd, const std::uint8_t* q, int length, bool latch_write);
   // Whether a client has a request waiting to be read (no wait).
   bool request_waiting() const;
   void close_clients();

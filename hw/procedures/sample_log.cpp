@@ -164,20 +164,17 @@ std::string read_bounded(int fd, const std::string& path) {
   return text;
 }
 
-}  // namespace
-
-void SampleLog::read_existing(bool resume) {
-  const std::string& path = path_;
-  std::string text = read_bounded(fd_, path);
-  // Nothing is changed in the file before it is known to be a sampling log
-  // whose rows are read: another file is refused as it is.
+// Whether the file (its whole text) holds a log's rows to read: false for an
+// empty or header-only file (a session stopped before its first sample), which
+// is started again with header; throws InputError for a file that is not a
+// samples log, or a log when resume is off. Nothing is changed in another file.
+bool holds_rows_to_resume(int fd, const std::string& text, const std::string& header, bool resume,
+                          const std::string& path) {
   if (is_header_begun(text)) {
-    // Empty, or a header begun or written (a session stopped before its
-    // first sample): no measurement; started again with this session's header.
-    if (text == header_of(columns_)) return;
-    if (::ftruncate(fd_, 0) != 0) throw InputError(fmt::format("{}: cannot start it again: {}", path, std::strerror(errno)));
-    write_all(fd_, header_of(columns_), path, true);
-    return;
+    if (text == header) return false;
+    if (::ftruncate(fd, 0) != 0) throw InputError(fmt::format("{}: cannot start it again: {}", path, std::strerror(errno)));
+    write_all(fd, header, path, true);
+    return false;
   }
   if (!starts_with_header(text)) {
     throw InputError(fmt::format("{}: exists and is not a samples log (its first line is not {}): it is left as it "
@@ -189,63 +186,89 @@ void SampleLog::read_existing(bool resume) {
                                  "continue it, or choose another output file",
                                  path));
   }
-  // A torn last line (crash while writing) is dropped once the rest is read.
-  const size_t read = text.size(), kept = text.rfind('\n') + 1;
-  text.resize(kept);
-  const Samples s = parse_samples_csv(text, path);
+  return true;
+}
+
+// Whether the samples were taken on the fly (times and torques in every row);
+// throws InputError when that is not how this session samples (columns).
+bool on_the_fly_as_planned(const Samples& s, SampleColumns columns, const std::string& path) {
   const bool on_the_fly = s.t.size() == s.size() && s.tau_last.size() == s.size() && s.tau_between.size() == s.size();
-  if (s.size() > 0 && on_the_fly != (columns_ == SampleColumns::kOnTheFly)) {
+  if (s.size() > 0 && on_the_fly != (columns == SampleColumns::kOnTheFly)) {
     throw InputError(fmt::format("{}: its samples were taken {} and this session samples {}: the file was recorded "
                                  "with another plan; choose another output file",
                                  path, on_the_fly ? "on the fly" : "at rest",
-                                 columns_ == SampleColumns::kOnTheFly ? "on the fly" : "at rest"));
+                                 columns == SampleColumns::kOnTheFly ? "on the fly" : "at rest"));
   }
-  // The commanded targets (target_x, target_y: not read by the samples parser,
-  // which takes true positions x, y), row by row in file order.
+  return on_the_fly;
+}
+
+// The commanded targets (target_x, target_y: not read by the samples parser,
+// which takes true positions x, y) of the first n rows of the log text, in file
+// order; none where the columns are missing; throws InputError naming the line
+// of one that is not a number.
+std::vector<std::optional<Eigen::Vector2d>> commanded_targets(const std::string& text, size_t n,
+                                                              const std::string& path) {
   std::vector<std::vector<std::string>> rows;
-  {
-    std::istringstream in(text);
-    std::string line;
-    while (std::getline(in, line)) {
-      if (!line.empty() && line.back() == '\r') line.pop_back();
-      std::vector<std::string> f;
-      std::stringstream ls(line);
-      std::string cell;
-      while (std::getline(ls, cell, ',')) f.push_back(cell);
-      if (!f.empty()) rows.push_back(f);
-    }
+  std::istringstream in(text);
+  std::string line;
+  while (std::getline(in, line)) {
+    if (!line.empty() && line.back() == '\r') line.pop_back();
+    std::vector<std::string> f;
+    std::stringstream ls(line);
+    std::string cell;
+    while (std::getline(ls, cell, ',')) f.push_back(cell);
+    if (!f.empty()) rows.push_back(f);
   }
   int cx = -1, cy = -1;
   for (size_t k = 0; !rows.empty() && k < rows[0].size(); ++k) {
     if (rows[0][k] == "target_x") cx = static_cast<int>(k);
     if (rows[0][k] == "target_y") cy = static_cast<int>(k);
   }
+  std::vector<std::optional<Eigen::Vector2d>> targets(n);
+  for (size_t j = 0; j < n; ++j) {
+    if (cx < 0 || cy < 0 || j + 1 >= rows.size() || static_cast<int>(rows[j + 1].size()) <= std::max(cx, cy)) continue;
+    try {
+      targets[j] = Eigen::Vector2d(std::stod(rows[j + 1][static_cast<size_t>(cx)]),
+                                   std::stod(rows[j + 1][static_cast<size_t>(cy)]));
+    } catch (const std::exception&) {
+      throw InputError(fmt::format("{}: line {}: target_x, target_y are not numbers", path, j + 2));
+    }
+  }
+  return targets;
+}
+
+// Sample j's motion as a log of samples on the fly recorded it.
+SampleMotion motion_of(const Samples& s, size_t j) {
+  SampleMotion m;
+  m.t_s = s.t[j];
+  m.tau = s.tau.size() == s.size() ? s.tau[j] : s.tau_last[j];
+  m.tau_last = s.tau_last[j];
+  m.tau_between = s.tau_between[j];
+  m.t_read = s.t_read.size() == s.size() ? s.t_read[j] : Eigen::Vector3d::Constant(s.t[j]);
+  return m;
+}
+
+}  // namespace
+
+void SampleLog::read_existing(bool resume) {
+  std::string text = read_bounded(fd_, path_);
+  if (!holds_rows_to_resume(fd_, text, header_of(columns_), resume, path_)) return;
+  // A torn last line (crash while writing) is dropped once the rest is read.
+  const size_t read = text.size(), kept = text.rfind('\n') + 1;
+  text.resize(kept);
+  const Samples s = parse_samples_csv(text, path_);
+  const bool on_the_fly = on_the_fly_as_planned(s, columns_, path_);
+  const std::vector<std::optional<Eigen::Vector2d>> targets = commanded_targets(text, s.size(), path_);
   for (size_t j = 0; j < s.size(); ++j) {
     ids_.insert(s.id[j]);  // each id once: parse_samples_csv refuses an id twice
     Recorded r;
     r.theta_m = s.theta_m[j];
-    if (cx >= 0 && cy >= 0 && j + 1 < rows.size() &&
-        static_cast<int>(rows[j + 1].size()) > std::max(cx, cy)) {
-      try {
-        r.target = {std::stod(rows[j + 1][static_cast<size_t>(cx)]), std::stod(rows[j + 1][static_cast<size_t>(cy)])};
-        r.has_target = true;
-      } catch (const std::exception&) {
-        throw InputError(fmt::format("{}: line {}: target_x, target_y are not numbers", path, j + 2));
-      }
-    }
-    if (on_the_fly) {
-      SampleMotion m;
-      m.t_s = s.t[j];
-      m.tau = s.tau.size() == s.size() ? s.tau[j] : s.tau_last[j];
-      m.tau_last = s.tau_last[j];
-      m.tau_between = s.tau_between[j];
-      m.t_read = s.t_read.size() == s.size() ? s.t_read[j] : Eigen::Vector3d::Constant(s.t[j]);
-      r.motion = m;
-    }
+    if (targets[j]) r.target = *targets[j], r.has_target = true;
+    if (on_the_fly) r.motion = motion_of(s, j);
     recorded_[s.id[j]] = r;
   }
   if (kept != read && ::ftruncate(fd_, static_cast<off_t>(kept)) != 0)
-    throw InputError(fmt::format("{}: cannot drop the torn last line: {}", path, std::strerror(errno)));
+    throw InputError(fmt::format("{}: cannot drop the torn last line: {}", path_, std::strerror(errno)));
 }
 
 SampleLog::~SampleLog() {

@@ -6,7 +6,9 @@
 # cmd_sample.cpp), samples written to a device or FIFO and duplicate sample ids
 # (hw/procedures/sample_log.cpp), everything checked before the robot moves
 # (run/monitor_run.cpp, app/cmd_zero.cpp), the drive emulator's flags
-# (hw/backends/emulator_main.cpp, drive_emulator.cpp).
+# (hw/backends/emulator_main.cpp, drive_emulator.cpp), a full disk under gpm
+# monitor --hardware (app/cmd_monitor.cpp: checked before moving, the
+# record kept when the report cannot be written).
 # One table, one row per case: the command, its exit code, a fragment of its
 # one stderr line, and a file that must be byte-identical afterwards (- none).
 # No wall-clock sleeps: a running session is stood in for by flock(1) holding
@@ -154,6 +156,33 @@ while read -r -t 10 -u 3 line; do lines=$((lines+1)); [[ $lines -eq 3 ]] && brea
 exec 3>&-
 holds "the FIFO got the header and 2 samples" test "$lines" -eq 3
 holds "the FIFO stays a FIFO" test -p "$tmp/fifo"
+
+# A full disk under gpm monitor --hardware (app/cmd_monitor.cpp): files are
+# limited in size (ulimit -f, SIGXFSZ ignored: a write past the limit fails
+# as on a full disk), the command's own stdout and stderr go through pipes.
+fsize_limited() {  # KIB CMD...
+  local -; set -o pipefail
+  local kib=$1; shift
+  { ( trap '' XFSZ; ulimit -f "$kib"; exec "$@" ) 2>&1 1>&3 3>&- | cat >&2; } 3>&1 | cat
+}
+# No room at all: refused before the robot moves, no folder left.
+check "monitor --hardware, no room" 2 fsize_limited 0 "$GPM" monitor "$tmp/op.yaml" --hardware "$tmp/twin.yaml" -o "$tmp/MF0" &&
+  expect_err "monitor, no room: before moving" "MF0/alarms.csv: write failed: .*\(nothing moved\)"
+holds "monitor, no room: no folder" test ! -e "$tmp/MF0"
+# Room for the record, not the report: the alarms and estimates recorded as
+# the robot moved are kept (the same bytes as a run with room), a previous
+# run's summary and report removed, one line, exit 1.
+check "monitor --hardware with room" 0 "$GPM" monitor "$tmp/op.yaml" --hardware "$tmp/twin.yaml" -o "$tmp/MF"
+cp "$tmp/MF/estimates.csv" "$tmp/MF.estimates" && cp "$tmp/MF/alarms.csv" "$tmp/MF.alarms"
+rows=$(($(wc -l <"$tmp/MF.estimates") - 1))
+check "monitor --hardware, no room for the report" 1 fsize_limited 8 "$GPM" monitor "$tmp/op.yaml" --hardware "$tmp/twin.yaml" -o "$tmp/MF" &&
+  expect_err "monitor, no room for the report: says what is kept" \
+    "report.html: write failed .*; $rows estimates and 0 alarms kept in .*MF/estimates.csv and alarms.csv"
+holds "monitor, no room for the report: one line" test "$(wc -l <"$tmp/err")" -eq 1
+holds "monitor, no room for the report: estimates kept whole" cmp -s "$tmp/MF/estimates.csv" "$tmp/MF.estimates"
+holds "monitor, no room for the report: alarms kept whole" cmp -s "$tmp/MF/alarms.csv" "$tmp/MF.alarms"
+holds "monitor, no room for the report: no stale report" test ! -e "$tmp/MF/summary.json" -a ! -e "$tmp/MF/report.md"
+holds "monitor, no room for the report: no temporary left" test "$(ls -A "$tmp/MF" | wc -l)" -eq 2
 
 # 7: without -o, section 3's samples stay in memory: no temporary that an
 # interruption could leave behind (a TMPDIR that does not exist is never used).

@@ -217,6 +217,26 @@ TEST(OutputFolder, NothingWhenNotCommittedOrRefused) {
   EXPECT_THROW(OutputFolder(d / "file"), InputError);
 }
 
+// What a command keeps when it cannot write all its files: only the kept
+// names are moved in, the others stay as they were, no staging folder is left.
+TEST(OutputFolder, KeepOnlyCommitsTheKeptFilesAlone) {
+  const TempDir d("folder_keep_only");
+  put(d / "report.md", "old report");
+  {
+    OutputFolder out(d.path.string());
+    out.add("alarms.csv", "A");
+    out.add("estimates.csv", "E");
+    out.add("report.md", "new report");
+    out.keep_only({"alarms.csv", "estimates.csv", "not_staged.csv"});
+    out.commit();
+  }
+  EXPECT_EQ(slurp(d / "alarms.csv"), "A");
+  EXPECT_EQ(slurp(d / "estimates.csv"), "E");
+  EXPECT_EQ(slurp(d / "report.md"), "old report");
+  EXPECT_FALSE(fs::exists(d / "not_staged.csv"));
+  EXPECT_EQ(std::distance(fs::directory_iterator(d.path), fs::directory_iterator()), 3);
+}
+
 // Every input against every output of one command, by identity, whichever
 // comes first (the command line turns tracking on; off, nothing is kept).
 TEST(CommandFiles, AnOutputThatIsAnInputIsRefusedInEitherOrder) {

@@ -5,8 +5,10 @@
 # count of it (17-bit; measured 0.27). A run whose connection drops keeps its samples and
 # says the command that goes on (--resume); that command finishes the run. A
 # signal disables the drives, keeps the samples and exits 130. A
-# bad-input run leaves no samples.csv. Everything happens in a fresh temporary
-# folder that is removed (re-runnable), and no step sleeps on the wall clock.
+# bad-input run leaves no samples.csv. gpm monitor keeps what it recorded
+# (alarms, estimates) when the connection drops or a signal stops it.
+# Everything happens in a fresh temporary folder that is removed
+# (re-runnable), and no step sleeps on the wall clock.
 set -u
 GPM="$1"; EMU="$2"; SRC="$3"
 tmp=$(mktemp -d); emu_pid=""
@@ -110,6 +112,42 @@ grep -qE "^gpm: interrupted by SIGINT: drives disabled; [0-9]+ samples kept in $
   "$tmp/sig.err" && ok || { bad "interrupted run: message"; cat "$tmp/sig.err"; }
 drives=$(python3 "$SRC/tests/hw/emulator_drives.py" "$port")
 [[ "$drives" == "0 0 0" ]] && ok || bad "interrupted run: drives still on ($drives)"
+stop_emulator
+
+# gpm monitor through the drives (app/cmd_monitor.cpp): what it recorded (its
+# alarms and estimates, written as they come) is kept when the connection
+# drops or a signal stops it; one line, exit 1 or 130, drives disabled.
+cat >"$tmp/op.yaml" <<YAML
+name: op
+robot: $SRC/models/gpm2002.yaml
+encoder: {bits: 17}
+operation:
+  path: {shape: circle, centre: [216.5, 250], radius: 40, period_s: 2}
+  duration_s: 60
+YAML
+start_emulator --drop-after-writes 3000
+"$GPM" monitor "$tmp/op.yaml" --hardware "$tmp/modbus.yaml" -o "$tmp/mdrop" --progress=none \
+  >"$tmp/mdrop.out" 2>"$tmp/mdrop.err"; rc=$?
+[[ $rc -eq 1 ]] && ok || { bad "dropped monitor: exit $rc, want 1"; cat "$tmp/mdrop.err"; }
+[[ $(wc -l <"$tmp/mdrop.err") -eq 1 ]] && ok || { bad "dropped monitor: stderr not one line"; cat "$tmp/mdrop.err"; }
+kept=$(sed -n 's/.*drives disabled; \([0-9]*\) estimates and [0-9]* alarms\{0,1\} kept in .*/\1/p' "$tmp/mdrop.err")
+[[ -n "$kept" && $kept -ge 1 && $(($(wc -l <"$tmp/mdrop/estimates.csv") - 1)) -eq $kept ]] && ok ||
+  { bad "dropped monitor: estimates kept ($kept)"; cat "$tmp/mdrop.err"; ls -A "$tmp/mdrop"; }
+stop_emulator
+start_emulator --comms-watchdog 30
+"$GPM" monitor "$tmp/op.yaml" --hardware "$tmp/modbus.yaml" -o "$tmp/msig" --progress=none \
+  >"$tmp/msig.out" 2>"$tmp/msig.err" &
+pid=$!
+# The record is written into the folder's stage as it comes: wait for a row.
+read -r -t 120 first < <(tail -n +2 -F --pid=$pid "$tmp/msig/.gpm-output.tmp$pid/estimates.csv" 2>/dev/null) || true
+kill -s INT "$pid"; wait "$pid"; rc=$?
+[[ $rc -eq 130 ]] && ok || { bad "interrupted monitor: exit $rc, want 130"; cat "$tmp/msig.err"; }
+grep -qE "^gpm monitor: SIGINT: .*drives disabled; [1-9][0-9]* estimates and [0-9]+ alarms? kept in $tmp/msig/estimates.csv and alarms.csv" \
+  "$tmp/msig.err" && ok || { bad "interrupted monitor: message"; cat "$tmp/msig.err"; }
+[[ $(wc -l <"$tmp/msig.err") -eq 1 ]] && ok || { bad "interrupted monitor: stderr not one line"; cat "$tmp/msig.err"; }
+drives=$(python3 "$SRC/tests/hw/emulator_drives.py" "$port")
+[[ "$drives" == "0 0 0" ]] && ok || bad "interrupted monitor: drives still on ($drives)"
+[[ $(ls -A "$tmp/msig") == $'alarms.csv\nestimates.csv' ]] && ok || { bad "interrupted monitor: files"; ls -A "$tmp/msig"; }
 stop_emulator
 
 # Bad input (a tight workspace leaves too few poses to design): exit 2, no samples.csv left to block a rerun.
