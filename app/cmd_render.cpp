@@ -241,8 +241,9 @@ void print_render_summary(const RenderCliOptions& opt, const render::RenderOptio
         fmt::print("part             {} from frame {}\n", one_line(parts[static_cast<size_t>(g.part)].front().label),
                    g.first);
       else
-        fmt::print("card             {} from frame {}\n",
-                   g.kind == render::Segment::Kind::kOpening ? "opening" : "closing", g.first);
+        fmt::print("card             {}{} from frame {}\n",
+                   g.kind == render::Segment::Kind::kOpening ? "opening" : "closing",
+                   g.pages > 1 ? fmt::format(" in {} pages", g.pages) : "", g.first);
     }
   }
   fmt::print("rendered         {:.1f} frames/s ({:.2f} s wall, {})\n", v.frames_per_s, v.wall_s, v.gl_renderer);
@@ -272,6 +273,7 @@ void run_render(const RenderCliOptions& opt, bool fps_given, bool speed_given) {
   std::vector<std::vector<render::RunView>> parts;
   render::Cards cards;
   if (story) {
+    render::check_card_size(o.width, o.height, opt.size.empty() ? opt.scenario + ": render.size" : "--size");
     ran = run_story(opt.scenario);
     parts = ran->parts;
     cards = ran->cards;
@@ -280,7 +282,8 @@ void run_render(const RenderCliOptions& opt, bool fps_given, bool speed_given) {
   }
   // A progress line on a terminal (frames, fps, ETA); PNG-only renders are short.
   int total = 0;
-  for (const render::Segment& g : render::video_segments(parts, o, cards)) total += g.count;
+  for (const render::Segment& g : render::video_segments(parts, o, cards, render::card_pages(parts, o, cards)))
+    total += g.count;
   Progress progress = Progress::terminal("gpm render", "frames", opt.out.empty() ? 0 : total);
   render::VideoJobOptions job;
   job.progress = opt.out.empty() ? nullptr : &progress;
