@@ -83,17 +83,17 @@ void print_summary(const scenario::RunOutcome& o, const std::string& dir) {
     const scenario::MonitorOutcome& m = *o.monitor;
     fmt::print("monitor    {:.1f} s of operation, {} ({} false)\n", m.simulated_s, count_of(m.alarms.size(), "alarm"),
                m.false_alarms);
-    fmt::print("learning   {}\n", scenario::learning_text(m));
+    fmt::print("learning   {}\n", terminal_text(scenario::learning_text(m)));
     for (const auto& d : m.detections)
       fmt::print("event {}    at {:.3f} s {}\n", d.event, d.at_s,
-                 d.detected_s ? fmt::format("detected after {:.3f} s: {}", *d.detected_s - d.at_s, d.explanation)
+                 d.detected_s ? fmt::format("detected after {:.3f} s: {}", *d.detected_s - d.at_s, terminal_text(d.explanation))
                               : std::string("not detected"));
   }
   size_t failed = 0;
   for (const auto& c : o.checks) {
     if (!c.passed) {
       ++failed;
-      fmt::print("FAILED     {}: {}\n", c.name, c.detail);
+      fmt::print("FAILED     {}: {}\n", c.name, terminal_text(c.detail));
     }
   }
   fmt::print("verdict    {} ({} checks, {} failed) in {:.1f} s\n", failed ? "FAILED" : "PASSED", o.checks.size(),

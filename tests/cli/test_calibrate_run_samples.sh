@@ -15,6 +15,14 @@ holds "samples.csv has t" grep -qE '^sample,.*,tau_between3,t$' "$S"
 check "calibrate on the run's samples" 0 "$GPM" calibrate --data "$S" --model "$SRC/models/gpm2002.yaml" -o "$tmp/r.yaml"
 expect_out "the motion model" "the motion model"
 expect_out "model test line" "^model test (passes|fails) \(chi2/dof"
+# On a UTF-8 terminal (a pty) the line and the notes say χ²; in the C locale chi2.
+if command -v script >/dev/null; then
+  LC_ALL= LC_CTYPE= LANG=C.UTF-8 script -qec "'$GPM' calibrate --data '$S' --model '$SRC/models/gpm2002.yaml' -o '$tmp/r.yaml'" /dev/null >"$tmp/out"
+  expect_out "model test line in UTF-8" "^model test (passes|fails) \(χ²/dof"
+  holds "no chi2 on a UTF-8 terminal" bash -c "! grep -q 'chi2' '$tmp/out'"
+  LC_ALL=C script -qec "'$GPM' calibrate --data '$S' --model '$SRC/models/gpm2002.yaml' -o '$tmp/r.yaml'" /dev/null >"$tmp/out"
+  expect_out "model test line in the C locale" "^model test (passes|fails) \(chi2/dof"
+fi
 geometry() { awk '/^geometry:/{on=1; next} /^[^ ]/{on=0} on' "$1"; }
 holds "geometry bit for bit" cmp <(geometry "$tmp/run/calibration.yaml") <(geometry "$tmp/r.yaml")
 holds "model test as gpm run's" python3 - "$tmp/run/summary.json" "$tmp/r.yaml" <<'PY'
