@@ -19,6 +19,7 @@
 #include "models/errors.hpp"
 #include "models/measured_data.hpp"
 #include "models/output_file.hpp"
+#include "report/run_report.hpp"
 #include "run/run_spec.hpp"
 #include "run/runner.hpp"
 #include "sim/simulate.hpp"
@@ -73,11 +74,12 @@ void print_summary(const scenario::RunOutcome& o, const std::string& dir) {
                o.floor->static_rms_um, o.floor->static_max_um, o.floor->path_rms_um, fmt::arg("u", um()));
   }
   if (o.hardware_description.empty()) fmt::print("robot time {:.2f} s of sampling\n", o.sim.sampling_s);
-  if (o.model_test) {
+  if (o.model_test) {  // in the report's voice (report::model_test_verdict)
+    const report::ModelTestVerdict v = report::model_test_verdict(
+        o.model_test->passed, o.model_test->chi2, o.model_test->dof,
+        o.positioning ? std::optional<double>(o.positioning->normalised_rms) : std::nullopt);
     fmt::print("model test {} {:.4g} for {:.0f} degrees of freedom, p = {:.3g}: {}\n", chi2(), o.model_test->chi2,
-               o.model_test->dof, o.model_test->p_value,
-               o.model_test->passed ? "the residuals are as small as the encoders explain"
-                                    : "fails (see the report's notes for the likely cause)");
+               o.model_test->dof, o.model_test->p_value, report::model_test_verdict_line(v));
   }
   if (o.monitor) {
     const scenario::MonitorOutcome& m = *o.monitor;

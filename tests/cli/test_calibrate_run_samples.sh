@@ -10,6 +10,30 @@ source "$(dirname "$0")/cli_lib.sh"
 
 check "gpm run" 0 "$GPM" run "$SRC/tests/fixtures/on_the_fly_small.yaml" -o "$tmp/run"
 S="$tmp/run/samples.csv"
+# gpm run's model test line says what summary.json's figures mean, as the
+# report does (report::model_test_verdict): passed; or the scatter
+# sqrt(chi2/dof), and whether the stated 1-sigma accounts for it
+# (positioning normalised RMS at most 1.5).
+cp "$tmp/out" "$tmp/run_out.txt"
+holds "gpm run's model test line" python3 - "$tmp/run/summary.json" "$tmp/run_out.txt" <<'PY'
+import json, math, re, sys
+s = json.load(open(sys.argv[1]))
+t, p = s["model_test"], s["positioning_um"]["normalised_rms"]
+line = next(l for l in open(sys.argv[2]) if l.startswith("model test "))
+def sig(v):
+    whole = math.floor(math.log10(abs(v))) + 1
+    return f"{v:.{max(0, 2 - whole)}f}"
+if t["passed"]:
+    want = "the residuals are as small as the encoders explain"
+elif p <= 1.5:
+    want = (f"the readings scatter {sig(math.sqrt(t['chi2'] / t['dof']))}x the encoders' 1-sigma; the stated 1-sigma "
+            f"accounts for it (positioning error {sig(p)}x the stated 1-sigma)")
+else:
+    want = f"the stated 1-sigma understates the error (positioning error {sig(p)}x it"
+ok = want in line and "fails" not in line
+print("" if ok else f"line {line!r}, want {want!r}")
+sys.exit(0 if ok else 1)
+PY
 holds "samples.csv has t" grep -qE '^sample,.*,tau_between3,t$' "$S"
 
 check "calibrate on the run's samples" 0 "$GPM" calibrate --data "$S" --model "$SRC/models/gpm2002.yaml" -o "$tmp/r.yaml"
