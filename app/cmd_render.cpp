@@ -124,7 +124,8 @@ render::Card opening_card(const Story& story, const std::string& file) {
 }
 
 // The closing card: the nominal and calibrated models' static positioning and
-// tracking errors, as this run measured them (none without both).
+// tracking errors, as this run measured them, and the robot time of the
+// sampling (none without both).
 std::optional<render::Card> closing_card(const scenario::RunOutcome& o) {
   if (!o.before || !o.after) return std::nullopt;
   const auto d = [](double um) { return render::distance_text(um / 1000.0); };
@@ -134,13 +135,13 @@ std::optional<render::Card> closing_card(const scenario::RunOutcome& o) {
   c.rows.push_back({fmt::format("at {} poses", o.before->static_error_um.size()), d(o.before->static_rms_um),
                     d(o.after->static_rms_um)});
   c.rows.push_back({"on the path", d(o.before->path_rms_um), d(o.after->path_rms_um)});
+  if (!o.sim.samples.empty())  // how long the calibration keeps the robot from its work: its sampling
+    c.rows.push_back({"time off work", fmt::format("{:.1f} s, {}", o.sim.sampling_s, o.in_motion ? "on the fly" : "at rest")});
   c.rows.push_back({""});
   if (o.refused) c.rows.push_back({fmt::format("calibration refused: {}", *o.refused)});
   else if (o.after->static_rms_um > 0)
     c.rows.push_back({fmt::format("Standing still, the error is {}x smaller.",
                                   report::ratio_text(o.before->static_rms_um / o.after->static_rms_um))});
-  if (!o.sim.samples.empty())
-    c.rows.push_back({fmt::format("The sampling took {:.1f} s of robot motion.", o.sim.sampling_s)});
   c.rows.push_back({"Measured on the twin in this run."});
   c.seconds = 5.0;
   c.large = true;

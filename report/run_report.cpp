@@ -283,9 +283,12 @@ double worst_crb_ratio(const RunReport& o) {
 // The lead: how far the tool tip stood from where it was sent, before and
 // after, in one sentence a manager reads (or why there is no after).
 std::string lead_sentence(const RunReport& o) {
+  // How long the sampling kept the robot from its work: what a user plans for.
   const std::string readings =
       o.hardware_description.empty() && o.robot_time_s > 0.0
-          ? fmt::format("{} s of its own encoder readings ({} samples)", sig(o.robot_time_s, 2), o.sample_xy.size())
+          ? fmt::format("{} of its own encoder readings, taken {} in {} s of robot time (all the time the "
+                        "calibration keeps the robot from its work)",
+                        o.sample_xy.size(), o.on_the_fly ? "on the fly" : "at rest at each pose", sig(o.robot_time_s, 2))
           : fmt::format("{} samples of its own encoder readings", o.sample_xy.size());
   if (o.refused) return "The calibration was refused (see Calibration below); the robot keeps its nominal model.";
   if (o.before && o.after) {

@@ -90,6 +90,7 @@ struct RunReport {
   // max, the stated 1-sigma per axis and error / 1-sigma (1 when honest).
   std::optional<std::array<double, 4>> positioning_um;
   double robot_time_s = 0.0;                // robot time of the sampling
+  bool on_the_fly = false;                  // the samples taken while moving (else at rest at each pose)
   std::vector<RunCheck> checks;
 };
 

@@ -132,8 +132,9 @@ TEST(RunReport, LeadsWithBeforeAndAfterAtTheToolTip) {
   // 9681.94 µm -> 9.68 mm, 28.15 µm, 9681.94 / 28.15 = 343.9, 28.15 / 10.71 = 2.63; 8 test poses, 10.07 s.
   EXPECT_EQ(lead(md),
             "With its nominal model the robot's tool tip stood 9.68 mm from where it was sent (RMS over 8 test "
-            "poses); calibrated from 10 s of its own encoder readings (3000 samples), it stands 28.1 µm away: 344× "
-            "closer, and 2.63× the error of a controller that knew the true parameters (10.7 µm).");
+            "poses); calibrated from 3000 of its own encoder readings, taken on the fly in 10 s of robot time (all "
+            "the time the calibration keeps the robot from its work), it stands 28.1 µm away: 344× closer, and 2.63× "
+            "the error of a controller that knew the true parameters (10.7 µm).");
   EXPECT_EQ(md.rfind("# gpm run: example\n\n**With its nominal model", 0), 0u);  // the first paragraph
   // The path against the static error, in one sentence.
   EXPECT_NE(md.find("path RMS is the tool tip while it moves, where the drives' lag behind the moving target adds an "
