@@ -9,6 +9,8 @@
 #include <fmt/format.h>
 #include <unistd.h>
 
+#include "report/report_document.hpp"
+
 namespace gpm::cli {
 
 // Edit distance between a and b (insertions, deletions, substitutions).
@@ -63,6 +65,8 @@ bool terminal_utf8() {
 const char* um() { return terminal_utf8() ? "\u00b5m" : "um"; }
 
 const char* chi2() { return terminal_utf8() ? "\u03c7\u00b2" : "chi2"; }
+
+std::string terminal_text(const std::string& text) { return terminal_utf8() ? report::unit_symbols(text) : text; }
 
 std::string count_of(std::size_t n, const std::string& noun, const std::string& plural) {
   return fmt::format("{} {}", n, n == 1 ? noun : (plural.empty() ? noun + "s" : plural));

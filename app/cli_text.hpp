@@ -23,6 +23,12 @@ const char* um();
 // "χ²" on a UTF-8 terminal, else "chi2".
 const char* chi2();
 
+// Text of the libraries (notes, the model test's line, the monitor's
+// learning and explanations, written in ASCII) as this terminal shows it:
+// units as symbols (report::unit_symbols: µm, µrad, χ²) on a UTF-8
+// terminal, as written otherwise.
+std::string terminal_text(const std::string& text);
+
 // "1 alarm", "2 alarms", "0 alarms" (plural: noun + "s" unless given).
 std::string count_of(std::size_t n, const std::string& noun, const std::string& plural = "");
 

@@ -18,6 +18,7 @@
 
 #include <fmt/format.h>
 
+#include "app/cli_text.hpp"
 #include "app/commands.hpp"
 #include "app/json_output.hpp"
 #include "app/number_options.hpp"
@@ -124,7 +125,7 @@ void print_result(const CalibrateOptions& o, const Robot& robot, const Samples& 
   if (r.kmrmse_mm) fmt::print(", kmrmse {:.6g} mm", *r.kmrmse_mm);
   fmt::print(", {:.3f} s\n", r.seconds);
   if (outcome.model_test)
-    fmt::print("{}\n", scenario::model_test_line(*outcome.model_test, proc.sigma_stated));
+    fmt::print("{}\n", terminal_text(scenario::model_test_line(*outcome.model_test, proc.sigma_stated)));
   else
     fmt::print("model test not made (no reading 1-sigma: --sigma or --encoder-bits; or no more samples than "
                "free parameters)\n");
@@ -213,7 +214,7 @@ void run(const CalibrateOptions& o) {
   const calib::Result& r = outcome.result;
   calib::usable_robot(robot, r.geometry);  // else exit 1, nothing written
 
-  for (const auto& note : r.notes) std::fprintf(stderr, "gpm: warning: %s\n", note.c_str());
+  for (const auto& note : r.notes) std::fprintf(stderr, "gpm: warning: %s\n", terminal_text(note).c_str());
   const std::string text =
       calib::result_to_yaml(r, robot.name) + (outcome.model_test ? scenario::model_test_yaml(*outcome.model_test, 2) : "");
   write_file_atomic(o.out, text);

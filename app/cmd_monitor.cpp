@@ -27,6 +27,7 @@
 
 #include <fmt/format.h>
 
+#include "app/cli_text.hpp"
 #include "app/commands.hpp"
 #include "app/data_files.hpp"
 #include "app/progress_mode.hpp"
@@ -238,11 +239,11 @@ void print_alarms(const scenario::MonitorOutcome& o) {
                o.model.settings.false_alarms_per_hour);
   for (const auto& a : o.alarms)
     fmt::print("alarm      at {:.3f} s ({} {:.1f} > {:.1f}): {}\n", a.t_s, a.kind, a.statistic, a.threshold,
-               a.explanation);
+               terminal_text(a.explanation));
   for (const auto& d : o.detections) {
     if (d.detected_s)
       fmt::print("event {}    at {:.3f} s detected at {:.3f} s (delay {:.3f} s): {}\n", d.event, d.at_s,
-                 *d.detected_s, *d.detected_s - d.at_s, d.explanation);
+                 *d.detected_s, *d.detected_s - d.at_s, terminal_text(d.explanation));
     else
       fmt::print("event {}    at {:.3f} s: not detected\n", d.event, d.at_s);
   }
@@ -257,10 +258,10 @@ void print_summary(const MonitorOptions& opt, const sim::Scenario& s, const scen
   fmt::print("operation  {:.1f} s, {} servo cycles, {:.1f} s wall\n", o.simulated_s, o.cycles, o.wall_s);
   if (!o.hardware.empty()) fmt::print("hardware   {}\n", o.hardware);
   fmt::print("readings   noise model {}\n", reading_from);
-  fmt::print("learning   {}\n", scenario::learning_text(o));
+  fmt::print("learning   {}\n", terminal_text(scenario::learning_text(o)));
   print_alarms(o);
   for (const auto& c : checks)
-    if (!c.passed) fmt::print("FAILED     {}: {}\n", c.name, c.detail);
+    if (!c.passed) fmt::print("FAILED     {}: {}\n", c.name, terminal_text(c.detail));
   fmt::print("verdict    {} ({} checks, {} failed)\n", failed ? "FAILED" : "PASSED", checks.size(), failed);
   print_written(opt.out);  // report.html, report.md, alarms.csv, estimates.csv, summary.json, figures
   if (failed) set_exit(1);

@@ -124,7 +124,8 @@ render::Card opening_card(const Story& story, const std::string& file) {
 }
 
 // The closing card: the nominal and calibrated models' static positioning and
-// tracking errors, as this run measured them (none without both).
+// tracking errors, as this run measured them, and the robot time of the
+// sampling (none without both).
 std::optional<render::Card> closing_card(const scenario::RunOutcome& o) {
   if (!o.before || !o.after) return std::nullopt;
   const auto d = [](double um) { return render::distance_text(um / 1000.0); };
@@ -134,13 +135,13 @@ std::optional<render::Card> closing_card(const scenario::RunOutcome& o) {
   c.rows.push_back({fmt::format("at {} poses", o.before->static_error_um.size()), d(o.before->static_rms_um),
                     d(o.after->static_rms_um)});
   c.rows.push_back({"on the path", d(o.before->path_rms_um), d(o.after->path_rms_um)});
+  if (!o.sim.samples.empty())  // how long the calibration keeps the robot from its work: its sampling
+    c.rows.push_back({"time off work", fmt::format("{:.1f} s, {}", o.sim.sampling_s, o.in_motion ? "on the fly" : "at rest")});
   c.rows.push_back({""});
   if (o.refused) c.rows.push_back({fmt::format("calibration refused: {}", *o.refused)});
   else if (o.after->static_rms_um > 0)
     c.rows.push_back({fmt::format("Standing still, the error is {}x smaller.",
                                   report::ratio_text(o.before->static_rms_um / o.after->static_rms_um))});
-  if (!o.sim.samples.empty())
-    c.rows.push_back({fmt::format("The sampling took {:.1f} s of robot motion.", o.sim.sampling_s)});
   c.rows.push_back({"Measured on the twin in this run."});
   c.seconds = 5.0;
   c.large = true;
@@ -241,8 +242,9 @@ void print_render_summary(const RenderCliOptions& opt, const render::RenderOptio
         fmt::print("part             {} from frame {}\n", one_line(parts[static_cast<size_t>(g.part)].front().label),
                    g.first);
       else
-        fmt::print("card             {} from frame {}\n",
-                   g.kind == render::Segment::Kind::kOpening ? "opening" : "closing", g.first);
+        fmt::print("card             {}{} from frame {}\n",
+                   g.kind == render::Segment::Kind::kOpening ? "opening" : "closing",
+                   g.pages > 1 ? fmt::format(" in {} pages", g.pages) : "", g.first);
     }
   }
   fmt::print("rendered         {:.1f} frames/s ({:.2f} s wall, {})\n", v.frames_per_s, v.wall_s, v.gl_renderer);
@@ -272,6 +274,7 @@ void run_render(const RenderCliOptions& opt, bool fps_given, bool speed_given) {
   std::vector<std::vector<render::RunView>> parts;
   render::Cards cards;
   if (story) {
+    render::check_card_size(o.width, o.height, opt.size.empty() ? opt.scenario + ": render.size" : "--size");
     ran = run_story(opt.scenario);
     parts = ran->parts;
     cards = ran->cards;
@@ -280,7 +283,8 @@ void run_render(const RenderCliOptions& opt, bool fps_given, bool speed_given) {
   }
   // A progress line on a terminal (frames, fps, ETA); PNG-only renders are short.
   int total = 0;
-  for (const render::Segment& g : render::video_segments(parts, o, cards)) total += g.count;
+  for (const render::Segment& g : render::video_segments(parts, o, cards, render::card_pages(parts, o, cards)))
+    total += g.count;
   Progress progress = Progress::terminal("gpm render", "frames", opt.out.empty() ? 0 : total);
   render::VideoJobOptions job;
   job.progress = opt.out.empty() ? nullptr : &progress;

@@ -1,5 +1,7 @@
 // gpm run SCENARIO.yaml -o DIR: simulate, calibrate, compensate, evaluate and
 // report (run/runner.hpp). Exit 1 when an expectation fails.
+#include <algorithm>
+#include <cmath>
 #include <cstdio>
 #include <filesystem>
 #include <memory>
@@ -19,6 +21,8 @@
 #include "models/errors.hpp"
 #include "models/measured_data.hpp"
 #include "models/output_file.hpp"
+#include "report/run_report.hpp"
+#include "report/table_cell.hpp"
 #include "run/run_spec.hpp"
 #include "run/runner.hpp"
 #include "sim/simulate.hpp"
@@ -34,6 +38,20 @@ struct RunOptions {
   std::string progress;  // --progress (app/progress_mode.hpp)
   bool resume = false;
 };
+
+// The run in one line, as the report's lead says it: the tool tip's static
+// error before and after, and the robot time the sampling took.
+void print_result(const scenario::RunOutcome& o) {
+  if (!o.before || !o.after || o.refused) return;
+  const auto distance = [](double v) {
+    return std::abs(v) >= 1000.0 ? report::sig(v / 1000.0) + " mm" : report::sig(v) + " " + um();
+  };
+  fmt::print("result     tool tip {} from where it is sent with the nominal model, {} calibrated ({}x closer){}\n",
+             distance(o.before->static_rms_um), distance(o.after->static_rms_um),
+             report::ratio_text(o.before->static_rms_um / std::max(1e-12, o.after->static_rms_um)),
+             o.hardware_description.empty() ? fmt::format("; sampled in {} s of robot time", report::sig(o.sim.sampling_s, 2))
+                                            : std::string());
+}
 
 void print_summary(const scenario::RunOutcome& o, const std::string& dir) {
   fmt::print("scenario   {} ({})\n", o.spec.sim.name, o.scenario_file);
@@ -72,30 +90,34 @@ void print_summary(const scenario::RunOutcome& o, const std::string& dir) {
     fmt::print("           actual (floor):   static RMS {:9.2f} {u}, max {:9.2f} {u}; path RMS {:9.2f} {u}\n",
                o.floor->static_rms_um, o.floor->static_max_um, o.floor->path_rms_um, fmt::arg("u", um()));
   }
-  if (o.hardware_description.empty()) fmt::print("robot time {:.2f} s of sampling\n", o.sim.sampling_s);
-  if (o.model_test) {
+  if (o.hardware_description.empty())
+    fmt::print("robot time {:.2f} s of sampling {} (the time the robot is kept from its work)\n", o.sim.sampling_s,
+               o.in_motion ? "on the fly" : "at rest at each pose");
+  if (o.model_test) {  // in the report's voice (report::model_test_verdict)
+    const report::ModelTestVerdict v = report::model_test_verdict(
+        o.model_test->passed, o.model_test->chi2, o.model_test->dof,
+        o.positioning ? std::optional<double>(o.positioning->normalised_rms) : std::nullopt);
     fmt::print("model test {} {:.4g} for {:.0f} degrees of freedom, p = {:.3g}: {}\n", chi2(), o.model_test->chi2,
-               o.model_test->dof, o.model_test->p_value,
-               o.model_test->passed ? "the residuals are as small as the encoders explain"
-                                    : "fails (see the report's notes for the likely cause)");
+               o.model_test->dof, o.model_test->p_value, report::model_test_verdict_line(v));
   }
   if (o.monitor) {
     const scenario::MonitorOutcome& m = *o.monitor;
     fmt::print("monitor    {:.1f} s of operation, {} ({} false)\n", m.simulated_s, count_of(m.alarms.size(), "alarm"),
                m.false_alarms);
-    fmt::print("learning   {}\n", scenario::learning_text(m));
+    fmt::print("learning   {}\n", terminal_text(scenario::learning_text(m)));
     for (const auto& d : m.detections)
       fmt::print("event {}    at {:.3f} s {}\n", d.event, d.at_s,
-                 d.detected_s ? fmt::format("detected after {:.3f} s: {}", *d.detected_s - d.at_s, d.explanation)
+                 d.detected_s ? fmt::format("detected after {:.3f} s: {}", *d.detected_s - d.at_s, terminal_text(d.explanation))
                               : std::string("not detected"));
   }
   size_t failed = 0;
   for (const auto& c : o.checks) {
     if (!c.passed) {
       ++failed;
-      fmt::print("FAILED     {}: {}\n", c.name, c.detail);
+      fmt::print("FAILED     {}: {}\n", c.name, terminal_text(c.detail));
     }
   }
+  print_result(o);
   fmt::print("verdict    {} ({} checks, {} failed) in {:.1f} s\n", failed ? "FAILED" : "PASSED", o.checks.size(),
              failed, o.seconds);
   print_written(dir);  // summary.json, report.html, ...: every file of DIR this run wrote

@@ -31,6 +31,13 @@ void check_size(int width, int height, const std::string& what) {
                                  what, width, height));
 }
 
+void check_card_size(int width, int height, const std::string& what) {
+  if (width < kMinCardWidth || height < kMinCardHeight)
+    throw InputError(fmt::format("{}: size {}x{} is too small for the story's cards (valid: {}x{} to {}x{}, even; "
+                                 "--simulation-only renders the sampling alone at any size)",
+                                 what, width, height, kMinCardWidth, kMinCardHeight, kMaxFrameSide, kMaxFrameSide));
+}
+
 void parse_size(const std::string& text, const std::string& what, int& width, int& height) {
   const auto x = text.find_first_of("xX");
   int w = 0, h = 0;

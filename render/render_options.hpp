@@ -35,6 +35,16 @@ void parse_size(const std::string& text, const std::string& what, int& width, in
 // InputError naming `what`.
 void check_size(int width, int height, const std::string& what);
 
+// The smallest frame of a video with cards (a gpm run scenario's story):
+// MuJoCo's overlay font is 18 px high at every size, so a smaller frame
+// would show the opening card in tens of pages.
+inline constexpr int kMinCardWidth = 320;
+inline constexpr int kMinCardHeight = 240;
+
+// Checks a video with cards is at least kMinCardWidth x kMinCardHeight;
+// throws InputError naming `what` (e.g. "--size") and the valid range.
+void check_card_size(int width, int height, const std::string& what);
+
 // Parses "fast" or "high"; throws InputError naming `what`.
 Quality parse_quality(const std::string& text, const std::string& what);
 

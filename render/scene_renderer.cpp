@@ -181,91 +181,29 @@ struct SceneRenderer::Impl {
     return best;
   }
 
-  // t broken at spaces into lines at most max_px wide in font f (a longer word stays whole).
-  std::vector<std::string> wrap(int f, const std::string& t, int max_px) const {
-    std::vector<std::string> lines;
-    std::string line, word;
-    const auto flush_word = [&] {
-      if (word.empty()) return;
-      if (!line.empty() && font_px(f, line + " " + word) > max_px) lines.push_back(line), line.clear();
-      line = line.empty() ? word : line + " " + word;
-      word.clear();
-    };
-    for (const char c : t) c == ' ' ? flush_word() : void(word += c);
-    flush_word();
-    if (!line.empty() || lines.empty()) lines.push_back(line);
-    return lines;
+  // The fonts of the context as a card's layout measures them.
+  CardFonts card_fonts() const {
+    CardFonts f;
+    std::copy(std::begin(con.charWidth), std::end(con.charWidth), f.normal_w.begin());
+    std::copy(std::begin(con.charWidthBig), std::end(con.charWidthBig), f.big_w.begin());
+    f.normal_h = con.charHeight;
+    f.big_h = con.charHeightBig;
+    return f;
   }
 
-  // One line of text in font f, its left end at x and its top at top (OpenGL pixels, bottom-up).
-  void card_line(int f, const std::string& t, int x, int top, const std::array<float, 3>& rgb) {
-    if (t.empty()) return;
-    const int th = f == mjFONT_BIG ? con.charHeightBig : con.charHeight;
-    mjr_label(mjrRect{x, top - th, font_px(f, t) + 2, th}, f, t.c_str(), kCardRgb[0], kCardRgb[1], kCardRgb[2],
-              1.0f, rgb[0], rgb[1], rgb[2], &con);
-  }
-
-  // Widths of a card's table columns in font f (each its widest cell + 2
-  // digits; last cells excepted) and of its widest table row.
-  int card_columns(const Card& card, int f, std::vector<int>& col_w) const {
-    const int cw = std::max(1, con.charWidth[static_cast<int>('0')]);
-    col_w.clear();
-    for (const auto& row : card.rows)
-      for (size_t c = 0; c + 1 < row.size(); ++c) {
-        if (col_w.size() <= c) col_w.resize(c + 1, 0);
-        col_w[c] = std::max(col_w[c], font_px(f, row[c]) + 2 * cw);
+  // One page of a card's layout drawn (tops from the frame's top).
+  void draw_card_page(const CardPage& page) {
+    for (const CardLine& line : page.lines)
+      for (const CardText& t : line.texts) {
+        if (t.text.empty()) continue;
+        const int f = t.big ? mjFONT_BIG : mjFONT_NORMAL;
+        const int th = t.big ? con.charHeightBig : con.charHeight;
+        const std::array<float, 3>& rgb = t.role == CardRole::kTitle   ? kCardTitleRgb
+                                          : t.role != CardRole::kText  ? kCardLabelRgb
+                                                                       : kCardTextRgb;
+        mjr_label(mjrRect{t.x, frame.height - line.top - th, font_px(f, t.text) + 2, th}, f, t.text.c_str(),
+                  kCardRgb[0], kCardRgb[1], kCardRgb[2], 1.0f, rgb[0], rgb[1], rgb[2], &con);
       }
-    int widest = 0;
-    for (const auto& row : card.rows) {
-      int x = 0;
-      for (size_t c = 0; c + 1 < row.size(); ++c) x += col_w[c];
-      if (row.size() > 1) widest = std::max(widest, x + font_px(f, row.back()));
-    }
-    return widest;
-  }
-
-  // Lays a card out (title in font tf, rows in bf) from the top left within
-  // a margin, drawing it if draw; returns the height it takes (px).
-  int lay_out_card(const Card& card, int tf, int bf, bool draw) {
-    const int w = frame.width, h = frame.height;
-    const int margin = std::max(2 * pad, w / 24);
-    const auto line_pitch = [&](int f) {
-      return f == mjFONT_BIG ? con.charHeightBig + con.charHeightBig / 3 : pitch;
-    };
-    int top = h - margin;
-    for (const std::string& l : wrap(tf, card.title, w - 2 * margin)) {
-      if (draw) card_line(tf, l, margin, top, kCardTitleRgb);
-      top -= line_pitch(tf);
-    }
-    top -= pitch / 2;
-    std::vector<int> col_w;
-    card_columns(card, bf, col_w);
-    for (const auto& row : card.rows) {
-      int x = margin;
-      for (size_t c = 0; c + 1 < row.size(); ++c) {
-        if (draw) card_line(bf, row[c], x, top, c == 0 ? kCardLabelRgb : kCardTextRgb);
-        x += col_w[c];
-      }
-      for (const std::string& l : wrap(bf, row.empty() ? "" : row.back(), w - margin - x)) {
-        if (draw) card_line(bf, l, x, top, kCardTextRgb);
-        top -= line_pitch(bf);
-      }
-    }
-    return h - top + margin;
-  }
-
-  // A card in the largest fonts that fit: the title big, the rows big too
-  // for a large card whose table rows fit the width; the title in the normal
-  // font when the card is otherwise too tall.
-  void draw_card(const Card& card) {
-    const int avail_w = frame.width - 2 * std::max(2 * pad, frame.width / 24);
-    std::vector<int> col_w;
-    const int bf = card.large && card_columns(card, mjFONT_BIG, col_w) <= avail_w &&
-                           lay_out_card(card, mjFONT_BIG, mjFONT_BIG, false) <= frame.height
-                       ? mjFONT_BIG
-                       : mjFONT_NORMAL;
-    const int tf = lay_out_card(card, mjFONT_BIG, bf, false) <= frame.height ? mjFONT_BIG : mjFONT_NORMAL;
-    lay_out_card(card, tf, bf, true);
   }
 
   ~Impl() {
@@ -428,12 +366,17 @@ const FrameImage& SceneRenderer::render(double t) {
   return im.frame;
 }
 
-const FrameImage& SceneRenderer::render_card(const Card& card) {
+int SceneRenderer::card_pages(const Card& card) const {
+  return static_cast<int>(lay_out_card(card, impl_->card_fonts(), impl_->frame.width, impl_->frame.height).size());
+}
+
+const FrameImage& SceneRenderer::render_card(const Card& card, int page) {
   Impl& im = *impl_;
   im.context.make_current();
   mjr_setBuffer(mjFB_OFFSCREEN, &im.con);
   mjr_rectangle(mjrRect{0, 0, im.frame.width, im.frame.height}, kCardRgb[0], kCardRgb[1], kCardRgb[2], 1.0f);
-  im.draw_card(card);
+  const std::vector<CardPage> pages = lay_out_card(card, im.card_fonts(), im.frame.width, im.frame.height);
+  im.draw_card_page(pages.at(static_cast<size_t>(std::clamp(page, 0, static_cast<int>(pages.size()) - 1))));
   im.read_frame();
   return im.frame;
 }

@@ -10,6 +10,7 @@
 
 #include "models/robot.hpp"
 #include "render/camera_set.hpp"
+#include "render/card_layout.hpp"
 #include "render/frame_image.hpp"
 #include "render/render_options.hpp"
 #include "sim/sampling.hpp"
@@ -40,17 +41,6 @@ void check_render_setup(const std::string& model_xml, const RenderOptions& optio
 // joints, elbows, end-effector and desired path over every log, with a margin.
 Framing framing_of(const std::vector<RunView>& runs);
 
-// A card: a whole frame of text before or after the runs (what the video
-// shows, the figures measured). Each row is a line of text, or with more
-// than one cell the row of a table whose columns line up; the last cell of
-// a row wraps at the frame's right margin.
-struct Card {
-  std::string title;
-  std::vector<std::vector<std::string>> rows;
-  double seconds = 4.0;  // on screen (video seconds)
-  bool large = false;    // the rows in the big font too (a short card)
-};
-
 // Background of a card (RGB, 0..1): no scene frame is this uniform.
 inline constexpr std::array<float, 3> kCardRgb = {0.06f, 0.10f, 0.24f};
 
@@ -80,8 +70,11 @@ class SceneRenderer {
   // clock reads t - start_time(): each part of a video from 0).
   const FrameImage& render(double t);
 
-  // A card (title and rows on a plain background) in the frame's size.
-  const FrameImage& render_card(const Card& card);
+  // The pages a card takes in the frame's size (render/card_layout.hpp: 1
+  // when it fits).
+  int card_pages(const Card& card) const;
+  // Page `page` of a card (title and rows on a plain background) in the frame's size.
+  const FrameImage& render_card(const Card& card, int page = 0);
 
   // The data block run i's panel shows at time t (labels, values), as
   // render(t) draws it.

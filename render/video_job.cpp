@@ -80,23 +80,39 @@ std::vector<int> part_frame_counts(const std::vector<std::vector<RunView>>& part
 }
 
 std::vector<Segment> video_segments(const std::vector<std::vector<RunView>>& parts, const RenderOptions& options,
-                                    const Cards& cards) {
+                                    const Cards& cards, const std::array<int, 2>& pages) {
   std::vector<Segment> out;
   int n = 0;
   const auto card = [&](Segment::Kind kind, const std::optional<Card>& c) {
     if (!c) return;
-    const int count = std::max(1, static_cast<int>(std::lround(c->seconds * options.fps)));
-    out.push_back(Segment{kind, -1, n, count});
+    const int per_page = std::max(1, static_cast<int>(std::lround(c->seconds * options.fps)));
+    const int k = std::max(1, pages[kind == Segment::Kind::kOpening ? 0 : 1]);
+    const int count = per_page * k;
+    out.push_back(Segment{kind, -1, n, count, k});
     n += count;
   };
   card(Segment::Kind::kOpening, cards.opening);
   const std::vector<int> counts = part_frame_counts(parts, options);
   for (size_t i = 0; i < counts.size(); ++i) {
-    out.push_back(Segment{Segment::Kind::kPart, static_cast<int>(i), n, counts[i]});
+    out.push_back(Segment{Segment::Kind::kPart, static_cast<int>(i), n, counts[i], 1});
     n += counts[i];
   }
   card(Segment::Kind::kClosing, cards.closing);
   return out;
+}
+
+std::array<int, 2> card_pages(const std::vector<std::vector<RunView>>& parts, const RenderOptions& options,
+                              const Cards& cards) {
+  if ((!cards.opening && !cards.closing) || parts.empty()) return {1, 1};
+  std::vector<RunView> all;
+  for (const auto& runs : parts) all.insert(all.end(), runs.begin(), runs.end());
+  const SceneRenderer renderer(parts.front(), options, framing_of(all));
+  return {cards.opening ? renderer.card_pages(*cards.opening) : 1, cards.closing ? renderer.card_pages(*cards.closing) : 1};
+}
+
+int card_page(int j, int count, int pages) {
+  if (count <= 0 || pages <= 1) return 0;
+  return static_cast<int>(std::clamp<long long>(static_cast<long long>(j) * pages / count, 0, pages - 1));
 }
 
 VideoSummary render_video(const std::vector<RunView>& runs, const RenderOptions& options,
@@ -111,7 +127,15 @@ VideoSummary render_parts(const std::vector<std::vector<RunView>>& parts, const 
   if (!(options.fps > 0)) throw InputError(fmt::format("fps must be positive, got {}", options.fps));
   if (!(options.speed > 0)) throw InputError(fmt::format("speed must be positive, got {}", options.speed));
   if (parts.empty()) throw InputError("render: nothing to show (no part)");
-  const std::vector<Segment> segments = video_segments(parts, options, cards);
+  // The first renderer checks the size and the camera before any file is
+  // opened, and measures the cards' pages.
+  std::vector<RunView> all;
+  for (const auto& runs : parts) all.insert(all.end(), runs.begin(), runs.end());
+  const Framing region = framing_of(all);
+  auto renderer = std::make_unique<SceneRenderer>(parts.front(), options, region);
+  const std::array<int, 2> pages = {cards.opening ? renderer->card_pages(*cards.opening) : 1,
+                                    cards.closing ? renderer->card_pages(*cards.closing) : 1};
+  const std::vector<Segment> segments = video_segments(parts, options, cards, pages);
   std::vector<int> first;
   for (const Segment& g : segments)
     if (g.kind == Segment::Kind::kPart) first.push_back(g.first);
@@ -120,11 +144,6 @@ VideoSummary render_parts(const std::vector<std::vector<RunView>>& parts, const 
     if (p.frame >= n)
       throw InputError(fmt::format("--frame-png {}: the video has {} frames (0..{})", p.frame, n, n - 1));
   }
-  std::vector<RunView> all;
-  for (const auto& runs : parts) all.insert(all.end(), runs.begin(), runs.end());
-  const Framing region = framing_of(all);
-  // The first renderer checks the size and the camera before any file is opened.
-  auto renderer = std::make_unique<SceneRenderer>(parts.front(), options, region);
   // Every PNG staged (or a device opened in place) before any frame is rendered.
   std::vector<OutputFile> png_out;
   png_out.reserve(pngs.size());
@@ -150,12 +169,14 @@ VideoSummary render_parts(const std::vector<std::vector<RunView>>& parts, const 
     if (g.kind == Segment::Kind::kPart && part > 0)
       renderer = std::make_unique<SceneRenderer>(parts[part], options, region);
     const double t0 = renderer->start_time();
-    for (int j = 0; j < g.count; ++j) {
+    const Card* card = g.kind == Segment::Kind::kOpening   ? &*cards.opening
+                       : g.kind == Segment::Kind::kClosing ? &*cards.closing
+                                                           : nullptr;
+    for (int j = 0; j < g.count; ++j) {  // a card too tall for the frame: its pages in turn
       const int k = g.first + j;
       if (!wanted[static_cast<size_t>(k)]) continue;
-      const FrameImage& img = g.kind == Segment::Kind::kOpening   ? renderer->render_card(*cards.opening)
-                              : g.kind == Segment::Kind::kClosing ? renderer->render_card(*cards.closing)
-                                                                  : renderer->render(frame_time(t0, j, options.fps, options.speed));
+      const FrameImage& img = card ? renderer->render_card(*card, card_page(j, g.count, g.pages))
+                                   : renderer->render(frame_time(t0, j, options.fps, options.speed));
       if (queue) queue->push(img, k);
       else consume(img, k);
       ++rendered;

@@ -9,6 +9,7 @@
 //   render_video({run_view(nominal, "nominal"), run_view(calibrated, "calibrated")}, o, "cmp.mp4", {});
 #pragma once
 
+#include <array>
 #include <optional>
 #include <string>
 #include <vector>
@@ -54,13 +55,25 @@ struct Segment {
   Kind kind = Kind::kPart;
   int part = -1;  // the part's index (kPart)
   int first = 0, count = 0;
+  int pages = 1;  // a card's pages (card_pages), each count / pages frames
 };
 
 // The segments of a video: the opening card, the parts, the closing card,
 // one after the other (the timeline, no rendering); a card lasts
-// round(seconds * fps) frames, at least 1.
+// round(seconds * fps) frames, at least 1, per page (pages: the opening's
+// and the closing card's, card_pages).
 std::vector<Segment> video_segments(const std::vector<std::vector<RunView>>& parts, const RenderOptions& options,
-                                    const Cards& cards = {});
+                                    const Cards& cards = {}, const std::array<int, 2>& pages = {1, 1});
+
+// The pages the opening and the closing card take in the options' frame
+// size (SceneRenderer::card_pages; 1 for a card not set), measured with a
+// renderer of the first part.
+std::array<int, 2> card_pages(const std::vector<std::vector<RunView>>& parts, const RenderOptions& options,
+                              const Cards& cards);
+
+// The page of a card that frame j of its count frames shows when it takes
+// pages pages (SceneRenderer::card_pages): each page an equal share, in turn.
+int card_page(int j, int count, int pages);
 
 struct VideoSummary {
   int frames = 0;

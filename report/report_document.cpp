@@ -34,11 +34,6 @@ void ReportDocument::preformatted(const std::string& text) {
   blocks_.push_back({Block::Kind::kPre, 0, text, {}, {}, {}, {}});
 }
 
-namespace {
-
-// Text from the run library (expectation details, calibration notes) writes
-// units in ASCII for terminals: "28.15 um" becomes "28.15 µm" here, and
-// "urad" "µrad", wherever the unit follows a number.
 std::string unit_symbols(const std::string& text) {
   std::string out;
   for (size_t i = 0; i < text.size(); ++i) {
@@ -57,10 +52,9 @@ std::string unit_symbols(const std::string& text) {
     }
     if (i < text.size()) out += text[i];
   }
-  return out;
+  static const std::regex chi2(R"(\bchi2\b)");  // a word: "chi2/dof", not "model_test_chi2"
+  return std::regex_replace(out, chi2, "χ²");
 }
-
-}  // namespace
 
 std::string readable_text(const std::string& text) {
   static const std::regex number(R"((^|[^0-9A-Za-z_.])(-?[0-9]+(?:\.[0-9]+)?)e([+-]?[0-9]+)\b)");

@@ -60,6 +60,12 @@ class ReportDocument {
 // as `\|` and line breaks as spaces, so every row keeps its cell count.
 std::string markdown_cell(const std::string& text);
 
+// Text written in ASCII (the run library's notes and lines, as an ASCII
+// terminal shows them) with its units as symbols: "28.15 um" -> "28.15 µm"
+// and "urad" -> "µrad" after a number, the word "chi2" -> "χ²" ("chi2/dof"
+// -> "χ²/dof"); nothing else changed.
+std::string unit_symbols(const std::string& text);
+
 // Text written for a terminal (units in ASCII, C exponents, "x" for times)
 // as a report shows it: "28.15 um" -> "28.15 µm" (and urad, after a
 // number), "7.31e-05" -> "7.31×10⁻⁵", "x2.63" -> "×2.63", "5.3x the" -> "5.3× the".

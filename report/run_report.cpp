@@ -283,9 +283,12 @@ double worst_crb_ratio(const RunReport& o) {
 // The lead: how far the tool tip stood from where it was sent, before and
 // after, in one sentence a manager reads (or why there is no after).
 std::string lead_sentence(const RunReport& o) {
+  // How long the sampling kept the robot from its work: what a user plans for.
   const std::string readings =
       o.hardware_description.empty() && o.robot_time_s > 0.0
-          ? fmt::format("{} s of its own encoder readings ({} samples)", sig(o.robot_time_s, 2), o.sample_xy.size())
+          ? fmt::format("{} of its own encoder readings, taken {} in {} s of robot time (all the time the "
+                        "calibration keeps the robot from its work)",
+                        o.sample_xy.size(), o.on_the_fly ? "on the fly" : "at rest at each pose", sig(o.robot_time_s, 2))
           : fmt::format("{} samples of its own encoder readings", o.sample_xy.size());
   if (o.refused) return "The calibration was refused (see Calibration below); the robot keeps its nominal model.";
   if (o.before && o.after) {
@@ -324,22 +327,48 @@ std::string model_test_sentence(const RunReport& o, const RunModelTest& t) {
                        numbers);
   bool expected = false;
   for (const RunCheck& c : o.checks) expected = expected || (c.name == "model_test" && c.passed);
-  const double ratio = std::sqrt(t.chi2 / t.dof);
+  const ModelTestVerdict v = model_test_verdict(
+      t.passed, t.chi2, t.dof, o.positioning_um ? std::optional<double>((*o.positioning_um)[3]) : std::nullopt);
   std::string s = fmt::format("Model test: the readings scatter {}× the encoders' noise ({}), more than noise alone "
                               "explains, so the model leaves some effect out{}.",
-                              sig(ratio, 3), numbers, expected ? ", as this scenario expects" : "");
-  if (o.positioning_um && (*o.positioning_um)[3] <= 1.5)
+                              sig(v.scatter, 3), numbers, expected ? ", as this scenario expects" : "");
+  if (v.covered)
     return s + fmt::format(" The stated 1σ accounts for it: the calibrated model's positioning error is {}× its stated "
                            "1σ (1 is honest), so the result stands as stated.",
-                           sig((*o.positioning_um)[3], 2));
-  if (o.positioning_um)
-    s += fmt::format(" The stated 1σ understates the error: the positioning error is {}× it.",
-                     sig((*o.positioning_um)[3], 2));
+                           sig(*v.positioning, 2));
+  if (v.positioning)
+    s += fmt::format(" The stated 1σ understates the error: the positioning error is {}× it.", sig(*v.positioning, 2));
   // The diagnosis without its own chi-square numbers ("model test failed (...): cause").
   const size_t cause = t.diagnosis.find("): ");
   return s + " Likely cause: " +
          with_unit_symbols(cause == std::string::npos ? t.diagnosis : t.diagnosis.substr(cause + 3)) + ".";
 }
+
+}  // namespace
+
+ModelTestVerdict model_test_verdict(bool passed, double chi2, double dof, std::optional<double> normalised_rms) {
+  ModelTestVerdict v;
+  v.passed = passed;
+  v.scatter = dof > 0.0 ? std::sqrt(chi2 / dof) : std::numeric_limits<double>::quiet_NaN();
+  v.positioning = normalised_rms;
+  v.covered = !passed && normalised_rms && *normalised_rms <= kStatedSigmaCovers;
+  return v;
+}
+
+std::string model_test_verdict_line(const ModelTestVerdict& v) {
+  if (v.passed) return "the residuals are as small as the encoders explain";
+  const std::string scatter = fmt::format("the readings scatter {}x the encoders' 1-sigma", sig(v.scatter, 2));
+  if (v.covered)
+    return fmt::format("{}; the stated 1-sigma accounts for it (positioning error {}x the stated 1-sigma)", scatter,
+                       sig(*v.positioning, 2));
+  if (v.positioning)
+    return fmt::format("{}; the stated 1-sigma understates the error (positioning error {}x it; see the report's "
+                       "notes for the likely cause)",
+                       scatter, sig(*v.positioning, 2));
+  return scatter + ", more than noise explains (see the report's notes for the likely cause)";
+}
+
+namespace {
 
 // The title, the lead sentence, the verdict with the model test, the failed
 // expectations and where the samples came from.

@@ -90,10 +90,34 @@ struct RunReport {
   // max, the stated 1-sigma per axis and error / 1-sigma (1 when honest).
   std::optional<std::array<double, 4>> positioning_um;
   double robot_time_s = 0.0;                // robot time of the sampling
+  bool on_the_fly = false;                  // the samples taken while moving (else at rest at each pose)
   std::vector<RunCheck> checks;
 };
 
 // Builds the report of a finished run.
 ReportDocument build_run_report(const RunReport& run);
+
+// A failed model test is accounted for by the stated 1-sigma when the
+// calibrated model's positioning error over the workspace is at most this
+// many times it (the normalised RMS; 1 when the 1-sigma is honest).
+inline constexpr double kStatedSigmaCovers = 1.5;
+
+// What a model test means for the result, for the report and the terminal alike.
+struct ModelTestVerdict {
+  bool passed = true;
+  double scatter = 1.0;               // sqrt(chi2 / dof): the readings' scatter over the encoders' 1-sigma
+  std::optional<double> positioning;  // positioning error / stated 1-sigma, when measured
+  bool covered = false;               // failed, and positioning <= kStatedSigmaCovers
+};
+
+// The verdict of a model test (chi2 over dof degrees of freedom, passed or
+// not) given the positioning error over the stated 1-sigma, if measured.
+ModelTestVerdict model_test_verdict(bool passed, double chi2, double dof, std::optional<double> normalised_rms);
+
+// The verdict in one line for a terminal (ASCII): "the readings scatter 3.1x
+// the encoders' 1-sigma; the stated 1-sigma accounts for it (positioning
+// error 0.9x the stated 1-sigma)", or that it understates the error, or that
+// the residuals are as small as the encoders explain.
+std::string model_test_verdict_line(const ModelTestVerdict& v);
 
 }  // namespace gpm::report

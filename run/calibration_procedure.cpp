@@ -241,13 +241,15 @@ void estimate_notes(const MotionStage& m, std::vector<std::string>& notes) {
       "c1 {:.3g}, c2 {:.3g}, c3 {:.3g} rad/N m (0: not excited, e.g. a torque-off joint); friction twist "
       "c F {:.3g}, {:.3g}, {:.3g} rad",
       f.nu[0], f.nu[1], f.nu[2], f.nu[3], f.nu[4], f.friction[0], f.friction[1], f.friction[2]));
+  // A 1-sigma the data cannot give (a joint not excited, e.g. torque-off) reads as such, not "nan".
+  const auto sigma = [](double v) { return std::isfinite(v) ? fmt::format("{:.2g}", v) : std::string("none: not excited"); };
   if (m.motion.torque_before)
     notes.push_back(fmt::format(
         "the transmissions' twist also responds to the change of torque since the sample before (the mean drive "
         "torque since it, less the last period's, on the fly): h {:.3g}, "
-        "{:.3g}, {:.3g} rad/N m (1-sigma {:.2g}, {:.2g}, {:.2g})",
-        f.torque_before[0], f.torque_before[1], f.torque_before[2], f.torque_before_sigma[0],
-        f.torque_before_sigma[1], f.torque_before_sigma[2]));
+        "{:.3g}, {:.3g} rad/N m (1-sigma {}, {}, {})",
+        f.torque_before[0], f.torque_before[1], f.torque_before[2], sigma(f.torque_before_sigma[0]),
+        sigma(f.torque_before_sigma[1]), sigma(f.torque_before_sigma[2])));
   if (m.motion.cyclic_prior_rad > 0.0)
     notes.push_back(fmt::format(
         "the error once per joint revolution (the reducer's transmission error and a direct drive's encoder: data "

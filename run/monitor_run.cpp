@@ -572,7 +572,7 @@ std::string learning_text(const MonitorOutcome& o) {
   if (o.model.settings.learning_s <= 0.0) return "no learning phase (the stated reading model taken as exact)";
   return fmt::format(
       "learning phase {:.2f} s (no alarm before {:.2f} s), {} samples: innovation scale {:.2f} (MAD; {:.2f} used, "
-      "floor {:.2f}), bias {:+.2f}; step test divided by up to {:.1f} (threshold {:.1f}), chi-square threshold "
+      "floor {:.2f}), bias {:+.2f}; step test divided by up to {:.1f} (threshold {:.1f}), chi2 threshold "
       "{:.1f} (stated {:.1f})",
       o.learning_end_s - o.learning_start_s, o.learning_end_s, l.samples, l.mad_scale, l.scale,
       o.model.settings.scale_floor, l.median, l.step_factor, o.step_threshold, o.chi_threshold, o.model.threshold);

@@ -70,6 +70,7 @@ report::RunReport run_report_data(const RunOutcome& o) {
     r.model_test = report::RunModelTest{o.model_test->chi2, o.model_test->dof, o.model_test->p_value,
                                         o.model_test->sigma_rad, o.model_test->passed, o.model_test->diagnosis};
   r.robot_time_s = o.sim.sampling_s;
+  r.on_the_fly = o.in_motion;
   if (o.positioning)
     r.positioning_um = std::array<double, 4>{o.positioning->rms_um, o.positioning->max_um,
                                              o.positioning->stated_sigma_rms_um, o.positioning->normalised_rms};

@@ -10,11 +10,43 @@ source "$(dirname "$0")/cli_lib.sh"
 
 check "gpm run" 0 "$GPM" run "$SRC/tests/fixtures/on_the_fly_small.yaml" -o "$tmp/run"
 S="$tmp/run/samples.csv"
+# gpm run's model test line says what summary.json's figures mean, as the
+# report does (report::model_test_verdict): passed; or the scatter
+# sqrt(chi2/dof), and whether the stated 1-sigma accounts for it
+# (positioning normalised RMS at most 1.5).
+cp "$tmp/out" "$tmp/run_out.txt"
+holds "gpm run's model test line" python3 - "$tmp/run/summary.json" "$tmp/run_out.txt" <<'PY'
+import json, math, re, sys
+s = json.load(open(sys.argv[1]))
+t, p = s["model_test"], s["positioning_um"]["normalised_rms"]
+line = next(l for l in open(sys.argv[2]) if l.startswith("model test "))
+def sig(v):
+    whole = math.floor(math.log10(abs(v))) + 1
+    return f"{v:.{max(0, 2 - whole)}f}"
+if t["passed"]:
+    want = "the residuals are as small as the encoders explain"
+elif p <= 1.5:
+    want = (f"the readings scatter {sig(math.sqrt(t['chi2'] / t['dof']))}x the encoders' 1-sigma; the stated 1-sigma "
+            f"accounts for it (positioning error {sig(p)}x the stated 1-sigma)")
+else:
+    want = f"the stated 1-sigma understates the error (positioning error {sig(p)}x it"
+ok = want in line and "fails" not in line
+print("" if ok else f"line {line!r}, want {want!r}")
+sys.exit(0 if ok else 1)
+PY
 holds "samples.csv has t" grep -qE '^sample,.*,tau_between3,t$' "$S"
 
 check "calibrate on the run's samples" 0 "$GPM" calibrate --data "$S" --model "$SRC/models/gpm2002.yaml" -o "$tmp/r.yaml"
 expect_out "the motion model" "the motion model"
 expect_out "model test line" "^model test (passes|fails) \(chi2/dof"
+# On a UTF-8 terminal (a pty) the line and the notes say χ²; in the C locale chi2.
+if command -v script >/dev/null; then
+  LC_ALL= LC_CTYPE= LANG=C.UTF-8 script -qec "'$GPM' calibrate --data '$S' --model '$SRC/models/gpm2002.yaml' -o '$tmp/r.yaml'" /dev/null >"$tmp/out"
+  expect_out "model test line in UTF-8" "^model test (passes|fails) \(χ²/dof"
+  holds "no chi2 on a UTF-8 terminal" bash -c "! grep -q 'chi2' '$tmp/out'"
+  LC_ALL=C script -qec "'$GPM' calibrate --data '$S' --model '$SRC/models/gpm2002.yaml' -o '$tmp/r.yaml'" /dev/null >"$tmp/out"
+  expect_out "model test line in the C locale" "^model test (passes|fails) \(chi2/dof"
+fi
 geometry() { awk '/^geometry:/{on=1; next} /^[^ ]/{on=0} on' "$1"; }
 holds "geometry bit for bit" cmp <(geometry "$tmp/run/calibration.yaml") <(geometry "$tmp/r.yaml")
 holds "model test as gpm run's" python3 - "$tmp/run/summary.json" "$tmp/r.yaml" <<'PY'

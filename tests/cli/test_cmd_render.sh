@@ -57,9 +57,11 @@ rm -f C.MP4
 if [[ ! -s "$tmp/err" ]]; then passed=$((passed+1)); else echo "FAIL stderr not empty off a terminal:"; cat "$tmp/err"; fail=$((fail+1)); fi
 
 # A gpm run scenario is shown as a story: an opening card (5 s: 100 frames at
-# 20 fps), the nominal controller on the test path (a 0.4 s circle: 9
-# frames), the sampling, the calibrated controller on the same path (9
-# frames) and a closing card (100 frames), in that order.
+# 20 fps, per page when it takes more than one at this size), the nominal
+# controller on the test path (a 0.4 s circle: 9 frames), the sampling, the
+# calibrated controller on the same path (9 frames) and a closing card (100
+# frames a page), in that order. Under 320x240 a story is refused (one line
+# naming the flag and the valid sizes).
 cat >run.yaml <<'YAML'
 name: render_story
 seed: 3
@@ -70,10 +72,14 @@ calibration: {cost: j2, method: lm, fix: [xa1, ya1, xa2, ya2, xa3, ya3, la1, la2
 compensation: {count: 2, radius: 20, path: {shape: circle, centre: [216.5, 250], radius: 15, period_s: 0.4}}
 render: {size: 320x240, fps: 20}
 YAML
+check "story too small" 2 "$GPM" render run.yaml -o story.mp4 --size 160x120
+expect_err "story size message" "^gpm: error: --size: size 160x120 is too small for the story's cards \(valid: 320x240 to 4096x4096, even; --simulation-only"
 check "story" 0 "$GPM" render run.yaml -o story.mp4
 parts=$(sed -nE 's/^(part|card) +([0-9]\/3 )?([a-z]+) .*from frame ([0-9]+)$/\2\3 \4/p' "$tmp/out" | tr '\n' ';')
 total=$(sed -nE 's/^frames +([0-9]+) at.*/\1/p' "$tmp/out")
-if [[ "$parts" == "opening 0;1/3 nominal 100;2/3 sampling 109;3/3 calibrated $((total - 109));closing $((total - 100));" ]]; then passed=$((passed+1))
+pages_of() { local p; p=$(sed -nE "s/^card +$1 in ([0-9]+) pages .*/\1/p" "$tmp/out"); echo "${p:-1}"; }
+open=$((100 * $(pages_of opening))); close=$((100 * $(pages_of closing)))
+if [[ "$parts" == "opening 0;1/3 nominal $open;2/3 sampling $((open + 9));3/3 calibrated $((total - close - 9));closing $((total - close));" ]]; then passed=$((passed+1))
 else echo "FAIL story parts: '$parts' (total $total)"; cat "$tmp/out"; fail=$((fail+1)); fi
 cp "$tmp/out" story_out.txt
 # The closing card's figures are what gpm run measures for this scenario
@@ -101,7 +107,7 @@ if [[ "$probe" == "$total" ]]; then passed=$((passed+1)); else echo "FAIL story 
 # --simulation-only: the sampling alone, as many frames as the story's second part.
 check "simulation only" 0 "$GPM" render run.yaml -o sim.mp4 --simulation-only
 n=$(sed -nE 's/^frames +([0-9]+) at.*/\1/p' "$tmp/out")
-if [[ "$n" -eq $((total - 218)) ]] && ! grep -qE '^(part|card)' "$tmp/out"; then passed=$((passed+1)); else echo "FAIL simulation only: $n frames, want $((total - 218))"; fail=$((fail+1)); fi
+if [[ "$n" -eq $((total - open - close - 18)) ]] && ! grep -qE '^(part|card)' "$tmp/out"; then passed=$((passed+1)); else echo "FAIL simulation only: $n frames, want $((total - open - close - 18))"; fail=$((fail+1)); fi
 rm -f story.mp4 sim.mp4 run.yaml
 
 # Output policy (models/output_file.hpp): the scenario is never overwritten, a

@@ -137,13 +137,16 @@ TEST(VideoJob, CardsOpenAndCloseAStoryAndEachPartsClockStartsAtZero) {
   const auto& b = run_of(testing::kLineScenario);
   const sim::TrajectoryLog late = testing::shifted(b.log, 15.545);
   const fs::path d = testing::fresh_dir("job_cards");
-  const RenderOptions o = tiny();
+  RenderOptions o = tiny();  // the smallest frame a story is rendered at
+  o.width = kMinCardWidth;
+  o.height = kMinCardHeight;
   const std::vector<std::vector<RunView>> parts = {{run_view(a, "1/2 first")},
                                                    {RunView{"2/2 second", b.actual, b.model_xml, &late}}};
   Cards cards;
   cards.opening = Card{"GPM2002", {{"robot", "a 3-RRR planar parallel robot"}}, 0.5};
   cards.closing = Card{"before and after", {{"", "nominal", "calibrated"}, {"at 12 poses", "9.68 mm", "10.2 um"}}, 0.5};
 
+  ASSERT_EQ(card_pages(parts, o, cards), (std::array<int, 2>{1, 1})) << "short cards: one page each";
   const std::vector<Segment> g = video_segments(parts, o, cards);
   const std::vector<int> n = part_frame_counts(parts, o);
   ASSERT_EQ(g.size(), 4u);
@@ -163,7 +166,7 @@ TEST(VideoJob, CardsOpenAndCloseAStoryAndEachPartsClockStartsAtZero) {
   const VideoSummary v = render_parts(parts, o, (d / "v.mp4").string(), pngs, {}, cards);
   EXPECT_EQ(v.frames, total);
   EXPECT_EQ(v.part_first, (std::vector<int>{10, 10 + n[0]}));
-  EXPECT_EQ(testing::probe((d / "v.mp4").string()), fmt::format("h264,160,120,20/1,{}\n", total));
+  EXPECT_EQ(testing::probe((d / "v.mp4").string()), fmt::format("h264,320,240,20/1,{}\n", total));
 
   // The frames as the video holds them (decoded by ffmpeg).
   std::string select;
@@ -199,6 +202,81 @@ TEST(VideoJob, CardsOpenAndCloseAStoryAndEachPartsClockStartsAtZero) {
       EXPECT_EQ(shown.text(0, shown.start_time())[1].substr(0, 8), "0.000 s\n") << "part " << s.part;
     }
   }
+  fs::remove_all(d);
+}
+
+// A pixel of the frame's edge band (the last `band` rows and columns) that is not the card's background.
+bool text_in_edge_band(const FrameImage& f, int band) {
+  for (int y = 0; y < f.height; ++y)
+    for (int x = 0; x < f.width; ++x) {
+      if (y < f.height - band && x < f.width - band) continue;
+      const std::uint8_t* p = f.at(x, y);
+      for (int c = 0; c < 3; ++c)
+        if (std::abs(p[c] - std::lround(255.0 * kCardRgb[c])) > 8) return true;
+    }
+  return false;
+}
+
+// Issue 35: a card taller than the frame is shown in pages, each for the
+// card's seconds, none running off the frame. The main job's opening card
+// (17 lines of 18 px in the overlay font: about 370 px) at the smallest
+// story frame, 320x240, takes several pages; each frame's bottom and right
+// bands (half the 13 px margin) are background only, the pages differ and
+// follow each other, and a story under 320x240 is refused naming the flag.
+// At 640x480 the same card is one page.
+TEST(VideoJob, ATallCardIsShownInPagesWithinTheFrame) {
+  const auto& a = run_of(testing::kCircleScenario);
+  const fs::path d = testing::fresh_dir("job_pages");
+  RenderOptions o = tiny();
+  o.width = kMinCardWidth;
+  o.height = kMinCardHeight;
+  const std::vector<std::vector<RunView>> parts = {{run_view(a, "1/1 circle")}};
+  Cards cards;
+  cards.opening = Card{"GPM2002: calibration on its digital twin",
+                       {{"robot", "GPM2002, a 3-RRR planar parallel robot, simulated in MuJoCo"},
+                        {"procedure", "Accuracy-first calibration of the GPM2002 on the realistic twin, with compensation"},
+                        {"", "9100 readings taken on the fly along a path through 40 designed poses (9.1 s of robot motion),"},
+                        {"", "then the ML calibration (Levenberg-Marquardt)"},
+                        {""},
+                        {"shown", "1/3 nominal model test path"},
+                        {"", "2/3 sampling for the calibration"},
+                        {"", "3/3 calibrated model test path"},
+                        {"", "then the errors before and after, measured in this run"},
+                        {"", "cyan arrow: the tracking error, magnified as the panel states"}},
+                       0.5};
+  const std::array<int, 2> pages = card_pages(parts, o, cards);
+  ASSERT_GE(pages[0], 2) << "17 lines of 18 px do not fit 240 px";
+  EXPECT_EQ(pages[1], 1) << "no closing card";
+  const std::vector<Segment> g = video_segments(parts, o, cards, pages);
+  ASSERT_EQ(g.size(), 2u);
+  EXPECT_EQ(g[0].count, 10 * pages[0]) << "0.5 s at 20 fps per page";
+  std::vector<FrameRequest> pngs;
+  for (int p = 0; p < pages[0]; ++p)
+    for (const int k : {10 * p, 10 * p + 9}) pngs.push_back({k, (d / fmt::format("c{}.png", k)).string()});
+  const VideoSummary v = render_parts(parts, o, "", pngs, {}, cards);
+  EXPECT_EQ(v.segments[1].first, g[1].first);
+  SceneRenderer alone(parts.front(), o);
+  for (size_t i = 0; i < pngs.size(); ++i) {
+    const FrameImage f = read_png(pngs[i].path);
+    const int page = pngs[i].frame / 10;
+    EXPECT_GT(testing::card_share(f), 0.7) << "frame " << pngs[i].frame;
+    EXPECT_FALSE(text_in_edge_band(f, 6)) << "frame " << pngs[i].frame << ": text beyond the margins";
+    EXPECT_EQ(f.rgb, alone.render_card(*cards.opening, page).rgb) << "frame " << pngs[i].frame << ": page " << page;
+    if (i % 2 == 1 && page > 0) {
+      EXPECT_NE(f.rgb, read_png(pngs[i - 2].path).rgb) << "page " << page << " repeats";
+    }
+  }
+  try {
+    check_card_size(160, 120, "--size");
+    FAIL() << "160x120 accepted for a story";
+  } catch (const InputError& e) {
+    EXPECT_EQ(std::string(e.what()), "--size: size 160x120 is too small for the story's cards (valid: 320x240 to "
+                                     "4096x4096, even; --simulation-only renders the sampling alone at any size)");
+  }
+  EXPECT_NO_THROW(check_card_size(320, 240, "--size"));
+  o.width = 640;
+  o.height = 480;
+  EXPECT_EQ(card_pages(parts, o, cards)[0], 1) << "640x480: one page";
   fs::remove_all(d);
 }
 

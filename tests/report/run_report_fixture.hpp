@@ -84,6 +84,7 @@ inline RunReport run_report_example() {
   o.after = accuracy("calibrated", 28.15);
   o.floor = accuracy("actual", 10.71);
   o.robot_time_s = 10.07;
+  o.on_the_fly = true;
   o.model_test = RunModelTest{2.844e5, 10058, 0.0, 1.38e-5, false,
                               "residuals are 5.32x the encoder noise throughout: an unmodelled effect"};
   o.checks = {{"floor_ratio", "static RMS 28.150 um calibrated, 10.714 um with the actual parameters: x2.63 (limit x3.5)", true},

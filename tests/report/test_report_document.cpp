@@ -89,6 +89,19 @@ TEST(ReportDocument, TheChecksOfTablesAndLeakedMarkdownCanFail) {
   EXPECT_TRUE(testing::leaked_markdown("<p>ok 1.05×10³ µm</p><svg><svg>1e-05</svg><text>2e-07</text></svg>").empty());
 }
 
+// ASCII units of terminal text as symbols, only where they are units: after
+// a number (um, urad), or the word chi2; names and other words stay.
+TEST(ReportDocument, UnitSymbolsReplaceOnlyUnits) {
+  EXPECT_EQ(unit_symbols("RMS 28.15 um, 3um, 12 urad"), "RMS 28.15 µm, 3µm, 12 µrad");
+  EXPECT_EQ(unit_symbols("the smallest chi2/dof of the speeds tried (0.1: 1.03)"),
+            "the smallest χ²/dof of the speeds tried (0.1: 1.03)");
+  EXPECT_EQ(unit_symbols("chi2 threshold 12.3; chi2 2866"), "χ² threshold 12.3; χ² 2866");
+  EXPECT_EQ(unit_symbols("model_test_chi2 and chi2x, umbrella, drum 5 umbrellas"),
+            "model_test_chi2 and chi2x, umbrella, drum 5 umbrellas");
+  EXPECT_EQ(readable_text("model test passes (chi2/dof 1.03, p 0.122): 1.5e-05 rad"),
+            "model test passes (χ²/dof 1.03, p 0.122): 1.5×10⁻⁵ rad");
+}
+
 TEST(ReportDocument, StagedFilesAppearOnlyAtCommit) {
   namespace fs = std::filesystem;
   const fs::path dir = fs::temp_directory_path() / ("gpm_report_document_test_" + std::to_string(::getpid()));

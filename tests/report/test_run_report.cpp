@@ -132,8 +132,9 @@ TEST(RunReport, LeadsWithBeforeAndAfterAtTheToolTip) {
   // 9681.94 µm -> 9.68 mm, 28.15 µm, 9681.94 / 28.15 = 343.9, 28.15 / 10.71 = 2.63; 8 test poses, 10.07 s.
   EXPECT_EQ(lead(md),
             "With its nominal model the robot's tool tip stood 9.68 mm from where it was sent (RMS over 8 test "
-            "poses); calibrated from 10 s of its own encoder readings (3000 samples), it stands 28.1 µm away: 344× "
-            "closer, and 2.63× the error of a controller that knew the true parameters (10.7 µm).");
+            "poses); calibrated from 3000 of its own encoder readings, taken on the fly in 10 s of robot time (all "
+            "the time the calibration keeps the robot from its work), it stands 28.1 µm away: 344× closer, and 2.63× "
+            "the error of a controller that knew the true parameters (10.7 µm).");
   EXPECT_EQ(md.rfind("# gpm run: example\n\n**With its nominal model", 0), 0u);  // the first paragraph
   // The path against the static error, in one sentence.
   EXPECT_NE(md.find("path RMS is the tool tip while it moves, where the drives' lag behind the moving target adds an "
@@ -182,6 +183,45 @@ TEST(RunReport, AFailedModelTestCoveredByTheStatedSigmaReadsAsSuch) {
   EXPECT_NE(build_run_report(o).markdown().find("Model test passed: the readings scatter no more than the encoders' "
                                                  "noise explains (χ²/dof 28.3, p < 0.001)."),
             std::string::npos);
+}
+
+// The model test's verdict on hand-made outcomes either side of
+// kStatedSigmaCovers: chi2 2.844e5 over 10058 dof scatter sqrt(28.28) =
+// 5.318x the encoders' 1-sigma; a failed test is covered when the
+// positioning error is at most 1.5x the stated 1-sigma, and the terminal's
+// line and the report's verdict say the same.
+TEST(RunReport, ModelTestVerdictEitherSideOfTheThreshold) {
+  EXPECT_EQ(kStatedSigmaCovers, 1.5);
+  const ModelTestVerdict covered = model_test_verdict(false, 2.844e5, 10058, 1.49);
+  EXPECT_NEAR(covered.scatter, 5.3176, 1e-4);
+  EXPECT_TRUE(covered.covered);
+  EXPECT_TRUE(model_test_verdict(false, 2.844e5, 10058, kStatedSigmaCovers).covered) << "at the threshold";
+  EXPECT_EQ(model_test_verdict_line(covered), "the readings scatter 5.3x the encoders' 1-sigma; the stated 1-sigma "
+                                              "accounts for it (positioning error 1.5x the stated 1-sigma)");
+  const ModelTestVerdict short_of = model_test_verdict(false, 2.844e5, 10058, 1.51);
+  EXPECT_FALSE(short_of.covered);
+  EXPECT_EQ(model_test_verdict_line(short_of), "the readings scatter 5.3x the encoders' 1-sigma; the stated 1-sigma "
+                                               "understates the error (positioning error 1.5x it; see the report's "
+                                               "notes for the likely cause)");
+  const ModelTestVerdict unmeasured = model_test_verdict(false, 2.844e5, 10058, std::nullopt);
+  EXPECT_FALSE(unmeasured.covered);
+  EXPECT_EQ(model_test_verdict_line(unmeasured), "the readings scatter 5.3x the encoders' 1-sigma, more than noise "
+                                                 "explains (see the report's notes for the likely cause)");
+  const ModelTestVerdict passed = model_test_verdict(true, 2866, 2779, 0.08);
+  EXPECT_FALSE(passed.covered) << "a passed test needs no cover";
+  EXPECT_EQ(model_test_verdict_line(passed), "the residuals are as small as the encoders explain");
+
+  // The report says the same on each side.
+  RunReport o = testing::run_report_example();
+  o.model_test->chi2 = 2.844e5;
+  o.model_test->dof = 10058;
+  o.model_test->passed = false;
+  for (const double p : {1.49, 1.51}) {
+    o.positioning_um = std::array<double, 4>{9.3, 20.1, 10.1, p};
+    const std::string md = spaced(build_run_report(o).markdown());
+    EXPECT_EQ(md.find("The stated 1σ accounts for it") != std::string::npos, p < kStatedSigmaCovers) << p;
+    EXPECT_EQ(md.find("The stated 1σ understates the error") != std::string::npos, p > kStatedSigmaCovers) << p;
+  }
 }
 
 TEST(RunReport, EveryTableIsValidMarkdownAndNoMarkdownLeaksIntoHtml) {
