@@ -157,7 +157,9 @@ TEST(MonitorLearning, LearnsTheScaleOfANoisierRobotAndRaisesNoAlarm) {
   const auto run = run_circle(m, *d, 60.0, healthy, cs);
   EXPECT_TRUE(run.alarm_times.empty()) << run.alarm_times.size() << " alarms, first at " << run.alarm_times.front();
   EXPECT_FALSE(d->learning);
-  EXPECT_NEAR(d->learning_end_s, 8.0, 0.05);
+  // Learning ends after its 8 s and the review of what it learnt (monitor.hpp), within 10 s.
+  EXPECT_GT(d->learning_end_s, 8.0);
+  EXPECT_LE(d->learning_end_s, 10.0);
   const double expected = std::sqrt(m.sigma_rad * m.sigma_rad + 4e-5 * 4e-5) / m.sigma_rad;
   EXPECT_NEAR(d->learned.mad_scale, expected, 0.05 * expected);
   EXPECT_NEAR(d->learned.median, 0.0, 0.1 * expected);
