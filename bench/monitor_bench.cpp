@@ -10,6 +10,11 @@
 //   BM_MonitorStepAlarm     the cycle that explains an alarm and re-baselines
 //   BM_MonitorStepLearningEnd  the one cycle that ends the learning phase
 //                           (the rare worst case).
+//   BM_MonitorStepReview    the cycles of the review of the learning phase
+//                           (monitor.hpp), in turn: each replays learnt
+//                           samples (a filter update, an innovation, the
+//                           window's tests) or, on an accepted cycle, the
+//                           live work only.
 //   bench_monitor [--benchmark_filter=...]
 #include <benchmark/benchmark.h>
 
@@ -152,5 +157,31 @@ void BM_MonitorStepLearningEnd(benchmark::State& state) {
   }
 }
 BENCHMARK(BM_MonitorStepLearningEnd)->Unit(benchmark::kMicrosecond);
+
+void BM_MonitorStepReview(benchmark::State& state) {
+  const MonitorModel m = make_monitor_model(MonitorSettings{});
+  static const std::vector<Eigen::Vector3d> readings = circle_readings(12000);
+  auto start = std::make_unique<MonitorData>(make_monitor_data(m));
+  long first = 0;
+  for (; first < 12000 && start->review_stage == 0; ++first)
+    monitor_step(m, *start, first / 1000.0, readings[static_cast<size_t>(first)]);
+  if (start->review_stage == 0) {
+    state.SkipWithError("the review did not start");
+    return;
+  }
+  auto d = std::make_unique<MonitorData>(*start);
+  long c = first;
+  for (auto _ : state) {
+    if (d->review_stage == 0 || c >= 12000) {
+      state.PauseTiming();
+      *d = *start;
+      c = first;
+      state.ResumeTiming();
+    }
+    benchmark::DoNotOptimize(monitor_step(m, *d, c / 1000.0, readings[static_cast<size_t>(c)]));
+    ++c;
+  }
+}
+BENCHMARK(BM_MonitorStepReview)->Unit(benchmark::kMicrosecond);
 
 }  // namespace

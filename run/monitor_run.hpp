@@ -187,9 +187,9 @@ struct RunOutcome;  // run/runner.hpp
 // driven joint from a calibration with motion corrections; the joint play d_i
 // of the passive links, as pin clearance d_i / 2, zero when the calibration
 // looked for it and found none; the drives' friction times the factor the
-// model test chose, when it chose one; the least innovation scale raised to
-// the calibration's residual RMS over the noise, sqrt(chi2 / dof), when above
-// it), the scenario's `monitor:` statement for the rest.
+// model test chose, when it chose one), the scenario's `monitor:` statement
+// for the rest (its least innovation scale included: the calibration's misfit
+// does not raise it).
 MonitorReadingModel reading_model_after_calibration(const RunOutcome& run);
 
 // gpm run's hook: when the scenario has `operation:`, the calibrated model

@@ -13,6 +13,11 @@
 # RUN_EFFECTS="preset" run only those populations (the table takes every
 # population of the chosen effects found in DIR); VARIANTS=bigslip runs the
 # population with a 1e-3 rad slip (learning on); TABLE_ONLY=1 only tabulates.
+# UNSEEN="4000,4001,..." also runs the randomized population on those seeds
+# (robots the monitor was not tuned on: effects "unseen" in the tables);
+# IDEAL=1 runs robots with no effect at all (`effects: ideal`, the monitor
+# still told the data sheet: a robot better than its statement; effects
+# "ideal"), each with its own geometry.
 #   bash scripts/study_monitor_population.sh [DIR] [COUNT]
 #   (default out/monitor_population, 10 robots a population; ~4 minutes a population on 2 cores)
 set -euo pipefail
@@ -31,14 +36,21 @@ grep -q "learning_s: 0" "$out/monitor_population_nolearning.yaml"
 # ... and with a slip ten times larger (1e-3 rad), for VARIANTS=bigslip.
 sed -e "s|^robot: .*|robot: $robot|" -e "s|dth2: 1.0e-4|dth2: 1.0e-3|" "$scenario" > "$out/monitor_population_bigslip.yaml"
 grep -q "dth2: 1.0e-3" "$out/monitor_population_bigslip.yaml"
-effects_list=(randomized); [[ ${PRESET:-0} == 1 ]] && effects_list+=(preset)
+effects_list=(randomized); [[ ${PRESET:-0} == 1 ]] && effects_list+=(preset); [[ -n ${UNSEEN:-} ]] && effects_list+=(unseen)
+[[ ${IDEAL:-0} == 1 ]] && effects_list+=(ideal)
 [[ ${TABLE_ONLY:-0} == 1 ]] && RUN_EFFECTS=" "  # TABLE_ONLY=1: tabulate what DIR holds
 for effects in ${RUN_EFFECTS:-${effects_list[@]}}; do
-  flag=(); [[ $effects == preset ]] && flag=(--keep-effects)
+  flag=(--count "$count"); [[ $effects == preset ]] && flag+=(--keep-effects)
+  [[ $effects == unseen ]] && flag=(--seeds "$UNSEEN")
   for variant in ${VARIANTS:-nolearning learning}; do
     s=$scenario; [[ $variant != learning ]] && s=$out/monitor_population_$variant.yaml
+    if [[ $effects == ideal ]]; then
+      sed -e "s|^robot: .*|robot: $robot|" -e "s|^effects: realistic|effects: ideal|" "$s" > "$out/ideal_$variant.yaml"
+      grep -q "^effects: ideal" "$out/ideal_$variant.yaml"
+      s=$out/ideal_$variant.yaml flag=(--count "$count" --keep-effects)
+    fi
     echo "study monitor population: $variant, $effects effects" >&2
-    timeout 900 "$gpm" study population "$s" -o "$out/${variant}_$effects" --count "$count" "${flag[@]}" >/dev/null
+    timeout 900 "$gpm" study population "$s" -o "$out/${variant}_$effects" "${flag[@]}" >/dev/null
   done
 done
 /usr/bin/python3 - "$out" "${effects_list[@]}" <<'PY'

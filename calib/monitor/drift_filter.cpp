@@ -90,7 +90,7 @@ static Geometry shifted(const Geometry& x, const std::array<double, 3>& clearanc
   return g;
 }
 
-bool filter_innovation(const MonitorModel& m, const MonitorData& d, double t_s, const Eigen::Vector3d& theta_m,
+bool filter_innovation(const MonitorModel& m, const FilterWindow& d, double t_s, const Eigen::Vector3d& theta_m,
                        const Eigen::Vector3d& tension, double& z, ParamRow& dz) {
   Geometry x = d.estimate;
   double rate = d.growth_rate;
@@ -106,7 +106,7 @@ bool filter_innovation(const MonitorModel& m, const MonitorData& d, double t_s, 
   return true;
 }
 
-void filter_update(const MonitorModel& m, MonitorData& d, double t_s, const Eigen::Vector3d& theta_m,
+void filter_update(const MonitorModel& m, FilterWindow& d, double t_s, const Eigen::Vector3d& theta_m,
                    const Eigen::Vector3d& tension) {
   if (d.filtered > 0) filter_predict(m, d.estimate, d.growth_rate, d.P, std::max(t_s - d.t_last_update, 0.0));
   d.t_last_update = std::max(t_s, d.t_last_update);

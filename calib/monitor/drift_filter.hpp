@@ -33,14 +33,14 @@ void filter_predict(const MonitorModel& model, Geometry& estimate, double& growt
 // have no ML residual (collinear elbows). Allocation-free.
 // tension: the sign of each passive link's axial force for the sample (its
 // length is lb_i + d_i tension_i, d_i the estimated effective play).
-bool filter_innovation(const MonitorModel& model, const MonitorData& data, double t_s,
+bool filter_innovation(const MonitorModel& model, const FilterWindow& data, double t_s,
                        const Eigen::Vector3d& theta_m, const Eigen::Vector3d& tension, double& z,
                        ParamRow& dz_dparams);
 
 // Kalman update with one sample (predict to t_s, then K = P h' / s,
 // u += K (0 - r), P -= K h P). Directions h does not see get no gain.
 // Allocation-free.
-void filter_update(const MonitorModel& model, MonitorData& data, double t_s,
+void filter_update(const MonitorModel& model, FilterWindow& data, double t_s,
                    const Eigen::Vector3d& theta_m, const Eigen::Vector3d& tension);
 
 }  // namespace gpm::calib::monitor

@@ -43,7 +43,7 @@ void explain_window(const MonitorModel& model, const MonitorData& data, Alarm& a
   }
 }
 
-double step_statistic(const MonitorModel& model, const MonitorData& data, ParamRow* per_param_max) {
+double step_statistic(const MonitorModel& model, const FilterWindow& data, ParamRow* per_param_max) {
   std::array<double, kNumParams> s_zh{}, s_hh{}, var{};
   for (int k = 0; k < model.n_free; ++k) {
     const double sd = 1.0 / model.scale[static_cast<size_t>(k)];

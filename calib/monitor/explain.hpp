@@ -32,6 +32,6 @@ void explain_window(const MonitorModel& model, const MonitorData& data, Alarm& a
 // from the robot (learning.hpp). Allocation-free, O(window * n_free).
 // per_param_max (optional): each parameter's largest term is raised to at
 // least its value (the learning phase keeps them).
-double step_statistic(const MonitorModel& model, const MonitorData& data, ParamRow* per_param_max = nullptr);
+double step_statistic(const MonitorModel& model, const FilterWindow& data, ParamRow* per_param_max = nullptr);
 
 }  // namespace gpm::calib::monitor

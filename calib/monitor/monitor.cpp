@@ -24,12 +24,12 @@ void require(bool ok, const std::string& what) {
   if (!ok) throw InputError("monitor settings: " + what);
 }
 
-int slot_of(const MonitorData& d, int j) {  // j-th oldest sample of the window
+int slot_of(const FilterWindow& d, int j) {  // j-th oldest sample of the window
   return (d.head - d.count + j + 2 * kMaxWindow) % kMaxWindow;
 }
 
 // Window sum of z^2.
-double window_statistic(const MonitorData& d) {
+double window_statistic(const FilterWindow& d) {
   double s = 0.0;
   for (int j = 0; j < d.count; ++j) s += d.z[static_cast<size_t>(slot_of(d, j))] * d.z[static_cast<size_t>(slot_of(d, j))];
   return s;
@@ -91,6 +91,120 @@ void finish_learning(const MonitorModel& m, MonitorData& d, double t_s) {
   // As for the step test: the largest window sum seen while learning sits
   // where a healthy robot's would, W + 3 sqrt(2 W).
   d.chi_threshold = std::max(d.chi_threshold, d.learn_chi_max / (s * s) * m.threshold / (W + 3.0 * std::sqrt(2.0 * W)));
+}
+
+// Review of the learning phase (MonitorData::review): how many learnt
+// samples a cycle that accepted no live sample takes, in each stage (each
+// such cycle stays well within the cost of an accepted cycle).
+constexpr int kReviewResidualsPerCycle = 4;
+constexpr int kReviewReplayPerCycle = 1;
+
+// Copies the filter of src (not its window) into dst.
+void copy_filter(FilterWindow& dst, const FilterWindow& src) {
+  dst.estimate = src.estimate;
+  dst.cyclic = src.cyclic;
+  dst.clearance = src.clearance;
+  dst.growth_rate = src.growth_rate;
+  dst.P = src.P;
+  dst.t_last_update = src.t_last_update;
+  dst.filtered = src.filtered;
+  dst.noise_scale = src.noise_scale;
+}
+
+// Starts the review of the learnt samples with a copy of the filter as
+// learning ends: first their residuals at its estimate (stage 1).
+void begin_review(MonitorData& d) {
+  copy_filter(d.review, d);
+  d.review.count = 0;
+  d.review.head = 0;
+  d.review_stage = 1;
+  d.review_next = 0;
+  d.review_kept = 0;
+}
+
+// Stage 2 from the stage-1 residuals: the robot's own scale about the learnt
+// estimate becomes the replay filter's reading noise, and the replay starts
+// from the first learnt sample's time with empty sums.
+void start_replay(const MonitorModel& m, MonitorData& d) {
+  const LearnedScale at = learn_innovation_scale(d.learn_z.data(), d.review_kept, m.settings.learning_batch,
+                                                 m.settings.scale_floor, d.learn_scratch.data());
+  d.review.noise_scale = at.scale;
+  d.review_median = at.median;
+  d.review.t_last_update = d.learn_t[0];
+  d.review.count = 0;
+  d.review.head = 0;
+  d.learn_step_max.setZero();
+  d.learn_chi_max = 0.0;
+  for (int b = 0; b < kMaxLearnBatches; ++b) {
+    const auto u = static_cast<size_t>(b);
+    d.learn_h[u].setZero();
+    d.learn_hz[u].setZero();
+    d.learn_hh[u].setZero();
+  }
+  d.review_stage = 2;
+  d.review_next = 0;
+  d.review_kept = 0;
+}
+
+// Stage 2, one learnt sample: the replay filter tests it one window behind,
+// as the monitor will, and its innovation (in the stated units) and the
+// window's largest statistics (last three quarters) are what the learning
+// phase learns from.
+void replay_sample(const MonitorModel& m, MonitorData& d, int j) {
+  FilterWindow& r = d.review;
+  const int W = m.settings.window;
+  if (r.count >= W) {
+    const auto oldest = static_cast<size_t>(slot_of(r, 0));
+    filter_update(m, r, r.t[oldest], r.theta[oldest], r.tension[oldest]);
+    --r.count;
+  }
+  const auto u = static_cast<size_t>(j);
+  double z = 0.0;
+  ParamRow dz;
+  if (!filter_innovation(m, r, d.learn_t[u], d.learn_theta[u], d.learn_tension[u], z, dz)) return;
+  const double s0 = r.noise_scale;
+  const auto slot = static_cast<size_t>(r.head);
+  r.z[slot] = z - d.review_median / s0;
+  r.dz[slot] = dz;
+  r.t[slot] = d.learn_t[u];
+  r.theta[slot] = d.learn_theta[u];
+  r.tension[slot] = d.learn_tension[u];
+  r.head = (r.head + 1) % kMaxWindow;
+  ++r.count;
+  const double z1 = z * s0;
+  const ParamRow dz1 = dz * s0;
+  const auto b = static_cast<size_t>(d.review_kept / m.settings.learning_batch);
+  d.learn_h[b] += dz1;
+  d.learn_hz[b] += z1 * dz1;
+  d.learn_hh[b] += dz1.cwiseProduct(dz1);
+  d.learn_z[static_cast<size_t>(d.review_kept++)] = z1;
+  if (r.count == W && 4 * j >= d.learn_count) {
+    ParamRow largest = ParamRow::Zero();
+    step_statistic(m, r, &largest);
+    d.learn_step_max = d.learn_step_max.cwiseMax(largest * (s0 * s0));
+    d.learn_chi_max = std::max(d.learn_chi_max, window_statistic(r) * s0 * s0);
+  }
+}
+
+// One cycle's share of the review; true when it ended the learning phase at t_s.
+bool review_step(const MonitorModel& m, MonitorData& d, double t_s) {
+  if (d.review_stage == 1) {
+    for (int c = 0; c < kReviewResidualsPerCycle && d.review_next < d.learn_count; ++c) {
+      const auto u = static_cast<size_t>(d.review_next++);
+      double z = 0.0;
+      ParamRow dz;
+      if (filter_innovation(m, d.review, d.review.t_last_update, d.learn_theta[u], d.learn_tension[u], z, dz))
+        d.learn_z[static_cast<size_t>(d.review_kept++)] = z;
+    }
+    if (d.review_next >= d.learn_count) start_replay(m, d);
+    return false;
+  }
+  for (int c = 0; c < kReviewReplayPerCycle && d.review_next < d.learn_count; ++c) replay_sample(m, d, d.review_next++);
+  if (d.review_next < d.learn_count) return false;
+  d.learn_count = d.review_kept;
+  d.review_stage = 0;
+  finish_learning(m, d, t_s);
+  return true;
 }
 
 }  // namespace
@@ -315,17 +429,19 @@ std::optional<Eigen::Vector3d> tension_signs(const MonitorModel& m, MonitorData&
   return sign;
 }
 
-// The accepted innovation z (sensitivities dz) at t_s: learnt from while
-// learning (not in the first quarter, where the filter settles on what the
-// calibration left), then followed as a slowly varying bias; returns z less
-// the bias before this sample.
-double learn_and_debias(const MonitorModel& m, MonitorData& d, double t_s, double z, const ParamRow& dz) {
-  if (d.learning && d.learn_count < kMaxLearn && t_s - d.t_start >= 0.25 * m.settings.learning_s) {
-    const auto b = static_cast<size_t>(d.learn_count / m.settings.learning_batch);  // < kMaxLearnBatches
-    d.learn_h[b] += dz;
-    d.learn_hz[b] += z * dz;
-    d.learn_hh[b] += dz.cwiseProduct(dz);
-    d.learn_z[static_cast<size_t>(d.learn_count++)] = z;
+// The accepted innovation z at t_s: its sample (time, link angles theta,
+// force signs) kept while learning (not in the first quarter, where the
+// filter settles on what the calibration left) for the review, then z
+// followed as a slowly varying bias; returns z less the bias before this
+// sample.
+double learn_and_debias(const MonitorModel& m, MonitorData& d, double t_s, double z, const Eigen::Vector3d& theta,
+                        const Eigen::Vector3d& tension) {
+  if (d.learning && d.review_stage == 0 && d.learn_count < kMaxLearn &&
+      t_s - d.t_start >= 0.25 * m.settings.learning_s) {
+    const auto j = static_cast<size_t>(d.learn_count++);
+    d.learn_t[j] = t_s;
+    d.learn_theta[j] = theta;
+    d.learn_tension[j] = tension;
   }
   const double z_tested = z - d.bias;
   if (!d.learning && m.settings.learning_s > 0.0 && d.pending < 0 && d.accepted > 1)
@@ -394,8 +510,11 @@ void count_cycle(MonitorData& d, double t_s) {
 
 }  // namespace
 
-StepResult monitor_step(const MonitorModel& m, MonitorData& d, double t_s, const Eigen::Vector3d& theta_raw,
-                        const Eigen::Vector3d& omega, const Eigen::Vector3d& tau) {
+namespace {
+
+// One cycle's work on the live readings (monitor_step without the review).
+StepResult step_live(const MonitorModel& m, MonitorData& d, double t_s, const Eigen::Vector3d& theta_raw,
+                     const Eigen::Vector3d& omega, const Eigen::Vector3d& tau) {
   StepResult out;
   const LinkReading l = link_reading(m, theta_raw, omega, tau);
   count_cycle(d, t_s);
@@ -435,18 +554,12 @@ StepResult monitor_step(const MonitorModel& m, MonitorData& d, double t_s, const
   d.last_accepted = theta_raw;
   d.cycles_since_accepted = 0;
   ++d.accepted;
-  store_sample(d, t_s, learn_and_debias(m, d, t_s, z, dz), dz, l.theta, *tension_sign);
-  if (d.learning && (t_s - d.t_start >= m.settings.learning_s || d.learn_count >= kMaxLearn)) {
-    finish_learning(m, d, t_s);
-    out.learnt = true;
-  }
-  // (The sample that ends the learning phase is not tested: that cycle has
-  // done the learning's work, and the next sample tests the same window.)
-  const bool full = d.count == W && d.pending < 0 && !out.learnt;
-  const bool learn_max = d.learning && full && t_s - d.t_start >= 0.25 * m.settings.learning_s;
+  store_sample(d, t_s, learn_and_debias(m, d, t_s, z, l.theta, *tension_sign), dz, l.theta, *tension_sign);
+  if (d.learning && d.review_stage == 0 && (t_s - d.t_start >= m.settings.learning_s || d.learn_count >= kMaxLearn))
+    begin_review(d);
+  const bool full = d.count == W && d.pending < 0;
   d.statistic = full ? window_statistic(d) : 0.0;
-  d.step_statistic = full ? step_statistic(m, d, learn_max ? &d.learn_step_max : nullptr) : 0.0;
-  if (learn_max) d.learn_chi_max = std::max(d.learn_chi_max, d.statistic);
+  d.step_statistic = full ? step_statistic(m, d) : 0.0;
   d.last_z = z;
   out.accepted = true;
   out.z = z;
@@ -463,6 +576,16 @@ StepResult monitor_step(const MonitorModel& m, MonitorData& d, double t_s, const
     raise_alarm(m, d, t_s);
     out.alarm = true;
   }
+  return out;
+}
+
+}  // namespace
+
+StepResult monitor_step(const MonitorModel& m, MonitorData& d, double t_s, const Eigen::Vector3d& theta_raw,
+                        const Eigen::Vector3d& omega, const Eigen::Vector3d& tau) {
+  StepResult out = step_live(m, d, t_s, theta_raw, omega, tau);
+  // The review of the learning phase runs on cycles without a live sample.
+  if (d.review_stage > 0 && !out.accepted) out.learnt = review_step(m, d, t_s);
   return out;
 }
 

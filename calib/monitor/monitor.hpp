@@ -100,11 +100,13 @@ struct MonitorSettings {
   // clearance (below it the sign of the force is uncertain).
   double tension_min_N = 0.3;
   // Learning phase (issue 31, learning.hpp): for the first learning_s seconds
-  // of operation (from the first call) no alarm is raised; the monitor learns
-  // from the robot's own innovations (those of its last three quarters: the
-  // filter settles in the first on what the calibration left) their scale (robust, never below
-  // scale_floor x the stated one), their bias and how alike neighbouring
-  // samples are (batches of learning_batch samples, 16..512), and from then
+  // of operation (from the first call), and the review of its samples after
+  // them (README.md: a replay of the samples of its last three quarters
+  // through a copy of the filter as learning ends, on the cycles without a
+  // live sample), no alarm is raised; the monitor learns from the replayed
+  // innovations their scale (robust, never below scale_floor x the stated
+  // one), their bias and how alike neighbouring samples are (batches of
+  // learning_batch samples, 16..512), and from then
   // on its filter takes the learnt scale as the reading noise and its tests
   // widen by what it learnt (never narrower than the stated model's). The
   // stated clearance, known only as a bound, starts the filter at half its
@@ -171,8 +173,11 @@ struct Alarm {
   double explained_s = 0.0;  // time the explanation was made (explain_samples after t_s)
 };
 
-// Mutable state of the monitor.
-struct MonitorData {
+// The drift filter and its change-test window: the state the filter's
+// functions (drift_filter.hpp) and the step test (explain.hpp) work on; the
+// monitor holds one, and a second one replays the learning phase's samples
+// when learning ends (MonitorData::review).
+struct FilterWindow {
   Geometry estimate;  // current parameter estimate (fixed ones at the model's values)
   // Estimated cyclic encoder error (rad): a_1, b_1, a_2, b_2, a_3, b_3; the
   // reading error of encoder i is a_i sin(theta_m_i) + b_i cos(theta_m_i).
@@ -180,10 +185,9 @@ struct MonitorData {
   std::array<double, 3> clearance{};  // estimated effective play d_i of each chain (mm)
   double growth_rate = 0.0;  // estimated common growth rate (mm/s for a link of the mean length)
   StateMatrix P;             // covariance of the filter coordinates (n_state x n_state used)
-  Eigen::Vector3d last_accepted = Eigen::Vector3d::Zero();
-  bool has_accepted = false;
   double t_last_update = 0.0;
-  long cycles_since_accepted = 0;
+  long filtered = 0;         // samples the filter has absorbed
+  double noise_scale = 1.0;  // the filter's reading noise is noise_scale x model.sigma_rad
   // Samples not yet in the filter (ring buffer): the change-test window, plus
   // while an alarm is pending the samples since; innovations z, their
   // sensitivities dz/dparams, times and readings (for the filter update when
@@ -195,6 +199,16 @@ struct MonitorData {
   std::array<Eigen::Vector3d, kMaxWindow> tension{};  // sign of each passive link's axial force (+-1, 0 without clearance)
   int head = 0;   // next slot to write
   int count = 0;  // samples held
+  // The step test's variance factor of each parameter (>= 1; 1 until learnt):
+  // its statistic along parameter i is divided by step_factor[i].
+  ParamRow step_factor = ParamRow::Ones();
+};
+
+// Mutable state of the monitor.
+struct MonitorData : FilterWindow {
+  Eigen::Vector3d last_accepted = Eigen::Vector3d::Zero();
+  bool has_accepted = false;
+  long cycles_since_accepted = 0;
   double statistic = 0.0;  // latest window sum of z^2 (0 until the window is full)
   double step_statistic = 0.0;  // latest step statistic (0 until the window is full)
   double last_z = 0.0;     // latest innovation
@@ -202,7 +216,6 @@ struct MonitorData {
   long alarm_count = 0;
   int pending = -1;  // accepted samples until the latest alarm is explained; -1: none pending
   long cycles = 0, accepted = 0, skipped = 0;  // skipped: readings with no ML residual
-  long filtered = 0;  // samples the filter has absorbed
   // Learning phase (MonitorSettings::learning_s, learning.hpp).
   bool started = false;      // a cycle has been seen (t_start is set)
   double t_start = 0.0;      // time of the first cycle
@@ -210,18 +223,26 @@ struct MonitorData {
   double learning_end_s = 0.0;  // when learning ended (t_start without learning)
   int learn_count = 0;
   std::array<double, kMaxLearn> learn_z{}, learn_scratch{};
+  // Each learnt sample's time, link angles and passive link force signs, for
+  // the review (monitor.cpp): when learning ends, the learnt samples are
+  // replayed through a copy of the filter as it stands then (`review`), one
+  // window behind as the monitor tests, and what is learnt is learnt from
+  // those innovations, free of the filter's settling from its prior.
+  std::array<double, kMaxLearn> learn_t{};
+  std::array<Eigen::Vector3d, kMaxLearn> learn_theta{}, learn_tension{};
+  FilterWindow review;
+  int review_stage = 0;  // 0: none; 1: residuals at the learnt estimate; 2: the lagged replay
+  int review_next = 0;   // next learnt sample the review takes
+  int review_kept = 0;   // samples with an innovation so far in this stage
+  double review_median = 0.0;  // median of the stage-1 residuals (stated units)
   // Per learning batch and estimated parameter: sums of dz, dz z and dz^2
   // (learning.hpp MatchedBatch), for the step test's factors.
   std::array<ParamRow, kMaxLearnBatches> learn_h{}, learn_hz{}, learn_hh{};
   LearnedScale learned;      // what was learnt (defaults: nothing)
-  // The step test's variance factor of each parameter (>= 1; 1 until learnt):
-  // its statistic along parameter i is divided by step_factor[i].
-  ParamRow step_factor = ParamRow::Ones();
   // The largest step-test term of each parameter and the largest chi-square
-  // statistic while learning (last three quarters, full windows).
+  // statistic of the review's replay (last three quarters, full windows).
   ParamRow learn_step_max = ParamRow::Zero();
   double learn_chi_max = 0.0;
-  double noise_scale = 1.0;  // the filter's reading noise is noise_scale x model.sigma_rad
   double bias = 0.0;         // bias of the innovations (z units), taken off before the tests
   double t_last_accepted = 0.0;
   double chi_threshold = 0.0;  // thresholds in force (the model's, widened after learning)
@@ -237,7 +258,7 @@ struct StepResult {
   bool alarm = false;     // an alarm was raised (data.alarms[(data.alarm_count - 1) % kMaxAlarms])
   bool explained = false; // the latest alarm's explanation was filled in (explain_samples later)
   double z = 0.0;         // normalised innovation of an accepted sample (before the bias is taken off)
-  bool learnt = false;    // the learning phase ended with this sample
+  bool learnt = false;    // the learning phase (with its review) ended with this cycle
   double statistic = 0.0; // window statistic after this sample (0 while the window fills)
   double step_statistic = 0.0;  // step statistic after this sample (0 while the window fills)
 };

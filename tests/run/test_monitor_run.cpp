@@ -92,8 +92,11 @@ TEST(MonitorRun, OperationEventsLeaveTheCalibrationAloneAndAreDetected) {
   ASSERT_TRUE(with.monitor->detections[0].detected_s) << "the jump at 5 s was not detected";
   EXPECT_GE(*with.monitor->detections[0].detected_s, 5.0);
   EXPECT_EQ(with.monitor->false_alarms, 0);
-  EXPECT_NEAR(with.monitor->learning_end_s, 2.0, 0.05);
-  EXPECT_NEAR(monitor_summary(*with.monitor)["learning"]["length_s"].get<double>(), 2.0, 0.05);
+  // 2 s of learning, then the review of what it learnt (calib/monitor/monitor.hpp): a fraction of a second at 4 kHz.
+  EXPECT_GT(with.monitor->learning_end_s, 2.0);
+  EXPECT_LT(with.monitor->learning_end_s, 2.5);
+  EXPECT_NEAR(monitor_summary(*with.monitor)["learning"]["length_s"].get<double>(),
+              with.monitor->learning_end_s - with.monitor->learning_start_s, 1e-9);
 }
 
 TEST(MonitorRun, GpmRunWithoutOperationDoesNotMonitor) {
@@ -185,16 +188,14 @@ TEST(MonitorRun, ReadingModelAfterCalibrationIsTheEstimatedOne) {
   EXPECT_EQ(m.reading.skew_s, estimated.skew_s);
   EXPECT_EQ(m.reading.backlash_rad, estimated.backlash_rad);
   EXPECT_EQ(m.thermal_time_constant_s, stated.thermal_time_constant_s);
-  // The least innovation scale: the statement's without a model test, the
-  // calibration's residual RMS over the noise when above it, never below the
-  // statement's (issue 31).
+  // The least innovation scale is the statement's, whatever the
+  // calibration's misfit (the learning phase's review measures the robot's
+  // own innovations; docs/MONITORING.md).
   EXPECT_EQ(m.scale_floor, stated.scale_floor);
   run.model_test = calib::ModelTest{};
   run.model_test->chi2 = 400.0;
   run.model_test->dof = 100.0;
-  EXPECT_DOUBLE_EQ(reading_model_after_calibration(run).scale_floor, 2.0);
-  run.model_test->chi2 = 50.0;
-  EXPECT_EQ(reading_model_after_calibration(run).scale_floor, 1.0);
+  EXPECT_EQ(reading_model_after_calibration(run).scale_floor, stated.scale_floor);
 }
 
 // End to end on the realistic twin, samples on the fly (the main job's

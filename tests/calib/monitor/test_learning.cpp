@@ -5,7 +5,9 @@
 // within 1 s and named.
 #include "calib/monitor/learning.hpp"
 
+#include <algorithm>
 #include <cmath>
+#include <memory>
 #include <vector>
 
 #include <gtest/gtest.h>
@@ -157,11 +159,45 @@ TEST(MonitorLearning, LearnsTheScaleOfANoisierRobotAndRaisesNoAlarm) {
   const auto run = run_circle(m, *d, 60.0, healthy, cs);
   EXPECT_TRUE(run.alarm_times.empty()) << run.alarm_times.size() << " alarms, first at " << run.alarm_times.front();
   EXPECT_FALSE(d->learning);
-  EXPECT_NEAR(d->learning_end_s, 8.0, 0.05);
+  // Learning ends after its 8 s and the review of what it learnt (monitor.hpp), within 10 s.
+  EXPECT_GT(d->learning_end_s, 8.0);
+  EXPECT_LE(d->learning_end_s, 10.0);
   const double expected = std::sqrt(m.sigma_rad * m.sigma_rad + 4e-5 * 4e-5) / m.sigma_rad;
   EXPECT_NEAR(d->learned.mad_scale, expected, 0.05 * expected);
   EXPECT_NEAR(d->learned.median, 0.0, 0.1 * expected);
   EXPECT_GE(d->noise_scale, d->learned.mad_scale);
+}
+
+// A monitor that starts from an estimate a calibration's 1-sigma off (20 um
+// and 200 urad): the review replays the learnt samples as the monitor tests
+// them, so the scale it learns is the one the live innovations then show
+// (their robust scale after learning, in the stated units, cross-checked
+// within 15 %), here that of readings with quantisation only (about 1: the ML
+// residual carries the reading error one to one); no alarm in 60 s and the
+// learning phase, review included, ends within 10 s.
+TEST(MonitorLearning, TheReviewLearnsTheScaleTheLiveInnovationsShow) {
+  MonitorSettings s;
+  for (int k = 0; k < kNumParams; ++k) s.prior_sigma[static_cast<size_t>(k)] = is_offset(k) ? 2e-4 : 0.02;
+  Geometry actual = s.geometry;
+  actual[kLa1] += 0.02;
+  actual[kLb2] -= 0.02;
+  actual[kDth1] += 2e-4;
+  actual[kDth3] -= 2e-4;
+  const MonitorModel m = make_monitor_model(s);
+  auto d = std::make_unique<MonitorData>(make_monitor_data(m));
+  const auto run = run_circle(m, *d, 60.0, [&](double) { return actual; });
+  EXPECT_TRUE(run.alarm_times.empty()) << run.alarm_times.size() << " alarms, first at " << run.alarm_times.front();
+  ASSERT_FALSE(d->learning);
+  EXPECT_LE(d->learning_end_s, 10.0);
+  // The live innovations of the last 30 s, in the stated units, about their median.
+  std::vector<double> dev(run.z.end() - 3000, run.z.end());
+  for (double& v : dev) v *= d->noise_scale;
+  std::nth_element(dev.begin(), dev.begin() + 1500, dev.end());
+  const double median = dev[1500];
+  for (double& v : dev) v = std::abs(v - median);
+  std::nth_element(dev.begin(), dev.begin() + 1500, dev.end());
+  EXPECT_NEAR(d->learned.mad_scale, 1.4826 * dev[1500], 0.15 * d->learned.mad_scale);
+  EXPECT_NEAR(d->learned.mad_scale, 1.0, 0.2);
 }
 
 // No alarm while learning, even for a gross slip inside the learning phase
