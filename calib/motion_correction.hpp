@@ -1,59 +1,10 @@
-// Calibration from readings taken in motion (sampling on the fly).
-//
-// A reading taken while the robot moves carries two effects the rigid model
-// leaves out: the transmission twist between the motor-side encoder and the
-// link (compliance c_i times the transmitted drive torque tau_i), and the
-// latch skew s_i of encoders 2 and 3 relative to encoder 1 (a reading latched
-// s_i early lags by s_i omega_i). The link angle is then
-//   theta_a_i = theta_m_i + dth_i + s_i omega_i - c_i tau_i,      s_1 = 0,
-// which is linear in the nuisance vector nu = (s2, s3, c1, c2, c3). The
-// estimate minimises the ML cost (calib/residuals.hpp) over the geometry and
-// nu jointly by Gauss-Newton passes: each pass corrects the readings with the
-// current nu and fits the geometry by LM (calib/lm.hpp); then, with the ML
-// residuals r (n), their Jacobian J_g (n x free) and their reading
-// sensitivities u_jk = dr_j / dtheta_k at that fit, the joint linearisation
-//   r + J_g dg + J_nu dnu = 0,   J_nu[j] = (u_j2 omega_j2, u_j3 omega_j3, -u_j1 tau_j1, -u_j2 tau_j2, -u_j3 tau_j3)
-// is solved in least squares for dnu (eliminating dg). A stiff transmission
-// behind a drive loop of a few periods' bandwidth rings: at the reading
-// instant its twist is not c_i times the torque the drive has just computed
-// but a response to the torques before it (the spring torque is the torque of
-// the periods before, less the rotor's inertia times its acceleration). With
-// MotionModel::torque_before (consecutive samples on the fly) the twist is
-// the short response
-//   c_i tau_i(j) + h_i (tau_i(j-1) - tau_i(j)),
-// one more column -u_ji (tau_i(j-1) - tau_i(j)) per joint; c_i stays the
-// static compliance (the twist under a constant torque), h_i the lag. With
-// the drives' torque history recorded (MotionModel::torque_between, on the
-// fly: sim/sampling.hpp SampleRecord) tau is the torque of the drive period
-// just before the reading instant and the lag's regressor the mean torque
-// over the periods since the sample before less it: the torque computed from
-// the reading itself (and, in the lag, from the readings just before it) reacts
-// to its quantisation error, which the columns then fit (on the ideal, rigid
-// twin the residual of joints 2 and 3's readings against the truth, 1.00
-// quantisation sigmas, fell to 0.95 and 0.91 with the sample's own torque and
-// the sample before's; it stays at 1.00 with the torques before the instant;
-// on the realistic twin the twist's residual against the truth falls from
-// 0.37, 0.35 to 0.36, 0.33 sigmas). The torque of the
-// sample after would fit it more (chi2/dof 0.85 on the ideal twin). An encoder's once-per-turn
-// error a_i sin(theta_m_i) + b_i cos(theta_m_i) (MotionModel::cyclic_prior_rad)
-// is taken off the reading, columns -u_ji sin(theta_m_ji), -u_ji cos(theta_m_ji);
-// over the joints' range of motion it is hard to tell from the geometry, so
-// a_i, b_i carry the data sheet's prior N(0, p^2). Estimated
-// (MotionModel::estimate_cyclic), that is one more residual (sigma / p) a_i
-// each, in the fit and in its covariance. By default they are considered,
-// not estimated: the fit leaves them out, and its covariance (and the bound)
-// add what they may do to it, p^2 G G' with G = (J' J)^-1 J' J_c the fit's
-// response to the columns J_c (on the realistic twin estimating them made
-// the geometry 1.4x less accurate: they are nearly the geometry's own
-// directions over the joints' range). With the joint clearance,
-// passive link i acts as lb_i + d_i sign(T_i) (T_i its axial force from chain
-// i's own moment balance, calib/passive_tension.hpp, the transmitted torque
-// being tau_i less the stated friction and inertia of MotionModel::load),
-// which is the reading correction d_i sign(T_i) / (la_i sin(theta_b_i - theta_a_i)):
-// a further column u_ji sign(T_ji) / (la_i sin(...)) per chain, 0 in samples
-// whose sign is uncertain. The covariance of the
-// geometry then comes from the joint Jacobian [J_g, J_nu], so the nuisance
-// values' uncertainty is carried into the parameters' 1-sigma.
+// Calibration from readings taken in motion (sampling on the fly): the
+// geometry estimated jointly with the reading model's nuisance values
+// (latch skew, transmission compliance and its lag, friction twist, joint
+// clearance, backlash, cyclic errors and harmonics) by Gauss-Newton passes
+// of an LM fit on corrected readings and a joint linearisation step; the
+// geometry's covariance from the joint Jacobian [J_g, J_nu]. The model, its
+// columns and why each is there: docs/MOTION_MODEL.md.
 #pragma once
 
 #include <array>

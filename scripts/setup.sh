@@ -10,6 +10,7 @@ PACKAGES=(
   libosmesa6-dev libavcodec-dev libavformat-dev libswscale-dev libavutil-dev libpng-dev ffmpeg
   libgtest-dev libgmock-dev libbenchmark-dev
   libcli11-dev libfmt-dev libspdlog-dev
+  universal-ctags  # scripts/check_code_shape.sh (test repo.code_shape)
   libmodbus-dev
   libpagmo-dev
   python3-scipy python3-numpy
