@@ -1,14 +1,14 @@
 #!/usr/bin/env bash
-# Runs the default test suite twice in one build while two busy processes
+# Runs the default test suite RUNS times (default 3) in one build while two busy processes
 # compete for the cores (`yes > /dev/null`), to show that no test depends on
-# the wall clock: exits non-zero if either run fails.
+# the wall clock: exits non-zero if any run fails.
 #
-#   bash scripts/test_under_load.sh [BUILD_DIR] [ctest args...]
+#   RUNS=3 bash scripts/test_under_load.sh [BUILD_DIR] [ctest args...]
 #
 # BUILD_DIR defaults to build/ (built already: run scripts/build.sh first).
 # The busy processes are this script's own children, ended by their process
 # ids when it exits (also on failure or Ctrl-C). Each run's summary and load
-# average are printed; the full logs go to BUILD_DIR/test_under_load.{1,2}.log.
+# average are printed; the full logs go to BUILD_DIR/test_under_load.N.log.
 set -uo pipefail
 cd "$(dirname "$0")/.."
 build=${1:-build}
@@ -28,7 +28,7 @@ for _ in 1 2; do
 done
 
 status=0
-for run in 1 2; do
+for run in $(seq "${RUNS:-3}"); do
   log="$build/test_under_load.$run.log"
   start=$(date +%s)
   ctest --test-dir "$build" --output-on-failure -j "$(nproc)" -LE 'long|montecarlo' "$@" >"$log" 2>&1
