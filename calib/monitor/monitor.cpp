@@ -101,14 +101,7 @@ constexpr int kReviewReplayPerCycle = 1;
 
 // Copies the filter of src (not its window) into dst.
 void copy_filter(FilterWindow& dst, const FilterWindow& src) {
-  dst.estimate = src.estimate;
-  dst.cyclic = src.cyclic;
-  dst.clearance = src.clearance;
-  dst.growth_rate = src.growth_rate;
-  dst.P = src.P;
-  dst.t_last_update = src.t_last_update;
-  dst.filtered = src.filtered;
-  dst.noise_scale = src.noise_scale;
+  static_cast<DriftFilter&>(dst) = static_cast<const DriftFilter&>(src);
 }
 
 // Starts the review of the learnt samples with a copy of the filter as

@@ -173,11 +173,8 @@ struct Alarm {
   double explained_s = 0.0;  // time the explanation was made (explain_samples after t_s)
 };
 
-// The drift filter and its change-test window: the state the filter's
-// functions (drift_filter.hpp) and the step test (explain.hpp) work on; the
-// monitor holds one, and a second one replays the learning phase's samples
-// when learning ends (MonitorData::review).
-struct FilterWindow {
+// The drift filter's state: estimate, covariance and what it has absorbed.
+struct DriftFilter {
   Geometry estimate;  // current parameter estimate (fixed ones at the model's values)
   // Estimated cyclic encoder error (rad): a_1, b_1, a_2, b_2, a_3, b_3; the
   // reading error of encoder i is a_i sin(theta_m_i) + b_i cos(theta_m_i).
@@ -188,6 +185,13 @@ struct FilterWindow {
   double t_last_update = 0.0;
   long filtered = 0;         // samples the filter has absorbed
   double noise_scale = 1.0;  // the filter's reading noise is noise_scale x model.sigma_rad
+};
+
+// The drift filter and its change-test window: the state the filter's
+// functions (drift_filter.hpp) and the step test (explain.hpp) work on; the
+// monitor holds one, and a second one replays the learning phase's samples
+// when learning ends (MonitorData::review).
+struct FilterWindow : DriftFilter {
   // Samples not yet in the filter (ring buffer): the change-test window, plus
   // while an alarm is pending the samples since; innovations z, their
   // sensitivities dz/dparams, times and readings (for the filter update when
