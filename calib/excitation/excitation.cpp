@@ -55,11 +55,17 @@ std::vector<char> membership(Eigen::Index n, const std::vector<int>& chosen) {
   return in;
 }
 
+// x^q for q a power of two (1, 4 or 16) by repeated squaring.
+double power_of_two(double x, int q) {
+  for (int e = 1; e < q; e *= 2) x *= x;
+  return x;
+}
+
 // Objective of scaled variances v: max (q = 0) or sum (v / ref)^q.
 double variance_objective(const Eigen::ArrayXd& v, int q, double ref) {
   if (q == 0) return v.maxCoeff();
   double sum = 0.0;
-  for (Eigen::Index k = 0; k < v.size(); ++k) sum += std::pow(v[k] / ref, q);
+  for (Eigen::Index k = 0; k < v.size(); ++k) sum += power_of_two(v[k] / ref, q);
   return sum;
 }
 
@@ -143,21 +149,23 @@ int exchange_variances(const Eigen::MatrixXd& rows, std::vector<int>& chosen, in
     const Eigen::ArrayXXd after_add =
         (-(U.array().square().colwise() / a)).rowwise() + c_diag.transpose();
     const std::vector<char> in = membership(n, chosen);
+    Eigen::ArrayXd after(U.cols());  // diag(C2) of one swap
     double best = current * (1.0 - 1e-10);
     int best_slot = -1, best_j = -1;
     for (size_t s = 0; s < chosen.size(); ++s) {
       const int i = chosen[s];
       const Eigen::ArrayXd dij = (rows * U.row(i).transpose()).array();  // g_j' C g_i
       const Eigen::ArrayXd e = d[i] - dij.square() / a;                   // g_i' C1 g_i
-      // v = C1 g_i = u_i - u_j d_ij / (1 + d_j); diag(C2) = diag(C1) + v.^2 / (1 - e).
-      const Eigen::ArrayXXd v =
-          (-(U.array().colwise() * (dij / a))).rowwise() + U.row(i).array();
-      const Eigen::ArrayXXd after = after_add + v.square().colwise() / (1.0 - e);
       for (Eigen::Index j = 0; j < n; ++j) {
         if (in[static_cast<size_t>(j)] || !(1.0 - e[j] > 1e-9)) continue;
-        const Eigen::ArrayXd vj = after.row(j).transpose();
-        if ((vj <= 0.0).any()) continue;
-        const double obj = variance_objective(vj, q, ref);
+        // v = C1 g_i = u_i - u_j d_ij / (1 + d_j); diag(C2) = diag(C1) + v.^2 / (1 - e).
+        const double w = dij[j] / a[j];
+        for (Eigen::Index k = 0; k < U.cols(); ++k) {
+          const double v = U(i, k) - U(j, k) * w;
+          after[k] = after_add(j, k) + v * v / (1.0 - e[j]);
+        }
+        if ((after <= 0.0).any()) continue;
+        const double obj = variance_objective(after, q, ref);
         if (obj < best) best = obj, best_slot = static_cast<int>(s), best_j = static_cast<int>(j);
       }
     }
