@@ -3,7 +3,9 @@
 
 #include <cmath>
 #include <deque>
+#include <map>
 #include <memory>
+#include <mutex>
 #include <set>
 #include <utility>
 
@@ -13,6 +15,8 @@
 #include "models/drive_margin.hpp"
 #include "models/errors.hpp"
 #include "models/kinematics.hpp"
+#include "models/robot_yaml.hpp"
+#include "models/yaml_util.hpp"
 #include "sim/simulate.hpp"
 
 namespace gpm::scenario {
@@ -46,6 +50,32 @@ std::set<std::pair<long, long>> safe_region(const Robot& robot, const DriveMask&
   return region;
 }
 
+// Everything a design without a hardware admissibility test reads: the
+// controller's model, the drives in position mode, the margin, the count,
+// the pattern, the free parameters and the reading 1-sigma (exact text).
+std::string design_key(const sim::Scenario& s, const FreeMask& free, double sigma_rad) {
+  const sim::SamplingPlan& plan = *s.sampling;
+  const DriveMask drives = sim::position_drives(s);
+  const PathMargin& m = plan.margin;
+  return fmt::format("{}|{}{}{}|{} {} {} {} {}|{} {}|{}|{}", robot_to_yaml(s.controller), drives[0], drives[1],
+                     drives[2], format_exact(m.singularity), format_exact(m.reach_mm),
+                     format_exact(m.tolerance.base_mm), format_exact(m.tolerance.link_mm),
+                     format_exact(m.tolerance.offset_rad), plan.count, static_cast<int>(plan.pattern),
+                     free.to_string(), format_exact(sigma_rad));
+}
+
+// Designs made in this process, by design_key: a population of robots
+// described by one data sheet shares one design, made once.
+struct DesignMemo {
+  std::mutex mutex;
+  std::map<std::string, std::vector<Eigen::Vector2d>> poses;
+};
+
+DesignMemo& design_memo() {
+  static DesignMemo memo;
+  return memo;
+}
+
 }  // namespace
 
 void design_sampling(sim::Scenario& s, const FreeMask& free, double sigma_rad,
@@ -63,10 +93,19 @@ void design_sampling(sim::Scenario& s, const FreeMask& free, double sigma_rad,
     throw InputError(fmt::format("{}: sampling.count: {} designed poses cannot determine {} free parameters; "
                                  "use a count of at least {}",
                                  s.file, s.sampling->count, p, p));
+  const double sigma = sigma_rad > 0.0 ? sigma_rad : 1e-5;
+  const std::string key = admissible ? std::string() : design_key(s, free, sigma);
+  if (!key.empty()) {
+    const std::lock_guard<std::mutex> lock(design_memo().mutex);
+    if (const auto it = design_memo().poses.find(key); it != design_memo().poses.end()) {
+      s.sampling->poses = it->second;
+      return;
+    }
+  }
   calib::excitation::DesignOptions o;
   o.count = s.sampling->count;
   o.free = free;
-  o.sigma = sigma_rad > 0.0 ? sigma_rad : 1e-5;
+  o.sigma = sigma;
   o.admissible = admissible;
   if (s.sampling->pattern == sim::PosePattern::kTrajectory) {
     // The spline through the poses bulges past them: keep the poses further
@@ -103,6 +142,10 @@ void design_sampling(sim::Scenario& s, const FreeMask& free, double sigma_rad,
     };
   }
   s.sampling->poses = calib::excitation::design_poses(s.controller, o).poses;
+  if (!key.empty()) {
+    const std::lock_guard<std::mutex> lock(design_memo().mutex);
+    design_memo().poses.emplace(key, s.sampling->poses);
+  }
 }
 
 }  // namespace gpm::scenario

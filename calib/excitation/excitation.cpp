@@ -133,6 +133,37 @@ int exchange_d_optimal(const Eigen::MatrixXd& rows, std::vector<int>& chosen, in
   return swaps;
 }
 
+namespace {
+
+// The objective (variance_objective) of swapping chosen pose i out and each
+// candidate j in, for every j at once (+inf where a variance would not be
+// positive or the swap is singular). U = rows C, d_j = g_j' C g_j, a = 1 + d,
+// after_add: diag(C1) of adding j alone (a row per j).
+Eigen::ArrayXd swap_objectives(const Eigen::MatrixXd& rows, const Eigen::MatrixXd& U, const Eigen::ArrayXd& d,
+                               const Eigen::ArrayXd& a, const Eigen::ArrayXXd& after_add, int i, int q, double ref) {
+  const Eigen::Index n = rows.rows();
+  const Eigen::ArrayXd dij = (rows * U.row(i).transpose()).array();  // g_j' C g_i
+  const Eigen::ArrayXd e = d[i] - dij.square() / a;                   // g_i' C1 g_i
+  const Eigen::ArrayXd w = dij / a;
+  Eigen::ArrayXd obj = Eigen::ArrayXd::Zero(n), diag(n);
+  Eigen::Array<bool, Eigen::Dynamic, 1> ok = (1.0 - e) > 1e-9;
+  for (Eigen::Index k = 0; k < U.cols(); ++k) {
+    // v = C1 g_i = u_i - u_j d_ij / (1 + d_j); diag(C2) = diag(C1) + v.^2 / (1 - e).
+    diag = after_add.col(k) + (U(i, k) - U.col(k).array() * w).square() / (1.0 - e);
+    ok = ok && diag > 0.0;
+    if (q == 0) {
+      obj = obj.max(diag);
+    } else {
+      Eigen::ArrayXd x = diag / ref;
+      for (int p = 1; p < q; p *= 2) x = x.square();
+      obj += x;
+    }
+  }
+  return ok.select(obj, std::numeric_limits<double>::infinity());
+}
+
+}  // namespace
+
 int exchange_variances(const Eigen::MatrixXd& rows, std::vector<int>& chosen, int q, int max_swaps) {
   const Eigen::Index n = rows.rows();
   int swaps = 0;
@@ -149,25 +180,12 @@ int exchange_variances(const Eigen::MatrixXd& rows, std::vector<int>& chosen, in
     const Eigen::ArrayXXd after_add =
         (-(U.array().square().colwise() / a)).rowwise() + c_diag.transpose();
     const std::vector<char> in = membership(n, chosen);
-    Eigen::ArrayXd after(U.cols());  // diag(C2) of one swap
     double best = current * (1.0 - 1e-10);
     int best_slot = -1, best_j = -1;
     for (size_t s = 0; s < chosen.size(); ++s) {
-      const int i = chosen[s];
-      const Eigen::ArrayXd dij = (rows * U.row(i).transpose()).array();  // g_j' C g_i
-      const Eigen::ArrayXd e = d[i] - dij.square() / a;                   // g_i' C1 g_i
-      for (Eigen::Index j = 0; j < n; ++j) {
-        if (in[static_cast<size_t>(j)] || !(1.0 - e[j] > 1e-9)) continue;
-        // v = C1 g_i = u_i - u_j d_ij / (1 + d_j); diag(C2) = diag(C1) + v.^2 / (1 - e).
-        const double w = dij[j] / a[j];
-        for (Eigen::Index k = 0; k < U.cols(); ++k) {
-          const double v = U(i, k) - U(j, k) * w;
-          after[k] = after_add(j, k) + v * v / (1.0 - e[j]);
-        }
-        if ((after <= 0.0).any()) continue;
-        const double obj = variance_objective(after, q, ref);
-        if (obj < best) best = obj, best_slot = static_cast<int>(s), best_j = static_cast<int>(j);
-      }
+      const Eigen::ArrayXd obj = swap_objectives(rows, U, d, a, after_add, chosen[s], q, ref);
+      for (Eigen::Index j = 0; j < n; ++j)
+        if (!in[static_cast<size_t>(j)] && obj[j] < best) best = obj[j], best_slot = static_cast<int>(s), best_j = static_cast<int>(j);
     }
     if (best_slot < 0) break;
     chosen[static_cast<size_t>(best_slot)] = best_j;

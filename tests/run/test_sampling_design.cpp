@@ -7,6 +7,7 @@
 
 #include <algorithm>
 #include <cstdio>
+#include <functional>
 
 #include <gtest/gtest.h>
 
@@ -75,6 +76,23 @@ TEST(SamplingDesign, AMarginTooFewPosesKeepIsRefused) {
               std::string::npos) << what;
     EXPECT_EQ(what.find('\n'), std::string::npos);
   }
+}
+
+// A design is made once per process for the same inputs (a population of
+// robots shares its data sheet) and again whenever anything it reads changes.
+TEST(SamplingDesign, ADesignIsRememberedForItsInputsOnly) {
+  const auto designed = [](const std::function<void(RunSpec&)>& change) {
+    RunSpec spec = load_run_spec(gpm::scenarios_dir() + "/main.yaml");
+    change(spec);
+    design_sampling(spec.sim, ~spec.calibration.fixed, 1e-5);
+    return spec.sim.sampling->poses;
+  };
+  const std::vector<Eigen::Vector2d> first = designed([](RunSpec&) {});
+  EXPECT_EQ(designed([](RunSpec& s) { s.sim.seed = 99; s.sim.actual.sigma_link_mm = 0.5; }), first);  // another robot, one data sheet
+  EXPECT_EQ(designed([](RunSpec& s) { s.sim.sampling->count = 30; }).size(), 30u);
+  EXPECT_NE(designed([](RunSpec& s) { s.sim.controller.geometry[la(1)] += 20.0; }), first);
+  EXPECT_NE(designed([](RunSpec& s) { s.calibration.fixed.set(lb(2)); }), first);
+  EXPECT_THROW(designed([](RunSpec& s) { s.sim.sampling->margin.singularity = 0.85; }), InputError);
 }
 
 TEST(SamplingDesign, MainJobTracksItsPathWithin20MmOnThreeRobots) {
