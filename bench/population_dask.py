@@ -25,7 +25,7 @@ import gpm.study
 ROOT = pathlib.Path(__file__).resolve().parents[1]
 
 
-def cpu_by_stage(scenario):
+def cpu_by_stage(scenario, seed=None):
     """(rows of (stage, cpu s, wall s), total cpu s, total wall s) of one gpm.run of scenario."""
     marks = []
 
@@ -34,7 +34,7 @@ def cpu_by_stage(scenario):
 
     c0, w0 = time.process_time(), time.perf_counter()
     marks.append(("parsing the scenario", c0, w0))
-    gpm.run(scenario, progress=stage)
+    gpm.run(scenario, progress=stage, seed=seed)
     c1, w1 = time.process_time(), time.perf_counter()
     marks.append(("end", c1, w1))
     rows = [(a[0], b[1] - a[1], b[2] - a[2]) for a, b in zip(marks, marks[1:])]
@@ -64,6 +64,13 @@ def main():
     print(f"one robot of {os.path.relpath(a.scenario, ROOT)}: {cpu:.2f} s CPU, {wall:.2f} s wall")
     print(f"  {'stage':<58} {'CPU s':>7} {'wall s':>7}")
     for name, c, w in rows:
+        print(f"  {name:<58} {c:7.2f} {w:7.2f}")
+    # A study's worker runs robot after robot of one data sheet: the pose
+    # design is made once per process (run/sampling_design.cpp).
+    rows2, cpu2, wall2 = cpu_by_stage(a.scenario, seed=12345)
+    print(f"the next robot in the same process (another seed, the design remembered): {cpu2:.2f} s CPU, "
+          f"{wall2:.2f} s wall")
+    for name, c, w in rows2:
         print(f"  {name:<58} {c:7.2f} {w:7.2f}")
 
     with tempfile.TemporaryDirectory(prefix="gpm-bench-dask-") as d:

@@ -280,7 +280,7 @@ struct LmSolve {
 };
 
 // Ceres' Levenberg-Marquardt settings for budget max_iterations.
-ceres::Solver::Options solver_options(int max_iterations) {
+ceres::Solver::Options solver_options(int max_iterations, double function_tolerance) {
   ceres::Solver::Options so;
   so.trust_region_strategy_type = ceres::LEVENBERG_MARQUARDT;
   so.linear_solver_type = ceres::DENSE_NORMAL_CHOLESKY;
@@ -291,7 +291,7 @@ ceres::Solver::Options solver_options(int max_iterations) {
   // iterations instead of 5). Failed steps still raise the damping.
   so.initial_trust_region_radius = 1e8;
   so.max_num_iterations = max_iterations;
-  so.function_tolerance = 1e-15;
+  so.function_tolerance = function_tolerance;
   so.gradient_tolerance = 1e-16;
   so.parameter_tolerance = 1e-14;
   so.num_threads = 1;
@@ -304,7 +304,7 @@ ceres::Solver::Options solver_options(int max_iterations) {
 // convergence of res follow. Throws Error when the cost cannot be evaluated.
 void solve_ceres(LmSolve& s, const LmOptions& opt, Result& res) {
   ceres::Solver::Summary summary;
-  ceres::Solve(solver_options(opt.max_iterations), &s.cp, &summary);
+  ceres::Solve(solver_options(opt.max_iterations, opt.function_tolerance), &s.cp, &summary);
   // A cost that cannot be evaluated (NaN or infinite: a loss scale or noise
   // far outside the residuals, issue 36.1) is a failed calibration, said in
   // one line, not a result.

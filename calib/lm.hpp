@@ -25,6 +25,9 @@ struct LmOptions {
   // Levenberg-Marquardt step, instead of refusing it.
   bool allow_rank_deficient = false;
   int max_iterations = 200;
+  // Relative decrease of the cost below which LM stops (Ceres'
+  // function_tolerance): the default polishes to the rounding floor.
+  double function_tolerance = 1e-15;
   // Compute the covariance (a few ms); off for speed in benchmarks.
   bool compute_covariance = true;
   // Differentiate the residuals with Ceres autodiff (the reference) instead

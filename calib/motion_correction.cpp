@@ -39,6 +39,9 @@ constexpr int kFirstCyclic = 14;  // a1 a2 a3 b1 b2 b3 under the data sheet's pr
 constexpr int kBacklash = 20;     // beta1 beta2 beta3
 constexpr int kHarmonic = 23;     // three orders (joint, motor, 2 x motor), each a1 a2 a3 b1 b2 b3
 constexpr std::size_t kNuisance = 41;
+// Relative cost decrease at which the passes' LM fits stop (the last fit of
+// fit_in_motion polishes to LmOptions::function_tolerance).
+constexpr double kPassFunctionTolerance = 1e-10;
 
 // The change of the drive torques from the sample before to each one:
 // model.torque_between(j) - tau(j) where recorded (one per sample), else
@@ -677,6 +680,8 @@ MotionFit fit_in_motion(const Problem& problem, const MotionSamples& s, const Lm
   Problem p = problem;
   LmOptions lm = options;
   lm.compute_covariance = false;
+  // The passes only lead the nuisance values; the last fit polishes.
+  lm.function_tolerance = std::max(options.function_tolerance, kPassFunctionTolerance);
   std::array<double, kNuisance> nu_all{};
   std::vector<LmIteration> iterations;
   Linearisation l;
@@ -703,6 +708,7 @@ MotionFit fit_in_motion(const Problem& problem, const MotionSamples& s, const Lm
       if (e.clr[j][k] != 0.0) fit.clearance_used[static_cast<std::size_t>(k)] += 1.0 / static_cast<double>(s.theta_m.size());
   p.theta_m = fit.corrected;
   lm.compute_covariance = options.compute_covariance;
+  lm.function_tolerance = options.function_tolerance;
   fit.result = calibrate_lm(p, lm);
   append_iterations(iterations, fit.result.lm_iterations);
   fit.result.lm_iterations = std::move(iterations);

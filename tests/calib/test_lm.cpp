@@ -254,6 +254,28 @@ TEST(CalibrateLm, AnalyticAndAutodiffJacobiansGiveTheSameEstimateOnNoisyData) {
   }
 }
 
+// A looser function tolerance (the passes of the motion fit use 1e-10)
+// stops no later and lands on the same noisy optimum far below its 1-sigma.
+TEST(CalibrateLm, ALooserFunctionToleranceStopsSoonerAtTheSameOptimum) {
+  const Geometry actual = table5_actual();
+  const Robot r = robot_of(actual);
+  const Samples s = samples_at(r, disc_poses(r, 40, r.home, 80.0, 4), 1e-4, 78);
+  Geometry start = Geometry::gpm2002_nominal();
+  for (int i : {kXa1, kYa1, kXa2, kYa2}) start[i] = actual[i];
+  const Problem p{s.theta_m, start, default_free_mask()};
+  LmOptions tight, loose;
+  loose.function_tolerance = 1e-10;
+  const Result rt = calibrate_lm(p, tight), rl = calibrate_lm(p, loose);
+  ASSERT_TRUE(rt.converged && rl.converged);
+  EXPECT_LT(rl.iterations, rt.iterations);  // the last iterations only polish the rounding
+  EXPECT_LE(rl.final_cost, rt.final_cost * (1.0 + 1e-9));
+  for (int i = 0; i < kNumParams; ++i) {
+    const auto k = static_cast<size_t>(i);
+    if (!default_free_mask().test(k)) continue;
+    EXPECT_NEAR(rl.geometry[i], rt.geometry[i], 1e-4 * rt.sigma[k]) << param_name(i);
+  }
+}
+
 // The error function J at a geometry, summed sample by sample from the
 // residual functors (independent of the solver's iteration bookkeeping).
 double cost_at(Cost c, const Geometry& g, const std::vector<Eigen::Vector3d>& theta_m) {
