@@ -71,6 +71,11 @@ std::string tracking_violation(const Robot& controller, const SafetyLimits& limi
 
 }  // namespace
 
+std::optional<Eigen::Vector2d> SafetySupervisor::commanded_point() const {
+  if (state() != LifecycleState::kActive) return std::nullopt;
+  return driven_point(controller_.geometry, last_.theta_m, last_.mode, pair_mode_);
+}
+
 SafetySupervisor::SafetySupervisor(std::unique_ptr<RobotHardware> backend, const Robot& controller,
                                    const SafetyLimits& limits, Clock& clock)
     : backend_(std::move(backend)), clock_(clock), controller_(controller), limits_(limits) {

@@ -1,9 +1,13 @@
 // Backend `twin`: the MuJoCo twin (sim/) in process. Time is simulated: read(t)
 // steps the physics up to t, so a session runs as fast as the CPU allows.
 // Drives are disabled (torque off) until activate(); per-joint modes follow
-// the commands.
+// the commands (a joint the scenario gives a constant torque keeps it while
+// enabled and not in position mode: the twin's preload). What only a twin
+// knows (true angles, end-effector, geometry) is for an observer and
+// snapshot(), never in the HardwareState a real drive gives.
 #pragma once
 
+#include <functional>
 #include <map>
 #include <memory>
 
@@ -29,6 +33,12 @@ class TwinBackend final : public RobotHardware {
 
   // The twin's last snapshot (true angles and end-effector; for tests and logs).
   const sim::TwinSnapshot& snapshot() const;
+  // Called with the twin's snapshot after every read (the truth of a
+  // simulation: trajectory log, true poses of the samples); empty: none.
+  void observe(std::function<void(const sim::TwinSnapshot&)> observer) { observer_ = std::move(observer); }
+  // The twin's compiled model with the joints of modes in position mode
+  // (built if needed; its MJCF text is model.xml, its events and growth the truth).
+  const sim::TwinModel& model(const std::array<JointMode, 3>& modes);
 
   double period_s() const override { return config_.period_s; }
   bool simulated_time() const override { return true; }
@@ -45,7 +55,7 @@ class TwinBackend final : public RobotHardware {
   void on_write(const HardwareCommand& command, double time_s) override;
 
  private:
-  const sim::TwinModel& model_for(unsigned mask);
+  const sim::TwinModel& model_for(unsigned mask, bool enabled = true);
   void fill(HardwareState& state) const;
 
   TwinBackendConfig config_;
@@ -55,6 +65,8 @@ class TwinBackend final : public RobotHardware {
   std::map<unsigned, std::unique_ptr<sim::TwinModel>> models_;
   std::unique_ptr<sim::TwinState> state_;
   unsigned mask_ = 0;
+  bool enabled_ = false;  // drives enabled (a preload joint pulls only then)
+  std::function<void(const sim::TwinSnapshot&)> observer_;
   Eigen::Vector3d last_command_ = Eigen::Vector3d::Zero();
 };
 

@@ -51,6 +51,11 @@ struct SessionResult {
   double duration_s = 0.0;  // session time (simulated or wall)
 };
 
+// Called as sample id is logged, at the cycle of its last reading; the
+// sample stands for the readings of its last `cycles` cycles (1 on the fly,
+// the averaging window at rest). A simulation takes the twin's truth with it.
+using SampleHook = std::function<void(long id, long cycles)>;
+
 // Largest gap (rad) between a recorded reading and the controller model's IK
 // of its pose for a file to count as recorded on the same robot (offsets and
 // geometry errors are a few 0.01 rad; another robot or model is far beyond).
@@ -86,8 +91,9 @@ HardwareError session_stopped(SafetySupervisor& hw, const std::string& why, cons
 // (check_plan_poses) or a recorded file of another plan (check_resumed_plan),
 // HardwareError (drives disabled, samples so far on disk, the message says how
 // many and where) on a failure (a position joint whose reading did not follow
-// a move is one: Motion::check_followed), Interrupted (a HardwareError) on a stop request.
+// a move is one: Motion::check_followed), Interrupted (a HardwareError) on a
+// stop request. on_sample (optional): see SampleHook.
 SessionResult run_sampling_session(SafetySupervisor& hw, const SessionPlan& plan, SampleLog& log,
-                                   const std::atomic<bool>* stop = nullptr);
+                                   const std::atomic<bool>* stop = nullptr, const SampleHook& on_sample = {});
 
 }  // namespace gpm::hw
