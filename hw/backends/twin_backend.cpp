@@ -67,6 +67,7 @@ void TwinBackend::on_configure(HardwareState& initial) {
   enabled_ = false;
   state_ = std::make_unique<sim::TwinState>(model_for(0b111), config_.seed);
   model_for(0, false);
+  latched_ = state_->last;
   last_command_ = state_->last.readings;
   fill(initial);
 }
@@ -94,12 +95,16 @@ void TwinBackend::on_read(double time_s, HardwareState& s) {
   const sim::TwinModel& model = model_for(mask_, enabled_);
   const double h = model.timestep_s();
   try {
-    while (state_->data->time + 0.5 * h < time_s) sim::twin_step(model, *state_);
+    while (state_->data->time + 0.5 * h < time_s) {
+      const bool tick = state_->steps % model.steps_per_tick() == 0;  // the drives' loop: encoders latch
+      sim::twin_step(model, *state_);
+      if (tick) latched_ = state_->last;
+    }
   } catch (const sim::SimError& e) {
     throw HardwareError(fmt::format("twin: {}", e.what()));
   }
   fill(s);
-  if (observer_) observer_(state_->last);
+  if (observer_) observer_(latched_);
 }
 
 void TwinBackend::on_write(const HardwareCommand& cmd, double) {

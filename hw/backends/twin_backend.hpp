@@ -33,8 +33,9 @@ class TwinBackend final : public RobotHardware {
 
   // The twin's last snapshot (true angles and end-effector; for tests and logs).
   const sim::TwinSnapshot& snapshot() const;
-  // Called with the twin's snapshot after every read (the truth of a
-  // simulation: trajectory log, true poses of the samples); empty: none.
+  // Called after every read with the twin's snapshot of the instant the
+  // readings were latched (the truth of a simulation: trajectory log, true
+  // poses of the samples); empty: none.
   void observe(std::function<void(const sim::TwinSnapshot&)> observer) { observer_ = std::move(observer); }
   // The twin's compiled model with the joints of modes in position mode
   // (built if needed; its MJCF text is model.xml, its events and growth the truth).
@@ -67,6 +68,7 @@ class TwinBackend final : public RobotHardware {
   unsigned mask_ = 0;
   bool enabled_ = false;  // drives enabled (a preload joint pulls only then)
   std::function<void(const sim::TwinSnapshot&)> observer_;
+  sim::TwinSnapshot latched_;  // the snapshot of the last drive loop tick (readings latched)
   Eigen::Vector3d last_command_ = Eigen::Vector3d::Zero();
 };
 
