@@ -306,7 +306,7 @@ void SafetySupervisor::on_read(double time_s, HardwareState& state) {
   if (have_reading_) {
     const double elapsed = std::max(state.time_s - previous_reading_.time_s, dt_);
     for (int i = 0; i < 3; ++i) {
-      const double jump = std::abs(state.theta_m[i] - previous_reading_.theta_m[i]);
+      const double jump = std::abs(wrap_pi(state.theta_m[i] - previous_reading_.theta_m[i]));  // encoders wrap at 2 pi
       const double plausible = 4.0 * limits_.max_velocity[i] * elapsed + 0.05;
       if (jump > plausible) {
         throw HardwareError(fmt::format("drive {}: implausible encoder reading {:.6f} rad after "

@@ -106,7 +106,9 @@ hw::TrajectoryPlan trajectory_plan(const RunSpec& spec, double rate_hz, const st
   return plan;
 }
 
-// The stop-and-go plan: the scenario's poses, moves, settling and averaging.
+// The stop-and-go plan: the scenario's poses, moves, settling (a pose that
+// does not settle within its timeout is sampled as it stands, as the
+// scenario's settle criterion states) and averaging.
 hw::SessionPlan session_plan(const RunSpec& spec, const std::vector<Eigen::Vector2d>& poses,
                              const std::array<hw::JointMode, 3>& modes, std::optional<double> dither_mm) {
   hw::SessionPlan plan;
@@ -114,6 +116,7 @@ hw::SessionPlan session_plan(const RunSpec& spec, const std::vector<Eigen::Vecto
   plan.options = spec.sim.sampling->options;
   plan.modes = modes;
   if (dither_mm) plan.dither_mm = *dither_mm;
+  plan.require_settled = false;  // the scenario's settle timeout gives up the wait (sim::SettleCriterion)
   return plan;
 }
 
@@ -225,7 +228,8 @@ sim::SimulationResult sample_on_twin(const RunSpec& spec, gpm::Progress* progres
       const hw::TrajectoryPlan plan = trajectory_plan(spec, s.twin.servo_rate_hz, modes, r.actual, poses);
       r.sampling_s = hw::run_trajectory_session(*th.robot, plan, log, nullptr, truth.hook()).duration_s;
     } else if (!poses.empty()) {
-      const hw::SessionPlan plan = session_plan(spec, poses, modes, std::nullopt);
+      hw::SessionPlan plan = session_plan(spec, poses, modes, std::nullopt);
+      plan.check_following = false;  // the twin's readings are its own; the check would change no sample
       r.sampling_s = hw::run_sampling_session(*th.robot, plan, log, nullptr, truth.hook()).duration_s;
     }
   } catch (const hw::HardwareError& e) {

@@ -81,8 +81,8 @@ class Runner {
       }
       const Eigen::Vector3d reading0 = motion_.state().theta_m, command0 = motion_.command();
       move(plan_.poses[k]);
-      motion_.settle(plan_.options.settle, fmt::format("sample {}: ", id));
-      motion_.check_followed(reading0, command0, fmt::format("sample {}: ", id));
+      motion_.settle(plan_.options.settle, fmt::format("sample {}: ", id), plan_.require_settled);
+      if (plan_.check_following) motion_.check_followed(reading0, command0, fmt::format("sample {}: ", id));
       log.append(id, average_around(plan_.poses[k]), plan_.poses[k]);
       if (on_sample_) on_sample_(id, averaged_);
       ++r.taken;

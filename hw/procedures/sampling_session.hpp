@@ -42,6 +42,15 @@ struct SessionPlan {
   double profile_headroom = 0.5;       // fraction of the velocity/acceleration limits the moves use
   double dither_mm = kDitherMm;        // size of the figure averaged along at each pose (0: hold still);
                                        // averaging lasts options.average_s, longer if the limits need it
+  // A pose whose joints do not settle within options.settle.timeout_s fails
+  // the session (HardwareError); false: it is sampled as it stands (the
+  // scenario's settle criterion: gpm run).
+  bool require_settled = true;
+  // Each move checked by Motion::check_followed (a drive that does not move,
+  // readings that do not change); false: not judged (the in-process twin,
+  // whose drives may rightly not follow when they fight over a wrong model;
+  // the check changes no sample).
+  bool check_following = true;
 };
 
 // What a session did.
