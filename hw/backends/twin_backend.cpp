@@ -110,17 +110,23 @@ void TwinBackend::on_read(double time_s, HardwareState& s) {
 void TwinBackend::on_write(const HardwareCommand& cmd, double) {
   unsigned mask = 0;
   Eigen::Vector3d position = cmd.theta_m;
+  Eigen::Vector3d reference = position;  // what the drives servo to this cycle
   Eigen::Vector3d velocity = Eigen::Vector3d::Zero();
   for (int i = 0; i < 3; ++i) {
     if (cmd.mode[i] == JointMode::kPosition) {
       mask |= 1u << i;
-      velocity[i] = wrap_pi(position[i] - last_command_[i]) / config_.period_s;
+      // The drive interpolates linearly between its last two setpoints and
+      // servoes to the ramp's middle with its slope as velocity feed-forward:
+      // a position and a speed of one instant, half a period behind the setpoint.
+      const double step = wrap_pi(position[i] - last_command_[i]);
+      velocity[i] = step / config_.period_s;
+      reference[i] = last_command_[i] + 0.5 * step;
     } else {
-      position[i] = state_->last.readings[i];
+      position[i] = reference[i] = state_->last.readings[i];
     }
   }
   model_for(mask, true);
-  sim::twin_command(*state_, position, velocity);
+  sim::twin_command(*state_, reference, velocity);
   last_command_ = position;
   mask_ = mask;
   enabled_ = true;

@@ -1,9 +1,12 @@
 // Backend `twin`: the MuJoCo twin (sim/) in process. Time is simulated: read(t)
 // steps the physics up to t, so a session runs as fast as the CPU allows.
 // Drives are disabled (torque off) until activate(); per-joint modes follow
-// the commands (a joint the scenario gives a constant torque keeps it while
-// enabled and not in position mode: the twin's preload). What only a twin
-// knows (true angles, end-effector, geometry) is for an observer and
+// the commands. A position drive interpolates linearly between its last two
+// setpoints, as a drive in cyclic synchronous position mode, and servoes to
+// the ramp's middle with its slope as velocity feed-forward (a position and
+// a speed of one instant). A joint the scenario gives a constant torque keeps
+// it while enabled and not in position mode (the twin's preload). What only
+// a twin knows (true angles, end-effector, geometry) is for an observer and
 // snapshot(), never in the HardwareState a real drive gives.
 #pragma once
 

@@ -4,8 +4,9 @@
 # port, --stepped: the plant advances one command period per client cycle,
 # so the samples depend on the commands, not on the load): the run passes,
 # records the torques and read times of every sample, and its calibrated
-# model's positioning error over the workspace is within 1.5x the twin
-# backend's on the same robot (the drives report torque in 0.01 N m steps).
+# model's static error is within 1.2x the twin backend's on the same robot
+# and plan (the twin backend is gpm run's in-process loop; the drives report
+# torque in 0.01 N m steps and are polled one after another).
 # Everything in a fresh temporary folder that is removed.
 set -u
 GPM="$1"; EMU="$2"; SRC="$3"
@@ -44,8 +45,9 @@ rows = list(csv.DictReader(open(sys.argv[3])))
 assert len(rows) > 5000 and all(k in rows[0] for k in ("t", "tau_last1", "tau_between3", "t_read2")), len(rows)
 def after(s):
     return s["accuracy"]["calibrated"]["static_rms_um"]
-print(f"static RMS calibrated: twin backend {after(twin):.2f} um, modbus {after(modbus):.2f} um")
-sys.exit(0 if after(modbus) <= 1.5 * after(twin) else 1)
+print(f"static RMS calibrated: twin backend {after(twin):.2f} um, modbus {after(modbus):.2f} um "
+      f"(x{after(modbus) / after(twin):.2f})")
+sys.exit(0 if after(modbus) <= 1.2 * after(twin) else 1)
 PY
 
 echo "$passed passed, $fail failed"
