@@ -23,19 +23,20 @@ bad() { echo "FAIL $1"; fail=$((fail+1)); }
   >"$tmp/twin.out" 2>&1
 [[ -f "$tmp/twin/summary.json" ]] && ok || { bad "twin backend run"; cat "$tmp/twin.out"; }
 
-mkfifo "$tmp/emu.fifo"
-"$EMU" --map "$SRC/hw/examples/register_map_emulator.yaml" --scenario "$SRC/scenarios/main.yaml" \
-  --port 0 --stepped --command-period 0.00025 --comms-watchdog 5 >"$tmp/emu.fifo" 2>"$tmp/emu.err" &
-emu_pid=$!
-line=""; read -r -t 60 line <"$tmp/emu.fifo" || { bad "emulator did not start"; cat "$tmp/emu.err"; }
-port=${line##*:}
 # Positions in 2^20 counts per revolution: the drive turns the steps between
 # its setpoints into velocity feed-forward, and 17-bit setpoints (the example
 # map's) make that feed-forward jump by a count per cycle (3.3x the twin
 # backend's error, docs/PROCEDURES.md); the readings stay the twin's 17 bits.
+sed -e "s/counts_per_rev: 131072/counts_per_rev: 1048576/" "$SRC/hw/examples/register_map_emulator.yaml" \
+  >"$tmp/map20.yaml"
+mkfifo "$tmp/emu.fifo"
+"$EMU" --map "$tmp/map20.yaml" --scenario "$SRC/scenarios/main.yaml" \
+  --port 0 --stepped --command-period 0.00025 --comms-watchdog 5 >"$tmp/emu.fifo" 2>"$tmp/emu.err" &
+emu_pid=$!
+line=""; read -r -t 60 line <"$tmp/emu.fifo" || { bad "emulator did not start"; cat "$tmp/emu.err"; }
+port=${line##*:}
 sed -e "s/port: 1502/port: $port/" -e "s/response_timeout: [0-9.]*/response_timeout: 1/" \
-  -e "s/counts_per_rev: 131072/counts_per_rev: 1048576/" \
-  "$SRC/hw/examples/register_map_emulator.yaml" >"$tmp/map.yaml"
+  "$tmp/map20.yaml" >"$tmp/map.yaml"
 # The main job's hardware file with the emulator's drives and limits generous
 # in time (a CI host shares its cores; what is tested is the function).
 sed -e "s|^backend: twin|backend: modbus|" -e "s|^controller: .*|controller: $SRC/models/gpm2002.yaml|" \
