@@ -71,6 +71,11 @@ std::string tracking_violation(const Robot& controller, const SafetyLimits& limi
 
 }  // namespace
 
+std::optional<Eigen::Vector2d> SafetySupervisor::commanded_point() const {
+  if (state() != LifecycleState::kActive) return std::nullopt;
+  return driven_point(controller_.geometry, last_.theta_m, last_.mode, pair_mode_);
+}
+
 SafetySupervisor::SafetySupervisor(std::unique_ptr<RobotHardware> backend, const Robot& controller,
                                    const SafetyLimits& limits, Clock& clock)
     : backend_(std::move(backend)), clock_(clock), controller_(controller), limits_(limits) {
@@ -301,7 +306,7 @@ void SafetySupervisor::on_read(double time_s, HardwareState& state) {
   if (have_reading_) {
     const double elapsed = std::max(state.time_s - previous_reading_.time_s, dt_);
     for (int i = 0; i < 3; ++i) {
-      const double jump = std::abs(state.theta_m[i] - previous_reading_.theta_m[i]);
+      const double jump = std::abs(wrap_pi(state.theta_m[i] - previous_reading_.theta_m[i]));  // encoders wrap at 2 pi
       const double plausible = 4.0 * limits_.max_velocity[i] * elapsed + 0.05;
       if (jump > plausible) {
         throw HardwareError(fmt::format("drive {}: implausible encoder reading {:.6f} rad after "

@@ -9,6 +9,7 @@
 #pragma once
 
 #include <memory>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -42,6 +43,10 @@ class SafetySupervisor final : public RobotHardware {
   // by the velocity and acceleration limits of the position joints. For a
   // procedure that knows its path before the robot moves (gpm monitor).
   std::string check_path(const std::vector<Eigen::Vector3d>& q, const std::array<JointMode, 3>& mode) const;
+  // Where the command in force puts the controller model's end-effector (mm;
+  // two position joints: in their assembly mode at home); nullopt before a
+  // command or where it cannot (fewer than two joints in position mode).
+  std::optional<Eigen::Vector2d> commanded_point() const;
   // Number of commands refused so far.
   long rejected_count() const { return rejected_; }
   // True while the robot brakes or holds because no valid command came.

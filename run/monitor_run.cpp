@@ -23,6 +23,7 @@
 #include "report/report_document.hpp"
 #include "run/runner.hpp"
 #include "run/monitor_report_data.hpp"
+#include "run/twin_hardware.hpp"
 #include "sim/sampling.hpp"
 #include "sim/trajectory.hpp"
 #include "sim/twin.hpp"
@@ -196,56 +197,6 @@ void match_detections(MonitorOutcome& out, const std::vector<sim::GeometryEvent>
 
 }  // namespace
 
-MonitorOutcome run_monitor(const sim::Scenario& s, const Robot& controller,
-                           const std::array<double, kNumParams>& prior_sigma, const MonitorReadingModel& reading,
-                           const MonitorProgress& progress) {
-  const auto wall0 = std::chrono::steady_clock::now();
-  MonitorOutcome out = outcome_of(s, controller);
-  out.actual = sim::make_actual(s);
-  check_events_assemble(s, controller, out.actual);
-
-  // The twin starts assembled at the start of the operation path, so that
-  // twin time is operation time (the events' at_s).
-  const sim::Path& path = s.operation->path;
-  Robot actual_at_start = out.actual;
-  actual_at_start.home = sim::path_at(path, 0.0).p;
-  const sim::TwinModel twin(actual_at_start, s.twin);
-  sim::TwinState state(twin, derive_seed(s.seed, Stream::kTwinNoise));
-  Robot ctrl = controller;
-  ctrl.home = actual_at_start.home;
-  sim::Session session = sim::make_session(twin, state, ctrl, nullptr);
-  session.max_tracking_mm = s.max_tracking_mm;  // the twin loop's tracking watch (servo.max_tracking_mm)
-
-  make_monitor(out, s, prior_sigma, s.twin.servo_rate_hz, reading);
-  mon::MonitorData md = mon::make_monitor_data(out.model);
-  const FreeMask gauge = ~default_free_mask();  // xa1 ya1 xa2 ya2
-  const bool regauge = (gauge & out.model.settings.estimate).none();
-  auto truth_at = [&](double t) {
-    const Geometry g = sim::geometry_at_time(twin, t);
-    return regauge ? in_gauge(g, controller.geometry) : g;
-  };
-  auto record_estimate = [&](double t) {
-    const mon::Estimate e = mon::monitor_estimate(out.model, md);
-    out.estimates.push_back({t, e.value, e.sigma, truth_at(t)});
-  };
-  const double period = 1.0 / s.twin.servo_rate_hz, loop = sim::path_duration(path);
-  const long ticks = std::lround(s.operation->duration_s / period);
-  Cadence cadence{std::max(0.1, s.operation->duration_s / 2000.0)};
-  for (long k = 0; k <= ticks; ++k) {
-    const sim::TwinSnapshot snap = sim::advance(session, sim::path_at(path, std::fmod(k * period, loop)));
-    take_alarm(out, md, mon::monitor_step(out.model, md, snap.time_s, snap.readings, snap.motor_velocity, snap.torque));
-    if (cadence.estimate_due(snap.time_s)) record_estimate(snap.time_s);
-    if (progress && cadence.progress_due(snap.time_s)) progress(snap.time_s, s.operation->duration_s);
-  }
-  close_monitor(out, md, state.data->time);
-  record_estimate(out.simulated_s);
-  out.final_estimate = mon::monitor_estimate(out.model, md);
-  out.final_truth = truth_at(out.simulated_s);
-  match_detections(out, s.twin.events);
-  out.wall_s = std::chrono::duration<double>(std::chrono::steady_clock::now() - wall0).count();
-  return out;
-}
-
 MonitorReadingModel reading_model_after_calibration(const RunOutcome& run) {
   MonitorReadingModel m = run.spec.monitor;  // the statement
   if (!run.calibration) return m;
@@ -303,9 +254,9 @@ void check_path_reach(const sim::Scenario& s, const Robot& controller) {
 
 // Every command of the path (a loop and its return to the start, at full
 // speed, one per cycle) against the hardware's limits, before anything moves;
-// throws InputError naming the scenario, the hardware file and why.
-void check_path_limits(const hw::SafetySupervisor& robot, const hw::HardwareConfig& config, const JointTargets& target,
-                       const sim::Scenario& s, const std::string& hardware_file) {
+// throws InputError naming the scenario, the hardware (where) and why.
+void check_path_limits(const hw::SafetySupervisor& robot, const std::array<hw::JointMode, 3>& modes,
+                       const JointTargets& target, const sim::Scenario& s, const std::string& where) {
   const double period = robot.period_s();
   const long n = std::lround(std::min(target.loop, s.operation->duration_s) / period) + 3;
   std::vector<Eigen::Vector3d> q;
@@ -316,10 +267,10 @@ void check_path_limits(const hw::SafetySupervisor& robot, const hw::HardwareConf
       for (int i = 0; i < 3; ++i) m[i] = q.back()[i] + wrap_pi(m[i] - q.back()[i]);
     q.push_back(m);
   }
-  const std::string why = robot.check_path(q, config.modes);
+  const std::string why = robot.check_path(q, modes);
   if (!why.empty())
     throw InputError(fmt::format("{}: operation.path is outside the safety limits of {} (nothing moved): {}", s.file,
-                                 hardware_file, why));
+                                 where, why));
 }
 
 // The path's speed runs in and out over kRunInS (cosine law: no jump in the
@@ -330,33 +281,39 @@ double run_in_speed(double tau, double total) {
   return 0.5 * (1.0 - std::cos(std::numbers::pi * std::max(u, 0.0)));
 }
 
-// Moves the robot to the path's start, follows the path for the operation's
-// duration (with the run in and out) while the monitor reads every cycle
-// (alarms and estimates into out, record called after each), settles and
-// shuts the robot down; returns the time monitored (s, robot time). stop:
-// polled every cycle (hw::Interrupted, drives disabled).
-double follow_on_hardware(MonitorOutcome& out, mon::MonitorData& md, hw::SafetySupervisor& robot,
-                          const hw::HardwareConfig& config, const JointTargets& target, const MonitorProgress& progress,
-                          const std::atomic<bool>* stop, const MonitorRecord& record) {
+// The actual geometry at a robot time in the monitor's gauge: what only an
+// in-process twin knows (empty through hardware).
+using TruthAt = std::function<Geometry(double t_s)>;
+
+// The one operation loop of gpm monitor and gpm run, on any hardware (the
+// in-process twin is its twin backend): moves the robot to the path's start,
+// follows the path for the operation's duration (with the run in and out)
+// while the monitor reads every cycle (alarms and estimates into out, with
+// truth_at's geometry where given; record called after each), settles and
+// shuts the robot down; returns the robot time at the end of the path (s,
+// since the procedure started: the twin's own time, which its events use).
+// stop: polled every cycle (hw::Interrupted, drives disabled).
+double follow_and_monitor(MonitorOutcome& out, mon::MonitorData& md, hw::SafetySupervisor& robot,
+                          const std::array<hw::JointMode, 3>& modes, const JointTargets& target, const TruthAt& truth_at,
+                          const MonitorProgress& progress, const std::atomic<bool>* stop, const MonitorRecord& record) {
   const double duration = out.scenario.operation->duration_s;
-  hw::Motion motion(robot, config.modes, 0.5, stop);
+  hw::Motion motion(robot, modes, 0.5, stop);
   motion.start();
   motion.move_joints(motion.wrap_near(target(0.0)), 100.0);
-  // The monitor's time is the robot's.
   const double period = robot.period_s();
   const double total = duration + kRunInS;
   const long ticks = std::lround(total / period);
   Cadence cadence{std::max(0.1, total / 2000.0)};
-  double t_path = 0.0;
+  double t_path = 0.0, t = motion.now();
   for (long k = 0; k <= ticks; ++k) {
-    const double t = k * period;  // robot time
-    t_path += run_in_speed(t, total) * period;
+    t = motion.now();  // the monitor's time is the robot's
+    t_path += run_in_speed(static_cast<double>(k) * period, total) * period;
     motion.cycle(motion.wrap_near(target(t_path)));
     const hw::HardwareState& st = motion.state();
     bool recorded = take_alarm(out, md, mon::monitor_step(out.model, md, t, st.theta_m, st.velocity, st.torque));
     if (cadence.estimate_due(t)) {
       const mon::Estimate e = mon::monitor_estimate(out.model, md);
-      out.estimates.push_back({t, e.value, e.sigma, std::nullopt});  // no truth through hardware
+      out.estimates.push_back({t, e.value, e.sigma, truth_at ? std::optional<Geometry>(truth_at(t)) : std::nullopt});
       recorded = true;
     }
     if (recorded && record) record(out);
@@ -365,7 +322,7 @@ double follow_on_hardware(MonitorOutcome& out, mon::MonitorData& md, hw::SafetyS
   motion.settle(sim::SettleCriterion{}, "the end of the operation");
   motion.finish();
   robot.shutdown();
-  return static_cast<double>(ticks) * period;
+  return t;
 }
 
 }  // namespace
@@ -389,16 +346,51 @@ MonitorOutcome run_monitor_hardware(const sim::Scenario& s, const std::string& h
   make_monitor(out, s, prior_sigma, config.rate_hz, reading);
   auto md = std::make_unique<mon::MonitorData>(mon::make_monitor_data(out.model));
   std::unique_ptr<hw::SafetySupervisor> robot = hw::make_hardware(config, clock);
-  check_path_limits(*robot, config, target, s, hardware_file);
+  check_path_limits(*robot, config.modes, target, s, hardware_file);
   if (record) record(out);
   out.hardware = robot->describe();
-  const double monitored_s = follow_on_hardware(out, *md, *robot, config, target, progress, stop, record);
+  const double monitored_s = follow_and_monitor(out, *md, *robot, config.modes, target, {}, progress, stop, record);
   close_monitor(out, *md, monitored_s);
   out.final_estimate = mon::monitor_estimate(out.model, *md);
   out.estimates.push_back({out.simulated_s, out.final_estimate.value, out.final_estimate.sigma, std::nullopt});
   if (record) record(out);
   out.final_truth = controller.geometry;
   out.false_alarms = -1;  // unknown: which alarms are real is for the user to find out
+  out.wall_s = std::chrono::duration<double>(std::chrono::steady_clock::now() - wall0).count();
+  return out;
+}
+
+MonitorOutcome run_monitor(const sim::Scenario& s, const Robot& controller,
+                           const std::array<double, kNumParams>& prior_sigma, const MonitorReadingModel& reading,
+                           const MonitorProgress& progress) {
+  const auto wall0 = std::chrono::steady_clock::now();
+  MonitorOutcome out = outcome_of(s, controller);
+  out.actual = sim::make_actual(s);
+  check_events_assemble(s, controller, out.actual);
+  // The twin (its events and growth in its own time) starts assembled at the
+  // start of the operation path, and runs the loop of run_monitor_hardware
+  // through its backend (run/twin_hardware.hpp).
+  Robot actual_at_start = out.actual, ctrl = controller;
+  actual_at_start.home = ctrl.home = sim::path_at(s.operation->path, 0.0).p;
+  TwinHardware th = make_twin_hardware(s, actual_at_start, ctrl);
+  const std::array<hw::JointMode, 3> modes = twin_joint_modes(s);
+  const JointTargets target{s.operation->path, ctrl, sim::path_duration(s.operation->path)};
+  make_monitor(out, s, prior_sigma, s.twin.servo_rate_hz, reading);
+  auto md = std::make_unique<mon::MonitorData>(mon::make_monitor_data(out.model));
+  check_path_limits(*th.robot, modes, target, s, "the twin");
+  const sim::TwinModel& twin = th.twin->model(modes);
+  const FreeMask gauge = ~default_free_mask();  // xa1 ya1 xa2 ya2
+  const bool regauge = (gauge & out.model.settings.estimate).none();
+  const TruthAt truth_at = [&](double t) {
+    const Geometry g = sim::geometry_at_time(twin, t);
+    return regauge ? in_gauge(g, controller.geometry) : g;
+  };
+  const double monitored_s = follow_and_monitor(out, *md, *th.robot, modes, target, truth_at, progress, nullptr, {});
+  close_monitor(out, *md, monitored_s);
+  out.final_estimate = mon::monitor_estimate(out.model, *md);
+  out.final_truth = truth_at(out.simulated_s);
+  out.estimates.push_back({out.simulated_s, out.final_estimate.value, out.final_estimate.sigma, out.final_truth});
+  match_detections(out, s.twin.events);
   out.wall_s = std::chrono::duration<double>(std::chrono::steady_clock::now() - wall0).count();
   return out;
 }

@@ -1,4 +1,5 @@
-// `gpm monitor`: the robot's normal job (scenario `operation:`) on the twin,
+// `gpm monitor`: the robot's normal job (scenario `operation:`) on the twin
+// through its backend or on the drives (one loop over hw::RobotHardware),
 // with the scenario's `events:` changing the actual mechanism, and the drift
 // monitor of calib/monitor/ reading the three encoders every servo cycle
 // (change test with explained alarms, drift tracking of the parameters).
@@ -90,8 +91,10 @@ using MonitorProgress = std::function<void(double t_s, double duration_s)>;
 // written afterwards).
 using MonitorRecord = std::function<void(const MonitorOutcome& so_far)>;
 
-// Runs the scenario's operation on the twin with the monitor in the loop.
-// controller: the model the robot runs (and the monitor starts from);
+// Runs the scenario's operation on the twin with the monitor in the loop:
+// the loop of run_monitor_hardware through the scenario's twin backend
+// (run/twin_hardware.hpp), the twin assembled at the path's start, its
+// events and growth in the robot's time, the truth from the twin. controller: the model the robot runs (and the monitor starts from);
 // prior_sigma: its 1-sigma per parameter (NaN: the monitor's defaults);
 // reading: what the monitor assumes of the readings (the scenario's
 // `monitor:` statement, or reading_model_after_calibration); the twin's

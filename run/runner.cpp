@@ -34,6 +34,7 @@
 #include "run/run_report_data.hpp"
 #include "run/sampling_design.hpp"
 #include "run/summary_json.hpp"
+#include "run/twin_hardware.hpp"
 
 namespace gpm::scenario {
 
@@ -90,19 +91,32 @@ std::array<hw::JointMode, 3> procedure_modes(const RunSpec& spec, const std::str
   return modes;
 }
 
-// The on-the-fly plan through hardware: the scenario's excitation path
-// (sim::excitation_plan, its margin for the scenario's drives), one sample
-// per sample_every / servo.rate_hz seconds or per cycle where the hardware
-// is slower.
-hw::TrajectoryPlan trajectory_plan(const RunSpec& spec, const hw::HardwareConfig& cfg, const Robot& actual,
-                                   const std::vector<Eigen::Vector2d>& poses) {
+// The on-the-fly plan: the scenario's excitation path (sim::excitation_plan,
+// its margin for the scenario's drives), one sample per sample_every /
+// servo.rate_hz seconds or per cycle where the hardware (rate_hz) is slower.
+hw::TrajectoryPlan trajectory_plan(const RunSpec& spec, double rate_hz, const std::array<hw::JointMode, 3>& modes,
+                                   const Robot& actual, const std::vector<Eigen::Vector2d>& poses) {
   hw::TrajectoryPlan plan;
   plan.path = sim::excitation_plan(spec.sim, actual, poses);
-  plan.modes = procedure_modes(spec, spec.sim.file);
+  plan.modes = modes;
   const double interval_s = spec.sim.sampling->sample_every / spec.sim.twin.servo_rate_hz;
-  plan.every = std::max(1, static_cast<int>(std::lround(interval_s * cfg.rate_hz)));
+  plan.every = std::max(1, static_cast<int>(std::lround(interval_s * rate_hz)));
   plan.move_speed_mm_s = spec.sim.sampling->options.move_speed_mm_s;
   plan.settle = spec.sim.sampling->options.settle;
+  return plan;
+}
+
+// The stop-and-go plan: the scenario's poses, moves, settling (a pose that
+// does not settle within its timeout is sampled as it stands, as the
+// scenario's settle criterion states) and averaging.
+hw::SessionPlan session_plan(const RunSpec& spec, const std::vector<Eigen::Vector2d>& poses,
+                             const std::array<hw::JointMode, 3>& modes, std::optional<double> dither_mm) {
+  hw::SessionPlan plan;
+  plan.poses = poses;
+  plan.options = spec.sim.sampling->options;
+  plan.modes = modes;
+  if (dither_mm) plan.dither_mm = *dither_mm;
+  plan.require_settled = false;  // the scenario's settle timeout gives up the wait (sim::SettleCriterion)
   return plan;
 }
 
@@ -143,22 +157,91 @@ sim::SimulationResult sample_on_hardware(const RunSpec& spec, const std::string&
   hw::SampleLog log(samples_path, spec.hardware_resume,
                     in_motion ? hw::SampleColumns::kOnTheFly : hw::SampleColumns::kAtRest);
   if (in_motion) {
-    const hw::TrajectoryPlan plan = trajectory_plan(spec, cfg, r.actual, poses);
+    const hw::TrajectoryPlan plan =
+        trajectory_plan(spec, cfg.rate_hz, procedure_modes(spec, spec.sim.file), r.actual, poses);
     auto robot = hw::make_hardware(cfg);
     description = fmt::format("{} backend from {}", cfg.backend, *spec.hardware);
     r.sampling_s = hw::run_trajectory_session(*robot, plan, log, signals.flag()).duration_s;
   } else {
-    hw::SessionPlan plan;
-    plan.poses = poses;
-    plan.options = spec.sim.sampling->options;
-    plan.modes = cfg.modes;
-    if (cfg.dither_mm) plan.dither_mm = *cfg.dither_mm;
+    const hw::SessionPlan plan = session_plan(spec, poses, cfg.modes, cfg.dither_mm);
     auto robot = hw::make_hardware(cfg);
     description = fmt::format("{} backend from {}", cfg.backend, *spec.hardware);
     hw::run_sampling_session(*robot, plan, log, signals.flag());
   }
   // Every sample of the file (those resumed and those just taken), in id order.
   for (const auto& [id, row] : log.recorded()) r.samples.push_back(sample_record(id, row, r.actual));
+  return r;
+}
+
+// The samples of log with the twin's truth of each (true angles, pose and
+// speeds; at rest the drive torque and time of the averaging window).
+std::vector<sim::SampleRecord> twin_samples(const hw::SampleLog& log, const TwinTruth& truth, const Robot& actual) {
+  std::vector<sim::SampleRecord> out;
+  for (const auto& [id, row] : log.recorded()) {
+    sim::SampleRecord rec = sample_record(id, row, actual);
+    if (const auto it = truth.samples().find(id); it != truth.samples().end()) {
+      const SampleTruth& t = it->second;
+      rec.theta_a = t.theta_a;
+      rec.xy_mm = t.xy_mm;
+      rec.omega = t.omega;
+      if (!row.motion) rec.tau = rec.tau_last = rec.tau_between = t.tau, rec.t_s = t.t_s;
+    }
+    out.push_back(rec);
+  }
+  return out;
+}
+
+// A session on the twin stopped (its tracking watch, a refused command): the
+// samples and the trajectory so far, kept as the twin's own stop keeps them.
+sim::TrackingStop twin_stopped(const hw::HardwareError& e, const hw::SampleLog& log, const TwinTruth& truth,
+                               sim::SimulationResult& r) {
+  std::string why = e.what();
+  if (const std::size_t at = why.rfind("; "); at != std::string::npos && why.ends_with(log.path()))
+    why.resize(at);  // "; N samples kept in ...": the caller says where they are kept
+  sim::TrackingStop stop(why);
+  stop.samples = twin_samples(log, truth, r.actual);
+  stop.rows = std::move(r.log.rows);
+  return stop;
+}
+
+// Samples on the in-process twin by the procedure of sample_on_hardware (the
+// same sessions behind a safety supervisor) through the twin backend of the
+// scenario's robot (run/twin_hardware.hpp): in process is --hardware with a
+// twin backend by construction. The true poses, the trajectory log and
+// model.xml come from the twin's truth.
+sim::SimulationResult sample_on_twin(const RunSpec& spec, gpm::Progress* progress) {
+  const sim::Scenario& s = spec.sim;
+  sim::SimulationResult r;
+  r.actual = sim::make_actual(s);
+  if (s.twin.effects.thermal.on()) r.log.thermal_reference = r.actual.geometry;
+  r.log.every = s.log_every;
+  const std::vector<Eigen::Vector2d> poses = s.sampling ? sim::plan_poses(*s.sampling, s.seed)
+                                                        : std::vector<Eigen::Vector2d>{};
+  sim::check_targets(s, r.actual, poses);
+  const bool in_motion = s.sampling && s.sampling->pattern == sim::PosePattern::kTrajectory;
+  const std::array<hw::JointMode, 3> modes = twin_joint_modes(s);
+  TwinHardware th = make_twin_hardware(s, r.actual, s.controller);
+  TwinTruth truth(th, &r.log, progress);
+  hw::SampleLog log(in_motion ? hw::SampleColumns::kOnTheFly : hw::SampleColumns::kAtRest);
+  try {
+    if (in_motion) {
+      const hw::TrajectoryPlan plan = trajectory_plan(spec, s.twin.servo_rate_hz, modes, r.actual, poses);
+      r.sampling_s = hw::run_trajectory_session(*th.robot, plan, log, nullptr, truth.hook()).duration_s;
+    } else if (!poses.empty()) {
+      hw::SessionPlan plan = session_plan(spec, poses, modes, std::nullopt);
+      plan.check_following = false;  // the twin's readings are its own; the check would change no sample
+      r.sampling_s = hw::run_sampling_session(*th.robot, plan, log, nullptr, truth.hook()).duration_s;
+    }
+  } catch (const hw::HardwareError& e) {
+    if (progress) progress->finish();
+    throw twin_stopped(e, log, truth, r);
+  }
+  if (progress) progress->finish();
+  r.samples = twin_samples(log, truth, r.actual);
+  r.model_xml = th.twin->model(modes).xml();
+  r.simulated_s = truth.time_s();
+  r.max_violation_m = r.log.max_violation_m;
+  r.max_torque = r.log.max_torque;
   return r;
 }
 
@@ -426,10 +509,10 @@ RunOutcome run_scenario(const RunSpec& spec_in, const std::string& scenario_file
     stage("sampling through the hardware interface");
     out.sim = sample_on_hardware(spec, samples_path, out.hardware_description);
   } else {
-    stage("simulating the twin");
+    stage("sampling on the twin through the hardware interface");
     gpm::Progress simulated = progress ? gpm::Progress::terminal("gpm run: simulating", "simulated s")
                                        : gpm::Progress::silent();  // models/progress.hpp
-    out.sim = sim::run_simulation(spec.sim, nullptr, &simulated);
+    out.sim = sample_on_twin(spec, &simulated);
   }
   calibrate_run(out, spec, inputs, scenario_file, stage);
 

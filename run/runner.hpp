@@ -1,6 +1,8 @@
-// `gpm run`: simulate a scenario on the twin, calibrate from its encoder
-// samples, compensate (the controller takes the calibrated model), evaluate
-// before and after on the twin, check the expectations, write the outputs.
+// `gpm run`: sample a scenario's robot through the hardware interface (the
+// in-process twin as a twin backend, or the backend of --hardware: one loop,
+// run/twin_hardware.hpp), calibrate from its encoder samples, compensate (the
+// controller takes the calibrated model), evaluate before and after on the
+// twin, check the expectations, write the outputs.
 #pragma once
 
 #include <array>

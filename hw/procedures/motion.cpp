@@ -85,7 +85,7 @@ void Motion::move_joints(const Eigen::Vector3d& q1, double speed_mm_s) {
   follow([&](double s) { return Eigen::Vector3d(q0 + (q1 - q0) * s); }, T);
 }
 
-void Motion::settle(const sim::SettleCriterion& c, const std::string& what) {
+bool Motion::settle(const sim::SettleCriterion& c, const std::string& what, bool required) {
   const double t0 = clock_.now();
   double still_since = -1.0;
   const Eigen::Vector3d q = command_;
@@ -94,8 +94,9 @@ void Motion::settle(const sim::SettleCriterion& c, const std::string& what) {
     const bool still = state_.velocity.cwiseAbs().maxCoeff() < c.velocity_rad_s;
     if (!still) still_since = -1.0;
     else if (still_since < 0) still_since = clock_.now();
-    if (still_since >= 0 && clock_.now() - still_since >= c.hold_s) return;
+    if (still_since >= 0 && clock_.now() - still_since >= c.hold_s) return true;
     if (clock_.now() - t0 > c.timeout_s) {
+      if (!required) return false;
       throw HardwareError(fmt::format("{}the joints did not settle within {} s (speeds {:.4f} {:.4f} "
                                       "{:.4f} rad/s)",
                                       what, c.timeout_s, state_.velocity[0], state_.velocity[1],

@@ -56,8 +56,9 @@ class Motion {
   // (joint motion times the longest proximal link of the robot's model).
   void move_joints(const Eigen::Vector3d& q1, double speed_mm_s);
   // Holds the command until every joint is slower than c.velocity_rad_s for
-  // c.hold_s; HardwareError (what, speeds) after c.timeout_s.
-  void settle(const sim::SettleCriterion& c, const std::string& what);
+  // c.hold_s and returns true; after c.timeout_s HardwareError (what,
+  // speeds), or false when required is false (the wait given up).
+  bool settle(const sim::SettleCriterion& c, const std::string& what, bool required = true);
   // Throws HardwareError unless every position-mode joint whose command moved
   // more than kFollowMinRad since command0 saw its reading move at least
   // half as far since reading0: a drive that does not move, or readings that

@@ -97,6 +97,8 @@ SampleLog::SampleLog(const std::string& path, bool resume, SampleColumns columns
   }
 }
 
+SampleLog::SampleLog(SampleColumns columns) : path_("the samples in memory"), in_memory_(true), columns_(columns) {}
+
 void SampleLog::create_now() {
   // Created with its header before anything moves: a folder that cannot be
   // written (read-only, full, missing) is refused here, not after the first
@@ -277,6 +279,7 @@ SampleLog::~SampleLog() {
 
 void SampleLog::write_row(const std::string& row, bool sync) {
   if (closed_) throw HardwareError(fmt::format("{}: sample log is closed", path_));
+  if (in_memory_) return;
   if (fd_ < 0) throw HardwareError(fmt::format("{}: sample log is not open", path_));
   write_all(fd_, row, path_, sync && !in_place_);
 }

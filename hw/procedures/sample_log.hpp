@@ -57,6 +57,9 @@ class SampleLog {
   // moves), no lock, no fsync, no resume; a folder or socket is refused.
   // columns: the file's columns; a resumed file with other columns is refused.
   SampleLog(const std::string& path, bool resume, SampleColumns columns = SampleColumns::kAtRest);
+  // A log in memory (the in-process twin of gpm run: its caller writes the
+  // samples with the twin's truth): rows are recorded, nothing is written.
+  explicit SampleLog(SampleColumns columns);
   ~SampleLog();
   SampleLog(const SampleLog&) = delete;
   SampleLog& operator=(const SampleLog&) = delete;
@@ -96,6 +99,7 @@ class SampleLog {
   bool created_ = false;
   bool closed_ = false;
   bool in_place_ = false;  // a device or FIFO
+  bool in_memory_ = false;  // nothing written (SampleLog(SampleColumns))
   SampleColumns columns_ = SampleColumns::kAtRest;
   std::set<long> ids_;
   std::map<long, Recorded> recorded_;

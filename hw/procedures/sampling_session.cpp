@@ -1,5 +1,6 @@
 #include "hw/procedures/sampling_session.hpp"
 
+#include <algorithm>
 #include <cmath>
 #include <numbers>
 
@@ -25,8 +26,8 @@ Eigen::Vector3d ik_readings(const Robot& c, const Eigen::Vector2d& p, const Eige
 // The session on the motion primitive: Cartesian straight moves, settle, average.
 class Runner {
  public:
-  Runner(SafetySupervisor& hw, const SessionPlan& plan, const std::atomic<bool>* stop)
-      : plan_(plan), c_(hw.controller()), motion_(hw, plan.modes, plan.profile_headroom, stop) {}
+  Runner(SafetySupervisor& hw, const SessionPlan& plan, const std::atomic<bool>* stop, const SampleHook& on_sample)
+      : plan_(plan), c_(hw.controller()), motion_(hw, plan.modes, plan.profile_headroom, stop), on_sample_(on_sample) {}
 
   // Duration of the straight move p0 -> p1 (blending out offset) that keeps
   // every joint within headroom of its velocity and acceleration limits and
@@ -62,6 +63,7 @@ class Runner {
       for (int k = 0; k <= 40; ++k) q.push_back(figure(k / 40.0));
       T = motion_.path_time(q, T);
     }
+    averaged_ = std::max(1L, std::lround(T / motion_.period_s()));  // the cycles average_along reads
     return motion_.average_along([&](double u) { return figure(motion_profile(u)); }, T);
   }
 
@@ -79,9 +81,10 @@ class Runner {
       }
       const Eigen::Vector3d reading0 = motion_.state().theta_m, command0 = motion_.command();
       move(plan_.poses[k]);
-      motion_.settle(plan_.options.settle, fmt::format("sample {}: ", id));
-      motion_.check_followed(reading0, command0, fmt::format("sample {}: ", id));
+      motion_.settle(plan_.options.settle, fmt::format("sample {}: ", id), plan_.require_settled);
+      if (plan_.check_following) motion_.check_followed(reading0, command0, fmt::format("sample {}: ", id));
       log.append(id, average_around(plan_.poses[k]), plan_.poses[k]);
+      if (on_sample_) on_sample_(id, averaged_);
       ++r.taken;
     }
     motion_.finish();
@@ -93,7 +96,9 @@ class Runner {
   const SessionPlan& plan_;
   const Robot& c_;
   Motion motion_;
+  const SampleHook& on_sample_;
   Eigen::Vector2d pose_ = Eigen::Vector2d::Zero();
+  long averaged_ = 1;  // cycles of the last average
 };
 
 }  // namespace
@@ -179,10 +184,10 @@ void rethrow_session_error(SafetySupervisor& hw, const SampleLog& log) {
 }
 
 SessionResult run_sampling_session(SafetySupervisor& hw, const SessionPlan& plan, SampleLog& log,
-                                   const std::atomic<bool>* stop) {
+                                   const std::atomic<bool>* stop, const SampleHook& on_sample) {
   check_plan_poses(hw, plan);
   check_resumed_plan(hw.controller(), plan, log);
-  Runner runner(hw, plan, stop);
+  Runner runner(hw, plan, stop, on_sample);
   try {
     SessionResult r = runner.run(log);
     hw.shutdown();

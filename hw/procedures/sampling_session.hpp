@@ -42,6 +42,15 @@ struct SessionPlan {
   double profile_headroom = 0.5;       // fraction of the velocity/acceleration limits the moves use
   double dither_mm = kDitherMm;        // size of the figure averaged along at each pose (0: hold still);
                                        // averaging lasts options.average_s, longer if the limits need it
+  // A pose whose joints do not settle within options.settle.timeout_s fails
+  // the session (HardwareError); false: it is sampled as it stands (the
+  // scenario's settle criterion: gpm run).
+  bool require_settled = true;
+  // Each move checked by Motion::check_followed (a drive that does not move,
+  // readings that do not change); false: not judged (the in-process twin,
+  // whose drives may rightly not follow when they fight over a wrong model;
+  // the check changes no sample).
+  bool check_following = true;
 };
 
 // What a session did.
@@ -50,6 +59,11 @@ struct SessionResult {
   long skipped = 0;  // already in the file (resume)
   double duration_s = 0.0;  // session time (simulated or wall)
 };
+
+// Called as sample id is logged, at the cycle of its last reading; the
+// sample stands for the readings of its last `cycles` cycles (1 on the fly,
+// the averaging window at rest). A simulation takes the twin's truth with it.
+using SampleHook = std::function<void(long id, long cycles)>;
 
 // Largest gap (rad) between a recorded reading and the controller model's IK
 // of its pose for a file to count as recorded on the same robot (offsets and
@@ -86,8 +100,9 @@ HardwareError session_stopped(SafetySupervisor& hw, const std::string& why, cons
 // (check_plan_poses) or a recorded file of another plan (check_resumed_plan),
 // HardwareError (drives disabled, samples so far on disk, the message says how
 // many and where) on a failure (a position joint whose reading did not follow
-// a move is one: Motion::check_followed), Interrupted (a HardwareError) on a stop request.
+// a move is one: Motion::check_followed), Interrupted (a HardwareError) on a
+// stop request. on_sample (optional): see SampleHook.
 SessionResult run_sampling_session(SafetySupervisor& hw, const SessionPlan& plan, SampleLog& log,
-                                   const std::atomic<bool>* stop = nullptr);
+                                   const std::atomic<bool>* stop = nullptr, const SampleHook& on_sample = {});
 
 }  // namespace gpm::hw

@@ -51,7 +51,7 @@ void check_resumed(const TrajectoryPlan& plan, double period_s, const SampleLog&
 
 // Follows the path from its start (the robot stands there), appending the samples to log.
 void follow_and_sample(Motion& motion, const TrajectoryPlan& plan, const std::vector<Eigen::Vector3d>& q,
-                       SampleLog& log) {
+                       SampleLog& log, const SampleHook& on_sample) {
   const double period = motion.period_s();
   const long sync_every = std::max(1L, std::lround(kSyncEvery_s / (plan.every * period)));
   const double t0 = motion.now();
@@ -77,6 +77,7 @@ void follow_and_sample(Motion& motion, const TrajectoryPlan& plan, const std::ve
     Eigen::Vector2d p, v;
     sim::waypoint_at(plan.path, static_cast<double>(k) * period, p, v);
     log.append(id, st.theta_m, p, m);
+    if (on_sample) on_sample(id, 1);
     if (++id % sync_every == 0) log.sync();
     sum_between = st.torque;  // the sample's own cycle is the first of the next interval
     last_torque = st.torque;
@@ -120,7 +121,7 @@ void check_trajectory_plan(const SafetySupervisor& hw, const TrajectoryPlan& pla
 }
 
 SessionResult run_trajectory_session(SafetySupervisor& hw, const TrajectoryPlan& plan, SampleLog& log,
-                                     const std::atomic<bool>* stop) {
+                                     const std::atomic<bool>* stop, const SampleHook& on_sample) {
   check_trajectory_plan(hw, plan);
   const double period = hw.period_s();
   check_resumed(plan, period, log);
@@ -150,7 +151,7 @@ SessionResult run_trajectory_session(SafetySupervisor& hw, const TrajectoryPlan&
     motion.move_joints(q[0], plan.move_speed_mm_s);
     motion.settle(plan.settle, "the excitation path's start: ");
     const Eigen::Vector3d reading0 = motion.state().theta_m, command0 = motion.command();
-    follow_and_sample(motion, plan, q, log);
+    follow_and_sample(motion, plan, q, log, on_sample);
     motion.check_followed(reading0, command0, "the excitation path: ");
     motion.finish();
     r.taken = static_cast<long>(log.size());

@@ -50,9 +50,10 @@ void check_trajectory_plan(const SafetySupervisor& hw, const TrajectoryPlan& pla
 // holds some is refused (a path sampled on the fly is one motion). Errors as
 // run_sampling_session (hw/procedures/sampling_session.hpp): InputError
 // before anything moves, HardwareError with drives disabled and samples
-// kept, Interrupted on a stop request.
+// kept, Interrupted on a stop request. on_sample (optional): called as each
+// sample is logged (hw/procedures/sampling_session.hpp SampleHook).
 SessionResult run_trajectory_session(SafetySupervisor& hw, const TrajectoryPlan& plan, SampleLog& log,
-                                     const std::atomic<bool>* stop = nullptr);
+                                     const std::atomic<bool>* stop = nullptr, const SampleHook& on_sample = {});
 
 // Number of samples run_trajectory_session takes of plan at period_s.
 long trajectory_sample_count(const TrajectoryPlan& plan, double period_s);

@@ -1,12 +1,16 @@
 // Tests of hw/procedures/sample_log.cpp: appended rows are on disk at once, existing
 // files are never overwritten, resume keeps rows and drops a torn last line and
-// refuses an id twice; a device or FIFO is written in place or refused at once.
+// refuses an id twice; a device or FIFO is written in place or refused at
+// once; a log in memory records its rows and writes nothing.
 #include <gtest/gtest.h>
+
+#include <filesystem>
 
 #include <fcntl.h>
 #include <sys/stat.h>
 #include <unistd.h>
 
+#include "hw/hw_errors.hpp"
 #include "hw/procedures/sample_log.hpp"
 #include "hw_test_util.hpp"
 #include "models/bounds.hpp"
@@ -15,6 +19,24 @@
 
 namespace gpm::hw {
 namespace {
+
+TEST(SampleLog, ALogInMemoryRecordsItsRowsAndWritesNothing) {
+  SampleLog log(SampleColumns::kOnTheFly);
+  SampleMotion m;
+  m.t_s = 0.25;
+  m.tau = Eigen::Vector3d(0.1, -0.2, 0.3);
+  log.append(0, Eigen::Vector3d(1.0, 2.0, 3.0), Eigen::Vector2d(216.5, 250.0), m);
+  log.append(1, Eigen::Vector3d(1.5, 2.5, 3.5), Eigen::Vector2d(217.0, 250.0), m);
+  log.sync();
+  EXPECT_EQ(log.size(), 2u);
+  EXPECT_TRUE(log.has(1));
+  const SampleLog::Recorded& r = log.recorded().at(1);
+  EXPECT_EQ(r.theta_m, Eigen::Vector3d(1.5, 2.5, 3.5));
+  ASSERT_TRUE(r.motion);
+  EXPECT_EQ(r.motion->tau, m.tau);
+  EXPECT_FALSE(std::filesystem::exists(log.path()));  // a name for messages, not a file
+  EXPECT_THROW(log.append(2, Eigen::Vector3d::Zero(), Eigen::Vector2d::Zero()), HardwareError);  // columns kept
+}
 
 TEST(SampleLog, AppendsAndFlushesEachSample) {
   const test::TempDir dir("log");

@@ -1,5 +1,8 @@
 // Tests of hw/backends/twin_backend.cpp: drives off until activated, position hold,
-// commanded motion, torque-off joints follow the others, time advances by read().
+// commanded motion, torque-off joints follow the others, time advances by read();
+// the observer sees the twin at the instant its readings were latched.
+#include <cmath>
+
 #include <gtest/gtest.h>
 
 #include "hw/hardware_config.hpp"
@@ -46,6 +49,33 @@ TEST(TwinBackend, HoldsThenFollowsCommands) {
   }
   EXPECT_LT((twin.last_state().theta_m - target).cwiseAbs().maxCoeff(), 3e-4);
   EXPECT_NEAR(twin.snapshot().ee_mm.x(), actual.home.x() + 20.0, 0.1);
+}
+
+// The observer's snapshot is the drive loop tick at which the readings of
+// each read were latched (the truth of the same instant), once per read.
+TEST(TwinBackend, TheObserverSeesTheInstantTheReadingsWereLatched) {
+  TwinBackend twin(twin_config_from_scenario(kSrc + "/tests/fixtures/twin_disc.yaml", 0.004));
+  int seen = 0;
+  sim::TwinSnapshot last;
+  twin.observe([&](const sim::TwinSnapshot& s) { ++seen, last = s; });
+  twin.configure();
+  twin.activate();
+  const Eigen::Vector3d q0 = twin.last_state().theta_m;
+  const double tick = 1.0 / 2000.0;  // the fixture's servo.rate_hz
+  double t = 0.0;
+  for (int k = 1; k <= 20; ++k) {
+    twin.write(hold_command(q0 + Eigen::Vector3d(0.0, 1e-3 * k, 0.0)), t);
+    t += 0.004;
+    const HardwareState& st = twin.read(t);
+    EXPECT_EQ(seen, k);
+    EXPECT_EQ(last.readings, st.theta_m);  // the readings of this read, latched at that tick
+    EXPECT_NEAR(std::remainder(last.time_s, tick), 0.0, 1e-9);
+    EXPECT_LE(last.time_s, st.time_s);
+    EXPECT_GT(last.time_s, t - 0.004);
+  }
+  twin.observe({});
+  twin.read(t + 0.004);
+  EXPECT_EQ(seen, 20);
 }
 
 TEST(TwinBackend, TorqueOffJointReportsDisabledAndStillReads) {

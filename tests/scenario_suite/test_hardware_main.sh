@@ -4,8 +4,9 @@
 # port, --stepped: the plant advances one command period per client cycle,
 # so the samples depend on the commands, not on the load): the run passes,
 # records the torques and read times of every sample, and its calibrated
-# model's positioning error over the workspace is within 1.5x the twin
-# backend's on the same robot (the drives report torque in 0.01 N m steps).
+# model's static error is within 1.2x the twin backend's on the same robot
+# and plan (the twin backend is gpm run's in-process loop; the drives report
+# torque in 0.01 N m steps and are polled one after another).
 # Everything in a fresh temporary folder that is removed.
 set -u
 GPM="$1"; EMU="$2"; SRC="$3"
@@ -16,17 +17,26 @@ fail=0; passed=0
 ok() { passed=$((passed+1)); }
 bad() { echo "FAIL $1"; fail=$((fail+1)); }
 
+# A run through hardware fails the main job's floor_ratio (the actual
+# parameters are not known through hardware): it is judged by what it wrote.
 "$GPM" run "$SRC/scenarios/main.yaml" --hardware "$SRC/hw/examples/twin_main.yaml" -o "$tmp/twin" --quiet \
-  >"$tmp/twin.out" 2>&1 && ok || { bad "twin backend run"; cat "$tmp/twin.out"; }
+  >"$tmp/twin.out" 2>&1
+[[ -f "$tmp/twin/summary.json" ]] && ok || { bad "twin backend run"; cat "$tmp/twin.out"; }
 
+# Positions in 2^20 counts per revolution: the drive turns the steps between
+# its setpoints into velocity feed-forward, and 17-bit setpoints (the example
+# map's) make that feed-forward jump by a count per cycle (3.3x the twin
+# backend's error, docs/PROCEDURES.md); the readings stay the twin's 17 bits.
+sed -e "s/counts_per_rev: 131072/counts_per_rev: 1048576/" "$SRC/hw/examples/register_map_emulator.yaml" \
+  >"$tmp/map20.yaml"
 mkfifo "$tmp/emu.fifo"
-"$EMU" --map "$SRC/hw/examples/register_map_emulator.yaml" --scenario "$SRC/scenarios/main.yaml" \
+"$EMU" --map "$tmp/map20.yaml" --scenario "$SRC/scenarios/main.yaml" \
   --port 0 --stepped --command-period 0.00025 --comms-watchdog 5 >"$tmp/emu.fifo" 2>"$tmp/emu.err" &
 emu_pid=$!
 line=""; read -r -t 60 line <"$tmp/emu.fifo" || { bad "emulator did not start"; cat "$tmp/emu.err"; }
 port=${line##*:}
 sed -e "s/port: 1502/port: $port/" -e "s/response_timeout: [0-9.]*/response_timeout: 1/" \
-  "$SRC/hw/examples/register_map_emulator.yaml" >"$tmp/map.yaml"
+  "$tmp/map20.yaml" >"$tmp/map.yaml"
 # The main job's hardware file with the emulator's drives and limits generous
 # in time (a CI host shares its cores; what is tested is the function).
 sed -e "s|^backend: twin|backend: modbus|" -e "s|^controller: .*|controller: $SRC/models/gpm2002.yaml|" \
@@ -34,7 +44,8 @@ sed -e "s|^backend: twin|backend: modbus|" -e "s|^controller: .*|controller: $SR
     -e "s|^  watchdog_hold: [0-9.]*|  watchdog_hold: 1|" -e "s|^  watchdog_disable: [0-9.]*|  watchdog_disable: 4|" \
     -e "s|^  comms_timeout: [0-9.]*|  comms_timeout: 2|" "$SRC/hw/examples/twin_main.yaml" >"$tmp/modbus.yaml"
 "$GPM" run "$SRC/scenarios/main.yaml" --hardware "$tmp/modbus.yaml" -o "$tmp/modbus" --quiet \
-  >"$tmp/modbus.out" 2>&1 && ok || { bad "modbus run"; cat "$tmp/modbus.out"; }
+  >"$tmp/modbus.out" 2>&1
+[[ -f "$tmp/modbus/summary.json" ]] && ok || { bad "modbus run"; cat "$tmp/modbus.out"; }
 grep -q "through modbus backend" "$tmp/modbus.out" && ok || bad "modbus run says how it sampled"
 
 python3 - "$tmp/twin/summary.json" "$tmp/modbus/summary.json" "$tmp/modbus/samples.csv" <<'PY' && ok || bad "modbus accuracy"
@@ -44,8 +55,9 @@ rows = list(csv.DictReader(open(sys.argv[3])))
 assert len(rows) > 5000 and all(k in rows[0] for k in ("t", "tau_last1", "tau_between3", "t_read2")), len(rows)
 def after(s):
     return s["accuracy"]["calibrated"]["static_rms_um"]
-print(f"static RMS calibrated: twin backend {after(twin):.2f} um, modbus {after(modbus):.2f} um")
-sys.exit(0 if after(modbus) <= 1.5 * after(twin) else 1)
+print(f"static RMS calibrated: twin backend {after(twin):.2f} um, modbus {after(modbus):.2f} um "
+      f"(x{after(modbus) / after(twin):.2f}); robot time {twin['robot_time_s']:.2f} s, {modbus['robot_time_s']:.2f} s")
+sys.exit(0 if after(modbus) <= 1.2 * after(twin) else 1)
 PY
 
 echo "$passed passed, $fail failed"
