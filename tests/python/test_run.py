@@ -33,7 +33,7 @@ def test_summary_is_the_summary_json_written(tiny_run):
     assert summary["verdict"] == "passed"
     assert set(summary["parameters"]) == PARAMS
     assert summary["robot_time_s"] > 0
-    assert stages[0] == "simulating the twin" and "calibrating" in stages
+    assert stages[0] == "sampling on the twin through the hardware interface" and "calibrating" in stages
 
 
 def test_summary_equals_the_command_line(tiny_run, scratch):
@@ -100,7 +100,7 @@ def test_an_exception_of_progress_stops_the_run():
     def stop(stage):
         raise Stop(stage)
 
-    with pytest.raises(Stop, match="simulating the twin"):
+    with pytest.raises(Stop, match="sampling on the twin"):
         gpm.run(TINY, progress=stop)
     with pytest.raises(gpm.InputError, match="NUL"):
         gpm.run("m\x00.yaml")
