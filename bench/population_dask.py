@@ -6,6 +6,9 @@
    then of two (one thread each, 127.0.0.1), in this one run: the speed
    ratio 2 workers / 1 worker and the throughput in robots per minute, with
    the check that both give the same numbers bit for bit.
+3. The same count of robots on a plain process pool of one, then two
+   processes (no Dask): what this machine gives two processes at all, the
+   ceiling of the ratio in 2.
 
     PYTHONPATH=build/python /usr/bin/python3 bench/population_dask.py [--scenario S] [--study-scenario S]
         [--count N]
@@ -52,11 +55,31 @@ def study_seconds(scenario, count, workers, local_dir):
         return time.perf_counter() - t0, pop
 
 
+def _run_one(scenario, seed):
+    """gpm.run of scenario with seed, outputs not written (a task of the plain process pool)."""
+    import gpm as g
+    g.run(scenario, seed=seed)
+    return seed
+
+
+def plain_pool_seconds(scenario, count, workers):
+    """Wall s of count robots (seeds 0 .. count - 1) on a plain process pool of `workers` processes, no Dask:
+    what this machine's cores give two processes at all (the ceiling of the Dask ratio)."""
+    import concurrent.futures
+    import multiprocessing
+    ctx = multiprocessing.get_context("spawn")
+    with concurrent.futures.ProcessPoolExecutor(max_workers=workers, mp_context=ctx) as pool:
+        list(pool.map(_run_one, [scenario] * workers, range(workers)))  # start and import in every process first
+        t0 = time.perf_counter()
+        list(pool.map(_run_one, [scenario] * count, range(count)))
+        return time.perf_counter() - t0
+
+
 def main():
     p = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     p.add_argument("--scenario", default=str(ROOT / "scenarios" / "main.yaml"), help="the one robot of part 1")
     p.add_argument("--study-scenario", default=str(ROOT / "tests" / "fixtures" / "population_small.yaml"))
-    p.add_argument("--count", type=int, default=8, help="robots of the study (part 2)")
+    p.add_argument("--count", type=int, default=20, help="robots of the study (part 2)")
     a = p.parse_args()
 
     print("load average at the start: {:.1f} {:.1f} {:.1f} ({} cores)".format(*os.getloadavg(), os.cpu_count()))
@@ -76,12 +99,16 @@ def main():
     with tempfile.TemporaryDirectory(prefix="gpm-bench-dask-") as d:
         t1, one = study_seconds(a.study_scenario, a.count, 1, d)
         t2, two = study_seconds(a.study_scenario, a.count, 2, d)
+    p1 = plain_pool_seconds(a.study_scenario, a.count, 1)
+    p2 = plain_pool_seconds(a.study_scenario, a.count, 2)
     same = repr(one.numbers()) == repr(two.numbers())
     print(f"study of {a.count} robots of {os.path.relpath(a.study_scenario, ROOT)} on a Dask LocalCluster:")
     print(f"  1 worker:  {t1:7.1f} s  {60 * a.count / t1:6.2f} robots/min")
     print(f"  2 workers: {t2:7.1f} s  {60 * a.count / t2:6.2f} robots/min")
     print(f"  speed ratio 2 workers / 1 worker: {t1 / t2:.2f}; same numbers bit for bit: {same}")
     print(f"  failed robots: {len(one.failed)} and {len(two.failed)}")
+    print(f"the same robots on a plain process pool (no Dask), the machine's own ceiling: 1 process {p1:.1f} s, "
+          f"2 processes {p2:.1f} s: {p1 / p2:.2f}; Dask reaches {(t1 / t2) / (p1 / p2):.0%} of it")
     print("load average at the end: {:.1f} {:.1f} {:.1f}".format(*os.getloadavg()))
 
 
