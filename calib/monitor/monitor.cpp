@@ -75,12 +75,12 @@ void finish_learning(const MonitorModel& m, MonitorData& d, double t_s) {
     const int i = m.free_index[static_cast<size_t>(k)];
     d.step_factor[i] = matched_sum_factor(batches, d.learned.median, s, [&](int b) {
       const auto u = static_cast<size_t>(b);
-      return MatchedBatch{d.learn_h[u][i], d.learn_hz[u][i], d.learn_hh[u][i]};
+      return MatchedBatch{d.sums.h[u][i], d.sums.hz[u][i], d.sums.hh[u][i]};
     });
     // The largest term seen while learning, in the new units, sits where a
     // healthy robot's would: a structured reading error repeats with the job
     // (not Gaussian), and the batches see it only on average.
-    d.step_factor[i] = std::max(d.step_factor[i], d.learn_step_max[i] / (s * s) / (kLearnStepMaxShare * m.glr_threshold));
+    d.step_factor[i] = std::max(d.step_factor[i], d.sums.step_max[i] / (s * s) / (kLearnStepMaxShare * m.glr_threshold));
     largest = std::max(largest, d.step_factor[i]);
   }
   d.learned.step_factor = largest;
@@ -90,7 +90,7 @@ void finish_learning(const MonitorModel& m, MonitorData& d, double t_s) {
   d.chi_threshold = std::max(m.threshold, kappa * chi2_quantile_wilson_hilferty(nu, m.chi_normal_quantile));
   // As for the step test: the largest window sum seen while learning sits
   // where a healthy robot's would, W + 3 sqrt(2 W).
-  d.chi_threshold = std::max(d.chi_threshold, d.learn_chi_max / (s * s) * m.threshold / (W + 3.0 * std::sqrt(2.0 * W)));
+  d.chi_threshold = std::max(d.chi_threshold, d.sums.chi_max / (s * s) * m.threshold / (W + 3.0 * std::sqrt(2.0 * W)));
 }
 
 // Review of the learning phase (MonitorData::review): how many learnt
@@ -126,14 +126,7 @@ void start_replay(const MonitorModel& m, MonitorData& d) {
   d.review.t_last_update = d.learn_t[0];
   d.review.count = 0;
   d.review.head = 0;
-  d.learn_step_max.setZero();
-  d.learn_chi_max = 0.0;
-  for (int b = 0; b < kMaxLearnBatches; ++b) {
-    const auto u = static_cast<size_t>(b);
-    d.learn_h[u].setZero();
-    d.learn_hz[u].setZero();
-    d.learn_hh[u].setZero();
-  }
+  d.sums = LearningSums{};
   d.review_stage = 2;
   d.review_next = 0;
   d.review_kept = 0;
@@ -167,15 +160,15 @@ void replay_sample(const MonitorModel& m, MonitorData& d, int j) {
   const double z1 = z * s0;
   const ParamRow dz1 = dz * s0;
   const auto b = static_cast<size_t>(d.review_kept / m.settings.learning_batch);
-  d.learn_h[b] += dz1;
-  d.learn_hz[b] += z1 * dz1;
-  d.learn_hh[b] += dz1.cwiseProduct(dz1);
+  d.sums.h[b] += dz1;
+  d.sums.hz[b] += z1 * dz1;
+  d.sums.hh[b] += dz1.cwiseProduct(dz1);
   d.learn_z[static_cast<size_t>(d.review_kept++)] = z1;
   if (r.count == W && 4 * j >= d.learn_count) {
     ParamRow largest = ParamRow::Zero();
     step_statistic(m, r, &largest);
-    d.learn_step_max = d.learn_step_max.cwiseMax(largest * (s0 * s0));
-    d.learn_chi_max = std::max(d.learn_chi_max, window_statistic(r) * s0 * s0);
+    d.sums.step_max = d.sums.step_max.cwiseMax(largest * (s0 * s0));
+    d.sums.chi_max = std::max(d.sums.chi_max, window_statistic(r) * s0 * s0);
   }
 }
 

@@ -208,6 +208,25 @@ struct FilterWindow : DriftFilter {
   ParamRow step_factor = ParamRow::Ones();
 };
 
+// kMaxLearnBatches rows of zeros.
+inline std::array<ParamRow, kMaxLearnBatches> zero_batch_rows() {
+  std::array<ParamRow, kMaxLearnBatches> rows;
+  rows.fill(ParamRow::Zero());
+  return rows;
+}
+
+// What the review's replay of the learnt samples sums, for the step and
+// chi-square tests' factors (learning.hpp); a fresh one is all zeros.
+struct LearningSums {
+  // Per learning batch and estimated parameter: sums of dz, dz z and dz^2
+  // (learning.hpp MatchedBatch).
+  std::array<ParamRow, kMaxLearnBatches> h = zero_batch_rows(), hz = zero_batch_rows(), hh = zero_batch_rows();
+  // The largest step-test term of each parameter and the largest chi-square
+  // statistic of the replay (last three quarters, full windows).
+  ParamRow step_max = ParamRow::Zero();
+  double chi_max = 0.0;
+};
+
 // Mutable state of the monitor.
 struct MonitorData : FilterWindow {
   Eigen::Vector3d last_accepted = Eigen::Vector3d::Zero();
@@ -239,14 +258,8 @@ struct MonitorData : FilterWindow {
   int review_next = 0;   // next learnt sample the review takes
   int review_kept = 0;   // samples with an innovation so far in this stage
   double review_median = 0.0;  // median of the stage-1 residuals (stated units)
-  // Per learning batch and estimated parameter: sums of dz, dz z and dz^2
-  // (learning.hpp MatchedBatch), for the step test's factors.
-  std::array<ParamRow, kMaxLearnBatches> learn_h{}, learn_hz{}, learn_hh{};
+  LearningSums sums;         // what the review's replay sums (reset as one when it starts)
   LearnedScale learned;      // what was learnt (defaults: nothing)
-  // The largest step-test term of each parameter and the largest chi-square
-  // statistic of the review's replay (last three quarters, full windows).
-  ParamRow learn_step_max = ParamRow::Zero();
-  double learn_chi_max = 0.0;
   double bias = 0.0;         // bias of the innovations (z units), taken off before the tests
   double t_last_accepted = 0.0;
   double chi_threshold = 0.0;  // thresholds in force (the model's, widened after learning)
