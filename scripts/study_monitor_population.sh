@@ -19,7 +19,9 @@
 # (robots the monitor was not tuned on: effects "unseen" in the tables);
 # IDEAL=1 runs robots with no effect at all (`effects: ideal`, the monitor
 # still told the data sheet: a robot better than its statement; effects
-# "ideal"), each with its own geometry.
+# "ideal"), each with its own geometry. UNSEEN_PRESET="6000,..." and
+# UNSEEN_IDEAL="6000,..." run the preset and ideal robots of those seeds
+# (geometries not tuned on: effects "unseen_preset", "unseen_ideal").
 #   bash scripts/study_monitor_population.sh [DIR] [COUNT]
 #   (default out/monitor_population, 10 robots a population; ~4 minutes a population on 2 cores)
 set -euo pipefail
@@ -44,17 +46,19 @@ sed -e "s|^robot: .*|robot: $robot|" -e "s|^monitor: data_sheet.*|monitor: {pres
 grep -q "map_radius_rad: 3.0e-3" "$out/monitor_population_map.yaml"
 effects_list=(randomized); [[ ${PRESET:-0} == 1 ]] && effects_list+=(preset); [[ -n ${UNSEEN:-} ]] && effects_list+=(unseen)
 [[ ${IDEAL:-0} == 1 ]] && effects_list+=(ideal)
+[[ -n ${UNSEEN_PRESET:-} ]] && effects_list+=(unseen_preset); [[ -n ${UNSEEN_IDEAL:-} ]] && effects_list+=(unseen_ideal)
 [[ ${TABLE_ONLY:-0} == 1 ]] && RUN_EFFECTS=" "  # TABLE_ONLY=1: tabulate what DIR holds
 for effects in ${RUN_EFFECTS:-${effects_list[@]}}; do
   flag=(--count "$count"); [[ $effects == preset ]] && flag+=(--keep-effects)
   [[ $effects == unseen ]] && flag=(--seeds "$UNSEEN")
+  [[ $effects == unseen_preset ]] && flag=(--seeds "$UNSEEN_PRESET" --keep-effects)
   for variant in ${VARIANTS:-nolearning learning}; do
     s=$scenario; [[ $variant != learning ]] && s=$out/monitor_population_$variant.yaml
-    if [[ $effects == ideal ]]; then
+    if [[ $effects == ideal || $effects == unseen_ideal ]]; then
       sed -e "s|^robot: .*|robot: $robot|" -e "s|^effects: realistic|effects: ideal|" "$s" > "$out/ideal_$variant.yaml"
       grep -q "^effects: ideal" "$out/ideal_$variant.yaml"
       s=$out/ideal_$variant.yaml flag=(--count "$count" --keep-effects)
-      [[ $variant == map ]] && sed -i -e "s|^monitor: data_sheet.*|monitor: {preset: data_sheet, map_radius_rad: 3.0e-3}|" "$s"
+      [[ $effects == unseen_ideal ]] && flag=(--seeds "$UNSEEN_IDEAL" --keep-effects)
     fi
     echo "study monitor population: $variant, $effects effects" >&2
     timeout 900 "$gpm" study population "$s" -o "$out/${variant}_$effects" "${flag[@]}" >/dev/null

@@ -74,8 +74,11 @@ void finish_learning(const MonitorModel& m, MonitorData& d, double t_s) {
   d.learning = false;
   d.learning_end_s = t_s;
   const int n = d.review_kept;  // the replayed innovations in learn_z
-  d.learned = learn_innovation_scale(d.learn_z.data(), n, m.settings.learning_batch, m.settings.scale_floor,
-                                     d.learn_scratch.data());
+  // With the map a tested residual is the difference of two readings' (the
+  // sample's and the map's, each with the stated error): its stated scale is
+  // sqrt(2) that of one.
+  const double floor = m.settings.scale_floor * (d.review_map ? std::numbers::sqrt2 : 1.0);
+  d.learned = learn_innovation_scale(d.learn_z.data(), n, m.settings.learning_batch, floor, d.learn_scratch.data());
   const double s = d.learned.scale;
   if (d.review_map) restart_with_map(d);
   d.noise_scale = s;

@@ -126,9 +126,10 @@ struct MonitorSettings {
   // is not tested (counted in MonitorData::unmapped). When fewer than
   // 4 x learning_batch of the learnt samples (last three quarters) find
   // another pass's sample within the radius (a job that does not repeat
-  // within the learning phase), the map is not used. 0: no map (the default:
-  // docs/MONITORING.md gives what it does on populations, false alarms of
-  // its chi-square test included; 3e-3 rad is the radius measured there).
+  // within the learning phase), the map is not used. With the map the
+  // learnt scale is at least sqrt(2) scale_floor (a tested residual is the
+  // difference of two readings). 0: no map (the default: docs/MONITORING.md
+  // gives what it does on populations, with 3e-3 rad).
   double map_radius_rad = 0.0;
   double map_pass_gap_s = 0.05;
 

@@ -7,6 +7,7 @@
 #include "calib/monitor/config_map.hpp"
 
 #include <memory>
+#include <numbers>
 #include <vector>
 
 #include <gtest/gtest.h>
@@ -93,8 +94,9 @@ TEST(ConfigMap, LeavesOutTheSamplesNearTheExcludedTime) {
 // reading noise), which the monitor is not told of. Without the map the
 // learning phase can only widen the test (the slip is then missed or late);
 // with it the error is learnt over the configuration: no alarm in the 20 s
-// after learning, the learnt scale as stated, and a 1e-4 rad slip of encoder
-// 2 at 30 s found within 1 s and named dth2.
+// after learning, the learnt scale that stated for the difference of two
+// readings, and a 1e-4 rad slip of encoder 2 at 30 s found within 1 s and
+// named dth2.
 TEST(MonitorConfigMap, AReadingErrorOfTheConfigurationIsNotAlarmedAndASlipIsFound) {
   testing::CircleStream cs;
   cs.transmission_rad = 1e-4;
@@ -119,7 +121,9 @@ TEST(MonitorConfigMap, AReadingErrorOfTheConfigurationIsNotAlarmedAndASlipIsFoun
   const auto run = run_circle(m, *d, 40.0, slip_at_30s, cs);
   EXPECT_TRUE(d->map_on);
   EXPECT_LE(d->learning_end_s, 10.0);
-  EXPECT_LT(d->learned.scale, 1.2);
+  // As stated for the difference of two readings (the sample's and the map's): sqrt(2).
+  EXPECT_GE(d->learned.scale, std::numbers::sqrt2);
+  EXPECT_LT(d->learned.scale, 1.2 * std::numbers::sqrt2);
   ASSERT_FALSE(run.alarm_times.empty());
   EXPECT_GE(run.alarm_times.front(), 30.0) << "false alarm";
   EXPECT_LT(run.alarm_times.front(), 31.0);
