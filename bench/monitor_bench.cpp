@@ -7,10 +7,13 @@
 //   BM_MonitorStepAccepted  only cycles whose sample is accepted (window
 //                           test, step test and a filter update): the worst
 //                           regular cycle;
+//   BM_MonitorStepOffTheMap a candidate cycle off the configuration map
+//                           (config_map.hpp): the whole map searched;
 //   BM_MonitorStepAlarm     the cycle that explains an alarm and re-baselines
 //   BM_MonitorStepLearningEnd  the one cycle that ends the learning phase
 //                           (the rare worst case).
-//   BM_MonitorStepReview    the cycles of the review of the learning phase
+//   BM_MonitorStepReview/0  the cycles of the review of the learning phase
+//                           (/1: with the configuration map)
 //                           (monitor.hpp), in turn: each replays learnt
 //                           samples (a filter update, an innovation, the
 //                           window's tests) or, on an accepted cycle, the
@@ -32,14 +35,14 @@ using namespace gpm;
 using namespace gpm::calib::monitor;
 
 // Readings of the nominal robot on the circle, 17-bit quantised.
-std::vector<Eigen::Vector3d> circle_readings(int n, double dth2_jump_at = 1e300) {
+std::vector<Eigen::Vector3d> circle_readings(int n, double dth2_jump_at = 1e300, double centre_x = 216.5) {
   const double q = 2.0 * std::numbers::pi / 131072.0;
   std::vector<Eigen::Vector3d> out(static_cast<size_t>(n));
   for (int c = 0; c < n; ++c) {
     const double t = c / 1000.0, w = 2.0 * std::numbers::pi * t / 4.0;
     Geometry g = Geometry::gpm2002_nominal();
     if (t >= dth2_jump_at) g[kDth2] += 1e-4;
-    const JointAngles ja = inverse_kinematics(g, Eigen::Vector2d(216.5 + 60 * std::cos(w), 250 + 60 * std::sin(w)));
+    const JointAngles ja = inverse_kinematics(g, Eigen::Vector2d(centre_x + 60 * std::cos(w), 250 + 60 * std::sin(w)));
     for (int i = 0; i < 3; ++i) out[static_cast<size_t>(c)][i] = std::round((ja.theta_a[i] - g.dth_(i)) / q) * q;
   }
   return out;
@@ -77,6 +80,33 @@ void BM_MonitorStepAccepted(benchmark::State& state) {
   state.counters["accepted_per_cycle"] = static_cast<double>(d->accepted) / static_cast<double>(d->cycles);
 }
 BENCHMARK(BM_MonitorStepAccepted)->Unit(benchmark::kMicrosecond);
+
+// After learning on the circle, cycles on a circle 20 mm aside: no learnt
+// configuration within the map's radius, so each (a candidate: the last
+// accepted sample is far) searches the whole map (config_map.hpp) and is not
+// tested (the map's worst look-up).
+void BM_MonitorStepOffTheMap(benchmark::State& state) {
+  MonitorSettings s;
+  s.map_radius_rad = 3e-3;  // the map on (off by default)
+  const MonitorModel m = make_monitor_model(s);
+  static const std::vector<Eigen::Vector3d> learnt = circle_readings(12000);
+  static const std::vector<Eigen::Vector3d> aside = circle_readings(8000, 1e300, 236.5);
+  auto d = std::make_unique<MonitorData>(make_monitor_data(m));
+  long c = 0;
+  for (; c < 12000 && d->learning; ++c) monitor_step(m, *d, c / 1000.0, learnt[static_cast<size_t>(c)]);
+  if (!d->map_on) {
+    state.SkipWithError("the map is not on after learning");
+    return;
+  }
+  const long unmapped0 = d->unmapped;
+  long timed = 0;
+  for (auto _ : state) {
+    benchmark::DoNotOptimize(monitor_step(m, *d, c / 1000.0, aside[static_cast<size_t>(c % 8000)]));
+    ++c, ++timed;
+  }
+  state.counters["unmapped_per_cycle"] = static_cast<double>(d->unmapped - unmapped0) / static_cast<double>(timed);
+}
+BENCHMARK(BM_MonitorStepOffTheMap)->Unit(benchmark::kMicrosecond);
 
 // The accepted cycle with the realistic reading model (effects: realistic):
 // motion corrections, clearance variance and the six cyclic-error
@@ -159,7 +189,9 @@ void BM_MonitorStepLearningEnd(benchmark::State& state) {
 BENCHMARK(BM_MonitorStepLearningEnd)->Unit(benchmark::kMicrosecond);
 
 void BM_MonitorStepReview(benchmark::State& state) {
-  const MonitorModel m = make_monitor_model(MonitorSettings{});
+  MonitorSettings s;
+  s.map_radius_rad = state.range(0) ? 3e-3 : 0.0;  // /1: with the configuration map
+  const MonitorModel m = make_monitor_model(s);
   static const std::vector<Eigen::Vector3d> readings = circle_readings(12000);
   auto start = std::make_unique<MonitorData>(make_monitor_data(m));
   long first = 0;
@@ -182,6 +214,6 @@ void BM_MonitorStepReview(benchmark::State& state) {
     ++c;
   }
 }
-BENCHMARK(BM_MonitorStepReview)->Unit(benchmark::kMicrosecond);
+BENCHMARK(BM_MonitorStepReview)->Arg(0)->Arg(1)->Unit(benchmark::kMicrosecond);
 
 }  // namespace

@@ -98,6 +98,7 @@ void apply_reading_model(calib::monitor::MonitorSettings& ms, const MonitorReadi
   ms.thermal_tau_s = reading.thermal_time_constant_s;
   ms.learning_s = reading.learning_s;
   ms.scale_floor = reading.scale_floor;
+  ms.map_radius_rad = reading.map_radius_rad;
 }
 
 namespace {
@@ -174,6 +175,7 @@ void close_monitor(MonitorOutcome& out, mon::MonitorData& md, double end_s) {
   out.step_threshold = md.glr_threshold;
   out.cycles = md.cycles;
   out.accepted = md.accepted;
+  out.unmapped = md.unmapped;
 }
 
 // Each alarm detects the latest event begun before it (within the window);
@@ -557,7 +559,10 @@ nlohmann::json learning_summary(const MonitorOutcome& o) {
           {"chi_mean", l.chi_mean},
           {"chi_factor", l.chi_factor},
           {"chi_square_threshold", o.chi_threshold},
-          {"step_threshold", o.step_threshold}};
+          {"step_threshold", o.step_threshold},
+          {"map", l.map},
+          {"map_matched_samples", l.map_matched},
+          {"unmapped_samples", o.unmapped}};
 }
 
 std::string learning_text(const MonitorOutcome& o) {
@@ -566,9 +571,11 @@ std::string learning_text(const MonitorOutcome& o) {
   return fmt::format(
       "learning phase {:.2f} s (no alarm before {:.2f} s), {} samples: innovation scale {:.2f} (MAD; {:.2f} used, "
       "floor {:.2f}), bias {:+.2f}; step test divided by up to {:.1f} (threshold {:.1f}), chi2 threshold "
-      "{:.1f} (stated {:.1f})",
+      "{:.1f} (stated {:.1f}); configuration map {} ({} learnt samples matched by another pass, {} later samples "
+      "off it, not tested)",
       o.learning_end_s - o.learning_start_s, o.learning_end_s, l.samples, l.mad_scale, l.scale,
-      o.model.settings.scale_floor, l.median, l.step_factor, o.step_threshold, o.chi_threshold, o.model.threshold);
+      o.model.settings.scale_floor, l.median, l.step_factor, o.step_threshold, o.chi_threshold, o.model.threshold,
+      l.map ? "on" : "off", l.map_matched, o.unmapped);
 }
 
 void add_monitor_section(report::ReportDocument& doc, const MonitorOutcome& o, int level, const std::string& figure) {

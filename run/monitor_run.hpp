@@ -72,6 +72,7 @@ struct MonitorOutcome {
   calib::monitor::Estimate final_estimate;
   double simulated_s = 0.0, wall_s = 0.0;
   long cycles = 0;
+  long unmapped = 0;           // samples after learning off the configuration map (not tested)
   long accepted = 0;           // samples the monitor used (independence gate, calib/monitor/README.md)
   bool truth_known = true;     // false through hardware: no detections, no final errors
   std::string hardware;        // the backend monitored through (empty: the in-process twin)

@@ -351,7 +351,8 @@ MonitorReadingModel parse_monitor_reading_model(const YAML::Node& n, const std::
                      "expected a preset (ideal, data_sheet) or a map of the monitor's reading model (see scenarios/SCHEMA.md)");
   yaml_check_keys(n, file, "monitor",
                   {"preset", "encoder_cyclic_rad", "clearance_mm", "drive_friction", "skew_s", "compliance_rad_per_Nm",
-                   "backlash_rad", "harmonic_rad", "thermal_time_constant_s", "learning_s", "scale_floor"});
+                   "backlash_rad", "harmonic_rad", "thermal_time_constant_s", "learning_s", "scale_floor",
+                   "map_radius_rad"});
   MonitorReadingModel m =
       n["preset"] ? reading_model_preset(n["preset"], file, "monitor.preset", sheet) : data_sheet_reading_model(sheet);
   calib::ReadingModel& r = m.reading;
@@ -390,6 +391,13 @@ MonitorReadingModel parse_monitor_reading_model(const YAML::Node& n, const std::
       throw InputError(yaml_where(file, t, "monitor.scale_floor") + fmt::format("{} is out of range (valid: 1 to 1000)", v));
     m.scale_floor = v;
   }
+  if (const YAML::Node t = n["map_radius_rad"]) {
+    const double v = yaml_number(t, file, "monitor.map_radius_rad");
+    if (!(v >= 0.0 && v <= 0.1))
+      throw InputError(yaml_where(file, t, "monitor.map_radius_rad") +
+                       fmt::format("{} rad is out of range (valid: 0 to 0.1 rad; 0: no map)", v));
+    m.map_radius_rad = v;
+  }
   return m;
 }
 
@@ -411,10 +419,10 @@ std::string monitor_reading_model_yaml(const MonitorReadingModel& m) {
       "  encoder_cyclic_rad: {}\n  clearance_mm: {}\n"
       "  drive_friction: {{coulomb_Nm: {}, viscous_Nm_s: {}}}\n"
       "  skew_s: {}\n  compliance_rad_per_Nm: {}\n  backlash_rad: {}\n  harmonic_rad: {}]\n"
-      "  thermal_time_constant_s: {}\n  learning_s: {}\n  scale_floor: {}\n",
+      "  thermal_time_constant_s: {}\n  learning_s: {}\n  scale_floor: {}\n  map_radius_rad: {}\n",
       three(r.cyclic_rad), three(pin), three(r.load.coulomb_Nm), three(r.load.viscous_Nm_s), three(r.skew_s),
       three(r.compliance_rad_per_Nm), three(r.backlash_rad), harmonics, format_exact(m.thermal_time_constant_s),
-      format_exact(m.learning_s), format_exact(m.scale_floor));
+      format_exact(m.learning_s), format_exact(m.scale_floor), format_exact(m.map_radius_rad));
 }
 
 RunSpec parse_run_spec(const std::string& text, const std::string& file, const std::string& base_dir) {

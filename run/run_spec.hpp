@@ -61,6 +61,9 @@ struct MonitorReadingModel {
   // Least scale of the innovations, in units of what this statement gives
   // (>= 1; gpm run: the calibration's sqrt(chi2 / dof) when above 1).
   double scale_floor = 1.0;
+  // The learning phase's configuration map (calib/monitor/config_map.hpp):
+  // its match radius in link angles (rad); 0: no map.
+  double map_radius_rad = calib::monitor::MonitorSettings{}.map_radius_rad;
 };
 
 // `monitor: ideal`: no reading error modelled; drift tracked on the

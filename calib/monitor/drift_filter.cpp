@@ -91,7 +91,7 @@ static Geometry shifted(const Geometry& x, const std::array<double, 3>& clearanc
 }
 
 bool filter_innovation(const MonitorModel& m, const FilterWindow& d, double t_s, const Eigen::Vector3d& theta_m,
-                       const Eigen::Vector3d& tension, double& z, ParamRow& dz) {
+                       const Eigen::Vector3d& tension, double& z, ParamRow& dz, double r_map, double* r_out) {
   Geometry x = d.estimate;
   double rate = d.growth_rate;
   StateMatrix P = d.P;
@@ -99,6 +99,8 @@ bool filter_innovation(const MonitorModel& m, const FilterWindow& d, double t_s,
   double r = 0.0;
   ParamRow g;
   if (!ml_residual_and_gradient(shifted(x, d.clearance, tension), without_cyclic(m, d.cyclic, theta_m), r, g)) return false;
+  if (r_out) *r_out = r;
+  r -= r_map;
   std::array<double, kMaxState> Ph{};
   const double sqrt_s = std::sqrt(innovation_variance(m, d.noise_scale, P, g, theta_m, tension, Ph));
   z = r / sqrt_s;
@@ -107,12 +109,13 @@ bool filter_innovation(const MonitorModel& m, const FilterWindow& d, double t_s,
 }
 
 void filter_update(const MonitorModel& m, FilterWindow& d, double t_s, const Eigen::Vector3d& theta_m,
-                   const Eigen::Vector3d& tension) {
+                   const Eigen::Vector3d& tension, double r_map) {
   if (d.filtered > 0) filter_predict(m, d.estimate, d.growth_rate, d.P, std::max(t_s - d.t_last_update, 0.0));
   d.t_last_update = std::max(t_s, d.t_last_update);
   double r = 0.0;
   ParamRow g;
   if (!ml_residual_and_gradient(shifted(d.estimate, d.clearance, tension), without_cyclic(m, d.cyclic, theta_m), r, g)) return;
+  r -= r_map;
   std::array<double, kMaxState> Ph{};
   const double s = innovation_variance(m, d.noise_scale, d.P, g, theta_m, tension, Ph);
   for (int k = 0; k < m.n_state; ++k) {

@@ -33,14 +33,17 @@ void filter_predict(const MonitorModel& model, Geometry& estimate, double& growt
 // have no ML residual (collinear elbows). Allocation-free.
 // tension: the sign of each passive link's axial force for the sample (its
 // length is lb_i + d_i tension_i, d_i the estimated effective play).
+// r_map (rad) is taken off the residual first (the configuration map,
+// config_map.hpp); r_out (optional) receives the residual before it.
 bool filter_innovation(const MonitorModel& model, const FilterWindow& data, double t_s,
                        const Eigen::Vector3d& theta_m, const Eigen::Vector3d& tension, double& z,
-                       ParamRow& dz_dparams);
+                       ParamRow& dz_dparams, double r_map = 0.0, double* r_out = nullptr);
 
 // Kalman update with one sample (predict to t_s, then K = P h' / s,
 // u += K (0 - r), P -= K h P). Directions h does not see get no gain.
 // Allocation-free.
+// r_map as for filter_innovation.
 void filter_update(const MonitorModel& model, FilterWindow& data, double t_s,
-                   const Eigen::Vector3d& theta_m, const Eigen::Vector3d& tension);
+                   const Eigen::Vector3d& theta_m, const Eigen::Vector3d& tension, double r_map = 0.0);
 
 }  // namespace gpm::calib::monitor

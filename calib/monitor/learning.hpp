@@ -51,6 +51,11 @@ struct LearnedScale {
   double chi_mean = 1.0;
   double chi_factor = 1.0;
   double effective_samples = 0.0;  // samples / step_factor (before widening)
+  // The configuration map (config_map.hpp, monitor.cpp): whether the monitor
+  // tests on the residual less the map, and how many learnt samples of the
+  // last three quarters another pass matched.
+  bool map = false;
+  int map_matched = 0;
 };
 
 // Learns from z[0..n) (n >= 2; z is not modified) with batches of `batch`

@@ -8,6 +8,7 @@
 #include <fmt/format.h>
 
 #include "calib/chi_square.hpp"
+#include "calib/monitor/config_map.hpp"
 #include "calib/monitor/drift_filter.hpp"
 #include "calib/monitor/explain.hpp"
 #include "calib/passive_tension.hpp"
@@ -51,15 +52,35 @@ bool moved_enough(const MonitorModel& m, const MonitorData& d, const Eigen::Vect
 // the largest of ~1000 window tests over n W onsets, about 25 of 49).
 constexpr double kLearnStepMaxShare = 0.5;
 
+// Copies the filter of src (not its window) into dst.
+void copy_filter(FilterWindow& dst, const FilterWindow& src) {
+  static_cast<DriftFilter&>(dst) = static_cast<const DriftFilter&>(src);
+}
+
+// With the map: the monitor goes on from the review's filter (which took the
+// map off the learnt samples) with an empty window (its samples carry no map).
+void restart_with_map(MonitorData& d) {
+  copy_filter(d, d.review);
+  d.map_on = true;
+  d.count = 0;
+  d.statistic = 0.0;
+  d.step_statistic = 0.0;
+}
+
 // Ends the learning phase at t_s (learning.hpp): the learnt scale becomes the
 // filter's reading noise, the learnt median the bias, the window's
 // innovations are restated in the new units and the thresholds widen.
 void finish_learning(const MonitorModel& m, MonitorData& d, double t_s) {
   d.learning = false;
   d.learning_end_s = t_s;
-  d.learned = learn_innovation_scale(d.learn_z.data(), d.learn_count, m.settings.learning_batch,
-                                     m.settings.scale_floor, d.learn_scratch.data());
+  const int n = d.review_kept;  // the replayed innovations in learn_z
+  // With the map a tested residual is the difference of two readings' (the
+  // sample's and the map's, each with the stated error): its stated scale is
+  // sqrt(2) that of one.
+  const double floor = m.settings.scale_floor * (d.review_map ? std::numbers::sqrt2 : 1.0);
+  d.learned = learn_innovation_scale(d.learn_z.data(), n, m.settings.learning_batch, floor, d.learn_scratch.data());
   const double s = d.learned.scale;
+  if (d.review_map) restart_with_map(d);
   d.noise_scale = s;
   d.bias = d.learned.median / s;
   for (int j = 0; j < d.count; ++j) {
@@ -69,28 +90,30 @@ void finish_learning(const MonitorModel& m, MonitorData& d, double t_s) {
   }
   // The step test: each parameter's statistic divided by its own factor
   // (the reported step_factor is the largest); the threshold stays.
-  const int batches = d.learn_count / m.settings.learning_batch;
+  const int batches = n / m.settings.learning_batch;
   double largest = 1.0;
   for (int k = 0; k < m.n_free; ++k) {
     const int i = m.free_index[static_cast<size_t>(k)];
     d.step_factor[i] = matched_sum_factor(batches, d.learned.median, s, [&](int b) {
       const auto u = static_cast<size_t>(b);
-      return MatchedBatch{d.learn_h[u][i], d.learn_hz[u][i], d.learn_hh[u][i]};
+      return MatchedBatch{d.sums.h[u][i], d.sums.hz[u][i], d.sums.hh[u][i]};
     });
     // The largest term seen while learning, in the new units, sits where a
     // healthy robot's would: a structured reading error repeats with the job
     // (not Gaussian), and the batches see it only on average.
-    d.step_factor[i] = std::max(d.step_factor[i], d.learn_step_max[i] / (s * s) / (kLearnStepMaxShare * m.glr_threshold));
+    d.step_factor[i] = std::max(d.step_factor[i], d.sums.step_max[i] / (s * s) / (kLearnStepMaxShare * m.glr_threshold));
     largest = std::max(largest, d.step_factor[i]);
   }
   d.learned.step_factor = largest;
+  d.learned.map = d.map_on;
+  d.learned.map_matched = d.map_matched;
   d.glr_threshold = m.glr_threshold;
   const double W = m.settings.window;
   const double kappa = d.learned.chi_factor, nu = W * d.learned.chi_mean / kappa;
   d.chi_threshold = std::max(m.threshold, kappa * chi2_quantile_wilson_hilferty(nu, m.chi_normal_quantile));
   // As for the step test: the largest window sum seen while learning sits
   // where a healthy robot's would, W + 3 sqrt(2 W).
-  d.chi_threshold = std::max(d.chi_threshold, d.learn_chi_max / (s * s) * m.threshold / (W + 3.0 * std::sqrt(2.0 * W)));
+  d.chi_threshold = std::max(d.chi_threshold, d.sums.chi_max / (s * s) * m.threshold / (W + 3.0 * std::sqrt(2.0 * W)));
 }
 
 // Review of the learning phase (MonitorData::review): how many learnt
@@ -98,11 +121,6 @@ void finish_learning(const MonitorModel& m, MonitorData& d, double t_s) {
 // such cycle stays well within the cost of an accepted cycle).
 constexpr int kReviewResidualsPerCycle = 4;
 constexpr int kReviewReplayPerCycle = 1;
-
-// Copies the filter of src (not its window) into dst.
-void copy_filter(FilterWindow& dst, const FilterWindow& src) {
-  static_cast<DriftFilter&>(dst) = static_cast<const DriftFilter&>(src);
-}
 
 // Starts the review of the learnt samples with a copy of the filter as
 // learning ends: first their residuals at its estimate (stage 1).
@@ -115,28 +133,59 @@ void begin_review(MonitorData& d) {
   d.review_kept = 0;
 }
 
+// The map holds the residuals at the estimate as learning ends: the filter
+// that takes it off goes on from there with no growth rate (what the rate
+// estimated while learning, from readings it did not yet know the robot's
+// error of, is in the map), its rate back at its prior.
+void restart_rate(const MonitorModel& m, DriftFilter& f) {
+  const int rho = m.rate_index;
+  f.growth_rate = 0.0;
+  f.P.row(rho).setZero();
+  f.P.col(rho).setZero();
+  f.P(rho, rho) = m.prior_variance[static_cast<size_t>(rho)];
+}
+
 // Stage 2 from the stage-1 residuals: the robot's own scale about the learnt
 // estimate becomes the replay filter's reading noise, and the replay starts
-// from the first learnt sample's time with empty sums.
-void start_replay(const MonitorModel& m, MonitorData& d) {
+// from the first reviewed sample's time with empty sums, taking the map off
+// its samples when with_map.
+void start_replay(const MonitorModel& m, MonitorData& d, bool with_map) {
   const LearnedScale at = learn_innovation_scale(d.learn_z.data(), d.review_kept, m.settings.learning_batch,
                                                  m.settings.scale_floor, d.learn_scratch.data());
-  d.review.noise_scale = at.scale;
   d.review_median = at.median;
-  d.review.t_last_update = d.learn_t[0];
+  d.review.noise_scale = at.scale;
+  d.review.t_last_update = d.learn_t[static_cast<size_t>(d.learn_first)];
   d.review.count = 0;
   d.review.head = 0;
-  d.learn_step_max.setZero();
-  d.learn_chi_max = 0.0;
-  for (int b = 0; b < kMaxLearnBatches; ++b) {
-    const auto u = static_cast<size_t>(b);
-    d.learn_h[u].setZero();
-    d.learn_hz[u].setZero();
-    d.learn_hh[u].setZero();
-  }
+  d.sums = LearningSums{};
   d.review_stage = 2;
-  d.review_next = 0;
+  d.review_next = d.learn_first;
   d.review_kept = 0;
+  d.review_map = with_map;
+  d.map_cursor = 0;
+  if (with_map && m.rate_index >= 0) restart_rate(m, d.review);
+}
+
+// Leave-one-out half-width of the review's map look-ups (s): a learnt sample
+// is matched by the learnt samples of other passes only.
+constexpr double kMapExcludeS = 0.5;
+
+// The learnt samples as a map: those of the last three quarters (in the
+// first, the robot's motion settles from its start: on the twins its
+// residual then differs from the later passes' by a few sigma).
+MapSamples map_samples(const MonitorData& d) {
+  const auto f = static_cast<size_t>(d.learn_first);
+  return {d.learn_t.data() + f, d.learn_theta.data() + f, d.learn_direction.data() + f, d.learn_r.data() + f,
+          d.learn_count - d.learn_first};
+}
+
+// The map's residual at link angles theta moving in `direction`, excluding the
+// learnt samples within exclude_halfwidth_s of exclude_t; false with none.
+bool map_at(const MonitorModel& m, MonitorData& d, const Eigen::Vector3d& theta, const Eigen::Vector3d& direction,
+            double exclude_t, double exclude_halfwidth_s, double& r_map) {
+  const MapQuery q{theta, direction, m.settings.map_radius_rad, m.settings.map_pass_gap_s, exclude_t,
+                   exclude_halfwidth_s};
+  return map_residual(map_samples(d), q, d.map_cursor, r_map);
 }
 
 // Stage 2, one learnt sample: the replay filter tests it one window behind,
@@ -146,18 +195,22 @@ void start_replay(const MonitorModel& m, MonitorData& d) {
 void replay_sample(const MonitorModel& m, MonitorData& d, int j) {
   FilterWindow& r = d.review;
   const int W = m.settings.window;
+  const auto u = static_cast<size_t>(j);
+  double r_map = 0.0;
+  if (d.review_map && !map_at(m, d, d.learn_theta[u], d.learn_direction[u], d.learn_t[u], kMapExcludeS, r_map)) return;
   if (r.count >= W) {
     const auto oldest = static_cast<size_t>(slot_of(r, 0));
-    filter_update(m, r, r.t[oldest], r.theta[oldest], r.tension[oldest]);
+    filter_update(m, r, r.t[oldest], r.theta[oldest], r.tension[oldest], r.r_map[oldest]);
     --r.count;
   }
-  const auto u = static_cast<size_t>(j);
   double z = 0.0;
   ParamRow dz;
-  if (!filter_innovation(m, r, d.learn_t[u], d.learn_theta[u], d.learn_tension[u], z, dz)) return;
+  if (!filter_innovation(m, r, d.learn_t[u], d.learn_theta[u], d.learn_tension[u], z, dz, r_map)) return;
   const double s0 = r.noise_scale;
+  const double median = d.review_map ? 0.0 : d.review_median;  // (the map takes off the level too)
   const auto slot = static_cast<size_t>(r.head);
-  r.z[slot] = z - d.review_median / s0;
+  r.r_map[slot] = r_map;
+  r.z[slot] = z - median / s0;
   r.dz[slot] = dz;
   r.t[slot] = d.learn_t[u];
   r.theta[slot] = d.learn_theta[u];
@@ -167,15 +220,15 @@ void replay_sample(const MonitorModel& m, MonitorData& d, int j) {
   const double z1 = z * s0;
   const ParamRow dz1 = dz * s0;
   const auto b = static_cast<size_t>(d.review_kept / m.settings.learning_batch);
-  d.learn_h[b] += dz1;
-  d.learn_hz[b] += z1 * dz1;
-  d.learn_hh[b] += dz1.cwiseProduct(dz1);
+  d.sums.h[b] += dz1;
+  d.sums.hz[b] += z1 * dz1;
+  d.sums.hh[b] += dz1.cwiseProduct(dz1);
   d.learn_z[static_cast<size_t>(d.review_kept++)] = z1;
-  if (r.count == W && 4 * j >= d.learn_count) {
+  if (r.count == W && 4 * (j - d.learn_first) >= d.learn_count - d.learn_first) {
     ParamRow largest = ParamRow::Zero();
     step_statistic(m, r, &largest);
-    d.learn_step_max = d.learn_step_max.cwiseMax(largest * (s0 * s0));
-    d.learn_chi_max = std::max(d.learn_chi_max, window_statistic(r) * s0 * s0);
+    d.sums.step_max = d.sums.step_max.cwiseMax(largest * (s0 * s0));
+    d.sums.chi_max = std::max(d.sums.chi_max, window_statistic(r) * s0 * s0);
   }
 }
 
@@ -183,18 +236,27 @@ void replay_sample(const MonitorModel& m, MonitorData& d, int j) {
 bool review_step(const MonitorModel& m, MonitorData& d, double t_s) {
   if (d.review_stage == 1) {
     for (int c = 0; c < kReviewResidualsPerCycle && d.review_next < d.learn_count; ++c) {
-      const auto u = static_cast<size_t>(d.review_next++);
-      double z = 0.0;
+      const int j = d.review_next++;
+      const auto u = static_cast<size_t>(j);
+      double z = 0.0, r = 0.0;
       ParamRow dz;
-      if (filter_innovation(m, d.review, d.review.t_last_update, d.learn_theta[u], d.learn_tension[u], z, dz))
-        d.learn_z[static_cast<size_t>(d.review_kept++)] = z;
+      const bool ok = filter_innovation(m, d.review, d.review.t_last_update, d.learn_theta[u], d.learn_tension[u], z,
+                                        dz, 0.0, &r);
+      d.learn_r[u] = ok ? r : 0.0;
+      if (!ok) d.learn_direction[u].setConstant(2.0);  // (no sign: never matched)
+      if (ok && j >= d.learn_first) d.learn_z[static_cast<size_t>(d.review_kept++)] = z;
+      // How many learnt samples another pass matches (the map's coverage:
+      // configurations and directions are known before the residuals).
+      double unused = 0.0;
+      if (ok && j >= d.learn_first && m.settings.map_radius_rad > 0.0 &&
+          map_at(m, d, d.learn_theta[u], d.learn_direction[u], d.learn_t[u], kMapExcludeS, unused))
+        ++d.map_matched;
     }
-    if (d.review_next >= d.learn_count) start_replay(m, d);
+    if (d.review_next >= d.learn_count) start_replay(m, d, d.map_matched >= 4 * m.settings.learning_batch);
     return false;
   }
   for (int c = 0; c < kReviewReplayPerCycle && d.review_next < d.learn_count; ++c) replay_sample(m, d, d.review_next++);
   if (d.review_next < d.learn_count) return false;
-  d.learn_count = d.review_kept;
   d.review_stage = 0;
   finish_learning(m, d, t_s);
   return true;
@@ -236,6 +298,8 @@ void check_settings(const MonitorSettings& s) {
                       kMaxLearn / 4));
   require(s.bias_tau_s > 0.0, "bias_tau_s must be > 0");
   require(s.scale_floor >= 1.0 && std::isfinite(s.scale_floor), "scale_floor must be finite and >= 1");
+  require(s.map_radius_rad >= 0.0 && std::isfinite(s.map_radius_rad), "map_radius_rad must be finite and >= 0");
+  require(s.map_pass_gap_s > 0.0 && std::isfinite(s.map_pass_gap_s), "map_pass_gap_s must be finite and > 0");
 }
 
 // The test's noise, gate and thresholds of m from its settings.
@@ -352,7 +416,7 @@ MonitorData make_monitor_data(const MonitorModel& m) {
 void monitor_flush(const MonitorModel& m, MonitorData& d) {
   for (int j = 0; j < d.count; ++j) {
     const auto slot = static_cast<size_t>(slot_of(d, j));
-    filter_update(m, d, d.t[slot], d.theta[slot], d.tension[slot]);
+    filter_update(m, d, d.t[slot], d.theta[slot], d.tension[slot], d.r_map[slot]);
   }
   d.count = 0;
   d.statistic = 0.0;
@@ -423,18 +487,20 @@ std::optional<Eigen::Vector3d> tension_signs(const MonitorModel& m, MonitorData&
 }
 
 // The accepted innovation z at t_s: its sample (time, link angles theta,
-// force signs) kept while learning (not in the first quarter, where the
-// filter settles on what the calibration left) for the review, then z
+// force signs, direction of motion) kept while learning for the review and
+// the map (the review's statistics leave out the first quarter, where the
+// filter settles on what the calibration left), then z
 // followed as a slowly varying bias; returns z less the bias before this
 // sample.
 double learn_and_debias(const MonitorModel& m, MonitorData& d, double t_s, double z, const Eigen::Vector3d& theta,
-                        const Eigen::Vector3d& tension) {
-  if (d.learning && d.review_stage == 0 && d.learn_count < kMaxLearn &&
-      t_s - d.t_start >= 0.25 * m.settings.learning_s) {
+                        const Eigen::Vector3d& tension, const Eigen::Vector3d& direction) {
+  if (d.learning && d.review_stage == 0 && d.learn_count < kMaxLearn) {
+    if (t_s - d.t_start < 0.25 * m.settings.learning_s) d.learn_first = d.learn_count + 1;
     const auto j = static_cast<size_t>(d.learn_count++);
     d.learn_t[j] = t_s;
     d.learn_theta[j] = theta;
     d.learn_tension[j] = tension;
+    d.learn_direction[j] = direction;
   }
   const double z_tested = z - d.bias;
   if (!d.learning && m.settings.learning_s > 0.0 && d.pending < 0 && d.accepted > 1)
@@ -480,8 +546,9 @@ void raise_alarm(const MonitorModel& m, MonitorData& d, double t_s) {
 
 // Appends a tested sample to the window.
 void store_sample(MonitorData& d, double t_s, double z_tested, const ParamRow& dz, const Eigen::Vector3d& theta,
-                  const Eigen::Vector3d& tension_sign) {
+                  const Eigen::Vector3d& tension_sign, double r_map) {
   const auto slot = static_cast<size_t>(d.head);
+  d.r_map[slot] = r_map;
   d.z[slot] = z_tested;
   d.t[slot] = t_s;
   d.dz[slot] = dz;
@@ -531,15 +598,22 @@ StepResult step_live(const MonitorModel& m, MonitorData& d, double t_s, const Ei
   const int W = m.settings.window;
   if (d.count >= W && d.pending < 0) {
     const auto oldest = static_cast<size_t>(slot_of(d, 0));
-    filter_update(m, d, d.t[oldest], d.theta[oldest], d.tension[oldest]);
+    filter_update(m, d, d.t[oldest], d.theta[oldest], d.tension[oldest], d.r_map[oldest]);
     --d.count;
   }
   const std::optional<Eigen::Vector3d> tension_sign = tension_signs(m, d, l);
   if (!tension_sign) return out;
+  // The map's key: the signs of each joint's speed, passive link force and mesh flank.
+  const Eigen::Vector3d direction = omega.cwiseSign() + 3.0 * *tension_sign + 9.0 * l.flank;
+  double r_map = 0.0;
+  if (d.map_on && !map_at(m, d, l.theta, direction, 0.0, -1.0, r_map)) {
+    ++d.unmapped;
+    return out;
+  }
   // Innovation against the filter (which has seen no sample of the window) predicted to t_s.
   double z = 0.0;
   ParamRow dz;
-  if (!filter_innovation(m, d, t_s, l.theta, *tension_sign, z, dz)) {
+  if (!filter_innovation(m, d, t_s, l.theta, *tension_sign, z, dz, r_map)) {
     ++d.skipped;
     return out;
   }
@@ -547,7 +621,8 @@ StepResult step_live(const MonitorModel& m, MonitorData& d, double t_s, const Ei
   d.last_accepted = theta_raw;
   d.cycles_since_accepted = 0;
   ++d.accepted;
-  store_sample(d, t_s, learn_and_debias(m, d, t_s, z, l.theta, *tension_sign), dz, l.theta, *tension_sign);
+  store_sample(d, t_s, learn_and_debias(m, d, t_s, z, l.theta, *tension_sign, direction), dz, l.theta, *tension_sign,
+               r_map);
   if (d.learning && d.review_stage == 0 && (t_s - d.t_start >= m.settings.learning_s || d.learn_count >= kMaxLearn))
     begin_review(d);
   const bool full = d.count == W && d.pending < 0;

@@ -117,6 +117,21 @@ struct MonitorSettings {
   int learning_batch = 50;
   double bias_tau_s = 60.0;
   double scale_floor = 1.0;
+  // Configuration map (config_map.hpp): with map_radius_rad > 0 the learning
+  // phase keeps its residuals over the link angles, and after it a sample is
+  // tested on its residual less the learnt one at the same configuration and
+  // direction of motion (matched within map_radius_rad of link-angle
+  // distance; consecutive learnt samples closer than map_pass_gap_s in time
+  // are one pass). A sample with no learnt configuration within the radius
+  // is not tested (counted in MonitorData::unmapped). When fewer than
+  // 4 x learning_batch of the learnt samples (last three quarters) find
+  // another pass's sample within the radius (a job that does not repeat
+  // within the learning phase), the map is not used. With the map the
+  // learnt scale is at least sqrt(2) scale_floor (a tested residual is the
+  // difference of two readings). 0: no map (the default: docs/MONITORING.md
+  // gives what it does on populations, with 3e-3 rad).
+  double map_radius_rad = 0.0;
+  double map_pass_gap_s = 0.05;
 
   // An array of NaN (the "use the default" marker of prior_sigma).
   static std::array<double, kNumParams> nan_array();
@@ -201,11 +216,31 @@ struct FilterWindow : DriftFilter {
   std::array<ParamRow, kMaxWindow> dz{};
   std::array<Eigen::Vector3d, kMaxWindow> theta{};
   std::array<Eigen::Vector3d, kMaxWindow> tension{};  // sign of each passive link's axial force (+-1, 0 without clearance)
+  std::array<double, kMaxWindow> r_map{};  // the learnt residual taken off each sample (rad; 0 without the map)
   int head = 0;   // next slot to write
   int count = 0;  // samples held
   // The step test's variance factor of each parameter (>= 1; 1 until learnt):
   // its statistic along parameter i is divided by step_factor[i].
   ParamRow step_factor = ParamRow::Ones();
+};
+
+// kMaxLearnBatches rows of zeros.
+inline std::array<ParamRow, kMaxLearnBatches> zero_batch_rows() {
+  std::array<ParamRow, kMaxLearnBatches> rows;
+  rows.fill(ParamRow::Zero());
+  return rows;
+}
+
+// What the review's replay of the learnt samples sums, for the step and
+// chi-square tests' factors (learning.hpp); a fresh one is all zeros.
+struct LearningSums {
+  // Per learning batch and estimated parameter: sums of dz, dz z and dz^2
+  // (learning.hpp MatchedBatch).
+  std::array<ParamRow, kMaxLearnBatches> h = zero_batch_rows(), hz = zero_batch_rows(), hh = zero_batch_rows();
+  // The largest step-test term of each parameter and the largest chi-square
+  // statistic of the replay (last three quarters, full windows).
+  ParamRow step_max = ParamRow::Zero();
+  double chi_max = 0.0;
 };
 
 // Mutable state of the monitor.
@@ -234,19 +269,25 @@ struct MonitorData : FilterWindow {
   // those innovations, free of the filter's settling from its prior.
   std::array<double, kMaxLearn> learn_t{};
   std::array<Eigen::Vector3d, kMaxLearn> learn_theta{}, learn_tension{};
+  // The configuration map (config_map.hpp): each learnt sample's sign of the
+  // joint speeds and its residual at the filter's estimate as learning ends
+  // (rad). Samples are learnt from the start; the review's statistics take
+  // those from learn_first on (the last three quarters).
+  std::array<Eigen::Vector3d, kMaxLearn> learn_direction{};
+  std::array<double, kMaxLearn> learn_r{};
+  int learn_first = 0;
+  bool review_map = false;  // the review's replay takes the map off its samples
+  bool map_on = false;      // after learning: samples are tested less the map
+  int map_cursor = 0;       // where the next look-up starts (config_map.hpp)
+  int map_matched = 0;      // learnt samples (last three quarters) another pass matches
+  long unmapped = 0;        // samples after learning with no learnt configuration (not tested)
   FilterWindow review;
   int review_stage = 0;  // 0: none; 1: residuals at the learnt estimate; 2: the lagged replay
   int review_next = 0;   // next learnt sample the review takes
   int review_kept = 0;   // samples with an innovation so far in this stage
   double review_median = 0.0;  // median of the stage-1 residuals (stated units)
-  // Per learning batch and estimated parameter: sums of dz, dz z and dz^2
-  // (learning.hpp MatchedBatch), for the step test's factors.
-  std::array<ParamRow, kMaxLearnBatches> learn_h{}, learn_hz{}, learn_hh{};
+  LearningSums sums;         // what the review's replay sums (reset as one when it starts)
   LearnedScale learned;      // what was learnt (defaults: nothing)
-  // The largest step-test term of each parameter and the largest chi-square
-  // statistic of the review's replay (last three quarters, full windows).
-  ParamRow learn_step_max = ParamRow::Zero();
-  double learn_chi_max = 0.0;
   double bias = 0.0;         // bias of the innovations (z units), taken off before the tests
   double t_last_accepted = 0.0;
   double chi_threshold = 0.0;  // thresholds in force (the model's, widened after learning)

@@ -23,6 +23,10 @@ struct CircleStream {
   double rate_hz = 1000.0;
   int bits = 17;
   double noise_rad = 0.0;
+  // A reading error periodic in the motor angle (gear ratio 10), a function
+  // of the configuration: encoder i reads transmission_rad (sin(10 theta_i
+  // + i) + 0.5 sin(20 theta_i)) more.
+  double transmission_rad = 0.0;
   Rng rng{1};
 
   // End-effector position at time t.
@@ -51,6 +55,7 @@ struct CircleStream {
     for (int i = 0; i < 3; ++i) {
       double a = q.theta_a[i] - actual.dth_(i);
       if (noise_rad > 0.0) a += noise_rad * rng.normal();
+      a += transmission_rad * (std::sin(10.0 * q.theta_a[i] + i) + 0.5 * std::sin(20.0 * q.theta_a[i]));
       m[i] = quantise(a);
     }
     return m;
