@@ -76,6 +76,7 @@ struct Story {
   scenario::RunOutcome outcome;
   std::vector<std::vector<render::RunView>> parts;
   render::Cards cards;
+  std::vector<render::RunView> sampling;  // the sampling alone (--simulation-only), empty when none
 };
 
 // A caption on one line ("1/3 nominal model test path").
@@ -169,8 +170,10 @@ std::unique_ptr<Story> run_story(const std::string& file) {
   const int n = (before ? 1 : 0) + (o.sim.log.rows.empty() ? 0 : 1) + (after ? 1 : 0);
   int k = 0;
   if (before) story->parts.push_back(view(fmt::format("{}/{} nominal model\ntest path", ++k, n), o.before->path_log));
-  if (!o.sim.log.rows.empty())
+  if (!o.sim.log.rows.empty()) {
     story->parts.push_back(view(fmt::format("{}/{} sampling for\nthe calibration", ++k, n), o.sim.log));
+    story->sampling = view("sampling for\nthe calibration", o.sim.log);
+  }
   if (after) story->parts.push_back(view(fmt::format("{}/{} calibrated model\ntest path", ++k, n), o.after->path_log));
   if (story->parts.empty()) throw InputError(fmt::format("{}: the run has no motion to show", file));
   story->cards.opening = opening_card(*story, file);
@@ -268,7 +271,8 @@ void run_render(const RenderCliOptions& opt, bool fps_given, bool speed_given) {
   const std::vector<sim::Scenario> scenarios = load_scenarios(opt, o, files);
   check_outputs(opt, pngs, files);
 
-  const bool story = opt.beside.empty() && !opt.simulation_only && is_run_scenario(opt.scenario);
+  const bool run_file = opt.beside.empty() && is_run_scenario(opt.scenario);
+  const bool story = run_file && !opt.simulation_only;
   std::unique_ptr<Story> ran;
   std::vector<sim::SimulationResult> results;
   std::vector<std::vector<render::RunView>> parts;
@@ -278,6 +282,10 @@ void run_render(const RenderCliOptions& opt, bool fps_given, bool speed_given) {
     ran = run_story(opt.scenario);
     parts = ran->parts;
     cards = ran->cards;
+  } else if (run_file) {  // --simulation-only: the story's sampling alone, from the same run (the one loop)
+    ran = run_story(opt.scenario);
+    if (ran->sampling.empty()) throw InputError(fmt::format("{}: the run samples nothing to show", opt.scenario));
+    parts = {ran->sampling};
   } else {
     parts = simulation_parts(scenarios, files, results);
   }
@@ -308,7 +316,7 @@ void add_render(CLI::App& app) {
   cmd->add_option("--frame-png", opt->frame_png, "Save frame N (0-based) as a PNG: N:FILE (repeatable)");
   cmd->add_option("--beside", opt->beside, "A second scenario shown side by side (e.g. the calibrated controller)");
   cmd->add_flag("--simulation-only", opt->simulation_only,
-                "For a gpm run scenario: only its simulation (the sampling), not the story of the run");
+                "For a gpm run scenario: only its sampling (as the story shows it), not the story of the run");
   cmd->callback([opt, fps, speed] {
     opt->scenario = resolve_scenario(opt->scenario);  // a file, or a library name (gpm render main)
     if (!opt->beside.empty()) opt->beside = resolve_scenario(opt->beside);
