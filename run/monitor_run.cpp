@@ -170,12 +170,13 @@ void close_monitor(MonitorOutcome& out, mon::MonitorData& md, double end_s) {
   out.simulated_s = end_s;
   out.learning_end_s = md.learning ? out.simulated_s : md.learning_end_s;
   out.learned = md.learned;
-  out.learning_start_s = md.t_start;
+  out.learning_start_s = md.learning_start_s;
   out.chi_threshold = md.chi_threshold;
   out.step_threshold = md.glr_threshold;
   out.cycles = md.cycles;
   out.accepted = md.accepted;
   out.unmapped = md.unmapped;
+  out.relearnings = md.relearnings;
 }
 
 // Each alarm detects the latest event begun before it (within the window);
@@ -562,7 +563,8 @@ nlohmann::json learning_summary(const MonitorOutcome& o) {
           {"step_threshold", o.step_threshold},
           {"map", l.map},
           {"map_matched_samples", l.map_matched},
-          {"unmapped_samples", o.unmapped}};
+          {"unmapped_samples", o.unmapped},
+          {"relearnings", o.relearnings}};
 }
 
 std::string learning_text(const MonitorOutcome& o) {
@@ -572,10 +574,10 @@ std::string learning_text(const MonitorOutcome& o) {
       "learning phase {:.2f} s (no alarm before {:.2f} s), {} samples: innovation scale {:.2f} (MAD; {:.2f} used, "
       "floor {:.2f}), bias {:+.2f}; step test divided by up to {:.1f} (threshold {:.1f}), chi2 threshold "
       "{:.1f} (stated {:.1f}); configuration map {} ({} learnt samples matched by another pass, {} later samples "
-      "off it, not tested)",
+      "off it, not tested; learnt again {} times where the job left it)",
       o.learning_end_s - o.learning_start_s, o.learning_end_s, l.samples, l.mad_scale, l.scale,
       o.model.settings.scale_floor, l.median, l.step_factor, o.step_threshold, o.chi_threshold, o.model.threshold,
-      l.map ? "on" : "off", l.map_matched, o.unmapped);
+      l.map ? "on" : "off", l.map_matched, o.unmapped, o.relearnings);
 }
 
 void add_monitor_section(report::ReportDocument& doc, const MonitorOutcome& o, int level, const std::string& figure) {

@@ -73,6 +73,7 @@ struct MonitorOutcome {
   double simulated_s = 0.0, wall_s = 0.0;
   long cycles = 0;
   long unmapped = 0;           // samples after learning off the configuration map (not tested)
+  int relearnings = 0;         // learning phases begun again because the job left the map
   long accepted = 0;           // samples the monitor used (independence gate, calib/monitor/README.md)
   bool truth_known = true;     // false through hardware: no detections, no final errors
   std::string hardware;        // the backend monitored through (empty: the in-process twin)

@@ -495,7 +495,7 @@ std::optional<Eigen::Vector3d> tension_signs(const MonitorModel& m, MonitorData&
 double learn_and_debias(const MonitorModel& m, MonitorData& d, double t_s, double z, const Eigen::Vector3d& theta,
                         const Eigen::Vector3d& tension, const Eigen::Vector3d& direction) {
   if (d.learning && d.review_stage == 0 && d.learn_count < kMaxLearn) {
-    if (t_s - d.t_start < 0.25 * m.settings.learning_s) d.learn_first = d.learn_count + 1;
+    if (t_s - d.learning_start_s < 0.25 * m.settings.learning_s) d.learn_first = d.learn_count + 1;
     const auto j = static_cast<size_t>(d.learn_count++);
     d.learn_t[j] = t_s;
     d.learn_theta[j] = theta;
@@ -544,6 +544,31 @@ void raise_alarm(const MonitorModel& m, MonitorData& d, double t_s) {
   d.pending = std::max(m.settings.explain_samples, 1);
 }
 
+// The job has left the learnt configurations (a window of consecutive
+// samples off the map): a pending alarm is explained with what the window
+// holds, the window's samples go to the filter, and learning starts again at
+// t_s from the filter as it stands, with the stated reading model and tests
+// until its review ends (no alarm meanwhile).
+void start_relearning(const MonitorModel& m, MonitorData& d, double t_s) {
+  if (d.pending > 0) explain_pending(m, d, t_s);
+  monitor_flush(m, d);
+  d.learning = true;
+  d.learning_start_s = t_s;
+  d.learn_count = 0;
+  d.learn_first = 0;
+  d.map_on = false;
+  d.map_matched = 0;
+  d.map_cursor = 0;
+  d.review_map = false;
+  d.noise_scale = 1.0;
+  d.bias = 0.0;
+  d.step_factor = ParamRow::Ones();
+  d.chi_threshold = m.threshold;
+  d.glr_threshold = m.glr_threshold;
+  d.unmapped_run = 0;
+  ++d.relearnings;
+}
+
 // Appends a tested sample to the window.
 void store_sample(MonitorData& d, double t_s, double z_tested, const ParamRow& dz, const Eigen::Vector3d& theta,
                   const Eigen::Vector3d& tension_sign, double r_map) {
@@ -558,6 +583,19 @@ void store_sample(MonitorData& d, double t_s, double z_tested, const ParamRow& d
   ++d.count;
 }
 
+// The map's key: the signs that switch the reading error under the reading
+// model: each joint's speed, each passive link's force (0 without a
+// clearance) and each mesh flank of a joint with backlash (without backlash
+// the flank changes nothing: a drive whose torque crosses zero stays on the
+// learnt map).
+Eigen::Vector3d map_key(const MonitorModel& m, const Eigen::Vector3d& omega, const Eigen::Vector3d& tension_sign,
+                        const LinkReading& l) {
+  Eigen::Vector3d key = omega.cwiseSign() + 3.0 * tension_sign;
+  for (int i = 0; i < 3; ++i)
+    if (m.settings.reading.backlash_rad[static_cast<size_t>(i)] > 0.0) key[i] += 9.0 * l.flank[i];
+  return key;
+}
+
 // Counts a servo cycle at t_s; the first starts the clock.
 void count_cycle(MonitorData& d, double t_s) {
   ++d.cycles;
@@ -565,6 +603,7 @@ void count_cycle(MonitorData& d, double t_s) {
   if (d.started) return;
   d.started = true;
   d.t_start = t_s;
+  d.learning_start_s = t_s;
   if (!d.learning) d.learning_end_s = t_s;
 }
 
@@ -603,13 +642,14 @@ StepResult step_live(const MonitorModel& m, MonitorData& d, double t_s, const Ei
   }
   const std::optional<Eigen::Vector3d> tension_sign = tension_signs(m, d, l);
   if (!tension_sign) return out;
-  // The map's key: the signs of each joint's speed, passive link force and mesh flank.
-  const Eigen::Vector3d direction = omega.cwiseSign() + 3.0 * *tension_sign + 9.0 * l.flank;
+  const Eigen::Vector3d direction = map_key(m, omega, *tension_sign, l);
   double r_map = 0.0;
   if (d.map_on && !map_at(m, d, l.theta, direction, 0.0, -1.0, r_map)) {
     ++d.unmapped;
+    if (++d.unmapped_run >= W) start_relearning(m, d, t_s);
     return out;
   }
+  d.unmapped_run = 0;
   // Innovation against the filter (which has seen no sample of the window) predicted to t_s.
   double z = 0.0;
   ParamRow dz;
@@ -623,7 +663,7 @@ StepResult step_live(const MonitorModel& m, MonitorData& d, double t_s, const Ei
   ++d.accepted;
   store_sample(d, t_s, learn_and_debias(m, d, t_s, z, l.theta, *tension_sign, direction), dz, l.theta, *tension_sign,
                r_map);
-  if (d.learning && d.review_stage == 0 && (t_s - d.t_start >= m.settings.learning_s || d.learn_count >= kMaxLearn))
+  if (d.learning && d.review_stage == 0 && (t_s - d.learning_start_s >= m.settings.learning_s || d.learn_count >= kMaxLearn))
     begin_review(d);
   const bool full = d.count == W && d.pending < 0;
   d.statistic = full ? window_statistic(d) : 0.0;

@@ -128,9 +128,10 @@ struct MonitorSettings {
   // another pass's sample within the radius (a job that does not repeat
   // within the learning phase), the map is not used. With the map the
   // learnt scale is at least sqrt(2) scale_floor (a tested residual is the
-  // difference of two readings). 0: no map (the default: docs/MONITORING.md
-  // gives what it does on populations, with 3e-3 rad).
-  double map_radius_rad = 0.0;
+  // difference of two readings). When `window` consecutive samples after
+  // learning find no learnt configuration (the job changed), the monitor
+  // learns again from there (MonitorData::relearnings). 0: no map.
+  double map_radius_rad = 3e-3;
   double map_pass_gap_s = 0.05;
 
   // An array of NaN (the "use the default" marker of prior_sigma).
@@ -259,6 +260,7 @@ struct MonitorData : FilterWindow {
   bool started = false;      // a cycle has been seen (t_start is set)
   double t_start = 0.0;      // time of the first cycle
   bool learning = false;     // still learning: no alarm
+  double learning_start_s = 0.0;  // when the (latest) learning phase began
   double learning_end_s = 0.0;  // when learning ended (t_start without learning)
   int learn_count = 0;
   std::array<double, kMaxLearn> learn_z{}, learn_scratch{};
@@ -281,6 +283,8 @@ struct MonitorData : FilterWindow {
   int map_cursor = 0;       // where the next look-up starts (config_map.hpp)
   int map_matched = 0;      // learnt samples (last three quarters) another pass matches
   long unmapped = 0;        // samples after learning with no learnt configuration (not tested)
+  int unmapped_run = 0;     // consecutive such samples (learning starts again at `window`)
+  int relearnings = 0;      // learning phases started again because the job left the map
   FilterWindow review;
   int review_stage = 0;  // 0: none; 1: residuals at the learnt estimate; 2: the lagged replay
   int review_next = 0;   // next learnt sample the review takes

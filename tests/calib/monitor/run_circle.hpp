@@ -11,6 +11,16 @@
 
 namespace gpm::calib::monitor::testing {
 
+// Settings of the monitor without its configuration map, for the tests of
+// the change tests, the filter and the learning phase on their own: the
+// generated circle repeats exactly, its quantisation too, which the map would
+// learn away (test_config_map.cpp tests the map).
+inline MonitorSettings settings_without_map() {
+  MonitorSettings s;
+  s.map_radius_rad = 0.0;
+  return s;
+}
+
 struct CircleRun {
   std::vector<Alarm> alarms;                   // explained alarms
   std::vector<double> alarm_times;             // crossings

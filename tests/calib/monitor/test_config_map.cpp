@@ -3,7 +3,8 @@
 // readings (circle_stream.hpp): a reading error that is a function of the
 // configuration, several times the stated noise, is not alarmed and a 1e-4
 // rad slip is still found within 1 s and named; a job that does not repeat
-// within the learning phase goes without the map.
+// within the learning phase goes without the map; a job that leaves the
+// learnt configurations is learnt again.
 #include "calib/monitor/config_map.hpp"
 
 #include <memory>
@@ -159,6 +160,44 @@ TEST(MonitorConfigMap, AJobThatDoesNotRepeatWhileLearningGoesWithoutTheMap) {
   EXPECT_DOUBLE_EQ(d->learned.chi_factor, d0->learned.chi_factor);
   EXPECT_TRUE(run.alarm_times.empty());
   EXPECT_TRUE(run0.alarm_times.empty());
+}
+
+// The job changes after learning: 14 s on the circle of radius 60 mm, then a
+// concentric circle of radius 30 mm, whose configurations the map never
+// learnt. After a window of samples off the map the monitor learns again
+// (once, from about 14 + 1.25 s, at most 10 s), with the map on again and no
+// alarm; a 1e-4 rad slip of encoder 2 at 30 s is then found within 1 s and
+// named dth2 (without the new learning phase no sample would be tested).
+TEST(MonitorConfigMap, AJobThatLeavesTheMapIsLearntAgain) {
+  testing::CircleStream cs;
+  cs.transmission_rad = 1e-4;
+  MonitorSettings s;
+  s.map_radius_rad = kRadius;
+  const Geometry base = s.geometry;
+  const MonitorModel m = make_monitor_model(s);
+  auto d = std::make_unique<MonitorData>(make_monitor_data(m));
+  std::vector<double> alarm_times;
+  std::vector<Alarm> alarms;
+  const long n = static_cast<long>(32.0 * cs.rate_hz);
+  for (long c = 0; c < n; ++c) {
+    const double t = static_cast<double>(c) / cs.rate_hz;
+    cs.radius_mm = t < 14.0 ? 60.0 : 30.0;
+    Geometry actual = base;
+    if (t >= 30.0) actual[kDth2] += 1e-4;
+    const StepResult r = monitor_step(m, *d, t, cs.readings(actual, t));
+    if (r.alarm) alarm_times.push_back(t);
+    if (r.explained) alarms.push_back(last_alarm(*d));
+  }
+  EXPECT_EQ(d->relearnings, 1);
+  EXPECT_GT(d->learning_start_s, 14.0);
+  EXPECT_LT(d->learning_start_s, 16.0);
+  EXPECT_LE(d->learning_end_s - d->learning_start_s, 10.0);
+  EXPECT_TRUE(d->map_on);
+  ASSERT_FALSE(alarm_times.empty());
+  EXPECT_GE(alarm_times.front(), 30.0) << "false alarm";
+  EXPECT_LT(alarm_times.front(), 31.0);
+  ASSERT_FALSE(alarms.empty());
+  EXPECT_EQ(alarms.front().param, kDth2) << describe_alarm(alarms.front());
 }
 
 }  // namespace

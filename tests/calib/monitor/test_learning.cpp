@@ -143,7 +143,7 @@ TEST(MonitorLearning, LearnsTheScaleOfANoisierRobotAndRaisesNoAlarm) {
   cs.noise_rad = 4e-5;
   const Geometry base = MonitorSettings{}.geometry;
   const auto healthy = [&](double) { return base; };
-  MonitorSettings s;
+  MonitorSettings s = testing::settings_without_map();
   for (int k = 0; k < kNumParams; ++k) s.prior_sigma[static_cast<size_t>(k)] = is_offset(k) ? 1e-9 : 1e-8;
   s.thermal_growth_mm = 0.0;
   s.offset_drift_rad = 0.0;
@@ -176,7 +176,7 @@ TEST(MonitorLearning, LearnsTheScaleOfANoisierRobotAndRaisesNoAlarm) {
 // residual carries the reading error one to one); no alarm in 60 s and the
 // learning phase, review included, ends within 10 s.
 TEST(MonitorLearning, TheReviewLearnsTheScaleTheLiveInnovationsShow) {
-  MonitorSettings s;
+  MonitorSettings s = testing::settings_without_map();
   for (int k = 0; k < kNumParams; ++k) s.prior_sigma[static_cast<size_t>(k)] = is_offset(k) ? 2e-4 : 0.02;
   Geometry actual = s.geometry;
   actual[kLa1] += 0.02;
@@ -230,7 +230,7 @@ TEST(MonitorLearning, NoAlarmDuringLearning) {
 // After learning on the stated 17-bit robot the scale stays near 1 and a
 // 1e-4 rad slip of each encoder is found within 1 s and named.
 TEST(MonitorLearning, SlipAfterLearningIsFoundWithinOneSecondAndNamed) {
-  MonitorSettings s;
+  MonitorSettings s = testing::settings_without_map();
   s.learning_s = 8.0;
   const MonitorModel m = make_monitor_model(s);
   for (int joint = 0; joint < 3; ++joint) {

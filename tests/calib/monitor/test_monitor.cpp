@@ -86,7 +86,7 @@ TEST(Monitor, OffsetJumpIsDetectedAndExplainedByThatOffset) {
 // from 5 s), on each joint: always detected within 1 s and explained by that
 // joint's offset.
 TEST(Monitor, OffsetJumpIsDetectedAnywhereOnTheCircle) {
-  const MonitorModel m = make_monitor_model(MonitorSettings{});
+  const MonitorModel m = make_monitor_model(testing::settings_without_map());
   const Geometry base = m.settings.geometry;
   double worst = 0.0;
   for (int joint = 0; joint < 3; ++joint)
@@ -111,7 +111,7 @@ TEST(Monitor, OffsetJumpIsDetectedAnywhereOnTheCircle) {
 // (b) No false alarm in 5 minutes of motion without events; the accepted
 // innovations behave as independent draws of variance 1 in the stated units.
 TEST(Monitor, NoFalseAlarmInFiveMinutesAndInnovationsAreWhite) {
-  const MonitorModel m = make_monitor_model(MonitorSettings{});
+  const MonitorModel m = make_monitor_model(testing::settings_without_map());
   MonitorData d = make_monitor_data(m);
   const Geometry g = m.settings.geometry;
   const auto run = run_circle(m, d, 300.0, [&](double) { return g; });
@@ -137,7 +137,7 @@ TEST(Monitor, NoFalseAlarmInFiveMinutesAndInnovationsAreWhite) {
 // Gaussian reading noise on top of the quantisation enters sigma; the
 // innovations stay normalised, no false alarm, and a jump is still named.
 TEST(Monitor, AdditiveReadingNoiseIsPartOfSigma) {
-  MonitorSettings s;
+  MonitorSettings s = testing::settings_without_map();
   s.reading.noise_rad = 2e-5;
   const MonitorModel m = make_monitor_model(s);
   MonitorData d = make_monitor_data(m);
@@ -201,7 +201,7 @@ TEST(Monitor, ThermalGrowthIsTrackedWithinThreeMicrometresWithoutAlarm) {
 // (d) Without drift the filter is the recursive form of least squares: its
 // 1-sigma equals the Cramer-Rao bound of the samples it absorbed.
 TEST(Monitor, FilterSigmaAgreesWithTheCramerRaoBound) {
-  MonitorSettings s;
+  MonitorSettings s = testing::settings_without_map();
   s.estimate = parse_param_list("la1,la2,la3,dth1,dth2,dth3", "test");
   for (int i = 0; i < kNumParams; ++i) s.prior_sigma[static_cast<size_t>(i)] = is_offset(i) ? 1e-3 : 0.1;
   s.thermal_tau_s = std::numeric_limits<double>::infinity();
