@@ -82,7 +82,10 @@ void DriveBackend::read_axes(double time_s, HardwareState& s) {
     }
     s.read_time_s[i] = map_.latch ? time_s : time_s + 0.5 * (asked + clock_.now()) - cycle_start;
     auto at = [&](int addr) { return r[static_cast<size_t>(addr - lo)]; };
-    if (time_here) check_step(r, lo), time_due = false;
+    if (time_here) {
+      check_step(r, lo);
+      time_due = false;
+    }
     if (map_.latch && at(a.latch_id) != id) {
       throw HardwareError(fmt::format("{}: drive {} (unit {}) holds latch {} where latch {} was just "
                                       "triggered: its reading is not of this cycle's instant",
