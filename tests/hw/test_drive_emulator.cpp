@@ -7,7 +7,8 @@
 // N client cycles advance the plant and the latch's time by exactly N periods,
 // the readings' times are the drives', a client at another rate or drives on
 // their own clock are refused before anything is enabled, and the readings are
-// those of the twin backend in process given the same commands.
+// those of the twin backend in process given the same commands; a session on
+// the fly through it takes the twin backend's time and samples.
 #include <cerrno>
 #include <functional>
 
@@ -31,8 +32,12 @@
 #include "hw/hw_errors.hpp"
 #include "hw/backends/modbus_transport.hpp"
 #include "hw/backends/twin_backend.hpp"
+#include "hw/procedures/trajectory_session.hpp"
 #include "models/errors.hpp"
 #include "models/kinematics.hpp"
+#include "models/samples.hpp"
+#include "sim/waypoint_path.hpp"
+#include "hw_test_util.hpp"
 
 namespace gpm::hw {
 namespace {
@@ -469,6 +474,54 @@ TEST(DriveEmulator, SteppedReadingsAreTheTwinBackendsForTheSameCommands) {
   EXPECT_GT(moved / count, 50.0);  // the robot moved (joint 2 against the two others: a servo fight)
   EXPECT_LE(worst, 0.5 * count + 1e-12);
   EXPECT_LE(worst_torque, 0.005 + 1e-9);
+}
+
+// A path sampled on the fly (hw/procedures/trajectory_session.cpp) through
+// Modbus in lock step and through the twin backend in process, same hardware
+// limits and twin: the same session time (the plan's, not the wall's), the
+// same sample times, each sample's read times its cycle's, and readings
+// within a count (the setpoints go to the drives in 17-bit counts).
+TEST(DriveEmulator, ASessionOnTheFlyInLockStepTakesTheTwinBackendsTimeAndSamples) {
+  test::TempDir dir("emu_lockstep_session");
+  const std::string head = "rate_hz: 250\ncontroller: " + kSrc + "/models/gpm2002.yaml\n";
+  test::write_text(dir / "twin.yaml", "backend: twin\n" + head + "twin: {scenario: " + kSrc +
+                                          "/tests/fixtures/twin_disc.yaml}\n" + test::kSafetyYaml);
+  LockStep ls;
+  test::write_text(dir / "map.yaml", register_map_to_yaml(ls.map));
+  test::write_text(dir / "modbus.yaml", "backend: modbus\n" + head + "modbus: {register_map: " +
+                                            (dir / "map.yaml").string() + ", timing: stepped}\n" +
+                                            test::kSafetyYaml);
+  TrajectoryPlan plan;
+  sim::WaypointLimits lim;
+  lim.max_speed_mm_s = 40;
+  lim.max_accel_mm_s2 = 200;
+  lim.max_normal_mm_s2 = 200;
+  const Robot robot;
+  plan.path = sim::excitation_path(robot.home, {{236.5, 260}, {206.5, 240}, {226.5, 230}}, lim);
+  plan.settle = {0.01, 0.0, 1.0};
+  SessionResult r[2];
+  for (const char* name : {"twin", "modbus"}) {
+    auto hw = make_hardware(load_hardware_config((dir / (std::string(name) + ".yaml")).string()), ls.frozen);
+    SampleLog log((dir / (std::string(name) + ".csv")).string(), false, SampleColumns::kOnTheFly);
+    r[name[0] == 'm'] = run_trajectory_session(*hw, plan, log, nullptr);
+  }
+  const Samples a = read_samples_csv((dir / "twin.csv").string());
+  const Samples b = read_samples_csv((dir / "modbus.csv").string());
+  ASSERT_EQ(a.size(), b.size());
+  EXPECT_EQ(r[1].taken, trajectory_sample_count(plan, kPeriod));
+  EXPECT_DOUBLE_EQ(r[1].duration_s, r[0].duration_s);
+  const double count = 2 * M_PI / 131072;
+  double worst = 0.0;
+  for (std::size_t j = 0; j < a.size(); ++j) {
+    EXPECT_DOUBLE_EQ(b.t[j], a.t[j]) << j;
+    EXPECT_EQ(b.t_read[j], Eigen::Vector3d::Constant(b.t[j])) << j;  // the latch of the sample's cycle
+    for (int i = 0; i < 3; ++i) worst = std::max(worst, std::abs(wrap_pi(b.theta_m[j][i] - a.theta_m[j][i])));
+  }
+  std::printf("lock step session: %zu samples, %.3f s of robot time each, readings %.3f counts apart at most\n",
+              a.size(), r[1].duration_s, worst / count);
+  EXPECT_LE(worst, count + 1e-12);
+  EXPECT_EQ(ls.frozen.now(), 0.0);
+  EXPECT_EQ(ls.emu->error(), "");
 }
 
 }  // namespace
