@@ -151,6 +151,24 @@ void parse_joint_modes(const YAML::Node& m, const std::string& path, std::array<
   }
 }
 
+// modbus.timing (node t) into c: real_time or stepped, the latter only with a
+// latch that reports its time.
+void parse_timing(const YAML::Node& t, const std::string& path, HardwareConfig& c) {
+  const std::string v = yaml_string(t, path, "modbus.timing");
+  if (v == "real_time") return;
+  if (v != "stepped")
+    throw InputError(yaml_where(path, t, "modbus.timing") +
+                     fmt::format("'{}' is not a timing (valid: real_time: drives on their own clock; stepped: "
+                                 "the drives advance one period per cycle, as gpm-drive-emulator --stepped)",
+                                 v));
+  const std::optional<LatchRegister>& l = c.register_map->latch;
+  if (!l || l->time_address < 0)
+    throw InputError(yaml_where(path, t, "modbus.timing") +
+                     "stepped needs a register map whose latch reports its time (latch: {unit_id, register, "
+                     "time}), by which each cycle checks that the drives advanced one period");
+  c.timing = DriveTiming::kStepped;
+}
+
 // The backend's own section into c: twin {scenario}, modbus {register_map}
 // (whose response_timeout must fit within safety.comms_timeout) or plugin
 // {library, config}.
@@ -168,9 +186,10 @@ void parse_backend_section(const YAML::Node& root, const std::string& path, cons
   }
   const YAML::Node m = root["modbus"];
   if (!m) throw InputError(path + ": missing key 'modbus' (backend modbus needs modbus: {register_map: FILE})");
-  yaml_check_keys(m, path, "modbus", {"register_map"});
+  yaml_check_keys(m, path, "modbus", {"register_map", "timing"});
   if (!m["register_map"]) throw InputError(yaml_where(path, m, "modbus") + "missing key 'register_map'");
   c.register_map = load_register_map(resolve(dir, yaml_string(m["register_map"], path, "modbus.register_map")));
+  if (const YAML::Node t = m["timing"]) parse_timing(t, path, c);
   if (c.register_map->response_timeout_s > c.safety.comms_timeout_s) {
     throw InputError(yaml_where(path, root["safety"], "safety.comms_timeout") +
                      fmt::format("{} s is shorter than the register map's response_timeout {} s",
@@ -219,7 +238,8 @@ std::unique_ptr<SafetySupervisor> make_hardware(const HardwareConfig& c, Clock& 
   } else {
     const RegisterMap& m = *c.register_map;
     backend = std::make_unique<DriveBackend>(
-        m, std::make_unique<ModbusTransport>(m.host, m.port, m.response_timeout_s, clock), period, clock);
+        m, std::make_unique<ModbusTransport>(m.host, m.port, m.response_timeout_s, clock), period, clock,
+        c.timing);
   }
   return std::make_unique<SafetySupervisor>(std::move(backend), c.controller, c.safety, clock);
 }

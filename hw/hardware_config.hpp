@@ -11,7 +11,9 @@
 //   joint_modes: [position, position, position]   # optional
 //   dither_mm: 0.25                   # optional: sampling's dither figure (0: hold still)
 //   twin: {scenario: ../scenarios/simulate_disc.yaml}   # backend twin
-//   modbus: {register_map: drives.yaml}                 # backend modbus
+//   modbus: {register_map: drives.yaml, timing: real_time}   # backend modbus; timing (optional):
+//                                     # real_time (drives on their own clock, the default) or stepped
+//                                     # (the drives advance one period per cycle: gpm-drive-emulator --stepped)
 //   plugin: {library: libmycard.so, config: card.yaml}  # backend plugin: a shared library of
 //                                     # the C ABI hw/plugin/gpm_backend_plugin.h; config (optional)
 //                                     # a file the plugin reads or a map handed to it as YAML text
@@ -23,6 +25,7 @@
 #include <string>
 
 #include "hw/hardware_types.hpp"
+#include "hw/backends/drive_backend.hpp"
 #include "hw/backends/plugin_backend.hpp"
 #include "hw/backends/register_map.hpp"
 #include "hw/safety_limits.hpp"
@@ -44,6 +47,7 @@ struct HardwareConfig {
   SafetyLimits safety;
   std::optional<TwinBackendConfig> twin;   // backend twin
   std::optional<RegisterMap> register_map; // backend modbus
+  DriveTiming timing = DriveTiming::kRealTime;  // backend modbus: modbus.timing
   std::optional<PluginBackendConfig> plugin; // backend plugin
 };
 

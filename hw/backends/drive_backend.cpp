@@ -1,10 +1,12 @@
 #include "hw/backends/drive_backend.hpp"
 
 #include <algorithm>
+#include <cmath>
 
 #include <fmt/format.h>
 
 #include "hw/hw_errors.hpp"
+#include "models/errors.hpp"
 #include "models/kinematics.hpp"
 
 namespace gpm::hw {
@@ -17,8 +19,29 @@ constexpr double kEnableTimeoutS = 1.0;  // power stages must report enabled wit
 }  // namespace
 
 DriveBackend::DriveBackend(const RegisterMap& map, std::unique_ptr<RegisterTransport> transport,
-                           double period_s, Clock& clock)
-    : map_(map), transport_(std::move(transport)), period_s_(period_s), clock_(clock) {}
+                           double period_s, Clock& clock, DriveTiming timing)
+    : map_(map), transport_(std::move(transport)), period_s_(period_s), clock_(clock), timing_(timing) {
+  if (timing_ == DriveTiming::kStepped && !(map_.latch && map_.latch->time_address >= 0))
+    throw InputError(fmt::format("{}: stepped timing needs the register map's latch with its time register "
+                                 "(latch: {{unit_id, register, time}}): each cycle checks that the drives "
+                                 "advanced by one period",
+                                 transport_->describe()));
+}
+
+void DriveBackend::check_step(const std::vector<std::uint16_t>& r, int lo) {
+  const int t = map_.latch->time_address;
+  const auto us = static_cast<std::uint32_t>(join32(&r[static_cast<size_t>(t - lo)], map_.word_order));
+  const long long before = latch_us_;
+  latch_us_ = us;
+  if (before < 0) return;
+  const auto step = static_cast<long long>(static_cast<std::uint32_t>(us - static_cast<std::uint32_t>(before)));
+  if (std::abs(static_cast<double>(step) - period_s_ * 1e6) <= 1.0) return;
+  throw HardwareError(fmt::format("{}: the drives' latch time advanced by {:.3f} ms in one cycle where stepped "
+                                  "timing steps them by one period ({:.3f} ms): they are not stepped by this "
+                                  "client at its rate (gpm-drive-emulator needs --stepped --command-period {:g}; "
+                                  "drives on their own clock need modbus.timing: real_time)",
+                                  describe(), static_cast<double>(step) * 1e-3, period_s_ * 1e3, period_s_));
+}
 
 DriveBackend::~DriveBackend() { disable_all(); }
 
@@ -35,6 +58,8 @@ void DriveBackend::read_axes(double time_s, HardwareState& s) {
   // Without a latch each drive is polled in turn: its reading is of the
   // middle of its request, in the cycle's time base.
   const double cycle_start = clock_.now();
+  // Stepped: the latch's time is read with the first axis on the latch's unit (or alone).
+  bool time_due = timing_ == DriveTiming::kStepped;
   for (int i = 0; i < 3; ++i) {
     const double asked = clock_.now();
     const AxisRegisters& a = map_.axes[i];
@@ -42,6 +67,8 @@ void DriveBackend::read_axes(double time_s, HardwareState& s) {
     // One request for the span of everything read from this axis.
     std::vector<int> addrs{position, position + 1, a.status_word, a.enabled.address, a.fault.address};
     if (map_.latch) addrs.push_back(a.latch_id);
+    const bool time_here = time_due && a.unit_id == map_.latch->unit_id;
+    if (time_here) addrs.insert(addrs.end(), {map_.latch->time_address, map_.latch->time_address + 1});
     if (a.actual_velocity >= 0) addrs.insert(addrs.end(), {a.actual_velocity, a.actual_velocity + 1});
     if (a.actual_torque >= 0) addrs.push_back(a.actual_torque);
     if (a.fault_code >= 0) addrs.push_back(a.fault_code);
@@ -55,6 +82,10 @@ void DriveBackend::read_axes(double time_s, HardwareState& s) {
     }
     s.read_time_s[i] = map_.latch ? time_s : time_s + 0.5 * (asked + clock_.now()) - cycle_start;
     auto at = [&](int addr) { return r[static_cast<size_t>(addr - lo)]; };
+    if (time_here) {
+      check_step(r, lo);
+      time_due = false;
+    }
     if (map_.latch && at(a.latch_id) != id) {
       throw HardwareError(fmt::format("{}: drive {} (unit {}) holds latch {} where latch {} was just "
                                       "triggered: its reading is not of this cycle's instant",
@@ -78,6 +109,11 @@ void DriveBackend::read_axes(double time_s, HardwareState& s) {
     s.torque[i] = a.actual_torque >= 0
                       ? a.sign * static_cast<std::int16_t>(at(a.actual_torque)) * a.torque_unit_nm
                       : 0.0;
+  }
+  if (time_due) {  // the latch's unit serves no axis
+    std::vector<std::uint16_t> r(2);
+    transport_->read(map_.latch->unit_id, map_.latch->time_address, 2, r.data());
+    check_step(r, map_.latch->time_address);
   }
   previous_ = s;
   have_previous_ = true;
@@ -119,7 +155,10 @@ void DriveBackend::on_configure(HardwareState& initial) {
     set_enable(i, false);
   }
   have_previous_ = false;
+  latch_us_ = -1;
   read_axes(0.0, initial);
+  // Stepped: a second cycle checks the drives' step before anything is enabled.
+  if (timing_ == DriveTiming::kStepped) read_axes(0.0, initial);
   for (int i = 0; i < 3; ++i) {
     if (initial.drive[i].fault) {
       throw HardwareError(fmt::format("{}: drive {} (unit {}) is faulted (fault code 0x{:04x}); "
@@ -137,10 +176,12 @@ void DriveBackend::on_activate(const HardwareState& current) {
     transport_->write(a.unit_id, a.position_command, 2, regs.data());
     set_enable(i, true);
   }
-  // Wait (at most 1 s on the clock) until every power stage reports enabled.
+  // Wait (at most 1 s on the clock; stepped: 1 s of the drives' cycles, each
+  // read one) until every power stage reports enabled.
+  const bool stepped = timing_ == DriveTiming::kStepped;
   const double deadline = clock_.now() + kEnableTimeoutS;
   HardwareState s = current;
-  for (;;) {
+  for (long reads = 1;; ++reads) {
     read_axes(current.time_s, s);
     bool all = true;
     for (int i = 0; i < 3; ++i) {
@@ -151,10 +192,10 @@ void DriveBackend::on_activate(const HardwareState& current) {
       all = all && s.drive[i].enabled;
     }
     if (all) break;
-    if (clock_.now() > deadline) {
+    if (stepped ? static_cast<double>(reads) * period_s_ > kEnableTimeoutS : clock_.now() > deadline) {
       throw HardwareError(fmt::format("{}: drives did not report enabled within {} s", describe(), kEnableTimeoutS));
     }
-    clock_.sleep_until(clock_.now() + 0.002);
+    if (!stepped) clock_.sleep_until(clock_.now() + 0.002);
   }
 }
 

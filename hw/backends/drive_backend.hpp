@@ -4,6 +4,9 @@
 // does not depend on the protocol. Time is the injected clock (the wall clock). With a latch in
 // the map (register_map.hpp) each read first triggers it, so the three
 // readings are of one instant although the drives are read one by one.
+// Stepped timing (the drive emulator's --stepped, a simulator in lock step):
+// the drives advance one period per latch trigger, so the procedure's time
+// is the count of its cycles, and every read checks the drives' latch time.
 #pragma once
 
 #include <memory>
@@ -15,15 +18,22 @@
 
 namespace gpm::hw {
 
+// How the drives' time advances: on their own clock (real drives; the client
+// paces its cycles on the wall clock) or one period per client cycle.
+enum class DriveTiming { kRealTime, kStepped };
+
 class DriveBackend final : public RobotHardware {
  public:
   // Drives described by map, reached through transport (owned), cycled every
   // period_s; clock times the wait for the power stages (tests inject one).
+  // Stepped timing needs a latch with its time register (else InputError).
   DriveBackend(const RegisterMap& map, std::unique_ptr<RegisterTransport> transport,
-               double period_s, Clock& clock = steady_clock());
+               double period_s, Clock& clock = steady_clock(), DriveTiming timing = DriveTiming::kRealTime);
   ~DriveBackend() override;
 
   double period_s() const override { return period_s_; }
+  // Stepped: time advances with the cycles only (the drives wait for the client).
+  bool simulated_time() const override { return timing_ == DriveTiming::kStepped; }
   std::string describe() const override { return transport_->describe(); }
 
  protected:
@@ -37,6 +47,9 @@ class DriveBackend final : public RobotHardware {
 
  private:
   void read_axes(double time_s, HardwareState& s);
+  // Stepped: throws HardwareError unless the latch's time (registers r from
+  // address lo) is one period after the one before.
+  void check_step(const std::vector<std::uint16_t>& r, int lo);
   void set_enable(int axis, bool on);
   void disable_all() noexcept;
 
@@ -47,6 +60,8 @@ class DriveBackend final : public RobotHardware {
   std::array<std::uint16_t, 3> control_{};   // last control word written per axis
   std::array<bool, 3> enable_{};             // enable bit requested per axis
   std::uint16_t latch_id_ = 0;              // id of the last latch triggered (map with a latch)
+  DriveTiming timing_;
+  long long latch_us_ = -1;                 // stepped: the drives' time at the last latch (us; -1: none yet)
   bool have_previous_ = false;
   HardwareState previous_;
 };

@@ -112,6 +112,7 @@ struct DriveEmulator::Impl {
   double start = 0.0, last_request = 0.0;  // on the emulator's clock (s)
   double next_tick = 0.0;                  // when the next plant tick is due
   double plant_t = 0.0;                    // stepped: the plant's time (s)
+  double tick_t = 0.0;                     // the plant's time at its last tick (s): the latch's time
   bool seen_request = false;
   bool serving = false;  // started (not serve_bytes): requests bring the plant up to the clock
   long writes = 0;
@@ -160,7 +161,9 @@ void DriveEmulator::prepare() {
                        a.latch_id});
     size[a.unit_id] = std::max(size[a.unit_id], hi + 1);
   }
-  if (map_.latch) size[map_.latch->unit_id] = std::max(size[map_.latch->unit_id], map_.latch->address + 1);
+  if (map_.latch)
+    size[map_.latch->unit_id] = std::max({size[map_.latch->unit_id], map_.latch->address + 1,
+                                          map_.latch->time_address + 2});
   if (options_.stepped && !map_.latch)
     throw InputError("--stepped: the register map has no latch (the plant steps at each latch trigger)");
   for (auto [unit, n] : size) s.units[unit] = modbus_mapping_new(0, 0, n, 0);
@@ -242,6 +245,7 @@ void DriveEmulator::tick(double t) {
   const bool comms_lost =
       s.seen_request &&
       clock_.now() - s.last_request > options_.comms_watchdog_s;
+  s.tick_t = t;
   HardwareCommand cmd;
   for (int i = 0; i < 3; ++i) {
     const AxisRegisters& a = map_.axes[i];
@@ -261,7 +265,10 @@ void DriveEmulator::tick(double t) {
     cmd.theta_m[i] = counts_to_theta(a, static_cast<std::int64_t>(join32(r + a.position_command, map_.word_order)) -
                                             a.sign * slip);
   }
-  if (cmd.theta_m != s.command_theta || cmd.mode != s.command_mode) {
+  // Stepped, every tick is one client cycle with its setpoint: the drive
+  // interpolates from the setpoint before (a repeated one stands still), as
+  // the twin backend's drive does at every write.
+  if (options_.stepped || cmd.theta_m != s.command_theta || cmd.mode != s.command_mode) {
     twin_.write(cmd, t);
     s.command_theta = cmd.theta_m;
     s.command_mode = cmd.mode;
@@ -378,6 +385,11 @@ void DriveEmulator::reply(int fd, const std::uint8_t* q, int length, bool latch_
       r[a.latched_position] = r[a.actual_position];
       r[a.latched_position + 1] = r[a.actual_position + 1];
       r[a.latch_id] = id;
+    }
+    if (map_.latch->time_address >= 0) {  // the drives' time of that tick, in microseconds (wrapping)
+      const auto us = static_cast<std::uint32_t>(static_cast<std::uint64_t>(std::llround(s.tick_t * 1e6)));
+      const auto t = split32(static_cast<std::int32_t>(us), map_.word_order);
+      std::copy(t.begin(), t.end(), s.regs(map_.latch->unit_id) + map_.latch->time_address);
     }
   }
 }

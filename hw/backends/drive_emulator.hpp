@@ -2,7 +2,8 @@
 // twin in real time, so the `modbus` backend's whole protocol path runs in CI.
 // With a latch in the map, a write of an id to the latch register copies
 // every axis's actual position (of the same plant tick) to its
-// latched_position and the id to its latch_id.
+// latched_position, the id to its latch_id, and the plant's time of that
+// tick (us) to the latch's time registers if the map has them.
 // Each axis behaves like a simple servo drive: the power stage comes on at a
 // rising edge of its enable bit (not while faulted), follows the position
 // command, and goes off when the enable bit clears, on a fault, or when no
@@ -62,10 +63,11 @@ struct EmulatorOptions {
   EmulatorFaults faults;
   // Stepped by the client (for a client in another process, which cannot
   // share a clock): the plant advances by command_period_s at each latch
-  // trigger (one per client read cycle) and at nothing else, so its motion
-  // depends on the client's commands per cycle, not on when either process
-  // ran. The comms watchdog, delays and stalls stay on the clock. Needs a
-  // latch in the map.
+  // trigger (one per client read cycle) and at nothing else, taking that
+  // cycle's setpoint, so its motion depends on the client's commands per
+  // cycle, not on when either process ran (a client in lock step:
+  // DriveBackend with DriveTiming::kStepped). The comms watchdog, delays and
+  // stalls stay on the clock. Needs a latch in the map.
   bool stepped = false;
   // Time of the plant, the watchdog, delays and stalls (nullptr: the wall
   // clock). Every request first brings the plant up to the clock's time, so

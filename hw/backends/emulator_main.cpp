@@ -34,7 +34,8 @@ int main(int argc, char** argv) {
   app.add_option("--command-period", opt.command_period_s, "client's command period (s, 1e-4..1), for feed-forward");
   app.add_option("--comms-watchdog", opt.comms_watchdog_s, "drive-side comms watchdog (s)");
   app.add_flag("--stepped", opt.stepped,
-               "the plant advances one command period per latch trigger (per client cycle), not in real time");
+               "the plant advances one command period per latch trigger (per client cycle), not in real time "
+               "(lock step with a hardware file's modbus.timing: stepped)");
   app.add_option("--drop-after-writes", opt.faults.drop_after_writes, "fault: drop the connection");
   app.add_option("--delay-after-writes", opt.faults.delay_after_writes, "fault: delay replies");
   app.add_option("--delay", opt.faults.delay_s, "reply delay (s)");

@@ -139,14 +139,20 @@ WordOrder parse_word_order(const YAML::Node& w_node, const std::string& file) {
   throw InputError(yaml_where(file, w_node, "word_order") + fmt::format("'{}' is not high_first or low_first", w));
 }
 
-// The section latch {unit_id, register} of node l.
+// The section latch {unit_id, register, time} of node l.
 LatchRegister parse_latch(const YAML::Node& l, const std::string& file) {
-  yaml_check_keys(l, file, "latch", {"unit_id", "register"});
+  yaml_check_keys(l, file, "latch", {"unit_id", "register", "time"});
   if (!l["unit_id"] || !l["register"])
-    throw InputError(yaml_where(file, l, "latch") + "expected {unit_id: 1..247, register: ADDRESS}");
+    throw InputError(yaml_where(file, l, "latch") +
+                     "expected {unit_id: 1..247, register: ADDRESS, time: ADDRESS (optional)}");
   LatchRegister latch;
   latch.unit_id = static_cast<int>(yaml_integer(l["unit_id"], file, "latch.unit_id", 1, 247));
   latch.address = reg(l["register"], file, "latch.register", false);
+  latch.time_address = reg(l["time"], file, "latch.time", true);
+  if (latch.time_address >= 0 && latch.time_address <= latch.address && latch.address <= latch.time_address + 1)
+    throw InputError(yaml_where(file, l["time"], "latch.time") +
+                     fmt::format("registers {} and {} (the latch time, two registers) overlap latch.register {}",
+                                 latch.time_address, latch.time_address + 1, latch.address));
   return latch;
 }
 
@@ -179,6 +185,11 @@ void check_latch(const RegisterMap& m, const YAML::Node& root, const std::string
       throw InputError(yaml_where(file, root["latch"]["register"], "latch.register") +
                        fmt::format("register {} of unit {} is already used by axes[{}]", m.latch->address,
                                    a.unit_id, i));
+    const int t = m.latch->time_address;
+    if (t >= 0 && (std::find(r.begin(), r.end(), t) != r.end() || std::find(r.begin(), r.end(), t + 1) != r.end()))
+      throw InputError(yaml_where(file, root["latch"]["time"], "latch.time") +
+                       fmt::format("registers {} and {} of unit {} (the latch time) are already used by axes[{}]",
+                                   t, t + 1, a.unit_id, i));
   }
 }
 
@@ -251,7 +262,11 @@ std::string register_map_to_yaml(const RegisterMap& m) {
     if (a.latched_position >= 0)
       out += fmt::format("    latched_position: {}\n    latch_id: {}\n", a.latched_position, a.latch_id);
   }
-  if (m.latch) out += fmt::format("latch: {{unit_id: {}, register: {}}}\n", m.latch->unit_id, m.latch->address);
+  if (m.latch) {
+    out += fmt::format("latch: {{unit_id: {}, register: {}", m.latch->unit_id, m.latch->address);
+    if (m.latch->time_address >= 0) out += fmt::format(", time: {}", m.latch->time_address);
+    out += "}\n";
+  }
   return out;
 }
 

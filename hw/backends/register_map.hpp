@@ -50,9 +50,14 @@ struct AxisRegisters {
 // latched_position and the id to its latch_id (drives whose touch-probe
 // inputs share one trigger, or the emulator). The three readings of a cycle
 // are then of one instant even though the drives are read one after another.
+// With time_address the latch also copies the drives' own time of that
+// instant, in microseconds, to two registers of its unit (unsigned 32-bit,
+// wrapping): a client stepping the drives (timing: stepped) checks with it
+// that every cycle advances them by exactly one period.
 struct LatchRegister {
   int unit_id = 1;
   int address = 0;
+  int time_address = -1;  // two registers: drive time of the last latch (us); -1: none
   bool operator==(const LatchRegister&) const = default;
 };
 

@@ -1,6 +1,8 @@
 // Tests of hw/backends/drive_backend.cpp over an in-memory RegisterTransport (the
 // drive layer does not depend on Modbus): enable bits, scaled position
-// commands, readings, faults, disable on error, readings latched at one instant.
+// commands, readings, faults, disable on error, readings latched at one
+// instant; stepped timing: the latch's time checked every cycle, the enable
+// wait counted in the drives' cycles.
 #include <functional>
 #include <map>
 
@@ -25,6 +27,7 @@ struct MemoryTransport final : RegisterTransport {
   bool broken = false;
   bool latching = true;
   bool powers_on = true;  // false: a power stage that never reports enabled
+  std::uint32_t latch_step_us = 0;  // each latch advances the latch's time (map with latch.time) by this
   MemoryTransport(std::map<std::pair<int, int>, std::uint16_t>* r, const RegisterMap* m) : regs(r), map(m) {}
   void connect() override {}
   void close() noexcept override {}
@@ -37,6 +40,14 @@ struct MemoryTransport final : RegisterTransport {
     for (int k = 0; k < count; ++k) (*regs)[{unit, address + k}] = v[k];
     const bool latch = map->latch && unit == map->latch->unit_id && address <= map->latch->address &&
                        map->latch->address < address + count;
+    if (latch && latching && map->latch->time_address >= 0) {  // the drives' time of the latch
+      const int t = map->latch->time_address;
+      std::uint16_t* hi = &(*regs)[{map->latch->unit_id, t}];
+      const std::uint32_t us = ((static_cast<std::uint32_t>(*hi) << 16) | (*regs)[{map->latch->unit_id, t + 1}]) +
+                               latch_step_us;
+      (*regs)[{map->latch->unit_id, t}] = static_cast<std::uint16_t>(us >> 16);
+      (*regs)[{map->latch->unit_id, t + 1}] = static_cast<std::uint16_t>(us & 0xffffu);
+    }
     for (const AxisRegisters& a : map->axes) {
       if (!latch || !latching) continue;
       (*regs)[{a.unit_id, a.latched_position}] = (*regs)[{a.unit_id, a.actual_position}];
@@ -167,6 +178,60 @@ TEST(DriveBackend, ReadsTheLatchedPositionsOfOneInstant) {
   // A drive that misses the latch: its old latch id is refused.
   raw->latching = false;
   EXPECT_THROW(drives.read(0.004), HardwareError);
+}
+
+// Stepped: power stages that never report enabled are given up after 1 s of
+// the drives' cycles (250 reads at 4 ms), not of the clock, which never moves;
+// the latch's time is read from its own unit when no axis is there, and a
+// drive time that does not step by the period (here: a missed latch time)
+// stops the drives.
+TEST(DriveBackend, SteppedCountsTheDrivesCyclesAndChecksTheirTime) {
+  RegisterMap map = load_register_map(kSrc + "/hw/examples/register_map_emulator.yaml");
+  map.latch->unit_id = 9;  // a unit of its own (no axis)
+  map.latch->time_address = 40;
+  std::map<std::pair<int, int>, std::uint16_t> regs;
+  auto t = std::make_unique<MemoryTransport>(&regs, &map);
+  MemoryTransport* raw = t.get();
+  raw->latch_step_us = 4000;
+  raw->powers_on = false;
+  ManualClock clock;
+  DriveBackend drives(map, std::move(t), 0.004, clock, DriveTiming::kStepped);
+  EXPECT_TRUE(drives.simulated_time());
+  drives.configure();
+  auto latch_us = [&] { return (static_cast<std::uint32_t>(regs[{9, 40}]) << 16) | regs[{9, 41}]; };
+  const std::uint32_t before = latch_us();
+  try {
+    drives.activate();
+    ADD_FAILURE() << "activated without enabled drives";
+  } catch (const HardwareError& e) {
+    EXPECT_NE(std::string(e.what()).find("did not report enabled within 1 s"), std::string::npos) << e.what();
+  }
+  const std::uint32_t reads = (latch_us() - before) / 4000;  // one latch per read
+  EXPECT_GE(reads, 250u);
+  EXPECT_LE(reads, 251u);
+  EXPECT_EQ(clock.now(), 0.0);
+  EXPECT_EQ(clock.waits(), 0);
+  // Enabled drives, then a latch whose time does not move: refused, drives off.
+  std::map<std::pair<int, int>, std::uint16_t> regs2;
+  auto t2 = std::make_unique<MemoryTransport>(&regs2, &map);
+  MemoryTransport* raw2 = t2.get();
+  raw2->latch_step_us = 4000;
+  DriveBackend ok(map, std::move(t2), 0.004, clock, DriveTiming::kStepped);
+  ok.configure();
+  ok.activate();
+  EXPECT_NO_THROW(ok.read(0.004));
+  raw2->latch_step_us = 0;
+  try {
+    ok.read(0.008);
+    ADD_FAILURE() << "a latch time that did not step was accepted";
+  } catch (const HardwareError& e) {
+    EXPECT_NE(std::string(e.what()).find("advanced by 0.000 ms in one cycle"), std::string::npos) << e.what();
+  }
+  EXPECT_EQ(ok.state(), LifecycleState::kError);
+  for (const AxisRegisters& a : map.axes) {  // every enable bit cleared
+    const std::pair<int, int> at{a.unit_id, a.enable.address};
+    EXPECT_EQ(regs2[at] & 1u, 0u) << a.unit_id;
+  }
 }
 
 }  // namespace

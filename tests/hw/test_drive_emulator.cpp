@@ -3,6 +3,12 @@
 // a malformed request or a client that never reads stalls no other client; on
 // an injected clock, a stalled client (silent) and a stalled server (no reply)
 // and delayed replies are decided by that clock alone, not by the wall time.
+// Stepped (lock step with a stepped DriveBackend, hw/backends/drive_backend.cpp):
+// N client cycles advance the plant and the latch's time by exactly N periods,
+// the readings' times are the drives', a client at another rate or drives on
+// their own clock are refused before anything is enabled, and the readings are
+// those of the twin backend in process given the same commands; a session on
+// the fly through it takes the twin backend's time and samples.
 #include <cerrno>
 #include <functional>
 
@@ -15,13 +21,23 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <tuple>
 
+#include <fmt/format.h>
+
+#include "hw/backends/drive_backend.hpp"
 #include "hw/backends/drive_emulator.hpp"
 #include "hw/clock.hpp"
 #include "hw/hardware_config.hpp"
 #include "hw/hw_errors.hpp"
 #include "hw/backends/modbus_transport.hpp"
+#include "hw/backends/twin_backend.hpp"
+#include "hw/procedures/trajectory_session.hpp"
 #include "models/errors.hpp"
+#include "models/kinematics.hpp"
+#include "models/samples.hpp"
+#include "sim/waypoint_path.hpp"
+#include "hw_test_util.hpp"
 
 namespace gpm::hw {
 namespace {
@@ -111,12 +127,10 @@ TEST(DriveEmulator, AMalformedRequestDoesNotStallTheServer) {
   ::close(fd);
 }
 
-// A client that sends requests but never reads the replies (its receive
-// buffer small, so it fills at once): the server drops it once a reply cannot
-// be sent, and another client is still served within its response timeout.
-TEST(DriveEmulator, AClientThatNeverReadsDoesNotStallTheServer) {
-  auto emu = make();
-  const int port = emu->start();
+// Connects to port and sends requests without ever reading a reply (its
+// receive buffer small, so it fills at once) until the server takes no more
+// for 1 s or drops it; returns the socket (to close) and prints the count.
+int flood_without_reading(int port) {
   const int fd = ::socket(AF_INET, SOCK_STREAM, 0);
   const int small = 1024;
   ::setsockopt(fd, SOL_SOCKET, SO_RCVBUF, &small, sizeof small);
@@ -124,7 +138,10 @@ TEST(DriveEmulator, AClientThatNeverReadsDoesNotStallTheServer) {
   a.sin_family = AF_INET;
   a.sin_port = htons(static_cast<std::uint16_t>(port));
   a.sin_addr.s_addr = htonl(INADDR_LOOPBACK);
-  ASSERT_EQ(::connect(fd, reinterpret_cast<sockaddr*>(&a), sizeof a), 0);
+  if (::connect(fd, reinterpret_cast<sockaddr*>(&a), sizeof a) != 0) {
+    ADD_FAILURE() << "cannot connect to the emulator";
+    return fd;
+  }
   // Read 21 registers of unit 1 (a 51-byte reply each), over and over,
   // never reading: until the server takes no more for 1 s (its replies fill
   // every buffer: without a send timeout it would now be stuck) or drops us.
@@ -140,6 +157,16 @@ TEST(DriveEmulator, AClientThatNeverReadsDoesNotStallTheServer) {
   }
   std::printf("sent %ld requests without reading a reply\n", sent);
   EXPECT_GT(sent, 100);
+  return fd;
+}
+
+// A client that sends requests but never reads the replies: the server drops
+// it once a reply cannot be sent, and another client is still served within
+// its response timeout.
+TEST(DriveEmulator, AClientThatNeverReadsDoesNotStallTheServer) {
+  auto emu = make();
+  const int port = emu->start();
+  const int fd = flood_without_reading(port);
   ModbusTransport t("127.0.0.1", port, 2.0);
   t.connect();
   std::uint16_t st = 0;
@@ -288,6 +315,213 @@ TEST(DriveEmulator, DelayedRepliesAreLateByTheInjectedClockOnly) {
       EXPECT_THROW(t.write(2, 0, 1, &on), HardwareError) << delay;
     }
   }
+}
+
+// Lock step: the emulator --stepped and a DriveBackend with stepped timing,
+// both on a clock that never moves (neither needs any time but the cycles').
+constexpr double kPeriod = 0.004;  // the client's cycle (the fixture twin's command period)
+
+struct LockStep {
+  ManualClock frozen;
+  RegisterMap map = load_register_map(kSrc + "/hw/examples/register_map_emulator.yaml");
+  std::unique_ptr<DriveEmulator> emu;
+  int port = 0;
+
+  // An emulator stepped by emulator_period (not stepped: its plant on the frozen clock).
+  explicit LockStep(double emulator_period = kPeriod, bool stepped = true) {
+    EmulatorOptions o;
+    o.clock = &frozen;
+    o.stepped = stepped;
+    o.command_period_s = emulator_period;
+    emu = std::make_unique<DriveEmulator>(
+        map, twin_config_from_scenario(kSrc + "/tests/fixtures/twin_disc.yaml", emulator_period), o);
+    port = emu->start();
+    map.port = port;
+  }
+  // A stepped client of it at kPeriod.
+  std::unique_ptr<DriveBackend> client() {
+    return std::make_unique<DriveBackend>(map, std::make_unique<ModbusTransport>("127.0.0.1", port, 0.5, frozen),
+                                          kPeriod, frozen, DriveTiming::kStepped);
+  }
+  // The drives' time of the last latch (us), read by another client (a read latches nothing).
+  std::uint32_t latch_us() {
+    ModbusTransport t("127.0.0.1", port, 0.5, frozen);
+    t.connect();
+    std::uint16_t r[2] = {};
+    t.read(map.latch->unit_id, map.latch->time_address, 2, r);
+    return static_cast<std::uint32_t>(join32(r, map.word_order));
+  }
+};
+
+// N client cycles advance the emulator's plant and its latch time by exactly
+// N periods, whatever the wall time they took (the clocks never moved); each
+// reading's time is the drives' latch time in the client's time base.
+TEST(DriveEmulator, SteppedAdvancesThePlantOnePeriodPerClientCycle) {
+  LockStep ls;
+  auto drives = ls.client();
+  EXPECT_TRUE(drives->simulated_time());
+  drives->configure();
+  drives->activate();
+  EXPECT_EQ(ls.emu->power_on(), (std::array<bool, 3>{true, true, true}));
+  const double plant0 = ls.emu->snapshot().time_s;
+  const std::uint32_t us0 = ls.latch_us();
+  HardwareCommand hold;
+  hold.mode = {JointMode::kPosition, JointMode::kPosition, JointMode::kPosition};
+  hold.theta_m = drives->last_state().theta_m;
+  const int n = 120;
+  for (int k = 1; k <= n; ++k) {
+    const double t = k * kPeriod;
+    const HardwareState& st = drives->read(t);
+    const std::uint32_t us = ls.latch_us();
+    EXPECT_EQ(us - us0, static_cast<std::uint32_t>(k * 4000)) << k;  // the drives' time: k periods on
+    for (int i = 0; i < 3; ++i) EXPECT_NEAR(st.read_time_s[i], (us - us0) * 1e-6, 1e-12) << k;
+    drives->write(hold, t);
+  }
+  EXPECT_NEAR(ls.emu->snapshot().time_s - plant0, n * kPeriod, 1e-9);
+  EXPECT_EQ(ls.latch_us() - us0, static_cast<std::uint32_t>(n * 4000));
+  EXPECT_EQ(ls.frozen.now(), 0.0);
+  EXPECT_EQ(ls.emu->power_on(), (std::array<bool, 3>{true, true, true}));
+  drives->shutdown();
+  EXPECT_EQ(ls.emu->error(), "");
+}
+
+// A stepped client refuses, before enabling anything, drives that are not
+// stepped by it: an emulator on its own clock (its latch time does not move
+// between two cycles here) or one stepped at another period.
+TEST(DriveEmulator, ASteppedClientRefusesDrivesNotSteppedAtItsRate) {
+  for (const auto& [period, stepped, step_ms] :
+       {std::tuple{kPeriod, false, "0.000"}, std::tuple{0.001, true, "1.000"}}) {
+    LockStep ls(period, stepped);
+    auto drives = ls.client();
+    try {
+      drives->configure();
+      ADD_FAILURE() << "configured drives not stepped at the client's period";
+    } catch (const HardwareError& e) {
+      const std::string m = e.what();
+      EXPECT_NE(m.find(fmt::format("latch time advanced by {} ms in one cycle", step_ms)), std::string::npos) << m;
+      EXPECT_NE(m.find("one period (4.000 ms)"), std::string::npos) << m;
+      EXPECT_NE(m.find("--stepped --command-period 0.004"), std::string::npos) << m;
+      EXPECT_EQ(m.find('\n'), std::string::npos) << m;
+    }
+    EXPECT_EQ(drives->state(), LifecycleState::kError);
+    EXPECT_EQ(ls.emu->power_on(), (std::array<bool, 3>{false, false, false}));
+  }
+  // A map whose latch has no time cannot be stepped.
+  RegisterMap no_time = load_register_map(kSrc + "/hw/examples/register_map_emulator.yaml");
+  no_time.latch->time_address = -1;
+  EXPECT_THROW(DriveBackend(no_time, std::make_unique<ModbusTransport>("127.0.0.1", 1, 0.5), kPeriod,
+                            steady_clock(), DriveTiming::kStepped),
+               InputError);
+}
+
+// A client that never reads does not stall a stepped emulator either: the
+// stepped client beside it runs its cycles, each one period of the plant.
+TEST(DriveEmulator, AClientThatNeverReadsDoesNotStallTheSteppedClient) {
+  LockStep ls;
+  const int fd = flood_without_reading(ls.port);
+  auto drives = ls.client();
+  drives->configure();
+  drives->activate();
+  const std::uint32_t us0 = ls.latch_us();
+  HardwareCommand hold;
+  hold.mode = {JointMode::kPosition, JointMode::kPosition, JointMode::kPosition};
+  hold.theta_m = drives->last_state().theta_m;
+  for (int k = 1; k <= 20; ++k) {
+    drives->read(k * kPeriod);
+    drives->write(hold, k * kPeriod);
+  }
+  EXPECT_EQ(ls.latch_us() - us0, 20u * 4000u);
+  EXPECT_EQ(ls.emu->error(), "");
+  ::close(fd);
+}
+
+// Lock step is the twin backend over Modbus: the same commands (on the
+// register map's count grid) give the readings of the twin backend in
+// process cycle for cycle, within the register map's rounding (half a
+// count; the torques: half a 0.01 N m step).
+TEST(DriveEmulator, SteppedReadingsAreTheTwinBackendsForTheSameCommands) {
+  LockStep ls;
+  auto drives = ls.client();
+  TwinBackend twin(twin_config_from_scenario(kSrc + "/tests/fixtures/twin_disc.yaml", kPeriod));
+  drives->configure();
+  twin.configure();
+  drives->activate();  // one cycle: the power stages come on holding
+  twin.activate();
+  twin.read(kPeriod);
+  Eigen::Vector3d c0;
+  for (int i = 0; i < 3; ++i) c0[i] = theta_to_counts(ls.map.axes[i], drives->last_state().theta_m[i]);
+  const double count = 2 * M_PI / static_cast<double>(ls.map.axes[0].counts_per_rev);
+  double worst = 0.0, worst_torque = 0.0, moved = 0.0;
+  for (int k = 0; k < 200; ++k) {
+    const double t = (k + 2) * kPeriod;
+    const HardwareState& a = drives->read(t);
+    const HardwareState& b = twin.read(t);
+    for (int i = 0; i < 3; ++i) {
+      worst = std::max(worst, std::abs(wrap_pi(a.theta_m[i] - b.theta_m[i])));
+      worst_torque = std::max(worst_torque, std::abs(a.torque[i] - b.torque[i]));
+    }
+    moved = std::max(moved, std::abs(wrap_pi(b.theta_m[1] - counts_to_theta(ls.map.axes[1], c0[1]))));
+    // Joint 2 ramps by 2 counts a cycle for 100 cycles, then holds.
+    HardwareCommand cmd;
+    cmd.mode = {JointMode::kPosition, JointMode::kPosition, JointMode::kPosition};
+    for (int i = 0; i < 3; ++i)
+      cmd.theta_m[i] = counts_to_theta(ls.map.axes[i], static_cast<std::int64_t>(c0[i]) + (i == 1 ? 2 * std::min(k, 100) : 0));
+    drives->write(cmd, t);
+    twin.write(cmd, t);
+  }
+  std::printf("stepped emulator vs twin backend: readings %.3g counts, torques %.3g N m apart; joint 2 moved %.0f counts\n",
+              worst / count, worst_torque, moved / count);
+  EXPECT_GT(moved / count, 50.0);  // the robot moved (joint 2 against the two others: a servo fight)
+  EXPECT_LE(worst, 0.5 * count + 1e-12);
+  EXPECT_LE(worst_torque, 0.005 + 1e-9);
+}
+
+// A path sampled on the fly (hw/procedures/trajectory_session.cpp) through
+// Modbus in lock step and through the twin backend in process, same hardware
+// limits and twin: the same session time (the plan's, not the wall's), the
+// same sample times, each sample's read times its cycle's, and readings
+// within a count (the setpoints go to the drives in 17-bit counts).
+TEST(DriveEmulator, ASessionOnTheFlyInLockStepTakesTheTwinBackendsTimeAndSamples) {
+  test::TempDir dir("emu_lockstep_session");
+  const std::string head = "rate_hz: 250\ncontroller: " + kSrc + "/models/gpm2002.yaml\n";
+  test::write_text(dir / "twin.yaml", "backend: twin\n" + head + "twin: {scenario: " + kSrc +
+                                          "/tests/fixtures/twin_disc.yaml}\n" + test::kSafetyYaml);
+  LockStep ls;
+  test::write_text(dir / "map.yaml", register_map_to_yaml(ls.map));
+  test::write_text(dir / "modbus.yaml", "backend: modbus\n" + head + "modbus: {register_map: " +
+                                            (dir / "map.yaml").string() + ", timing: stepped}\n" +
+                                            test::kSafetyYaml);
+  TrajectoryPlan plan;
+  sim::WaypointLimits lim;
+  lim.max_speed_mm_s = 40;
+  lim.max_accel_mm_s2 = 200;
+  lim.max_normal_mm_s2 = 200;
+  const Robot robot;
+  plan.path = sim::excitation_path(robot.home, {{236.5, 260}, {206.5, 240}, {226.5, 230}}, lim);
+  plan.settle = {0.01, 0.0, 1.0};
+  SessionResult r[2];
+  for (const char* name : {"twin", "modbus"}) {
+    auto hw = make_hardware(load_hardware_config((dir / (std::string(name) + ".yaml")).string()), ls.frozen);
+    SampleLog log((dir / (std::string(name) + ".csv")).string(), false, SampleColumns::kOnTheFly);
+    r[name[0] == 'm'] = run_trajectory_session(*hw, plan, log, nullptr);
+  }
+  const Samples a = read_samples_csv((dir / "twin.csv").string());
+  const Samples b = read_samples_csv((dir / "modbus.csv").string());
+  ASSERT_EQ(a.size(), b.size());
+  EXPECT_EQ(r[1].taken, trajectory_sample_count(plan, kPeriod));
+  EXPECT_DOUBLE_EQ(r[1].duration_s, r[0].duration_s);
+  const double count = 2 * M_PI / 131072;
+  double worst = 0.0;
+  for (std::size_t j = 0; j < a.size(); ++j) {
+    EXPECT_DOUBLE_EQ(b.t[j], a.t[j]) << j;
+    EXPECT_EQ(b.t_read[j], Eigen::Vector3d::Constant(b.t[j])) << j;  // the latch of the sample's cycle
+    for (int i = 0; i < 3; ++i) worst = std::max(worst, std::abs(wrap_pi(b.theta_m[j][i] - a.theta_m[j][i])));
+  }
+  std::printf("lock step session: %zu samples, %.3f s of robot time each, readings %.3f counts apart at most\n",
+              a.size(), r[1].duration_s, worst / count);
+  EXPECT_LE(worst, count + 1e-12);
+  EXPECT_EQ(ls.frozen.now(), 0.0);
+  EXPECT_EQ(ls.emu->error(), "");
 }
 
 }  // namespace

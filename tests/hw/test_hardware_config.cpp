@@ -60,6 +60,40 @@ TEST(HardwareConfig, MissingSafetyIsRefused) {
       << error_of((dir / "hw.yaml").string());
 }
 
+// modbus.timing: real_time (the default) or stepped; stepped needs a latch
+// that reports its time; anything else is refused naming the key.
+TEST(HardwareConfig, ModbusTimingIsRealTimeOrSteppedWithALatchTime) {
+  const test::TempDir dir("cfg5");
+  std::string text = test::read_text(kSrc + "/hw/examples/modbus_emulator.yaml");
+  text.replace(text.find("register_map: register_map_emulator.yaml"), 40, "register_map: " + (dir / "map.yaml").string());
+  text.replace(text.find("../../models"), 12, kSrc + "/models");
+  std::string map = test::read_text(kSrc + "/hw/examples/register_map_emulator.yaml");
+  test::write_text(dir / "map.yaml", map);
+  auto with_timing = [&](const std::string& timing) {
+    std::string t = text;
+    t.replace(t.find("\n", t.find("  register_map:")), 1, "\n  timing: " + timing + "\n");
+    test::write_text(dir / "hw.yaml", t);
+    return (dir / "hw.yaml").string();
+  };
+  test::write_text(dir / "hw.yaml", text);
+  EXPECT_EQ(load_hardware_config((dir / "hw.yaml").string()).timing, DriveTiming::kRealTime);
+  EXPECT_FALSE(make_hardware(load_hardware_config((dir / "hw.yaml").string()))->simulated_time());
+  EXPECT_EQ(load_hardware_config(with_timing("real_time")).timing, DriveTiming::kRealTime);
+  const HardwareConfig stepped = load_hardware_config(with_timing("stepped"));
+  EXPECT_EQ(stepped.timing, DriveTiming::kStepped);
+  EXPECT_TRUE(make_hardware(stepped)->simulated_time());  // the procedure's time is its count of cycles
+  std::string e = error_of(with_timing("lockstep"));
+  EXPECT_NE(e.find("modbus.timing: 'lockstep' is not a timing (valid: real_time"), std::string::npos) << e;
+  EXPECT_EQ(e.find('\n'), std::string::npos) << e;
+  // A latch without its time cannot be checked cycle by cycle.
+  map.replace(map.find(", time: 32"), 10, "");
+  test::write_text(dir / "map.yaml", map);
+  e = error_of(with_timing("stepped"));
+  EXPECT_NE(e.find("modbus.timing"), std::string::npos) << e;
+  EXPECT_NE(e.find("latch reports its time"), std::string::npos) << e;
+  EXPECT_EQ(load_hardware_config(with_timing("real_time")).timing, DriveTiming::kRealTime);
+}
+
 TEST(HardwareConfig, BadBackendNamesValidOnes) {
   const test::TempDir dir("cfg2");
   test::write_text(dir / "hw.yaml", "backend: ethercat\n");

@@ -29,6 +29,7 @@ TEST(RegisterMap, ExamplesLoadAndRoundTrip) {
   EXPECT_EQ(m.latch->address, 30);
   EXPECT_EQ(m.axes[2].latched_position, 18);
   EXPECT_EQ(m.axes[2].latch_id, 20);
+  EXPECT_EQ(m.latch->time_address, 32);
   EXPECT_EQ(parse_register_map(register_map_to_yaml(m), "x"), m);
   EXPECT_NO_THROW(load_register_map(kSrc + "/hw/examples/register_map_example_drive.yaml"));
 }
@@ -99,15 +100,42 @@ TEST(RegisterMap, BroadcastAddressesAndSharedRegistersAreRefused) {
 TEST(RegisterMap, LatchNeedsAllItsPartsAndItsOwnRegister) {
   const std::string text = test::read_text(kSrc + "/hw/examples/register_map_emulator.yaml");
   std::string no_trigger = text;
-  no_trigger.erase(no_trigger.find("latch: {unit_id: 1, register: 30}"), 33);
+  const size_t at = no_trigger.find("latch: {unit_id: 1, register: 30");
+  no_trigger.erase(at, no_trigger.find('\n', at) - at);
   EXPECT_NE(error_of(no_trigger).find("latch"), std::string::npos) << error_of(no_trigger);
   std::string one_axis_missing = text;
   one_axis_missing.erase(one_axis_missing.rfind("    latch_id: 20"), 16);
   EXPECT_NE(error_of(one_axis_missing).find("axes[2]"), std::string::npos) << error_of(one_axis_missing);
   std::string taken = text;
-  taken.replace(taken.find("register: 30}"), 12, "register: 12");
+  taken.replace(taken.find("register: 30, time"), 12, "register: 12");
   EXPECT_NE(error_of(taken).find("latch.register"), std::string::npos) << error_of(taken);
   EXPECT_EQ(error_of(text), "");
+}
+
+// The latch's time (two registers on the latch's unit) is optional; registers
+// of an axis on that unit, or of the trigger itself, are refused.
+TEST(RegisterMap, LatchTimeIsOptionalAndHasItsOwnRegisters) {
+  const std::string text = test::read_text(kSrc + "/hw/examples/register_map_emulator.yaml");
+  auto with_latch = [&](const std::string& latch) {
+    std::string t = text;
+    const size_t at = t.find("latch: {unit_id: 1, register: 30");
+    return t.replace(at, t.find('\n', at) - at, latch);
+  };
+  const RegisterMap no_time = parse_register_map(with_latch("latch: {unit_id: 1, register: 30}"), "map.yaml");
+  EXPECT_EQ(no_time.latch->time_address, -1);
+  EXPECT_EQ(parse_register_map(register_map_to_yaml(no_time), "x"), no_time);
+  const RegisterMap unit2 = parse_register_map(with_latch("latch: {unit_id: 2, register: 30, time: 40}"), "map.yaml");
+  EXPECT_EQ(unit2.latch->time_address, 40);
+  EXPECT_EQ(parse_register_map(register_map_to_yaml(unit2), "x"), unit2);
+  for (const char* bad : {"latch: {unit_id: 1, register: 30, time: 29}",   // overlaps the trigger
+                          "latch: {unit_id: 1, register: 30, time: 30}",
+                          "latch: {unit_id: 1, register: 30, time: 11}",   // axis 1's fault code and position
+                          "latch: {unit_id: 1, register: 30, time: 20}"}) {  // axis 1's latch id
+    const std::string e = error_of(with_latch(bad));
+    EXPECT_NE(e.find("latch.time"), std::string::npos) << bad << ": " << e;
+  }
+  EXPECT_NE(error_of(with_latch("latch: {unit_id: 1, register: 30, time: -1}")).find("latch.time"),
+            std::string::npos);
 }
 
 }  // namespace

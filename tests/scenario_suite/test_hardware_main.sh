@@ -1,15 +1,23 @@
 #!/usr/bin/env bash
 # The main job's procedure (scenarios/main.yaml: the excitation path sampled
 # on the fly) through Modbus TCP and gpm-drive-emulator (loopback, ephemeral
-# port, --stepped: the plant advances one command period per client cycle,
-# so the samples depend on the commands, not on the load): the run passes,
-# records the torques and read times of every sample, and its calibrated
+# port) in lock step: the emulator --stepped advances its plant one command
+# period per client cycle and the hardware file's modbus.timing: stepped makes
+# the client's time its count of cycles (checked against the drives' latch
+# time every cycle), so neither the samples nor the robot time depend on how
+# loaded the machine is. The run passes, records the torques and read times
+# of every sample, takes at most 15 s of robot time, and its calibrated
 # model's static error is within 1.2x the twin backend's on the same robot
 # and plan (the twin backend is gpm run's in-process loop; the drives report
 # torque in 0.01 N m steps and are polled one after another).
 # Everything in a fresh temporary folder that is removed.
+# Usage: test_hardware_main.sh GPM EMULATOR SOURCE_DIR [COUNTS_PER_REV [TIMING]]
+# (the drives' position unit, default 1048576 = 2^20, the test's; TIMING
+# stepped, the test's, or real_time: the client paces its cycles on the wall
+# clock against the same stepped emulator, with watchdogs of 1 s and 4 s, for
+# the comparison in docs/PROCEDURES.md).
 set -u
-GPM="$1"; EMU="$2"; SRC="$3"
+GPM="$1"; EMU="$2"; SRC="$3"; COUNTS="${4:-1048576}"; TIMING="${5:-stepped}"
 tmp=$(mktemp -d); emu_pid=""
 cleanup() { [[ -n "$emu_pid" ]] && kill "$emu_pid" 2>/dev/null && wait "$emu_pid" 2>/dev/null; rm -rf "$tmp"; }
 trap cleanup EXIT
@@ -27,7 +35,7 @@ bad() { echo "FAIL $1"; fail=$((fail+1)); }
 # its setpoints into velocity feed-forward, and 17-bit setpoints (the example
 # map's) make that feed-forward jump by a count per cycle (3.3x the twin
 # backend's error, docs/PROCEDURES.md); the readings stay the twin's 17 bits.
-sed -e "s/counts_per_rev: 131072/counts_per_rev: 1048576/" "$SRC/hw/examples/register_map_emulator.yaml" \
+sed -e "s/counts_per_rev: 131072/counts_per_rev: $COUNTS/" "$SRC/hw/examples/register_map_emulator.yaml" \
   >"$tmp/map20.yaml"
 mkfifo "$tmp/emu.fifo"
 "$EMU" --map "$tmp/map20.yaml" --scenario "$SRC/scenarios/main.yaml" \
@@ -37,27 +45,46 @@ line=""; read -r -t 60 line <"$tmp/emu.fifo" || { bad "emulator did not start"; 
 port=${line##*:}
 sed -e "s/port: 1502/port: $port/" -e "s/response_timeout: [0-9.]*/response_timeout: 1/" \
   "$tmp/map20.yaml" >"$tmp/map.yaml"
-# The main job's hardware file with the emulator's drives and limits generous
-# in time (a CI host shares its cores; what is tested is the function).
+# The main job's hardware file with the emulator's drives, stepped; its
+# limits as they are (the command watchdog runs on the cycles' time), but for
+# comms_timeout, which must cover the map's response_timeout (wall clock: the
+# emulator's replies on a loaded host).
+watchdogs=()
+[[ "$TIMING" == real_time ]] && watchdogs=(-e "s|^  watchdog_hold: [0-9.]*|  watchdog_hold: 1|"
+                                           -e "s|^  watchdog_disable: [0-9.]*|  watchdog_disable: 4|")
 sed -e "s|^backend: twin|backend: modbus|" -e "s|^controller: .*|controller: $SRC/models/gpm2002.yaml|" \
-    -e "s|^twin:|modbus:|" -e "s|^  scenario: .*|  register_map: $tmp/map.yaml|" \
-    -e "s|^  watchdog_hold: [0-9.]*|  watchdog_hold: 1|" -e "s|^  watchdog_disable: [0-9.]*|  watchdog_disable: 4|" \
-    -e "s|^  comms_timeout: [0-9.]*|  comms_timeout: 2|" "$SRC/hw/examples/twin_main.yaml" >"$tmp/modbus.yaml"
+    -e "s|^twin:|modbus:|" -e "s|^  scenario: .*|  register_map: $tmp/map.yaml\\n  timing: $TIMING|" \
+    -e "s|^  comms_timeout: [0-9.]*|  comms_timeout: 2|" "${watchdogs[@]}" "$SRC/hw/examples/twin_main.yaml" \
+    >"$tmp/modbus.yaml"
 "$GPM" run "$SRC/scenarios/main.yaml" --hardware "$tmp/modbus.yaml" -o "$tmp/modbus" --quiet \
   >"$tmp/modbus.out" 2>&1
 [[ -f "$tmp/modbus/summary.json" ]] && ok || { bad "modbus run"; cat "$tmp/modbus.out"; }
 grep -q "through modbus backend" "$tmp/modbus.out" && ok || bad "modbus run says how it sampled"
 
-python3 - "$tmp/twin/summary.json" "$tmp/modbus/summary.json" "$tmp/modbus/samples.csv" <<'PY' && ok || bad "modbus accuracy"
+python3 - "$tmp/twin/summary.json" "$tmp/modbus/summary.json" "$tmp/modbus/samples.csv" "$TIMING" <<'PY' && ok || bad "modbus accuracy"
 import csv, json, sys
 twin, modbus = (json.load(open(p)) for p in sys.argv[1:3])
 rows = list(csv.DictReader(open(sys.argv[3])))
 assert len(rows) > 5000 and all(k in rows[0] for k in ("t", "tau_last1", "tau_between3", "t_read2")), len(rows)
 def after(s):
     return s["accuracy"]["calibrated"]["static_rms_um"]
+ratio = after(modbus) / after(twin)
 print(f"static RMS calibrated: twin backend {after(twin):.2f} um, modbus {after(modbus):.2f} um "
-      f"(x{after(modbus) / after(twin):.2f}); robot time {twin['robot_time_s']:.2f} s, {modbus['robot_time_s']:.2f} s")
-sys.exit(0 if after(modbus) <= 1.2 * after(twin) else 1)
+      f"(x{ratio:.2f}); robot time {twin['robot_time_s']:.2f} s, {modbus['robot_time_s']:.2f} s")
+ok = True
+if ratio > 1.2:
+    print(f"FAIL modbus static RMS is {ratio:.2f}x the twin backend's (at most 1.2x)"); ok = False
+if modbus["robot_time_s"] > 15.0:
+    print(f"FAIL modbus robot time {modbus['robot_time_s']:.2f} s (at most 15 s)"); ok = False
+# Lock step: the samples' times are the cycles' (one sample every 4 cycles of
+# 0.25 ms), each joint read at the latch of its sample's cycle.
+t = [float(r["t"]) for r in rows]
+if sys.argv[4] == "stepped":
+    steps = [b - a for a, b in zip(t, t[1:])]
+    late = max(abs(float(r[f"t_read{i}"]) - float(r["t"])) for r in rows for i in (1, 2, 3))
+    if max(abs(d - 0.001) for d in steps) > 1e-9 or late > 1e-9:
+        print(f"FAIL samples' times: steps {min(steps)}..{max(steps)} s, reads up to {late} s from t"); ok = False
+sys.exit(0 if ok else 1)
 PY
 
 echo "$passed passed, $fail failed"
