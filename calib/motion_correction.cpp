@@ -690,6 +690,9 @@ MotionFit fit_in_motion(const Problem& problem, const MotionSamples& s, const Lm
       e.clr = clearance_regressors(passive_forces(p.start, twist_corrected(fit, s, e, model.gear_ratio), e.tau_t), e.tension_min);
     p.theta_m = fully_corrected(fit, s, e, model.gear_ratio);
     fit.result = calibrate_lm(p, lm);
+    // The first pass checked the samples and the free set at the start; the
+    // next ones move the readings by the nuisance corrections only (the last fit checks again).
+    lm.checks = fit.result.rank_deficient;
     append_iterations(iterations, fit.result.lm_iterations);
     p.start = fit.result.geometry;  // warm start for the next pass
     l = linearise(fit.result.geometry, p.theta_m, s, e, free_index, cols, model.gear_ratio);
@@ -709,6 +712,7 @@ MotionFit fit_in_motion(const Problem& problem, const MotionSamples& s, const Lm
   p.theta_m = fit.corrected;
   lm.compute_covariance = options.compute_covariance;
   lm.function_tolerance = options.function_tolerance;
+  lm.checks = options.checks;
   fit.result = calibrate_lm(p, lm);
   append_iterations(iterations, fit.result.lm_iterations);
   fit.result.lm_iterations = std::move(iterations);
