@@ -165,17 +165,12 @@ double effective_tension_min(const MotionModel& model, const std::vector<std::op
   return weakest[want - 1];
 }
 
-// Reading sensitivities u_k = dr / dtheta_k of the ML residual at x (central differences).
-Eigen::Vector3d reading_sensitivity(const ParamVector& x, const Eigen::Vector3d& th) {
-  Eigen::Vector3d u;
-  for (int k = 0; k < 3; ++k) {
-    const double h = 1e-7;
-    Eigen::Vector3d a = th, b = th;
-    a[k] += h;
-    b[k] -= h;
-    u[k] = (ml_residual(x, a) - ml_residual(x, b)) / (2.0 * h);
-  }
-  return u;
+// Reading sensitivities u_k = dr / dtheta_m_k of the ML residual of sample
+// j: the residual depends on theta_m_k and dth_k only through their sum
+// theta_a_k (eq. 35), so u_k is the dth_k column of its Jacobian J_all (ml_jacobian).
+Eigen::Vector3d reading_sensitivity(const Eigen::MatrixXd& J_all, std::size_t j) {
+  const auto row = static_cast<Eigen::Index>(j);
+  return {J_all(row, dth(0)), J_all(row, dth(1)), J_all(row, dth(2))};
 }
 
 // What one sample offers the nuisance columns besides its reading
@@ -498,11 +493,11 @@ std::vector<Eigen::Vector3d> fully_corrected(const MotionFit& fit, const MotionS
 }
 
 // Row `row` of the nuisance Jacobian (excited columns cols) into Jn and of the
-// six cyclic columns into Jc, at solver vector x and corrected readings th.
-void fill_nuisance_row(const ParamVector& x, const Eigen::Vector3d& th, const SampleRegressors& reg, double gear_ratio,
+// six cyclic columns into Jc, from the sample's reading sensitivities u.
+void fill_nuisance_row(const Eigen::Vector3d& u, const SampleRegressors& reg, double gear_ratio,
                        const std::vector<int>& cols, Eigen::Index row, Eigen::MatrixXd& Jn, Eigen::MatrixXd& Jc,
                        Eigen::Index first = 0) {
-  const std::array<double, kNuisance> all = nuisance_row(reading_sensitivity(x, th), reg, gear_ratio);
+  const std::array<double, kNuisance> all = nuisance_row(u, reg, gear_ratio);
   for (std::size_t c = 0; c < cols.size(); ++c)
     Jn(row, first + static_cast<Eigen::Index>(c)) = all[static_cast<std::size_t>(cols[c])];
   for (int c = 0; c < 6; ++c) Jc(row, c) = all[static_cast<std::size_t>(kFirstCyclic + c)];
@@ -530,7 +525,7 @@ Linearisation linearise(const Geometry& g, const std::vector<Eigen::Vector3d>& t
     l.r[static_cast<Eigen::Index>(j)] = ml_residual(x, th[j]);
     const SampleRegressors reg{s.omega[j], s.tau[j], e.fric[j], e.clr[j], s.nb.empty() ? Eigen::Vector3d::Zero() : s.nb[j],
                                s.theta_m[j], e.flank[j]};
-    fill_nuisance_row(x, th[j], reg, gear_ratio, cols, static_cast<Eigen::Index>(j), l.Jn, l.Jc);
+    fill_nuisance_row(reading_sensitivity(J_all, j), reg, gear_ratio, cols, static_cast<Eigen::Index>(j), l.Jn, l.Jc);
   }
   return l;
 }
@@ -762,12 +757,12 @@ std::array<double, kNumParams> motion_crb(const Geometry& truth, const FreeMask&
   const Eigen::MatrixXd J_all = ml_jacobian(th, truth);
   const auto m = static_cast<Eigen::Index>(free_index.size() + cols.size());
   Eigen::MatrixXd J(static_cast<Eigen::Index>(th.size()), m), Jc(static_cast<Eigen::Index>(th.size()), 6);
-  const ParamVector x = to_solver(truth, Cost::kML);
   for (std::size_t j = 0; j < th.size(); ++j) {
     const auto row = static_cast<Eigen::Index>(j);
     for (std::size_t k = 0; k < free_index.size(); ++k) J(row, static_cast<Eigen::Index>(k)) = J_all(row, free_index[k]);
     const SampleRegressors reg{w[j], t[j], fric[j], c[j], nb.empty() ? Eigen::Vector3d::Zero() : nb[j], th[j], flank[j]};
-    fill_nuisance_row(x, th[j], reg, model.gear_ratio, cols, row, J, Jc, static_cast<Eigen::Index>(free_index.size()));
+    fill_nuisance_row(reading_sensitivity(J_all, j), reg, model.gear_ratio, cols, row, J, Jc,
+                      static_cast<Eigen::Index>(free_index.size()));
   }
   if (model.cyclic_prior_rad > 0.0 && sigma > 0.0)
     append_cyclic_prior(cols, static_cast<Eigen::Index>(free_index.size()), sigma / model.cyclic_prior_rad, J, nullptr,
