@@ -177,13 +177,35 @@ Eigen::Vector3d reading_sensitivity(const Eigen::MatrixXd& J_all, std::size_t j)
 // sensitivities: speed, torque, friction and clearance regressors, the change
 // of torque from the sample before (nb), the raw readings (for the cyclic
 // errors) and the sign of each mesh's torque (0 uncertain; calib/motion_correction.hpp).
+// sin and cos of one raw reading and of its three harmonic angles
+// (harmonic_angle, orders 0..2): sin r, cos r, then sin a_o, cos a_o.
+using Wave = std::array<double, 8>;
+using SampleWaves = std::array<Wave, 3>;  // per joint
+
+// The waves of the three raw readings of a sample (constant through a fit:
+// computed once, not in every pass).
+SampleWaves reading_waves(const Eigen::Vector3d& raw, double gear_ratio) {
+  SampleWaves w{};
+  for (int k = 0; k < 3; ++k) {
+    Wave& v = w[static_cast<std::size_t>(k)];
+    v[0] = std::sin(raw[k]), v[1] = std::cos(raw[k]);
+    for (std::size_t o = 0; o < 3; ++o) {
+      const double a = harmonic_angle(static_cast<int>(o), raw[k], gear_ratio);
+      v[2 + 2 * o] = std::sin(a), v[3 + 2 * o] = std::cos(a);
+    }
+  }
+  return w;
+}
+
 struct SampleRegressors {
-  Eigen::Vector3d omega, tau, fric, clr, nb, reading, flank;
+  Eigen::Vector3d omega, tau, fric, clr, nb;
+  SampleWaves wave;  // of the raw readings (the cyclic errors)
+  Eigen::Vector3d flank;
 };
 
 // One row of the nuisance Jacobian, every column, from the reading
 // sensitivities u and the sample's regressors x (calib/motion_correction.hpp).
-std::array<double, kNuisance> nuisance_row(const Eigen::Vector3d& u, const SampleRegressors& x, double gear_ratio) {
+std::array<double, kNuisance> nuisance_row(const Eigen::Vector3d& u, const SampleRegressors& x) {
   std::array<double, kNuisance> row{};
   row[kSkew] = u[1] * x.omega[1];
   row[kSkew + 1] = u[2] * x.omega[2];
@@ -193,13 +215,13 @@ std::array<double, kNuisance> nuisance_row(const Eigen::Vector3d& u, const Sampl
     row[kFriction + k] = u[i] * x.fric[i];
     row[kClearance + k] = u[i] * x.clr[i];
     row[kBefore + k] = -u[i] * x.nb[i];
-    row[kFirstCyclic + k] = -u[i] * std::sin(x.reading[i]);
-    row[kFirstCyclic + 3 + k] = -u[i] * std::cos(x.reading[i]);
+    const Wave& w = x.wave[k];
+    row[kFirstCyclic + k] = -u[i] * w[0];
+    row[kFirstCyclic + 3 + k] = -u[i] * w[1];
     row[kBacklash + k] = -u[i] * x.flank[i];
     for (std::size_t o = 0; o < 3; ++o) {
-      const double a = harmonic_angle(static_cast<int>(o), x.reading[i], gear_ratio);
-      row[kHarmonic + 6 * o + k] = -u[i] * std::sin(a);
-      row[kHarmonic + 6 * o + 3 + k] = -u[i] * std::cos(a);
+      row[kHarmonic + 6 * o + k] = -u[i] * w[2 + 2 * o];
+      row[kHarmonic + 6 * o + 3 + k] = -u[i] * w[3 + 2 * o];
     }
   }
   return row;
@@ -399,6 +421,7 @@ struct MotionSamples {
 // the clearance's at the start geometry and with its force threshold.
 struct EffectRegressors {
   std::vector<Eigen::Vector3d> fric, tau_t, clr, flank;
+  std::vector<SampleWaves> wave;  // of the raw readings
   double tension_min = 0.0;
 };
 
@@ -429,6 +452,8 @@ EffectRegressors effect_regressors(const Geometry& start, const MotionSamples& s
   e.clr.assign(s.theta_m.size(), Eigen::Vector3d::Zero());
   if (model.clearance) e.clr = clearance_regressors(forces, e.tension_min);
   e.flank = flank_regressors(model, s.omega, s.tau, s.alpha);
+  e.wave.reserve(s.theta_m.size());
+  for (const Eigen::Vector3d& raw : s.theta_m) e.wave.push_back(reading_waves(raw, model.gear_ratio));
   return e;
 }
 
@@ -464,29 +489,24 @@ void unpack_nuisance(const std::array<double, kNuisance>& nu_all, MotionFit& fit
 
 // The readings of s corrected with fit's nuisance values for the twist, skew,
 // friction, torque change, cyclic error, backlash and harmonics (not the clearance).
-std::vector<Eigen::Vector3d> twist_corrected(const MotionFit& fit, const MotionSamples& s, const EffectRegressors& e,
-                                             double gear_ratio) {
+std::vector<Eigen::Vector3d> twist_corrected(const MotionFit& fit, const MotionSamples& s, const EffectRegressors& e) {
   std::vector<Eigen::Vector3d> out = correct_readings(s.theta_m, s.omega, s.tau, fit.nu);
   for (std::size_t j = 0; j < out.size(); ++j)
     for (int k = 0; k < 3; ++k) {
       const auto i = static_cast<std::size_t>(k);
+      const Wave& w = e.wave[j][i];
       out[j][k] += fit.friction[i] * e.fric[j][k];
       if (!s.nb.empty()) out[j][k] -= fit.torque_before[i] * s.nb[j][k];
-      const double raw = s.theta_m[j][k];
-      out[j][k] -= fit.cyclic[i] * std::sin(raw) + fit.cyclic[i + 3] * std::cos(raw);
+      out[j][k] -= fit.cyclic[i] * w[0] + fit.cyclic[i + 3] * w[1];
       out[j][k] -= fit.backlash[i] * e.flank[j][k];
-      for (std::size_t o = 0; o < 3; ++o) {
-        const double a = harmonic_angle(static_cast<int>(o), raw, gear_ratio);
-        out[j][k] -= fit.harmonic[o][i] * std::sin(a) + fit.harmonic[o][i + 3] * std::cos(a);
-      }
+      for (std::size_t o = 0; o < 3; ++o) out[j][k] -= fit.harmonic[o][i] * w[2 + 2 * o] + fit.harmonic[o][i + 3] * w[3 + 2 * o];
     }
   return out;
 }
 
 // twist_corrected plus the clearance d_i times its regressors.
-std::vector<Eigen::Vector3d> fully_corrected(const MotionFit& fit, const MotionSamples& s, const EffectRegressors& e,
-                                             double gear_ratio) {
-  std::vector<Eigen::Vector3d> out = twist_corrected(fit, s, e, gear_ratio);
+std::vector<Eigen::Vector3d> fully_corrected(const MotionFit& fit, const MotionSamples& s, const EffectRegressors& e) {
+  std::vector<Eigen::Vector3d> out = twist_corrected(fit, s, e);
   for (std::size_t j = 0; j < out.size(); ++j)
     for (int k = 0; k < 3; ++k) out[j][k] += fit.clearance[static_cast<std::size_t>(k)] * e.clr[j][k];
   return out;
@@ -494,10 +514,9 @@ std::vector<Eigen::Vector3d> fully_corrected(const MotionFit& fit, const MotionS
 
 // Row `row` of the nuisance Jacobian (excited columns cols) into Jn and of the
 // six cyclic columns into Jc, from the sample's reading sensitivities u.
-void fill_nuisance_row(const Eigen::Vector3d& u, const SampleRegressors& reg, double gear_ratio,
-                       const std::vector<int>& cols, Eigen::Index row, Eigen::MatrixXd& Jn, Eigen::MatrixXd& Jc,
-                       Eigen::Index first = 0) {
-  const std::array<double, kNuisance> all = nuisance_row(u, reg, gear_ratio);
+void fill_nuisance_row(const Eigen::Vector3d& u, const SampleRegressors& reg, const std::vector<int>& cols,
+                       Eigen::Index row, Eigen::MatrixXd& Jn, Eigen::MatrixXd& Jc, Eigen::Index first = 0) {
+  const std::array<double, kNuisance> all = nuisance_row(u, reg);
   for (std::size_t c = 0; c < cols.size(); ++c)
     Jn(row, first + static_cast<Eigen::Index>(c)) = all[static_cast<std::size_t>(cols[c])];
   for (int c = 0; c < 6; ++c) Jc(row, c) = all[static_cast<std::size_t>(kFirstCyclic + c)];
@@ -513,8 +532,7 @@ struct Linearisation {
 // Linearisation at geometry g of the corrected readings th (raw readings and
 // regressors from s and e), for the free parameters free_index and columns cols.
 Linearisation linearise(const Geometry& g, const std::vector<Eigen::Vector3d>& th, const MotionSamples& s,
-                        const EffectRegressors& e, const std::vector<int>& free_index, const std::vector<int>& cols,
-                        double gear_ratio) {
+                        const EffectRegressors& e, const std::vector<int>& free_index, const std::vector<int>& cols) {
   const auto n = static_cast<Eigen::Index>(th.size());
   const ParamVector x = to_solver(g, Cost::kML);
   const Eigen::MatrixXd J_all = ml_jacobian(th, g);
@@ -524,8 +542,8 @@ Linearisation linearise(const Geometry& g, const std::vector<Eigen::Vector3d>& t
   for (std::size_t j = 0; j < th.size(); ++j) {
     l.r[static_cast<Eigen::Index>(j)] = ml_residual(x, th[j]);
     const SampleRegressors reg{s.omega[j], s.tau[j], e.fric[j], e.clr[j], s.nb.empty() ? Eigen::Vector3d::Zero() : s.nb[j],
-                               s.theta_m[j], e.flank[j]};
-    fill_nuisance_row(reading_sensitivity(J_all, j), reg, gear_ratio, cols, static_cast<Eigen::Index>(j), l.Jn, l.Jc);
+                               e.wave[j], e.flank[j]};
+    fill_nuisance_row(reading_sensitivity(J_all, j), reg, cols, static_cast<Eigen::Index>(j), l.Jn, l.Jc);
   }
   return l;
 }
@@ -682,15 +700,15 @@ MotionFit fit_in_motion(const Problem& problem, const MotionSamples& s, const Lm
   Linearisation l;
   for (fit.passes = 1; fit.passes <= std::max(1, model.max_passes); ++fit.passes) {
     if (model.clearance && fit.passes > 1)
-      e.clr = clearance_regressors(passive_forces(p.start, twist_corrected(fit, s, e, model.gear_ratio), e.tau_t), e.tension_min);
-    p.theta_m = fully_corrected(fit, s, e, model.gear_ratio);
+      e.clr = clearance_regressors(passive_forces(p.start, twist_corrected(fit, s, e), e.tau_t), e.tension_min);
+    p.theta_m = fully_corrected(fit, s, e);
     fit.result = calibrate_lm(p, lm);
     // The first pass checked the samples and the free set at the start; the
     // next ones move the readings by the nuisance corrections only (the last fit checks again).
     lm.checks = fit.result.rank_deficient;
     append_iterations(iterations, fit.result.lm_iterations);
     p.start = fit.result.geometry;  // warm start for the next pass
-    l = linearise(fit.result.geometry, p.theta_m, s, e, free_index, cols, model.gear_ratio);
+    l = linearise(fit.result.geometry, p.theta_m, s, e, free_index, cols);
     if (cols.empty()) break;
     // Converged when the nuisance step moves the residuals by a negligible fraction.
     const double change = nuisance_step(l, cols, prior_weight, nu_all);
@@ -698,7 +716,7 @@ MotionFit fit_in_motion(const Problem& problem, const MotionSamples& s, const Lm
     if (change < 1e-6) break;
   }
   fit.passes = std::min(fit.passes, std::max(1, model.max_passes));
-  fit.corrected = fully_corrected(fit, s, e, model.gear_ratio);
+  fit.corrected = fully_corrected(fit, s, e);
   fit.kept = std::move(kept);
   fit.tension_min_N = e.tension_min;
   for (std::size_t j = 0; j < s.theta_m.size(); ++j)
@@ -760,9 +778,9 @@ std::array<double, kNumParams> motion_crb(const Geometry& truth, const FreeMask&
   for (std::size_t j = 0; j < th.size(); ++j) {
     const auto row = static_cast<Eigen::Index>(j);
     for (std::size_t k = 0; k < free_index.size(); ++k) J(row, static_cast<Eigen::Index>(k)) = J_all(row, free_index[k]);
-    const SampleRegressors reg{w[j], t[j], fric[j], c[j], nb.empty() ? Eigen::Vector3d::Zero() : nb[j], th[j], flank[j]};
-    fill_nuisance_row(reading_sensitivity(J_all, j), reg, model.gear_ratio, cols, row, J, Jc,
-                      static_cast<Eigen::Index>(free_index.size()));
+    const SampleRegressors reg{w[j], t[j], fric[j], c[j], nb.empty() ? Eigen::Vector3d::Zero() : nb[j],
+                               reading_waves(th[j], model.gear_ratio), flank[j]};
+    fill_nuisance_row(reading_sensitivity(J_all, j), reg, cols, row, J, Jc, static_cast<Eigen::Index>(free_index.size()));
   }
   if (model.cyclic_prior_rad > 0.0 && sigma > 0.0)
     append_cyclic_prior(cols, static_cast<Eigen::Index>(free_index.size()), sigma / model.cyclic_prior_rad, J, nullptr,
