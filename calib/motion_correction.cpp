@@ -452,9 +452,21 @@ EffectRegressors effect_regressors(const Geometry& start, const MotionSamples& s
   e.clr.assign(s.theta_m.size(), Eigen::Vector3d::Zero());
   if (model.clearance) e.clr = clearance_regressors(forces, e.tension_min);
   e.flank = flank_regressors(model, s.omega, s.tau, s.alpha);
-  e.wave.reserve(s.theta_m.size());
-  for (const Eigen::Vector3d& raw : s.theta_m) e.wave.push_back(reading_waves(raw, model.gear_ratio));
-  return e;
+  return e;  // the waves are the fit's (fit_in_motion), on the samples it keeps
+}
+
+// The regressors of the samples kept (indices into e's), per sample as
+// effect_regressors would compute them on those samples alone.
+EffectRegressors kept_regressors(const EffectRegressors& e, const std::vector<std::size_t>& kept) {
+  EffectRegressors k;
+  k.tension_min = e.tension_min;
+  for (std::size_t j : kept) {
+    k.fric.push_back(e.fric[j]);
+    k.tau_t.push_back(e.tau_t[j]);
+    k.clr.push_back(e.clr[j]);
+    k.flank.push_back(e.flank[j]);
+  }
+  return k;
 }
 
 // A MotionFit with every nuisance 1-sigma NaN (not estimated).
@@ -633,7 +645,7 @@ std::vector<int> free_indices(const FreeMask& free) {
 }
 
 MotionFit fit_in_motion(const Problem& problem, const MotionSamples& s, const LmOptions& options,
-                        const MotionModel& model);
+                        const MotionModel& model, const EffectRegressors* given = nullptr);
 
 // fit_in_motion on the samples kept only (indices into s), with the force
 // threshold of all of them; the fit's indices and clearance shares are of all.
@@ -656,7 +668,8 @@ MotionFit fit_on_kept(const Problem& problem, const MotionSamples& s, const LmOp
   sub_model.skip_first = 0;
   sub_model.drop_uncertain = false;
   sub_model.tension_min_N = e.tension_min;
-  MotionFit fit = fit_in_motion(sub, MotionSamples{sub.theta_m, omega, tau, nb, alpha}, options, sub_model);
+  const EffectRegressors sub_e = kept_regressors(e, kept);  // what the kept samples alone give: not computed again
+  MotionFit fit = fit_in_motion(sub, MotionSamples{sub.theta_m, omega, tau, nb, alpha}, options, sub_model, &sub_e);
   for (std::size_t& j : fit.kept) j = kept[j];
   for (std::size_t k = 0; k < 3; ++k) {
     double certain = 0.0;
@@ -671,14 +684,16 @@ MotionFit fit_on_kept(const Problem& problem, const MotionSamples& s, const LmOp
 // fit of the geometry on readings corrected with the nuisance values, then a
 // joint Gauss-Newton step of both, until the step is negligible.
 MotionFit fit_in_motion(const Problem& problem, const MotionSamples& s, const LmOptions& options,
-                        const MotionModel& model) {
+                        const MotionModel& model, const EffectRegressors* given) {
   check_motion_inputs(s, options);
-  EffectRegressors e = effect_regressors(problem.start, s, model);
+  EffectRegressors e = given ? *given : effect_regressors(problem.start, s, model);
   // Samples left out: the leading ones, and (with the clearance) those in
   // which some chain's force sign is uncertain, and those where a mesh with
   // backlash crosses its gap; the fit runs on the rest.
   std::vector<std::size_t> kept = kept_samples(model, e.clr, e.flank);
   if (kept.size() < s.theta_m.size()) return fit_on_kept(problem, s, options, model, e, kept);
+  e.wave.reserve(s.theta_m.size());
+  for (const Eigen::Vector3d& raw : s.theta_m) e.wave.push_back(reading_waves(raw, model.gear_ratio));
   // A nuisance value no sample excites is not estimated: a latch skew without
   // joint speed, or a compliance whose torque never varies (a torque-off joint
   // transmits none; a joint held at a constant torque twists by a constant
