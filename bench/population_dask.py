@@ -11,7 +11,10 @@
    ceiling of the ratio in 2.
 
     PYTHONPATH=build/python /usr/bin/python3 bench/population_dask.py [--scenario S] [--study-scenario S]
-        [--count N]
+        [--count N] [--one-robot]
+
+--one-robot measures part 1 only (the CPU of one robot, which a shared
+machine leaves measurable; parts 2 and 3 need a quiet one).
 
 The machine is shared: run it on a quiet one (the ratio is only as good as
 the second core is free).
@@ -80,6 +83,7 @@ def main():
     p.add_argument("--scenario", default=str(ROOT / "scenarios" / "main.yaml"), help="the one robot of part 1")
     p.add_argument("--study-scenario", default=str(ROOT / "tests" / "fixtures" / "population_small.yaml"))
     p.add_argument("--count", type=int, default=20, help="robots of the study (part 2)")
+    p.add_argument("--one-robot", action="store_true", help="part 1 only: one robot's CPU by stage")
     a = p.parse_args()
 
     print("load average at the start: {:.1f} {:.1f} {:.1f} ({} cores)".format(*os.getloadavg(), os.cpu_count()))
@@ -95,6 +99,10 @@ def main():
           f"{wall2:.2f} s wall")
     for name, c, w in rows2:
         print(f"  {name:<58} {c:7.2f} {w:7.2f}")
+    print(f"throughput of one core at that CPU: {60 / cpu2:.1f} robots per minute (a study of n workers on n free "
+          f"cores: n times that, less what part 2 measures)")
+    if a.one_robot:
+        return
 
     with tempfile.TemporaryDirectory(prefix="gpm-bench-dask-") as d:
         t1, one = study_seconds(a.study_scenario, a.count, 1, d)

@@ -439,13 +439,14 @@ void estimate_covariance(const Problem& problem, const LmOptions& opt, LmSolve& 
 
 Result calibrate_lm(const Problem& problem, const LmOptions& opt) {
   const auto t0 = std::chrono::steady_clock::now();
-  check_lm_inputs(problem, opt);
+  if (opt.checks) check_lm_inputs(problem, opt);
   Result res;
   res.method = "lm";
   res.cost = opt.cost;
   res.free = problem.free;
   res.sigma.fill(kNaN);
-  const Identifiability id = note_identifiability(problem, opt, res);
+  Identifiability id;
+  if (opt.checks) id = note_identifiability(problem, opt, res);
 
   LmSolve s(problem, opt);
   if (res.rank_deficient)
@@ -457,7 +458,7 @@ Result calibrate_lm(const Problem& problem, const LmOptions& opt) {
   const Weighted fin = evaluate_solution(s, opt, with_covariance, res);
   if (with_covariance && fin.e.ok) estimate_covariance(problem, opt, s, fin, res);
 
-  if (problem.true_xy.size() == problem.theta_m.size())
+  if (opt.checks && problem.true_xy.size() == problem.theta_m.size())
     res.kmrmse_mm = kmrmse(res.geometry, problem.theta_m, problem.true_xy);
   res.history.emplace_back(res.evaluations, res.final_cost);
   res.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();

@@ -30,6 +30,12 @@ struct LmOptions {
   double function_tolerance = 1e-15;
   // Compute the covariance (a few ms); off for speed in benchmarks.
   bool compute_covariance = true;
+  // Check the samples, analyse the free set's identifiability at the start
+  // (refusing or noting rank deficiency, noting poor conditioning) and
+  // compute kmrmse. Off: the free set is taken as identifiable and the
+  // samples as checked, with no notes and no kmrmse (the inner passes of a
+  // fit whose first and last solves make these checks).
+  bool checks = true;
   // Differentiate the residuals with Ceres autodiff (the reference) instead
   // of the analytic Jacobians of calib/analytic_residuals.hpp; same result,
   // slower (for benchmarks and cross-checks).

@@ -165,30 +165,47 @@ double effective_tension_min(const MotionModel& model, const std::vector<std::op
   return weakest[want - 1];
 }
 
-// Reading sensitivities u_k = dr / dtheta_k of the ML residual at x (central differences).
-Eigen::Vector3d reading_sensitivity(const ParamVector& x, const Eigen::Vector3d& th) {
-  Eigen::Vector3d u;
-  for (int k = 0; k < 3; ++k) {
-    const double h = 1e-7;
-    Eigen::Vector3d a = th, b = th;
-    a[k] += h;
-    b[k] -= h;
-    u[k] = (ml_residual(x, a) - ml_residual(x, b)) / (2.0 * h);
-  }
-  return u;
+// Reading sensitivities u_k = dr / dtheta_m_k of the ML residual of sample
+// j: the residual depends on theta_m_k and dth_k only through their sum
+// theta_a_k (eq. 35), so u_k is the dth_k column of its Jacobian J_all (ml_jacobian).
+Eigen::Vector3d reading_sensitivity(const Eigen::MatrixXd& J_all, std::size_t j) {
+  const auto row = static_cast<Eigen::Index>(j);
+  return {J_all(row, dth(0)), J_all(row, dth(1)), J_all(row, dth(2))};
 }
 
 // What one sample offers the nuisance columns besides its reading
 // sensitivities: speed, torque, friction and clearance regressors, the change
 // of torque from the sample before (nb), the raw readings (for the cyclic
 // errors) and the sign of each mesh's torque (0 uncertain; calib/motion_correction.hpp).
+// sin and cos of one raw reading and of its three harmonic angles
+// (harmonic_angle, orders 0..2): sin r, cos r, then sin a_o, cos a_o.
+using Wave = std::array<double, 8>;
+using SampleWaves = std::array<Wave, 3>;  // per joint
+
+// The waves of the three raw readings of a sample (constant through a fit:
+// computed once, not in every pass).
+SampleWaves reading_waves(const Eigen::Vector3d& raw, double gear_ratio) {
+  SampleWaves w{};
+  for (int k = 0; k < 3; ++k) {
+    Wave& v = w[static_cast<std::size_t>(k)];
+    v[0] = std::sin(raw[k]), v[1] = std::cos(raw[k]);
+    for (std::size_t o = 0; o < 3; ++o) {
+      const double a = harmonic_angle(static_cast<int>(o), raw[k], gear_ratio);
+      v[2 + 2 * o] = std::sin(a), v[3 + 2 * o] = std::cos(a);
+    }
+  }
+  return w;
+}
+
 struct SampleRegressors {
-  Eigen::Vector3d omega, tau, fric, clr, nb, reading, flank;
+  Eigen::Vector3d omega, tau, fric, clr, nb;
+  SampleWaves wave;  // of the raw readings (the cyclic errors)
+  Eigen::Vector3d flank;
 };
 
 // One row of the nuisance Jacobian, every column, from the reading
 // sensitivities u and the sample's regressors x (calib/motion_correction.hpp).
-std::array<double, kNuisance> nuisance_row(const Eigen::Vector3d& u, const SampleRegressors& x, double gear_ratio) {
+std::array<double, kNuisance> nuisance_row(const Eigen::Vector3d& u, const SampleRegressors& x) {
   std::array<double, kNuisance> row{};
   row[kSkew] = u[1] * x.omega[1];
   row[kSkew + 1] = u[2] * x.omega[2];
@@ -198,13 +215,13 @@ std::array<double, kNuisance> nuisance_row(const Eigen::Vector3d& u, const Sampl
     row[kFriction + k] = u[i] * x.fric[i];
     row[kClearance + k] = u[i] * x.clr[i];
     row[kBefore + k] = -u[i] * x.nb[i];
-    row[kFirstCyclic + k] = -u[i] * std::sin(x.reading[i]);
-    row[kFirstCyclic + 3 + k] = -u[i] * std::cos(x.reading[i]);
+    const Wave& w = x.wave[k];
+    row[kFirstCyclic + k] = -u[i] * w[0];
+    row[kFirstCyclic + 3 + k] = -u[i] * w[1];
     row[kBacklash + k] = -u[i] * x.flank[i];
     for (std::size_t o = 0; o < 3; ++o) {
-      const double a = harmonic_angle(static_cast<int>(o), x.reading[i], gear_ratio);
-      row[kHarmonic + 6 * o + k] = -u[i] * std::sin(a);
-      row[kHarmonic + 6 * o + 3 + k] = -u[i] * std::cos(a);
+      row[kHarmonic + 6 * o + k] = -u[i] * w[2 + 2 * o];
+      row[kHarmonic + 6 * o + 3 + k] = -u[i] * w[3 + 2 * o];
     }
   }
   return row;
@@ -404,6 +421,7 @@ struct MotionSamples {
 // the clearance's at the start geometry and with its force threshold.
 struct EffectRegressors {
   std::vector<Eigen::Vector3d> fric, tau_t, clr, flank;
+  std::vector<SampleWaves> wave;  // of the raw readings
   double tension_min = 0.0;
 };
 
@@ -434,7 +452,21 @@ EffectRegressors effect_regressors(const Geometry& start, const MotionSamples& s
   e.clr.assign(s.theta_m.size(), Eigen::Vector3d::Zero());
   if (model.clearance) e.clr = clearance_regressors(forces, e.tension_min);
   e.flank = flank_regressors(model, s.omega, s.tau, s.alpha);
-  return e;
+  return e;  // the waves are the fit's (fit_in_motion), on the samples it keeps
+}
+
+// The regressors of the samples kept (indices into e's), per sample as
+// effect_regressors would compute them on those samples alone.
+EffectRegressors kept_regressors(const EffectRegressors& e, const std::vector<std::size_t>& kept) {
+  EffectRegressors k;
+  k.tension_min = e.tension_min;
+  for (std::size_t j : kept) {
+    k.fric.push_back(e.fric[j]);
+    k.tau_t.push_back(e.tau_t[j]);
+    k.clr.push_back(e.clr[j]);
+    k.flank.push_back(e.flank[j]);
+  }
+  return k;
 }
 
 // A MotionFit with every nuisance 1-sigma NaN (not estimated).
@@ -469,40 +501,34 @@ void unpack_nuisance(const std::array<double, kNuisance>& nu_all, MotionFit& fit
 
 // The readings of s corrected with fit's nuisance values for the twist, skew,
 // friction, torque change, cyclic error, backlash and harmonics (not the clearance).
-std::vector<Eigen::Vector3d> twist_corrected(const MotionFit& fit, const MotionSamples& s, const EffectRegressors& e,
-                                             double gear_ratio) {
+std::vector<Eigen::Vector3d> twist_corrected(const MotionFit& fit, const MotionSamples& s, const EffectRegressors& e) {
   std::vector<Eigen::Vector3d> out = correct_readings(s.theta_m, s.omega, s.tau, fit.nu);
   for (std::size_t j = 0; j < out.size(); ++j)
     for (int k = 0; k < 3; ++k) {
       const auto i = static_cast<std::size_t>(k);
+      const Wave& w = e.wave[j][i];
       out[j][k] += fit.friction[i] * e.fric[j][k];
       if (!s.nb.empty()) out[j][k] -= fit.torque_before[i] * s.nb[j][k];
-      const double raw = s.theta_m[j][k];
-      out[j][k] -= fit.cyclic[i] * std::sin(raw) + fit.cyclic[i + 3] * std::cos(raw);
+      out[j][k] -= fit.cyclic[i] * w[0] + fit.cyclic[i + 3] * w[1];
       out[j][k] -= fit.backlash[i] * e.flank[j][k];
-      for (std::size_t o = 0; o < 3; ++o) {
-        const double a = harmonic_angle(static_cast<int>(o), raw, gear_ratio);
-        out[j][k] -= fit.harmonic[o][i] * std::sin(a) + fit.harmonic[o][i + 3] * std::cos(a);
-      }
+      for (std::size_t o = 0; o < 3; ++o) out[j][k] -= fit.harmonic[o][i] * w[2 + 2 * o] + fit.harmonic[o][i + 3] * w[3 + 2 * o];
     }
   return out;
 }
 
 // twist_corrected plus the clearance d_i times its regressors.
-std::vector<Eigen::Vector3d> fully_corrected(const MotionFit& fit, const MotionSamples& s, const EffectRegressors& e,
-                                             double gear_ratio) {
-  std::vector<Eigen::Vector3d> out = twist_corrected(fit, s, e, gear_ratio);
+std::vector<Eigen::Vector3d> fully_corrected(const MotionFit& fit, const MotionSamples& s, const EffectRegressors& e) {
+  std::vector<Eigen::Vector3d> out = twist_corrected(fit, s, e);
   for (std::size_t j = 0; j < out.size(); ++j)
     for (int k = 0; k < 3; ++k) out[j][k] += fit.clearance[static_cast<std::size_t>(k)] * e.clr[j][k];
   return out;
 }
 
 // Row `row` of the nuisance Jacobian (excited columns cols) into Jn and of the
-// six cyclic columns into Jc, at solver vector x and corrected readings th.
-void fill_nuisance_row(const ParamVector& x, const Eigen::Vector3d& th, const SampleRegressors& reg, double gear_ratio,
-                       const std::vector<int>& cols, Eigen::Index row, Eigen::MatrixXd& Jn, Eigen::MatrixXd& Jc,
-                       Eigen::Index first = 0) {
-  const std::array<double, kNuisance> all = nuisance_row(reading_sensitivity(x, th), reg, gear_ratio);
+// six cyclic columns into Jc, from the sample's reading sensitivities u.
+void fill_nuisance_row(const Eigen::Vector3d& u, const SampleRegressors& reg, const std::vector<int>& cols,
+                       Eigen::Index row, Eigen::MatrixXd& Jn, Eigen::MatrixXd& Jc, Eigen::Index first = 0) {
+  const std::array<double, kNuisance> all = nuisance_row(u, reg);
   for (std::size_t c = 0; c < cols.size(); ++c)
     Jn(row, first + static_cast<Eigen::Index>(c)) = all[static_cast<std::size_t>(cols[c])];
   for (int c = 0; c < 6; ++c) Jc(row, c) = all[static_cast<std::size_t>(kFirstCyclic + c)];
@@ -518,8 +544,7 @@ struct Linearisation {
 // Linearisation at geometry g of the corrected readings th (raw readings and
 // regressors from s and e), for the free parameters free_index and columns cols.
 Linearisation linearise(const Geometry& g, const std::vector<Eigen::Vector3d>& th, const MotionSamples& s,
-                        const EffectRegressors& e, const std::vector<int>& free_index, const std::vector<int>& cols,
-                        double gear_ratio) {
+                        const EffectRegressors& e, const std::vector<int>& free_index, const std::vector<int>& cols) {
   const auto n = static_cast<Eigen::Index>(th.size());
   const ParamVector x = to_solver(g, Cost::kML);
   const Eigen::MatrixXd J_all = ml_jacobian(th, g);
@@ -529,8 +554,8 @@ Linearisation linearise(const Geometry& g, const std::vector<Eigen::Vector3d>& t
   for (std::size_t j = 0; j < th.size(); ++j) {
     l.r[static_cast<Eigen::Index>(j)] = ml_residual(x, th[j]);
     const SampleRegressors reg{s.omega[j], s.tau[j], e.fric[j], e.clr[j], s.nb.empty() ? Eigen::Vector3d::Zero() : s.nb[j],
-                               s.theta_m[j], e.flank[j]};
-    fill_nuisance_row(x, th[j], reg, gear_ratio, cols, static_cast<Eigen::Index>(j), l.Jn, l.Jc);
+                               e.wave[j], e.flank[j]};
+    fill_nuisance_row(reading_sensitivity(J_all, j), reg, cols, static_cast<Eigen::Index>(j), l.Jn, l.Jc);
   }
   return l;
 }
@@ -620,7 +645,7 @@ std::vector<int> free_indices(const FreeMask& free) {
 }
 
 MotionFit fit_in_motion(const Problem& problem, const MotionSamples& s, const LmOptions& options,
-                        const MotionModel& model);
+                        const MotionModel& model, const EffectRegressors* given = nullptr);
 
 // fit_in_motion on the samples kept only (indices into s), with the force
 // threshold of all of them; the fit's indices and clearance shares are of all.
@@ -643,7 +668,8 @@ MotionFit fit_on_kept(const Problem& problem, const MotionSamples& s, const LmOp
   sub_model.skip_first = 0;
   sub_model.drop_uncertain = false;
   sub_model.tension_min_N = e.tension_min;
-  MotionFit fit = fit_in_motion(sub, MotionSamples{sub.theta_m, omega, tau, nb, alpha}, options, sub_model);
+  const EffectRegressors sub_e = kept_regressors(e, kept);  // what the kept samples alone give: not computed again
+  MotionFit fit = fit_in_motion(sub, MotionSamples{sub.theta_m, omega, tau, nb, alpha}, options, sub_model, &sub_e);
   for (std::size_t& j : fit.kept) j = kept[j];
   for (std::size_t k = 0; k < 3; ++k) {
     double certain = 0.0;
@@ -658,14 +684,16 @@ MotionFit fit_on_kept(const Problem& problem, const MotionSamples& s, const LmOp
 // fit of the geometry on readings corrected with the nuisance values, then a
 // joint Gauss-Newton step of both, until the step is negligible.
 MotionFit fit_in_motion(const Problem& problem, const MotionSamples& s, const LmOptions& options,
-                        const MotionModel& model) {
+                        const MotionModel& model, const EffectRegressors* given) {
   check_motion_inputs(s, options);
-  EffectRegressors e = effect_regressors(problem.start, s, model);
+  EffectRegressors e = given ? *given : effect_regressors(problem.start, s, model);
   // Samples left out: the leading ones, and (with the clearance) those in
   // which some chain's force sign is uncertain, and those where a mesh with
   // backlash crosses its gap; the fit runs on the rest.
   std::vector<std::size_t> kept = kept_samples(model, e.clr, e.flank);
   if (kept.size() < s.theta_m.size()) return fit_on_kept(problem, s, options, model, e, kept);
+  e.wave.reserve(s.theta_m.size());
+  for (const Eigen::Vector3d& raw : s.theta_m) e.wave.push_back(reading_waves(raw, model.gear_ratio));
   // A nuisance value no sample excites is not estimated: a latch skew without
   // joint speed, or a compliance whose torque never varies (a torque-off joint
   // transmits none; a joint held at a constant torque twists by a constant
@@ -687,12 +715,15 @@ MotionFit fit_in_motion(const Problem& problem, const MotionSamples& s, const Lm
   Linearisation l;
   for (fit.passes = 1; fit.passes <= std::max(1, model.max_passes); ++fit.passes) {
     if (model.clearance && fit.passes > 1)
-      e.clr = clearance_regressors(passive_forces(p.start, twist_corrected(fit, s, e, model.gear_ratio), e.tau_t), e.tension_min);
-    p.theta_m = fully_corrected(fit, s, e, model.gear_ratio);
+      e.clr = clearance_regressors(passive_forces(p.start, twist_corrected(fit, s, e), e.tau_t), e.tension_min);
+    p.theta_m = fully_corrected(fit, s, e);
     fit.result = calibrate_lm(p, lm);
+    // The first pass checked the samples and the free set at the start; the
+    // next ones move the readings by the nuisance corrections only (the last fit checks again).
+    lm.checks = fit.result.rank_deficient;
     append_iterations(iterations, fit.result.lm_iterations);
     p.start = fit.result.geometry;  // warm start for the next pass
-    l = linearise(fit.result.geometry, p.theta_m, s, e, free_index, cols, model.gear_ratio);
+    l = linearise(fit.result.geometry, p.theta_m, s, e, free_index, cols);
     if (cols.empty()) break;
     // Converged when the nuisance step moves the residuals by a negligible fraction.
     const double change = nuisance_step(l, cols, prior_weight, nu_all);
@@ -700,7 +731,7 @@ MotionFit fit_in_motion(const Problem& problem, const MotionSamples& s, const Lm
     if (change < 1e-6) break;
   }
   fit.passes = std::min(fit.passes, std::max(1, model.max_passes));
-  fit.corrected = fully_corrected(fit, s, e, model.gear_ratio);
+  fit.corrected = fully_corrected(fit, s, e);
   fit.kept = std::move(kept);
   fit.tension_min_N = e.tension_min;
   for (std::size_t j = 0; j < s.theta_m.size(); ++j)
@@ -709,6 +740,7 @@ MotionFit fit_in_motion(const Problem& problem, const MotionSamples& s, const Lm
   p.theta_m = fit.corrected;
   lm.compute_covariance = options.compute_covariance;
   lm.function_tolerance = options.function_tolerance;
+  lm.checks = options.checks;
   fit.result = calibrate_lm(p, lm);
   append_iterations(iterations, fit.result.lm_iterations);
   fit.result.lm_iterations = std::move(iterations);
@@ -758,12 +790,12 @@ std::array<double, kNumParams> motion_crb(const Geometry& truth, const FreeMask&
   const Eigen::MatrixXd J_all = ml_jacobian(th, truth);
   const auto m = static_cast<Eigen::Index>(free_index.size() + cols.size());
   Eigen::MatrixXd J(static_cast<Eigen::Index>(th.size()), m), Jc(static_cast<Eigen::Index>(th.size()), 6);
-  const ParamVector x = to_solver(truth, Cost::kML);
   for (std::size_t j = 0; j < th.size(); ++j) {
     const auto row = static_cast<Eigen::Index>(j);
     for (std::size_t k = 0; k < free_index.size(); ++k) J(row, static_cast<Eigen::Index>(k)) = J_all(row, free_index[k]);
-    const SampleRegressors reg{w[j], t[j], fric[j], c[j], nb.empty() ? Eigen::Vector3d::Zero() : nb[j], th[j], flank[j]};
-    fill_nuisance_row(x, th[j], reg, model.gear_ratio, cols, row, J, Jc, static_cast<Eigen::Index>(free_index.size()));
+    const SampleRegressors reg{w[j], t[j], fric[j], c[j], nb.empty() ? Eigen::Vector3d::Zero() : nb[j],
+                               reading_waves(th[j], model.gear_ratio), flank[j]};
+    fill_nuisance_row(reading_sensitivity(J_all, j), reg, cols, row, J, Jc, static_cast<Eigen::Index>(free_index.size()));
   }
   if (model.cyclic_prior_rad > 0.0 && sigma > 0.0)
     append_cyclic_prior(cols, static_cast<Eigen::Index>(free_index.size()), sigma / model.cyclic_prior_rad, J, nullptr,

@@ -1,5 +1,7 @@
 #include "hw/safety_limits.hpp"
 
+#include <cmath>
+
 #include <fmt/format.h>
 
 #include "models/errors.hpp"
@@ -192,8 +194,42 @@ std::string joint_limit_violation(const SafetyLimits& limits, const Eigen::Vecto
   return {};
 }
 
+bool clears_reach(const Robot& robot, const Eigen::Vector2d& p, JointAngles& q) {
+  const Geometry& g = robot.geometry;
+  const double m = robot.limits.reach_margin;
+  if (!p.allFinite()) return false;
+  for (int i = 0; i < kNumChains; ++i) {  // the annulus of each chain, as check_reach
+    const double d = (p - g.A(i)).norm();
+    if (d > g.la_(i) + g.lb_(i) - m || d < std::abs(g.la_(i) - g.lb_(i)) + m) return false;
+  }
+  q = inverse_kinematics(g, p, robot.branch);
+  if (!q.theta_a.allFinite() || !q.theta_b.allFinite()) return false;
+  for (int i = 0; i < kNumChains; ++i)  // type 1: the expression of conditioning(), compared as check_reach does
+    if (!(std::abs(std::sin(q.theta_a[i] - q.theta_b[i])) >= robot.limits.min_transmission)) return false;
+  // Type 2: the smaller singular value of U (rows: the passive links' unit
+  // directions) in closed form. U'U has trace 3 and, by Cauchy-Binet,
+  // determinant sum_{i<j} sin^2(theta_b_i - theta_b_j), so sigma_min^2 =
+  // det / lambda_max with no cancellation; it agrees with the SVD of
+  // conditioning() to rounding, far inside the relative margin 1e-6.
+  double a = 0.0, b = 0.0, c = 0.0, det = 0.0;
+  for (int i = 0; i < kNumChains; ++i) {
+    const double ci = std::cos(q.theta_b[i]), si = std::sin(q.theta_b[i]);
+    a += ci * ci, b += ci * si, c += si * si;
+    for (int j = i + 1; j < kNumChains; ++j) det += std::pow(std::sin(q.theta_b[i] - q.theta_b[j]), 2);
+  }
+  const double lambda_max = 0.5 * (a + c) + std::hypot(0.5 * (a - c), b);
+  const double direct = std::sqrt(det / lambda_max) / std::sqrt(1.5);
+  return direct > robot.limits.min_direct * (1.0 + 1e-6);
+}
+
 std::string workspace_violation(const SafetyLimits& limits, const Robot& controller, const Eigen::Vector2d& p,
                                 const char* what) {
+  JointAngles ik;
+  return workspace_violation(limits, controller, p, what, &ik);
+}
+
+std::string workspace_violation(const SafetyLimits& limits, const Robot& controller, const Eigen::Vector2d& p,
+                                const char* what, JointAngles* ik) {
   const double r = (p - limits.workspace_centre).norm();
   const double rmax = limits.workspace_radius_mm - limits.workspace_margin_mm;
   if (r > rmax) {
@@ -201,8 +237,10 @@ std::string workspace_violation(const SafetyLimits& limits, const Robot& control
                        "{:.3f} mm (radius minus margin)",
                        what, p.x(), p.y(), r, rmax);
   }
+  if (clears_reach(controller, p, *ik)) return {};
   const Reach reach = check_reach(controller, p);
   if (!reach.ok) return fmt::format("{} ({:.3f}, {:.3f}) mm: {}", what, p.x(), p.y(), reach.reason);
+  *ik = reach.q;
   return {};
 }
 

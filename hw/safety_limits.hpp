@@ -11,6 +11,7 @@
 #include <yaml-cpp/yaml.h>
 
 #include "hw/hardware_types.hpp"
+#include "models/kinematics.hpp"
 #include "models/parameters.hpp"
 #include "models/robot.hpp"
 
@@ -78,6 +79,15 @@ std::string joint_limit_violation(const SafetyLimits& limits, const Eigen::Vecto
 // controller's reach and singularity margins.
 std::string workspace_violation(const SafetyLimits& limits, const Robot& controller, const Eigen::Vector2d& p,
                                 const char* what);
+// workspace_violation that also gives the controller's IK of p when p passes
+// (in *ik; the angles check_reach computes). Same verdict and sentence: a
+// point the reach measures clear by a margin is passed without
+// check_reach's singular value decompositions, any other is decided by it.
+std::string workspace_violation(const SafetyLimits& limits, const Robot& controller, const Eigen::Vector2d& p,
+                                const char* what, JointAngles* ik);
+// True if check_reach(robot, p).ok holds by a margin the measures' rounding
+// cannot cross (then q is its IK); false when unsure or failing (ask check_reach).
+bool clears_reach(const Robot& robot, const Eigen::Vector2d& p, JointAngles& q);
 // A target p for the controller (its IK readings checked against the joint
 // limits of the position-mode joints, p against the workspace): what a
 // sampling pose must pass before the robot moves (run-time pose design uses it).

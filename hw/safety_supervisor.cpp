@@ -111,12 +111,12 @@ std::string SafetySupervisor::check_workspace(const Eigen::Vector3d& q,
     return fmt::format("{}: passive links {} and {} cannot meet", what, i + 1, j + 1);
   }
   const Eigen::Vector2d p = *driven;
-  const std::string why = workspace_violation(limits_, controller_, p, what);
+  JointAngles ik;  // the controller model's IK of p (check_reach's)
+  const std::string why = workspace_violation(limits_, controller_, p, what, &ik);
   if (!why.empty()) return why;
-  const Reach reach = check_reach(controller_, p);
   for (int k = 0; k < 3; ++k) {
     if (mode[k] != JointMode::kPosition) continue;
-    const double d = std::abs(wrap_pi(reach.q.theta_a[k] - theta_a[k]));
+    const double d = std::abs(wrap_pi(ik.theta_a[k] - theta_a[k]));
     if (d > limits_.max_inconsistency_rad) {
       return fmt::format("{}: joint {} is {:.6f} rad from the controller model's IK of ({:.3f}, "
                          "{:.3f}) mm (max_inconsistency {} rad): the servos would fight",

@@ -277,6 +277,23 @@ TEST(CalibrateLm, ALooserFunctionToleranceStopsSoonerAtTheSameOptimum) {
   }
 }
 
+// Without the checks (the inner passes of the motion fit) the solve is the
+// same to the bit; only the start's analysis and kmrmse are left out.
+TEST(CalibrateLm, WithoutTheChecksTheSolveIsTheSame) {
+  Problem p = noisy_disc_problem(79);
+  p.true_xy.assign(p.theta_m.size(), Eigen::Vector2d(216.5, 250.0));
+  LmOptions on, off;
+  off.checks = false;
+  const Result a = calibrate_lm(p, on), b = calibrate_lm(p, off);
+  EXPECT_EQ(a.geometry.values, b.geometry.values);
+  EXPECT_EQ(a.final_cost, b.final_cost);
+  EXPECT_EQ(a.iterations, b.iterations);
+  EXPECT_EQ(a.rank, 11);
+  EXPECT_TRUE(a.kmrmse_mm.has_value());
+  EXPECT_EQ(b.rank, 0);  // not analysed
+  EXPECT_FALSE(b.kmrmse_mm.has_value());
+}
+
 // The error function J at a geometry, summed sample by sample from the
 // residual functors (independent of the solver's iteration bookkeeping).
 double cost_at(Cost c, const Geometry& g, const std::vector<Eigen::Vector3d>& theta_m) {

@@ -9,7 +9,9 @@
 // sign of their force give back the play, and ignoring it biases the fit;
 // a twist that responds to the torque of the sample before is recovered
 // (and ignoring it biases the fit); the cyclic encoder error carried in the
-// covariance adds what finite-difference responses of the fit to it say.
+// covariance adds what finite-difference responses of the fit to it say; the
+// reading sensitivities of the nuisance Jacobian (the dth columns of the ML
+// Jacobian) equal central differences over the readings.
 #include "calib/motion_correction.hpp"
 
 #include <cmath>
@@ -17,6 +19,8 @@
 #include <gtest/gtest.h>
 
 #include "calib/crb.hpp"
+#include "calib/identifiability.hpp"
+#include "calib/residuals.hpp"
 #include "calib/paper_values.hpp"
 #include "calib/synthetic.hpp"
 #include "models/errors.hpp"
@@ -456,6 +460,32 @@ TEST(MotionCorrection, RefusesMismatchedSizesAndOtherCosts) {
   d.tau.push_back(Eigen::Vector3d::Zero());
   o.cost = Cost::kJ2;
   EXPECT_THROW(calibrate_in_motion(d.problem, d.omega, d.tau, o), InputError);
+}
+
+// The fit's nuisance Jacobian takes dr / dtheta_m_k of the ML residual from
+// the dth_k column of ml_jacobian: theta_m_k and dth_k enter only as their
+// sum (eq. 35). Central differences over the readings agree to their own error.
+TEST(MotionCorrection, ReadingSensitivitiesAreTheOffsetColumnsOfTheMlJacobian) {
+  Geometry g = Geometry::gpm2002_nominal();
+  g[kLa2] += 0.4, g[kDth3] -= 0.01, g[kXa3] += 0.3;
+  Rng rng(11);
+  std::vector<Eigen::Vector3d> theta;
+  const Robot r;
+  for (int k = 0; k < 20; ++k) {
+    const Eigen::Vector2d p = r.home + Eigen::Vector2d(rng.uniform(-60.0, 60.0), rng.uniform(-60.0, 60.0));
+    theta.push_back(readings_from_active(g, inverse_kinematics(g, p, r.branch).theta_a) +
+                    Eigen::Vector3d(rng.uniform(-1e-3, 1e-3), rng.uniform(-1e-3, 1e-3), rng.uniform(-1e-3, 1e-3)));
+  }
+  const Eigen::MatrixXd J = ml_jacobian(theta, g);
+  for (std::size_t j = 0; j < theta.size(); ++j)
+    for (int k = 0; k < 3; ++k) {
+      Eigen::Vector3d a = theta[j], b = theta[j];
+      a[k] += 1e-6, b[k] -= 1e-6;
+      double ra = 0.0, rb = 0.0;
+      ASSERT_TRUE(MlResidual{a}(g.values.data(), &ra) && MlResidual{b}(g.values.data(), &rb));
+      const double central = (ra - rb) / 2e-6;
+      EXPECT_NEAR(J(static_cast<Eigen::Index>(j), dth(k)), central, 1e-6 * std::abs(central) + 1e-9) << j << " " << k;
+    }
 }
 
 }  // namespace

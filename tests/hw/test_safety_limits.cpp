@@ -1,5 +1,9 @@
-// Tests of hw/safety_limits.cpp: all keys required, values validated, round trip.
+// Tests of hw/safety_limits.cpp: all keys required, values validated, round trip;
+// the supervisor's fast reach test agrees with check_reach (the conditioning's SVDs).
 #include <gtest/gtest.h>
+
+#include "models/kinematics.hpp"
+#include "models/rng.hpp"
 
 #include "hw_test_util.hpp"
 #include "models/errors.hpp"
@@ -78,6 +82,53 @@ TEST(SafetyLimits, ValuesOutsidePhysicalRangesAreRefused) {
   EXPECT_NE(error_of(with("reach_margin", "1e5")).find("reach_margin"), std::string::npos);
   EXPECT_NE(error_of(with("workspace_centre", "[1e7, 250]")).find("workspace_centre"), std::string::npos);
   EXPECT_NE(error_of(with("joint_max", "[1.9, 3.8, 100]")).find("joint_max"), std::string::npos);
+}
+
+// clears_reach passes only what check_reach passes, with check_reach's IK, and
+// decides by itself every point whose type-2 measure clears min_direct by
+// more than 1e-5 (only a thin band goes to check_reach's SVDs). The points
+// cover the whole reachable region and beyond (both verdicts, every reason).
+TEST(SafetyLimits, ClearsReachAgreesWithCheckReach) {
+  Robot robot;
+  robot.limits.reach_margin = 2.0;
+  robot.limits.min_transmission = 0.15;
+  robot.limits.min_direct = 0.4;  // high enough that many points fail it
+  Rng rng(5);
+  int cleared = 0, refused = 0, band = 0;
+  for (int k = 0; k < 20000; ++k) {
+    const Eigen::Vector2d p(rng.uniform(0.0, 450.0), rng.uniform(0.0, 500.0));
+    JointAngles q;
+    const bool fast = clears_reach(robot, p, q);
+    const Reach r = check_reach(robot, p);
+    if (fast) {
+      ASSERT_TRUE(r.ok) << p.transpose();
+      ASSERT_EQ(q.theta_a, r.q.theta_a);
+      ASSERT_EQ(q.theta_b, r.q.theta_b);
+      ++cleared;
+    } else if (!r.ok) {
+      ++refused;
+    } else {
+      ASSERT_LE(r.cond.direct, robot.limits.min_direct * (1.0 + 1e-5)) << p.transpose();
+      ++band;
+    }
+  }
+  EXPECT_GT(cleared, 1000);
+  EXPECT_GT(refused, 1000);
+  EXPECT_LE(band, 5);
+  // The workspace sentence with the IK is the one without it.
+  const SafetyLimits limits = test::example_limits();
+  robot.limits.min_direct = limits.min_direct;
+  for (const Eigen::Vector2d& p : {Eigen::Vector2d(216.5, 250.0), Eigen::Vector2d(216.5, 350.0),
+                                  Eigen::Vector2d(300.0, 250.0), Eigen::Vector2d(NAN, 1.0)}) {
+    JointAngles q;
+    const std::string why = workspace_violation(limits, robot, p, "target", &q);
+    const Reach r = check_reach(robot, p);
+    const bool in_disc = (p - limits.workspace_centre).norm() <= limits.workspace_radius_mm - limits.workspace_margin_mm;
+    EXPECT_EQ(why.empty(), in_disc && r.ok) << p.transpose();
+    if (why.empty()) {
+      EXPECT_EQ(q.theta_a, r.q.theta_a);
+    }
+  }
 }
 
 }  // namespace

@@ -1,7 +1,9 @@
 // Tests of hw/backends/twin_backend.cpp: drives off until activated, position hold,
 // commanded motion, torque-off joints follow the others, time advances by read();
-// the observer sees the twin at the instant its readings were latched.
+// the observer sees the twin at the instant its readings were latched; in mixed
+// modes with thermal growth and events it steps as sim/'s twin of those modes.
 #include <cmath>
+#include <cstring>
 
 #include <gtest/gtest.h>
 
@@ -91,6 +93,59 @@ TEST(TwinBackend, TorqueOffJointReportsDisabledAndStillReads) {
   EXPECT_EQ(s.torque[2], 0.0);
   twin.deactivate();
   EXPECT_FALSE(twin.read(0.08).drive[0].enabled);
+}
+
+// A torque-off joint 1 with thermal growth and an event (as the main job): the
+// state's own model copy (thermal growth, events) is made from the all-position
+// model and stepped with the mixed-mode one. The drive modes live in the
+// TwinModel's config, not in the compiled mjModel, so the two are the same
+// model byte for byte, and the backend steps exactly as sim/'s twin built for
+// modes [torque_off, position, position] does (joint 1 exerts no torque).
+TEST(TwinBackend, MixedModesWithThermalGrowthStepAsTheTwinOfThoseModes) {
+  TwinBackendConfig config = twin_config_from_scenario(kSrc + "/tests/fixtures/twin_disc.yaml", 0.004);
+  config.twin.effects.thermal = sim::ThermalEffect{2.3e-5, 20.0, 0.5, std::nullopt, std::nullopt};
+  sim::GeometryEvent event;
+  event.at_s = 0.1, event.over_s = 0.2;
+  event.delta[lb(1)] = 0.05;
+  config.twin.events = {event};
+  sim::TwinConfig mixed = config.twin;
+  mixed.drives[0].mode = sim::ServoMode::kTorqueOff;
+  config.twin = mixed;  // the scenario's modes, as gpm run gives them
+  TwinBackend twin(config);
+  twin.configure();
+  twin.activate();
+  const std::array<JointMode, 3> modes{JointMode::kTorqueOff, JointMode::kPosition, JointMode::kPosition};
+  const mjModel* all = twin.model({JointMode::kPosition, JointMode::kPosition, JointMode::kPosition}).mj();
+  const sim::TwinModel& stepped = twin.model(modes);
+  EXPECT_EQ(stepped.config().drives[0].mode, sim::ServoMode::kTorqueOff);
+  ASSERT_EQ(all->nbuffer, stepped.mj()->nbuffer);
+  EXPECT_EQ(std::memcmp(all->buffer, stepped.mj()->buffer, static_cast<std::size_t>(all->nbuffer)), 0);
+
+  // sim/'s twin of the same scenario, given the commands the backend gives its drives.
+  const sim::TwinModel model(config.actual, mixed);
+  sim::TwinState direct(model, config.seed);
+  Eigen::Vector3d last = twin.last_state().theta_m;
+  const double theta1_start = twin.snapshot().theta_a[0];
+  double t = 0.0;
+  for (int k = 1; k <= 100; ++k) {
+    HardwareCommand c = hold_command(last);
+    c.mode = modes;
+    c.theta_m[1] = last[1] + 1e-4, c.theta_m[2] = last[2] - 1e-4;  // a slow ramp of joints 2 and 3
+    const Eigen::Vector3d step = c.theta_m - last;
+    Eigen::Vector3d reference = last + 0.5 * step, velocity = step / 0.004;
+    reference[0] = direct.last.readings[0], velocity[0] = 0.0;
+    twin.write(c, t);
+    sim::twin_command(direct, reference, velocity);
+    t += 0.004;
+    const HardwareState& s = twin.read(t);
+    while (direct.data->time + 0.5 * model.timestep_s() < t) sim::twin_step(model, direct);
+    ASSERT_EQ(s.torque[0], 0.0) << "read " << k;
+    ASSERT_EQ(twin.snapshot().theta_a, direct.last.theta_a) << "read " << k;
+    ASSERT_EQ(twin.snapshot().ee_mm, direct.last.ee_mm) << "read " << k;
+    last = c.theta_m;
+  }
+  EXPECT_GT(twin.snapshot().growth, 1e-5);  // thermal growth in effect
+  EXPECT_GT(std::abs(twin.snapshot().theta_a[0] - theta1_start), 1e-3);  // the free joint 1 followed the others
 }
 
 }  // namespace
