@@ -50,6 +50,7 @@ double step_statistic(const MonitorModel& model, const FilterWindow& data, Param
     var[static_cast<size_t>(k)] = data.P(k, k) * sd * sd;
   }
   double best = 0.0;
+  const int last_onset = data.count - model.settings.step_min_samples;  // onsets with enough samples after them
   for (int j = data.count - 1; j >= 0; --j) {
     const int slot = (data.head - data.count + j + 2 * kMaxWindow) % kMaxWindow;
     const double z = data.z[static_cast<size_t>(slot)];
@@ -59,7 +60,7 @@ double step_statistic(const MonitorModel& model, const FilterWindow& data, Param
       const int i = model.free_index[ks];
       s_zh[ks] += dz[i] * z;
       s_hh[ks] += dz[i] * dz[i];
-      if (s_hh[ks] > 0.0) {
+      if (j <= last_onset && s_hh[ks] > 0.0) {
         const double term = s_zh[ks] * s_zh[ks] / (s_hh[ks] * (1.0 + s_hh[ks] * var[ks]) * data.step_factor[i]);
         best = std::max(best, term);
         if (per_param_max) (*per_param_max)[i] = std::max((*per_param_max)[i], term);

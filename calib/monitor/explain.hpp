@@ -23,7 +23,9 @@ void explain_window(const MonitorModel& model, const MonitorData& data, Alarm& a
 
 // The step test's statistic: the generalised likelihood ratio of a step in
 // one estimated parameter from some onset in the window against no change,
-//   max over (i, k) of S_zh^2 / (S_hh (1 + S_hh P_ii))   (sums as above, no prior),
+//   max over (i, k) of S_zh^2 / (S_hh (1 + S_hh P_ii))   (sums as above, no prior;
+//   onsets k with at least settings.step_min_samples samples from k on: a
+//   step persists, a point of the job where the reading model fails does not),
 // with P_ii the filter's variance of parameter i: the window's innovations
 // share the filter's error, so under no change S_zh has variance
 // S_hh + S_hh^2 P_ii along column i, and each term is chi-square with 1

@@ -279,6 +279,8 @@ void check_settings(const MonitorSettings& s) {
   require(s.decimation >= 1, "decimation must be >= 1");
   require(s.window >= 2 && s.window <= kMaxWindow / 2,
           fmt::format("window {} must be in 2..{}", s.window, kMaxWindow / 2));
+  require(s.step_min_samples >= 1 && s.step_min_samples <= s.window,
+          fmt::format("step_min_samples {} must be in 1..{} (window)", s.step_min_samples, s.window));
   require(s.explain_samples >= 1 && s.explain_samples <= kMaxWindow - s.window,
           fmt::format("explain_samples {} must be in 1..{} (kMaxWindow - window)", s.explain_samples,
                       kMaxWindow - s.window));

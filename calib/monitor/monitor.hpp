@@ -63,6 +63,9 @@ struct MonitorSettings {
   int decimation = 5;           // at most one accepted sample per this many cycles
   double min_motion_counts = 2.0;  // every joint must move this many counts between accepted samples
   int window = 250;             // change-test window W (accepted samples)
+  // The step test's shortest step: onsets with at least this many accepted
+  // samples from them on (a slip persists; one sample off is no step).
+  int step_min_samples = 10;
   // Accepted samples after the crossing before the alarm is explained (the
   // filter waits meanwhile); window + explain_samples <= kMaxWindow.
   int explain_samples = 240;

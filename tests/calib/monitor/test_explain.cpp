@@ -1,11 +1,15 @@
 // Tests of calib/monitor/explain.cpp on a hand-built window: innovations made
 // exactly of one parameter's column times a change from a known onset are
 // explained by that parameter, onset and (prior-shrunk) change; a window of
-// zeros before the onset does not move the onset.
+// zeros before the onset does not move the onset; the step statistic against
+// closed forms, with and without its shortest step.
 #include "calib/monitor/explain.hpp"
+
+#include <memory>
 
 #include <gtest/gtest.h>
 
+#include "models/errors.hpp"
 #include "models/rng.hpp"
 
 namespace gpm::calib::monitor {
@@ -65,6 +69,38 @@ TEST(Explain, OnsetIsNeverAfterTheAlarm) {
   a.t_s = 0.01 * (n - 1);
   explain_window(m, d, a);  // the same window explained at its end finds the onset
   EXPECT_DOUBLE_EQ(a.onset_s, 0.01 * onset);
+}
+
+// The step test's shortest step (settings.step_min_samples): in a window of
+// zero innovations with dz = 1 along la1 only, one sample of z = 8 at the end
+// scores 8^2 = 64 when any onset counts, but over the shortest step of 10
+// only 8^2 / 10 = 6.4; a step of 10 samples of z = 2.5 scores
+// (10 x 2.5)^2 / 10 = 62.5 either way (closed forms, P = 0).
+TEST(StepStatistic, OneSampleOffIsNoStepOfTheShortestLength) {
+  const auto statistic = [](int min_samples, int step_length, double z) {
+    MonitorSettings s;
+    s.step_min_samples = min_samples;
+    const MonitorModel m = make_monitor_model(s);
+    auto w = std::make_unique<FilterWindow>();
+    w->P.setZero();
+    const int n = 100;
+    for (int j = 0; j < n; ++j) {
+      ParamRow dz = ParamRow::Zero();
+      dz[kLa1] = 1.0;
+      w->dz[static_cast<size_t>(j)] = dz;
+      w->z[static_cast<size_t>(j)] = j >= n - step_length ? z : 0.0;
+    }
+    w->head = n;
+    w->count = n;
+    return step_statistic(m, *w);
+  };
+  EXPECT_NEAR(statistic(1, 1, 8.0), 64.0, 1e-12);
+  EXPECT_NEAR(statistic(10, 1, 8.0), 6.4, 1e-12);
+  EXPECT_NEAR(statistic(1, 10, 2.5), 62.5, 1e-12);
+  EXPECT_NEAR(statistic(10, 10, 2.5), 62.5, 1e-12);
+  MonitorSettings bad;
+  bad.step_min_samples = bad.window + 1;
+  EXPECT_THROW(make_monitor_model(bad), InputError);
 }
 
 }  // namespace
