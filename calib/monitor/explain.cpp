@@ -51,9 +51,10 @@ double step_statistic(const MonitorModel& model, const FilterWindow& data, Param
   }
   double best = 0.0;
   const int last_onset = data.count - model.settings.step_min_samples;  // onsets with enough samples after them
+  const double clip = model.settings.step_clip > 0.0 ? model.settings.step_clip : std::numeric_limits<double>::infinity();
   for (int j = data.count - 1; j >= 0; --j) {
     const int slot = (data.head - data.count + j + 2 * kMaxWindow) % kMaxWindow;
-    const double z = data.z[static_cast<size_t>(slot)];
+    const double z = std::clamp(data.z[static_cast<size_t>(slot)], -clip, clip);
     const ParamRow& dz = data.dz[static_cast<size_t>(slot)];
     for (int k = 0; k < model.n_free; ++k) {
       const auto ks = static_cast<size_t>(k);

@@ -281,6 +281,7 @@ void check_settings(const MonitorSettings& s) {
           fmt::format("window {} must be in 2..{}", s.window, kMaxWindow / 2));
   require(s.step_min_samples >= 1 && s.step_min_samples <= s.window,
           fmt::format("step_min_samples {} must be in 1..{} (window)", s.step_min_samples, s.window));
+  require(s.step_clip >= 0.0 && !std::isnan(s.step_clip), "step_clip must be >= 0 (0: no clipping)");
   require(s.explain_samples >= 1 && s.explain_samples <= kMaxWindow - s.window,
           fmt::format("explain_samples {} must be in 1..{} (kMaxWindow - window)", s.explain_samples,
                       kMaxWindow - s.window));

@@ -66,6 +66,10 @@ struct MonitorSettings {
   // The step test's shortest step: onsets with at least this many accepted
   // samples from them on (a slip persists; one sample off is no step).
   int step_min_samples = 10;
+  // The step test takes each innovation at most this far from 0 (z units):
+  // a step is many moderate innovations, a reading glitch or a point where
+  // the reading model fails one gross one (Huber-like). 0: no clipping.
+  double step_clip = 5.0;
   // Accepted samples after the crossing before the alarm is explained (the
   // filter waits meanwhile); window + explain_samples <= kMaxWindow.
   int explain_samples = 240;

@@ -75,11 +75,13 @@ TEST(Explain, OnsetIsNeverAfterTheAlarm) {
 // zero innovations with dz = 1 along la1 only, one sample of z = 8 at the end
 // scores 8^2 = 64 when any onset counts, but over the shortest step of 10
 // only 8^2 / 10 = 6.4; a step of 10 samples of z = 2.5 scores
-// (10 x 2.5)^2 / 10 = 62.5 either way (closed forms, P = 0).
+// (10 x 2.5)^2 / 10 = 62.5 either way; clipped at 5 the one sample scores
+// 5^2 and the step still 62.5 (closed forms, P = 0).
 TEST(StepStatistic, OneSampleOffIsNoStepOfTheShortestLength) {
-  const auto statistic = [](int min_samples, int step_length, double z) {
+  const auto statistic = [](int min_samples, int step_length, double z, double clip = 0.0) {
     MonitorSettings s;
     s.step_min_samples = min_samples;
+    s.step_clip = clip;
     const MonitorModel m = make_monitor_model(s);
     auto w = std::make_unique<FilterWindow>();
     w->P.setZero();
@@ -98,6 +100,10 @@ TEST(StepStatistic, OneSampleOffIsNoStepOfTheShortestLength) {
   EXPECT_NEAR(statistic(10, 1, 8.0), 6.4, 1e-12);
   EXPECT_NEAR(statistic(1, 10, 2.5), 62.5, 1e-12);
   EXPECT_NEAR(statistic(10, 10, 2.5), 62.5, 1e-12);
+  // Clipped at 5 (settings.step_clip): the gross sample counts as 5, the
+  // moderate step as it is.
+  EXPECT_NEAR(statistic(1, 1, 8.0, 5.0), 25.0, 1e-12);
+  EXPECT_NEAR(statistic(10, 10, 2.5, 5.0), 62.5, 1e-12);
   MonitorSettings bad;
   bad.step_min_samples = bad.window + 1;
   EXPECT_THROW(make_monitor_model(bad), InputError);
