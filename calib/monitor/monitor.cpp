@@ -562,7 +562,6 @@ void start_relearning(const MonitorModel& m, MonitorData& d, double t_s) {
   d.map_on = false;
   d.map_matched = 0;
   d.map_cursor = 0;
-  d.review_map = false;
   d.noise_scale = 1.0;
   d.bias = 0.0;
   d.step_factor = ParamRow::Ones();
