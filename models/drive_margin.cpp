@@ -49,8 +49,9 @@ DriveMargins measures_at(const Geometry& g, const Eigen::Vector2d& p, const Join
 // chains' passive circles do not meet (or three elbows are collinear) it is
 // past a type-2 singularity (direct 0); when the hub leaves some chain's
 // annulus, past the reach (reach_mm and transmission 0).
+// hub: where it goes (unset when it cannot assemble).
 DriveMargins driven_mechanism(const Geometry& g, const Branches& branch, const Eigen::Vector3d& theta_m,
-                              const DriveMask& drives, int pair_mode) {
+                              const DriveMask& drives, int pair_mode, std::optional<Eigen::Vector2d>& hub) {
   DriveMargins none;
   none.ok = true;
   const Eigen::Vector3d theta_a = active_from_readings(g, theta_m);
@@ -67,6 +68,7 @@ DriveMargins driven_mechanism(const Geometry& g, const Branches& branch, const E
     return none;
   }
   const Eigen::Vector2d p = *fk;
+  hub = p;
   for (int k = 0; k < kNumChains; ++k)
     if (!try_chain_ik(g, k, p, branch[static_cast<size_t>(k)])) {
       none.reach_mm = none.transmission = 0.0;
@@ -105,7 +107,7 @@ DriveMargins drive_margins(const Robot& controller, const Eigen::Vector2d& p, co
   const Eigen::Vector3d theta_m = readings_from_active(g0, q0.theta_a);
   const auto [pi, pj] = driven_pair(drives);
   const int mode = pi < 0 ? 0 : assembly_mode(g0, q0.theta_a, p, pi, pj);
-  double d_reach = 0.0, d_trans = 0.0, d_direct = 0.0;
+  double d_reach = 0.0, d_trans = 0.0, d_direct = 0.0, deviation2 = 0.0;
   // A measure some mechanism within the tolerance has lost (it cannot assemble).
   bool lost_reach = false, lost_direct = false;
   // The change between +t and -t; a lost side counts as lost.
@@ -119,8 +121,11 @@ DriveMargins drive_margins(const Robot& controller, const Eigen::Vector2d& p, co
     Geometry plus = g0, minus = g0;
     plus[k] += t;
     minus[k] -= t;
-    const DriveMargins a = driven_mechanism(plus, controller.branch, theta_m, drives, mode);
-    const DriveMargins b = driven_mechanism(minus, controller.branch, theta_m, drives, mode);
+    std::optional<Eigen::Vector2d> hub_a, hub_b;
+    const DriveMargins a = driven_mechanism(plus, controller.branch, theta_m, drives, mode, hub_a);
+    const DriveMargins b = driven_mechanism(minus, controller.branch, theta_m, drives, mode, hub_b);
+    // A side that cannot assemble has lost direct already (below).
+    if (hub_a && hub_b) deviation2 += 0.25 * (*hub_a - *hub_b).squaredNorm();
     d_reach += change(a.reach_mm, b.reach_mm, lost_reach);
     bool lost_trans = false;
     d_trans += change(a.transmission, b.transmission, lost_trans);
@@ -134,6 +139,7 @@ DriveMargins drive_margins(const Robot& controller, const Eigen::Vector2d& p, co
   m.reach_mm = lost_reach ? 0.0 : m.reach_mm - d_reach;
   m.transmission = lost_reach ? 0.0 : m.transmission - d_trans;
   m.direct = lost_direct ? 0.0 : m.direct - d_direct;
+  m.deviation_mm = std::sqrt(deviation2);
   return m;
 }
 
@@ -159,6 +165,11 @@ std::string margin_violation(const Robot& controller, const Eigen::Vector2d& p, 
   if (m.reach_mm < margin.reach_mm)
     return fmt::format("({:.3f}, {:.3f}) mm is {:.2f} mm from the reach of chain {}, inside the margin {:.3g} mm",
                        p.x(), p.y(), m.reach_mm, m.reach_chain + 1, margin.reach_mm);
+  if (m.deviation_mm > margin.deviation_mm)
+    return fmt::format(
+        "at ({:.3f}, {:.3f}) mm a mechanism within the model's tolerance would put the hub {:.2f} mm from the plan "
+        "(RSS over the parameters), beyond the margin {:.3g} mm",
+        p.x(), p.y(), m.deviation_mm, margin.deviation_mm);
   return {};
 }
 

@@ -18,7 +18,10 @@
 //    sqrt(1 - |cos(theta_b_i - theta_b_j)|), 1 at 90 degrees). Passing
 //    through it the five-bar changes assembly mode: the hub jumps to the
 //    other intersection of the two passive circles;
-//  - the workspace border: the distance from each chain's annulus edge.
+//  - the workspace border: the distance from each chain's annulus edge;
+//  - the deviation: where the perturbed mechanism puts the hub, away from p
+//    (near type 2 a small model error moves the hub far), which the
+//    tracking watch would see.
 // The measures are taken where the mechanism really goes: the driven joints
 // at the controller's command for p (inverse kinematics of its model, eq.
 // 31, 35), the hub where they put a mechanism of the perturbed geometry
@@ -53,6 +56,7 @@ struct ModelTolerance {
 struct PathMargin {
   double singularity = 0.15;  // every normalised measure (transmission, direct) at least this
   double reach_mm = 10.0;    // distance from every chain's annulus edge at least this
+  double deviation_mm = 20.0;  // the hub's statistical (RSS) deviation from the plan at most this (the tracking watch's bound)
   ModelTolerance tolerance;  // the controller model's uncertainty the margin must cover
   bool operator==(const PathMargin&) const = default;
 };
@@ -65,6 +69,7 @@ struct DriveMargins {
   double transmission = 0.0;  // smallest |sin(theta_a - theta_b)|, any chain
   int transmission_chain = 0; // 0-based chain of transmission
   double direct = 0.0;        // type 2 of the driven mechanism (normalised, 1 at the best spread)
+  double deviation_mm = 0.0;  // hub's distance from p over the tolerance (RSS stack-up); 0 in the controller's model
 };
 
 // The measures of the controller's model at p (ok false when p is out of reach).
@@ -73,7 +78,8 @@ DriveMargins drive_margins(const Robot& controller, const Eigen::Vector2d& p, co
 // The worst measures over the tolerance box to first order: each measure at
 // the controller's geometry less sum_k |m(g + t_k e_k) - m(g - t_k e_k)| / 2
 // over the 15 parameters, the perturbed mechanism driven by the controller's
-// commands for p. A perturbed mechanism that cannot assemble there has lost
+// commands for p; deviation_mm the statistical stack-up of where it puts the
+// hub, sqrt(sum_k |p(g + t_k e_k) - p(g - t_k e_k)|^2 / 4). A perturbed mechanism that cannot assemble there has lost
 // that margin: 0 for direct (the driven passive circles do not meet: past a
 // type-2 singularity) or for reach_mm and transmission (the hub outside a
 // chain's annulus). ok false when p is out of the controller's reach.

@@ -57,8 +57,8 @@ std::string design_key(const sim::Scenario& s, const FreeMask& free, double sigm
   const sim::SamplingPlan& plan = *s.sampling;
   const DriveMask drives = sim::position_drives(s);
   const PathMargin& m = plan.margin;
-  return fmt::format("{}|{}{}{}|{} {} {} {} {}|{} {}|{}|{}", robot_to_yaml(s.controller), drives[0], drives[1],
-                     drives[2], format_exact(m.singularity), format_exact(m.reach_mm),
+  return fmt::format("{}|{}{}{}|{} {} {} {} {} {}|{} {}|{}|{}", robot_to_yaml(s.controller), drives[0], drives[1],
+                     drives[2], format_exact(m.singularity), format_exact(m.reach_mm), format_exact(m.deviation_mm),
                      format_exact(m.tolerance.base_mm), format_exact(m.tolerance.link_mm),
                      format_exact(m.tolerance.offset_rad), plan.count, static_cast<int>(plan.pattern),
                      free.to_string(), format_exact(sigma_rad));
@@ -122,18 +122,21 @@ void design_sampling(sim::Scenario& s, const FreeMask& free, double sigma_rad,
     // between poses of one region (the twin's tracking watch stops a move
     // that leaves control anyway).
     // The poses keep a little more than the path needs (0.02 on the measures,
-    // 3 mm of reach), so that the path has room to turn at them.
+    // 3 mm of reach, a tenth of the deviation), so that the path has room to
+    // turn at them.
     PathMargin pose_margin = s.sampling->margin;
     pose_margin.singularity += 0.02;
     pose_margin.reach_mm += 3.0;
+    pose_margin.deviation_mm *= 0.9;
     const auto region = std::make_shared<const std::set<std::pair<long, long>>>(
         safe_region(s.controller, sim::position_drives(s), pose_margin, o.grid_step_mm));
     if (static_cast<int>(region->size()) < o.count)
       throw InputError(fmt::format(
           "{}: sampling.path_margin: only {} points of the {} mm grid joined to home keep the margin for the drives in "
-          "position mode (singularity {:.3g}, reach_mm {:.3g}, and 0.02, 3 mm more for poses), fewer than the {} "
-          "poses: nothing moved; state a smaller margin or count",
-          s.file, region->size(), o.grid_step_mm, s.sampling->margin.singularity, s.sampling->margin.reach_mm, o.count));
+          "position mode (singularity {:.3g}, reach_mm {:.3g}, deviation_mm {:.3g}, and 0.02, 3 mm, a tenth more for "
+          "poses), fewer than the {} poses: nothing moved; state a smaller margin or count",
+          s.file, region->size(), o.grid_step_mm, s.sampling->margin.singularity, s.sampling->margin.reach_mm,
+          s.sampling->margin.deviation_mm, o.count));
     const Eigen::Vector2d home = s.controller.home;
     const double step = o.grid_step_mm;
     o.admissible = [admissible, region, home, step](const Eigen::Vector2d& p) {

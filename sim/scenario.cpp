@@ -191,10 +191,12 @@ void parse_encoder(const YAML::Node& n, const Ctx& c, EncoderModel& e) {
 // sampling.path_margin: the planner's margins from singular poses and the reach border.
 void parse_path_margin(const YAML::Node& m, const Ctx& c, PathMargin& margin) {
   const Ctx cm = c.at("path_margin");
-  if (!m.IsMap()) fail(cm, m, "expected a map {singularity, reach_mm, tolerance: {base_mm, link_mm, offset_rad}}");
-  yaml_check_keys(m, c.file, cm.path, {"singularity", "reach_mm", "tolerance"});
+  if (!m.IsMap())
+    fail(cm, m, "expected a map {singularity, reach_mm, deviation_mm, tolerance: {base_mm, link_mm, offset_rad}}");
+  yaml_check_keys(m, c.file, cm.path, {"singularity", "reach_mm", "deviation_mm", "tolerance"});
   opt_bounded(m, "singularity", cm, 0.0, 0.9, "(a normalised measure)", margin.singularity);
   opt_bounded(m, "reach_mm", cm, 0.0, 100.0, "mm", margin.reach_mm);
+  opt_bounded(m, "deviation_mm", cm, 0.0, 1000.0, "mm", margin.deviation_mm);
   if (const YAML::Node t = m["tolerance"]) {
     const Ctx ct = cm.at("tolerance");
     if (!t.IsMap()) fail(ct, t, "expected a map {base_mm, link_mm, offset_rad}");

@@ -88,8 +88,8 @@ WaypointPath excitation_plan(const Scenario& s, const Robot& actual, const std::
     return excitation_path(s.controller.home, poses, s.sampling->path_limits, check, repair);
   } catch (const InputError& e) {
     throw InputError(fmt::format("{}: sampling: excitation path refused before anything moves: {} (sampling.path_margin: "
-                                 "singularity {:.3g}, reach_mm {:.3g})",
-                                 s.file, e.what(), margin.singularity, margin.reach_mm));
+                                 "singularity {:.3g}, reach_mm {:.3g}, deviation_mm {:.3g})",
+                                 s.file, e.what(), margin.singularity, margin.reach_mm, margin.deviation_mm));
   }
 }
 

@@ -3,6 +3,7 @@
 // widening by the model's tolerance, and the sentence of a violation.
 #include <cmath>
 
+#include <Eigen/LU>
 #include <gtest/gtest.h>
 
 #include "models/drive_margin.hpp"
@@ -78,6 +79,51 @@ TEST(DriveMargin, ToleranceWidensEveryMeasureAndZeroToleranceChangesNothing) {
       EXPECT_LT(offsets.direct, nominal.direct);
     }
   }
+}
+
+// An encoder offset error e on driven joint k turns that joint by e from
+// where the controller thinks it is: to first order the hub moves by
+// J^-1 e e_k, with J the driven rows of the active Jacobian (eq. 11). So for
+// offsets alone the deviation's stack-up is t ||J^-1||_F; the torque-off
+// chain's offset does not move the five-bar's hub.
+TEST(DriveMargin, OffsetDeviationIsTheInverseJacobianOfTheDrivenChains) {
+  const Robot robot;
+  const double t = 1e-5;
+  for (const Eigen::Vector2d& p : {Eigen::Vector2d(216.5, 250.0), Eigen::Vector2d(300.0, 180.0),
+                                  Eigen::Vector2d(380.0, 300.0)}) {
+    const JointAngles q = inverse_kinematics(robot.geometry, p, robot.branch);
+    const Matrix32d J = active_jacobian(robot.geometry, q);
+    const Eigen::Matrix2d J23 = J.bottomRows<2>();
+    const double expected = t * J23.inverse().norm();  // Frobenius
+    const DriveMargins m = drive_margins(robot, p, kFiveBar, ModelTolerance{0.0, 0.0, t});
+    EXPECT_NEAR(m.deviation_mm, expected, 1e-4 * expected) << p.transpose();
+    EXPECT_EQ(drive_margins(robot, p, kFiveBar).deviation_mm, 0.0);  // the controller's own model
+  }
+}
+
+// Near the five-bar's type-2 pose a small model error carries the hub far:
+// the deviation grows there, and a margin on it names the deviation.
+TEST(DriveMargin, DeviationGrowsNearTheFiveBarSingularityAndIsNamed) {
+  const Robot robot;
+  const ModelTolerance tol{};
+  const double home = drive_margins(robot, robot.home, kFiveBar, tol).deviation_mm;
+  EXPECT_GT(home, 0.0);
+  double worst = 0.0;
+  Eigen::Vector2d at = robot.home;
+  for (double x = 60.0; x <= 420.0; x += 10.0)
+    for (double y = 60.0; y <= 440.0; y += 10.0) {
+      const Eigen::Vector2d p(x, y);
+      if (!check_reach(robot, p).ok) continue;
+      const DriveMargins m = drive_margins(robot, p, kFiveBar, tol);
+      if (m.ok && m.direct > 0.0 && m.direct < 0.2 && m.deviation_mm > worst) worst = m.deviation_mm, at = p;
+    }
+  EXPECT_GT(worst, 2.0 * home);
+  PathMargin margin;
+  margin.singularity = 0.0;
+  margin.deviation_mm = 0.5 * (home + worst);
+  EXPECT_EQ(margin_violation(robot, robot.home, kFiveBar, margin), "");
+  const std::string why = margin_violation(robot, at, kFiveBar, margin);
+  EXPECT_NE(why.find("mm from the plan (RSS over the parameters), beyond the margin"), std::string::npos) << why;
 }
 
 TEST(DriveMargin, ViolationNamesTheMeasureAndIsEmptyWhereTheMarginHolds) {

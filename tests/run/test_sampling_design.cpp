@@ -95,6 +95,37 @@ TEST(SamplingDesign, ADesignIsRememberedForItsInputsOnly) {
   EXPECT_THROW(designed([](RunSpec& s) { s.sim.sampling->margin.singularity = 0.85; }), InputError);
 }
 
+// A tighter path_margin.deviation_mm keeps the design and its path inside it,
+// and on a robot whose offsets lie beyond the tolerance (seed 10009: dth2,
+// dth3 1.1 and 1.2 times 0.02 rad) the hub stays closer to the plan.
+TEST(SamplingDesign, ATighterDeviationMarginKeepsTheHubCloserToThePlan) {
+  RunSpec spec = load_run_spec(gpm::scenarios_dir() + "/main.yaml");
+  spec.sim.sampling->margin.deviation_mm = 12.0;
+  design_sampling(spec.sim, ~spec.calibration.fixed,
+                  calib::reading_sigma(calib::encoder_step_rad(spec.sim.twin.encoder.bits), spec.sim.twin.encoder.noise_rad));
+  const sim::Scenario& s = spec.sim;
+  const DriveMask drives = sim::position_drives(s);
+  const sim::WaypointPath path = sim::excitation_plan(s, s.controller, s.sampling->poses);
+  double worst = 0.0;
+  for (const Eigen::Vector2d& p : path.p) {
+    worst = std::max(worst, drive_margins(s.controller, p, drives, s.sampling->margin.tolerance).deviation_mm);
+    ASSERT_EQ(margin_violation(s.controller, p, drives, s.sampling->margin), "") << p.transpose();
+  }
+  EXPECT_LE(worst, 12.0);
+  const auto deviation = [](sim::Scenario t) {
+    t.seed = 10009;
+    t.max_tracking_mm = 0.0;
+    const sim::SimulationResult r = sim::run_simulation(t);
+    double d = 0.0;
+    for (const sim::LogRow& row : r.log.rows)
+      if (row.t <= r.sampling_s) d = std::max(d, (row.actual - row.desired).norm());
+    return d;
+  };
+  const double tight = deviation(s), wide = deviation(main_job().sim);
+  std::printf("seed 10009: max deviation %.2f mm with deviation_mm 12, %.2f mm with the default\n", tight, wide);
+  EXPECT_LT(tight, wide - 1.0);
+}
+
 TEST(SamplingDesign, MainJobTracksItsPathWithin20MmOnThreeRobots) {
   for (std::uint64_t seed : {2026u, 7u, 11u}) {
     const double d = max_deviation_mm(seed);

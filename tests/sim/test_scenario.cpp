@@ -152,15 +152,19 @@ TEST(Scenario, PathMarginAndTrackingBound) {
   EXPECT_EQ(d.sampling->margin, PathMargin{});
   EXPECT_DOUBLE_EQ(d.sampling->margin.singularity, 0.15);
   EXPECT_DOUBLE_EQ(d.sampling->margin.reach_mm, 10.0);
+  EXPECT_DOUBLE_EQ(d.sampling->margin.deviation_mm, 20.0);  // servo.max_tracking_mm's default
   EXPECT_EQ(d.sampling->margin.tolerance, (ModelTolerance{1.0, 1.0, 0.02}));
   EXPECT_DOUBLE_EQ(d.max_tracking_mm, 20.0);
-  const Scenario s = parse(fly + ", path_margin: {singularity: 0.3, reach_mm: 5, tolerance: {base_mm: 0.5, link_mm: 0.2, "
+  const Scenario s = parse(fly + ", path_margin: {singularity: 0.3, reach_mm: 5, deviation_mm: 7, tolerance: {base_mm: 0.5, link_mm: 0.2, "
                                  "offset_rad: 0.01}}}\nservo: {max_tracking_mm: 8}\n");
   EXPECT_DOUBLE_EQ(s.sampling->margin.singularity, 0.3);
   EXPECT_DOUBLE_EQ(s.sampling->margin.reach_mm, 5.0);
+  EXPECT_DOUBLE_EQ(s.sampling->margin.deviation_mm, 7.0);
   EXPECT_EQ(s.sampling->margin.tolerance, (ModelTolerance{0.5, 0.2, 0.01}));
   EXPECT_DOUBLE_EQ(s.max_tracking_mm, 8.0);
   EXPECT_NE(error_of(fly + ", path_margin: {singularity: 1.5}}").find("sampling.path_margin.singularity: must be from 0 to 0.9"),
+            std::string::npos);
+  EXPECT_NE(error_of(fly + ", path_margin: {deviation_mm: -2}}").find("sampling.path_margin.deviation_mm: must be from 0"),
             std::string::npos);
   EXPECT_NE(error_of(fly + ", path_margin: {tolerance: {offset: 1}}}").find("sampling.path_margin.tolerance.offset"),
             std::string::npos);
