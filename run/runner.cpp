@@ -95,9 +95,9 @@ std::array<hw::JointMode, 3> procedure_modes(const RunSpec& spec, const std::str
 // its margin for the scenario's drives), one sample per sample_every /
 // servo.rate_hz seconds or per cycle where the hardware (rate_hz) is slower.
 hw::TrajectoryPlan trajectory_plan(const RunSpec& spec, double rate_hz, const std::array<hw::JointMode, 3>& modes,
-                                   const Robot& actual, const std::vector<Eigen::Vector2d>& poses) {
+                                   const std::vector<Eigen::Vector2d>& poses) {
   hw::TrajectoryPlan plan;
-  plan.path = sim::excitation_plan(spec.sim, actual, poses);
+  plan.path = sim::excitation_plan(spec.sim, poses);
   plan.modes = modes;
   const double interval_s = spec.sim.sampling->sample_every / spec.sim.twin.servo_rate_hz;
   plan.every = std::max(1, static_cast<int>(std::lround(interval_s * rate_hz)));
@@ -158,7 +158,7 @@ sim::SimulationResult sample_on_hardware(const RunSpec& spec, const std::string&
                     in_motion ? hw::SampleColumns::kOnTheFly : hw::SampleColumns::kAtRest);
   if (in_motion) {
     const hw::TrajectoryPlan plan =
-        trajectory_plan(spec, cfg.rate_hz, procedure_modes(spec, spec.sim.file), r.actual, poses);
+        trajectory_plan(spec, cfg.rate_hz, procedure_modes(spec, spec.sim.file), poses);
     auto robot = hw::make_hardware(cfg);
     description = fmt::format("{} backend from {}", cfg.backend, *spec.hardware);
     r.sampling_s = hw::run_trajectory_session(*robot, plan, log, signals.flag()).duration_s;
@@ -225,7 +225,7 @@ sim::SimulationResult sample_on_twin(const RunSpec& spec, gpm::Progress* progres
   hw::SampleLog log(in_motion ? hw::SampleColumns::kOnTheFly : hw::SampleColumns::kAtRest);
   try {
     if (in_motion) {
-      const hw::TrajectoryPlan plan = trajectory_plan(spec, s.twin.servo_rate_hz, modes, r.actual, poses);
+      const hw::TrajectoryPlan plan = trajectory_plan(spec, s.twin.servo_rate_hz, modes, poses);
       r.sampling_s = hw::run_trajectory_session(*th.robot, plan, log, nullptr, truth.hook()).duration_s;
     } else if (!poses.empty()) {
       hw::SessionPlan plan = session_plan(spec, poses, modes, std::nullopt);

@@ -70,18 +70,17 @@ DriveMask position_drives(const Scenario& s) {
   return m;
 }
 
-WaypointPath excitation_plan(const Scenario& s, const Robot& actual, const std::vector<Eigen::Vector2d>& poses,
+WaypointPath excitation_plan(const Scenario& s, const std::vector<Eigen::Vector2d>& poses,
                              PathRepair* repair) {
   if (!s.sampling || s.sampling->pattern != PosePattern::kTrajectory || poses.empty())
     throw std::logic_error("excitation_plan: not a trajectory plan");
   const DriveMask drives = position_drives(s);
   const PathMargin& margin = s.sampling->margin;
-  // Every point: the robot's limits on the controller's model and the actual
-  // mechanism (check_reach), and the margin from losing control for the
-  // drives in position mode, widened by the model's tolerance.
+  // Every point: the robot's limits on the controller's model (check_reach),
+  // and the margin from losing control for the drives in position mode,
+  // widened by the model's tolerance.
   const PointCheck check = [&](const Eigen::Vector2d& p) -> std::string {
     if (const Reach rc = check_reach(s.controller, p); !rc.ok) return rc.reason;
-    if (const Reach ra = check_reach(actual, p); !ra.ok) return "on the actual mechanism: " + ra.reason;
     return margin_violation(s.controller, p, drives, margin);
   };
   try {
@@ -112,7 +111,7 @@ SimulationResult run_simulation(const Scenario& s, std::function<void(const LogR
   const bool in_motion = s.sampling && s.sampling->pattern == PosePattern::kTrajectory;
   // Planned and checked before anything moves.
   const std::optional<WaypointPath> path =
-      in_motion ? std::optional<WaypointPath>(excitation_plan(s, r.actual, poses)) : std::nullopt;
+      in_motion ? std::optional<WaypointPath>(excitation_plan(s, poses)) : std::nullopt;
   const TwinModel model(r.actual, s.twin);
   r.model_xml = model.xml();
   TwinState state(model, derive_seed(s.seed, Stream::kTwinNoise));

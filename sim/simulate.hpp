@@ -46,12 +46,13 @@ DriveMask position_drives(const Scenario& s);
 
 // The excitation path of a trajectory plan through poses, from the
 // controller's home (sim/waypoint_path.hpp), every point of it checked before
-// anything moves against the robot's limits on the controller's model and on
-// the actual mechanism, and against sampling.path_margin for the drives in
-// position mode (models/drive_margin.hpp); via points repair the segments
-// that break it. Throws InputError (one line naming the file, the pose or
-// segment and the reason) when the margin cannot be kept.
-WaypointPath excitation_plan(const Scenario& s, const Robot& actual, const std::vector<Eigen::Vector2d>& poses,
+// anything moves against the robot's limits on the controller's model and
+// against sampling.path_margin for the drives in position mode, widened by
+// the model's tolerance (models/drive_margin.hpp): the controller's knowledge
+// only, never the twin's actual mechanism, as on a real machine. Via points
+// repair the segments that break it. Throws InputError (one line naming the
+// file, the pose or segment and the reason) when the margin cannot be kept.
+WaypointPath excitation_plan(const Scenario& s, const std::vector<Eigen::Vector2d>& poses,
                              PathRepair* repair = nullptr);
 
 // Runs the scenario in memory; throws InputError for bad targets or

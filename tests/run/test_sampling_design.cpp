@@ -54,7 +54,7 @@ TEST(SamplingDesign, MainJobPosesAndPathKeepTheMarginOfTheDrivenFiveBar) {
   for (const Eigen::Vector2d& p : s.sampling->poses)
     EXPECT_EQ(margin_violation(s.controller, p, drives, s.sampling->margin), "");
   sim::PathRepair repair;
-  const sim::WaypointPath path = sim::excitation_plan(s, s.controller, s.sampling->poses, &repair);
+  const sim::WaypointPath path = sim::excitation_plan(s, s.sampling->poses, &repair);
   for (const Eigen::Vector2d& p : path.p)
     ASSERT_EQ(margin_violation(s.controller, p, drives, s.sampling->margin), "") << p.transpose();
   std::printf("main job: excitation path of %.1f mm, %.2f s, %d via points\n", path.length_mm,
@@ -105,7 +105,7 @@ TEST(SamplingDesign, ATighterDeviationMarginKeepsTheHubCloserToThePlan) {
                   calib::reading_sigma(calib::encoder_step_rad(spec.sim.twin.encoder.bits), spec.sim.twin.encoder.noise_rad));
   const sim::Scenario& s = spec.sim;
   const DriveMask drives = sim::position_drives(s);
-  const sim::WaypointPath path = sim::excitation_plan(s, s.controller, s.sampling->poses);
+  const sim::WaypointPath path = sim::excitation_plan(s, s.sampling->poses);
   double worst = 0.0;
   for (const Eigen::Vector2d& p : path.p) {
     worst = std::max(worst, drive_margins(s.controller, p, drives, s.sampling->margin.tolerance).deviation_mm);
