@@ -53,23 +53,41 @@ std::optional<Eigen::Vector2d> driven_point(const Geometry& g, const Eigen::Vect
 // five-bar that changed assembly mode shows) against the point the command in
 // force puts it at (its position-mode joints; two: in their assembly mode at
 // home). Not watched with fewer than two joints in position mode.
-std::string tracking_violation(const Robot& controller, const SafetyLimits& limits, const HardwareCommand& command,
-                               const std::array<std::array<int, 3>, 3>& pair_mode, const Eigen::Vector3d& reading) {
-  const int n = position_count(command.mode);
-  if (n < 2) return {};
+struct TrackingPoints {
+  Eigen::Vector2d here = Eigen::Vector2d::Zero();  // from the readings
+  Eigen::Vector2d plan = Eigen::Vector2d::Zero();  // where the command puts it
+};
+std::optional<TrackingPoints> tracking_points(const Robot& controller, const HardwareCommand& command,
+                                              const std::array<std::array<int, 3>, 3>& pair_mode,
+                                              const Eigen::Vector3d& reading) {
+  if (position_count(command.mode) < 2) return std::nullopt;
   const Geometry& g = controller.geometry;
   const auto here = forward_kinematics(g, active_from_readings(g, reading));
-  if (!here) return {};
+  if (!here) return std::nullopt;
   const std::optional<Eigen::Vector2d> plan = driven_point(g, command.theta_m, command.mode, pair_mode);
-  if (!plan) return {};
-  const double d = (here->p - *plan).norm();
+  if (!plan) return std::nullopt;
+  return TrackingPoints{here->p, *plan};
+}
+
+std::string tracking_violation(const Robot& controller, const SafetyLimits& limits, const HardwareCommand& command,
+                               const std::array<std::array<int, 3>, 3>& pair_mode, const Eigen::Vector3d& reading) {
+  const std::optional<TrackingPoints> t = tracking_points(controller, command, pair_mode, reading);
+  if (!t) return {};
+  const double d = (t->here - t->plan).norm();
   if (!(d > limits.max_tracking_mm)) return {};
   return fmt::format("tracking: the end-effector from the readings ({:.3f}, {:.3f}) mm is {:.1f} mm from where the "
                      "command puts it ({:.3f}, {:.3f}) mm (max_tracking {} mm): drives disabled",
-                     here->p.x(), here->p.y(), d, plan->x(), plan->y(), limits.max_tracking_mm);
+                     t->here.x(), t->here.y(), d, t->plan.x(), t->plan.y(), limits.max_tracking_mm);
 }
 
 }  // namespace
+
+std::optional<double> SafetySupervisor::tracking_mm(const Eigen::Vector3d& reading) const {
+  if (state() != LifecycleState::kActive) return std::nullopt;
+  const std::optional<TrackingPoints> t = tracking_points(controller_, last_, pair_mode_, reading);
+  if (!t) return std::nullopt;
+  return (t->here - t->plan).norm();
+}
 
 std::optional<Eigen::Vector2d> SafetySupervisor::commanded_point() const {
   if (state() != LifecycleState::kActive) return std::nullopt;

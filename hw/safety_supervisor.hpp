@@ -47,6 +47,10 @@ class SafetySupervisor final : public RobotHardware {
   // two position joints: in their assembly mode at home); nullopt before a
   // command or where it cannot (fewer than two joints in position mode).
   std::optional<Eigen::Vector2d> commanded_point() const;
+  // What the tracking watch measures for reading against the command in
+  // force (mm); nullopt where it does not watch (before a command, fewer
+  // than two joints in position mode, no assembly).
+  std::optional<double> tracking_mm(const Eigen::Vector3d& reading) const;
   // Number of commands refused so far.
   long rejected_count() const { return rejected_; }
   // True while the robot brakes or holds because no valid command came.

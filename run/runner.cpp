@@ -470,6 +470,8 @@ void measure_compensation(RunOutcome& out, const RunSpec& spec, const Progress& 
 
 }  // namespace
 
+sim::SimulationResult sample_in_process(const RunSpec& spec) { return sample_on_twin(spec, nullptr); }
+
 RunOutcome run_scenario(const RunSpec& spec_in, const std::string& scenario_file, const Progress& progress,
                         const std::string& samples_path) {
   const auto t0 = std::chrono::steady_clock::now();

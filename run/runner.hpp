@@ -79,6 +79,12 @@ using Progress = std::function<void(const std::string& stage)>;
 RunOutcome run_scenario(const RunSpec& spec, const std::string& scenario_file,
                         const Progress& progress = {}, const std::string& samples_path = "");
 
+// Samples spec (its sampling designed: run/sampling_design.hpp) on the
+// in-process twin as run_scenario does, through the hardware interface;
+// throws sim::TrackingStop with the samples and the trajectory so far when
+// the robot leaves its plan (the twin's truth in both: for studies and tests).
+sim::SimulationResult sample_in_process(const RunSpec& spec);
+
 // The files write_run may write into DIR (for the check of the output
 // folder against every input before the run: check_output_folder).
 const std::vector<std::string>& run_output_names();

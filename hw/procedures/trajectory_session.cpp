@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <optional>
 
 #include <fmt/format.h>
 
@@ -49,10 +50,20 @@ void check_resumed(const TrajectoryPlan& plan, double period_s, const SampleLog&
   }
 }
 
-// Follows the path from its start (the robot stands there), appending the samples to log.
-void follow_and_sample(Motion& motion, const TrajectoryPlan& plan, const std::vector<Eigen::Vector3d>& q,
-                       SampleLog& log, const SampleHook& on_sample) {
+// Where the path ended early: its cycle and what the tracking watch measured.
+struct EarlyEnd {
+  std::size_t cycle = 0;
+  double tracking_mm = 0.0;
+};
+
+// Follows the path from its start (the robot stands there), appending the
+// samples to log; stops following (nullopt: it did not) at the first sample
+// whose tracking passes plan.retreat_fraction of the watch's bound.
+std::optional<EarlyEnd> follow_and_sample(Motion& motion, const TrajectoryPlan& plan,
+                                          const std::vector<Eigen::Vector3d>& q, SampleLog& log,
+                                          const SampleHook& on_sample) {
   const double period = motion.period_s();
+  const double retreat_mm = plan.retreat_fraction * motion.hardware().limits().max_tracking_mm;
   const long sync_every = std::max(1L, std::lround(kSyncEvery_s / (plan.every * period)));
   const double t0 = motion.now();
   Eigen::Vector3d sum_between = Eigen::Vector3d::Zero(), last_torque = Eigen::Vector3d::Zero();
@@ -82,8 +93,43 @@ void follow_and_sample(Motion& motion, const TrajectoryPlan& plan, const std::ve
     sum_between = st.torque;  // the sample's own cycle is the first of the next interval
     last_torque = st.torque;
     periods_between = 1;
+    if (retreat_mm > 0.0) {
+      const std::optional<double> d = motion.hardware().tracking_mm(st.theta_m);
+      if (d && *d > retreat_mm) {
+        log.sync();
+        return EarlyEnd{k, *d};
+      }
+    }
   }
   log.sync();
+  return std::nullopt;
+}
+
+// From cycle k of q (the robot in motion along it) to rest at q's start: the
+// path parameter slows linearly to rest over plan.stop_s, then the path is
+// retraced at rest-to-rest timing within the limits' headroom (Motion::follow).
+void retreat(Motion& motion, const TrajectoryPlan& plan, const std::vector<Eigen::Vector3d>& q, std::size_t k) {
+  if (q.size() < 2) return;  // a path of one point: the robot is at its start
+  const double last = static_cast<double>(q.size() - 1);
+  const auto at = [&](double s) {  // q at a real cycle index, linear between cycles
+    s = std::clamp(s, 0.0, last);
+    const std::size_t i = std::min(static_cast<std::size_t>(s), q.size() - 2);
+    return Eigen::Vector3d(q[i] + (s - static_cast<double>(i)) * (q[i + 1] - q[i]));
+  };
+  const long n = std::max(1L, std::lround(plan.stop_s / motion.period_s()));
+  double s = static_cast<double>(k);
+  for (long j = 1; j <= n; ++j) {
+    const double jd = static_cast<double>(j);
+    s = static_cast<double>(k) + jd - 0.5 * jd * jd / static_cast<double>(n);  // speed 1 - j / n
+    motion.cycle(at(s));
+  }
+  const double s_end = s;
+  const auto back = [&](double u) { return at(s_end * (1.0 - u)); };
+  // The retraced path's shape, fine enough for its curvature (one point every 10 cycles).
+  const long points = std::max(64L, std::lround(s_end / 10.0));
+  std::vector<Eigen::Vector3d> shape;
+  for (long i = 0; i <= points; ++i) shape.push_back(back(static_cast<double>(i) / static_cast<double>(points)));
+  motion.follow(back, motion.path_time(shape, 0.0));
 }
 
 }  // namespace
@@ -132,6 +178,7 @@ SessionResult run_trajectory_session(SafetySupervisor& hw, const TrajectoryPlan&
   }
   std::vector<Eigen::Vector3d> q = trajectory_commands(hw.controller(), plan, period);
   Motion motion(hw, plan.modes, plan.profile_headroom, stop);
+  std::optional<EarlyEnd> early;
   try {
     if (hw.state() == LifecycleState::kUnconfigured) hw.configure();
     const HardwareState& first = hw.read(0.0);
@@ -151,19 +198,26 @@ SessionResult run_trajectory_session(SafetySupervisor& hw, const TrajectoryPlan&
     motion.move_joints(q[0], plan.move_speed_mm_s);
     motion.settle(plan.settle, "the excitation path's start: ");
     const Eigen::Vector3d reading0 = motion.state().theta_m, command0 = motion.command();
-    follow_and_sample(motion, plan, q, log, on_sample);
+    early = follow_and_sample(motion, plan, q, log, on_sample);
     motion.check_followed(reading0, command0, "the excitation path: ");
+    if (early) retreat(motion, plan, q, early->cycle);
     motion.finish();
     r.taken = static_cast<long>(log.size());
     r.duration_s = motion.now();
     hw.shutdown();
-    return r;
+    if (!early) return r;
   } catch (const InputError&) {  // refused before moving (the torque, the move to the start)
     hw.shutdown();
     throw;
   } catch (...) {
     rethrow_session_error(hw, log);
   }
+  throw HardwareError(fmt::format(
+      "tracking: the end-effector from the readings left its plan by {:.1f} mm at t = {:.3f} s of the path (beyond "
+      "{:g} of max_tracking {:g} mm): sampling ended there and the robot retraced its path to the start, drives "
+      "disabled; {} samples kept in {}",
+      early->tracking_mm, static_cast<double>(early->cycle) * period, plan.retreat_fraction,
+      hw.limits().max_tracking_mm, log.size(), log.path()));
 }
 
 }  // namespace gpm::hw

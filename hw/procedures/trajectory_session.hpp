@@ -29,6 +29,13 @@ struct TrajectoryPlan {
   double move_speed_mm_s = 50.0;   // peak speed of the move to the path's start
   sim::SettleCriterion settle;     // rest before the path starts
   double profile_headroom = 0.5;   // fraction of the limits the move to the start uses
+  // Beyond this fraction of the tracking watch's bound (the supervisor's
+  // limits().max_tracking_mm, measured at each sample) the path ends early:
+  // sampling stops, the robot slows to rest along the path over stop_s and
+  // retraces it to its start (0: never; the watch itself disables the drives
+  // at its bound).
+  double retreat_fraction = 0.7;
+  double stop_s = 0.1;
 };
 
 // The encoder-space command of every cycle of plan's path at period_s (IK of
@@ -51,7 +58,10 @@ void check_trajectory_plan(const SafetySupervisor& hw, const TrajectoryPlan& pla
 // run_sampling_session (hw/procedures/sampling_session.hpp): InputError
 // before anything moves, HardwareError with drives disabled and samples
 // kept, Interrupted on a stop request. on_sample (optional): called as each
-// sample is logged (hw/procedures/sampling_session.hpp SampleHook).
+// sample is logged (hw/procedures/sampling_session.hpp SampleHook). A path
+// that ends early (TrajectoryPlan::retreat_fraction) is a HardwareError
+// too, raised once the robot is back at the path's start with its drives
+// disabled normally (samples kept).
 SessionResult run_trajectory_session(SafetySupervisor& hw, const TrajectoryPlan& plan, SampleLog& log,
                                      const std::atomic<bool>* stop = nullptr, const SampleHook& on_sample = {});
 

@@ -5,7 +5,8 @@
 // joint's read time, the commanded point; the twin backend follows the path
 // and its samples read back as a file taken on the fly; a path outside the
 // limits, drives that report no torque and a partly recorded file are
-// refused before anything moves; a finished file is kept and nothing moves.
+// refused before anything moves; a finished file is kept and nothing moves;
+// a robot that leaves its plan ends the path early and retraces it.
 #include <gtest/gtest.h>
 
 #include <cmath>
@@ -126,6 +127,60 @@ TEST(TrajectorySession, TheTwinFollowsThePathAndItsFileReadsAsTakenOnTheFly) {
   }
   EXPECT_LT(worst, 3.0);
   EXPECT_GT(torque, 0.0);  // the twin reports its drive torques
+}
+
+// Joint 1 torque-off on a backend that moves only its position joints: its
+// reading stays where it was, so the end-effector from the three readings
+// leaves the commanded point more and more along the path. Past
+// retreat_fraction of the watch's bound the path ends: the samples taken are
+// kept, the robot slows along the path and retraces it to the start (every
+// command accepted by the supervisor), and the error says so; without the
+// retreat the watch itself disables the drives at its bound, off the path.
+TEST(TrajectorySession, ARobotLeavingItsPlanEndsThePathAndRetracesIt) {
+  SafetyLimits lim = test::example_limits();
+  TrajectoryPlan plan = small_plan(1);
+  plan.modes = {JointMode::kTorqueOff, JointMode::kPosition, JointMode::kPosition};
+  // Where the frozen reading puts the readings' end-effector at the path's far end.
+  Rig probe;
+  const std::vector<Eigen::Vector3d> q = trajectory_commands(probe.robot, plan, 0.004);
+  double far_mm = 0.0;
+  for (const Eigen::Vector3d& qk : q) {
+    const Eigen::Vector3d reading(q[0][0], qk[1], qk[2]);
+    const auto fk = forward_kinematics(probe.robot.geometry, active_from_readings(probe.robot.geometry, reading));
+    const auto cmd = forward_kinematics(probe.robot.geometry, active_from_readings(probe.robot.geometry, qk));
+    if (fk && cmd) far_mm = std::max(far_mm, (fk->p - cmd->p).norm());
+  }
+  ASSERT_GT(far_mm, 1.0);
+  lim.max_tracking_mm = far_mm;  // the retreat (0.7 of it) comes first; the watch would trip further on
+  for (const bool retreat : {true, false}) {
+    test::TempDir dir("traj_retreat");
+    plan.retreat_fraction = retreat ? 0.7 : 0.0;
+    lim.max_tracking_mm = retreat ? far_mm : 0.5 * far_mm;
+    Rig rig(true, lim);
+    const std::string path = (dir / "s.csv").string();
+    try {
+      SampleLog log(path, false, SampleColumns::kOnTheFly);
+      run_trajectory_session(*rig.sup, plan, log, nullptr);
+      ADD_FAILURE() << "the path ran to its end";
+    } catch (const HardwareError& e) {
+      const std::string what = e.what();
+      EXPECT_EQ(what.find("retraced its path to the start") != std::string::npos, retreat) << what;
+      EXPECT_NE(what.find("samples kept in " + path), std::string::npos) << what;
+    }
+    const long kept = static_cast<long>(read_samples_csv(path).size());
+    EXPECT_GT(kept, 10);
+    EXPECT_LT(kept, trajectory_sample_count(plan, 0.004));
+    // Retraced: the last command is the path's start, at rest (the two last equal to rounding).
+    ASSERT_GE(rig.rec.size(), 2u);
+    const Eigen::Vector3d last = rig.rec.back().theta_m, before = rig.rec[rig.rec.size() - 2].theta_m;
+    for (int i = 1; i < 3; ++i) {
+      if (retreat) {
+        EXPECT_NEAR(last[i], q[0][i] + std::round((last[i] - q[0][i]) / (2 * M_PI)) * 2 * M_PI, 1e-9) << i;
+        EXPECT_NEAR(last[i], before[i], 1e-6) << i;
+      }
+    }
+    EXPECT_EQ(rig.sup->rejected_count(), 0);
+  }
 }
 
 TEST(TrajectorySession, APathOutsideTheLimitsIsRefusedBeforeAnythingMoves) {

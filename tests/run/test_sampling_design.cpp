@@ -17,6 +17,7 @@
 #include "models/drive_margin.hpp"
 #include "models/errors.hpp"
 #include "run/run_spec.hpp"
+#include "run/runner.hpp"
 #include "sim/simulate.hpp"
 
 namespace gpm::scenario {
@@ -34,15 +35,22 @@ const RunSpec& main_job() {
 }
 
 // Largest distance of the twin's true end-effector from the plan over the
-// sampling of the robot of seed (the tracking watch off, to measure it).
-double max_deviation_mm(std::uint64_t seed) {
-  sim::Scenario s = main_job().sim;
-  s.seed = seed;
-  s.max_tracking_mm = 0.0;
-  const sim::SimulationResult r = sim::run_simulation(s);
+// main job's sampling of the robot of seed, as gpm run samples it (through
+// the hardware interface, with the tracking watch and the path's early end
+// and retreat: the whole motion counts, the retreat too).
+double max_deviation_mm(std::uint64_t seed, bool* ended_early = nullptr) {
+  RunSpec spec = main_job();
+  spec.sim.seed = seed;
+  std::vector<sim::LogRow> rows;
+  try {
+    rows = sample_in_process(spec).log.rows;
+    if (ended_early) *ended_early = false;
+  } catch (const sim::TrackingStop& stop) {
+    rows = stop.rows;
+    if (ended_early) *ended_early = std::string(stop.what()).find("retraced its path") != std::string::npos;
+  }
   double worst = 0.0;
-  for (const sim::LogRow& row : r.log.rows)
-    if (row.t <= r.sampling_s) worst = std::max(worst, (row.actual - row.desired).norm());
+  for (const sim::LogRow& row : rows) worst = std::max(worst, (row.actual - row.desired).norm());
   return worst;
 }
 
@@ -130,6 +138,21 @@ TEST(SamplingDesign, MainJobTracksItsPathWithin20MmOnThreeRobots) {
   for (std::uint64_t seed : {2026u, 7u, 11u}) {
     const double d = max_deviation_mm(seed);
     std::printf("seed %llu: max deviation from the plan %.2f mm\n", static_cast<unsigned long long>(seed), d);
+    EXPECT_LE(d, 20.0) << "seed " << seed;
+  }
+}
+
+// Robots whose geometry (offsets beyond the planner's tolerance) takes them
+// past 20 mm from the main job's plan (22 and 24 mm without the early end,
+// measured with `gpm simulate`): the path ends early, the robot retraces it,
+// and it never leaves its plan by more than 20 mm.
+TEST(SamplingDesign, ARobotBeyondItsToleranceEndsThePathWithin20Mm) {
+  for (std::uint64_t seed : {10009u, 7011u}) {
+    bool early = false;
+    const double d = max_deviation_mm(seed, &early);
+    std::printf("seed %llu: max deviation from the plan %.2f mm, ended early: %d\n",
+                static_cast<unsigned long long>(seed), d, early);
+    EXPECT_TRUE(early) << "seed " << seed;
     EXPECT_LE(d, 20.0) << "seed " << seed;
   }
 }
