@@ -112,8 +112,9 @@ FrictionProfile profile_over(const Problem& problem, const std::vector<Eigen::Ve
   } else if (start_at && start.known) {
     w.at(*start_at, start.known);
   }
-  if (!start.walk || !w.any)
-    for (std::size_t k = 0; k < grid.size(); ++k) w.at(k);  // every value (or the rest, when no fit of the walk succeeded)
+  // Every value, or the rest when no fit of the walk succeeded or its minimum is not trusted.
+  if (!start.walk || !w.any || !(w.best_value <= start.trust))
+    for (std::size_t k = 0; k < grid.size(); ++k) w.at(k);
   return w.result();
 }
 

@@ -16,6 +16,7 @@
 // along the grid to the first local minimum instead of fitting every value.
 #pragma once
 
+#include <limits>
 #include <optional>
 #include <vector>
 
@@ -37,11 +38,14 @@ struct FrictionProfile {
 // the first local minimum along the grid: the same choice as fitting every
 // value wherever chi2/dof has one minimum along the grid (far from the
 // stated friction, at a few times it, chi2/dof can fall again: walk from the
-// stated value); if no fit of the walk succeeds, the rest is fitted.
+// stated value); if no fit of the walk succeeds, or the minimum it finds
+// has a chi2/dof above trust (a model that misses the readings: its chi2/dof
+// need not have one minimum along the grid), the rest is fitted.
 struct ProfileStart {
   std::optional<double> value;       // a value of the grid: where a walk starts, the known fit's
   const MotionFit* known = nullptr;  // the fit at value, already made with the model there (not made again)
   bool walk = false;                 // walk from value down chi2/dof instead of fitting every value
+  double trust = std::numeric_limits<double>::infinity();  // largest chi2/dof of a walk's minimum taken as it is
 };
 
 // The factors 0 (no friction) and 2^(m/2), m = -4..4 (0.25 to 4 in steps of sqrt 2).

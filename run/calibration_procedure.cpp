@@ -25,6 +25,12 @@ namespace {
 // (8 ms: 1.08; 4 and 12 ms alike; 16 ms failed its 3 CRB sigmas, 4.7).
 constexpr double kAccelerationHalfWindow_s = 8e-3;
 
+// The largest chi2/dof at which the speed profile's walk is taken as it is
+// (calib/friction_profile.hpp ProfileStart::trust): the main job's speed
+// profile is 1.13, 1.09, 1.04, 1.09, 1.21, one minimum; robots the model
+// misses (chi2/dof 20 to 2000) can have two.
+constexpr double kWalkTrust = 2.0;
+
 // The motion model's fit in progress: the problem, the samples' rates and
 // torques, the LM options and the notes each stage leaves.
 struct MotionStage {
@@ -137,22 +143,27 @@ MotionStage motion_stage(const SampleSeries& s, const CalibrationInputs& in, con
 
 // The speed over which the drives' friction builds up, chosen by the model
 // test (calib/friction_profile.hpp) at the friction of motion.load; at: the
-// friction's name in the note. Every speed is fitted (no speed is stated to
-// walk from: on robots whose readings the model misses, chi2/dof has more
-// than one minimum over the speeds), but for known: m.fit, made already
-// with m.motion (its speed a value of the grid).
+// friction's name in the note. The profile walks from the speed of known
+// (m.fit, made already with m.motion) or from the middle speed; where the
+// minimum it finds has chi2/dof above kWalkTrust every speed is fitted (on
+// the population's robots whose readings the model misses, chi2/dof has
+// more than one minimum over the speeds).
 void choose_speed(MotionStage& m, const char* at, const calib::MotionFit* known) {
   const std::vector<double> grid = calib::default_friction_speeds();
-  calib::ProfileStart with;
-  if (known) with.value = m.motion.load.friction_speed_rad_s, with.known = known;
+  calib::ProfileStart from;
+  from.value = known ? m.motion.load.friction_speed_rad_s : grid[grid.size() / 2];
+  from.known = known;
+  from.walk = true;
+  from.trust = kWalkTrust;
   const calib::FrictionProfile speeds =
-      calib::friction_speed_profile(m.problem, m.omega, m.tau, m.lo, m.motion, m.alpha, grid, m.sigma, with);
+      calib::friction_speed_profile(m.problem, m.omega, m.tau, m.lo, m.motion, m.alpha, grid, m.sigma, from);
   m.motion = speeds.model;
   m.fit = speeds.fit;
   m.speed_note = fmt::format(
       "drive friction builds up over {:.3g} rad/s (F tanh(omega / v)), the smallest chi2/dof of the speeds "
-      "tried in rad/s at {} ({})",
-      speeds.scale, at, profile_tried(speeds, "{:.3g}"));
+      "tried in rad/s at {}{} ({})",
+      speeds.scale, at, speeds.scales.size() < grid.size() ? fmt::format(", walking down from {:.3g}", *from.value) : "",
+      profile_tried(speeds, "{:.3g}"));
 }
 
 // The stated friction times the factor the model test prefers (for the

@@ -5,7 +5,8 @@
 // gives back F (the smallest chi2/dof), and there recovers the plays within
 // 4 sigma; a friction that builds up over 0.3 rad/s is found by the speed
 // profile; a walk from a start chooses what fitting every value chooses, in
-// fewer fits, and takes a known fit as it is; bad arguments are refused.
+// fewer fits (every value where its minimum is above the trust), and takes a
+// known fit as it is; bad arguments are refused.
 #include "calib/friction_profile.hpp"
 
 #include <algorithm>
@@ -154,6 +155,12 @@ TEST(FrictionProfile, WalkFromAStartChoosesWhatTheWholeGridChooses) {
       EXPECT_EQ(walk.scales, (std::vector<double>{0.25, 0.5, 1.0, 2.0}));
     }
   }
+  // A minimum above the trust: every value fitted after all.
+  ProfileStart distrust{1.0, nullptr, true};
+  distrust.trust = 0.0;
+  EXPECT_EQ(calibrate_friction_profile(d.problem, d.omega, d.tau, o, stated(2.0 * kFriction_Nm), {}, scales, kSigma,
+                                       distrust).scales,
+            scales);
   // A known fit at the start is taken as it is, not made again: a fit made
   // at another factor gives the start that factor's chi2/dof.
   const FrictionProfile at4 = calibrate_friction_profile(d.problem, d.omega, d.tau, o, stated(2.0 * kFriction_Nm), {},
