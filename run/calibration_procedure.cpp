@@ -31,6 +31,9 @@ constexpr double kAccelerationHalfWindow_s = 8e-3;
 // misses (chi2/dof 20 to 2000) can have two.
 constexpr double kWalkTrust = 2.0;
 
+// The Wald test's level at which a drive train's effect is kept (calib/reading_model_selection.hpp).
+constexpr double kDriveEffectSigmas = 3.0;
+
 // The motion model's fit in progress: the problem, the samples' rates and
 // torques, the LM options and the notes each stage leaves.
 struct MotionStage {
@@ -230,7 +233,8 @@ void drop_undetected(MotionStage& m, bool keep_clearance) {
 void select_drive_train(MotionStage& m, const CalibrationInputs& in) {
   if (m.sigma > 0.0) {
     calib::DriveEffectSelection chosen =
-        calib::select_drive_effects(m.problem, m.omega, m.tau, m.lo, m.motion, m.alpha, in.drive_candidates);
+        calib::select_drive_effects(m.problem, m.omega, m.tau, m.lo, m.motion, m.alpha, in.drive_candidates,
+                                    kDriveEffectSigmas, &m.fit);  // m.fit: the fit of m.motion
     m.fit = std::move(chosen.fit);
     m.motion = chosen.model;
     if (!chosen.kept.empty())

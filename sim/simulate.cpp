@@ -68,7 +68,7 @@ class VerdictMemo {
   }
 
  private:
-  static constexpr std::size_t kMaxPoints = 1 << 18;  // a few paths' worth; then the memo starts again
+  static constexpr std::size_t kMaxPoints = 1 << 16;  // some ten paths' points; then the memo starts again
   using Key = std::pair<std::uint64_t, std::uint64_t>;
   struct Hash {
     std::size_t operator()(const Key& k) const { return std::hash<std::uint64_t>()(k.first * 0x9E3779B97F4A7C15ULL ^ k.second); }
