@@ -54,8 +54,9 @@ std::vector<double> default_friction_scales();
 // calibrate_in_motion at each factor of scales (>= 0) times model.load's
 // friction, the fit of the smallest chi2/dof taken (reading noise sigma, rad,
 // > 0). Throws InputError for no factor, a factor < 0, sigma <= 0, or when
-// no factor's fit succeeds (the last fit's error), a start that is not a
-// value of scales or scales not ascending with a start.
+// no factor's fit succeeds (the last fit's error), a start value that is
+// not one of scales, or a walk without a start value or along scales not
+// ascending.
 FrictionProfile calibrate_friction_profile(const Problem& problem, const std::vector<Eigen::Vector3d>& omega,
                                            const std::vector<Eigen::Vector3d>& tau, const LmOptions& options,
                                            const MotionModel& model, const std::vector<Eigen::Vector3d>& alpha,
