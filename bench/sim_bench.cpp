@@ -11,7 +11,8 @@
 // hits both alike) and "effects_vs_ideal_per_step" is their ratio of best
 // rates in thread CPU time (goal for
 // realistic: at most 1.5). --profile prints MuJoCo's stage timers per step
-// of both twins (where a step's time goes).
+// of both twins (where a step's time goes), and of the effects twin driven
+// along a circle by its controller, with the solver's iterations per step.
 #include <algorithm>
 #include <chrono>
 #include <cstdio>
@@ -72,6 +73,46 @@ void print_profile(const char* name, const gpm::sim::TwinModel& model, gpm::sim:
   for (int t = mjTIMER_POSITION; t < mjNTIMER; ++t)
     if (t != mjTIMER_POS_COLLISION) std::printf(" %s %.3f", kNames[t], d->timer[t].duration / static_cast<double>(n));
   std::printf("\n");
+}
+
+// The twin driven along a 60 mm circle in 4 s by the controller (one drive
+// loop tick a step, as gpm run's accuracy test drives the main job's twin):
+// thread CPU per tick without timers, then MuJoCo's stage timers per tick,
+// and the constraint solver's iterations per step (mean, largest, share of
+// steps with more than one) and rows, over n ticks.
+void print_moving_profile(const char* name, const gpm::sim::TwinModel& model, const gpm::Robot& robot, long n) {
+  using namespace gpm::sim;
+  TwinState state(model, 1);
+  Session session = make_session(model, state, robot, nullptr);
+  const CirclePath circle{robot.home, 60.0, 4.0, 1e9};
+  const double period = model.timestep_s() * model.steps_per_tick();
+  long tick = 0;
+  const double c0 = thread_cpu_s();
+  for (long k = 0; k < n; ++k) advance(session, path_at(circle, period * static_cast<double>(tick++)));
+  const double tick_us = 1e6 * (thread_cpu_s() - c0) / static_cast<double>(n);
+  mjData* d = state.data.get();
+  mjcb_time = [] {
+    return static_cast<mjtNum>(1e-3 * std::chrono::duration<double, std::nano>(Clock::now().time_since_epoch()).count());
+  };
+  for (int t = 0; t < mjNTIMER; ++t) d->timer[t].duration = 0.0, d->timer[t].number = 0;
+  long iterations = 0, most = 0, more = 0, rows = 0;
+  for (long k = 0; k < n; ++k) {
+    advance(session, path_at(circle, period * static_cast<double>(tick++)));
+    iterations += d->solver_iter, rows += d->nefc, more += d->solver_iter > 1;
+    most = std::max<long>(most, d->solver_iter);
+  }
+  mjcb_time = nullptr;
+  const double per = 1.0 / static_cast<double>(n);
+  std::printf("%s_moving_cpu_us_per_tick %.3f (steps per tick %d)\n", name, tick_us, model.steps_per_tick());
+  std::printf("%s_moving_mujoco_us_per_tick position %.3f (kinematics %.3f inertia %.3f make %.3f) velocity %.3f "
+              "actuation %.3f acceleration %.3f constraint %.3f\n",
+              name, d->timer[mjTIMER_POSITION].duration * per, d->timer[mjTIMER_POS_KINEMATICS].duration * per,
+              d->timer[mjTIMER_POS_INERTIA].duration * per, d->timer[mjTIMER_POS_MAKE].duration * per,
+              d->timer[mjTIMER_VELOCITY].duration * per, d->timer[mjTIMER_ACTUATION].duration * per,
+              d->timer[mjTIMER_ACCELERATION].duration * per, d->timer[mjTIMER_CONSTRAINT].duration * per);
+  std::printf("%s_moving_solver iterations_per_step %.3f largest %ld more_than_one %.1f%% constraint_rows %.2f\n", name,
+              static_cast<double>(iterations) * per, most, 100.0 * static_cast<double>(more) * per,
+              static_cast<double>(rows) * per);
 }
 
 }  // namespace
@@ -192,6 +233,7 @@ int main(int argc, char** argv) {
     if (profile) {
       for (auto [name, m, st] : {std::tuple{"ideal", &ideal, &si}, std::tuple{"effects", &model, &se}})
         print_profile(name, *m, *st, n);
+      print_moving_profile("effects", model, robot, n);
     }
   }
 

@@ -12,8 +12,12 @@
 // of the corrected readings over sigma, n - p degrees of freedom) is taken.
 // On the realistic twin's main job chi2/dof against k (the twin at k = 1):
 // 8.2 at 0, 1.49 at 0.5, 1.31 at 0.75, 1.43 at 1, 1.81 at 1.25, 2.8 at 1.5, 7.1 at 2.
+// Given a start (ProfileStart), a profile can walk from it down chi2/dof
+// along the grid to the first local minimum instead of fitting every value.
 #pragma once
 
+#include <limits>
+#include <optional>
 #include <vector>
 
 #include "calib/motion_correction.hpp"
@@ -24,8 +28,24 @@ struct FrictionProfile {
   MotionFit fit;                      // the fit at the chosen factor
   double scale = 1.0;                 // the chosen factor k (or speed v_F, friction_speed_profile)
   MotionModel model;                  // the model with the friction times k (for motion_crb)
-  std::vector<double> scales;         // the factors tried
+  std::vector<double> scales;         // the factors tried, in the grid's order
   std::vector<double> chi2_per_dof;   // the model test's chi2 / dof of each (inf where the fit failed)
+};
+
+// What a profile knows before it starts, and how it searches. By default
+// every value of the grid is fitted. With walk (the grid ascending) it fits
+// value and its neighbours and walks on while chi2/dof falls, stopping at
+// the first local minimum along the grid: the same choice as fitting every
+// value wherever chi2/dof has one minimum along the grid (far from the
+// stated friction, at a few times it, chi2/dof can fall again: walk from the
+// stated value); if no fit of the walk succeeds, or the minimum it finds
+// has a chi2/dof above trust (a model that misses the readings: its chi2/dof
+// need not have one minimum along the grid), the rest is fitted.
+struct ProfileStart {
+  std::optional<double> value;       // a value of the grid: where a walk starts, the known fit's
+  const MotionFit* known = nullptr;  // the fit at value, already made with the model there (not made again)
+  bool walk = false;                 // walk from value down chi2/dof instead of fitting every value
+  double trust = std::numeric_limits<double>::infinity();  // largest chi2/dof of a walk's minimum taken as it is
 };
 
 // The factors 0 (no friction) and 2^(m/2), m = -4..4 (0.25 to 4 in steps of sqrt 2).
@@ -34,11 +54,14 @@ std::vector<double> default_friction_scales();
 // calibrate_in_motion at each factor of scales (>= 0) times model.load's
 // friction, the fit of the smallest chi2/dof taken (reading noise sigma, rad,
 // > 0). Throws InputError for no factor, a factor < 0, sigma <= 0, or when
-// no factor's fit succeeds (the last fit's error).
+// no factor's fit succeeds (the last fit's error), a start value that is
+// not one of scales, or a walk without a start value or along scales not
+// ascending.
 FrictionProfile calibrate_friction_profile(const Problem& problem, const std::vector<Eigen::Vector3d>& omega,
                                            const std::vector<Eigen::Vector3d>& tau, const LmOptions& options,
                                            const MotionModel& model, const std::vector<Eigen::Vector3d>& alpha,
-                                           const std::vector<double>& scales, double sigma);
+                                           const std::vector<double>& scales, double sigma,
+                                           const ProfileStart& start = {});
 
 // The speed v_F over which the drives' friction builds up
 // (TransmissionLoad::friction_speed_rad_s), chosen by the model test as the
@@ -53,7 +76,7 @@ FrictionProfile calibrate_friction_profile(const Problem& problem, const std::ve
 FrictionProfile friction_speed_profile(const Problem& problem, const std::vector<Eigen::Vector3d>& omega,
                                        const std::vector<Eigen::Vector3d>& tau, const LmOptions& options,
                                        const MotionModel& model, const std::vector<Eigen::Vector3d>& alpha,
-                                       const std::vector<double>& speeds, double sigma);
+                                       const std::vector<double>& speeds, double sigma, const ProfileStart& start = {});
 
 // The speeds 0.01 * 10^(m/2) rad/s, m = 0..4 (0.01 to 1 rad/s).
 std::vector<double> default_friction_speeds();

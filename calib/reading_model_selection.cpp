@@ -64,7 +64,7 @@ MotionModel with_candidates(MotionModel model, const MotionModel& candidates) {
 DriveEffectSelection select_drive_effects(const Problem& problem, const std::vector<Eigen::Vector3d>& omega,
                                           const std::vector<Eigen::Vector3d>& tau, const LmOptions& options,
                                           const MotionModel& model, const std::vector<Eigen::Vector3d>& alpha,
-                                          const MotionModel& candidates, double k) {
+                                          const MotionModel& candidates, double k, const MotionFit* fit_of_model) {
   DriveEffectSelection out;
   MotionModel tellable = candidates;
   tellable.backlash = tellable_backlash(model, omega, tau, alpha, candidates.backlash);
@@ -98,7 +98,13 @@ DriveEffectSelection select_drive_effects(const Problem& problem, const std::vec
       if (!keep) (*orders[o])[i] = false, changed = true;
     }
   }
-  out.fit = changed ? calibrate_in_motion(problem, omega, tau, options, out.model, alpha) : all;
+  // Every candidate dropped: out.model is model again (only these flags differ).
+  const bool back_to_model = out.model.backlash == model.backlash && out.model.joint_harmonic == model.joint_harmonic &&
+                             out.model.motor_harmonic1 == model.motor_harmonic1 &&
+                             out.model.motor_harmonic2 == model.motor_harmonic2;
+  if (!changed) out.fit = all;
+  else if (back_to_model && fit_of_model) out.fit = *fit_of_model;
+  else out.fit = calibrate_in_motion(problem, omega, tau, options, out.model, alpha);
   return out;
 }
 

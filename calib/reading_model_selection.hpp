@@ -28,10 +28,13 @@ struct DriveEffectSelection {
 
 // Fits problem with model plus every candidate in candidates (the effects
 // switched on there), then again with those the Wald test at k sigma keeps
-// (calibrate_in_motion: omega, tau, alpha as there). Throws as calibrate_in_motion.
+// (calibrate_in_motion: omega, tau, alpha as there); when it keeps none and
+// fit_of_model is given (the fit of model, already made), that fit is taken
+// instead of being made again. Throws as calibrate_in_motion.
 DriveEffectSelection select_drive_effects(const Problem& problem, const std::vector<Eigen::Vector3d>& omega,
                                           const std::vector<Eigen::Vector3d>& tau, const LmOptions& options,
                                           const MotionModel& model, const std::vector<Eigen::Vector3d>& alpha,
-                                          const MotionModel& candidates, double k = 3.0);
+                                          const MotionModel& candidates, double k = 3.0,
+                                          const MotionFit* fit_of_model = nullptr);
 
 }  // namespace gpm::calib

@@ -102,6 +102,12 @@ std::string mjcf_preamble(const Robot& actual, const MjcfOptions& o) {
     x += fmt::format("       {} = {}\n", param_name(i), num(g[i]));
   x += "  -->\n";
   x += "  <compiler angle=\"radian\" inertiafromgeom=\"false\"/>\n";
+  // Room for every constraint row the mechanism can have (3 per connect, 1
+  // per tendon equality, limit and frictionloss row: under 30 with every
+  // effect) and no contacts (they are off): MuJoCo's default, 500 rows and
+  // 100 contacts, sizes each mjData's scratch stack to 10 MB, which every
+  // twin state allocates and touches (sim/twin.cpp stops a run that fills it).
+  x += "  <size njmax=\"100\" nconmax=\"10\"/>\n";
   x += fmt::format("  <option timestep=\"{}\">\n    <flag contact=\"disable\"/>\n  </option>\n",
                    num(o.timestep_s));
   x += "  <default>\n";

@@ -25,6 +25,15 @@ namespace {
 // (8 ms: 1.08; 4 and 12 ms alike; 16 ms failed its 3 CRB sigmas, 4.7).
 constexpr double kAccelerationHalfWindow_s = 8e-3;
 
+// The largest chi2/dof at which the speed profile's walk is taken as it is
+// (calib/friction_profile.hpp ProfileStart::trust): the main job's speed
+// profile is 1.13, 1.09, 1.04, 1.09, 1.21, one minimum; robots the model
+// misses (chi2/dof 20 to 2000) can have two.
+constexpr double kWalkTrust = 2.0;
+
+// The Wald test's level at which a drive train's effect is kept (calib/reading_model_selection.hpp).
+constexpr double kDriveEffectSigmas = 3.0;
+
 // The motion model's fit in progress: the problem, the samples' rates and
 // torques, the LM options and the notes each stage leaves.
 struct MotionStage {
@@ -137,28 +146,42 @@ MotionStage motion_stage(const SampleSeries& s, const CalibrationInputs& in, con
 
 // The speed over which the drives' friction builds up, chosen by the model
 // test (calib/friction_profile.hpp) at the friction of motion.load; at: the
-// friction's name in the note.
-void choose_speed(MotionStage& m, const char* at) {
-  const calib::FrictionProfile speeds = calib::friction_speed_profile(
-      m.problem, m.omega, m.tau, m.lo, m.motion, m.alpha, calib::default_friction_speeds(), m.sigma);
+// friction's name in the note. The profile walks from the speed of known
+// (m.fit, made already with m.motion) or from the middle speed; where the
+// minimum it finds has chi2/dof above kWalkTrust every speed is fitted (on
+// the population's robots whose readings the model misses, chi2/dof has
+// more than one minimum over the speeds).
+void choose_speed(MotionStage& m, const char* at, const calib::MotionFit* known) {
+  const std::vector<double> grid = calib::default_friction_speeds();
+  calib::ProfileStart from;
+  from.value = known ? m.motion.load.friction_speed_rad_s : grid[grid.size() / 2];
+  from.known = known;
+  from.walk = true;
+  from.trust = kWalkTrust;
+  const calib::FrictionProfile speeds =
+      calib::friction_speed_profile(m.problem, m.omega, m.tau, m.lo, m.motion, m.alpha, grid, m.sigma, from);
   m.motion = speeds.model;
   m.fit = speeds.fit;
   m.speed_note = fmt::format(
       "drive friction builds up over {:.3g} rad/s (F tanh(omega / v)), the smallest chi2/dof of the speeds "
-      "tried in rad/s at {} ({})",
-      speeds.scale, at, profile_tried(speeds, "{:.3g}"));
+      "tried in rad/s at {}{} ({})",
+      speeds.scale, at, speeds.scales.size() < grid.size() ? fmt::format(", walking down from {:.3g}", *from.value) : "",
+      profile_tried(speeds, "{:.3g}"));
 }
 
-// The stated friction times the factor the model test prefers (for the clearance's force signs).
-void choose_friction_scale(MotionStage& m) {
+// The stated friction times the factor the model test prefers (for the
+// clearance's force signs), walking down chi2/dof from the factor 1 (known:
+// its fit, when made already with m.motion).
+void choose_friction_scale(MotionStage& m, const calib::MotionFit* known) {
   calib::FrictionProfile profile = calib::calibrate_friction_profile(
-      m.problem, m.omega, m.tau, m.lo, m.motion, m.alpha, calib::default_friction_scales(), m.sigma);
+      m.problem, m.omega, m.tau, m.lo, m.motion, m.alpha, calib::default_friction_scales(), m.sigma,
+      calib::ProfileStart{1.0, known, true});
   m.fit = std::move(profile.fit);
   m.motion = profile.model;
   m.friction_scale = profile.scale;
   m.friction_note = fmt::format(
       "drive friction for the force signs: the stated values x{:.2f} (Coulomb {:.3g}, {:.3g}, {:.3g} N m), the "
-      "smallest chi2/dof of the factors tried ({})",
+      "smallest chi2/dof of the factors tried, walking down from 1 ({})",
       profile.scale, m.motion.load.coulomb_Nm[0], m.motion.load.coulomb_Nm[1], m.motion.load.coulomb_Nm[2],
       profile_tried(profile, "{:.2f}"));
 }
@@ -167,11 +190,13 @@ void choose_friction_scale(MotionStage& m) {
 // by the model test where it can judge them, else one fit.
 void fit_motion(MotionStage& m, const CalibrationInputs& in, bool in_motion) {
   const bool fit_speed = in_motion && m.motion.friction && m.sigma > 0.0;
-  if (fit_speed) choose_speed(m, "the stated friction");
+  if (fit_speed) choose_speed(m, "the stated friction", nullptr);
   if (m.motion.clearance && in.drive_friction.fit_scale && m.sigma > 0.0) {
-    choose_friction_scale(m);
-    // A speed chosen at a wrong friction stands in for it: chosen again at the factor's.
-    if (fit_speed && m.friction_scale != 1.0) choose_speed(m, "that friction");
+    // The factor 1 is the stated friction: the speed profile's fit when it was made.
+    choose_friction_scale(m, fit_speed ? &m.fit : nullptr);
+    // A speed chosen at a wrong friction stands in for it: chosen again at the
+    // factor's (the factor's fit is the one at the speed it was made with).
+    if (fit_speed && m.friction_scale != 1.0) choose_speed(m, "that friction", &m.fit);
   } else if (!fit_speed) {
     m.fit = calib::calibrate_in_motion(m.problem, m.omega, m.tau, m.lo, m.motion, m.alpha);
   }
@@ -208,7 +233,8 @@ void drop_undetected(MotionStage& m, bool keep_clearance) {
 void select_drive_train(MotionStage& m, const CalibrationInputs& in) {
   if (m.sigma > 0.0) {
     calib::DriveEffectSelection chosen =
-        calib::select_drive_effects(m.problem, m.omega, m.tau, m.lo, m.motion, m.alpha, in.drive_candidates);
+        calib::select_drive_effects(m.problem, m.omega, m.tau, m.lo, m.motion, m.alpha, in.drive_candidates,
+                                    kDriveEffectSigmas, &m.fit);  // m.fit: the fit of m.motion
     m.fit = std::move(chosen.fit);
     m.motion = chosen.model;
     if (!chosen.kept.empty())

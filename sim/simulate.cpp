@@ -1,9 +1,11 @@
 #include "sim/simulate.hpp"
 
+#include <bit>
 #include <filesystem>
 #include <fstream>
 #include <optional>
 #include <stdexcept>
+#include <unordered_map>
 #include <unistd.h>
 
 #include <fmt/format.h>
@@ -32,6 +34,50 @@ void check_point(const Robot& controller, const Robot& actual, const Eigen::Vect
   const Reach ra = check_reach(actual, p);
   if (!ra.ok) throw InputError(fmt::format("{} on the actual mechanism: {}", what, ra.reason));
 }
+
+// What the controller's robot alone says of a point of an excitation path:
+// check_reach's and margin_violation's (made only once asked: the point
+// must also reach on the actual mechanism).
+struct ControllerVerdict {
+  bool reaches = false;
+  std::string reach;  // check_reach's reason when it does not
+  std::optional<std::string> margin;
+};
+
+// The verdicts of this thread's last controller, drives and margin, by the
+// point's exact coordinates. A study's robots share the controller and the
+// designed poses (run/sampling_design.cpp): their excitation paths check
+// the same points, and both checks are pure functions of these inputs.
+class VerdictMemo {
+ public:
+  // The verdict at p of controller with drives and margin (made at first use).
+  ControllerVerdict& at(const Robot& controller, const DriveMask& drives, const PathMargin& margin,
+                        const Eigen::Vector2d& p) {
+    if (!(controller_ == controller && drives_ == drives && margin_ == margin) || verdicts_.size() > kMaxPoints) {
+      controller_ = controller, drives_ = drives, margin_ = margin;
+      verdicts_.clear();
+    }
+    const Key key{std::bit_cast<std::uint64_t>(p.x()), std::bit_cast<std::uint64_t>(p.y())};
+    auto [it, fresh] = verdicts_.try_emplace(key);
+    if (fresh) {
+      const Reach r = check_reach(controller, p);
+      it->second.reaches = r.ok;
+      it->second.reach = r.reason;
+    }
+    return it->second;
+  }
+
+ private:
+  static constexpr std::size_t kMaxPoints = 1 << 16;  // some ten paths' points; then the memo starts again
+  using Key = std::pair<std::uint64_t, std::uint64_t>;
+  struct Hash {
+    std::size_t operator()(const Key& k) const { return std::hash<std::uint64_t>()(k.first * 0x9E3779B97F4A7C15ULL ^ k.second); }
+  };
+  Robot controller_;
+  DriveMask drives_{};
+  PathMargin margin_;
+  std::unordered_map<Key, ControllerVerdict, Hash> verdicts_;
+};
 
 std::vector<Eigen::Vector2d> path_points(const Path& path) {
   std::vector<Eigen::Vector2d> out;
@@ -78,10 +124,14 @@ WaypointPath excitation_plan(const Scenario& s, const std::vector<Eigen::Vector2
   const PathMargin& margin = s.sampling->margin;
   // Every point: the robot's limits on the controller's model (check_reach),
   // and the margin from losing control for the drives in position mode,
-  // widened by the model's tolerance.
+  // widened by the model's tolerance (the verdicts from this thread's memo:
+  // the same strings as made afresh).
+  thread_local VerdictMemo memo;
   const PointCheck check = [&](const Eigen::Vector2d& p) -> std::string {
-    if (const Reach rc = check_reach(s.controller, p); !rc.ok) return rc.reason;
-    return margin_violation(s.controller, p, drives, margin);
+    ControllerVerdict& v = memo.at(s.controller, drives, margin, p);
+    if (!v.reaches) return v.reach;
+    if (!v.margin) v.margin = margin_violation(s.controller, p, drives, margin);
+    return *v.margin;
   };
   try {
     return excitation_path(s.controller.home, poses, s.sampling->path_limits, check, repair);

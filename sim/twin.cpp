@@ -251,6 +251,9 @@ void twin_step(const TwinModel& model, TwinState& state) {
     throw SimError(fmt::format("the simulation diverged at t = {} s (check gains and timestep)",
                                state.last.time_s));
   }
+  if (d->warning[mjWARN_CNSTRFULL].number > 0)  // rows dropped: the physics would go on wrong
+    throw SimError(fmt::format("MuJoCo: more constraint rows than the model's njmax {} at t = {} s", m->njmax,
+                               state.last.time_s));
 }
 
 }  // namespace gpm::sim

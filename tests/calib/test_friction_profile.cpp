@@ -4,7 +4,9 @@
 // calibration's formula); a calibration told 2F or F/2 picks the factor that
 // gives back F (the smallest chi2/dof), and there recovers the plays within
 // 4 sigma; a friction that builds up over 0.3 rad/s is found by the speed
-// profile; bad arguments are refused.
+// profile; a walk from a start chooses what fitting every value chooses, in
+// fewer fits (every value where its minimum is above the trust), and takes a
+// known fit as it is; bad arguments are refused.
 #include "calib/friction_profile.hpp"
 
 #include <algorithm>
@@ -128,6 +130,57 @@ TEST(FrictionProfile, SpeedProfilePicksTheSpeedOverWhichTheFrictionBuildsUp) {
   }
 }
 
+TEST(FrictionProfile, WalkFromAStartChoosesWhatTheWholeGridChooses) {
+  const PlayData d = make_play_data();
+  LmOptions o;
+  o.encoder_sigma = kSigma;
+  const std::vector<double> scales = {0.25, 0.5, 1.0, 2.0, 4.0};
+  // From the stated factor and from below (far above, at 4x, chi2/dof falls
+  // again: a walk starts at the stated value, as the procedure's does).
+  for (double from : {1.0, 0.25}) {
+    const FrictionProfile all = calibrate_friction_profile(d.problem, d.omega, d.tau, o, stated(2.0 * kFriction_Nm), {},
+                                                           scales, kSigma);
+    const FrictionProfile walk = calibrate_friction_profile(d.problem, d.omega, d.tau, o, stated(2.0 * kFriction_Nm),
+                                                            {}, scales, kSigma, ProfileStart{from, nullptr, true});
+    EXPECT_EQ(walk.scale, all.scale) << "from " << from;
+    EXPECT_EQ(walk.fit.result.geometry.values, all.fit.result.geometry.values) << "from " << from;
+    ASSERT_EQ(walk.scales.size(), walk.chi2_per_dof.size());
+    EXPECT_TRUE(std::is_sorted(walk.scales.begin(), walk.scales.end()));
+    for (std::size_t k = 0; k < walk.scales.size(); ++k) {  // each tried value's chi2/dof as the whole grid's
+      const auto at = std::find(scales.begin(), scales.end(), walk.scales[k]) - scales.begin();
+      EXPECT_EQ(walk.chi2_per_dof[k], all.chi2_per_dof[static_cast<std::size_t>(at)]);
+    }
+    // From next to the minimum 0.5: the start, its neighbours and the minimum's other neighbour.
+    if (from == 1.0) {
+      EXPECT_EQ(walk.scales, (std::vector<double>{0.25, 0.5, 1.0, 2.0}));
+    }
+  }
+  // A minimum above the trust: every value fitted after all.
+  ProfileStart distrust{1.0, nullptr, true};
+  distrust.trust = 0.0;
+  EXPECT_EQ(calibrate_friction_profile(d.problem, d.omega, d.tau, o, stated(2.0 * kFriction_Nm), {}, scales, kSigma,
+                                       distrust).scales,
+            scales);
+  // A known fit at the start is taken as it is, not made again: a fit made
+  // at another factor gives the start that factor's chi2/dof.
+  const FrictionProfile at4 = calibrate_friction_profile(d.problem, d.omega, d.tau, o, stated(2.0 * kFriction_Nm), {},
+                                                         {4.0}, kSigma);
+  const FrictionProfile walk = calibrate_friction_profile(d.problem, d.omega, d.tau, o, stated(2.0 * kFriction_Nm), {},
+                                                          scales, kSigma, ProfileStart{1.0, &at4.fit, true});
+  EXPECT_EQ(walk.chi2_per_dof[std::find(walk.scales.begin(), walk.scales.end(), 1.0) - walk.scales.begin()],
+            at4.chi2_per_dof[0]);
+  // Without a walk every value is fitted but the known one; the speed profile alike.
+  const std::vector<double> speeds = default_friction_speeds();
+  const FrictionProfile sp_all = friction_speed_profile(d.problem, d.omega, d.tau, o, stated(kFriction_Nm), {}, speeds, kSigma);
+  MotionModel at_speed = stated(kFriction_Nm);
+  at_speed.load.friction_speed_rad_s = speeds[2];
+  const FrictionProfile sp_known = friction_speed_profile(d.problem, d.omega, d.tau, o, at_speed, {}, speeds, kSigma,
+                                                          ProfileStart{speeds[2], &at4.fit});
+  EXPECT_EQ(sp_known.scales, speeds);
+  for (std::size_t k = 0; k < speeds.size(); ++k)
+    EXPECT_EQ(sp_known.chi2_per_dof[k], k == 2 ? at4.chi2_per_dof[0] : sp_all.chi2_per_dof[k]) << "speed " << speeds[k];
+}
+
 TEST(FrictionProfile, RefusesBadArguments) {
   const PlayData d = make_play_data();
   LmOptions o;
@@ -135,6 +188,16 @@ TEST(FrictionProfile, RefusesBadArguments) {
   EXPECT_THROW(calibrate_friction_profile(d.problem, d.omega, d.tau, o, stated(1.0), {}, {}, kSigma), InputError);
   EXPECT_THROW(calibrate_friction_profile(d.problem, d.omega, d.tau, o, stated(1.0), {}, {1.0, -0.5}, kSigma), InputError);
   EXPECT_THROW(calibrate_friction_profile(d.problem, d.omega, d.tau, o, stated(1.0), {}, {1.0}, 0.0), InputError);
+  // A start that is not a value of the grid, or a grid not ascending to walk along.
+  EXPECT_THROW(calibrate_friction_profile(d.problem, d.omega, d.tau, o, stated(1.0), {}, {0.5, 1.0}, kSigma,
+                                          ProfileStart{0.7, nullptr, true}),
+               InputError);
+  EXPECT_THROW(calibrate_friction_profile(d.problem, d.omega, d.tau, o, stated(1.0), {}, {1.0, 0.5}, kSigma,
+                                          ProfileStart{1.0, nullptr, true}),
+               InputError);
+  EXPECT_THROW(calibrate_friction_profile(d.problem, d.omega, d.tau, o, stated(1.0), {}, {0.5, 1.0}, kSigma,
+                                          ProfileStart{std::nullopt, nullptr, true}),
+               InputError);
   EXPECT_THROW(friction_speed_profile(d.problem, d.omega, d.tau, o, stated(1.0), {}, {}, kSigma), InputError);
   EXPECT_THROW(friction_speed_profile(d.problem, d.omega, d.tau, o, stated(1.0), {}, {0.1, 0.0}, kSigma), InputError);
   EXPECT_THROW(friction_speed_profile(d.problem, d.omega, d.tau, o, stated(1.0), {}, {0.1}, 0.0), InputError);

@@ -6,7 +6,8 @@
 // geometry comes back within its 1-sigma, where the fit without the drive
 // train is far off; the sandwich covariance of a fit that leaves an effect
 // out covers its error, where the noise model's does not; on white noise the
-// sandwich is not taken.
+// sandwich is not taken; with none kept, a fit without them already made is
+// taken as it is.
 #include "calib/reading_model_selection.hpp"
 
 #include <cmath>
@@ -139,6 +140,20 @@ TEST(ReadingModelSelection, FindsNothingOnARobotWithoutADriveTrain) {
   EXPECT_TRUE(s.kept.size() <= 1u) << "of 12 candidates at 3 sigma, at most one by chance";
   EXPECT_EQ(s.kept.size() + s.dropped.size(), 12u);
   EXPECT_LT(worst_in_sigmas(d, s.fit.result), 4.0);
+  // None kept: given the fit without the drive train, that fit is the result,
+  // bit for bit the one made again, and it is taken, not made (a fit of
+  // another model given in its place comes back).
+  ASSERT_TRUE(s.kept.empty());
+  const MotionFit plain = calibrate_in_motion(d.problem, d.omega, d.tau, o, rigid_geared(), {});
+  const DriveEffectSelection given =
+      select_drive_effects(d.problem, d.omega, d.tau, o, rigid_geared(), {}, every_candidate(), 3.0, &plain);
+  EXPECT_EQ(given.fit.result.geometry.values, s.fit.result.geometry.values);
+  EXPECT_EQ(given.fit.chi2_per_dof, s.fit.chi2_per_dof);
+  MotionFit other = plain;
+  other.result.geometry.values[kLa1] += 1.0;
+  EXPECT_EQ(select_drive_effects(d.problem, d.omega, d.tau, o, rigid_geared(), {}, every_candidate(), 3.0, &other)
+                .fit.result.geometry.values,
+            other.result.geometry.values);
 }
 
 // Along a path what the model leaves out is a smooth misfit: the sandwich's

@@ -2,7 +2,9 @@
 // targets are refused with the pose and the reason, the output files follow
 // their contracts and are written all or nothing, the tracking watch stops a
 // run that leaves its plan (samples kept), and a trajectory plan keeps
-// sampling.path_margin or is refused before anything moves.
+// sampling.path_margin or is refused before anything moves; a plan made again
+// in the same thread (the controller's verdicts remembered) equals one made
+// afresh, the actual mechanism still checked at every point.
 #include "sim/simulate.hpp"
 #include "models/data_dir.hpp"
 
@@ -11,6 +13,7 @@
 #include <filesystem>
 #include <fstream>
 #include <sstream>
+#include <thread>
 #include <unistd.h>
 
 #include <fmt/format.h>
@@ -175,6 +178,45 @@ sampling:
   EXPECT_EQ(e.rfind("s.yaml: sampling: excitation path refused before anything moves: ", 0), 0u) << e;
   EXPECT_NE(e.find("singularity"), std::string::npos) << e;
   EXPECT_EQ(e.find('\n'), std::string::npos) << e;
+}
+
+// The plan and the refusal of a mechanism that cannot follow it, made in a
+// new thread (nothing remembered) and in this one after plans of the same
+// controller with other mechanisms: the same path point for point, the same
+// refusal text.
+// The controller's verdicts are remembered per thread: a plan made again
+// equals one made afresh in a new thread, and a scenario with another margin
+// (here one the poses cannot keep) is not answered from the memo.
+TEST(Simulate, PlanMadeAgainEqualsOneMadeAfreshAndAnotherMarginIsCheckedAgain) {
+  const Scenario s = parse(R"(
+servo: {modes: [torque_off, position, position]}
+sampling:
+  pattern: trajectory
+  count: 11
+  poses: [[216.5, 250], [236.5, 260], [196.5, 240], [230, 225], [200, 270], [250, 250], [180, 250], [216.5, 290],
+          [216.5, 210], [240, 280], [190, 220]]
+)");
+  Scenario strict = s;
+  strict.sampling->margin.singularity = 0.8;  // a margin the poses cannot keep
+  const auto plan_or_refusal = [](const Scenario& sc) -> std::pair<WaypointPath, std::string> {
+    try {
+      return {excitation_plan(sc, sc.sampling->poses), ""};
+    } catch (const InputError& e) {
+      return {WaypointPath{}, e.what()};
+    }
+  };
+  std::pair<WaypointPath, std::string> fresh, fresh_strict;
+  std::thread([&] { fresh = plan_or_refusal(s); }).join();
+  std::thread([&] { fresh_strict = plan_or_refusal(strict); }).join();
+  ASSERT_EQ(fresh.second, "");
+  EXPECT_NE(fresh_strict.second.find("refused before anything moves"), std::string::npos) << fresh_strict.second;
+  for (int round = 0; round < 2; ++round) {
+    const auto again = plan_or_refusal(s);
+    EXPECT_EQ(again.first.t, fresh.first.t);
+    EXPECT_EQ(again.first.p, fresh.first.p);
+    EXPECT_EQ(again.first.v, fresh.first.v);
+    EXPECT_EQ(plan_or_refusal(strict).second, fresh_strict.second);
+  }
 }
 
 TEST(Simulate, NothingIsWrittenWhenTheFolderCannotBeWritten) {

@@ -1,6 +1,7 @@
 // Tests of sim/twin.cpp: the compiled MJCF closes its loops at qpos0 for
 // random actual parameters, the encoders follow eq. 35, and fighting servos
-// hold the internal preload kp kv (I - J J+) dtheta predicted by statics.
+// hold the internal preload kp kv (I - J J+) dtheta predicted by statics;
+// the model's constraint rows (njmax) hold every row it can have.
 //
 // Derivation of the preload. The active angles of the closed chain move on a
 // 2-D manifold: near a pose, theta = theta0 + J dp with J = d theta_a / d(x, y),
@@ -124,6 +125,34 @@ TEST(Twin, TorqueOffJointIsOnlyASensor) {
   // Two drives and two degrees of freedom: nothing to fight, the torques vanish.
   EXPECT_LT(tau.head<2>().cwiseAbs().maxCoeff(), 0.1);
   EXPECT_LT(std::abs(wrap_pi(s.last.readings[0] - s.command_position[0])), 1e-3);
+}
+
+// Every row the solver can be given (3 per connect, 1 per tendon equality,
+// up to 2 per limited joint or tendon, 1 per frictionloss dof or tendon)
+// fits in the model's njmax with the effects off, realistic and with hub pin
+// offsets, and a run with them never fills it.
+TEST(Twin, ConstraintRowsFitTheModelsRoom) {
+  std::vector<Effects> cases = {Effects{}, realistic_effects()};
+  cases.push_back(realistic_effects());
+  cases.back().mjcf.hub_pin_m = {{{0.0, 0.0}, {0.01, 0.0}, {0.0, 0.01}}};
+  for (const Effects& fx : cases) {
+    TwinConfig c;
+    c.mjcf.timestep_s = 0.00025;
+    c.servo_rate_hz = 4000.0;
+    c.effects = fx;
+    const TwinModel model(Robot{}, c);
+    const mjModel* m = model.mj();
+    int rows = 0;
+    for (int e = 0; e < m->neq; ++e) rows += m->eq_type[e] == mjEQ_CONNECT ? 3 : m->eq_type[e] == mjEQ_WELD ? 6 : 1;
+    for (int j = 0; j < m->njnt; ++j) rows += m->jnt_limited[j] ? 2 : 0;
+    for (int t = 0; t < m->ntendon; ++t) rows += (m->tendon_limited[t] ? 2 : 0) + (m->tendon_frictionloss[t] > 0.0);
+    for (int v = 0; v < m->nv; ++v) rows += m->dof_frictionloss[v] > 0.0;
+    EXPECT_LE(rows, m->njmax / 3);
+    TwinState state(model, 1);
+    twin_command(state, state.last.readings + Eigen::Vector3d(0.01, -0.01, 0.005), Eigen::Vector3d::Zero());
+    for (int k = 0; k < 2000; ++k) ASSERT_NO_THROW(twin_step(model, state));  // no row dropped (sim/twin.cpp)
+    EXPECT_EQ(state.data->warning[mjWARN_CNSTRFULL].number, 0);
+  }
 }
 
 TEST(Twin, ServoRateMustBeAWholeNumberOfSteps) {
