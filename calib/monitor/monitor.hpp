@@ -225,6 +225,9 @@ struct FilterWindow : DriftFilter {
   std::array<Eigen::Vector3d, kMaxWindow> theta{};
   std::array<Eigen::Vector3d, kMaxWindow> tension{};  // sign of each passive link's axial force (+-1, 0 without clearance)
   std::array<double, kMaxWindow> r_map{};  // the learnt residual taken off each sample (rad; 0 without the map)
+  // The filter's share of each innovation's standard deviation, sqrt(h P h') in
+  // z units: all samples of a window share the filter's error (the step test).
+  std::array<double, kMaxWindow> z_filter{};
   int head = 0;   // next slot to write
   int count = 0;  // samples held
   // The step test's variance factor of each parameter (>= 1; 1 until learnt):
