@@ -50,6 +50,7 @@ double step_statistic(const MonitorModel& model, const FilterWindow& data, Param
     var[static_cast<size_t>(k)] = data.P(k, k) * sd * sd;
   }
   double best = 0.0;
+  const bool bound = model.settings.step_shared_bound;
   const int last_onset = data.count - model.settings.step_min_samples;  // onsets with enough samples after them
   const double clip = model.settings.step_clip > 0.0 ? model.settings.step_clip : std::numeric_limits<double>::infinity();
   for (int j = data.count - 1; j >= 0; --j) {
@@ -67,8 +68,10 @@ double step_statistic(const MonitorModel& model, const FilterWindow& data, Param
         // Var(S_zh): S_hh (each sample's own noise) plus that of the filter's
         // error all samples share: S_hh^2 P_ii if it lay along i alone, at
         // most (sum |dz_i| z_filter)^2 whatever it is (Cauchy-Schwarz).
-        const double shared = std::min(s_hh[ks] * s_hh[ks] * var[ks], s_hf[ks] * s_hf[ks]);
-        const double term = s_zh[ks] * s_zh[ks] / ((s_hh[ks] + shared) * data.step_factor[i]);
+        const double variance =
+            bound ? s_hh[ks] + std::min(s_hh[ks] * s_hh[ks] * var[ks], s_hf[ks] * s_hf[ks])
+                  : s_hh[ks] * (1.0 + s_hh[ks] * var[ks]);
+        const double term = s_zh[ks] * s_zh[ks] / (variance * data.step_factor[i]);
         best = std::max(best, term);
         if (per_param_max) (*per_param_max)[i] = std::max((*per_param_max)[i], term);
       }

@@ -70,6 +70,10 @@ struct MonitorSettings {
   // a step is many moderate innovations, a reading glitch or a point where
   // the reading model fails one gross one (Huber-like). 0: no clipping.
   double step_clip = 5.0;
+  // The step test's share of the filter's error (explain.hpp step_statistic):
+  // false, S_hh^2 P_ii (as if the filter erred along parameter i alone);
+  // true, the smaller of that and the Cauchy-Schwarz bound of any error.
+  bool step_shared_bound = false;
   // Accepted samples after the crossing before the alarm is explained (the
   // filter waits meanwhile); window + explain_samples <= kMaxWindow.
   int explain_samples = 240;
