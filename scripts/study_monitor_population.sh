@@ -98,7 +98,8 @@ for effects in effects_list:
                        f"{m.get('detected', '-')} of {m.get('events', '-')} | "
                        f"{num(m.get('detection_delay_median_s'), '.3f')} / {num(m.get('detection_delay_max_s'), '.3f')} |")
     if "learning" in pops:
-        by_variant = {v: {r["seed"]: r for r in pops[v]["robots"]} for v in ("nolearning", "nomap") if v in pops}
+        by_variant = {v: {r["seed"]: r for r in pops[v]["robots"]} for v in ("nolearning", "nomap", "slip1", "slip3", "bigslip")
+                      if v in pops}
         def cells(x):
             mon = x.get("monitor")
             if not mon:
@@ -112,16 +113,19 @@ for effects in effects_list:
             cb = cells(by_variant.get("nolearning", {}).get(r["seed"], {}))
             cn = cells(by_variant.get("nomap", {}).get(r["seed"], {}))
             cd = cells(r)
+            cs = [cells(by_variant.get(v, {}).get(r["seed"], {})) for v in ("slip1", "slip3", "bigslip")]
             per_robot.append(f"| {effects} | {r['seed']} | {cb[0]} | {cb[1]} | {cn[0]} | {cn[1]} | {cn[2]} | "
-                             f"{cd[0]} | {cd[1]} | {cd[2]} |")
+                             f"{cd[0]} | {cd[1]} | {cd[2]} | " + " | ".join(f"{c[0]}, {c[1]}" if c[1] != "-" else c[0] for c in cs) + " |")
 md = ["| effects | monitor | robots | false alarms (healthy time after learning) | per hour | robots with any | "
       "slip detected | delay median / worst (s) |",
       "| --- | --- | --- | ---: | ---: | ---: | ---: | ---: |"] + summary + ["",
       "Per robot (false alarms in the healthy time, per hour; detection delay of the slip of encoder 2 and the "
-      "parameter it was named as; the innovation scale learnt, 1 = as stated; - when not run):", "",
+      "parameter it was named as; the innovation scale learnt, 1 = as stated; the default monitor's false alarms and "
+      "delay with the slip of encoder 1, of encoder 3, and of 1e-3 rad on encoder 2; - when not run):", "",
       "| effects | seed | without learning: false alarms | without learning: slip | learning without map: false alarms | "
-      "learning without map: slip | learnt scale | default: false alarms | default: slip | default: learnt scale |",
-      "| --- | --- | ---: | ---: | ---: | ---: | ---: | ---: | ---: | ---: |"] + per_robot
+      "learning without map: slip | learnt scale | default: false alarms | default: slip | default: learnt scale | "
+      "default, slip of encoder 1 | default, slip of encoder 3 | default, slip 1e-3 rad |",
+      "| --- | --- | ---: | ---: | ---: | ---: | ---: | ---: | ---: | ---: | ---: | ---: | ---: |"] + per_robot
 text = "\n".join(md) + "\n"
 open(os.path.join(out, "monitor_population.md"), "w").write(text)
 json.dump(rows, open(os.path.join(out, "monitor_population.json"), "w"), indent=2)

@@ -91,7 +91,8 @@ static Geometry shifted(const Geometry& x, const std::array<double, 3>& clearanc
 }
 
 bool filter_innovation(const MonitorModel& m, const FilterWindow& d, double t_s, const Eigen::Vector3d& theta_m,
-                       const Eigen::Vector3d& tension, double& z, ParamRow& dz, double r_map, double* r_out) {
+                       const Eigen::Vector3d& tension, double& z, ParamRow& dz, double r_map, double* r_out,
+                       double* z_filter) {
   Geometry x = d.estimate;
   double rate = d.growth_rate;
   StateMatrix P = d.P;
@@ -102,9 +103,14 @@ bool filter_innovation(const MonitorModel& m, const FilterWindow& d, double t_s,
   if (r_out) *r_out = r;
   r -= r_map;
   std::array<double, kMaxState> Ph{};
-  const double sqrt_s = std::sqrt(innovation_variance(m, d.noise_scale, P, g, theta_m, tension, Ph));
+  const double s = innovation_variance(m, d.noise_scale, P, g, theta_m, tension, Ph);
+  const double sqrt_s = std::sqrt(s);
   z = r / sqrt_s;
   dz = g / sqrt_s;
+  if (z_filter) {
+    const double sigma = d.noise_scale * m.sigma_rad;
+    *z_filter = std::sqrt(std::max(s - sigma * sigma, 0.0) / s);
+  }
   return true;
 }
 

@@ -34,10 +34,13 @@ void filter_predict(const MonitorModel& model, Geometry& estimate, double& growt
 // tension: the sign of each passive link's axial force for the sample (its
 // length is lb_i + d_i tension_i, d_i the estimated effective play).
 // r_map (rad) is taken off the residual first (the configuration map,
-// config_map.hpp); r_out (optional) receives the residual before it.
+// config_map.hpp); r_out (optional) receives the residual before it;
+// z_filter (optional) the filter's share of z's unit standard deviation,
+// sqrt(h P h' / s).
 bool filter_innovation(const MonitorModel& model, const FilterWindow& data, double t_s,
                        const Eigen::Vector3d& theta_m, const Eigen::Vector3d& tension, double& z,
-                       ParamRow& dz_dparams, double r_map = 0.0, double* r_out = nullptr);
+                       ParamRow& dz_dparams, double r_map = 0.0, double* r_out = nullptr,
+                       double* z_filter = nullptr);
 
 // Kalman update with one sample (predict to t_s, then K = P h' / s,
 // u += K (0 - r), P -= K h P). Directions h does not see get no gain.

@@ -27,8 +27,11 @@ void explain_window(const MonitorModel& model, const MonitorData& data, Alarm& a
 //   onsets k with at least settings.step_min_samples samples from k on: a
 //   step persists, a point of the job where the reading model fails does not),
 // with P_ii the filter's variance of parameter i: the window's innovations
-// share the filter's error, so under no change S_zh has variance
-// S_hh + S_hh^2 P_ii along column i, and each term is chi-square with 1
+// share the filter's error, which adds S_hh^2 P_ii to the variance of S_zh
+// if it lies along parameter i alone. With settings.step_shared_bound the
+// denominator is S_hh + min(S_hh^2 P_ii, S_hf^2), S_hf = sum |dz_i| z_filter:
+// S_hf^2 bounds that variance whatever the error (Cauchy-Schwarz, z_filter
+// each sample's share of its spread). Each term is taken as chi-square with 1
 // degree of freedom. After the learning phase each parameter's term is
 // divided by data.step_factor[i], the variance factor of such sums learnt
 // from the robot (learning.hpp). Allocation-free, O(window * n_free).

@@ -87,6 +87,7 @@ void finish_learning(const MonitorModel& m, MonitorData& d, double t_s) {
     const auto slot = static_cast<size_t>(slot_of(d, j));
     d.z[slot] = (d.z[slot] - d.learned.median) / s;
     d.dz[slot] /= s;
+    d.z_filter[slot] /= s;
   }
   // The step test: each parameter's statistic divided by its own factor
   // (the reported step_factor is the largest); the threshold stays.
@@ -203,15 +204,17 @@ void replay_sample(const MonitorModel& m, MonitorData& d, int j) {
     filter_update(m, r, r.t[oldest], r.theta[oldest], r.tension[oldest], r.r_map[oldest]);
     --r.count;
   }
-  double z = 0.0;
+  double z = 0.0, z_filter = 0.0;
   ParamRow dz;
-  if (!filter_innovation(m, r, d.learn_t[u], d.learn_theta[u], d.learn_tension[u], z, dz, r_map)) return;
+  if (!filter_innovation(m, r, d.learn_t[u], d.learn_theta[u], d.learn_tension[u], z, dz, r_map, nullptr, &z_filter))
+    return;
   const double s0 = r.noise_scale;
   const double median = d.review_map ? 0.0 : d.review_median;  // (the map takes off the level too)
   const auto slot = static_cast<size_t>(r.head);
   r.r_map[slot] = r_map;
   r.z[slot] = z - median / s0;
   r.dz[slot] = dz;
+  r.z_filter[slot] = z_filter;
   r.t[slot] = d.learn_t[u];
   r.theta[slot] = d.learn_theta[u];
   r.tension[slot] = d.learn_tension[u];
@@ -572,9 +575,10 @@ void start_relearning(const MonitorModel& m, MonitorData& d, double t_s) {
 }
 
 // Appends a tested sample to the window.
-void store_sample(MonitorData& d, double t_s, double z_tested, const ParamRow& dz, const Eigen::Vector3d& theta,
-                  const Eigen::Vector3d& tension_sign, double r_map) {
+void store_sample(MonitorData& d, double t_s, double z_tested, const ParamRow& dz, double z_filter,
+                  const Eigen::Vector3d& theta, const Eigen::Vector3d& tension_sign, double r_map) {
   const auto slot = static_cast<size_t>(d.head);
+  d.z_filter[slot] = z_filter;
   d.r_map[slot] = r_map;
   d.z[slot] = z_tested;
   d.t[slot] = t_s;
@@ -653,9 +657,9 @@ StepResult step_live(const MonitorModel& m, MonitorData& d, double t_s, const Ei
   }
   d.unmapped_run = 0;
   // Innovation against the filter (which has seen no sample of the window) predicted to t_s.
-  double z = 0.0;
+  double z = 0.0, z_filter = 0.0;
   ParamRow dz;
-  if (!filter_innovation(m, d, t_s, l.theta, *tension_sign, z, dz, r_map)) {
+  if (!filter_innovation(m, d, t_s, l.theta, *tension_sign, z, dz, r_map, nullptr, &z_filter)) {
     ++d.skipped;
     return out;
   }
@@ -663,8 +667,8 @@ StepResult step_live(const MonitorModel& m, MonitorData& d, double t_s, const Ei
   d.last_accepted = theta_raw;
   d.cycles_since_accepted = 0;
   ++d.accepted;
-  store_sample(d, t_s, learn_and_debias(m, d, t_s, z, l.theta, *tension_sign, direction), dz, l.theta, *tension_sign,
-               r_map);
+  store_sample(d, t_s, learn_and_debias(m, d, t_s, z, l.theta, *tension_sign, direction), dz, z_filter, l.theta,
+               *tension_sign, r_map);
   if (d.learning && d.review_stage == 0 && (t_s - d.learning_start_s >= m.settings.learning_s || d.learn_count >= kMaxLearn))
     begin_review(d);
   const bool full = d.count == W && d.pending < 0;

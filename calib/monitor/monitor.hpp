@@ -70,6 +70,10 @@ struct MonitorSettings {
   // a step is many moderate innovations, a reading glitch or a point where
   // the reading model fails one gross one (Huber-like). 0: no clipping.
   double step_clip = 5.0;
+  // The step test's share of the filter's error (explain.hpp step_statistic):
+  // false, S_hh^2 P_ii (as if the filter erred along parameter i alone);
+  // true, the smaller of that and the Cauchy-Schwarz bound of any error.
+  bool step_shared_bound = false;
   // Accepted samples after the crossing before the alarm is explained (the
   // filter waits meanwhile); window + explain_samples <= kMaxWindow.
   int explain_samples = 240;
@@ -225,6 +229,9 @@ struct FilterWindow : DriftFilter {
   std::array<Eigen::Vector3d, kMaxWindow> theta{};
   std::array<Eigen::Vector3d, kMaxWindow> tension{};  // sign of each passive link's axial force (+-1, 0 without clearance)
   std::array<double, kMaxWindow> r_map{};  // the learnt residual taken off each sample (rad; 0 without the map)
+  // The filter's share of each innovation's standard deviation, sqrt(h P h') in
+  // z units: all samples of a window share the filter's error (the step test).
+  std::array<double, kMaxWindow> z_filter{};
   int head = 0;   // next slot to write
   int count = 0;  // samples held
   // The step test's variance factor of each parameter (>= 1; 1 until learnt):

@@ -1,7 +1,8 @@
 // Tests of calib/monitor/drift_filter.cpp: the prediction equals the dense
 // F P F' + Q of the constant-rate model; without process noise the Kalman
 // updates equal the information form (P0^-1 + sum h'h / sigma^2)^-1 of the
-// same samples; the innovation is r / sqrt(sigma^2 + h P h') by hand.
+// same samples; the innovation is r / sqrt(sigma^2 + h P h') by hand, and
+// the filter's share of it sqrt(h P h' / s).
 #include "calib/monitor/drift_filter.hpp"
 
 #include <Eigen/Dense>
@@ -104,6 +105,13 @@ TEST(DriftFilter, InnovationIsTheResidualOverItsPredictedSpread) {
   const double s = m.sigma_rad * m.sigma_rad + hPh;
   EXPECT_NEAR(z, r / std::sqrt(s), 1e-12);
   EXPECT_LT((dz - g / std::sqrt(s)).norm(), 1e-9 * g.norm() / std::sqrt(s));
+  // The filter's share of z's unit spread: sqrt(h P h' / s).
+  double z_filter = -1.0;
+  ASSERT_TRUE(filter_innovation(m, d, 0.8, th, Eigen::Vector3d::Zero(), z, dz, 0.0, nullptr, &z_filter));
+  EXPECT_NEAR(z_filter, std::sqrt(hPh / s), 1e-12);
+  d.P.setZero();  // a filter that knows the robot exactly shares no error
+  ASSERT_TRUE(filter_innovation(m, d, 0.8, th, Eigen::Vector3d::Zero(), z, dz, 0.0, nullptr, &z_filter));
+  EXPECT_EQ(z_filter, 0.0);
 }
 
 }  // namespace

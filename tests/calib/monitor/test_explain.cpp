@@ -2,7 +2,8 @@
 // exactly of one parameter's column times a change from a known onset are
 // explained by that parameter, onset and (prior-shrunk) change; a window of
 // zeros before the onset does not move the onset; the step statistic against
-// closed forms, with and without its shortest step.
+// closed forms, with and without its shortest step, and the filter's shared
+// error in its denominator (by default and with settings.step_shared_bound).
 #include "calib/monitor/explain.hpp"
 
 #include <memory>
@@ -107,6 +108,53 @@ TEST(StepStatistic, OneSampleOffIsNoStepOfTheShortestLength) {
   MonitorSettings bad;
   bad.step_min_samples = bad.window + 1;
   EXPECT_THROW(make_monitor_model(bad), InputError);
+}
+
+// The error of the filter that all innovations of a window share adds to the
+// variance of the step test's S_zh = sum dz_i z: S_hh^2 P_ii by default (the
+// error along parameter i alone); with settings.step_shared_bound the smaller
+// of that and the Cauchy-Schwarz bound (sum |dz_i| z_filter)^2 (any error,
+// each sample's share of it known). Window of 100 samples with dz = 1 along
+// la1 only, a step of 10 samples of z = 2.5 at its end (shortest step 10:
+// the onset is the step's), closed forms: (10 x 2.5)^2 / (10 + min(100
+// z_filter^2, 100 var)), and by default (10 x 2.5)^2 / (10 (1 + 10 var)).
+TEST(StepStatistic, TheSharedFilterErrorIsTheSmallerOfItsMarginalAndItsBound) {
+  MonitorSettings settings;
+  settings.step_shared_bound = true;
+  const MonitorModel m = make_monitor_model(settings);
+  const MonitorModel m_default = make_monitor_model(MonitorSettings{});
+  int k_la1 = -1;
+  for (int k = 0; k < m.n_free; ++k)
+    if (m.free_index[static_cast<size_t>(k)] == kLa1) k_la1 = k;
+  ASSERT_GE(k_la1, 0);
+  const auto statistic = [&](double var, double z_filter, const MonitorModel& model) {
+    auto w = std::make_unique<FilterWindow>();
+    w->P.setZero();
+    const double sc = m.scale[static_cast<size_t>(k_la1)];
+    w->P(k_la1, k_la1) = var * sc * sc;  // (P is in scaled units)
+    const int n = 100;
+    for (int j = 0; j < n; ++j) {
+      ParamRow dz = ParamRow::Zero();
+      dz[kLa1] = 1.0;
+      w->dz[static_cast<size_t>(j)] = dz;
+      w->z_filter[static_cast<size_t>(j)] = z_filter;
+      w->z[static_cast<size_t>(j)] = j >= n - 10 ? 2.5 : 0.0;
+    }
+    w->head = n;
+    w->count = n;
+    return step_statistic(model, *w);
+  };
+  // A parameter the filter knows only along directions the window does not
+  // see (large P_ii, no share in the innovations): not diluted (the marginal
+  // alone gave 625 / (10 + 100) = 5.68).
+  EXPECT_NEAR(statistic(1.0, 0.0, m), 62.5, 1e-12);
+  // Innovations sharing the filter's error, parameter i known exactly: the marginal.
+  EXPECT_NEAR(statistic(0.0, 0.5, m), 62.5, 1e-12);
+  EXPECT_NEAR(statistic(0.01, 0.05, m), 625.0 / 10.25, 1e-12);  // the bound is smaller
+  EXPECT_NEAR(statistic(0.01, 0.2, m), 625.0 / 11.0, 1e-12);    // the marginal is smaller
+  // By default the marginal alone, whatever the samples' shares.
+  EXPECT_NEAR(statistic(1.0, 0.0, m_default), 625.0 / 110.0, 1e-12);
+  EXPECT_NEAR(statistic(0.01, 0.05, m_default), 625.0 / 11.0, 1e-12);
 }
 
 }  // namespace
