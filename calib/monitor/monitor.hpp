@@ -73,7 +73,7 @@ struct MonitorSettings {
   // The step test's share of the filter's error (explain.hpp step_statistic):
   // false, S_hh^2 P_ii (as if the filter erred along parameter i alone);
   // true, the smaller of that and the Cauchy-Schwarz bound of any error.
-  bool step_shared_bound = false;
+  bool step_shared_bound = true;
   // Accepted samples after the crossing before the alarm is explained (the
   // filter waits meanwhile); window + explain_samples <= kMaxWindow.
   int explain_samples = 240;

@@ -3,7 +3,7 @@
 // explained by that parameter, onset and (prior-shrunk) change; a window of
 // zeros before the onset does not move the onset; the step statistic against
 // closed forms, with and without its shortest step, and the filter's shared
-// error in its denominator (by default and with settings.step_shared_bound).
+// error in its denominator (by default the shared-error bound, and without it).
 #include "calib/monitor/explain.hpp"
 
 #include <memory>
@@ -111,18 +111,18 @@ TEST(StepStatistic, OneSampleOffIsNoStepOfTheShortestLength) {
 }
 
 // The error of the filter that all innovations of a window share adds to the
-// variance of the step test's S_zh = sum dz_i z: S_hh^2 P_ii by default (the
-// error along parameter i alone); with settings.step_shared_bound the smaller
-// of that and the Cauchy-Schwarz bound (sum |dz_i| z_filter)^2 (any error,
-// each sample's share of it known). Window of 100 samples with dz = 1 along
+// variance of the step test's S_zh = sum dz_i z: without
+// settings.step_shared_bound S_hh^2 P_ii (the error along parameter i alone);
+// with it (the default) the smaller of that and the Cauchy-Schwarz bound
+// (sum |dz_i| z_filter)^2 (any error, each sample's share of it known). Window of 100 samples with dz = 1 along
 // la1 only, a step of 10 samples of z = 2.5 at its end (shortest step 10:
 // the onset is the step's), closed forms: (10 x 2.5)^2 / (10 + min(100
-// z_filter^2, 100 var)), and by default (10 x 2.5)^2 / (10 (1 + 10 var)).
+// z_filter^2, 100 var)), and without the bound (10 x 2.5)^2 / (10 (1 + 10 var)).
 TEST(StepStatistic, TheSharedFilterErrorIsTheSmallerOfItsMarginalAndItsBound) {
-  MonitorSettings settings;
-  settings.step_shared_bound = true;
-  const MonitorModel m = make_monitor_model(settings);
-  const MonitorModel m_default = make_monitor_model(MonitorSettings{});
+  MonitorSettings marginal;
+  marginal.step_shared_bound = false;
+  const MonitorModel m = make_monitor_model(MonitorSettings{});
+  const MonitorModel m_default = make_monitor_model(marginal);
   int k_la1 = -1;
   for (int k = 0; k < m.n_free; ++k)
     if (m.free_index[static_cast<size_t>(k)] == kLa1) k_la1 = k;
@@ -152,7 +152,7 @@ TEST(StepStatistic, TheSharedFilterErrorIsTheSmallerOfItsMarginalAndItsBound) {
   EXPECT_NEAR(statistic(0.0, 0.5, m), 62.5, 1e-12);
   EXPECT_NEAR(statistic(0.01, 0.05, m), 625.0 / 10.25, 1e-12);  // the bound is smaller
   EXPECT_NEAR(statistic(0.01, 0.2, m), 625.0 / 11.0, 1e-12);    // the marginal is smaller
-  // By default the marginal alone, whatever the samples' shares.
+  // Without the bound the marginal alone, whatever the samples' shares.
   EXPECT_NEAR(statistic(1.0, 0.0, m_default), 625.0 / 110.0, 1e-12);
   EXPECT_NEAR(statistic(0.01, 0.05, m_default), 625.0 / 11.0, 1e-12);
 }
