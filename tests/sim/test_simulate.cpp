@@ -161,11 +161,8 @@ TEST(Simulate, TrackingWatchStopsTheRunOnAForcedDeviationAndKeepsTheSamples) {
   fs::remove_all(dir);
 }
 
-// A trajectory plan whose margin cannot be kept is refused (InputError: one
-// line, exit 2) before the twin is built; the same poses with the default
-// margin run.
-TEST(Simulate, TrajectoryThatCannotKeepTheMarginIsRefusedBeforeAnythingMoves) {
-  const std::string plan = R"(
+// Eleven poses round home sampled on the fly by the five-bar of drives 2 and 3.
+constexpr const char* kElevenOnTheFly = R"(
 servo: {modes: [torque_off, position, position]}
 sampling:
   pattern: trajectory
@@ -173,6 +170,12 @@ sampling:
   poses: [[216.5, 250], [236.5, 260], [196.5, 240], [230, 225], [200, 270], [250, 250], [180, 250], [216.5, 290],
           [216.5, 210], [240, 280], [190, 220]]
 )";
+
+// A trajectory plan whose margin cannot be kept is refused (InputError: one
+// line, exit 2) before the twin is built; the same poses with the default
+// margin run.
+TEST(Simulate, TrajectoryThatCannotKeepTheMarginIsRefusedBeforeAnythingMoves) {
+  const std::string plan = kElevenOnTheFly;
   EXPECT_GT(run_simulation(parse(plan)).samples.size(), 11u);
   const std::string e = error_of(parse(plan + "  path_margin: {singularity: 0.8}\n"));
   EXPECT_EQ(e.rfind("s.yaml: sampling: excitation path refused before anything moves: ", 0), 0u) << e;
@@ -180,22 +183,11 @@ sampling:
   EXPECT_EQ(e.find('\n'), std::string::npos) << e;
 }
 
-// The plan and the refusal of a mechanism that cannot follow it, made in a
-// new thread (nothing remembered) and in this one after plans of the same
-// controller with other mechanisms: the same path point for point, the same
-// refusal text.
 // The controller's verdicts are remembered per thread: a plan made again
 // equals one made afresh in a new thread, and a scenario with another margin
 // (here one the poses cannot keep) is not answered from the memo.
 TEST(Simulate, PlanMadeAgainEqualsOneMadeAfreshAndAnotherMarginIsCheckedAgain) {
-  const Scenario s = parse(R"(
-servo: {modes: [torque_off, position, position]}
-sampling:
-  pattern: trajectory
-  count: 11
-  poses: [[216.5, 250], [236.5, 260], [196.5, 240], [230, 225], [200, 270], [250, 250], [180, 250], [216.5, 290],
-          [216.5, 210], [240, 280], [190, 220]]
-)");
+  const Scenario s = parse(kElevenOnTheFly);
   Scenario strict = s;
   strict.sampling->margin.singularity = 0.8;  // a margin the poses cannot keep
   const auto plan_or_refusal = [](const Scenario& sc) -> std::pair<WaypointPath, std::string> {
