@@ -1,0 +1,89 @@
+#!/usr/bin/env bash
+# Which effects of a real robot cost the main job's calibration its accuracy:
+# the population of scenarios/main.yaml (every effect drawn per chain,
+# `effects: randomized`), then the same robots (same seeds, the other draws
+# unchanged) with one effect beyond the twin's basic set set to 0, with all
+# of them set to 0, and with only one of them. The basic set stays drawn in
+# every row: geometry, compliance, passive clearance, drive friction,
+# masses, thermal growth, the encoders' own errors and latch skew, stiffness
+# bands. Each row is one `gpm study population --keep-effects` run; the table
+# (median and worst positioning RMS over the robots, error over the stated
+# 1-sigma, worst parameter in its 1-sigma) goes to DIR/effect_budget.md and
+# into docs/PROCEDURES.md between its effect-budget markers.
+#   bash scripts/study_effect_budget.sh [DIR] [COUNT] [FIRST_SEED]
+#   (default out/effect_budget, 10 robots a row from seed 2026: 22 rows,
+#   about 6 minutes on 2 idle cores)
+set -euo pipefail
+cd "$(dirname "$0")/.."
+out=${1:-out/effect_budget}
+count=${2:-10}
+first=${3:-2026}
+gpm=${GPM:-./build/app/gpm}
+[[ -x $gpm ]] || bash scripts/build.sh
+mkdir -p "$out"
+seeds=$(seq -s, "$first" $((first + count - 1)))
+robot=$(realpath models/gpm2002.yaml)
+
+# The effects beyond the basic set, each as the `effects:` key that turns it off.
+names=(backlash hysteresis te_joint te_motor stiction load_friction torque_constant cogging hub_pins jitter)
+declare -A off=(
+  [backlash]="backlash_rad: 0"
+  [hysteresis]="drive_hysteresis_rad: 0"
+  [te_joint]="transmission_error_joint_rad: 0"
+  [te_motor]="transmission_error_motor_rad: 0"
+  [stiction]="stiction_excess_Nm: 0"
+  [load_friction]="friction_load_coefficient: 0"
+  [torque_constant]="torque_constant_delta: 0"
+  [cogging]="cogging_Nm: 0"
+  [hub_pins]="hub_pin_offset_um: [[0, 0], [0, 0], [0, 0]]"
+  [jitter]="encoder_jitter_s: 0"
+)
+# The keys that turn off every named effect except $1 (none: all of them).
+all_off_but() {
+  local keys="" n
+  for n in "${names[@]}"; do [[ $n == "$1" ]] || keys+="${keys:+, }${off[$n]}"; done
+  echo "$keys"
+}
+# Runs row $1 with the effects keys $2 (after `preset: randomized`).
+row() {
+  local name=$1 keys=$2 f=$out/$1.yaml
+  sed -e "s|^robot: .*|robot: $robot|" -e "s|^effects: .*|effects: {preset: randomized${keys:+, $keys}}|" \
+      -e '/^expect:/,$d' scenarios/main.yaml > "$f"
+  grep -q "^effects: {preset: randomized" "$f"
+  "$gpm" study population "$f" --keep-effects --seeds "$seeds" -o "$out/$name" --progress none > "$out/$name.log" 2>&1
+  echo "$name: $(sed -n 3p "$out/$name/population.md" | cut -c3-160)"
+}
+row all ""
+for n in "${names[@]}"; do row "without_$n" "${off[$n]}"; done
+row basic "$(all_off_but none)"
+for n in "${names[@]}"; do row "only_$n" "$(all_off_but "$n")"; done
+
+python3 - "$out" "$count" "$first" "${names[@]}" <<'EOF'
+import json, re, sys
+out, count, first, names = sys.argv[1], int(sys.argv[2]), int(sys.argv[3]), sys.argv[4:]
+label = {'backlash': 'backlash', 'hysteresis': 'drive hysteresis', 'te_joint': 'transmission error per joint revolution',
+         'te_motor': 'transmission error per motor revolution', 'stiction': 'stiction', 'load_friction': 'load friction',
+         'torque_constant': 'torque constant', 'cogging': 'cogging', 'hub_pins': 'hub pin offsets', 'jitter': 'latch jitter'}
+def cells(row):
+    s = json.load(open(f'{out}/{row}/population.json'))['summary']
+    ok = s['robots'] - s['failed']
+    return (f"{s['positioning_median_um']:.1f} | {s['positioning_max_um']:.0f} | "
+            f"{s['normalised_positioning_median']:.2f} | {s['worst_sigma_ratio']:.1f} | {ok}")
+lines = [f"{count} robots of `scenarios/main.yaml` (seeds {first}..{first + count - 1}), each row the same robots; "
+         "`bash scripts/study_effect_budget.sh`.", "",
+         "| robots | positioning RMS, median (um) | worst robot (um) | error / stated 1-sigma (median) | worst parameter (sigma) | calibrated |",
+         "| --- | ---: | ---: | ---: | ---: | ---: |",
+         f"| every effect drawn | {cells('all')} |"]
+lines += [f"| every effect but {label[n]} | {cells('without_' + n)} |" for n in names]
+lines += [f"| the basic set only (none of the above) | {cells('basic')} |"]
+lines += [f"| the basic set and {label[n]} | {cells('only_' + n)} |" for n in names]
+table = "\n".join(lines) + "\n"
+open(f'{out}/effect_budget.md', 'w').write(table)
+doc = 'docs/PROCEDURES.md'
+text = open(doc).read()
+begin, end = '<!-- effect-budget:begin -->\n', '<!-- effect-budget:end -->'
+if begin in text and end in text:
+    text = re.sub(re.escape(begin) + '.*?' + re.escape(end), lambda m: begin + table + end, text, flags=re.S)
+    open(doc, 'w').write(text)
+print(table)
+EOF
