@@ -228,8 +228,7 @@ void drop_undetected(MotionStage& m, bool keep_clearance) {
 }
 
 // The drive train's effects the data call for, per joint (backlash, errors
-// once and twice per motor revolution: calib/reading_model_selection.hpp),
-// and the note of a covariance widened to the misfit.
+// once and twice per motor revolution: calib/reading_model_selection.hpp).
 void select_drive_train(MotionStage& m, const CalibrationInputs& in) {
   if (m.sigma > 0.0) {
     calib::DriveEffectSelection chosen =
@@ -242,6 +241,10 @@ void select_drive_train(MotionStage& m, const CalibrationInputs& in) {
     if (!chosen.dropped.empty())
       m.drive_notes.push_back(fmt::format("drive train effects not detected: {}", fmt::join(chosen.dropped, "; ")));
   }
+}
+
+// The note of a covariance widened to the misfit (the sandwich), when it was.
+void note_sandwich(MotionStage& m) {
   if (m.fit.sandwich_used)
     m.drive_notes.push_back(fmt::format(
         "the readings exceed the noise (chi2/dof {:.3g} with the reading model): the 1-sigma stated are the "
@@ -358,6 +361,11 @@ CalibrationOutcome calibrate_samples(const SampleSeries& samples, const Calibrat
     fit_motion(m, inputs, options.in_motion);
     drop_undetected(m, options.keep_clearance);
     select_drive_train(m, inputs);
+    // What looked like a play before the drive train was in the model may be
+    // the drive train's (a geared robot with no clearance showed a play at
+    // 3 sigma that its harmonics then took): the clearance is judged again.
+    drop_undetected(m, options.keep_clearance);
+    note_sandwich(m);
     out = motion_outcome(std::move(m), inputs.monitor.reading);
   } else {
     out = static_outcome(samples, options);

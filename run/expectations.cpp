@@ -55,6 +55,16 @@ void check_fit(std::vector<Check>& out, const Expectations& e, const calib::Resu
   }
 }
 
+// The positioning error's check (what a user gets of the calibrated model).
+void check_positioning(std::vector<Check>& out, const RunOutcome& o) {
+  const Expectations& e = o.spec.expect;
+  if (!e.positioning_rms_um_max) return;
+  check(out, "positioning_rms_um", o.positioning && o.positioning->rms_um <= *e.positioning_rms_um_max,
+        o.positioning ? fmt::format("{:.3f} um RMS over the workspace disc (limit {:.3g})", o.positioning->rms_um,
+                                    *e.positioning_rms_um_max)
+                      : "no positioning error (no calibration, or measured on hardware)");
+}
+
 // The model test's check (expected to pass or to fail).
 void check_model_test(std::vector<Check>& out, const RunOutcome& o) {
   const Expectations& e = o.spec.expect;
@@ -135,6 +145,7 @@ std::vector<Check> evaluate_expectations(const RunOutcome& o) {
           fmt::format("{:.2f} s of robot time sampling (limit {:.3g})", o.sim.sampling_s, *e.robot_time_s_max));
   }
   check_model_test(out, o);
+  check_positioning(out, o);
   check_compensation(out, o);
   return out;
 }

@@ -257,7 +257,7 @@ Expectations parse_expect(const YAML::Node& n, const std::string& file) {
   yaml_check_keys(n, file, "expect",
                   {"converged", "error", "cost_max", "kmrmse_mm_max", "crb_ratio_max", "static_rms_um_max",
                    "path_rms_um_max", "improvement_min", "refused_contains", "note_contains", "floor_ratio_max",
-                   "robot_time_s_max", "model_test_passes"});
+                   "robot_time_s_max", "model_test_passes", "positioning_rms_um_max"});
   if (n["converged"]) e.converged = yaml_bool(n["converged"], file, "expect.converged");
   if (const YAML::Node err = n["error"]) {
     if (!err.IsMap()) throw InputError(yaml_where(file, err, "expect.error") + "expected a map of tolerances");
@@ -284,6 +284,7 @@ Expectations parse_expect(const YAML::Node& n, const std::string& file) {
   opt_number(n, "improvement_min", file, e.improvement_min);
   opt_number(n, "floor_ratio_max", file, e.floor_ratio_max);
   opt_number(n, "robot_time_s_max", file, e.robot_time_s_max);
+  opt_number(n, "positioning_rms_um_max", file, e.positioning_rms_um_max);
   if (n["model_test_passes"]) e.model_test_passes = yaml_bool(n["model_test_passes"], file, "expect.model_test_passes");
   if (n["refused_contains"]) e.refused_contains = yaml_string(n["refused_contains"], file, "expect.refused_contains");
   if (n["note_contains"]) e.note_contains = yaml_string(n["note_contains"], file, "expect.note_contains");

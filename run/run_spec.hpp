@@ -135,6 +135,7 @@ struct Expectations {
   std::optional<double> floor_ratio_max;                  // static RMS calibrated / with the actual parameters
   std::optional<double> robot_time_s_max;                 // robot time of the sampling
   std::optional<bool> model_test_passes;                  // the chi-square model test passes (true) or fails (false)
+  std::optional<double> positioning_rms_um_max;           // the calibrated model's positioning error over the workspace
 };
 
 struct Outputs {

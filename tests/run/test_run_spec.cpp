@@ -39,6 +39,15 @@ TEST(RunSpec, Defaults) {
   EXPECT_FALSE(s.expect.crb_ratio_max);
 }
 
+TEST(RunSpec, PositioningExpectationIsAPositiveNumberInMicrons) {
+  EXPECT_EQ(parse_run_spec(kHead + "expect: {positioning_rms_um_max: 4}\n", "s.yaml", kBase).expect.positioning_rms_um_max,
+            4.0);
+  EXPECT_NE(error_of(kHead + "expect: {positioning_rms_um_max: 0}\n").find("expect.positioning_rms_um_max"),
+            std::string::npos);
+  EXPECT_NE(error_of(kHead + "expect: {positioning_um_max: 4}\n").find("did you mean positioning_rms_um_max?"),
+            std::string::npos);
+}
+
 TEST(RunSpec, FixListUnknownNameNamesKeyPathAndSuggestion) {
   EXPECT_EQ(error_of(kHead + "calibration:\n  fix: [xa1, ya1, xb1]\n"),
             "s.yaml:4: calibration.fix[2]: unknown parameter 'xb1' (did you mean xa1?)");
