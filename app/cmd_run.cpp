@@ -57,6 +57,13 @@ void print_summary(const scenario::RunOutcome& o, const std::string& dir) {
   fmt::print("scenario   {} ({})\n", o.spec.sim.name, o.scenario_file);
   fmt::print("samples    {} {}\n", o.sim.samples.size(),
              o.hardware_description.empty() ? "from the twin" : "through " + o.hardware_description);
+  if (o.first_pass) {
+    const scenario::FirstPass& f = *o.first_pass;
+    fmt::print("first pass ended early ({}); the encoder offsets from its {} samples moved by {:.2e}, {:.2e}, {:.2e} "
+               "rad: the path was planned again with them and sampled a second time\n",
+               terminal_text(f.why), f.samples, f.offsets_change_rad[0], f.offsets_change_rad[1],
+               f.offsets_change_rad[2]);
+  }
   if (o.calibration) {
     const auto& r = *o.calibration;
     fmt::print("calibrate  {} on {}: J = {:.4g}, {} iterations, rank {}, cond {:.3g}{}\n", r.method,

@@ -32,6 +32,7 @@
 #include "run/calibration_procedure.hpp"
 #include "run/expectations.hpp"
 #include "run/run_report_data.hpp"
+#include "run/offsets_first.hpp"
 #include "run/sampling_design.hpp"
 #include "run/summary_json.hpp"
 #include "run/twin_hardware.hpp"
@@ -201,6 +202,7 @@ sim::TrackingStop twin_stopped(const hw::HardwareError& e, const hw::SampleLog& 
   sim::TrackingStop stop(why);
   stop.samples = twin_samples(log, truth, r.actual);
   stop.rows = std::move(r.log.rows);
+  stop.robot_time_s = truth.time_s();
   return stop;
 }
 
@@ -468,6 +470,53 @@ void measure_compensation(RunOutcome& out, const RunSpec& spec, const Progress& 
   }
 }
 
+// Samples on the twin (sample_on_twin). A path on the fly that ended early
+// (sim::TrackingStop) is sampled a second time, planned with the encoder
+// offsets its kept samples show (run/offsets_first.hpp) and, where the poses
+// were designed at run time, designed again for that controller; the second
+// pass's samples are the calibration's, the robot time is both passes'. The
+// second pass ending early too, or too few samples kept, stops as the first.
+sim::SimulationResult sample_twin_in_passes(RunOutcome& out, RunSpec& spec, bool designed, const Progress& progress,
+                                            const Stage& stage) {
+  const auto simulating = [&] {
+    return progress ? gpm::Progress::terminal("gpm run: simulating", "simulated s") : gpm::Progress::silent();
+  };
+  const bool in_motion = spec.sim.sampling && spec.sim.sampling->pattern == sim::PosePattern::kTrajectory;
+  std::optional<sim::TrackingStop> stopped;
+  try {
+    gpm::Progress simulated = simulating();
+    return sample_on_twin(spec, &simulated);
+  } catch (const sim::TrackingStop& stop) {
+    if (!in_motion || static_cast<int>(stop.samples.size()) < kMinFirstPassSamples) throw;
+    stopped = stop;
+  }
+  stage("the path ended early: fitting the encoder offsets to the samples kept, planning it again");
+  const calib::Result fit = offsets_from_samples(spec.sim.controller.geometry, stopped->samples);
+  FirstPass first;
+  first.why = stopped->what();
+  first.samples = stopped->samples.size();
+  first.robot_time_s = stopped->robot_time_s;
+  for (int i = 0; i < 3; ++i) {
+    first.offsets_change_rad[i] = fit.geometry.dth_(i) - spec.sim.controller.geometry.dth_(i);
+    first.offsets_sigma_rad[i] = fit.sigma[static_cast<std::size_t>(dth(i))];
+  }
+  // The same robot, driven by a controller that knows its offsets (the twin's
+  // actual parameters are drawn about the controller's: held as they were).
+  const Robot actual = sim::make_actual(spec.sim);
+  for (int k = 0; k < kNumParams; ++k) spec.sim.actual.explicit_values[static_cast<std::size_t>(k)] = actual.geometry[k];
+  spec.sim.controller.geometry = fit.geometry;
+  if (designed) {
+    spec.sim.sampling->poses.clear();
+    design_poses(spec, stage);
+  }
+  stage("sampling on the twin through the hardware interface, second pass");
+  gpm::Progress simulated = simulating();
+  sim::SimulationResult r = sample_on_twin(spec, &simulated);
+  r.sampling_s += first.robot_time_s;
+  out.first_pass = first;
+  return r;
+}
+
 }  // namespace
 
 sim::SimulationResult sample_in_process(const RunSpec& spec) { return sample_on_twin(spec, nullptr); }
@@ -484,7 +533,8 @@ RunOutcome run_scenario(const RunSpec& spec_in, const std::string& scenario_file
   check_before_moving(spec);
   if (spec.sim.sampling && !spec.sim.sampling->needs_design())
     design_sampling(spec.sim, ~spec.calibration.fixed, 0.0);  // given poses: only their number is checked
-  if (spec.sim.sampling && spec.sim.sampling->needs_design()) design_poses(spec, stage);
+  const bool designed = spec.sim.sampling && spec.sim.sampling->needs_design();
+  if (designed) design_poses(spec, stage);
   const bool in_motion = spec.sim.sampling && spec.sim.sampling->pattern == sim::PosePattern::kTrajectory;
   // What the calibration assumes is what its user states (calibration:) and
   // the robot's data sheet, as on a real robot: the twin's effects and
@@ -512,11 +562,14 @@ RunOutcome run_scenario(const RunSpec& spec_in, const std::string& scenario_file
     out.sim = sample_on_hardware(spec, samples_path, out.hardware_description);
   } else {
     stage("sampling on the twin through the hardware interface");
-    gpm::Progress simulated = progress ? gpm::Progress::terminal("gpm run: simulating", "simulated s")
-                                       : gpm::Progress::silent();  // models/progress.hpp
-    out.sim = sample_on_twin(spec, &simulated);
+    out.sim = sample_twin_in_passes(out, spec, designed, progress, stage);
   }
   calibrate_run(out, spec, inputs, scenario_file, stage);
+  if (out.first_pass && out.calibration)
+    out.calibration->notes.push_back(fmt::format(
+        "the first pass of the excitation path ended early ({}); the encoder offsets from its {} samples planned "
+        "the second pass, whose samples these are",
+        out.first_pass->why, out.first_pass->samples));
 
   if (spec.compensation) measure_compensation(out, spec, progress, stage);
   if (out.calibration && !spec.hardware) out.positioning = calibrated_positioning(out);

@@ -32,6 +32,17 @@ struct Check {
   std::string detail;  // measured against limit
 };
 
+// A first pass of the excitation path that ended early (the robot left its
+// plan): its kept samples fixed the encoder offsets the second pass was
+// planned with (run/offsets_first.hpp).
+struct FirstPass {
+  std::string why;                 // the stop's line
+  std::size_t samples = 0;         // samples it kept
+  double robot_time_s = 0.0;       // its robot time (in sim.sampling_s too)
+  std::array<double, 3> offsets_change_rad{};  // dth fitted less dth stated
+  std::array<double, 3> offsets_sigma_rad{};   // their 1-sigma from the residuals
+};
+
 struct RunOutcome {
   std::string scenario_file;
   RunSpec spec;
@@ -59,6 +70,7 @@ struct RunOutcome {
   // The reading model the calibration estimated (the monitor's statement
   // with the estimates in place; run/calibration_procedure.hpp).
   std::optional<calib::ReadingModel> reading_estimated;
+  std::optional<FirstPass> first_pass;     // the path ended early once and was sampled again
   std::optional<MonitorOutcome> monitor;  // the calibrated model monitoring `operation:` (run/monitor_run.hpp)
   std::vector<Check> checks;
   double seconds = 0.0;

@@ -54,6 +54,18 @@ std::string summary_json(const RunOutcome& o) {
   } else {
     j["model_test"] = nullptr;
   }
+  if (o.first_pass) {
+    nlohmann::json change = nlohmann::json::array(), sigma = nlohmann::json::array();
+    for (int i = 0; i < 3; ++i) {
+      change.push_back(number(o.first_pass->offsets_change_rad[static_cast<std::size_t>(i)]));
+      sigma.push_back(number(o.first_pass->offsets_sigma_rad[static_cast<std::size_t>(i)]));
+    }
+    j["first_pass"] = {{"why", o.first_pass->why},
+                       {"samples", o.first_pass->samples},
+                       {"robot_time_s", number(o.first_pass->robot_time_s)},
+                       {"offsets_change_rad", change},
+                       {"offsets_sigma_rad", sigma}};
+  }
   if (o.monitor) j["monitor"] = monitor_summary(*o.monitor);
   return j.dump(2) + "\n";
 }

@@ -108,6 +108,7 @@ class TrackingStop : public Error {
   explicit TrackingStop(const std::string& what) : Error(what) {}
   std::vector<SampleRecord> samples;
   std::vector<LogRow> rows;
+  double robot_time_s = 0.0;  // the robot's time until it was at rest again, where known (else 0)
 };
 
 // A session starting at the twin's current state, the controller commanding
