@@ -8,7 +8,8 @@
 //   |-- HardwareError            backend failed: connection, timeout, fault, reply
 //   |   |-- SafetyError          the supervisor stopped the robot
 //   |   |-- CommandRejected      the supervisor refused one command (robot holds)
-//   |   `-- Interrupted          a stop was requested (signal): drives disabled
+//   |   |-- Interrupted          a stop was requested (signal): drives disabled
+//   |   `-- PathEndedEarly       a path sampled on the fly left its plan: retraced, drives off
 //   `-- LifecycleError           call not allowed in the current state
 #pragma once
 
@@ -48,6 +49,16 @@ class CommandRejected : public HardwareError {
 class Interrupted : public HardwareError {
  public:
   explicit Interrupted(const std::string& what) : HardwareError(what) {}
+};
+
+// A path sampled on the fly ended early: the end-effector from the readings
+// left its plan by more than the session's retreat bound; the robot retraced
+// the path to its start and the drives were disabled normally; the samples
+// taken are kept. duration_s: the session's robot time, the retreat included.
+class PathEndedEarly : public HardwareError {
+ public:
+  PathEndedEarly(const std::string& what, double duration_s) : HardwareError(what), duration_s(duration_s) {}
+  double duration_s = 0.0;
 };
 
 }  // namespace gpm::hw

@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <chrono>
 #include <cmath>
+#include <filesystem>
 
 #include <fmt/format.h>
 
@@ -145,11 +146,13 @@ sim::SampleRecord sample_record(long id, const hw::SampleLog::Recorded& row, con
 // Samples through the hardware interface (hw/): the scenario's poses, sampled
 // stop-and-go (hw/procedures/sampling_session.hpp) or on the fly along the
 // excitation path (pattern trajectory: hw/procedures/trajectory_session.hpp),
-// every sample on disk as taken.
+// every sample on disk as taken; the hardware file's controller with its
+// encoder offsets moved by dth_change (rad; a second pass: plan_second_pass).
 sim::SimulationResult sample_on_hardware(const RunSpec& spec, const std::string& samples_path,
-                                         std::string& description) {
+                                         std::string& description, const Eigen::Vector3d& dth_change) {
   if (samples_path.empty()) throw InputError("gpm run --hardware: no output folder for the samples");
-  const hw::HardwareConfig cfg = hw::load_hardware_config(*spec.hardware);
+  hw::HardwareConfig cfg = hw::load_hardware_config(*spec.hardware);
+  for (int i = 0; i < 3; ++i) cfg.controller.geometry[dth(i)] += dth_change[i];
   const std::vector<Eigen::Vector2d> poses = sim::plan_poses(*spec.sim.sampling, spec.sim.seed);
   const bool in_motion = spec.sim.sampling->pattern == sim::PosePattern::kTrajectory;
   sim::SimulationResult r;
@@ -203,6 +206,7 @@ sim::TrackingStop twin_stopped(const hw::HardwareError& e, const hw::SampleLog& 
   stop.samples = twin_samples(log, truth, r.actual);
   stop.rows = std::move(r.log.rows);
   stop.robot_time_s = truth.time_s();
+  stop.ended_early = dynamic_cast<const hw::PathEndedEarly*>(&e) != nullptr;
   return stop;
 }
 
@@ -470,38 +474,23 @@ void measure_compensation(RunOutcome& out, const RunSpec& spec, const Progress& 
   }
 }
 
-// Samples on the twin (sample_on_twin). A path on the fly that ended early
-// (sim::TrackingStop) is sampled a second time, planned with the encoder
-// offsets its kept samples show (run/offsets_first.hpp) and, where the poses
-// were designed at run time, designed again for that controller; the second
-// pass's samples are the calibration's, the robot time is both passes'. The
-// second pass ending early too, or too few samples kept, stops as the first.
-sim::SimulationResult sample_twin_in_passes(RunOutcome& out, RunSpec& spec, bool designed, const Progress& progress,
-                                            const Stage& stage) {
-  const auto simulating = [&] {
-    return progress ? gpm::Progress::terminal("gpm run: simulating", "simulated s") : gpm::Progress::silent();
-  };
-  const bool in_motion = spec.sim.sampling && spec.sim.sampling->pattern == sim::PosePattern::kTrajectory;
-  std::optional<sim::TrackingStop> stopped;
-  try {
-    gpm::Progress simulated = simulating();
-    return sample_on_twin(spec, &simulated);
-  } catch (const sim::TrackingStop& stop) {
-    if (!in_motion || static_cast<int>(stop.samples.size()) < kMinFirstPassSamples) throw;
-    stopped = stop;
-  }
+// After a first pass of the path on the fly that ended early: the encoder
+// offsets its kept samples show (run/offsets_first.hpp) become the
+// controller's, the robot stays the one it was (the twin's actual parameters
+// are drawn about the controller's: held), and poses designed at run time are
+// designed again for that controller.
+FirstPass plan_second_pass(RunSpec& spec, bool designed, const std::vector<sim::SampleRecord>& kept,
+                           const std::string& why, double robot_time_s, const Stage& stage) {
   stage("the path ended early: fitting the encoder offsets to the samples kept, planning it again");
-  const calib::Result fit = offsets_from_samples(spec.sim.controller.geometry, stopped->samples);
+  const calib::Result fit = offsets_from_samples(spec.sim.controller.geometry, kept);
   FirstPass first;
-  first.why = stopped->what();
-  first.samples = stopped->samples.size();
-  first.robot_time_s = stopped->robot_time_s;
+  first.why = why;
+  first.samples = kept.size();
+  first.robot_time_s = robot_time_s;
   for (int i = 0; i < 3; ++i) {
     first.offsets_change_rad[i] = fit.geometry.dth_(i) - spec.sim.controller.geometry.dth_(i);
     first.offsets_sigma_rad[i] = fit.sigma[static_cast<std::size_t>(dth(i))];
   }
-  // The same robot, driven by a controller that knows its offsets (the twin's
-  // actual parameters are drawn about the controller's: held as they were).
   const Robot actual = sim::make_actual(spec.sim);
   for (int k = 0; k < kNumParams; ++k) spec.sim.actual.explicit_values[static_cast<std::size_t>(k)] = actual.geometry[k];
   spec.sim.controller.geometry = fit.geometry;
@@ -509,11 +498,74 @@ sim::SimulationResult sample_twin_in_passes(RunOutcome& out, RunSpec& spec, bool
     spec.sim.sampling->poses.clear();
     design_poses(spec, stage);
   }
+  return first;
+}
+
+// Samples on the twin (sample_on_twin). A path on the fly that ended early
+// (sim::TrackingStop::ended_early) with at least kMinFirstPassSamples kept is
+// sampled a second time, planned by plan_second_pass; the second pass's
+// samples are the calibration's, the robot time is both passes'. The second
+// pass ending early too stops as the first.
+sim::SimulationResult sample_twin_in_passes(RunOutcome& out, RunSpec& spec, bool designed, const Progress& progress,
+                                            const Stage& stage) {
+  const auto simulating = [&] {
+    return progress ? gpm::Progress::terminal("gpm run: simulating", "simulated s") : gpm::Progress::silent();
+  };
+  const bool in_motion = spec.sim.sampling && spec.sim.sampling->pattern == sim::PosePattern::kTrajectory;
+  try {
+    gpm::Progress simulated = simulating();
+    return sample_on_twin(spec, &simulated);
+  } catch (const sim::TrackingStop& stop) {
+    if (!in_motion || !stop.ended_early || static_cast<int>(stop.samples.size()) < kMinFirstPassSamples) throw;
+    out.first_pass = plan_second_pass(spec, designed, stop.samples, stop.what(), stop.robot_time_s, stage);
+  }
   stage("sampling on the twin through the hardware interface, second pass");
   gpm::Progress simulated = simulating();
   sim::SimulationResult r = sample_on_twin(spec, &simulated);
-  r.sampling_s += first.robot_time_s;
-  out.first_pass = first;
+  r.sampling_s += out.first_pass->robot_time_s;
+  return r;
+}
+
+// The samples of a hardware session's file, read back (the file stays).
+std::vector<sim::SampleRecord> recorded_samples(const std::string& path, const RunSpec& spec) {
+  const hw::SampleLog log(path, true, hw::SampleColumns::kOnTheFly);
+  const Robot actual = sim::make_actual(spec.sim);
+  std::vector<sim::SampleRecord> out;
+  for (const auto& [id, row] : log.recorded()) out.push_back(sample_record(id, row, actual));
+  return out;
+}
+
+// Samples through the hardware interface (sample_on_hardware) in passes as
+// sample_twin_in_passes: the first pass's samples file, when its path ended
+// early, becomes first_pass_samples_path(samples_path) and the second pass
+// records into samples_path. A resumed session whose folder holds that file
+// plans the second pass from it (its robot time is then not known: 0).
+sim::SimulationResult sample_hardware_in_passes(RunOutcome& out, RunSpec& spec, bool designed,
+                                                const std::string& samples_path, const Stage& stage) {
+  const bool in_motion = spec.sim.sampling && spec.sim.sampling->pattern == sim::PosePattern::kTrajectory;
+  const std::string first_path = first_pass_samples_path(samples_path);
+  const Geometry stated = spec.sim.controller.geometry;
+  if (in_motion && spec.hardware_resume && std::filesystem::exists(first_path)) {
+    out.first_pass = plan_second_pass(spec, designed, recorded_samples(first_path, spec),
+                                      "in an earlier session of this folder", 0.0, stage);
+  } else {
+    try {
+      return sample_on_hardware(spec, samples_path, out.hardware_description, Eigen::Vector3d::Zero());
+    } catch (const hw::PathEndedEarly& e) {
+      if (!in_motion) throw;
+      std::vector<sim::SampleRecord> kept = recorded_samples(samples_path, spec);
+      if (static_cast<int>(kept.size()) < kMinFirstPassSamples) throw;
+      std::filesystem::rename(samples_path, first_path);
+      std::string why = e.what();
+      if (const std::size_t at = why.rfind("; "); at != std::string::npos) why.resize(at);  // "; N samples kept in"
+      out.first_pass = plan_second_pass(spec, designed, kept, why, e.duration_s, stage);
+    }
+  }
+  stage("sampling through the hardware interface, second pass");
+  Eigen::Vector3d dth_change;
+  for (int i = 0; i < 3; ++i) dth_change[i] = spec.sim.controller.geometry.dth_(i) - stated.dth_(i);
+  sim::SimulationResult r = sample_on_hardware(spec, samples_path, out.hardware_description, dth_change);
+  r.sampling_s += out.first_pass->robot_time_s;
   return r;
 }
 
@@ -559,7 +611,7 @@ RunOutcome run_scenario(const RunSpec& spec_in, const std::string& scenario_file
 
   if (spec.hardware) {
     stage("sampling through the hardware interface");
-    out.sim = sample_on_hardware(spec, samples_path, out.hardware_description);
+    out.sim = sample_hardware_in_passes(out, spec, designed, samples_path, stage);
   } else {
     stage("sampling on the twin through the hardware interface");
     out.sim = sample_twin_in_passes(out, spec, designed, progress, stage);
@@ -582,9 +634,14 @@ RunOutcome run_scenario(const RunSpec& spec_in, const std::string& scenario_file
   return out;
 }
 
+std::string first_pass_samples_path(const std::string& samples_path) {
+  const std::filesystem::path p(samples_path);
+  return (p.parent_path() / (p.stem().string() + "_first_pass" + p.extension().string())).string();
+}
+
 const std::vector<std::string>& run_output_names() {
   static const std::vector<std::string> names{
-      "samples.csv", "trajectory.csv", "model.xml", "actual.yaml", "calibration.yaml", "summary.json",
+      "samples.csv", "samples_first_pass.csv", "trajectory.csv", "model.xml", "actual.yaml", "calibration.yaml", "summary.json",
       "alarms.csv", "estimates.csv", "report.md", "report.html", "layout.svg", "residuals.svg",
       "convergence.svg", "errors_mm.svg", "errors_offsets.svg", "tracking.svg", "monitor_tracks.svg"};
   return names;

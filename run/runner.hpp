@@ -97,6 +97,10 @@ RunOutcome run_scenario(const RunSpec& spec, const std::string& scenario_file,
 // the robot leaves its plan (the twin's truth in both: for studies and tests).
 sim::SimulationResult sample_in_process(const RunSpec& spec);
 
+// Where a hardware session keeps the samples of a first pass of its path
+// that ended early: DIR/samples_first_pass.csv for DIR/samples.csv.
+std::string first_pass_samples_path(const std::string& samples_path);
+
 // The files write_run may write into DIR (for the check of the output
 // folder against every input before the run: check_output_folder).
 const std::vector<std::string>& run_output_names();

@@ -109,6 +109,7 @@ class TrackingStop : public Error {
   std::vector<SampleRecord> samples;
   std::vector<LogRow> rows;
   double robot_time_s = 0.0;  // the robot's time until it was at rest again, where known (else 0)
+  bool ended_early = false;   // a path on the fly ended early: retraced to its start, drives off normally
 };
 
 // A session starting at the twin's current state, the controller commanding

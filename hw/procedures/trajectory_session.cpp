@@ -212,12 +212,12 @@ SessionResult run_trajectory_session(SafetySupervisor& hw, const TrajectoryPlan&
   } catch (...) {
     rethrow_session_error(hw, log);
   }
-  throw HardwareError(fmt::format(
+  throw PathEndedEarly(fmt::format(
       "tracking: the end-effector from the readings left its plan by {:.1f} mm at t = {:.3f} s of the path (beyond "
       "{:g} of max_tracking {:g} mm): sampling ended there and the robot retraced its path to the start, drives "
       "disabled; {} samples kept in {}",
       early->tracking_mm, static_cast<double>(early->cycle) * period, plan.retreat_fraction,
-      hw.limits().max_tracking_mm, log.size(), log.path()));
+      hw.limits().max_tracking_mm, log.size(), log.path()), r.duration_s);
 }
 
 }  // namespace gpm::hw

@@ -59,8 +59,8 @@ void check_trajectory_plan(const SafetySupervisor& hw, const TrajectoryPlan& pla
 // before anything moves, HardwareError with drives disabled and samples
 // kept, Interrupted on a stop request. on_sample (optional): called as each
 // sample is logged (hw/procedures/sampling_session.hpp SampleHook). A path
-// that ends early (TrajectoryPlan::retreat_fraction) is a HardwareError
-// too, raised once the robot is back at the path's start with its drives
+// that ends early (TrajectoryPlan::retreat_fraction) is a PathEndedEarly
+// (hw/hw_errors.hpp), raised once the robot is back at the path's start with its drives
 // disabled normally (samples kept).
 SessionResult run_trajectory_session(SafetySupervisor& hw, const TrajectoryPlan& plan, SampleLog& log,
                                      const std::atomic<bool>* stop = nullptr, const SampleHook& on_sample = {});

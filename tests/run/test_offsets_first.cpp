@@ -6,17 +6,24 @@
 
 #include <cmath>
 #include <cstdio>
+#include <filesystem>
+#include <fstream>
+#include <sstream>
 
 #include <gtest/gtest.h>
+#include <unistd.h>
 
 #include "calib/reading_model.hpp"
+#include "hw/safety_limits.hpp"
 #include "models/data_dir.hpp"
 #include "models/errors.hpp"
 #include "models/kinematics.hpp"
 #include "models/pose_layouts.hpp"
+#include "models/samples.hpp"
 #include "run/run_spec.hpp"
 #include "run/runner.hpp"
 #include "run/sampling_design.hpp"
+#include "run/twin_hardware.hpp"
 
 namespace gpm::scenario {
 namespace {
@@ -85,6 +92,61 @@ TEST(OffsetsFirst, APathThatEndedEarlyIsSampledAgainAndCalibrated) {
   EXPECT_GT(o.first_pass->robot_time_s, 0.0);
   EXPECT_GT(o.sim.sampling_s, o.first_pass->robot_time_s);
   EXPECT_LT(o.after->static_rms_um * 100.0, o.before->static_rms_um);
+}
+
+// A fresh folder removed at the end of the test.
+struct TempDir {
+  std::filesystem::path path = std::filesystem::temp_directory_path() /
+                               ("gpm_test_offsets_first_" + std::to_string(::getpid()));
+  TempDir() {
+    std::filesystem::remove_all(path);
+    std::filesystem::create_directories(path);
+  }
+  ~TempDir() { std::filesystem::remove_all(path); }
+  std::string operator/(const std::string& name) const { return (path / name).string(); }
+};
+
+// The same robot through the hardware interface (a twin backend of the
+// scenario of seed 10009, the twin's own limits): the first pass's samples
+// stay in samples_first_pass.csv, the second pass records into samples.csv,
+// the calibration takes those; a resumed session plans the same second pass
+// from the first pass's file and gives the same calibration to the last bit.
+TEST(OffsetsFirst, ThroughTheHardwareInterfaceTheFirstPassIsKeptAndResumable) {
+  const TempDir dir;
+  std::stringstream main_text;
+  main_text << std::ifstream(gpm::scenarios_dir() + "/main.yaml").rdbuf();
+  std::string text = main_text.str();
+  text.replace(text.find("seed: 2026"), 10, "seed: 10009");
+  text.replace(text.find("robot: ../models/"), 17, "robot: " + gpm::models_dir() + "/");
+  std::ofstream(dir / "robot.yaml") << text;
+  RunSpec spec = load_run_spec(dir / "robot.yaml");
+  std::ofstream(dir / "twin.yaml") << "backend: twin\nrate_hz: 4000\ncontroller: " << gpm::models_dir()
+                                   << "/gpm2002.yaml\njoint_modes: [torque_off, position, position]\ntwin: {scenario: "
+                                   << (dir / "robot.yaml") << "}\nsafety:\n"
+                                   << hw::safety_limits_to_yaml(twin_safety_limits(spec.sim, spec.sim.controller), 2);
+  spec.hardware = dir / "twin.yaml";
+  spec.compensation.reset();
+  const RunOutcome o = run_scenario(spec, "robot.yaml", {}, dir / "samples.csv");
+  ASSERT_TRUE(o.first_pass.has_value());
+  ASSERT_TRUE(o.calibration.has_value());
+  EXPECT_EQ(o.first_pass->why.find("samples kept in"), std::string::npos) << o.first_pass->why;
+  EXPECT_EQ(read_samples_csv(dir / "samples_first_pass.csv").size(), o.first_pass->samples);
+  EXPECT_EQ(read_samples_csv(dir / "samples.csv").size(), o.sim.samples.size());
+  EXPECT_GT(o.sim.samples.size(), 5000u);
+  EXPECT_GT(o.sim.sampling_s, o.first_pass->robot_time_s + 5.0);
+  const calib::PositioningError p = calib::positioning_error(o.sim.actual, o.calibrated,
+                                                             calib::WorkspaceDisc{o.nominal.home}, o.calibration->covariance);
+  std::printf("through the twin backend: first pass %zu samples, %.2f s; second pass %zu samples; positioning RMS "
+              "%.2f um (stated %.2f um)\n",
+              o.first_pass->samples, o.first_pass->robot_time_s, o.sim.samples.size(), p.rms_um, p.stated_sigma_rms_um);
+  EXPECT_LE(p.rms_um, 2.0 * p.stated_sigma_rms_um);
+  RunSpec again = spec;
+  again.hardware_resume = true;
+  const RunOutcome resumed = run_scenario(again, "robot.yaml", {}, dir / "samples.csv");
+  ASSERT_TRUE(resumed.first_pass && resumed.calibration);
+  EXPECT_EQ(resumed.first_pass->samples, o.first_pass->samples);
+  for (int k = 0; k < kNumParams; ++k)
+    EXPECT_EQ(resumed.calibration->geometry[k], o.calibration->geometry[k]) << param_name(k);
 }
 
 }  // namespace
