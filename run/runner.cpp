@@ -511,12 +511,11 @@ sim::SimulationResult sample_twin_in_passes(RunOutcome& out, RunSpec& spec, bool
   const auto simulating = [&] {
     return progress ? gpm::Progress::terminal("gpm run: simulating", "simulated s") : gpm::Progress::silent();
   };
-  const bool in_motion = spec.sim.sampling && spec.sim.sampling->pattern == sim::PosePattern::kTrajectory;
   try {
     gpm::Progress simulated = simulating();
     return sample_on_twin(spec, &simulated);
   } catch (const sim::TrackingStop& stop) {
-    if (!in_motion || !stop.ended_early || static_cast<int>(stop.samples.size()) < kMinFirstPassSamples) throw;
+    if (!stop.ended_early || static_cast<int>(stop.samples.size()) < kMinFirstPassSamples) throw;  // on the fly only
     out.first_pass = plan_second_pass(spec, designed, stop.samples, stop.what(), stop.robot_time_s, stage);
   }
   stage("sampling on the twin through the hardware interface, second pass");
@@ -544,15 +543,13 @@ sim::SimulationResult sample_hardware_in_passes(RunOutcome& out, RunSpec& spec, 
                                                 const std::string& samples_path, const Stage& stage) {
   const bool in_motion = spec.sim.sampling && spec.sim.sampling->pattern == sim::PosePattern::kTrajectory;
   const std::string first_path = first_pass_samples_path(samples_path);
-  const Geometry stated = spec.sim.controller.geometry;
   if (in_motion && spec.hardware_resume && std::filesystem::exists(first_path)) {
     out.first_pass = plan_second_pass(spec, designed, recorded_samples(first_path, spec),
                                       "in an earlier session of this folder", 0.0, stage);
   } else {
     try {
       return sample_on_hardware(spec, samples_path, out.hardware_description, Eigen::Vector3d::Zero());
-    } catch (const hw::PathEndedEarly& e) {
-      if (!in_motion) throw;
+    } catch (const hw::PathEndedEarly& e) {  // only a path on the fly ends early
       std::vector<sim::SampleRecord> kept = recorded_samples(samples_path, spec);
       if (static_cast<int>(kept.size()) < kMinFirstPassSamples) throw;
       std::filesystem::rename(samples_path, first_path);
@@ -562,8 +559,7 @@ sim::SimulationResult sample_hardware_in_passes(RunOutcome& out, RunSpec& spec, 
     }
   }
   stage("sampling through the hardware interface, second pass");
-  Eigen::Vector3d dth_change;
-  for (int i = 0; i < 3; ++i) dth_change[i] = spec.sim.controller.geometry.dth_(i) - stated.dth_(i);
+  const Eigen::Vector3d dth_change(out.first_pass->offsets_change_rad.data());
   sim::SimulationResult r = sample_on_hardware(spec, samples_path, out.hardware_description, dth_change);
   r.sampling_s += out.first_pass->robot_time_s;
   return r;
