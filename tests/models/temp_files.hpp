@@ -1,6 +1,6 @@
-// Helpers of the tests of models/' output files (test_output_file.cpp,
-// test_measured_data.cpp): a fresh folder removed at the end of the test,
-// whole-file read and write.
+// Helpers of the tests that write files (models/test_output_file.cpp,
+// models/test_measured_data.cpp, run/test_offsets_first.cpp): a fresh folder
+// removed at the end of the test, whole-file read and write.
 #pragma once
 
 #include <filesystem>
@@ -17,7 +17,7 @@ struct TempDir {
   std::filesystem::path path;
   explicit TempDir(const std::string& name)
       : path(std::filesystem::temp_directory_path() /
-             ("gpm_models_test_" + name + "_" + std::to_string(::getpid()))) {
+             ("gpm_test_" + name + "_" + std::to_string(::getpid()))) {
     std::filesystem::remove_all(path);
     std::filesystem::create_directories(path);
   }

@@ -6,12 +6,10 @@
 
 #include <cmath>
 #include <cstdio>
-#include <filesystem>
 #include <fstream>
 #include <sstream>
 
 #include <gtest/gtest.h>
-#include <unistd.h>
 
 #include "calib/reading_model.hpp"
 #include "hw/safety_limits.hpp"
@@ -24,6 +22,8 @@
 #include "run/runner.hpp"
 #include "run/sampling_design.hpp"
 #include "run/twin_hardware.hpp"
+#include "tests/models/temp_files.hpp"
+#include "tests/run/tracking_rows.hpp"
 
 namespace gpm::scenario {
 namespace {
@@ -60,13 +60,6 @@ TEST(OffsetsFirst, RefusesTooFewSamples) {
   EXPECT_THROW(offsets_from_samples(robot.geometry, few), InputError);
 }
 
-// Largest distance of the twin's true end-effector from the plan in rows.
-double worst_row_deviation_mm(const std::vector<sim::LogRow>& rows) {
-  double worst = 0.0;
-  for (const sim::LogRow& row : rows) worst = std::max(worst, (row.actual - row.desired).norm());
-  return worst;
-}
-
 // The main job on the robot of seed 10009 (offsets dth2, dth3 beyond the
 // data sheet's tolerance): the first pass of its path ends early (past 0.7 of
 // the 20 mm tracking watch, sampling/test_sampling_design.cpp); the second,
@@ -80,7 +73,7 @@ TEST(OffsetsFirst, APathThatEndedEarlyIsSampledAgainAndCalibrated) {
   ASSERT_TRUE(o.first_pass.has_value());
   EXPECT_NE(o.first_pass->why.find("retraced its path"), std::string::npos) << o.first_pass->why;
   EXPECT_GE(o.first_pass->samples, static_cast<std::size_t>(kMinFirstPassSamples));
-  const double deviation = worst_row_deviation_mm(o.sim.log.rows);
+  const double deviation = gpm::test::worst_row_deviation_mm(o.sim.log.rows);
   ASSERT_TRUE(o.calibration.has_value());
   ASSERT_TRUE(o.before && o.after);
   std::printf("seed 10009: first pass %zu samples, %.2f s; offsets moved %.4f %.4f %.4f rad; second pass within "
@@ -94,25 +87,13 @@ TEST(OffsetsFirst, APathThatEndedEarlyIsSampledAgainAndCalibrated) {
   EXPECT_LT(o.after->static_rms_um * 100.0, o.before->static_rms_um);
 }
 
-// A fresh folder removed at the end of the test.
-struct TempDir {
-  std::filesystem::path path = std::filesystem::temp_directory_path() /
-                               ("gpm_test_offsets_first_" + std::to_string(::getpid()));
-  TempDir() {
-    std::filesystem::remove_all(path);
-    std::filesystem::create_directories(path);
-  }
-  ~TempDir() { std::filesystem::remove_all(path); }
-  std::string operator/(const std::string& name) const { return (path / name).string(); }
-};
-
 // The same robot through the hardware interface (a twin backend of the
 // scenario of seed 10009, the twin's own limits): the first pass's samples
 // stay in samples_first_pass.csv, the second pass records into samples.csv,
 // the calibration takes those; a resumed session plans the same second pass
 // from the first pass's file and gives the same calibration to the last bit.
 TEST(OffsetsFirst, ThroughTheHardwareInterfaceTheFirstPassIsKeptAndResumable) {
-  const TempDir dir;
+  const gpm::test::TempDir dir("offsets_first");
   std::stringstream main_text;
   main_text << std::ifstream(gpm::scenarios_dir() + "/main.yaml").rdbuf();
   std::string text = main_text.str();

@@ -20,6 +20,7 @@
 #include "run/run_spec.hpp"
 #include "run/runner.hpp"
 #include "sim/simulate.hpp"
+#include "tests/run/tracking_rows.hpp"
 
 namespace gpm::scenario {
 namespace {
@@ -33,15 +34,6 @@ const RunSpec& main_job() {
     return s;
   }();
   return spec;
-}
-
-// Largest distance of the twin's true end-effector from the plan over rows
-// logged up to until_s.
-double worst_row_deviation_mm(const std::vector<sim::LogRow>& rows, double until_s = INFINITY) {
-  double worst = 0.0;
-  for (const sim::LogRow& row : rows)
-    if (row.t <= until_s) worst = std::max(worst, (row.actual - row.desired).norm());
-  return worst;
 }
 
 // Largest distance of the twin's true end-effector from the plan over the
@@ -59,7 +51,7 @@ double max_deviation_mm(std::uint64_t seed, bool* ended_early = nullptr) {
     rows = stop.rows;
     if (ended_early) *ended_early = std::string(stop.what()).find("retraced its path") != std::string::npos;
   }
-  return worst_row_deviation_mm(rows);
+  return gpm::test::worst_row_deviation_mm(rows);
 }
 
 TEST(SamplingDesign, MainJobPosesAndPathKeepTheMarginOfTheDrivenFiveBar) {
@@ -132,7 +124,7 @@ TEST(SamplingDesign, ATighterDeviationMarginKeepsTheHubCloserToThePlan) {
     t.seed = 10009;
     t.max_tracking_mm = 0.0;
     const sim::SimulationResult r = sim::run_simulation(t);
-    return worst_row_deviation_mm(r.log.rows, r.sampling_s);
+    return gpm::test::worst_row_deviation_mm(r.log.rows, r.sampling_s);
   };
   const double tight = deviation(s), wide = deviation(main_job().sim);
   std::printf("seed 10009: max deviation %.2f mm with deviation_mm 12, %.2f mm with the default\n", tight, wide);
