@@ -195,14 +195,20 @@ std::vector<sim::SampleRecord> twin_samples(const hw::SampleLog& log, const Twin
   return out;
 }
 
+// A session's stop line less its "; N samples kept in PATH" tail (the caller
+// says where they are kept); a line without that tail as it is.
+std::string without_kept_tail(const std::string& what, const std::string& kept_in) {
+  const std::string tail = " samples kept in " + kept_in;
+  if (!what.ends_with(tail)) return what;
+  const std::size_t at = what.rfind("; ", what.size() - tail.size());
+  return at == std::string::npos ? what : what.substr(0, at);
+}
+
 // A session on the twin stopped (its tracking watch, a refused command): the
 // samples and the trajectory so far, kept as the twin's own stop keeps them.
 sim::TrackingStop twin_stopped(const hw::HardwareError& e, const hw::SampleLog& log, const TwinTruth& truth,
                                sim::SimulationResult& r) {
-  std::string why = e.what();
-  if (const std::size_t at = why.rfind("; "); at != std::string::npos && why.ends_with(log.path()))
-    why.resize(at);  // "; N samples kept in ...": the caller says where they are kept
-  sim::TrackingStop stop(why);
+  sim::TrackingStop stop(without_kept_tail(e.what(), log.path()));
   stop.samples = twin_samples(log, truth, r.actual);
   stop.rows = std::move(r.log.rows);
   stop.robot_time_s = truth.time_s();
@@ -553,9 +559,8 @@ sim::SimulationResult sample_hardware_in_passes(RunOutcome& out, RunSpec& spec, 
       std::vector<sim::SampleRecord> kept = recorded_samples(samples_path, spec);
       if (static_cast<int>(kept.size()) < kMinFirstPassSamples) throw;
       std::filesystem::rename(samples_path, first_path);
-      std::string why = e.what();
-      if (const std::size_t at = why.rfind("; "); at != std::string::npos) why.resize(at);  // "; N samples kept in"
-      out.first_pass = plan_second_pass(spec, designed, kept, why, e.duration_s, stage);
+      out.first_pass = plan_second_pass(spec, designed, kept, without_kept_tail(e.what(), samples_path),
+                                        e.duration_s, stage);
     }
   }
   stage("sampling through the hardware interface, second pass");
