@@ -5,6 +5,7 @@
 #include <Eigen/Cholesky>
 
 #include "models/kinematics.hpp"
+#include "sim/waypoint_path.hpp"
 
 namespace gpm::scenario {
 namespace {
@@ -52,13 +53,17 @@ Accuracy measure_accuracy(const Robot& actual, const sim::TwinConfig& twin,
   sim::Session session = sim::make_session(model, state, controller, nullptr);
   session.max_tracking_mm = max_tracking_mm;
 
+  // The poses are visited in a short tour from where the robot stands
+  // (sim/waypoint_path.hpp), their errors kept in the plan's order.
   std::vector<double> preload;
+  acc.static_error_um.assign(plan.poses.size(), 0.0);
   long id = 0;
   if (progress) progress->update(0);
-  for (const Eigen::Vector2d& target : plan.poses) {
+  for (const int k : sim::tour_order(session.desired, plan.poses)) {
+    const Eigen::Vector2d& target = plan.poses[static_cast<std::size_t>(k)];
     const sim::SampleRecord r = sim::take_sample(session, target, id++, plan.sampling);
     if (progress) progress->update(static_cast<double>(id));
-    acc.static_error_um.push_back((r.xy_mm - target).norm() * 1e3);
+    acc.static_error_um[static_cast<std::size_t>(k)] = (r.xy_mm - target).norm() * 1e3;
     const sim::TwinSnapshot snap = sim::advance(session, sim::PathPoint{target, Eigen::Vector2d::Zero()});
     preload.push_back(internal_preload(actual.geometry, snap.ee_mm, snap.torque, actual.branch));
   }

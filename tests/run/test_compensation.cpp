@@ -1,6 +1,9 @@
 // Tests of run/compensation.cpp: the internal-preload projection by
-// hand, and the twin's accuracy with the true model against a wrong one.
+// hand, the twin's accuracy with the true model against a wrong one, and
+// the test poses visited in a short tour whatever their order.
 #include "run/compensation.hpp"
+
+#include <algorithm>
 
 #include <Eigen/Geometry>
 #include <gtest/gtest.h>
@@ -43,6 +46,26 @@ TEST(Compensation, TrueModelIsAccurateAndAWrongOneIsNot) {
   EXPECT_GT(bad.static_preload_rms_nm, 100 * good.static_preload_rms_nm);
   EXPECT_GT(bad.path_rms_um, 10 * good.path_rms_um);
   EXPECT_FALSE(good.path_log.rows.empty());
+}
+
+// The test poses are visited in a short tour from where the robot stands,
+// their errors reported in the plan's order: the same poses listed in
+// another order give the same error at each pose to the last bit.
+TEST(Compensation, PosesAreVisitedInOneTourWhateverTheirOrder) {
+  Robot actual;
+  actual.geometry[kDth2] = 0.002;
+  sim::TwinConfig twin;
+  CompensationPlan plan;
+  plan.poses = {{250, 280}, {190, 220}, {216.5, 250}, {240, 215}};
+  plan.path = sim::CirclePath{{216.5, 250}, 10.0, 0.5, 0.25};
+  CompensationPlan reversed = plan;
+  std::reverse(reversed.poses.begin(), reversed.poses.end());
+  const Accuracy a = measure_accuracy(actual, twin, Robot{}, plan, 7, "listed");
+  const Accuracy b = measure_accuracy(actual, twin, Robot{}, reversed, 7, "reversed");
+  ASSERT_EQ(a.static_error_um.size(), 4u);
+  for (std::size_t k = 0; k < 4; ++k) EXPECT_EQ(a.static_error_um[k], b.static_error_um[3 - k]) << k;
+  EXPECT_EQ(a.static_rms_um, b.static_rms_um);
+  EXPECT_GT(a.static_rms_um, 100.0);  // the wrong offset shows at every pose
 }
 
 }  // namespace
