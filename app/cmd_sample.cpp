@@ -1,9 +1,12 @@
 // gpm sample: a calibration sampling session on the hardware named by a
 // hardware file (the twin or real drives: only the config differs). Samples
-// are appended and flushed as they are taken; --resume continues a file.
+// are appended and flushed as they are taken; --resume continues a file. A
+// scenario whose poses are designed (designed, trajectory) is sampled by the
+// procedure of gpm run --hardware, without the calibration.
 // Exit 0 done; 1 the session failed (drives disabled, samples kept); 2 bad
 // input; 130 interrupted (SIGINT/SIGTERM/SIGHUP: drives disabled, samples kept).
 #include <cstdio>
+#include <filesystem>
 
 #include <fmt/format.h>
 
@@ -17,6 +20,8 @@
 #include "models/errors.hpp"
 #include "models/measured_data.hpp"
 #include "models/output_file.hpp"
+#include "run/run_spec.hpp"
+#include "run/runner.hpp"
 
 namespace gpm::cli {
 namespace {
@@ -25,6 +30,34 @@ struct SampleArgs {
   std::string hardware, poses, scenario, out;
   bool resume = false;
 };
+
+// The resume hint of a stopped session that kept samples in a.out.
+std::string go_on_line(const SampleArgs& a) {
+  if (!std::filesystem::exists(a.out)) return {};
+  return fmt::format("; to go on: gpm sample --hardware {} {} {} -o {} --resume", a.hardware,
+                     a.poses.empty() ? "--scenario" : "--poses", a.poses.empty() ? a.scenario : a.poses, a.out);
+}
+
+// A scenario whose poses are designed (pattern designed or trajectory): the
+// procedure of gpm run --hardware without its calibration (run/runner.hpp):
+// the poses designed for this hardware, a path on the fly sampled in passes.
+void sample_designed(const scenario::RunSpec& spec, const SampleArgs& a) {
+  try {
+    const scenario::HardwareSampling r = scenario::sample_through_hardware(spec, a.out);
+    if (r.first_pass)
+      std::printf("first pass ended early (%s); its %zu samples in %s planned the second pass\n",
+                  r.first_pass->why.c_str(), r.first_pass->samples,
+                  scenario::first_pass_samples_path(a.out).c_str());
+    std::printf("%s: %zu samples in %s (%.2f s of robot time)\n", r.description.c_str(), r.samples, a.out.c_str(),
+                r.robot_time_s);
+  } catch (const hw::Interrupted& e) {
+    std::fprintf(stderr, "gpm: %s%s\n", e.what(), go_on_line(a).c_str());
+    set_exit(hw::kInterruptedExit);
+  } catch (const hw::HardwareError& e) {
+    std::fprintf(stderr, "gpm: error: %s%s\n", e.what(), go_on_line(a).c_str());
+    set_exit(1);
+  }
+}
 
 void run_sample(SampleArgs a) {
   if (!a.scenario.empty()) a.scenario = resolve_scenario(a.scenario);  // a file, or a library name
@@ -37,6 +70,15 @@ void run_sample(SampleArgs a) {
   declare_output(a.out);
   refuse_measured_file(a.out, nullptr, /*sampling_session=*/true);
   const hw::HardwareConfig config = hw::load_hardware_config(a.hardware);
+  if (!a.scenario.empty()) {
+    scenario::RunSpec spec = scenario::load_run_spec(a.scenario);
+    if (spec.sim.sampling && spec.sim.sampling->needs_design()) {
+      spec.hardware = a.hardware;
+      spec.hardware_resume = a.resume;
+      sample_designed(spec, a);
+      return;
+    }
+  }
   hw::SessionPlan plan = a.poses.empty() ? hw::plan_from_scenario(a.scenario) : hw::load_poses_plan(a.poses);
   plan.modes = config.modes;
   if (config.dither_mm) plan.dither_mm = *config.dither_mm;
@@ -56,12 +98,7 @@ void run_sample(SampleArgs a) {
     set_exit(hw::kInterruptedExit);
   } catch (const hw::HardwareError& e) {
     log.close_and_discard_if_empty();
-    const std::string go_on =
-        log.size() == 0 ? std::string()
-                        : fmt::format("; to go on: gpm sample --hardware {} {} {} -o {} --resume", a.hardware,
-                                      a.poses.empty() ? "--scenario" : "--poses",
-                                      a.poses.empty() ? a.scenario : a.poses, a.out);
-    std::fprintf(stderr, "gpm: error: %s%s\n", e.what(), go_on.c_str());
+    std::fprintf(stderr, "gpm: error: %s%s\n", e.what(), go_on_line(a).c_str());
     set_exit(1);
   }
 }

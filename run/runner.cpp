@@ -635,6 +635,23 @@ RunOutcome run_scenario(const RunSpec& spec_in, const std::string& scenario_file
   return out;
 }
 
+HardwareSampling sample_through_hardware(const RunSpec& spec_in, const std::string& samples_path,
+                                         const Progress& progress) {
+  const auto stage = [&](const std::string& s) { if (progress) progress(s); };
+  if (!spec_in.hardware) throw InputError(spec_in.sim.file + ": sampling through hardware needs a hardware file");
+  if (!spec_in.sim.sampling) throw InputError(spec_in.sim.file + ": the scenario has no 'sampling' section (poses to sample)");
+  RunSpec spec = spec_in;
+  spec.sim.twin.events.clear();  // events belong to the operation, not to the sampling
+  check_before_moving(spec);
+  const bool designed = spec.sim.sampling->needs_design();
+  if (designed) design_poses(spec, stage);
+  else design_sampling(spec.sim, ~spec.calibration.fixed, 0.0);  // given poses: only their number is checked
+  RunOutcome out;
+  stage("sampling through the hardware interface");
+  const sim::SimulationResult r = sample_hardware_in_passes(out, spec, designed, samples_path, stage);
+  return HardwareSampling{out.hardware_description, r.samples.size(), r.sampling_s, out.first_pass};
+}
+
 std::string first_pass_samples_path(const std::string& samples_path) {
   const std::filesystem::path p(samples_path);
   return (p.parent_path() / (p.stem().string() + "_first_pass" + p.extension().string())).string();

@@ -91,6 +91,22 @@ using Progress = std::function<void(const std::string& stage)>;
 RunOutcome run_scenario(const RunSpec& spec, const std::string& scenario_file,
                         const Progress& progress = {}, const std::string& samples_path = "");
 
+// What a sampling session through the hardware gave (gpm sample).
+struct HardwareSampling {
+  std::string description;            // the backend and its hardware file
+  std::size_t samples = 0;            // samples in the samples file (resumed ones too)
+  double robot_time_s = 0.0;          // robot time of this session's passes
+  std::optional<FirstPass> first_pass;  // the path ended early once and was sampled again
+};
+
+// Samples spec through spec.hardware as run_scenario does (the poses designed
+// for the hardware's limits, a path on the fly that ends early sampled a
+// second time from the offsets of its samples) into samples_path, without
+// calibrating: gpm sample of a scenario whose poses are designed. Throws
+// InputError before anything moves, hw errors as run_scenario's sampling.
+HardwareSampling sample_through_hardware(const RunSpec& spec, const std::string& samples_path,
+                                         const Progress& progress = {});
+
 // Samples spec (its sampling designed: run/sampling_design.hpp) on the
 // in-process twin as run_scenario does, through the hardware interface;
 // throws sim::TrackingStop with the samples and the trajectory so far when

@@ -50,8 +50,9 @@ SessionPlan plan_from_scenario(const std::string& path) {
   if (!sc.sampling) throw InputError(path + ": the scenario has no 'sampling' section (poses to sample)");
   if (sc.sampling->needs_design())
     throw InputError(fmt::format("{}: sampling.pattern: {}: its poses are designed for the calibration when the "
-                                 "procedure runs; run it with gpm run {} --hardware HW.yaml (gpm sample takes "
-                                 "poses given or drawn: disc, circle, line, list)",
+                                 "procedure runs, which the hw layer does not do (gpm run {} --hardware HW.yaml, or "
+                                 "gpm sample --scenario, design them); a stop-and-go plan takes poses given or drawn: "
+                                 "disc, circle, line, list",
                                  path, sc.sampling->pattern == sim::PosePattern::kTrajectory ? "trajectory" : "designed",
                                  path));
   SessionPlan plan;

@@ -1,5 +1,6 @@
 #!/usr/bin/env bash
-# Tests of app/cmd_sample.cpp: gpm sample on the twin and, through
+# Tests of app/cmd_sample.cpp: gpm sample on the twin (poses given, and the
+# main job's designed path on the fly, in two passes where it ends early) and, through
 # gpm-drive-emulator on a loopback ephemeral port, on the modbus backend;
 # refusals exit 2 with one line; a failed session exits 1 and leaves no empty file;
 # SIGINT/SIGTERM/SIGHUP disable the drives, keep the samples, exit 130.
@@ -57,6 +58,26 @@ printf 'poses: [[336.5, 250]]\n' >"$tmp/far.yaml"
 check "pose outside limits" 2 "$GPM" sample --hardware "$tmp/twin.yaml" --poses "$tmp/far.yaml" -o "$tmp/f.csv"
 [[ ! -e "$tmp/f.csv" ]] && passed=$((passed+1)) || { echo "FAIL output left behind (far)"; fail=$((fail+1)); }
 check "both pose sources" 2 "$GPM" sample --hardware "$tmp/twin.yaml" --poses "$tmp/poses2.yaml" --scenario x.yaml -o "$tmp/b.csv"
+
+# A scenario whose poses are designed: the main job's procedure (the path on
+# the fly, designed for this hardware's limits) without its calibration, into
+# one samples file with the torque and read-time columns.
+check "main job on the fly" 0 "$GPM" sample --hardware "$SRC/hw/examples/twin_main.yaml" --scenario main -o "$tmp/main.csv"
+expect "says its robot time" "$tmp/out" "twin backend from .*: [0-9]{4,} samples in .*main.csv \([0-9.]+ s of robot time\)"
+head -1 "$tmp/main.csv" >"$tmp/main_header"
+expect "on-the-fly columns" "$tmp/main_header" "^sample,.*,tau1,.*,t_read1,"
+[[ $(rows "$tmp/main.csv") -gt 5000 ]] && passed=$((passed+1)) || { echo "FAIL main job rows"; fail=$((fail+1)); }
+check "main job file kept" 2 "$GPM" sample --hardware "$SRC/hw/examples/twin_main.yaml" --scenario main -o "$tmp/main.csv"
+# The robot of seed 10009 leaves its first pass's plan (its offsets beyond the
+# data sheet's): the first pass's samples stay beside the file, the second
+# pass, planned from their offsets, fills it (as gpm run --hardware).
+sed -e "s#seed: 2026#seed: 10009#" -e "s#robot: \.\./models/#robot: $SRC/models/#" "$SRC/scenarios/main.yaml" >"$tmp/r10009.yaml"
+sed -e "s#scenario: \.\./\.\./scenarios/main.yaml#scenario: $tmp/r10009.yaml#" \
+    -e "s#controller: \.\./\.\./models/#controller: $SRC/models/#" "$SRC/hw/examples/twin_main.yaml" >"$tmp/twin10009.yaml"
+check "a path that ended early" 0 "$GPM" sample --hardware "$tmp/twin10009.yaml" --scenario "$tmp/r10009.yaml" -o "$tmp/r.csv"
+expect "names the first pass" "$tmp/out" "first pass ended early \(tracking: .*\); its [0-9]+ samples in .*r_first_pass.csv planned the second pass"
+[[ $(rows "$tmp/r_first_pass.csv") -ge 12 && $(rows "$tmp/r.csv") -gt 5000 ]] && passed=$((passed+1)) ||
+  { echo "FAIL first and second pass rows"; fail=$((fail+1)); }
 
 # modbus through the emulator on an ephemeral loopback port; its drive-side
 # comms watchdog is long, so only the client can switch the drives off here.
