@@ -90,6 +90,7 @@ def robot_row(seed, summary, failure=None):
         calibrated_static_rms_um=_accuracy(summary, "calibrated", "static_rms_um"),
         calibrated_path_rms_um=_accuracy(summary, "calibrated", "path_rms_um"),
         floor_static_rms_um=_accuracy(summary, "actual", "static_rms_um"),
+        plan_deviation_mm=_number(summary.get("plan_deviation_mm")),
         model_test_passed=mt.get("passed"),
         chi2_per_dof=_number(mt.get("chi2")) / _number(mt.get("dof")) if mt.get("dof") else float("nan"),
     )
@@ -298,6 +299,9 @@ class Population:
             "coverage_1_sigma_normal": _normal_coverage(1.0),
             "coverage_3_sigma": sum(x <= 3.0 for x in ratios) / len(ratios) if ratios else float("nan"),
             "robot_time_median_s": _median(r["robot_time_s"] for r in ok),
+            "plan_deviation_worst_mm": max((r["plan_deviation_mm"] for r in ok
+                                            if r.get("plan_deviation_mm") == r.get("plan_deviation_mm")),
+                                           default=float("nan")),
             "seconds": self.seconds,
             "robots_per_minute": 60.0 * len(self.rows) / self.seconds if self.seconds > 0 else float("nan"),
         }

@@ -76,6 +76,12 @@ std::string summary_text(const PopulationReport& p) {
       s.failed, cell(s.positioning_median_um, "{:.2f}"), cell(s.positioning_max_um, "{:.2f}"),
       cell(100.0 * s.within_3_sigma_fraction, "{:.0f}"), cell(s.worst_sigma_ratio, "{:.1f}"),
       cell(s.normalised_positioning_median, "{:.2f}"), cell(100.0 * s.model_test_pass_fraction, "{:.0f}")) +
+         (std::isfinite(s.plan_deviation_max_mm)
+              ? fmt::format(" The sampling path: the farthest a robot went from its plan, median {} mm, worst {} mm "
+                            "(robot {}; every pass and retreat).",
+                            cell(s.plan_deviation_median_mm, "{:.1f}"), cell(s.plan_deviation_max_mm, "{:.1f}"),
+                            s.plan_deviation_worst_seed)
+              : std::string()) +
          (s.monitored > 0 ? " " + monitor_summary_text(s) : std::string());
 }
 

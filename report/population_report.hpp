@@ -4,6 +4,7 @@
 #pragma once
 
 #include <array>
+#include <cmath>
 #include <cstdint>
 #include <optional>
 #include <string>
@@ -22,6 +23,10 @@ struct PopulationSummary {
   double worst_sigma_ratio = 0.0;
   double model_test_pass_fraction = 0.0;
   double normalised_positioning_median = 0.0;  // RMS positioning error / its stated 1-sigma (1: honest)
+  // The farthest each robot went from its sampling path's plan (mm, every
+  // robot where the twin knows it): median and worst, and that robot.
+  double plan_deviation_median_mm = NAN, plan_deviation_max_mm = NAN;
+  std::uint64_t plan_deviation_worst_seed = 0;
   // Monitoring (robots with `operation:`): pooled false alarms per hour of
   // monitored time after learning and before the event, robots with any, and
   // the detection delays of the event.

@@ -87,6 +87,7 @@ void judge_monitor(const MonitorOutcome& m, PopulationRobot& r) {
 }
 
 PopulationRobot robot_of(const RunOutcome& o, PopulationRobot r) {
+  r.plan_deviation_mm = o.plan_deviation_mm;
   if (!o.calibration) return failed_robot(r, o.refused.value_or("no calibration"));
   if (!o.calibration->converged) return failed_robot(r, "calibration did not converge");
   r.calibrated_static_um = o.after ? o.after->static_rms_um : NAN;
@@ -199,6 +200,14 @@ PopulationSummary PopulationStudy::summary() const {
   s.within_3_sigma_fraction = estimated > 0 ? static_cast<double>(within) / estimated : NAN;
   s.model_test_pass_fraction = tested > 0 ? static_cast<double>(passed) / tested : NAN;
   s.normalised_positioning_median = median(normalised);
+  std::vector<double> deviation;
+  for (const PopulationRobot& r : robots) {
+    if (!std::isfinite(r.plan_deviation_mm)) continue;
+    deviation.push_back(r.plan_deviation_mm);
+    if (!(r.plan_deviation_mm <= s.plan_deviation_max_mm))
+      s.plan_deviation_max_mm = r.plan_deviation_mm, s.plan_deviation_worst_seed = r.seed;
+  }
+  s.plan_deviation_median_mm = median(deviation);
   std::vector<double> delays;
   for (const PopulationRobot& r : robots) {
     if (r.failure || !r.monitored) continue;
@@ -287,6 +296,7 @@ nlohmann::json robot_json(const PopulationRobot& r) {
                          {"normalised_rms", number(r.positioning.normalised_rms)}, {"points", r.positioning.points}};
   j["static_rms_um"] = {{"calibrated", number(r.calibrated_static_um)}, {"actual", number(r.floor_um)}};
   j["floor_ratio"] = number(r.floor_ratio);
+  j["plan_deviation_mm"] = number(r.plan_deviation_mm);
   j["model_test"] = {{"passed", r.model_test_passed ? nlohmann::json(*r.model_test_passed) : nlohmann::json(nullptr)},
                      {"chi2_per_dof", number(r.chi2_per_dof)}};
   nlohmann::json params = nlohmann::json::object();
@@ -339,7 +349,9 @@ std::string population_json(const PopulationStudy& study) {
                   {"within_3_sigma_fraction", number(s.within_3_sigma_fraction)},
                   {"worst_sigma_ratio", number(s.worst_sigma_ratio)},
                   {"model_test_pass_fraction", number(s.model_test_pass_fraction)},
-                  {"normalised_positioning_median", number(s.normalised_positioning_median)}};
+                  {"normalised_positioning_median", number(s.normalised_positioning_median)},
+                  {"plan_deviation_median_mm", number(s.plan_deviation_median_mm)},
+                  {"plan_deviation_max_mm", number(s.plan_deviation_max_mm)}};
   if (s.monitored > 0)
     j["summary"]["monitor"] = {{"robots", s.monitored},
                                {"false_alarms", s.false_alarms},

@@ -9,6 +9,7 @@
 #pragma once
 
 #include <array>
+#include <cmath>
 #include <cstdint>
 #include <functional>
 #include <optional>
@@ -55,6 +56,7 @@ struct PopulationRobot {
   std::optional<double> detection_delay_s;  // its first alarm after it, minus its time (none: missed)
   std::string detection;          // that alarm's explanation
   int alarms_after_event = 0;     // every alarm from the event on (the detection among them)
+  double plan_deviation_mm = NAN;  // farthest from its sampling path's plan, every pass (NaN: not known)
   double seconds = 0.0;
 };
 

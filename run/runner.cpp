@@ -195,6 +195,13 @@ std::vector<sim::SampleRecord> twin_samples(const hw::SampleLog& log, const Twin
   return out;
 }
 
+// The farthest the twin's end-effector went from the plan in rows (mm).
+double worst_plan_deviation_mm(const std::vector<sim::LogRow>& rows) {
+  double worst = 0.0;
+  for (const sim::LogRow& row : rows) worst = std::max(worst, (row.actual - row.desired).norm());
+  return worst;
+}
+
 // A session's stop line less its "; N samples kept in PATH" tail (the caller
 // says where they are kept); a line without that tail as it is.
 std::string without_kept_tail(const std::string& what, const std::string& kept_in) {
@@ -519,15 +526,19 @@ sim::SimulationResult sample_twin_in_passes(RunOutcome& out, RunSpec& spec, bool
   };
   try {
     gpm::Progress simulated = simulating();
-    return sample_on_twin(spec, &simulated);
+    sim::SimulationResult r = sample_on_twin(spec, &simulated);
+    out.plan_deviation_mm = worst_plan_deviation_mm(r.log.rows);
+    return r;
   } catch (const sim::TrackingStop& stop) {
     if (!stop.ended_early || static_cast<int>(stop.samples.size()) < kMinFirstPassSamples) throw;  // on the fly only
     out.first_pass = plan_second_pass(spec, designed, stop.samples, stop.what(), stop.robot_time_s, stage);
+    out.plan_deviation_mm = worst_plan_deviation_mm(stop.rows);
   }
   stage("sampling on the twin through the hardware interface, second pass");
   gpm::Progress simulated = simulating();
   sim::SimulationResult r = sample_on_twin(spec, &simulated);
   r.sampling_s += out.first_pass->robot_time_s;
+  out.plan_deviation_mm = std::max(out.plan_deviation_mm, worst_plan_deviation_mm(r.log.rows));
   return r;
 }
 

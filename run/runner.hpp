@@ -6,6 +6,7 @@
 #pragma once
 
 #include <array>
+#include <cmath>
 #include <functional>
 #include <optional>
 #include <string>
@@ -71,6 +72,9 @@ struct RunOutcome {
   // with the estimates in place; run/calibration_procedure.hpp).
   std::optional<calib::ReadingModel> reading_estimated;
   std::optional<FirstPass> first_pass;     // the path ended early once and was sampled again
+  // The twin's truth (in process only, else NaN): the farthest its end-effector
+  // went from the plan over the sampling, every pass and retreat (mm).
+  double plan_deviation_mm = NAN;
   std::optional<MonitorOutcome> monitor;  // the calibrated model monitoring `operation:` (run/monitor_run.hpp)
   std::vector<Check> checks;
   double seconds = 0.0;

@@ -66,6 +66,7 @@ std::string summary_json(const RunOutcome& o) {
                        {"offsets_change_rad", change},
                        {"offsets_sigma_rad", sigma}};
   }
+  if (std::isfinite(o.plan_deviation_mm)) j["plan_deviation_mm"] = o.plan_deviation_mm;
   if (o.monitor) j["monitor"] = monitor_summary(*o.monitor);
   return j.dump(2) + "\n";
 }

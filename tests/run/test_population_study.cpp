@@ -68,9 +68,19 @@ TEST(PopulationStudy, ARobotReRunAloneGivesItsNumbersAndTheSummaryIsTheRobots) {
                    0.5 * (study.robots[0].positioning.rms_um + study.robots[1].positioning.rms_um));
   EXPECT_DOUBLE_EQ(s.positioning_max_um,
                    std::max(study.robots[0].positioning.rms_um, study.robots[1].positioning.rms_um));
+  // The sampling path's worst departure from its plan: known on the twin,
+  // the summary's worst is the robots' and names that robot.
+  const PopulationRobot& far = study.robots[0].plan_deviation_mm > study.robots[1].plan_deviation_mm
+                                   ? study.robots[0] : study.robots[1];
+  EXPECT_GT(far.plan_deviation_mm, 0.0);
+  EXPECT_EQ(s.plan_deviation_max_mm, far.plan_deviation_mm);
+  EXPECT_EQ(s.plan_deviation_worst_seed, far.seed);
+  EXPECT_EQ(alone.robots[0].plan_deviation_mm, study.robots[1].plan_deviation_mm);
   const auto j = nlohmann::json::parse(population_json(study));
   EXPECT_EQ(j["robots"].size(), 2u);
   EXPECT_EQ(j["robots"][1]["seed"], 501);
+  EXPECT_EQ(j["robots"][1]["plan_deviation_mm"], study.robots[1].plan_deviation_mm);
+  EXPECT_EQ(j["summary"]["plan_deviation_max_mm"], s.plan_deviation_max_mm);
 }
 
 }  // namespace
