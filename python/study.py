@@ -299,9 +299,8 @@ class Population:
             "coverage_1_sigma_normal": _normal_coverage(1.0),
             "coverage_3_sigma": sum(x <= 3.0 for x in ratios) / len(ratios) if ratios else float("nan"),
             "robot_time_median_s": _median(r["robot_time_s"] for r in ok),
-            "plan_deviation_worst_mm": max((r["plan_deviation_mm"] for r in ok
-                                            if r.get("plan_deviation_mm") == r.get("plan_deviation_mm")),
-                                           default=float("nan")),
+            "plan_deviation_worst_mm": max((d for d in (r.get("plan_deviation_mm", float("nan")) for r in ok)
+                                            if d == d), default=float("nan")),
             "seconds": self.seconds,
             "robots_per_minute": 60.0 * len(self.rows) / self.seconds if self.seconds > 0 else float("nan"),
         }

@@ -97,6 +97,10 @@ def test_population_repr_holds_its_summary():
     # median 10 um, worst 11 um, 2 of 3 parameters within 1 sigma
     assert repr(pop) == ("<gpm.study.Population 4 robots (1 failed): positioning median 10 um, worst 11 um; "
                          "within the stated 1-sigma 67% (normal 68%); 12.5 s>")
+    # rows without the plan deviation (a real robot's) give none; rows with it, the worst
+    assert pop.summary()["plan_deviation_worst_mm"] != pop.summary()["plan_deviation_worst_mm"]
+    rows[0]["plan_deviation_mm"], rows[1]["plan_deviation_mm"] = 4.5, 12.0
+    assert gpm.study.Population("main.yaml", rows, 12.5, [], {}).summary()["plan_deviation_worst_mm"] == 12.0
 
 
 def test_calibration_plot_is_a_png_of_1200_by_800_px(result, run, scratch):

@@ -33,6 +33,7 @@ def test_summary_is_the_summary_json_written(tiny_run):
     assert summary["verdict"] == "passed"
     assert set(summary["parameters"]) == PARAMS
     assert summary["robot_time_s"] > 0
+    assert 0 < summary["plan_deviation_mm"] < 20  # the twin's farthest from its sampling plan (mm)
     assert stages[0] == "sampling on the twin through the hardware interface" and "calibrating" in stages
 
 
