@@ -6,9 +6,11 @@
    then of two (one thread each, 127.0.0.1), in this one run: the speed
    ratio 2 workers / 1 worker and the throughput in robots per minute, with
    the check that both give the same numbers bit for bit.
-3. The same count of robots on a plain process pool of one, then two
-   processes (no Dask): what this machine gives two processes at all, the
-   ceiling of the ratio in 2.
+3. The same robots on a plain process pool of one, then two processes (no
+   Dask), and a pure-Python arithmetic loop run twice in one process, then
+   once in each of two at once: what this machine gives two processes at
+   all, the ceiling of the ratio in 2 (a virtual machine's two cores need not
+   give two processes twice the speed of one).
 
     PYTHONPATH=build/python /usr/bin/python3 bench/population_dask.py [--scenario S] [--study-scenario S]
         [--count N] [--one-robot]
@@ -58,24 +60,65 @@ def study_seconds(scenario, count, workers, local_dir):
         return time.perf_counter() - t0, pop
 
 
-def _run_one(scenario, seed):
-    """gpm.run of scenario with seed, outputs not written (a task of the plain process pool)."""
-    import gpm as g
-    g.run(scenario, seed=seed)
-    return seed
+def _run_robot(job):
+    """One robot of the study as gpm.study.population's tasks run it (a task of the plain process pool)."""
+    import gpm.study as st
+    return st.run_robot(*job)
+
+
+def _import_gpm(_):
+    """Imports gpm in a pool process (what a Dask worker has done before its first task)."""
+    import gpm.study as st
+    return st.__name__
 
 
 def plain_pool_seconds(scenario, count, workers):
-    """Wall s of count robots (seeds 0 .. count - 1) on a plain process pool of `workers` processes, no Dask:
-    what this machine's cores give two processes at all (the ceiling of the Dask ratio)."""
+    """Wall s of the study's count robots (the same scenario texts and seeds gpm.study.population gives its
+    tasks, each through the same gpm.study.run_robot) on a plain process pool of `workers` processes, no
+    Dask, each process as cold as a fresh Dask worker (gpm imported, no robot run): what this machine's
+    cores give two processes at all (the ceiling of the Dask ratio)."""
     import concurrent.futures
     import multiprocessing
+    scenario = os.path.abspath(scenario)
+    first = gpm.scenario_seed(scenario)
+    jobs = [(gpm.population_robot_scenario(scenario, first + k, False), first + k, os.path.dirname(scenario))
+            for k in range(count)]
     ctx = multiprocessing.get_context("spawn")
     with concurrent.futures.ProcessPoolExecutor(max_workers=workers, mp_context=ctx) as pool:
-        list(pool.map(_run_one, [scenario] * workers, range(workers)))  # start and import in every process first
+        list(pool.map(_import_gpm, range(workers)))  # start every process first
         t0 = time.perf_counter()
-        list(pool.map(_run_one, [scenario] * count, range(count)))
+        list(pool.map(_run_robot, jobs))
         return time.perf_counter() - t0
+
+
+def _spin(n):
+    """Wall s of n iterations of a pure-Python arithmetic loop (no memory, no I/O, no library)."""
+    t0 = time.perf_counter()
+    x = 0
+    for i in range(n):
+        x += i * i
+    return time.perf_counter() - t0
+
+
+def spin_ratio(n=30_000_000, repeats=3):
+    """Median over repeats of (two loops of n one after the other) / (the same two loops in two processes at
+    once): what two processes that only compute get from this machine's cores, whatever the program."""
+    import concurrent.futures
+    import multiprocessing
+    import statistics
+    ratios = []
+    ctx = multiprocessing.get_context("spawn")
+    with concurrent.futures.ProcessPoolExecutor(max_workers=2, mp_context=ctx) as pool:
+        list(pool.map(_spin, [1000, 1000]))  # both processes started
+        for _ in range(repeats):
+            t0 = time.perf_counter()
+            list(pool.map(_spin, [n], chunksize=1))
+            list(pool.map(_spin, [n], chunksize=1))
+            serial = time.perf_counter() - t0
+            t0 = time.perf_counter()
+            list(pool.map(_spin, [n, n], chunksize=1))
+            ratios.append(serial / (time.perf_counter() - t0))
+    return statistics.median(ratios), min(ratios), max(ratios)
 
 
 def main():
@@ -109,6 +152,7 @@ def main():
         t2, two = study_seconds(a.study_scenario, a.count, 2, d)
     p1 = plain_pool_seconds(a.study_scenario, a.count, 1)
     p2 = plain_pool_seconds(a.study_scenario, a.count, 2)
+    spin, spin_lo, spin_hi = spin_ratio()
     same = repr(one.numbers()) == repr(two.numbers())
     print(f"study of {a.count} robots of {os.path.relpath(a.study_scenario, ROOT)} on a Dask LocalCluster:")
     print(f"  1 worker:  {t1:7.1f} s  {60 * a.count / t1:6.2f} robots/min")
@@ -117,6 +161,8 @@ def main():
     print(f"  failed robots: {len(one.failed)} and {len(two.failed)}")
     print(f"the same robots on a plain process pool (no Dask), the machine's own ceiling: 1 process {p1:.1f} s, "
           f"2 processes {p2:.1f} s: {p1 / p2:.2f}; Dask reaches {(t1 / t2) / (p1 / p2):.0%} of it")
+    print(f"a pure CPU loop, two at once against one after the other (what the cores give two processes that "
+          f"only compute): {spin:.2f} (from {spin_lo:.2f} to {spin_hi:.2f} over 3 repeats)")
     print("load average at the end: {:.1f} {:.1f} {:.1f}".format(*os.getloadavg()))
 
 
