@@ -489,11 +489,12 @@ void measure_compensation(RunOutcome& out, const RunSpec& spec, const Progress& 
 
 // After a first pass of the path on the fly that ended early: the encoder
 // offsets its kept samples show (run/offsets_first.hpp) become the
-// controller's, the robot stays the one it was (the twin's actual parameters
-// are drawn about the controller's: held), and poses designed at run time are
-// designed again for that controller.
-FirstPass plan_second_pass(RunSpec& spec, bool designed, const std::vector<sim::SampleRecord>& kept,
-                           const std::string& why, double robot_time_s, const Stage& stage) {
+// controller's and the robot stays the one it was (the twin's actual
+// parameters are drawn about the controller's: held). The poses stay: their
+// design does not depend on the offsets, which only relabel the readings
+// (SamplingDesign.ADesignIsRememberedForItsInputsOnly).
+FirstPass plan_second_pass(RunSpec& spec, const std::vector<sim::SampleRecord>& kept, const std::string& why,
+                           double robot_time_s, const Stage& stage) {
   stage("the path ended early: fitting the encoder offsets to the samples kept, planning it again");
   const calib::Result fit = offsets_from_samples(spec.sim.controller.geometry, kept);
   FirstPass first;
@@ -507,10 +508,6 @@ FirstPass plan_second_pass(RunSpec& spec, bool designed, const std::vector<sim::
   const Robot actual = sim::make_actual(spec.sim);
   for (int k = 0; k < kNumParams; ++k) spec.sim.actual.explicit_values[static_cast<std::size_t>(k)] = actual.geometry[k];
   spec.sim.controller.geometry = fit.geometry;
-  if (designed) {
-    spec.sim.sampling->poses.clear();
-    design_poses(spec, stage);
-  }
   return first;
 }
 
@@ -519,7 +516,7 @@ FirstPass plan_second_pass(RunSpec& spec, bool designed, const std::vector<sim::
 // sampled a second time, planned by plan_second_pass; the second pass's
 // samples are the calibration's, the robot time is both passes'. The second
 // pass ending early too stops as the first.
-sim::SimulationResult sample_twin_in_passes(RunOutcome& out, RunSpec& spec, bool designed, const Progress& progress,
+sim::SimulationResult sample_twin_in_passes(RunOutcome& out, RunSpec& spec, const Progress& progress,
                                             const Stage& stage) {
   const auto simulating = [&] {
     return progress ? gpm::Progress::terminal("gpm run: simulating", "simulated s") : gpm::Progress::silent();
@@ -531,7 +528,7 @@ sim::SimulationResult sample_twin_in_passes(RunOutcome& out, RunSpec& spec, bool
     return r;
   } catch (const sim::TrackingStop& stop) {
     if (!stop.ended_early || static_cast<int>(stop.samples.size()) < kMinFirstPassSamples) throw;  // on the fly only
-    out.first_pass = plan_second_pass(spec, designed, stop.samples, stop.what(), stop.robot_time_s, stage);
+    out.first_pass = plan_second_pass(spec, stop.samples, stop.what(), stop.robot_time_s, stage);
     out.plan_deviation_mm = worst_plan_deviation_mm(stop.rows);
   }
   stage("sampling on the twin through the hardware interface, second pass");
@@ -556,12 +553,12 @@ std::vector<sim::SampleRecord> recorded_samples(const std::string& path, const R
 // early, becomes first_pass_samples_path(samples_path) and the second pass
 // records into samples_path. A resumed session whose folder holds that file
 // plans the second pass from it (its robot time is then not known: 0).
-sim::SimulationResult sample_hardware_in_passes(RunOutcome& out, RunSpec& spec, bool designed,
+sim::SimulationResult sample_hardware_in_passes(RunOutcome& out, RunSpec& spec,
                                                 const std::string& samples_path, const Stage& stage) {
   const bool in_motion = spec.sim.sampling && spec.sim.sampling->pattern == sim::PosePattern::kTrajectory;
   const std::string first_path = first_pass_samples_path(samples_path);
   if (in_motion && spec.hardware_resume && std::filesystem::exists(first_path)) {
-    out.first_pass = plan_second_pass(spec, designed, recorded_samples(first_path, spec),
+    out.first_pass = plan_second_pass(spec, recorded_samples(first_path, spec),
                                       "in an earlier session of this folder", 0.0, stage);
   } else {
     try {
@@ -570,7 +567,7 @@ sim::SimulationResult sample_hardware_in_passes(RunOutcome& out, RunSpec& spec, 
       std::vector<sim::SampleRecord> kept = recorded_samples(samples_path, spec);
       if (static_cast<int>(kept.size()) < kMinFirstPassSamples) throw;
       std::filesystem::rename(samples_path, first_path);
-      out.first_pass = plan_second_pass(spec, designed, kept, without_kept_tail(e.what(), samples_path),
+      out.first_pass = plan_second_pass(spec, kept, without_kept_tail(e.what(), samples_path),
                                         e.duration_s, stage);
     }
   }
@@ -623,10 +620,10 @@ RunOutcome run_scenario(const RunSpec& spec_in, const std::string& scenario_file
 
   if (spec.hardware) {
     stage("sampling through the hardware interface");
-    out.sim = sample_hardware_in_passes(out, spec, designed, samples_path, stage);
+    out.sim = sample_hardware_in_passes(out, spec, samples_path, stage);
   } else {
     stage("sampling on the twin through the hardware interface");
-    out.sim = sample_twin_in_passes(out, spec, designed, progress, stage);
+    out.sim = sample_twin_in_passes(out, spec, progress, stage);
   }
   calibrate_run(out, spec, inputs, scenario_file, stage);
   if (out.first_pass && out.calibration)
@@ -659,7 +656,7 @@ HardwareSampling sample_through_hardware(const RunSpec& spec_in, const std::stri
   else design_sampling(spec.sim, ~spec.calibration.fixed, 0.0);  // given poses: only their number is checked
   RunOutcome out;
   stage("sampling through the hardware interface");
-  const sim::SimulationResult r = sample_hardware_in_passes(out, spec, designed, samples_path, stage);
+  const sim::SimulationResult r = sample_hardware_in_passes(out, spec, samples_path, stage);
   return HardwareSampling{out.hardware_description, r.samples.size(), r.sampling_s, out.first_pass};
 }
 

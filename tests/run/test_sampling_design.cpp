@@ -100,6 +100,11 @@ TEST(SamplingDesign, ADesignIsRememberedForItsInputsOnly) {
   EXPECT_EQ(designed([](RunSpec& s) { s.sim.sampling->count = 30; }).size(), 30u);
   EXPECT_NE(designed([](RunSpec& s) { s.sim.controller.geometry[la(1)] += 20.0; }), first);
   EXPECT_NE(designed([](RunSpec& s) { s.calibration.fixed.set(lb(2)); }), first);
+  // The encoder offsets only relabel the readings: the design is the same for any.
+  EXPECT_EQ(designed([](RunSpec& s) {
+              for (int i = 0; i < 3; ++i) s.sim.controller.geometry[dth(i)] += 0.013 * (i + 1);
+            }),
+            first);
   EXPECT_THROW(designed([](RunSpec& s) { s.sim.sampling->margin.singularity = 0.85; }), InputError);
 }
 
