@@ -59,10 +59,10 @@ void print_summary(const scenario::RunOutcome& o, const std::string& dir) {
              o.hardware_description.empty() ? "from the twin" : "through " + o.hardware_description);
   if (o.first_pass) {
     const scenario::FirstPass& f = *o.first_pass;
-    fmt::print("first pass ended early ({}); the encoder offsets from its {} samples moved by {:.2e}, {:.2e}, {:.2e} "
-               "rad: the path was planned again with them and sampled a second time\n",
-               terminal_text(f.why), f.samples, f.offsets_change_rad[0], f.offsets_change_rad[1],
-               f.offsets_change_rad[2]);
+    fmt::print("first pass {} ({}); the encoder offsets from its {} samples moved by {:.2e}, {:.2e}, {:.2e} "
+               "rad: the path was sampled {} with them\n",
+               f.planned ? "as planned" : "ended early", terminal_text(f.why), f.samples, f.offsets_change_rad[0],
+               f.offsets_change_rad[1], f.offsets_change_rad[2], f.planned ? "whole" : "a second time");
   }
   if (o.calibration) {
     const auto& r = *o.calibration;

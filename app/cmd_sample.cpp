@@ -45,8 +45,8 @@ void sample_designed(const scenario::RunSpec& spec, const SampleArgs& a) {
   try {
     const scenario::HardwareSampling r = scenario::sample_through_hardware(spec, a.out);
     if (r.first_pass)
-      std::printf("first pass ended early (%s); its %zu samples in %s planned the second pass\n",
-                  r.first_pass->why.c_str(), r.first_pass->samples,
+      std::printf("first pass %s (%s); its %zu samples in %s planned the second pass\n",
+                  r.first_pass->planned ? "as planned" : "ended early", r.first_pass->why.c_str(), r.first_pass->samples,
                   scenario::first_pass_samples_path(a.out).c_str());
     std::printf("%s: %zu samples in %s (%.2f s of robot time)\n", r.description.c_str(), r.samples, a.out.c_str(),
                 r.robot_time_s);

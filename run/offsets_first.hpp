@@ -1,28 +1,36 @@
-// A path sampled on the fly that ended early (the robot left its plan by the
-// readings, hw/procedures/trajectory_session.hpp) still tells where the
-// encoders' zeros are: the offsets dth1..3 fitted to the samples it kept, the
-// rest of the geometry as the data sheet states it. The path planned again
-// with them stays near its plan, where the data sheet's offsets took it away
-// (the offsets, 0.01 rad on a 244 mm link, are most of a robot's deviation
-// from its plan near the drives' singular poses).
+// The first samples of a path sampled on the fly (the offsets stage,
+// sampling.offsets_first_s, or a pass that ended early because the robot
+// left its plan by the readings, hw/procedures/trajectory_session.hpp) tell
+// where the encoders' zeros are. The path planned again with them stays near
+// its plan, where the data sheet's offsets took it away (the offsets, 0.01
+// rad on a 244 mm link, are most of a robot's deviation from its plan near
+// the drives' singular poses).
 #pragma once
 
+#include <array>
 #include <vector>
 
-#include "calib/problem.hpp"
+#include "models/drive_margin.hpp"
 #include "models/parameters.hpp"
 #include "sim/sampling.hpp"
 
 namespace gpm::scenario {
 
-// Fewer samples than this: no fit (kept samples of a path that ended at once).
+// Fewer samples than this: no estimate (kept samples of a path that ended at once).
 inline constexpr int kMinFirstPassSamples = 12;
 
-// The geometry `stated` with dth1..3 fitted by Levenberg-Marquardt on the ML
-// closure residual (paper eq. 1 and 35; calib/residuals.hpp) to the readings
-// of `samples`, every other parameter fixed at its stated value; the result's
-// 1-sigma from the residuals' spread (the model misses the drive train here).
-// Throws InputError with fewer than kMinFirstPassSamples samples.
-calib::Result offsets_from_samples(const Geometry& stated, const std::vector<sim::SampleRecord>& samples);
+// The encoder offsets the samples show with the rest of the geometry as
+// uncertain as stated (calib/geometry_filter.hpp: prior the stated geometry
+// with 1-sigma `prior`, one sample per 10 ms of their t_s): the stated
+// geometry with dth1..3 replaced by the estimate's, and their 1-sigma.
+struct OffsetsEstimate {
+  Geometry geometry;
+  std::array<double, 3> sigma_rad{};
+};
+
+// The offsets estimate of `samples` (taken on the fly, t_s increasing) about
+// `stated`; throws InputError with fewer than kMinFirstPassSamples samples.
+OffsetsEstimate offsets_learnt(const Geometry& stated, const std::vector<sim::SampleRecord>& samples,
+                               const ModelTolerance& prior);
 
 }  // namespace gpm::scenario

@@ -95,11 +95,17 @@ std::array<hw::JointMode, 3> procedure_modes(const RunSpec& spec, const std::str
 
 // The on-the-fly plan: the scenario's excitation path (sim::excitation_plan,
 // its margin for the scenario's drives), one sample per sample_every /
-// servo.rate_hz seconds or per cycle where the hardware (rate_hz) is slower.
+// servo.rate_hz seconds or per cycle where the hardware (rate_hz) is slower;
+// end_s > 0: only its first end_s seconds (the offsets stage).
 hw::TrajectoryPlan trajectory_plan(const RunSpec& spec, double rate_hz, const std::array<hw::JointMode, 3>& modes,
-                                   const std::vector<Eigen::Vector2d>& poses) {
+                                   const std::vector<Eigen::Vector2d>& poses, double end_s) {
   hw::TrajectoryPlan plan;
   plan.path = sim::excitation_plan(spec.sim, poses);
+  if (end_s > 0.0 && end_s >= sim::waypoint_duration(plan.path))
+    throw InputError(fmt::format("{}: sampling.offsets_first_s: {:g} s is not shorter than the excitation path ({:.3g} s): "
+                                 "state less, or 0 for none",
+                                 spec.sim.file, end_s, sim::waypoint_duration(plan.path)));
+  plan.end_s = end_s;
   plan.modes = modes;
   const double interval_s = spec.sim.sampling->sample_every / spec.sim.twin.servo_rate_hz;
   plan.every = std::max(1, static_cast<int>(std::lround(interval_s * rate_hz)));
@@ -149,7 +155,8 @@ sim::SampleRecord sample_record(long id, const hw::SampleLog::Recorded& row, con
 // every sample on disk as taken; the hardware file's controller with its
 // encoder offsets moved by dth_change (rad; a second pass: plan_second_pass).
 sim::SimulationResult sample_on_hardware(const RunSpec& spec, const std::string& samples_path,
-                                         std::string& description, const Eigen::Vector3d& dth_change) {
+                                         std::string& description, const Eigen::Vector3d& dth_change,
+                                         double end_s = 0.0) {
   if (samples_path.empty()) throw InputError("gpm run --hardware: no output folder for the samples");
   hw::HardwareConfig cfg = hw::load_hardware_config(*spec.hardware);
   for (int i = 0; i < 3; ++i) cfg.controller.geometry[dth(i)] += dth_change[i];
@@ -162,7 +169,7 @@ sim::SimulationResult sample_on_hardware(const RunSpec& spec, const std::string&
                     in_motion ? hw::SampleColumns::kOnTheFly : hw::SampleColumns::kAtRest);
   if (in_motion) {
     const hw::TrajectoryPlan plan =
-        trajectory_plan(spec, cfg.rate_hz, procedure_modes(spec, spec.sim.file), poses);
+        trajectory_plan(spec, cfg.rate_hz, procedure_modes(spec, spec.sim.file), poses, end_s);
     auto robot = hw::make_hardware(cfg);
     description = fmt::format("{} backend from {}", cfg.backend, *spec.hardware);
     r.sampling_s = hw::run_trajectory_session(*robot, plan, log, signals.flag()).duration_s;
@@ -228,7 +235,7 @@ sim::TrackingStop twin_stopped(const hw::HardwareError& e, const hw::SampleLog& 
 // scenario's robot (run/twin_hardware.hpp): in process is --hardware with a
 // twin backend by construction. The true poses, the trajectory log and
 // model.xml come from the twin's truth.
-sim::SimulationResult sample_on_twin(const RunSpec& spec, gpm::Progress* progress) {
+sim::SimulationResult sample_on_twin(const RunSpec& spec, gpm::Progress* progress, double end_s = 0.0) {
   const sim::Scenario& s = spec.sim;
   sim::SimulationResult r;
   r.actual = sim::make_actual(s);
@@ -244,7 +251,7 @@ sim::SimulationResult sample_on_twin(const RunSpec& spec, gpm::Progress* progres
   hw::SampleLog log(in_motion ? hw::SampleColumns::kOnTheFly : hw::SampleColumns::kAtRest);
   try {
     if (in_motion) {
-      const hw::TrajectoryPlan plan = trajectory_plan(spec, s.twin.servo_rate_hz, modes, poses);
+      const hw::TrajectoryPlan plan = trajectory_plan(spec, s.twin.servo_rate_hz, modes, poses, end_s);
       r.sampling_s = hw::run_trajectory_session(*th.robot, plan, log, nullptr, truth.hook()).duration_s;
     } else if (!poses.empty()) {
       hw::SessionPlan plan = session_plan(spec, poses, modes, std::nullopt);
@@ -487,23 +494,37 @@ void measure_compensation(RunOutcome& out, const RunSpec& spec, const Progress& 
   }
 }
 
-// After a first pass of the path on the fly that ended early: the encoder
-// offsets its kept samples show (run/offsets_first.hpp) become the
-// controller's and the robot stays the one it was (the twin's actual
-// parameters are drawn about the controller's: held). The poses stay: their
-// design does not depend on the offsets, which only relabel the readings
-// (SamplingDesign.ADesignIsRememberedForItsInputsOnly).
+// The offsets stage's length where the path is sampled on the fly
+// (sampling.offsets_first_s); 0 otherwise or when none is stated.
+double offsets_stage_s(const RunSpec& spec) {
+  const auto& p = spec.sim.sampling;
+  return p && p->pattern == sim::PosePattern::kTrajectory ? p->offsets_first_s : 0.0;
+}
+
+std::string offsets_stage_why(double stage_s) {
+  return fmt::format("the offsets stage: the path's first {:g} s, then retraced to its start", stage_s);
+}
+
+// After a first pass of the path on the fly (the offsets stage, planned, or a
+// pass that ended early): the encoder offsets its kept samples show
+// (run/offsets_first.hpp offsets_learnt, the rest of the geometry as
+// uncertain as the path's margin states it) become the controller's and the robot stays the
+// one it was (the twin's actual parameters are drawn about the controller's:
+// held). The poses stay: their design does not depend on the offsets, which
+// only relabel the readings (SamplingDesign.ADesignIsRememberedForItsInputsOnly).
 FirstPass plan_second_pass(RunSpec& spec, const std::vector<sim::SampleRecord>& kept, const std::string& why,
-                           double robot_time_s, const Stage& stage) {
-  stage("the path ended early: fitting the encoder offsets to the samples kept, planning it again");
-  const calib::Result fit = offsets_from_samples(spec.sim.controller.geometry, kept);
+                           double robot_time_s, bool planned, const Stage& stage) {
+  stage(planned ? "fitting the encoder offsets to the offsets stage's samples"
+                : "the path ended early: fitting the encoder offsets to the samples kept, planning it again");
+  const OffsetsEstimate fit = offsets_learnt(spec.sim.controller.geometry, kept, spec.sim.sampling->margin.tolerance);
   FirstPass first;
   first.why = why;
+  first.planned = planned;
   first.samples = kept.size();
   first.robot_time_s = robot_time_s;
   for (int i = 0; i < 3; ++i) {
     first.offsets_change_rad[i] = fit.geometry.dth_(i) - spec.sim.controller.geometry.dth_(i);
-    first.offsets_sigma_rad[i] = fit.sigma[static_cast<std::size_t>(dth(i))];
+    first.offsets_sigma_rad[i] = fit.sigma_rad[static_cast<std::size_t>(i)];
   }
   const Robot actual = sim::make_actual(spec.sim);
   for (int k = 0; k < kNumParams; ++k) spec.sim.actual.explicit_values[static_cast<std::size_t>(k)] = actual.geometry[k];
@@ -511,24 +532,27 @@ FirstPass plan_second_pass(RunSpec& spec, const std::vector<sim::SampleRecord>& 
   return first;
 }
 
-// Samples on the twin (sample_on_twin). A path on the fly that ended early
-// (sim::TrackingStop::ended_early) with at least kMinFirstPassSamples kept is
-// sampled a second time, planned by plan_second_pass; the second pass's
-// samples are the calibration's, the robot time is both passes'. The second
-// pass ending early too stops as the first.
+// Samples on the twin (sample_on_twin) in passes: with an offsets stage
+// (offsets_stage_s) its samples, and otherwise a path on the fly that ended
+// early (sim::TrackingStop::ended_early) with at least kMinFirstPassSamples
+// kept, plan the second pass (plan_second_pass), whose samples are the
+// calibration's; the robot time is both passes'. The second pass ending
+// early too stops as the first.
 sim::SimulationResult sample_twin_in_passes(RunOutcome& out, RunSpec& spec, const Progress& progress,
                                             const Stage& stage) {
   const auto simulating = [&] {
     return progress ? gpm::Progress::terminal("gpm run: simulating", "simulated s") : gpm::Progress::silent();
   };
+  const double stage_s = offsets_stage_s(spec);
   try {
     gpm::Progress simulated = simulating();
-    sim::SimulationResult r = sample_on_twin(spec, &simulated);
+    sim::SimulationResult r = sample_on_twin(spec, &simulated, stage_s);
     out.plan_deviation_mm = worst_plan_deviation_mm(r.log.rows);
-    return r;
+    if (stage_s <= 0.0) return r;
+    out.first_pass = plan_second_pass(spec, r.samples, offsets_stage_why(stage_s), r.sampling_s, true, stage);
   } catch (const sim::TrackingStop& stop) {
     if (!stop.ended_early || static_cast<int>(stop.samples.size()) < kMinFirstPassSamples) throw;  // on the fly only
-    out.first_pass = plan_second_pass(spec, stop.samples, stop.what(), stop.robot_time_s, stage);
+    out.first_pass = plan_second_pass(spec, stop.samples, stop.what(), stop.robot_time_s, false, stage);
     out.plan_deviation_mm = worst_plan_deviation_mm(stop.rows);
   }
   stage("sampling on the twin through the hardware interface, second pass");
@@ -548,28 +572,45 @@ std::vector<sim::SampleRecord> recorded_samples(const std::string& path, const R
   return out;
 }
 
+// The first pass through the hardware interface: the offsets stage (stage_s
+// > 0) into first_path, or the whole path into samples_path, whose file
+// becomes first_path when it ends early (nullopt: it did not, r holds the
+// calibration's samples).
+std::optional<FirstPass> first_pass_on_hardware(RunSpec& spec, const std::string& samples_path,
+                                                const std::string& first_path, double stage_s,
+                                                std::string& description, sim::SimulationResult& r,
+                                                const Stage& stage) {
+  const std::string& path = stage_s > 0.0 ? first_path : samples_path;
+  try {
+    r = sample_on_hardware(spec, path, description, Eigen::Vector3d::Zero(), stage_s);
+    if (stage_s <= 0.0) return std::nullopt;
+    return plan_second_pass(spec, r.samples, offsets_stage_why(stage_s), r.sampling_s, true, stage);
+  } catch (const hw::PathEndedEarly& e) {  // only a path on the fly ends early
+    std::vector<sim::SampleRecord> kept = recorded_samples(path, spec);
+    if (static_cast<int>(kept.size()) < kMinFirstPassSamples) throw;
+    if (path != first_path) std::filesystem::rename(path, first_path);
+    return plan_second_pass(spec, kept, without_kept_tail(e.what(), path), e.duration_s, false, stage);
+  }
+}
+
 // Samples through the hardware interface (sample_on_hardware) in passes as
-// sample_twin_in_passes: the first pass's samples file, when its path ended
-// early, becomes first_pass_samples_path(samples_path) and the second pass
-// records into samples_path. A resumed session whose folder holds that file
-// plans the second pass from it (its robot time is then not known: 0).
-sim::SimulationResult sample_hardware_in_passes(RunOutcome& out, RunSpec& spec,
-                                                const std::string& samples_path, const Stage& stage) {
+// sample_twin_in_passes: the first pass's samples (the offsets stage's, or a
+// path that ended early) are kept in first_pass_samples_path(samples_path)
+// and the second pass records into samples_path. A resumed session whose
+// folder holds that file plans the second pass from it (its robot time is
+// then not known: 0).
+sim::SimulationResult sample_hardware_in_passes(RunOutcome& out, RunSpec& spec, const std::string& samples_path,
+                                                const Stage& stage) {
   const bool in_motion = spec.sim.sampling && spec.sim.sampling->pattern == sim::PosePattern::kTrajectory;
   const std::string first_path = first_pass_samples_path(samples_path);
   if (in_motion && spec.hardware_resume && std::filesystem::exists(first_path)) {
-    out.first_pass = plan_second_pass(spec, recorded_samples(first_path, spec),
-                                      "in an earlier session of this folder", 0.0, stage);
+    out.first_pass = plan_second_pass(spec, recorded_samples(first_path, spec), "in an earlier session of this folder",
+                                      0.0, offsets_stage_s(spec) > 0.0, stage);
   } else {
-    try {
-      return sample_on_hardware(spec, samples_path, out.hardware_description, Eigen::Vector3d::Zero());
-    } catch (const hw::PathEndedEarly& e) {  // only a path on the fly ends early
-      std::vector<sim::SampleRecord> kept = recorded_samples(samples_path, spec);
-      if (static_cast<int>(kept.size()) < kMinFirstPassSamples) throw;
-      std::filesystem::rename(samples_path, first_path);
-      out.first_pass = plan_second_pass(spec, kept, without_kept_tail(e.what(), samples_path),
-                                        e.duration_s, stage);
-    }
+    sim::SimulationResult r;
+    out.first_pass = first_pass_on_hardware(spec, samples_path, first_path, in_motion ? offsets_stage_s(spec) : 0.0,
+                                            out.hardware_description, r, stage);
+    if (!out.first_pass) return r;
   }
   stage("sampling through the hardware interface, second pass");
   const Eigen::Vector3d dth_change(out.first_pass->offsets_change_rad.data());
@@ -628,9 +669,9 @@ RunOutcome run_scenario(const RunSpec& spec_in, const std::string& scenario_file
   calibrate_run(out, spec, inputs, scenario_file, stage);
   if (out.first_pass && out.calibration)
     out.calibration->notes.push_back(fmt::format(
-        "the first pass of the excitation path ended early ({}); the encoder offsets from its {} samples planned "
+        "the first pass of the excitation path {} ({}); the encoder offsets from its {} samples planned "
         "the second pass, whose samples these are",
-        out.first_pass->why, out.first_pass->samples));
+        out.first_pass->planned ? "ended as planned" : "ended early", out.first_pass->why, out.first_pass->samples));
 
   if (spec.compensation) measure_compensation(out, spec, progress, stage);
   if (out.calibration && !spec.hardware) out.positioning = calibrated_positioning(out);

@@ -37,7 +37,8 @@ struct Check {
 // plan): its kept samples fixed the encoder offsets the second pass was
 // planned with (run/offsets_first.hpp).
 struct FirstPass {
-  std::string why;                 // the stop's line
+  std::string why;                 // the stop's line, or the offsets stage's
+  bool planned = false;            // the offsets stage (sampling.offsets_first_s), not an early end
   std::size_t samples = 0;         // samples it kept
   double robot_time_s = 0.0;       // its robot time (in sim.sampling_s too)
   std::array<double, 3> offsets_change_rad{};  // dth fitted less dth stated

@@ -61,6 +61,7 @@ std::string summary_json(const RunOutcome& o) {
       sigma.push_back(number(o.first_pass->offsets_sigma_rad[static_cast<std::size_t>(i)]));
     }
     j["first_pass"] = {{"why", o.first_pass->why},
+                       {"planned", o.first_pass->planned},
                        {"samples", o.first_pass->samples},
                        {"robot_time_s", number(o.first_pass->robot_time_s)},
                        {"offsets_change_rad", change},

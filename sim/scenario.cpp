@@ -219,7 +219,8 @@ void parse_settle(const YAML::Node& s, const Ctx& c, SettleCriterion& settle) {
 SamplingPlan parse_sampling(const YAML::Node& n, const Ctx& c) {
   yaml_check_keys(n, c.file, c.path,
                   {"pattern", "centre", "radius", "count", "from", "to", "poses", "move_speed_mm_s",
-                   "settle", "average_s", "max_speed_mm_s", "max_accel_mm_s2", "sample_every", "path_margin"});
+                   "settle", "average_s", "max_speed_mm_s", "max_accel_mm_s2", "sample_every", "path_margin",
+                   "offsets_first_s"});
   SamplingPlan p;
   require(n, "pattern", c, "disc, circle, line, list, designed or trajectory");
   const std::string pat = yaml_string(n["pattern"], c.file, c.at("pattern").path);
@@ -265,6 +266,7 @@ SamplingPlan parse_sampling(const YAML::Node& n, const Ctx& c) {
       p.path_limits.max_normal_mm_s2 = p.path_limits.max_accel_mm_s2;
       if (n["sample_every"])
         p.sample_every = static_cast<int>(yaml_integer(n["sample_every"], c.file, c.at("sample_every").path, 1, 1000));
+      opt_bounded(n, "offsets_first_s", c, 0.0, 60.0, "s (0: none)", p.offsets_first_s);
     }
   } else {
     fail(c.at("pattern"), n["pattern"], fmt::format("'{}' is not disc, circle, line, list, designed or trajectory", pat));
@@ -272,7 +274,7 @@ SamplingPlan parse_sampling(const YAML::Node& n, const Ctx& c) {
   if (p.pattern != PosePattern::kTrajectory && p.pattern != PosePattern::kDesigned && n["path_margin"])
     fail(c.at("path_margin"), n["path_margin"], "only for pattern: designed or trajectory");
   if (p.pattern != PosePattern::kTrajectory)
-    for (const char* key : {"max_speed_mm_s", "max_accel_mm_s2", "sample_every"})
+    for (const char* key : {"max_speed_mm_s", "max_accel_mm_s2", "sample_every", "offsets_first_s"})
       if (n[key]) fail(c.at(key), n[key], "only for pattern: trajectory");
   if (p.pattern == PosePattern::kList && p.poses.size() > static_cast<size_t>(kMaxPoses)) {
     fail(c.at("poses"), n["poses"], fmt::format("at most {} poses, got {}", kMaxPoses, p.poses.size()));

@@ -55,6 +55,10 @@ struct SamplingPlan {
   // kTrajectory: what the excitation path keeps from losing control, for the
   // drives in position mode (`sampling.path_margin`, models/drive_margin.hpp).
   PathMargin margin;
+  // kTrajectory: > 0, the path's first this many seconds are sampled first,
+  // and the encoder offsets fitted to them before the path is sampled whole
+  // (`sampling.offsets_first_s`; 0: none).
+  double offsets_first_s = 0.0;
   // True when the poses still have to be designed (kDesigned, kTrajectory with no poses).
   bool needs_design() const {
     return (pattern == PosePattern::kDesigned || pattern == PosePattern::kTrajectory) && poses.empty();

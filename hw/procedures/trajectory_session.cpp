@@ -20,6 +20,12 @@ long cycle_count(const TrajectoryPlan& plan, double period_s) {
   return std::max(1L, std::lround(sim::waypoint_duration(plan.path) / period_s));
 }
 
+// The last cycle sampled: the path's end, or plan.end_s's cycle before it.
+long last_sampled_cycle(const TrajectoryPlan& plan, double period_s) {
+  const long n = cycle_count(plan, period_s);
+  return plan.end_s > 0.0 ? std::min(n, std::max(1L, std::lround(plan.end_s / period_s))) : n;
+}
+
 // Why a pose of the joint-space line q0 -> q1 (the move to the path's start,
 // timed within the limits by Motion) is not allowed; empty when every one is.
 std::string line_violation(const SafetySupervisor& hw, const Eigen::Vector3d& q0, const Eigen::Vector3d& q1,
@@ -50,15 +56,18 @@ void check_resumed(const TrajectoryPlan& plan, double period_s, const SampleLog&
   }
 }
 
-// Where the path ended early: its cycle and what the tracking watch measured.
+// Where the path ended early: its cycle and what the tracking watch measured
+// (planned: at plan.end_s, not by the watch).
 struct EarlyEnd {
   std::size_t cycle = 0;
   double tracking_mm = 0.0;
+  bool planned = false;
 };
 
 // Follows the path from its start (the robot stands there), appending the
 // samples to log; stops following (nullopt: it did not) at the first sample
-// whose tracking passes plan.retreat_fraction of the watch's bound.
+// whose tracking passes plan.retreat_fraction of the watch's bound, or
+// (planned) at the last sample before plan.end_s when it is set.
 std::optional<EarlyEnd> follow_and_sample(Motion& motion, const TrajectoryPlan& plan,
                                           const std::vector<Eigen::Vector3d>& q, SampleLog& log,
                                           const SampleHook& on_sample) {
@@ -68,6 +77,8 @@ std::optional<EarlyEnd> follow_and_sample(Motion& motion, const TrajectoryPlan& 
   const double t0 = motion.now();
   Eigen::Vector3d sum_between = Eigen::Vector3d::Zero(), last_torque = Eigen::Vector3d::Zero();
   long periods_between = 0, id = 0;
+  const long every = std::max(1, plan.every);
+  const std::size_t last = static_cast<std::size_t>(last_sampled_cycle(plan, period) / every * every);
   for (std::size_t k = 0; k < q.size(); ++k) {
     const double t = motion.now() - t0;
     motion.cycle(q[k]);
@@ -97,8 +108,12 @@ std::optional<EarlyEnd> follow_and_sample(Motion& motion, const TrajectoryPlan& 
       const std::optional<double> d = motion.hardware().tracking_mm(st.theta_m);
       if (d && *d > retreat_mm) {
         log.sync();
-        return EarlyEnd{k, *d};
+        return EarlyEnd{k, *d, false};
       }
+    }
+    if (plan.end_s > 0.0 && k == last && k + 1 < q.size()) {
+      log.sync();
+      return EarlyEnd{k, 0.0, true};
     }
   }
   log.sync();
@@ -135,7 +150,7 @@ void retreat(Motion& motion, const TrajectoryPlan& plan, const std::vector<Eigen
 }  // namespace
 
 long trajectory_sample_count(const TrajectoryPlan& plan, double period_s) {
-  return cycle_count(plan, period_s) / std::max(1, plan.every) + 1;
+  return last_sampled_cycle(plan, period_s) / std::max(1, plan.every) + 1;
 }
 
 std::vector<Eigen::Vector3d> trajectory_commands(const Robot& c, const TrajectoryPlan& plan, double period_s) {
@@ -205,7 +220,7 @@ SessionResult run_trajectory_session(SafetySupervisor& hw, const TrajectoryPlan&
     r.taken = static_cast<long>(log.size());
     r.duration_s = motion.now();
     hw.shutdown();
-    if (!early) return r;
+    if (!early || early->planned) return r;
   } catch (const InputError&) {  // refused before moving (the torque, the move to the start)
     hw.shutdown();
     throw;

@@ -36,6 +36,11 @@ struct TrajectoryPlan {
   // at its bound).
   double retreat_fraction = 0.7;
   double stop_s = 0.1;
+  // > 0: only the path's first end_s seconds are sampled, then the robot
+  // slows and retraces them to the start as at an early end, and the session
+  // ends normally (a planned first stage, e.g. one that fixes the encoder
+  // offsets before the whole path); 0: the whole path.
+  double end_s = 0.0;
 };
 
 // The encoder-space command of every cycle of plan's path at period_s (IK of
@@ -65,7 +70,7 @@ void check_trajectory_plan(const SafetySupervisor& hw, const TrajectoryPlan& pla
 SessionResult run_trajectory_session(SafetySupervisor& hw, const TrajectoryPlan& plan, SampleLog& log,
                                      const std::atomic<bool>* stop = nullptr, const SampleHook& on_sample = {});
 
-// Number of samples run_trajectory_session takes of plan at period_s.
+// Number of samples run_trajectory_session takes of plan at period_s (up to plan.end_s).
 long trajectory_sample_count(const TrajectoryPlan& plan, double period_s);
 
 }  // namespace gpm::hw

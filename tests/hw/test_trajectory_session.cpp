@@ -6,7 +6,8 @@
 // and its samples read back as a file taken on the fly; a path outside the
 // limits, drives that report no torque and a partly recorded file are
 // refused before anything moves; a finished file is kept and nothing moves;
-// a robot that leaves its plan ends the path early and retraces it.
+// a robot that leaves its plan ends the path early and retraces it; a
+// planned stage samples the path's first seconds and retraces them.
 #include <gtest/gtest.h>
 
 #include <cmath>
@@ -181,6 +182,41 @@ TEST(TrajectorySession, ARobotLeavingItsPlanEndsThePathAndRetracesIt) {
     }
     EXPECT_EQ(rig.sup->rejected_count(), 0);
   }
+}
+
+// A planned first stage (end_s): the samples up to end_s and no more, each
+// the whole path's sample of its id; the robot slows and retraces them to the
+// path's start, and the session ends normally.
+TEST(TrajectorySession, AStageSamplesThePathsFirstSecondsAndRetracesThem) {
+  test::TempDir dir("traj_stage");
+  TrajectoryPlan whole = small_plan(2);
+  TrajectoryPlan stage = whole;
+  stage.end_s = 0.3 * sim::waypoint_duration(whole.path);
+  const long n = trajectory_sample_count(stage, 0.004);
+  EXPECT_EQ(n, std::lround(stage.end_s / 0.004) / 2 + 1);
+  EXPECT_LT(n, trajectory_sample_count(whole, 0.004));
+  Rig rig;
+  const std::string path = (dir / "s.csv").string();
+  {
+    SampleLog log(path, false, SampleColumns::kOnTheFly);
+    const SessionResult r = run_trajectory_session(*rig.sup, stage, log, nullptr);
+    EXPECT_EQ(r.taken, n);
+    // Moving to the start, the stage, and back along it: longer than the stage twice.
+    EXPECT_GT(r.duration_s, 2.0 * stage.end_s);
+  }
+  const Samples s = read_samples_csv(path);
+  ASSERT_EQ(static_cast<long>(s.size()), n);
+  const std::vector<Eigen::Vector3d> q = trajectory_commands(rig.robot, whole, 0.004);
+  for (std::size_t j = 1; j < s.size(); ++j) EXPECT_NEAR((s.theta_m[j] - q[2 * j - 1]).norm(), 0.0, 1e-12) << j;
+  const Eigen::Vector3d last = rig.rec.back().theta_m;
+  for (int i = 0; i < 3; ++i)
+    EXPECT_NEAR(last[i], q[0][i] + std::round((last[i] - q[0][i]) / (2 * M_PI)) * 2 * M_PI, 1e-9) << i;
+  EXPECT_EQ(rig.sup->rejected_count(), 0);
+  // A resumed stage whose file holds its samples moves nothing.
+  SampleLog again(path, true, SampleColumns::kOnTheFly);
+  Rig idle;
+  EXPECT_EQ(run_trajectory_session(*idle.sup, stage, again, nullptr).skipped, n);
+  EXPECT_TRUE(idle.rec.empty());
 }
 
 TEST(TrajectorySession, APathOutsideTheLimitsIsRefusedBeforeAnythingMoves) {

@@ -175,6 +175,17 @@ TEST(Scenario, PathMarginAndTrackingBound) {
             std::string::npos);
 }
 
+// The offsets stage (sampling.offsets_first_s, trajectory only): none by
+// default, a set value lands, bad ones name the key.
+TEST(Scenario, OffsetsStage) {
+  const std::string fly = "sampling: {pattern: trajectory, count: 11";
+  EXPECT_DOUBLE_EQ(parse(fly + "}\n").sampling->offsets_first_s, 0.0);
+  EXPECT_DOUBLE_EQ(parse(fly + ", offsets_first_s: 1.5}\n").sampling->offsets_first_s, 1.5);
+  EXPECT_NE(error_of(fly + ", offsets_first_s: -1}").find("sampling.offsets_first_s: must be from 0"), std::string::npos);
+  EXPECT_NE(error_of("sampling: {pattern: designed, count: 11, offsets_first_s: 1}").find("only for pattern: trajectory"),
+            std::string::npos);
+}
+
 TEST(Scenario, UnknownTopLevelKeyIsAnErrorWithASuggestion) {
   EXPECT_NE(error_of(std::string(kMinimal) + "sampeling: {}").find("sampeling: unknown key (did you mean sampling?)"),
             std::string::npos);

@@ -1,0 +1,59 @@
+#include "calib/geometry_filter.hpp"
+
+#include <cmath>
+#include <optional>
+
+#include "models/closure.hpp"
+
+namespace gpm::calib {
+namespace {
+
+// The ML closure residual of theta_m under g (rad); nullopt without a radical centre or a gradient.
+std::optional<double> ml_residual(const Geometry& g, const Eigen::Vector3d& theta_m) {
+  const Closure<double> c = closure(g.values.data(), theta_m.data(), false, true);
+  if (!c.ok) return std::nullopt;
+  const double norm = std::sqrt(c.dP[0] * c.dP[0] + c.dP[1] * c.dP[1] + c.dP[2] * c.dP[2]);
+  if (!(norm > 0.0) || !std::isfinite(norm)) return std::nullopt;
+  return c.P / norm;
+}
+
+// The prior 1-sigma of parameter p.
+double prior_sigma(const ModelTolerance& t, int p) {
+  if (is_offset(p)) return t.offset_rad;
+  return p < kLa1 ? t.base_mm : t.link_mm;
+}
+
+}  // namespace
+
+GeometryFilter::GeometryFilter(const Geometry& controller, const GeometryFilterSettings& settings)
+    : geometry_(controller), misfit_variance_(settings.misfit_sigma_rad * settings.misfit_sigma_rad) {
+  for (int p = 0; p < kNumParams; ++p)
+    if (!settings.held.test(static_cast<std::size_t>(p))) free_.push_back(p);
+  const auto n = static_cast<Eigen::Index>(free_.size());
+  sigma_ = Eigen::MatrixXd::Zero(n, n);
+  for (Eigen::Index k = 0; k < n; ++k) sigma_(k, k) = std::pow(prior_sigma(settings.prior, free_[k]), 2);
+}
+
+void GeometryFilter::update(const Eigen::Vector3d& theta_m) {
+  constexpr double kStep = 1e-7;  // mm or rad: forward differences of a residual of ~1e-3
+  const std::optional<double> r = ml_residual(geometry_, theta_m);
+  if (!r) return;
+  const auto n = static_cast<Eigen::Index>(free_.size());
+  Eigen::RowVectorXd H(n);
+  for (Eigen::Index k = 0; k < n; ++k) {
+    Geometry moved = geometry_;
+    moved[free_[k]] += kStep;
+    const std::optional<double> rk = ml_residual(moved, theta_m);
+    if (!rk) return;
+    H[k] = (*rk - *r) / kStep;
+  }
+  const Eigen::VectorXd sigma_Ht = sigma_ * H.transpose();
+  const double s = H.dot(sigma_Ht) + misfit_variance_;
+  const Eigen::VectorXd K = sigma_Ht / s;
+  for (Eigen::Index k = 0; k < n; ++k) geometry_[free_[k]] -= K[k] * *r;
+  const Eigen::MatrixXd I_KH = Eigen::MatrixXd::Identity(n, n) - K * H;
+  sigma_ = I_KH * sigma_ * I_KH.transpose() + misfit_variance_ * K * K.transpose();
+  ++updates_;
+}
+
+}  // namespace gpm::calib
