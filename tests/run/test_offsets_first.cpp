@@ -31,6 +31,27 @@
 namespace gpm::scenario {
 namespace {
 
+// The main job on the robot of `seed`, as dir/robot.yaml (a file the twin
+// backend can load).
+RunSpec main_job_robot(const gpm::test::TempDir& dir, int seed) {
+  std::stringstream main_text;
+  main_text << std::ifstream(gpm::scenarios_dir() + "/main.yaml").rdbuf();
+  std::string text = main_text.str();
+  text.replace(text.find("seed: 2026"), 10, "seed: " + std::to_string(seed));
+  text.replace(text.find("robot: ../models/"), 17, "robot: " + gpm::models_dir() + "/");
+  std::ofstream(dir / "robot.yaml") << text;
+  return load_run_spec(dir / "robot.yaml");
+}
+
+// spec sampled through dir/twin.yaml: a twin backend of dir/robot.yaml with the twin's own limits.
+void through_twin_backend(const gpm::test::TempDir& dir, RunSpec& spec) {
+  std::ofstream(dir / "twin.yaml") << "backend: twin\nrate_hz: 4000\ncontroller: " << gpm::models_dir()
+                                   << "/gpm2002.yaml\njoint_modes: [torque_off, position, position]\ntwin: {scenario: "
+                                   << (dir / "robot.yaml") << "}\nsafety:\n"
+                                   << hw::safety_limits_to_yaml(twin_safety_limits(spec.sim, spec.sim.controller), 2);
+  spec.hardware = dir / "twin.yaml";
+}
+
 // Noise-free readings of `actual` at poses on two circles round home, one
 // per 10 ms (each updates the filter).
 std::vector<sim::SampleRecord> readings_of(const Geometry& actual, const Eigen::Vector2d& home) {
@@ -171,18 +192,8 @@ TEST(OffsetsFirst, APathThatEndedEarlyIsSampledAgainAndCalibrated) {
 // from the first pass's file and gives the same calibration to the last bit.
 TEST(OffsetsFirst, ThroughTheHardwareInterfaceTheFirstPassIsKeptAndResumable) {
   const gpm::test::TempDir dir("offsets_first");
-  std::stringstream main_text;
-  main_text << std::ifstream(gpm::scenarios_dir() + "/main.yaml").rdbuf();
-  std::string text = main_text.str();
-  text.replace(text.find("seed: 2026"), 10, "seed: 10009");
-  text.replace(text.find("robot: ../models/"), 17, "robot: " + gpm::models_dir() + "/");
-  std::ofstream(dir / "robot.yaml") << text;
-  RunSpec spec = load_run_spec(dir / "robot.yaml");
-  std::ofstream(dir / "twin.yaml") << "backend: twin\nrate_hz: 4000\ncontroller: " << gpm::models_dir()
-                                   << "/gpm2002.yaml\njoint_modes: [torque_off, position, position]\ntwin: {scenario: "
-                                   << (dir / "robot.yaml") << "}\nsafety:\n"
-                                   << hw::safety_limits_to_yaml(twin_safety_limits(spec.sim, spec.sim.controller), 2);
-  spec.hardware = dir / "twin.yaml";
+  RunSpec spec = main_job_robot(dir, 10009);
+  through_twin_backend(dir, spec);
   spec.compensation.reset();
   const RunOutcome o = run_scenario(spec, "robot.yaml", {}, dir / "samples.csv");
   ASSERT_TRUE(o.first_pass.has_value());
@@ -215,13 +226,7 @@ TEST(OffsetsFirst, ThroughTheHardwareInterfaceTheFirstPassIsKeptAndResumable) {
 // kept in samples_first_pass.csv and the run takes the same samples.
 TEST(OffsetsFirst, TheOffsetsStageKeepsARobotThatLeftItsPlanWithinTheBound) {
   const gpm::test::TempDir dir("offsets_stage");
-  std::stringstream main_text;
-  main_text << std::ifstream(gpm::scenarios_dir() + "/main.yaml").rdbuf();
-  std::string text = main_text.str();
-  text.replace(text.find("seed: 2026"), 10, "seed: 7023");
-  text.replace(text.find("robot: ../models/"), 17, "robot: " + gpm::models_dir() + "/");
-  std::ofstream(dir / "robot.yaml") << text;
-  RunSpec spec = load_run_spec(dir / "robot.yaml");
+  RunSpec spec = main_job_robot(dir, 7023);
   spec.compensation.reset();
   const RunOutcome without = run_scenario(spec, "robot.yaml");
   spec.sim.sampling->offsets_first_s = 1.0;
@@ -236,11 +241,7 @@ TEST(OffsetsFirst, TheOffsetsStageKeepsARobotThatLeftItsPlanWithinTheBound) {
   EXPECT_LE(with.sim.sampling_s, 15.0);
   ASSERT_TRUE(with.calibration.has_value());
 
-  std::ofstream(dir / "twin.yaml") << "backend: twin\nrate_hz: 4000\ncontroller: " << gpm::models_dir()
-                                   << "/gpm2002.yaml\njoint_modes: [torque_off, position, position]\ntwin: {scenario: "
-                                   << (dir / "robot.yaml") << "}\nsafety:\n"
-                                   << hw::safety_limits_to_yaml(twin_safety_limits(spec.sim, spec.sim.controller), 2);
-  spec.hardware = dir / "twin.yaml";
+  through_twin_backend(dir, spec);
   const RunOutcome through = run_scenario(spec, "robot.yaml", {}, dir / "samples.csv");
   ASSERT_TRUE(through.first_pass.has_value());
   EXPECT_TRUE(through.first_pass->planned);
