@@ -3,24 +3,17 @@
 #include <cmath>
 #include <optional>
 
-#include "models/closure.hpp"
+#include "calib/residuals.hpp"
 
 namespace gpm::calib {
 namespace {
 
-// The ML closure residual of theta_m under g (rad); nullopt without a radical centre or a gradient.
+// The ML closure residual of theta_m under g (rad, calib/residuals.hpp
+// MlResidual); nullopt without a radical centre, a gradient or a finite value.
 std::optional<double> ml_residual(const Geometry& g, const Eigen::Vector3d& theta_m) {
-  const Closure<double> c = closure(g.values.data(), theta_m.data(), false, true);
-  if (!c.ok) return std::nullopt;
-  const double norm = std::sqrt(c.dP[0] * c.dP[0] + c.dP[1] * c.dP[1] + c.dP[2] * c.dP[2]);
-  if (!(norm > 0.0) || !std::isfinite(norm)) return std::nullopt;
-  return c.P / norm;
-}
-
-// The prior 1-sigma of parameter p.
-double prior_sigma(const ModelTolerance& t, int p) {
-  if (is_offset(p)) return t.offset_rad;
-  return p < kLa1 ? t.base_mm : t.link_mm;
+  double r = 0.0;
+  if (!MlResidual(theta_m)(g.values.data(), &r) || !std::isfinite(r)) return std::nullopt;
+  return r;
 }
 
 }  // namespace
@@ -31,7 +24,7 @@ GeometryFilter::GeometryFilter(const Geometry& controller, const GeometryFilterS
     if (!settings.held.test(static_cast<std::size_t>(p))) free_.push_back(p);
   const auto n = static_cast<Eigen::Index>(free_.size());
   sigma_ = Eigen::MatrixXd::Zero(n, n);
-  for (Eigen::Index k = 0; k < n; ++k) sigma_(k, k) = std::pow(prior_sigma(settings.prior, free_[k]), 2);
+  for (Eigen::Index k = 0; k < n; ++k) sigma_(k, k) = std::pow(tolerance_of(settings.prior, free_[k]), 2);
 }
 
 void GeometryFilter::update(const Eigen::Vector3d& theta_m) {

@@ -116,7 +116,7 @@ DriveMargins drive_margins(const Robot& controller, const Eigen::Vector2d& p, co
     return std::isfinite(a) && std::isfinite(b) ? 0.5 * std::abs(a - b) : 0.0;
   };
   for (int k = 0; k < kNumParams; ++k) {
-    const double t = is_offset(k) ? tolerance.offset_rad : is_length(k) ? tolerance.link_mm : tolerance.base_mm;
+    const double t = tolerance_of(tolerance, k);
     if (!(t > 0.0)) continue;
     Geometry plus = g0, minus = g0;
     plus[k] += t;
@@ -141,6 +141,10 @@ DriveMargins drive_margins(const Robot& controller, const Eigen::Vector2d& p, co
   m.direct = lost_direct ? 0.0 : m.direct - d_direct;
   m.deviation_mm = std::sqrt(deviation2);
   return m;
+}
+
+double tolerance_of(const ModelTolerance& t, int k) {
+  return is_offset(k) ? t.offset_rad : is_length(k) ? t.link_mm : t.base_mm;
 }
 
 std::string margin_violation(const Robot& controller, const Eigen::Vector2d& p, const DriveMask& drives,

@@ -51,6 +51,9 @@ struct ModelTolerance {
   bool operator==(const ModelTolerance&) const = default;
 };
 
+// How far parameter k (Geometry index) may be off by t: offset_rad, link_mm or base_mm.
+double tolerance_of(const ModelTolerance& t, int k);
+
 // The margin a planned path keeps from losing control (defaults documented
 // in scenarios/SCHEMA.md, `sampling.path_margin`).
 struct PathMargin {

@@ -15,7 +15,7 @@
 #include <Eigen/Dense>
 
 #include "calib/geometry_filter.hpp"
-#include "models/closure.hpp"
+#include "calib/residuals.hpp"
 #include "models/kinematics.hpp"
 
 namespace gpm::calib {
@@ -47,8 +47,9 @@ std::vector<Eigen::Vector3d> readings_along_path(const Geometry& g, int n = 400)
 
 // The ML residual r = P / |dP/d theta_m| of one sample under g (the filter's measurement).
 double ml_residual(const Geometry& g, const Eigen::Vector3d& theta_m) {
-  const Closure<double> c = closure(g.values.data(), theta_m.data(), false, true);
-  return c.P / std::sqrt(c.dP[0] * c.dP[0] + c.dP[1] * c.dP[1] + c.dP[2] * c.dP[2]);
+  double r = 0.0;
+  EXPECT_TRUE(MlResidual(theta_m)(g.values.data(), &r));
+  return r;
 }
 
 // dr/dx over the filter's free parameters by central differences.
