@@ -118,10 +118,24 @@ void finish_learning(const MonitorModel& m, MonitorData& d, double t_s) {
 }
 
 // Review of the learning phase (MonitorData::review): how many learnt
-// samples a cycle that accepted no live sample takes, in each stage (each
-// such cycle stays well within the cost of an accepted cycle).
+// samples a cycle that accepted no live sample takes, in each stage, at a
+// servo rate of kReviewRateHz or above (each such cycle stays well within the
+// cost of an accepted cycle).
 constexpr int kReviewResidualsPerCycle = 4;
 constexpr int kReviewReplayPerCycle = 1;
+constexpr double kReviewRateHz = 4000.0;
+
+// The review's work in a cycle, in units of the above: one on a cycle that
+// accepted no live sample (at most what an accepted sample costs); at a
+// slower servo rate a cycle is longer and takes proportionally more (the same
+// share of the cycle as at kReviewRateHz), less the unit an accepted sample
+// took, so that the review lasts about as long in time whatever the rate (a
+// 250 Hz drive bus, where nearly every cycle accepts a sample: 16 units a
+// free cycle, 15 an accepted one).
+int review_units(const MonitorModel& m, bool accepted) {
+  const int units = std::max(1, static_cast<int>(std::ceil(kReviewRateHz / m.settings.cycle_hz - 1e-9)));
+  return accepted ? units - 1 : units;
+}
 
 // Starts the review of the learnt samples with a copy of the filter as
 // learning ends: first their residuals at its estimate (stage 1).
@@ -235,10 +249,11 @@ void replay_sample(const MonitorModel& m, MonitorData& d, int j) {
   }
 }
 
-// One cycle's share of the review; true when it ended the learning phase at t_s.
-bool review_step(const MonitorModel& m, MonitorData& d, double t_s) {
+// One cycle's share of the review (`units` of work, review_units); true when
+// it ended the learning phase at t_s.
+bool review_step(const MonitorModel& m, MonitorData& d, double t_s, int units) {
   if (d.review_stage == 1) {
-    for (int c = 0; c < kReviewResidualsPerCycle && d.review_next < d.learn_count; ++c) {
+    for (int c = 0; c < units * kReviewResidualsPerCycle && d.review_next < d.learn_count; ++c) {
       const int j = d.review_next++;
       const auto u = static_cast<size_t>(j);
       double z = 0.0, r = 0.0;
@@ -258,7 +273,8 @@ bool review_step(const MonitorModel& m, MonitorData& d, double t_s) {
     if (d.review_next >= d.learn_count) start_replay(m, d, d.map_matched >= 4 * m.settings.learning_batch);
     return false;
   }
-  for (int c = 0; c < kReviewReplayPerCycle && d.review_next < d.learn_count; ++c) replay_sample(m, d, d.review_next++);
+  for (int c = 0; c < units * kReviewReplayPerCycle && d.review_next < d.learn_count; ++c)
+    replay_sample(m, d, d.review_next++);
   if (d.review_next < d.learn_count) return false;
   d.review_stage = 0;
   finish_learning(m, d, t_s);
@@ -698,8 +714,12 @@ StepResult step_live(const MonitorModel& m, MonitorData& d, double t_s, const Ei
 StepResult monitor_step(const MonitorModel& m, MonitorData& d, double t_s, const Eigen::Vector3d& theta_raw,
                         const Eigen::Vector3d& omega, const Eigen::Vector3d& tau) {
   StepResult out = step_live(m, d, t_s, theta_raw, omega, tau);
-  // The review of the learning phase runs on cycles without a live sample.
-  if (d.review_stage > 0 && !out.accepted) out.learnt = review_step(m, d, t_s);
+  // The review of the learning phase runs on cycles without a live sample
+  // (and beside one where the servo rate leaves time: review_units).
+  if (d.review_stage > 0) {
+    const int units = review_units(m, out.accepted);
+    if (units > 0) out.learnt = review_step(m, d, t_s, units);
+  }
   return out;
 }
 

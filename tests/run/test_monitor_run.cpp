@@ -262,13 +262,18 @@ constexpr long kSlipAfterWrites = 6000;
 
 struct HardwareRig {
   hw::test::TempDir dir;
+  std::string twin_scenario;
   Robot actual;
-  explicit HardwareRig(const std::string& name) : dir(name) {
-    actual = hw::twin_config_from_scenario(kTwinScenario, 0.004).actual;
+  // A rig whose twin (backend or emulator plant) is twin_scenario's robot and
+  // whose operation is the circle for duration_s.
+  explicit HardwareRig(const std::string& name, const std::string& twin = kTwinScenario, double duration_s = 6.0)
+      : dir(name), twin_scenario(twin) {
+    actual = hw::twin_config_from_scenario(twin_scenario, 0.004).actual;
     hw::test::write_text(dir.path() / "actual.yaml", robot_to_yaml(actual));
     hw::test::write_text(dir.path() / "op.yaml",
                          "name: op\nrobot: " + kSrc + "/models/gpm2002.yaml\nencoder: {bits: 17}\n"
-                         "operation: {path: {shape: circle, centre: [216.5, 250], radius: 60, period_s: 4}, duration_s: 6}\n");
+                         "operation: {path: {shape: circle, centre: [216.5, 250], radius: 60, period_s: 4}, duration_s: " +
+                             std::to_string(duration_s) + "}\n");
   }
   // A hardware file for backend (twin or modbus) whose controller is robot_file.
   std::string hardware(const std::string& backend, const std::string& extra, const std::string& robot_file) {
@@ -327,7 +332,8 @@ TEST(MonitorRun, MonitorsThroughTheTwinBackend) {
 // localhost, the example register map, with or without its latch, faults
 // injected as given): readings, speeds and torques come from the drives'
 // registers, read one drive after the other while the robot moves.
-MonitorOutcome monitor_through_emulator(HardwareRig& rig, const hw::EmulatorFaults& faults, bool latch) {
+MonitorOutcome monitor_through_emulator(HardwareRig& rig, const hw::EmulatorFaults& faults, bool latch,
+                                        const MonitorReadingModel& reading = kIdealExact) {
   // One stepped clock for the client and the emulator: it moves only when the
   // client waits for its next cycle, so the run does not depend on the load.
   hw::ManualClock clock;
@@ -347,14 +353,14 @@ MonitorOutcome monitor_through_emulator(HardwareRig& rig, const hw::EmulatorFaul
   }
   const auto map_path = rig.dir.path() / "map.yaml";
   hw::test::write_text(map_path, map);
-  hw::DriveEmulator emu(hw::load_register_map(map_path.string()), hw::twin_config_from_scenario(kTwinScenario, 0.004), o);
+  hw::DriveEmulator emu(hw::load_register_map(map_path.string()), hw::twin_config_from_scenario(rig.twin_scenario, 0.004), o);
   const int port = emu.start();
   map.replace(map.find("port: 1502"), 10, "port: " + std::to_string(port));
   hw::test::write_text(map_path, map);
   const std::string file = rig.hardware("modbus", "modbus: {register_map: map.yaml}\n", (rig.dir.path() / "actual.yaml").string());
   std::array<double, kNumParams> prior;
   prior.fill(std::numeric_limits<double>::quiet_NaN());
-  MonitorOutcome out = run_monitor_hardware(rig.scenario(), file, rig.actual, prior, kIdealExact, {}, nullptr, clock);
+  MonitorOutcome out = run_monitor_hardware(rig.scenario(), file, rig.actual, prior, reading, {}, nullptr, clock);
   EXPECT_NE(out.hardware.find("modbus"), std::string::npos) << out.hardware;
   EXPECT_GT(out.cycles, 1500);
   EXPECT_GT(out.accepted, 500);  // every joint moving: most cycles give a sample
@@ -396,6 +402,23 @@ TEST(MonitorRun, DetectsAnEncoderSlipThroughTheDriveEmulator) {
   EXPECT_GT(out.alarms.front().t_s, 3.0);  // none before the slip
   EXPECT_EQ(out.alarms.front().param, dth(1)) << out.alarms.front().explanation;
   EXPECT_NEAR(out.alarms.front().delta, -10 * 2 * M_PI / 131072, 1e-4) << out.alarms.front().explanation;
+}
+
+// Ten minutes of motion through the drive emulator whose plant is the
+// realistic twin (compliance, clearance, friction, thermal growth, encoder
+// cyclic error, skew, the drive train): the monitor, told the data sheet and
+// learning the rest in its first seconds, raises no alarm on the healthy
+// robot. Label long (run.monitor_emulator_10min).
+TEST(MonitorRunLong, DISABLED_TenMinutesThroughTheDriveEmulatorWithoutFalseAlarms) {
+  HardwareRig rig("monitor_modbus_10min", kSrc + "/scenarios/monitor_1h_realistic.yaml", 600.0);
+  const MonitorOutcome out = monitor_through_emulator(rig, {}, true, data_sheet_reading_model(DataSheet{}));
+  std::printf("%.1f s monitored (learning %.2f-%.2f s), %ld cycles, %zu alarms, %.0f s wall\n", out.simulated_s,
+              out.learning_start_s, out.learning_end_s, out.cycles, out.alarms.size(), out.wall_s);
+  EXPECT_GT(out.simulated_s, 600.0);
+  EXPECT_GT(out.learning_end_s, out.learning_start_s);  // the learning phase ran and ended
+  EXPECT_LE(out.learning_end_s - out.learning_start_s, 10.0);
+  EXPECT_TRUE(out.alarms.empty()) << out.alarms.size() << " alarms, first at " << out.alarms.front().t_s
+                                  << " s: " << out.alarms.front().explanation;
 }
 
 TEST(MonitorRun, HardwareRefusesEventsBeforeMoving) {
