@@ -69,6 +69,35 @@ struct MatchedBatch {
   double h = 0.0, hz = 0.0, hh = 0.0;
 };
 
+// The batch terms behind a step factor: their sum and how many there are.
+struct MatchedTerms {
+  double sum = 0.0;
+  int count = 0;
+};
+
+// The terms (sum h (z - median))^2 / (scale^2 sum h^2) of `batches` batches
+// (those with sum h^2 > 0). batch(b) returns the MatchedBatch of batch b.
+template <class BatchOf>
+MatchedTerms matched_terms(int batches, double median, double scale, const BatchOf& batch) {
+  MatchedTerms t;
+  for (int b = 0; b < batches; ++b) {
+    const MatchedBatch m = batch(b);
+    if (!(m.hh > 0.0)) continue;
+    const double s = m.hz - median * m.h;
+    t.sum += s * s / (scale * scale * m.hh);
+    ++t.count;
+  }
+  return t;
+}
+
+// The factor of terms: their mean widened by one standard error
+// sqrt(2 / (count - 1)), never below 1 (1 with fewer than 2 terms).
+inline double matched_factor(const MatchedTerms& t) {
+  if (t.count < 2) return 1.0;
+  const double f = t.sum / t.count * (1.0 + std::sqrt(2.0 / (t.count - 1)));
+  return f > 1.0 ? f : 1.0;
+}
+
 // The step test's variance factor along one parameter: the mean over
 // `batches` batches of (sum h (z - median))^2 / (scale^2 sum h^2), which is 1
 // for independent innovations of that scale (whatever h) and the
@@ -77,19 +106,7 @@ struct MatchedBatch {
 // than 2 batches). batch(b) returns the MatchedBatch of batch b.
 template <class BatchOf>
 double matched_sum_factor(int batches, double median, double scale, const BatchOf& batch) {
-  if (batches < 2) return 1.0;
-  double acc = 0.0;
-  int used = 0;
-  for (int b = 0; b < batches; ++b) {
-    const MatchedBatch m = batch(b);
-    if (!(m.hh > 0.0)) continue;
-    const double s = m.hz - median * m.h;
-    acc += s * s / (scale * scale * m.hh);
-    ++used;
-  }
-  if (used < 2) return 1.0;
-  const double f = acc / used * (1.0 + std::sqrt(2.0 / (used - 1)));
-  return f > 1.0 ? f : 1.0;
+  return matched_factor(matched_terms(batches, median, scale, batch));
 }
 
 // Upper quantile of a chi-square with dof degrees of freedom (any dof > 0) at

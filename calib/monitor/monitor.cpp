@@ -95,16 +95,20 @@ void finish_learning(const MonitorModel& m, MonitorData& d, double t_s) {
   double largest = 1.0;
   for (int k = 0; k < m.n_free; ++k) {
     const int i = m.free_index[static_cast<size_t>(k)];
-    d.step_factor[i] = matched_sum_factor(batches, d.learned.median, s, [&](int b) {
+    d.step_terms[static_cast<size_t>(i)] = matched_terms(batches, d.learned.median, s, [&](int b) {
       const auto u = static_cast<size_t>(b);
       return MatchedBatch{d.sums.h[u][i], d.sums.hz[u][i], d.sums.hh[u][i]};
     });
     // The largest term seen while learning, in the new units, sits where a
     // healthy robot's would: a structured reading error repeats with the job
     // (not Gaussian), and the batches see it only on average.
-    d.step_factor[i] = std::max(d.step_factor[i], d.sums.step_max[i] / (s * s) / (kLearnStepMaxShare * m.glr_threshold));
+    d.step_floor[i] = std::max(1.0, d.sums.step_max[i] / (s * s) / (kLearnStepMaxShare * m.glr_threshold));
+    d.step_factor[i] = std::max(d.step_floor[i], matched_factor(d.step_terms[static_cast<size_t>(i)]));
     largest = std::max(largest, d.step_factor[i]);
   }
+  d.live_hz.setZero();
+  d.live_hh.setZero();
+  d.live_n = 0;
   d.learned.step_factor = largest;
   d.learned.map = d.map_on;
   d.learned.map_matched = d.map_matched;
@@ -590,6 +594,35 @@ void start_relearning(const MonitorModel& m, MonitorData& d, double t_s) {
   ++d.relearnings;
 }
 
+// A tested sample leaves the window into the filter: after learning, its
+// terms join the step factors' batch in the making (learning.hpp; z and dz in
+// the learnt units, the bias taken off, as the review's replay summed them),
+// unless an alarm was raised while it was in the window; each full batch
+// refines every step factor, which narrows as the batches add up (the
+// review's 6 s give about ten: their widening is a factor 1.5) or widens
+// where the robot errs more than it did while learning.
+void refine_step_factors(const MonitorModel& m, MonitorData& d, int slot) {
+  if (!m.settings.refine_step_factors || m.settings.learning_s <= 0.0 || d.learning || d.review_stage > 0) return;
+  const auto u = static_cast<size_t>(slot);
+  if (d.alarm_count > 0 && d.t[u] <= d.alarms[static_cast<size_t>((d.alarm_count - 1) % kMaxAlarms)].explained_s) return;
+  d.live_hz += d.dz[u] * d.z[u];
+  d.live_hh += d.dz[u].cwiseProduct(d.dz[u]);
+  if (++d.live_n < m.settings.learning_batch) return;
+  for (int k = 0; k < m.n_free; ++k) {
+    const int i = m.free_index[static_cast<size_t>(k)];
+    MatchedTerms& t = d.step_terms[static_cast<size_t>(i)];
+    if (d.live_hh[i] > 0.0) {
+      t.sum += d.live_hz[i] * d.live_hz[i] / d.live_hh[i];
+      ++t.count;
+    }
+    d.step_factor[i] = std::max(d.step_floor[i], matched_factor(t));
+  }
+  d.live_hz.setZero();
+  d.live_hh.setZero();
+  d.live_n = 0;
+  ++d.operation_batches;
+}
+
 // Appends a tested sample to the window.
 void store_sample(MonitorData& d, double t_s, double z_tested, const ParamRow& dz, double z_filter,
                   const Eigen::Vector3d& theta, const Eigen::Vector3d& tension_sign, double r_map) {
@@ -659,6 +692,7 @@ StepResult step_live(const MonitorModel& m, MonitorData& d, double t_s, const Ei
   const int W = m.settings.window;
   if (d.count >= W && d.pending < 0) {
     const auto oldest = static_cast<size_t>(slot_of(d, 0));
+    refine_step_factors(m, d, static_cast<int>(oldest));
     filter_update(m, d, d.t[oldest], d.theta[oldest], d.tension[oldest], d.r_map[oldest]);
     --d.count;
   }

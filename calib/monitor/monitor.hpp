@@ -74,6 +74,11 @@ struct MonitorSettings {
   // false, S_hh^2 P_ii (as if the filter erred along parameter i alone);
   // true, the smaller of that and the Cauchy-Schwarz bound of any error.
   bool step_shared_bound = true;
+  // After a learning phase, each step factor goes on learning from the
+  // batches of operation (MonitorData::step_terms): it narrows as they add
+  // up (its widening by its own uncertainty shrinks) or widens where the
+  // robot errs more than it did while learning. false: the learnt factors stay.
+  bool refine_step_factors = true;
   // Accepted samples after the crossing before the alarm is explained (the
   // filter waits meanwhile); window + explain_samples <= kMaxWindow.
   int explain_samples = 240;
@@ -306,6 +311,16 @@ struct MonitorData : FilterWindow {
   double review_median = 0.0;  // median of the stage-1 residuals (stated units)
   LearningSums sums;         // what the review's replay sums (reset as one when it starts)
   LearnedScale learned;      // what was learnt (defaults: nothing)
+  // The step factors refined in operation (learning.hpp): each parameter's
+  // batch terms so far (the review's, then one per learning_batch samples
+  // that leave the window after learning with no alarm raised while they
+  // were in it), the floor the review's largest terms set, and the batch
+  // being summed. step_factor[i] = max(step_floor[i], matched_factor(step_terms[i])).
+  std::array<MatchedTerms, kNumParams> step_terms{};
+  ParamRow step_floor = ParamRow::Ones();
+  ParamRow live_hz = ParamRow::Zero(), live_hh = ParamRow::Zero();
+  int live_n = 0;
+  int operation_batches = 0;  // batches of operation the step factors took in
   double bias = 0.0;         // bias of the innovations (z units), taken off before the tests
   double t_last_accepted = 0.0;
   double chi_threshold = 0.0;  // thresholds in force (the model's, widened after learning)
