@@ -44,6 +44,13 @@ struct HardwareState {
   std::array<DriveStatus, kNumChains> drive{};
 };
 
+// The three readings of st carried to joint 1's read instant by their rates:
+// theta_m_i + velocity_i (read_time_s_1 - read_time_s_i) (drives polled one
+// after another; readings of one instant are returned as they are).
+inline Eigen::Vector3d readings_at_first_read(const HardwareState& st) {
+  return st.theta_m + st.velocity.cwiseProduct(Eigen::Vector3d::Constant(st.read_time_s[0]) - st.read_time_s);
+}
+
 // Command for the three joints.
 struct HardwareCommand {
   Eigen::Vector3d theta_m = Eigen::Vector3d::Zero();  // position targets (rad), encoder space

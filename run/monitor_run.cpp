@@ -313,7 +313,9 @@ double follow_and_monitor(MonitorOutcome& out, mon::MonitorData& md, hw::SafetyS
     t_path += run_in_speed(static_cast<double>(k) * period, total) * period;
     motion.cycle(motion.wrap_near(target(t_path)));
     const hw::HardwareState& st = motion.state();
-    bool recorded = take_alarm(out, md, mon::monitor_step(out.model, md, t, st.theta_m, st.velocity, st.torque));
+    // Readings polled one after another are carried to one instant first.
+    bool recorded = take_alarm(
+        out, md, mon::monitor_step(out.model, md, t, hw::readings_at_first_read(st), st.velocity, st.torque));
     if (cadence.estimate_due(t)) {
       const mon::Estimate e = mon::monitor_estimate(out.model, md);
       out.estimates.push_back({t, e.value, e.sigma, truth_at ? std::optional<Geometry>(truth_at(t)) : std::nullopt});

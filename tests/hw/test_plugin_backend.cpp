@@ -150,6 +150,49 @@ TEST(PluginBackend, SamplePluginWithoutTorqueSaysSo) {
   EXPECT_EQ(card->last_state().torque, Eigen::Vector3d(Eigen::Vector3d::Zero()));
 }
 
+// A card without a latch (poll_in_turn_s 1 ms): axis i is read (2 - i) ms
+// before the reading's time and stamped so; carried to one instant by their
+// speeds (hw::readings_at_first_read, then to the reading's time) the
+// readings are those of a card with a latch over the same twin within a
+// count, while as read they are several counts off it.
+TEST(PluginBackend, SamplePluginPolledInTurnStampsEachAxis) {
+  const test::TempDir dir("plugin_poll");
+  auto polled = make_hardware(config_of(dir, "polled.yaml", card_yaml(", poll_in_turn_s: 0.001")));
+  auto latch = make_hardware(config_of(dir, "latch.yaml", card_yaml()));
+  polled->configure();
+  latch->configure();
+  polled->activate();
+  latch->activate();
+  const Robot r;
+  const double dt = polled->period_s();
+  // Along a line from where the readings put the controller's robot, speeding
+  // up to 100 mm/s over 0.3 s (within the safety limits): every joint moves.
+  const Eigen::Vector3d theta0 = polled->last_state().theta_m;
+  const auto start = forward_kinematics(r.geometry, active_from_readings(r.geometry, theta0));
+  ASSERT_TRUE(start);
+  double off_as_read = 0.0;
+  for (int k = 1; k <= 100; ++k) {
+    const double t = k * dt;
+    const double along = t < 0.3 ? t * t / (2 * 0.3) : t - 0.15;  // s of path at 1 mm/s
+    const Eigen::Vector2d p = start->p + Eigen::Vector2d(80.0, 60.0) * along;
+    const auto readings_at = [&](const Eigen::Vector2d& q) {
+      return readings_from_active(r.geometry, inverse_kinematics(r.geometry, q, r.branch).theta_a);
+    };  // (from the readings as they start: the twin is not the controller's model)
+    const HardwareCommand c = hold_command(theta0 + readings_at(p) - readings_at(start->p));
+    polled->write(c, t);
+    latch->write(c, t);
+    const HardwareState& a = polled->read(t);
+    const HardwareState& b = latch->read(t);
+    for (int i = 0; i < 3; ++i) EXPECT_NEAR(a.read_time_s[i], t - (2 - i) * 0.001, 1e-9) << "cycle " << k;
+    const Eigen::Vector3d at_t = readings_at_first_read(a) + a.velocity * (t - a.read_time_s[0]);
+    if (k > 50) {  // moving
+      for (int i = 0; i < 3; ++i) EXPECT_NEAR(at_t[i], b.theta_m[i], 1.01 * kCount) << "cycle " << k << " axis " << i + 1;
+      off_as_read = std::max(off_as_read, (a.theta_m - b.theta_m).cwiseAbs().maxCoeff());
+    }
+  }
+  EXPECT_GT(off_as_read, 4 * kCount) << "the test could not fail";
+}
+
 // A plugin's refusal of its configuration is bad input naming the hardware file.
 TEST(PluginBackend, SamplePluginRefusesABadConfiguration) {
   const test::TempDir dir("plugin_cfg");

@@ -421,6 +421,36 @@ TEST(MonitorRunLong, DISABLED_TenMinutesThroughTheDriveEmulatorWithoutFalseAlarm
                                   << " s: " << out.alarms.front().explanation;
 }
 
+#ifdef GPM_MOTION_CARD_PLUGIN
+// A motion card without a latch that reads its three axes 1 ms apart (the
+// sample plugin's poll_in_turn_s), each reading stamped with its own time:
+// on the circle at about 0.1 m/s the readings of a cycle are then up to some
+// ten counts off one instant. The monitor carries them to joint 1's read
+// time by the joint speeds (hw::readings_at_first_read) and raises no alarm;
+// stamped with one time for all (a card that does not know better) the same
+// readings make the closure alarm.
+TEST(MonitorRun, ReadingsPolledInTurnAreCarriedToOneInstant) {
+  HardwareRig rig("monitor_poll");
+  const auto card = [&](bool stamp_each_axis) {
+    return rig.hardware("plugin",
+                        std::string("plugin:\n  library: ") + GPM_MOTION_CARD_PLUGIN + "\n  config:\n    scenario: " +
+                            kTwinScenario + "\n    poll_in_turn_s: 0.001\n    stamp_each_axis: " +
+                            (stamp_each_axis ? "true" : "false") + "\n",
+                        (rig.dir.path() / "actual.yaml").string());
+  };
+  std::array<double, kNumParams> prior;
+  prior.fill(std::numeric_limits<double>::quiet_NaN());
+  const MonitorOutcome stamped = run_monitor_hardware(rig.scenario(), card(true), rig.actual, prior, kIdealExact);
+  EXPECT_NE(stamped.hardware.find("plugin"), std::string::npos) << stamped.hardware;
+  EXPECT_GT(stamped.accepted, 500);
+  EXPECT_TRUE(stamped.alarms.empty()) << stamped.alarms.size() << " alarms, first: " << stamped.alarms.front().explanation;
+  const MonitorOutcome one_time = run_monitor_hardware(rig.scenario(), card(false), rig.actual, prior, kIdealExact);
+  EXPECT_FALSE(one_time.alarms.empty()) << "the test could not fail";
+  std::printf("stamped each: %zu alarms; one time for all: %zu alarms, first %s\n", stamped.alarms.size(),
+              one_time.alarms.size(), one_time.alarms.empty() ? "-" : one_time.alarms.front().explanation.c_str());
+}
+#endif
+
 TEST(MonitorRun, HardwareRefusesEventsBeforeMoving) {
   HardwareRig rig("monitor_events");
   hw::test::write_text(rig.dir.path() / "ev.yaml",

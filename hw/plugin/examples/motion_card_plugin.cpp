@@ -10,6 +10,11 @@
 //   scenario: ../scenarios/simulate_disc.yaml   # the twin: actual robot, servo, encoders
 //   clock_offset_s: 1000.0                      # optional: the card clock at power on (s)
 //   report_torque: true                         # optional: the card reports drive torques
+//   poll_in_turn_s: 0.0                         # optional: a card without a latch, reading its
+//                                               # axes one after another this far apart (s;
+//                                               # its lagged readings are of error-free encoders)
+//   stamp_each_axis: true                       # optional: false, the card stamps the three
+//                                               # readings with one time (it does not know better)
 #include <cstring>
 #include <exception>
 #include <filesystem>
@@ -20,6 +25,7 @@
 #include "hw/hardware_config.hpp"
 #include "hw/hw_errors.hpp"
 #include "hw/plugin/gpm_backend_plugin.h"
+#include "sim/encoder_model.hpp"
 #include "models/errors.hpp"
 #include "models/yaml_util.hpp"
 
@@ -28,6 +34,10 @@ struct gpm_backend {
   std::unique_ptr<gpm::hw::TwinBackend> twin;
   double clock_offset_s = 0.0;
   bool report_torque = true;
+  double poll_in_turn_s = 0.0;
+  bool stamp_each_axis = true;
+  gpm::sim::EncoderModel encoder;  // the twin's, to quantise a reading taken off the twin's instant
+  gpm::Geometry actual;            // the twin's actual robot (its encoder offsets)
   std::string error;
 };
 
@@ -67,14 +77,22 @@ YAML::Node load_config(const gpm_backend_create_args& a) {
   throw gpm::InputError("motion card: no configuration (give plugin.config: {scenario: FILE})");
 }
 
-// The card's one read: every encoder at one instant, on the card's clock.
+// The card's one read: every encoder at one instant, on the card's clock;
+// polled in turn, axis i lag_i = (2 - i) poll_in_turn_s before the last: its
+// reading that of an encoder without errors but its counts at that time (the
+// twin's true link angle less its offset, to first order in the speed,
+// quantised), stamped with that time unless the card stamps one time for all.
 void get_encoders(const gpm_backend& b, const HardwareState& twin, gpm_backend_state& s) {
+  const gpm::sim::TwinSnapshot& truth = b.twin->snapshot();
   s.time_s = b.clock_offset_s + twin.time_s;
   s.velocity_reported = 1;
   s.torque_reported = b.report_torque ? 1 : 0;
   for (int i = 0; i < GPM_BACKEND_AXES; ++i) {
-    s.read_time_s[i] = s.time_s;
-    s.theta_m[i] = twin.theta_m[i];
+    const double lag = (GPM_BACKEND_AXES - 1 - i) * b.poll_in_turn_s;
+    s.read_time_s[i] = b.stamp_each_axis ? s.time_s - lag : s.time_s;
+    s.theta_m[i] = lag > 0.0 ? gpm::sim::quantise_reading(b.encoder, truth.theta_a[i] - truth.velocity[i] * lag -
+                                                                         b.actual.dth_(i))
+                             : twin.theta_m[i];
     s.velocity[i] = twin.velocity[i];
     s.torque[i] = b.report_torque ? twin.torque[i] : 0.0;
     s.drive[i].enabled = twin.drive[i].enabled ? 1 : 0;
@@ -89,15 +107,23 @@ int32_t card_create(const gpm_backend_create_args* a, gpm_backend** out) {
   return guarded(nullptr, [&] {
     const YAML::Node c = load_config(*a);
     const std::string where = a->config_path ? a->config_path : "plugin.config";
-    gpm::yaml_check_keys(c, where, "", {"scenario", "clock_offset_s", "report_torque"});
+    gpm::yaml_check_keys(c, where, "", {"scenario", "clock_offset_s", "report_torque", "poll_in_turn_s", "stamp_each_axis"});
     if (!c["scenario"]) throw gpm::InputError(where + ": missing key 'scenario' (the twin behind the card)");
     std::filesystem::path scenario = gpm::yaml_string(c["scenario"], where, "scenario");
     if (scenario.is_relative()) scenario = std::filesystem::path(a->base_dir) / scenario;
     auto b = std::make_unique<gpm_backend>();
     if (c["clock_offset_s"]) b->clock_offset_s = gpm::yaml_number(c["clock_offset_s"], where, "clock_offset_s");
     if (c["report_torque"]) b->report_torque = gpm::yaml_bool(c["report_torque"], where, "report_torque");
-    b->twin = std::make_unique<gpm::hw::TwinBackend>(
-        gpm::hw::twin_config_from_scenario(scenario.lexically_normal().string(), a->period_s));
+    if (c["poll_in_turn_s"]) b->poll_in_turn_s = gpm::yaml_number(c["poll_in_turn_s"], where, "poll_in_turn_s");
+    if (!(b->poll_in_turn_s >= 0.0 && b->poll_in_turn_s <= 0.01)) {
+      throw gpm::InputError(where + ": poll_in_turn_s must be from 0 to 0.01 s (the time between two axes' reads)");
+    }
+    if (c["stamp_each_axis"]) b->stamp_each_axis = gpm::yaml_bool(c["stamp_each_axis"], where, "stamp_each_axis");
+    const gpm::hw::TwinBackendConfig twin =
+        gpm::hw::twin_config_from_scenario(scenario.lexically_normal().string(), a->period_s);
+    b->encoder = twin.twin.encoder;
+    b->actual = twin.actual.geometry;
+    b->twin = std::make_unique<gpm::hw::TwinBackend>(twin);
     *out = b.release();
   });
 }
