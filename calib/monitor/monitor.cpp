@@ -277,9 +277,12 @@ bool review_step(const MonitorModel& m, MonitorData& d, double t_s, int units) {
     if (d.review_next >= d.learn_count) start_replay(m, d, d.map_matched >= 4 * m.settings.learning_batch);
     return false;
   }
-  for (int c = 0; c < units * kReviewReplayPerCycle && d.review_next < d.learn_count; ++c)
-    replay_sample(m, d, d.review_next++);
-  if (d.review_next < d.learn_count) return false;
+  // The learning phase ends on a cycle of its own (its cost: BM_MonitorStepLearningEnd).
+  if (d.review_next < d.learn_count) {
+    for (int c = 0; c < units * kReviewReplayPerCycle && d.review_next < d.learn_count; ++c)
+      replay_sample(m, d, d.review_next++);
+    return false;
+  }
   d.review_stage = 0;
   finish_learning(m, d, t_s);
   return true;
