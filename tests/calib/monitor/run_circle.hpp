@@ -4,6 +4,7 @@
 #pragma once
 
 #include <functional>
+#include <memory>
 #include <vector>
 
 #include "calib/monitor/monitor.hpp"
@@ -43,6 +44,22 @@ inline CircleRun run_circle(const MonitorModel& m, MonitorData& d, double durati
     if (c % static_cast<long>(cs.rate_hz) == 0) out.estimates.emplace_back(t, monitor_estimate(m, d));
   }
   return out;
+}
+
+// A fresh monitor of settings s run on the circle stream: its model, its
+// data (large: on the heap) and what run_circle collected.
+struct FreshRun {
+  MonitorModel model;
+  std::unique_ptr<MonitorData> data;
+  CircleRun run;
+};
+
+inline FreshRun run_fresh(const MonitorSettings& s, double duration_s, const std::function<Geometry(double)>& actual,
+                          CircleStream cs = {}) {
+  FreshRun f{make_monitor_model(s), nullptr, {}};
+  f.data = std::make_unique<MonitorData>(make_monitor_data(f.model));
+  f.run = run_circle(f.model, *f.data, duration_s, actual, cs);
+  return f;
 }
 
 }  // namespace gpm::calib::monitor::testing
