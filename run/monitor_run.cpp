@@ -215,8 +215,7 @@ MonitorReadingModel reading_model_after_calibration(const RunOutcome& run) {
 std::optional<MonitorOutcome> monitor_after_calibration(const RunOutcome& run) {
   const sim::Scenario& s = run.spec.sim;
   if (!s.operation || run.spec.hardware) return std::nullopt;
-  std::array<double, kNumParams> prior;
-  prior.fill(std::numeric_limits<double>::quiet_NaN());
+  std::array<double, kNumParams> prior = mon::MonitorSettings::nan_array();
   if (run.calibration)
     for (int k = 0; k < kNumParams; ++k) {
       const double sd = run.calibration->sigma[static_cast<std::size_t>(k)];

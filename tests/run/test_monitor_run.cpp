@@ -121,8 +121,7 @@ TEST(MonitorRun, ReadingModelIsTheStatementNotTheTwinsEffects) {
   const sim::Scenario other_twin = scenario(
       "effects: {preset: realistic, passive_clearance_mm: 0.02, coulomb_friction_Nm: 1, encoder_cyclic_rad: 5.0e-5, "
       "encoder_skew_s: 0.0003, thermal: {time_constant_s: 30}}\n");
-  std::array<double, kNumParams> prior;
-  prior.fill(std::numeric_limits<double>::quiet_NaN());
+  std::array<double, kNumParams> prior = calib::monitor::MonitorSettings::nan_array();
   MonitorReadingModel stated = data_sheet_reading_model(DataSheet{});
   stated.reading.clearance_mm = {0.002, 0.004, 0.006};
   stated.reading.skew_s = {0.0, 1e-5, -2e-5};
@@ -292,8 +291,7 @@ TEST(MonitorRun, MonitorsThroughTheTwinBackend) {
   HardwareRig rig("monitor_twin");
   const std::string hw_actual = rig.hardware("twin", "twin: {scenario: " + kTwinScenario + "}\n",
                                              (rig.dir.path() / "actual.yaml").string());
-  std::array<double, kNumParams> prior;
-  prior.fill(std::numeric_limits<double>::quiet_NaN());
+  std::array<double, kNumParams> prior = calib::monitor::MonitorSettings::nan_array();
   // Without the learning phase (a robot wrong from the start is learnt as
   // healthy: here the nominal model must alarm as it did).
   const MonitorReadingModel& exact = kIdealExact;
@@ -358,8 +356,7 @@ MonitorOutcome monitor_through_emulator(HardwareRig& rig, const hw::EmulatorFaul
   map.replace(map.find("port: 1502"), 10, "port: " + std::to_string(port));
   hw::test::write_text(map_path, map);
   const std::string file = rig.hardware("modbus", "modbus: {register_map: map.yaml}\n", (rig.dir.path() / "actual.yaml").string());
-  std::array<double, kNumParams> prior;
-  prior.fill(std::numeric_limits<double>::quiet_NaN());
+  std::array<double, kNumParams> prior = calib::monitor::MonitorSettings::nan_array();
   MonitorOutcome out = run_monitor_hardware(rig.scenario(), file, rig.actual, prior, reading, {}, nullptr, clock);
   EXPECT_NE(out.hardware.find("modbus"), std::string::npos) << out.hardware;
   EXPECT_GT(out.cycles, 1500);
@@ -438,8 +435,7 @@ TEST(MonitorRun, ReadingsPolledInTurnAreCarriedToOneInstant) {
                             (stamp_each_axis ? "true" : "false") + "\n",
                         (rig.dir.path() / "actual.yaml").string());
   };
-  std::array<double, kNumParams> prior;
-  prior.fill(std::numeric_limits<double>::quiet_NaN());
+  std::array<double, kNumParams> prior = calib::monitor::MonitorSettings::nan_array();
   const MonitorOutcome stamped = run_monitor_hardware(rig.scenario(), card(true), rig.actual, prior, kIdealExact);
   EXPECT_NE(stamped.hardware.find("plugin"), std::string::npos) << stamped.hardware;
   EXPECT_GT(stamped.accepted, 500);
@@ -458,8 +454,7 @@ TEST(MonitorRun, HardwareRefusesEventsBeforeMoving) {
                        "operation: {path: {shape: circle, centre: [216.5, 250], radius: 60, period_s: 4}, duration_s: 6}\n"
                        "events: [{at_s: 3, change: {dth2: 1.0e-4}}]\n");
   const std::string hw_file = rig.hardware("twin", "twin: {scenario: " + kTwinScenario + "}\n", (rig.dir.path() / "actual.yaml").string());
-  std::array<double, kNumParams> prior;
-  prior.fill(std::numeric_limits<double>::quiet_NaN());
+  std::array<double, kNumParams> prior = calib::monitor::MonitorSettings::nan_array();
   EXPECT_THROW(run_monitor_hardware(sim::load_scenario((rig.dir.path() / "ev.yaml").string()), hw_file, rig.actual, prior, kIdeal),
                InputError);
 }
