@@ -67,6 +67,11 @@ void restart_with_map(MonitorData& d) {
   d.step_statistic = 0.0;
 }
 
+// Parameter i's step factor from its batch terms and floor (MonitorData::step_terms).
+void set_step_factor(MonitorData& d, int i) {
+  d.step_factor[i] = std::max(d.step_floor[i], matched_factor(d.step_terms[static_cast<size_t>(i)]));
+}
+
 // Ends the learning phase at t_s (learning.hpp): the learnt scale becomes the
 // filter's reading noise, the learnt median the bias, the window's
 // innovations are restated in the new units and the thresholds widen.
@@ -103,12 +108,10 @@ void finish_learning(const MonitorModel& m, MonitorData& d, double t_s) {
     // healthy robot's would: a structured reading error repeats with the job
     // (not Gaussian), and the batches see it only on average.
     d.step_floor[i] = std::max(1.0, d.sums.step_max[i] / (s * s) / (kLearnStepMaxShare * m.glr_threshold));
-    d.step_factor[i] = std::max(d.step_floor[i], matched_factor(d.step_terms[static_cast<size_t>(i)]));
+    set_step_factor(d, i);
     largest = std::max(largest, d.step_factor[i]);
   }
-  d.live_hz.setZero();
-  d.live_hh.setZero();
-  d.live_n = 0;
+  d.live = {};
   d.learned.step_factor = largest;
   d.learned.map = d.map_on;
   d.learned.map_matched = d.map_matched;
@@ -608,21 +611,19 @@ void refine_step_factors(const MonitorModel& m, MonitorData& d, int slot) {
   if (!m.settings.refine_step_factors || m.settings.learning_s <= 0.0 || d.learning || d.review_stage > 0) return;
   const auto u = static_cast<size_t>(slot);
   if (d.alarm_count > 0 && d.t[u] <= d.alarms[static_cast<size_t>((d.alarm_count - 1) % kMaxAlarms)].explained_s) return;
-  d.live_hz += d.dz[u] * d.z[u];
-  d.live_hh += d.dz[u].cwiseProduct(d.dz[u]);
-  if (++d.live_n < m.settings.learning_batch) return;
+  d.live.hz += d.dz[u] * d.z[u];
+  d.live.hh += d.dz[u].cwiseProduct(d.dz[u]);
+  if (++d.live.n < m.settings.learning_batch) return;
   for (int k = 0; k < m.n_free; ++k) {
     const int i = m.free_index[static_cast<size_t>(k)];
     MatchedTerms& t = d.step_terms[static_cast<size_t>(i)];
-    if (d.live_hh[i] > 0.0) {
-      t.sum += d.live_hz[i] * d.live_hz[i] / d.live_hh[i];
+    if (d.live.hh[i] > 0.0) {
+      t.sum += d.live.hz[i] * d.live.hz[i] / d.live.hh[i];
       ++t.count;
     }
-    d.step_factor[i] = std::max(d.step_floor[i], matched_factor(t));
+    set_step_factor(d, i);
   }
-  d.live_hz.setZero();
-  d.live_hh.setZero();
-  d.live_n = 0;
+  d.live = {};
   ++d.operation_batches;
 }
 

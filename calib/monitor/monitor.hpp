@@ -315,11 +315,14 @@ struct MonitorData : FilterWindow {
   // batch terms so far (the review's, then one per learning_batch samples
   // that leave the window after learning with no alarm raised while they
   // were in it), the floor the review's largest terms set, and the batch
-  // being summed. step_factor[i] = max(step_floor[i], matched_factor(step_terms[i])).
+  // being summed (sum dz z, sum dz^2 per parameter, samples; a fresh one is
+  // empty). step_factor[i] = max(step_floor[i], matched_factor(step_terms[i])).
   std::array<MatchedTerms, kNumParams> step_terms{};
   ParamRow step_floor = ParamRow::Ones();
-  ParamRow live_hz = ParamRow::Zero(), live_hh = ParamRow::Zero();
-  int live_n = 0;
+  struct OperationBatch {
+    ParamRow hz = ParamRow::Zero(), hh = ParamRow::Zero();
+    int n = 0;
+  } live;
   int operation_batches = 0;  // batches of operation the step factors took in
   double bias = 0.0;         // bias of the innovations (z units), taken off before the tests
   double t_last_accepted = 0.0;
