@@ -282,7 +282,7 @@ TEST(MonitorLearning, SlipAfterLearningIsFoundWithinOneSecondAndNamed) {
 // live monitor as samples leave its window, agrees with the mean of the
 // review's replayed terms within their statistical spread: about 22 terms,
 // 30 %), and with five times the terms the factor narrows (its widening by
-// one standard error shrinks: measured 9.9 -> 7.0); no alarm on the healthy
+// one standard error shrinks: measured 9.9 -> 7.2); no alarm on the healthy
 // robot either way.
 TEST(MonitorLearning, TheStepFactorsGoOnLearningInOperation) {
   testing::CircleStream cs;
