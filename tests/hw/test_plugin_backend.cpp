@@ -170,14 +170,14 @@ TEST(PluginBackend, SamplePluginPolledInTurnStampsEachAxis) {
   const Eigen::Vector3d theta0 = polled->last_state().theta_m;
   const auto start = forward_kinematics(r.geometry, active_from_readings(r.geometry, theta0));
   ASSERT_TRUE(start);
+  const auto readings_at = [&](const Eigen::Vector2d& q) {
+    return readings_from_active(r.geometry, inverse_kinematics(r.geometry, q, r.branch).theta_a);
+  };  // (commanded from the readings as they start: the twin is not the controller's model)
   double off_as_read = 0.0;
   for (int k = 1; k <= 100; ++k) {
     const double t = k * dt;
     const double along = t < 0.3 ? t * t / (2 * 0.3) : t - 0.15;  // s of path at 1 mm/s
     const Eigen::Vector2d p = start->p + Eigen::Vector2d(80.0, 60.0) * along;
-    const auto readings_at = [&](const Eigen::Vector2d& q) {
-      return readings_from_active(r.geometry, inverse_kinematics(r.geometry, q, r.branch).theta_a);
-    };  // (from the readings as they start: the twin is not the controller's model)
     const HardwareCommand c = hold_command(theta0 + readings_at(p) - readings_at(start->p));
     polled->write(c, t);
     latch->write(c, t);
