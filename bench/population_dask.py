@@ -60,6 +60,15 @@ def study_seconds(scenario, count, workers, local_dir):
         return time.perf_counter() - t0, pop
 
 
+def where_the_time_went(rows):
+    """(sum of the robots' own seconds, seconds the busiest worker ran robots, seconds the least busy one did) of
+    a study's rows (each robot's wall seconds and worker)."""
+    busy = {}
+    for r in rows:
+        busy[r.get("worker", "")] = busy.get(r.get("worker", ""), 0.0) + r["seconds"]
+    return sum(busy.values()), max(busy.values()), min(busy.values())
+
+
 def _run_robot(job):
     """One robot of the study as gpm.study.population's tasks run it (a task of the plain process pool)."""
     import gpm.study as st
@@ -73,10 +82,10 @@ def _import_gpm(_):
 
 
 def plain_pool_seconds(scenario, count, workers):
-    """Wall s of the study's count robots (the same scenario texts and seeds gpm.study.population gives its
-    tasks, each through the same gpm.study.run_robot) on a plain process pool of `workers` processes, no
-    Dask, each process as cold as a fresh Dask worker (gpm imported, no robot run): what this machine's
-    cores give two processes at all (the ceiling of the Dask ratio)."""
+    """(wall s, sum of the robots' own seconds) of the study's count robots (the same scenario texts and seeds
+    gpm.study.population gives its tasks, each through the same gpm.study.run_robot) on a plain process pool of
+    `workers` processes, no Dask, each process as cold as a fresh Dask worker (gpm imported, no robot run): what
+    this machine's cores give two processes at all (the ceiling of the Dask ratio)."""
     import concurrent.futures
     import multiprocessing
     scenario = os.path.abspath(scenario)
@@ -87,8 +96,8 @@ def plain_pool_seconds(scenario, count, workers):
     with concurrent.futures.ProcessPoolExecutor(max_workers=workers, mp_context=ctx) as pool:
         list(pool.map(_import_gpm, range(workers)))  # start every process first
         t0 = time.perf_counter()
-        list(pool.map(_run_robot, jobs))
-        return time.perf_counter() - t0
+        rows = list(pool.map(_run_robot, jobs))
+        return time.perf_counter() - t0, sum(r["seconds"] for r in rows)
 
 
 def _spin(n):
@@ -150,17 +159,23 @@ def main():
     with tempfile.TemporaryDirectory(prefix="gpm-bench-dask-") as d:
         t1, one = study_seconds(a.study_scenario, a.count, 1, d)
         t2, two = study_seconds(a.study_scenario, a.count, 2, d)
-    p1 = plain_pool_seconds(a.study_scenario, a.count, 1)
-    p2 = plain_pool_seconds(a.study_scenario, a.count, 2)
+    p1, ps1 = plain_pool_seconds(a.study_scenario, a.count, 1)
+    p2, ps2 = plain_pool_seconds(a.study_scenario, a.count, 2)
     spin, spin_lo, spin_hi = spin_ratio()
     same = repr(one.numbers()) == repr(two.numbers())
     print(f"study of {a.count} robots of {os.path.relpath(a.study_scenario, ROOT)} on a Dask LocalCluster:")
     print(f"  1 worker:  {t1:7.1f} s  {60 * a.count / t1:6.2f} robots/min")
     print(f"  2 workers: {t2:7.1f} s  {60 * a.count / t2:6.2f} robots/min")
     print(f"  speed ratio 2 workers / 1 worker: {t1 / t2:.2f}; same numbers bit for bit: {same}")
+    s1, _, _ = where_the_time_went(one.rows)
+    s2, hi, lo = where_the_time_went(two.rows)
+    print(f"  where the ratio goes: the robots' own seconds {s1:.1f} one at a time, {s2:.1f} two at once "
+          f"({s2 / s1:.2f}x: the cores slower when both run); the two workers ran robots for {hi:.1f} and {lo:.1f} s "
+          f"(the less busy one idle {hi - lo:.1f} s at the end); the rest ({t2 - hi:.1f} s of {t2:.1f}) Dask's own")
     print(f"  failed robots: {len(one.failed)} and {len(two.failed)}")
     print(f"the same robots on a plain process pool (no Dask), the machine's own ceiling: 1 process {p1:.1f} s, "
-          f"2 processes {p2:.1f} s: {p1 / p2:.2f}; Dask reaches {(t1 / t2) / (p1 / p2):.0%} of it")
+          f"2 processes {p2:.1f} s: {p1 / p2:.2f}; Dask reaches {(t1 / t2) / (p1 / p2):.0%} of it; the robots' own "
+          f"seconds {ps1:.1f} one at a time, {ps2:.1f} two at once ({ps2 / ps1:.2f}x)")
     print(f"a pure CPU loop, two at once against one after the other (what the cores give two processes that "
           f"only compute): {spin:.2f} (from {spin_lo:.2f} to {spin_hi:.2f} over 3 repeats)")
     print("load average at the end: {:.1f} {:.1f} {:.1f}".format(*os.getloadavg()))

@@ -10,6 +10,7 @@
 #include <pybind11/pybind11.h>
 
 #include "models/parameters.hpp"
+#include "python/allocator.hpp"
 #include "python/bindings.hpp"
 #include "python/errors.hpp"
 
@@ -33,6 +34,8 @@ conditioning. Bad input raises gpm.InputError (a ValueError; an argument of
 the wrong type gpm.InputTypeError, also a TypeError), naming the keyword.
 )doc";
   gpm::python::register_errors(m);
+  // True where the environment had frozen glibc's mmap threshold (a Dask worker) and the import raised it.
+  m.attr("_large_blocks_on_the_heap") = gpm::python::keep_large_blocks_on_the_heap();
 
   py::list names;
   for (int i = 0; i < gpm::kNumParams; ++i) names.append(std::string(gpm::param_name(i)));
