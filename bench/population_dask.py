@@ -22,6 +22,7 @@ The machine is shared: run it on a quiet one (the ratio is only as good as
 the second core is free).
 """
 import argparse
+import collections
 import os
 import pathlib
 import tempfile
@@ -63,9 +64,9 @@ def study_seconds(scenario, count, workers, local_dir):
 def where_the_time_went(rows):
     """(sum of the robots' own seconds, seconds the busiest worker ran robots, seconds the least busy one did) of
     a study's rows (each robot's wall seconds and worker)."""
-    busy = {}
+    busy = collections.Counter()
     for r in rows:
-        busy[r.get("worker", "")] = busy.get(r.get("worker", ""), 0.0) + r["seconds"]
+        busy[r.get("worker", "")] += r["seconds"]
     return sum(busy.values()), max(busy.values()), min(busy.values())
 
 

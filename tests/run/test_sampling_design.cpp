@@ -25,8 +25,8 @@
 namespace gpm::scenario {
 namespace {
 
-// The main job's scenario, its deviation margin changed by edit, with its
-// poses designed as gpm run designs them.
+// The main job's scenario changed by edit, with its poses designed as gpm
+// run designs them (at the encoders' reading sigma).
 RunSpec designed_main_job(const std::function<void(RunSpec&)>& edit = [](RunSpec&) {}) {
   RunSpec s = load_run_spec(gpm::scenarios_dir() + "/main.yaml");
   edit(s);
@@ -118,9 +118,8 @@ TEST(SamplingDesign, ADesignIsRememberedForItsInputsOnly) {
 // 0.02 rad) the hub stays closer to the plan than with a margin at the
 // watch's bound.
 TEST(SamplingDesign, ATighterDeviationMarginKeepsTheHubCloserToThePlan) {
-  RunSpec spec = main_job();
-  ASSERT_EQ(spec.sim.sampling->margin.deviation_mm, 10.0);
-  const sim::Scenario& s = spec.sim;
+  const sim::Scenario& s = main_job().sim;
+  ASSERT_EQ(s.sampling->margin.deviation_mm, 10.0);
   const DriveMask drives = sim::position_drives(s);
   const sim::WaypointPath path = sim::excitation_plan(s, s.sampling->poses);
   double worst = 0.0;
