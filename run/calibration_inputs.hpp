@@ -21,6 +21,7 @@ struct CalibrationInputs {
   // one on the fly, none otherwise.
   calib::MotionModel drive_candidates;
   DriveFriction drive_friction;  // calibration.drive_friction (default: the data sheet's)
+  double hub_mass_kg = 0.0;      // what the hub's force balance moves: the end effector and half of each passive link
   MonitorReadingModel monitor;   // the monitor's reading model before calibration (monitor:)
 };
 

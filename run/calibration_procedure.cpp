@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <functional>
 
 #include <fmt/format.h>
 
@@ -39,11 +40,15 @@ constexpr double kDriveEffectSigmas = 3.0;
 struct MotionStage {
   calib::Problem problem;
   std::vector<Eigen::Vector3d> omega, tau, alpha;
+  std::vector<double> t_s;  // the samples' times (s; on the fly)
+  int alpha_span = 0;       // the accelerations' differences span +-this many samples
   calib::LmOptions lo;
   calib::MotionModel motion;
   calib::MotionFit fit;
   double sigma = 0.0;
-  std::string speed_note, friction_note, clearance_dropped, before_dropped;
+  std::string balance_note, speed_note, friction_note, clearance_dropped, before_dropped;
+  std::optional<calib::BalanceFriction> balance;  // each drive's friction by the hub's force balance
+  int balance_taken = 0;  // of its six values, those that replaced the stated (calib::TransmissionLoad)
   std::vector<std::string> drive_notes;  // the drive train's effects kept and dropped, the sandwich
   double friction_scale = 1.0;
 };
@@ -86,6 +91,7 @@ void reading_rates_of(const SampleSeries& s, bool in_motion, MotionStage& m) {
   calib::ReadingRates rates = calib::reading_rates(s.t_s, s.theta_m, ro);
   m.omega = std::move(rates.omega);
   m.alpha = std::move(rates.alpha);
+  m.alpha_span = ro.alpha_span;
 }
 
 // The samples left out at the start on the fly: those within skip_s of the
@@ -129,6 +135,7 @@ MotionStage motion_stage(const SampleSeries& s, const CalibrationInputs& in, con
     throw InputError("calibration: estimating compliance, skew or clearance needs the drive torque of each sample "
                      "(samples.csv columns tau_last1..3 or tau1..3)");
   MotionStage m;
+  m.t_s = s.t_s;
   m.problem.theta_m = s.theta_m;
   m.problem.true_xy = s.true_xy;
   m.problem.start = o.start;
@@ -169,6 +176,12 @@ void choose_speed(MotionStage& m, const char* at, const calib::MotionFit* known)
       profile_tried(speeds, "{:.3g}"));
 }
 
+// What the friction scale multiplies: the stated values, or where the force balance contradicted them its.
+std::string friction_source(const MotionStage& m) {
+  if (m.balance_taken == 0) return "the stated values";
+  return m.balance_taken == 6 ? "the force balance's values" : "the stated values and where they differ the force balance's";
+}
+
 // The stated friction times the factor the model test prefers (for the
 // clearance's force signs), walking down chi2/dof from the factor 1 (known:
 // its fit, when made already with m.motion).
@@ -180,17 +193,69 @@ void choose_friction_scale(MotionStage& m, const calib::MotionFit* known) {
   m.motion = profile.model;
   m.friction_scale = profile.scale;
   m.friction_note = fmt::format(
-      "drive friction for the force signs: the stated values x{:.2f} (Coulomb {:.3g}, {:.3g}, {:.3g} N m), the "
+      "drive friction for the force signs: {} x{:.2f} (Coulomb {:.3g}, {:.3g}, {:.3g} N m), the "
       "smallest chi2/dof of the factors tried, walking down from 1 ({})",
-      profile.scale, m.motion.load.coulomb_Nm[0], m.motion.load.coulomb_Nm[1], m.motion.load.coulomb_Nm[2],
+      friction_source(m), profile.scale, m.motion.load.coulomb_Nm[0], m.motion.load.coulomb_Nm[1], m.motion.load.coulomb_Nm[2],
       profile_tried(profile, "{:.2f}"));
 }
 
-// The first fit of the motion model: the friction's speed and scale chosen
-// by the model test where it can judge them, else one fit.
+// The stated frictions (one per joint) replaced by the balance's where they
+// lie more than kDriveEffectSigmas of its 1-sigma apart (the data sheet
+// holds unless the robot's own data contradict it, the test every other
+// effect of the procedure passes); the joints (1-based) whose value was taken.
+std::vector<int> take_measured(std::array<double, 3>& stated, const std::array<double, 3>& found,
+                               const std::array<double, 3>& sigma) {
+  std::vector<int> taken;
+  for (std::size_t i = 0; i < 3; ++i)
+    if (std::abs(found[i] - stated[i]) > kDriveEffectSigmas * sigma[i]) {
+      stated[i] = found[i];
+      taken.push_back(static_cast<int>(i) + 1);
+    }
+  return taken;
+}
+
+// "joints 1, 3" or "none".
+std::string joints(const std::vector<int>& j) { return j.empty() ? "none" : fmt::format("joints {}", fmt::join(j, ", ")); }
+
+// Each drive's friction from the hub's force balance on the drives' torques
+// (calib/friction_balance.hpp), taken in place of a stated value where the
+// two differ by more than 3 of the balance's 1-sigma; all stated where the
+// balance cannot be made (too few samples away from the singularities). The
+// geometry is the controller's; the hub's acceleration is differenced over
+// the readings as the joints' accelerations are.
+void friction_from_balance(MotionStage& m, const CalibrationInputs& in) {
+  try {
+    const Geometry& g = m.problem.start;
+    const std::vector<Eigen::Vector2d> hub_accel = calib::hub_accelerations(g, m.t_s, m.problem.theta_m, m.alpha_span);
+    const calib::BalanceFriction f = calib::friction_from_force_balance(
+        g, {m.problem.theta_m, m.omega, m.alpha, m.tau, hub_accel}, m.motion.load, in.hub_mass_kg, m.motion.skip_first);
+    const std::vector<int> coulomb = take_measured(m.motion.load.coulomb_Nm, f.coulomb_Nm, f.coulomb_sigma_Nm);
+    const std::vector<int> viscous = take_measured(m.motion.load.viscous_Nm_s, f.viscous_Nm_s, f.viscous_sigma_Nm_s);
+    m.balance = f;
+    m.balance_taken = static_cast<int>(coulomb.size() + viscous.size());
+    m.balance_note = fmt::format(
+        "drive friction per joint from the hub's force balance on the drives' torques: Coulomb {:.3g}, {:.3g}, "
+        "{:.3g} N m (1-sigma {:.2g}, {:.2g}, {:.2g}), viscous {:.3g}, {:.3g}, {:.3g} N m s/rad (1-sigma {:.2g}, "
+        "{:.2g}, {:.2g}; the balance's residual force {:.2g} N RMS over {} samples); taken where 3 sigma from the "
+        "stated values: Coulomb of {}, viscous of {}",
+        f.coulomb_Nm[0], f.coulomb_Nm[1], f.coulomb_Nm[2], f.coulomb_sigma_Nm[0], f.coulomb_sigma_Nm[1],
+        f.coulomb_sigma_Nm[2], f.viscous_Nm_s[0], f.viscous_Nm_s[1], f.viscous_Nm_s[2], f.viscous_sigma_Nm_s[0],
+        f.viscous_sigma_Nm_s[1], f.viscous_sigma_Nm_s[2], f.residual_rms_N, f.samples, joints(coulomb), joints(viscous));
+  } catch (const InputError& e) {
+    m.balance_note = fmt::format("drive friction as stated, not from the force balance: {}", e.what());
+  }
+}
+
+// The first fit of the motion model: each drive's friction from the force
+// balance where it matters (the clearance's force signs, the backlash's
+// flanks) and the samples allow it; the friction's speed and scale chosen by
+// the model test where it can judge them, else one fit.
 void fit_motion(MotionStage& m, const CalibrationInputs& in, bool in_motion) {
+  const bool load_matters = m.motion.clearance || std::ranges::any_of(in.drive_candidates.backlash, std::identity{});
+  if (in_motion && in.drive_friction.from_balance && load_matters && m.t_s.size() == m.tau.size())
+    friction_from_balance(m, in);
   const bool fit_speed = in_motion && m.motion.friction && m.sigma > 0.0;
-  if (fit_speed) choose_speed(m, "the stated friction", nullptr);
+  if (fit_speed) choose_speed(m, m.balance_taken > 0 ? "the friction measured" : "the stated friction", nullptr);
   if (m.motion.clearance && in.drive_friction.fit_scale && m.sigma > 0.0) {
     // The factor 1 is the stated friction: the speed profile's fit when it was made.
     choose_friction_scale(m, fit_speed ? &m.fit : nullptr);
@@ -301,17 +366,20 @@ CalibrationOutcome motion_outcome(MotionStage&& m, const calib::ReadingModel& st
   out.result = m.fit.result;
   out.used = m.fit.corrected;
   std::vector<std::string>& notes = out.result.notes;
+  if (!m.balance_note.empty()) notes.push_back(m.balance_note);
   if (!m.speed_note.empty()) notes.push_back(m.speed_note);
   if (!m.friction_note.empty() && m.motion.clearance) notes.push_back(m.friction_note);
   // For the monitor of the operation (run/monitor_run.hpp reading_model_after_calibration).
   out.reading = estimated_reading_model(stated, m.fit, m.motion, m.motion.clearance || !m.clearance_dropped.empty(),
-                                        !m.friction_note.empty() && m.motion.clearance);
+                                        (!m.friction_note.empty() && m.motion.clearance) ||
+                                            m.balance_taken > 0);
   if (!m.clearance_dropped.empty()) notes.push_back(m.clearance_dropped);
   if (!m.before_dropped.empty()) notes.push_back(m.before_dropped);
   for (const std::string& note : m.drive_notes) notes.push_back(note);
   const std::size_t n = m.problem.theta_m.size();
   if (m.fit.kept.size() < n) notes.push_back(samples_used_note(m.fit, n, m.motion.skip_first));
   estimate_notes(m, notes);
+  out.friction_balance = m.balance;
   out.fit = std::move(m.fit);
   out.motion = std::move(m.motion);
   out.omega = std::move(m.omega);
@@ -382,7 +450,7 @@ CalibrationOutcome calibrate_samples(const SampleSeries& samples, const Calibrat
 
 calib::ReadingModel estimated_reading_model(calib::ReadingModel r, const calib::MotionFit& f,
                                             const calib::MotionModel& motion, bool play_looked_for,
-                                            bool friction_scaled) {
+                                            bool friction_measured) {
   const auto estimated = [](double sd) { return std::isfinite(sd) && sd > 0.0; };
   if (estimated(f.nu_sigma[0]) || estimated(f.nu_sigma[1])) r.skew_s = {0.0, f.nu[0], f.nu[1]};
   for (std::size_t i = 0; i < 3; ++i) {
@@ -390,7 +458,7 @@ calib::ReadingModel estimated_reading_model(calib::ReadingModel r, const calib::
     if (play_looked_for) r.clearance_mm[i] = std::max(0.0, f.clearance[i]);
     if (estimated(f.backlash_sigma[i])) r.backlash_rad[i] = std::max(0.0, f.backlash[i]);
   }
-  if (friction_scaled) {
+  if (friction_measured) {
     r.load.coulomb_Nm = motion.load.coulomb_Nm;
     r.load.viscous_Nm_s = motion.load.viscous_Nm_s;
   }

@@ -22,6 +22,7 @@
 #include <Eigen/Core>
 
 #include "calib/calibrate.hpp"
+#include "calib/friction_balance.hpp"
 #include "calib/model_test.hpp"
 #include "calib/motion_correction.hpp"
 #include "run/calibration_inputs.hpp"
@@ -84,6 +85,9 @@ struct CalibrationOutcome {
   // With effects: the monitor's stated reading model (CalibrationInputs::monitor)
   // with the estimates in place of the stated values.
   std::optional<calib::ReadingModel> reading;
+  // On the fly: each drive's friction from the hub's force balance, before
+  // the model test's scale (none: not made, or the samples did not allow it).
+  std::optional<calib::BalanceFriction> friction_balance;
 };
 
 // The calibration of samples with inputs (motion model, stated friction) and
@@ -96,12 +100,12 @@ CalibrationOutcome calibrate_samples(const SampleSeries& samples, const Calibrat
 // The reading model r (stated) with the estimates of fit in place: skew and
 // compliance where estimated (a compliance or backlash fitted below 0, within
 // its noise of none, is none), the passive links' play where it was looked
-// for (play_looked_for), the drives' friction of motion where the model test
-// scaled it (friction_scaled), the drive-train harmonics fit estimated (0
+// for (play_looked_for), the drives' friction of motion where the data gave
+// it (friction_measured: the force balance, or the model test's scale), the drive-train harmonics fit estimated (0
 // elsewhere) and the gear ratio of motion.
 calib::ReadingModel estimated_reading_model(calib::ReadingModel r, const calib::MotionFit& fit,
                                             const calib::MotionModel& motion, bool play_looked_for,
-                                            bool friction_scaled);
+                                            bool friction_measured);
 
 // The series of a samples file: readings, times, and as the twist's torque
 // tau_last where the file has it (samples on the fly), else tau.

@@ -88,6 +88,7 @@ void judge_monitor(const MonitorOutcome& m, PopulationRobot& r) {
 
 PopulationRobot robot_of(const RunOutcome& o, PopulationRobot r) {
   r.plan_deviation_mm = o.plan_deviation_mm;
+  r.friction_balance = o.friction_balance;
   if (!o.calibration) return failed_robot(r, o.refused.value_or("no calibration"));
   if (!o.calibration->converged) return failed_robot(r, "calibration did not converge");
   r.calibrated_static_um = o.after ? o.after->static_rms_um : NAN;
@@ -307,6 +308,11 @@ nlohmann::json robot_json(const PopulationRobot& r) {
   j["parameters"] = params;
   j["within_3_sigma"] = r.within_3_sigma;
   j["estimated"] = r.estimated;
+  if (r.friction_balance)  // beside the twin's truth in effects (the viscous friction there is the model's 0.05 less)
+    j["friction_balance"] = {{"coulomb_Nm", r.friction_balance->coulomb_Nm},
+                             {"viscous_Nm_s", r.friction_balance->viscous_Nm_s},
+                             {"coulomb_sigma_Nm", r.friction_balance->coulomb_sigma_Nm},
+                             {"viscous_sigma_Nm_s", r.friction_balance->viscous_sigma_Nm_s}};
   if (r.monitored)
     j["monitor"] = {{"learning_s", number(r.learning_s)},
                     {"learned_scale", number(r.learned_scale)},

@@ -16,6 +16,7 @@
 #include <string>
 #include <vector>
 
+#include "calib/friction_balance.hpp"
 #include "calib/positioning_error.hpp"
 #include "models/parameters.hpp"
 #include "report/population_report.hpp"
@@ -57,6 +58,7 @@ struct PopulationRobot {
   std::string detection;          // that alarm's explanation
   int alarms_after_event = 0;     // every alarm from the event on (the detection among them)
   double plan_deviation_mm = NAN;  // farthest from its sampling path's plan, every pass (NaN: not known)
+  std::optional<calib::BalanceFriction> friction_balance;  // each drive's friction as the calibration found it
   double seconds = 0.0;
 };
 

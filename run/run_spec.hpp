@@ -33,6 +33,11 @@ struct DriveFriction {
   // the same 0.87x the floor; with the stated values as they are, 1.14x,
   // 0.98x, 3.74x).
   bool fit_scale = true;
+  // Each drive's Coulomb and viscous friction estimated before the fit from
+  // the hub's force balance on the drives' torques (calib/friction_balance.hpp;
+  // on the fly, where the samples carry torques and times): the stated values
+  // are then only the fallback, and fit_scale walks from the estimates.
+  bool from_balance = true;
 };
 
 // The drives' friction a data sheet states (the default of

@@ -353,6 +353,7 @@ void take_motion_fit(RunOutcome& o, const CalibrationOutcome& c, const FreeMask&
   o.motion_nu = c.fit.nu;
   o.motion_nu_sigma = c.fit.nu_sigma;
   o.reading_estimated = c.reading;
+  o.friction_balance = c.friction_balance;
   const double sigma = o.crb_sigma_rad;
   if ((c.motion.clearance || c.motion.cyclic_prior_rad > 0.0) && sigma > 0.0) {
     o.crb = scaled_bound(

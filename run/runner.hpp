@@ -12,6 +12,7 @@
 #include <string>
 #include <vector>
 
+#include "calib/friction_balance.hpp"
 #include "calib/model_test.hpp"
 #include "calib/positioning_error.hpp"
 #include "calib/problem.hpp"
@@ -72,6 +73,8 @@ struct RunOutcome {
   // The reading model the calibration estimated (the monitor's statement
   // with the estimates in place; run/calibration_procedure.hpp).
   std::optional<calib::ReadingModel> reading_estimated;
+  // Each drive's friction the calibration found from the hub's force balance (on the fly).
+  std::optional<calib::BalanceFriction> friction_balance;
   std::optional<FirstPass> first_pass;     // the path ended early once and was sampled again
   // The twin's truth (in process only, else NaN): the farthest its end-effector
   // went from the plan over the sampling, every pass and retreat (mm).

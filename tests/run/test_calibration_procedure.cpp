@@ -7,6 +7,9 @@
 // instant by their read times (t_read1..3), which the latch skew otherwise takes up.
 #include "run/calibration_procedure.hpp"
 
+#include <algorithm>
+#include <fstream>
+#include <iterator>
 #include <limits>
 
 #include <gtest/gtest.h>
@@ -74,11 +77,13 @@ TEST(CalibrationProcedure, EstimatedReadingModelTakesTheEstimatesWhereMade) {
 }
 
 // defaults): the robot file's data sheet, no scenario.
-CalibrationOutcome calibrate_file(const Samples& s, bool static_model = false) {
+// friction_from_balance false: the data sheet's friction, not the force balance's.
+CalibrationOutcome calibrate_file(const Samples& s, bool static_model = false, bool friction_from_balance = true) {
   const Robot robot = load_robot(std::string(GPM_SOURCE_DIR) + "/models/gpm2002.yaml");
   calib::MethodOptions mo;
-  const FileProcedure p = samples_file_procedure(s, robot, robot.geometry, ~parse_param_list("xa1,ya1,xa2,ya2", "--fix"),
-                                                 mo, std::nullopt, static_model);
+  FileProcedure p = samples_file_procedure(s, robot, robot.geometry, ~parse_param_list("xa1,ya1,xa2,ya2", "--fix"), mo,
+                                           std::nullopt, static_model);
+  p.inputs.drive_friction.from_balance = friction_from_balance;
   EXPECT_EQ(p.options.in_motion, !static_model && taken_on_the_fly(s));
   return calibrate_samples(sample_series(s), p.inputs, p.options);
 }
@@ -100,6 +105,41 @@ TEST(CalibrationProcedure, SamplesFileGivesTheRunsResultBitForBit) {
   EXPECT_EQ(c.model_test->passed, o.model_test->passed);
   EXPECT_EQ(c.result.notes, o.calibration->notes);
   EXPECT_EQ(c.fit.nu, o.motion_nu);
+}
+
+// The small run on a twin whose drives' friction differs per joint and from
+// the data sheet's 0.3 N m (Coulomb; viscous: the model's 0.05 N m s/rad
+// plus the effect's), calibrated from its samples.csv as gpm calibrate does:
+// the force balance finds each drive's friction, closer than the data sheet
+// (on 20 drawn robots it read 0.6 N m as 0.47-0.52: within 25 %), and the
+// notes say so.
+TEST(CalibrationProcedure, TheForceBalanceFindsEachDrivesFrictionOnTheTwin) {
+  std::ifstream file(kSmall);
+  std::string text((std::istreambuf_iterator<char>(file)), std::istreambuf_iterator<char>());
+  const std::array<double, 3> coulomb{0.15, 0.3, 0.6}, viscous{0.25, 0.1, 0.15};
+  const std::string realistic = "effects: realistic";
+  text.replace(text.find(realistic), realistic.size(),
+               "effects: {preset: realistic, coulomb_friction_Nm: [0.15, 0.3, 0.6], viscous_friction_Nm_s: [0.2, 0.05, 0.1]}");
+  const RunOutcome o = run_scenario(parse_run_spec(text, kSmall, std::string(GPM_SOURCE_DIR) + "/tests/fixtures"), kSmall);
+  const CalibrationOutcome c = calibrate_file(parse_samples_csv(sim::samples_csv(o.sim.samples), "samples.csv"));
+  ASSERT_TRUE(c.friction_balance);
+  const calib::BalanceFriction& f = *c.friction_balance;
+  for (std::size_t i = 0; i < 3; ++i) {
+    EXPECT_NEAR(f.coulomb_Nm[i], coulomb[i], 0.25 * coulomb[i]) << "joint " << i + 1;
+    EXPECT_NEAR(f.viscous_Nm_s[i], viscous[i], 0.1) << "joint " << i + 1;
+  }
+  EXPECT_LT(std::abs(f.coulomb_Nm[0] - coulomb[0]), 0.3 - coulomb[0]);  // the data sheet's 0.3 N m is farther
+  EXPECT_LT(std::abs(f.coulomb_Nm[2] - coulomb[2]), coulomb[2] - 0.3);
+  // Joints 1 and 3 contradict the data sheet: their friction is the
+  // balance's (times the model test's one factor), joint 2's may stay stated.
+  const std::array<double, 3>& used = c.motion.load.coulomb_Nm;
+  EXPECT_NEAR(used[0] / f.coulomb_Nm[0], used[2] / f.coulomb_Nm[2], 1e-12);
+  const auto note = std::ranges::find_if(c.result.notes, [](const std::string& n) {
+    return n.starts_with("drive friction per joint from the hub's force balance");
+  });
+  ASSERT_NE(note, c.result.notes.end());
+  EXPECT_TRUE(note->find("Coulomb of joints 1, 3,") != std::string::npos ||
+              note->find("Coulomb of joints 1, 2, 3,") != std::string::npos) << *note;
 }
 
 TEST(CalibrationProcedure, WithoutTimesAndTorquesTheStaticFitAndItsModelTest) {
@@ -157,10 +197,15 @@ TEST(CalibrationProcedure, ReadingsPolledInTurnAreCarriedToJointOnesInstant) {
   polled.theta_m.pop_back(), polled.id.pop_back(), polled.t.pop_back(), polled.tau.pop_back();
   polled.tau_last.pop_back(), polled.tau_between.pop_back();
   if (polled.has_xy) polled.xy.pop_back();
-  const CalibrationOutcome base = calibrate_file(s), carried = calibrate_file(polled);
+  // The friction as the data sheet states it in all three: the force balance
+  // of readings interpolated between samples comes out a little different
+  // (its residuals no longer show the encoders' step), which on this robot
+  // tips the choice of the friction's speed and of a drive-train harmonic,
+  // and those move the skew; this test is about the read times.
+  const CalibrationOutcome base = calibrate_file(s, false, false), carried = calibrate_file(polled, false, false);
   Samples unlabelled = polled;
   unlabelled.t_read.clear();
-  const CalibrationOutcome skewed = calibrate_file(unlabelled);
+  const CalibrationOutcome skewed = calibrate_file(unlabelled, false, false);
   ASSERT_TRUE(base.with_effects && carried.with_effects && skewed.with_effects);
   // The readings interpolated between samples carry the error of a straight
   // line through the path's curvature: the skews carried back land within

@@ -1,0 +1,70 @@
+#!/usr/bin/env bash
+# What each drive's friction from the hub's force balance gives the main job:
+# the same robots of scenarios/main.yaml (same seeds, same draws) calibrated
+# with calibration.drive_friction.from_balance false (the data sheet's one
+# value, scaled by the model test) and true (the default), for three kinds of
+# robot: the basic set of effects (every drive-train and motor-encoder effect
+# beyond it off, as scripts/study_effect_budget.sh's "basic set only"), every
+# effect drawn (effects: randomized) and the realistic preset's effects with
+# drawn geometry. Also how far the balance's friction lies from each robot's
+# (population.json: friction_balance against effects). Writes
+# DIR/friction_balance.md.
+#   bash scripts/study_friction_balance.sh [DIR] [COUNT] [FIRST_SEED]
+#   (default out/friction_balance, 20 robots from seed 20000: about 5 minutes on 2 idle cores)
+set -euo pipefail
+cd "$(dirname "$0")/.."
+out=${1:-out/friction_balance}
+count=${2:-20}
+first=${3:-20000}
+gpm=${GPM:-./build/app/gpm}
+[[ -x $gpm ]] || bash scripts/build.sh
+mkdir -p "$out"
+seeds=$(seq -s, "$first" $((first + count - 1)))
+robot=$(realpath models/gpm2002.yaml)
+basic="backlash_rad: 0, drive_hysteresis_rad: 0, transmission_error_joint_rad: 0, transmission_error_motor_rad: 0,\
+ stiction_excess_Nm: 0, friction_load_coefficient: 0, torque_constant_delta: 0, cogging_Nm: 0,\
+ hub_pin_offset_um: [[0, 0], [0, 0], [0, 0]], encoder_jitter_s: 0"
+declare -A effects=([basic]="{preset: randomized, $basic}" [randomized]="randomized" [preset]="realistic")
+kinds=(basic randomized preset)
+for kind in "${kinds[@]}"; do
+  for balance in false true; do
+    f=$out/${kind}_$balance.yaml
+    sed -e "s|^robot: .*|robot: $robot|" -e "s|^effects: .*|effects: ${effects[$kind]}|" -e '/^expect:/,$d' \
+        -e "s|^calibration: {\(.*\)}$|calibration: {\1, drive_friction: {from_balance: $balance}}|" scenarios/main.yaml > "$f"
+    grep -q "from_balance: $balance" "$f"
+    echo "study friction balance: $kind effects, from_balance $balance" >&2
+    "$gpm" study population "$f" --keep-effects --seeds "$seeds" -o "$out/${kind}_$balance" --progress none > "$out/${kind}_$balance.log"
+  done
+done
+/usr/bin/python3 - "$out" "$count" "$first" "${kinds[@]}" <<'PY'
+import json, statistics, sys
+out, count, first, kinds = sys.argv[1], int(sys.argv[2]), int(sys.argv[3]), sys.argv[4:]
+MODEL_DAMPING = 0.05  # N m s/rad the model has before the effects' viscous friction (sim MjcfOptions)
+label = {'basic': 'the basic set', 'randomized': 'every effect drawn', 'preset': 'the `realistic` preset'}
+lines = [f"{count} robots of `scenarios/main.yaml` each (seeds {first}..{first + count - 1}); "
+         "`bash scripts/study_friction_balance.sh`. Before -> after: `drive_friction.from_balance` false -> true.", "",
+         "| robots' effects | positioning RMS median (um) | worst robot (um) | parameters within 3 sigma | worst parameter (sigma) | "
+         "robots better / worse | Coulomb friction error, median / worst (N m): data sheet -> balance |",
+         "| --- | ---: | ---: | ---: | ---: | ---: | ---: |"]
+for kind in kinds:
+    a, b = (json.load(open(f"{out}/{kind}_{x}/population.json")) for x in ("false", "true"))
+    sa, sb = a["summary"], b["summary"]
+    ra = {r["seed"]: r["positioning_um"]["rms"] for r in a["robots"] if r["failure"] is None}
+    rb = {r["seed"]: r["positioning_um"]["rms"] for r in b["robots"] if r["failure"] is None}
+    better = sum(1 for s in ra if s in rb and rb[s] < ra[s])
+    worse = sum(1 for s in ra if s in rb and rb[s] > ra[s])
+    sheet, found = [], []
+    for r in b["robots"]:
+        truth = r["effects"]["coulomb_friction_Nm"]
+        sheet += [abs(0.3 - t) for t in truth]
+        if "friction_balance" in r:
+            found += [abs(f - t) for f, t in zip(r["friction_balance"]["coulomb_Nm"], truth)]
+    fr = (f"{statistics.median(sheet):.3f} / {max(sheet):.2f} -> {statistics.median(found):.3f} / {max(found):.2f}"
+          if found else "-")
+    lines.append(f"| {label[kind]} | {sa['positioning_median_um']:.1f} -> {sb['positioning_median_um']:.1f} | "
+                 f"{sa['positioning_max_um']:.0f} -> {sb['positioning_max_um']:.0f} | "
+                 f"{100 * sa['within_3_sigma_fraction']:.0f} -> {100 * sb['within_3_sigma_fraction']:.0f} % | "
+                 f"{sa['worst_sigma_ratio']:.1f} -> {sb['worst_sigma_ratio']:.1f} | {better} / {worse} | {fr} |")
+open(f"{out}/friction_balance.md", "w").write("\n".join(lines) + "\n")
+print("\n".join(lines))
+PY
