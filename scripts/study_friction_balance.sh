@@ -8,7 +8,8 @@
 # effect drawn (effects: randomized) and the realistic preset's effects with
 # drawn geometry. Also how far the balance's friction lies from each robot's
 # (population.json: friction_balance against effects). Writes
-# DIR/friction_balance.md.
+# DIR/friction_balance.md. A study already in DIR (its population.json) is
+# kept: remove DIR to measure again.
 #   bash scripts/study_friction_balance.sh [DIR] [COUNT] [FIRST_SEED]
 #   (default out/friction_balance, 20 robots from seed 20000: about 5 minutes on 2 idle cores)
 set -euo pipefail
@@ -32,6 +33,7 @@ for kind in "${kinds[@]}"; do
     sed -e "s|^robot: .*|robot: $robot|" -e "s|^effects: .*|effects: ${effects[$kind]}|" -e '/^expect:/,$d' \
         -e "s|^calibration: {\(.*\)}$|calibration: {\1, drive_friction: {from_balance: $balance}}|" scenarios/main.yaml > "$f"
     grep -q "from_balance: $balance" "$f"
+    [[ -f $out/${kind}_$balance/population.json ]] && continue
     echo "study friction balance: $kind effects, from_balance $balance" >&2
     "$gpm" study population "$f" --keep-effects --seeds "$seeds" -o "$out/${kind}_$balance" --progress none > "$out/${kind}_$balance.log"
   done
@@ -44,8 +46,9 @@ label = {'basic': 'the basic set', 'randomized': 'every effect drawn', 'preset':
 lines = [f"{count} robots of `scenarios/main.yaml` each (seeds {first}..{first + count - 1}); "
          "`bash scripts/study_friction_balance.sh`. Before -> after: `drive_friction.from_balance` false -> true.", "",
          "| robots' effects | positioning RMS median (um) | worst robot (um) | parameters within 3 sigma | worst parameter (sigma) | "
-         "robots better / worse | Coulomb friction error, median / worst (N m): data sheet -> balance |",
-         "| --- | ---: | ---: | ---: | ---: | ---: | ---: |"]
+         "robots better / worse | Coulomb friction error, median / worst (N m): data sheet -> balance | "
+         "viscous friction error (N m s/rad), likewise |",
+         "| --- | ---: | ---: | ---: | ---: | ---: | ---: | ---: |"]
 for kind in kinds:
     a, b = (json.load(open(f"{out}/{kind}_{x}/population.json")) for x in ("false", "true"))
     sa, sb = a["summary"], b["summary"]
@@ -53,14 +56,17 @@ for kind in kinds:
     rb = {r["seed"]: r["positioning_um"]["rms"] for r in b["robots"] if r["failure"] is None}
     better = sum(1 for s in ra if s in rb and rb[s] < ra[s])
     worse = sum(1 for s in ra if s in rb and rb[s] > ra[s])
-    sheet, found = [], []
-    for r in b["robots"]:
-        truth = r["effects"]["coulomb_friction_Nm"]
-        sheet += [abs(0.3 - t) for t in truth]
-        if "friction_balance" in r:
-            found += [abs(f - t) for f, t in zip(r["friction_balance"]["coulomb_Nm"], truth)]
-    fr = (f"{statistics.median(sheet):.3f} / {max(sheet):.2f} -> {statistics.median(found):.3f} / {max(found):.2f}"
-          if found else "-")
+    def errors(key, truth_key, stated, offset):
+        sheet, found = [], []
+        for r in b["robots"]:
+            truth = [t + offset for t in r["effects"][truth_key]]
+            sheet += [abs(stated - t) for t in truth]
+            if "friction_balance" in r:
+                found += [abs(f - t) for f, t in zip(r["friction_balance"][key], truth)]
+        return (f"{statistics.median(sheet):.3f} / {max(sheet):.2f} -> {statistics.median(found):.3f} / {max(found):.2f}"
+                if found else "-")
+    fr = errors("coulomb_Nm", "coulomb_friction_Nm", 0.3, 0.0) + " | " + \
+         errors("viscous_Nm_s", "viscous_friction_Nm_s", 0.15, MODEL_DAMPING)
     lines.append(f"| {label[kind]} | {sa['positioning_median_um']:.1f} -> {sb['positioning_median_um']:.1f} | "
                  f"{sa['positioning_max_um']:.0f} -> {sb['positioning_max_um']:.0f} | "
                  f"{100 * sa['within_3_sigma_fraction']:.0f} -> {100 * sb['within_3_sigma_fraction']:.0f} % | "
