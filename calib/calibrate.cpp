@@ -48,10 +48,9 @@ Result robust_lm(const Problem& problem, LmOptions lm, const RobustLoss& loss) {
     std::vector<double> a;
     for (const Eigen::Vector3d& t : problem.theta_m) {
       const Eigen::VectorXd r = sample_residuals(lm.cost, t, first.geometry);
-      for (Eigen::Index k = 0; k < r.size(); ++k) a.push_back(std::abs(r[k]));
+      a.insert(a.end(), r.begin(), r.end());
     }
-    std::nth_element(a.begin(), a.begin() + static_cast<std::ptrdiff_t>(a.size() / 2), a.end());
-    sigma = 1.4826 * a[a.size() / 2];
+    sigma = robust_sigma(std::move(a));
     if (!(sigma > 0.0)) return first;  // exact data: nothing to be robust against
   }
   lm.loss.scale = tuning * sigma;

@@ -8,6 +8,7 @@
 #include <fmt/format.h>
 
 #include "calib/reading_rates.hpp"
+#include "calib/robust_loss.hpp"
 #include "models/errors.hpp"
 #include "models/kinematics.hpp"
 
@@ -15,7 +16,6 @@ namespace gpm::calib {
 namespace {
 
 constexpr int kColumns = 6;             // F1 F2 F3 b1 b2 b3
-constexpr double kHuber = 1.345;        // Huber's tuning (95 % efficiency under Gaussian residuals)
 constexpr int kReweightings = 8;        // IRLS passes
 constexpr std::size_t kBlocks = 10;     // the jackknife's stretches of the path
 constexpr std::size_t kMinSamples = 20 * kBlocks;
@@ -35,7 +35,6 @@ bool sample_rows(const Geometry& g, const BalanceSamples& s, const TransmissionL
   const Eigen::Vector3d theta_a = active_from_readings(g, s.theta_m[j]);
   const std::optional<ForwardResult> fk = forward_kinematics(g, theta_a);
   if (!fk) return false;
-  const double v = load.friction_speed_rad_s;
   for (int k = 0; k < 2; ++k) {
     out.coef[k].setZero();
     out.rhs[k] = -hub_mass_kg * s.hub_accel_m_s2[j][k];
@@ -46,7 +45,7 @@ bool sample_rows(const Geometry& g, const BalanceSamples& s, const TransmissionL
     if (std::abs(S) < min_sin) return false;
     const double la_S = 1e-3 * g.la_(i) * S;
     const double omega = s.omega[j][i];
-    const double sgn = v > 0.0 ? std::tanh(omega / v) : (omega > 0.0 ? 1.0 : (omega < 0.0 ? -1.0 : 0.0));
+    const double sgn = friction_sign(load, omega);
     const double tau_net = s.tau[j][i] - load.inertia_kg_m2[ii] * s.alpha[j][i];
     const Eigen::Vector2d u(std::cos(fk->theta_b[i]), std::sin(fk->theta_b[i]));
     for (int k = 0; k < 2; ++k) {
@@ -76,22 +75,19 @@ NormalEquations normal_equations(const std::vector<SampleRows>& rows, const std:
   return ne;
 }
 
-// The median of the absolute values of r (r reordered).
-double median_abs(std::vector<double>& r) {
-  for (double& x : r) x = std::abs(x);
-  const auto mid = r.begin() + static_cast<std::ptrdiff_t>(r.size() / 2);
-  std::nth_element(r.begin(), mid, r.end());
-  return *mid;
-}
-
-// Huber's weights w of the rows' residuals at x, at a scale from their MAD.
-void reweight(const std::vector<SampleRows>& rows, const Row& x, std::vector<double>& w) {
+// The rows' residuals y - M x (N), two a sample.
+std::vector<double> residuals(const std::vector<SampleRows>& rows, const Row& x) {
   std::vector<double> res(2 * rows.size());
   for (std::size_t q = 0; q < rows.size(); ++q)
     for (int k = 0; k < 2; ++k) res[2 * q + static_cast<std::size_t>(k)] = rows[q].rhs[k] - rows[q].coef[k].dot(x);
-  std::vector<double> abs_res = res;
-  const double scale = std::max(1.4826 * median_abs(abs_res), 1e-12);
-  for (std::size_t q = 0; q < res.size(); ++q) w[q] = std::min(1.0, kHuber * scale / std::max(std::abs(res[q]), 1e-300));
+  return res;
+}
+
+// Huber's weights w of the rows' residuals at x (95 % efficiency tuning), at their robust sigma.
+void reweight(const std::vector<SampleRows>& rows, const Row& x, std::vector<double>& w) {
+  const std::vector<double> res = residuals(rows, x);
+  const double scale = default_tuning(LossKind::kHuber) * std::max(robust_sigma(res), 1e-12);
+  for (std::size_t q = 0; q < res.size(); ++q) w[q] = std::min(1.0, scale / std::max(std::abs(res[q]), 1e-300));
 }
 
 // The variance of the estimate by the delete-a-block jackknife over kBlocks
@@ -156,8 +152,7 @@ BalanceFriction friction_from_force_balance(const Geometry& g, const BalanceSamp
   x = all.N.ldlt().solve(all.b);
   const Row var = jackknife_variance(rows, w, all);
   double sum_sq = 0.0;
-  for (std::size_t q = 0; q < rows.size(); ++q)
-    for (int k = 0; k < 2; ++k) sum_sq += std::pow(rows[q].rhs[k] - rows[q].coef[k].dot(x), 2);
+  for (const double r : residuals(rows, x)) sum_sq += r * r;
   BalanceFriction out;
   for (std::size_t i = 0; i < 3; ++i) {
     const auto c = static_cast<Eigen::Index>(i);

@@ -5,17 +5,20 @@
 
 namespace gpm::calib {
 
+double friction_sign(const TransmissionLoad& load, double omega) {
+  const double v = load.friction_speed_rad_s;
+  return v > 0.0 ? std::tanh(omega / v) : (omega > 0.0 ? 1.0 : (omega < 0.0 ? -1.0 : 0.0));
+}
+
 double transmitted_torque(const TransmissionLoad& load, int i, double tau, double omega, double alpha) {
   const auto k = static_cast<std::size_t>(i);
-  const double v = load.friction_speed_rad_s;
-  const double sign = v > 0.0 ? std::tanh(omega / v) : (omega > 0.0 ? 1.0 : (omega < 0.0 ? -1.0 : 0.0));
+  const double sign = friction_sign(load, omega);
   return tau - load.coulomb_Nm[k] * sign - load.viscous_Nm_s[k] * omega - load.inertia_kg_m2[k] * alpha;
 }
 
 double mesh_torque(const TransmissionLoad& load, int i, double tau, double omega, double alpha) {
   const auto k = static_cast<std::size_t>(i);
-  const double v = load.friction_speed_rad_s;
-  const double sign = v > 0.0 ? std::tanh(omega / v) : (omega > 0.0 ? 1.0 : (omega < 0.0 ? -1.0 : 0.0));
+  const double sign = friction_sign(load, omega);
   return tau - load.coulomb_Nm[k] * sign - load.viscous_Nm_s[k] * omega - load.rotor_inertia_kg_m2[k] * alpha;
 }
 

@@ -51,6 +51,10 @@ struct TransmissionLoad {
                                                  // 0: F_i sign(omega_i)
 };
 
+// The friction's direction at joint speed omega (rad/s): tanh(omega / v_F)
+// with load's friction speed v_F, or sign(omega) where v_F is 0.
+double friction_sign(const TransmissionLoad& load, double omega);
+
 // The torque transmitted to active link i (N m) at drive torque tau (N m),
 // joint speed omega (rad/s) and acceleration alpha (rad/s^2).
 double transmitted_torque(const TransmissionLoad& load, int i, double tau, double omega, double alpha);

@@ -1,6 +1,7 @@
 // Robust losses for the calibration (calib/robust_loss.hpp).
 #include "calib/robust_loss.hpp"
 
+#include <algorithm>
 #include <cmath>
 #include <vector>
 
@@ -99,6 +100,14 @@ RobustLoss parse_loss(std::string_view text, std::string_view where) {
     loss.scale = check_bound(v, limits::kLossScale, fmt::format("{}: scale of '{}'", where, t), num);
   }
   return loss;
+}
+
+double robust_sigma(std::vector<double> r) {
+  if (r.empty()) return 0.0;
+  for (double& x : r) x = std::abs(x);
+  const auto mid = r.begin() + static_cast<std::ptrdiff_t>(r.size() / 2);
+  std::nth_element(r.begin(), mid, r.end());
+  return 1.4826 * *mid;
 }
 
 double default_tuning(LossKind kind) {

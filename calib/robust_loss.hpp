@@ -18,6 +18,7 @@
 #include <memory>
 #include <string>
 #include <string_view>
+#include <vector>
 
 #include <Eigen/Core>
 
@@ -46,6 +47,11 @@ RobustLoss parse_loss(std::string_view text, std::string_view where = "--loss");
 // Scale in units of the noise sigma for 95 % efficiency under Gaussian
 // noise: 2.385 (Cauchy), 1.345 (Huber); 0 for plain.
 double default_tuning(LossKind kind);
+
+// The noise 1-sigma of residuals r robustly: 1.4826 x the median of |r|
+// (the median absolute deviation of residuals centred on 0, scaled to a
+// Gaussian's sigma); 0 for none. r is reordered.
+double robust_sigma(std::vector<double> r);
 
 // "plain", "cauchy:0.0001", ... (for reports).
 std::string loss_name(const RobustLoss& loss);

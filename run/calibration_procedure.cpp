@@ -252,8 +252,7 @@ void friction_from_balance(MotionStage& m, const CalibrationInputs& in) {
 // the model test where it can judge them, else one fit.
 void fit_motion(MotionStage& m, const CalibrationInputs& in, bool in_motion) {
   const bool load_matters = m.motion.clearance || std::ranges::any_of(in.drive_candidates.backlash, std::identity{});
-  if (in_motion && in.drive_friction.from_balance && load_matters && m.t_s.size() == m.tau.size())
-    friction_from_balance(m, in);
+  if (in_motion && in.drive_friction.from_balance && load_matters) friction_from_balance(m, in);
   const bool fit_speed = in_motion && m.motion.friction && m.sigma > 0.0;
   if (fit_speed) choose_speed(m, m.balance_taken > 0 ? "the friction measured" : "the stated friction", nullptr);
   if (m.motion.clearance && in.drive_friction.fit_scale && m.sigma > 0.0) {

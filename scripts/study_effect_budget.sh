@@ -24,26 +24,8 @@ mkdir -p "$out"
 seeds=$(seq -s, "$first" $((first + count - 1)))
 robot=$(realpath models/gpm2002.yaml)
 
-# The effects beyond the basic set, each as the `effects:` key that turns it off.
-names=(backlash hysteresis te_joint te_motor stiction load_friction torque_constant cogging hub_pins jitter)
-declare -A off=(
-  [backlash]="backlash_rad: 0"
-  [hysteresis]="drive_hysteresis_rad: 0"
-  [te_joint]="transmission_error_joint_rad: 0"
-  [te_motor]="transmission_error_motor_rad: 0"
-  [stiction]="stiction_excess_Nm: 0"
-  [load_friction]="friction_load_coefficient: 0"
-  [torque_constant]="torque_constant_delta: 0"
-  [cogging]="cogging_Nm: 0"
-  [hub_pins]="hub_pin_offset_um: [[0, 0], [0, 0], [0, 0]]"
-  [jitter]="encoder_jitter_s: 0"
-)
-# The keys that turn off every named effect except $1 (none: all of them).
-all_off_but() {
-  local keys="" n
-  for n in "${names[@]}"; do [[ $n == "$1" ]] || keys+="${keys:+, }${off[$n]}"; done
-  echo "$keys"
-}
+# The effects beyond the basic set (names, off, all_off_but).
+source scripts/effects_beyond_basic.sh
 # Runs row $1 with the effects keys $2 (after `preset: randomized`).
 row() {
   local name=$1 keys=$2 f=$out/$1.yaml

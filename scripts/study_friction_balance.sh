@@ -22,10 +22,8 @@ gpm=${GPM:-./build/app/gpm}
 mkdir -p "$out"
 seeds=$(seq -s, "$first" $((first + count - 1)))
 robot=$(realpath models/gpm2002.yaml)
-basic="backlash_rad: 0, drive_hysteresis_rad: 0, transmission_error_joint_rad: 0, transmission_error_motor_rad: 0,\
- stiction_excess_Nm: 0, friction_load_coefficient: 0, torque_constant_delta: 0, cogging_Nm: 0,\
- hub_pin_offset_um: [[0, 0], [0, 0], [0, 0]], encoder_jitter_s: 0"
-declare -A effects=([basic]="{preset: randomized, $basic}" [randomized]="randomized" [preset]="realistic")
+source scripts/effects_beyond_basic.sh
+declare -A effects=([basic]="{preset: randomized, $(all_off_but none)}" [randomized]="randomized" [preset]="realistic")
 kinds=(basic randomized preset)
 for kind in "${kinds[@]}"; do
   for balance in false true; do
