@@ -3,6 +3,7 @@
 
 #include <array>
 #include <cmath>
+#include <utility>
 
 #include <fmt/format.h>
 
@@ -50,16 +51,21 @@ std::array<bool, 3> tellable_backlash(const MotionModel& model, const std::vecto
 
 // Every candidate effect of `candidates` added to `model`.
 MotionModel with_candidates(MotionModel model, const MotionModel& candidates) {
+  model = with_harmonic_candidates(std::move(model), candidates);
+  for (std::size_t i = 0; i < 3; ++i) model.backlash[i] = model.backlash[i] || candidates.backlash[i];
+  return model;
+}
+
+}  // namespace
+
+MotionModel with_harmonic_candidates(MotionModel model, const MotionModel& candidates) {
   for (std::size_t i = 0; i < 3; ++i) {
-    model.backlash[i] = model.backlash[i] || candidates.backlash[i];
     model.joint_harmonic[i] = model.joint_harmonic[i] || candidates.joint_harmonic[i];
     model.motor_harmonic1[i] = model.motor_harmonic1[i] || candidates.motor_harmonic1[i];
     model.motor_harmonic2[i] = model.motor_harmonic2[i] || candidates.motor_harmonic2[i];
   }
   return model;
 }
-
-}  // namespace
 
 DriveEffectSelection select_drive_effects(const Problem& problem, const std::vector<Eigen::Vector3d>& omega,
                                           const std::vector<Eigen::Vector3d>& tau, const LmOptions& options,

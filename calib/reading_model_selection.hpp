@@ -26,6 +26,10 @@ struct DriveEffectSelection {
   std::vector<std::string> dropped;  // e.g. "motor harmonic 1 of joint 3 (1.2 sigma)"
 };
 
+// model with the harmonic candidates of candidates switched on as well (the
+// errors once per joint revolution, once and twice per motor revolution).
+MotionModel with_harmonic_candidates(MotionModel model, const MotionModel& candidates);
+
 // Fits problem with model plus every candidate in candidates (the effects
 // switched on there), then again with those the Wald test at k sigma keeps
 // (calibrate_in_motion: omega, tau, alpha as there); when it keeps none and

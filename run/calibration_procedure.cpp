@@ -246,22 +246,6 @@ void friction_from_balance(MotionStage& m, const CalibrationInputs& in) {
   }
 }
 
-// The drive train's harmonic candidates (errors once and twice per motor
-// revolution) in the model from the first fit on: the friction's speed and
-// scale are chosen by chi2/dof, and a transmission error left out until
-// select_drive_train made those choices on its misfit (0.1 mrad twice per
-// motor revolution: chi2/dof in the hundreds, speed and scale at the ends of
-// their grids, the clearance's force signs wrong); the selection then drops
-// the harmonics the data do not show. Backlash is not among them: whether
-// its flank can be told depends on the friction being chosen.
-void with_harmonic_candidates(MotionStage& m, const CalibrationInputs& in) {
-  if (m.sigma <= 0.0) return;  // no selection follows
-  for (std::size_t i = 0; i < 3; ++i) {
-    m.motion.motor_harmonic1[i] = m.motion.motor_harmonic1[i] || in.drive_candidates.motor_harmonic1[i];
-    m.motion.motor_harmonic2[i] = m.motion.motor_harmonic2[i] || in.drive_candidates.motor_harmonic2[i];
-  }
-}
-
 // The first fit of the motion model: each drive's friction from the force
 // balance where it matters (the clearance's force signs, the backlash's
 // flanks) and the samples allow it; the friction's speed and scale chosen by
@@ -441,7 +425,15 @@ CalibrationOutcome calibrate_samples(const SampleSeries& samples, const Calibrat
   CalibrationOutcome out;
   if (with_effects) {
     MotionStage m = motion_stage(samples, inputs, options);
-    with_harmonic_candidates(m, inputs);
+    // The drive train's harmonic candidates (the errors per motor revolution)
+    // are in the model from the first fit on: the friction's speed and scale
+    // are chosen by chi2/dof, and a transmission error left out until
+    // select_drive_train made those choices on its misfit (0.1 mrad twice per
+    // motor revolution: chi2/dof in the hundreds, the friction 1.4x, the
+    // clearance's force signs wrong); the selection then drops the harmonics
+    // the data do not show. Not the backlash: whether its flank can be told
+    // depends on the friction being chosen. No selection without sigma.
+    if (m.sigma > 0.0) m.motion = calib::with_harmonic_candidates(m.motion, inputs.drive_candidates);
     fit_motion(m, inputs, options.in_motion);
     drop_undetected(m, options.keep_clearance);
     select_drive_train(m, inputs);

@@ -7,9 +7,10 @@
 // train is far off; the sandwich covariance of a fit that leaves an effect
 // out covers its error, where the noise model's does not; on white noise the
 // sandwich is not taken; with none kept, a fit without them already made is
-// taken as it is.
+// taken as it is; the harmonic candidates join a model without its backlash.
 #include "calib/reading_model_selection.hpp"
 
+#include <array>
 #include <cmath>
 
 #include <gtest/gtest.h>
@@ -179,6 +180,22 @@ TEST(ReadingModelSelection, TheSandwichCoversWhatTheModelLeavesOutAlongAPath) {
   // the left-out effect the geometry absorbed leaves no residual to show it).
   EXPECT_GT(worst_in_sigmas(d, naive.result), 50.0);
   EXPECT_LT(worst_in_sigmas(d, fit.result), 5.0);
+}
+
+// The harmonic candidates join what the model has, and only those: the
+// backlash stays the model's, and the model's own harmonics are kept.
+TEST(ReadingModelSelection, HarmonicCandidatesJoinTheModelAndLeaveTheBacklash) {
+  MotionModel model, candidates;
+  model.motor_harmonic2 = {false, false, true};
+  candidates.backlash = {true, true, true};
+  candidates.joint_harmonic = {true, false, false};
+  candidates.motor_harmonic1 = {false, true, false};
+  candidates.motor_harmonic2 = {true, false, false};
+  const MotionModel m = with_harmonic_candidates(model, candidates);
+  EXPECT_EQ(m.backlash, (std::array<bool, 3>{false, false, false}));
+  EXPECT_EQ(m.joint_harmonic, (std::array<bool, 3>{true, false, false}));
+  EXPECT_EQ(m.motor_harmonic1, (std::array<bool, 3>{false, true, false}));
+  EXPECT_EQ(m.motor_harmonic2, (std::array<bool, 3>{true, false, true}));
 }
 
 TEST(ReadingModelSelection, MeshTorqueIsTheDriveTorqueLessFrictionAndRotorInertia) {
