@@ -5,6 +5,7 @@
 #include <cmath>
 #include <functional>
 #include <limits>
+#include <numeric>
 #include <optional>
 
 #include <Eigen/Dense>
@@ -38,7 +39,8 @@ constexpr int kBefore = 11;       // h1 h2 h3
 constexpr int kFirstCyclic = 14;  // a1 a2 a3 b1 b2 b3 under the data sheet's prior
 constexpr int kBacklash = 20;     // beta1 beta2 beta3
 constexpr int kHarmonic = 23;     // three orders (joint, motor, 2 x motor), each a1 a2 a3 b1 b2 b3
-constexpr std::size_t kNuisance = 41;
+constexpr int kHysteresis = 41;   // eta1 eta2 eta3
+constexpr std::size_t kNuisance = 44;
 // Relative cost decrease at which the passes' LM fits stop (the last fit of
 // fit_in_motion polishes to LmOptions::function_tolerance).
 constexpr double kPassFunctionTolerance = 1e-10;
@@ -84,6 +86,8 @@ std::vector<int> nuisance_columns(const MotionModel& m) {
     for (int i = 0; i < 3; ++i)
       if ((*orders[static_cast<std::size_t>(o)])[static_cast<std::size_t>(i)])
         cols.push_back(kHarmonic + 6 * o + i), cols.push_back(kHarmonic + 6 * o + 3 + i);
+  for (int i = 0; i < 3; ++i)
+    if (m.hysteresis[static_cast<std::size_t>(i)]) cols.push_back(kHysteresis + i);
   return cols;
 }
 
@@ -201,6 +205,7 @@ struct SampleRegressors {
   Eigen::Vector3d omega, tau, fric, clr, nb;
   SampleWaves wave;  // of the raw readings (the cyclic errors)
   Eigen::Vector3d flank;
+  Eigen::Vector3d hyst, hyst_slope, hyst_threshold;  // g_i, T_i g_i' and T_i (hysteresis_regressors)
 };
 
 // One row of the nuisance Jacobian, every column, from the reading
@@ -211,7 +216,7 @@ std::array<double, kNuisance> nuisance_row(const Eigen::Vector3d& u, const Sampl
   row[kSkew + 1] = u[2] * x.omega[2];
   for (int i = 0; i < 3; ++i) {
     const auto k = static_cast<std::size_t>(i);
-    row[kCompliance + k] = -u[i] * x.tau[i];
+    row[kCompliance + k] = -u[i] * (x.tau[i] + x.hyst_threshold[i] * x.hyst_slope[i]);
     row[kFriction + k] = u[i] * x.fric[i];
     row[kClearance + k] = u[i] * x.clr[i];
     row[kBefore + k] = -u[i] * x.nb[i];
@@ -223,6 +228,7 @@ std::array<double, kNuisance> nuisance_row(const Eigen::Vector3d& u, const Sampl
       row[kHarmonic + 6 * o + k] = -u[i] * w[2 + 2 * o];
       row[kHarmonic + 6 * o + 3 + k] = -u[i] * w[3 + 2 * o];
     }
+    row[kHysteresis + k] = u[i] * (x.hyst[i] + x.hyst_slope[i]);
   }
   return row;
 }
@@ -252,7 +258,7 @@ void append_cyclic_prior(const std::vector<int>& cols, Eigen::Index first, doubl
 std::vector<int> excited_columns(const MotionModel& model, const std::vector<Eigen::Vector3d>& omega,
                                  const std::vector<Eigen::Vector3d>& tau, const std::vector<Eigen::Vector3d>& fric,
                                  const std::vector<Eigen::Vector3d>& clr, const std::vector<Eigen::Vector3d>& nb,
-                                 const std::vector<Eigen::Vector3d>& flank) {
+                                 const std::vector<Eigen::Vector3d>& flank, const std::vector<Eigen::Vector3d>& hyst) {
   const std::size_t n = omega.size();
   auto regressor = [&](int c, std::size_t j) {
     if (c < 2) return omega[j][c + 1];
@@ -279,6 +285,7 @@ std::vector<int> excited_columns(const MotionModel& model, const std::vector<Eig
     for (std::size_t j = 0; j < n; ++j) excitation += std::abs(regressor(c, j));
     if (c >= kClearance && c < kClearance + 3) excitation = both_signs(clr, c - kClearance);
     if (c >= kBacklash && c < kBacklash + 3) excitation = both_signs(flank, c - kBacklash);
+    if (c >= kHysteresis) excitation = both_signs(hyst, c - kHysteresis);
     if (excitation > 0.0) cols.push_back(c);
   }
   return cols;
@@ -319,6 +326,87 @@ std::vector<Eigen::Vector3d> flank_regressors(const MotionModel& model, const st
   return flank;
 }
 
+// The mesh torque of each sample where model estimates a hysteresis (0 elsewhere).
+std::vector<Eigen::Vector3d> mesh_torques(const MotionModel& model, const std::vector<Eigen::Vector3d>& omega,
+                                          const std::vector<Eigen::Vector3d>& tau,
+                                          const std::vector<Eigen::Vector3d>& alpha) {
+  std::vector<Eigen::Vector3d> mesh(omega.size(), Eigen::Vector3d::Zero());
+  for (std::size_t j = 0; j < omega.size(); ++j)
+    for (int i = 0; i < 3; ++i)
+      if (model.hysteresis[static_cast<std::size_t>(i)])
+        mesh[j][i] = mesh_torque(model.load, i, tau[j][i], omega[j][i], alpha.empty() ? 0.0 : alpha[j][i]);
+  return mesh;
+}
+
+// Passes added to MotionModel::max_passes where a hysteresis is estimated.
+constexpr int kHysteresisPasses = 6;
+
+// Largest hysteresis threshold, as a share of the mesh torque's range: the
+// element slides from one end to the other over 4 T of torque.
+constexpr double kMaxThresholdShare = 0.25;
+
+// Smallest half loss (rad) a hysteresis threshold is made of (an estimate at or below 0 included).
+constexpr double kHysteresisMinRad = 3e-6;
+
+// The hysteresis's regressors at the samples `at` of the whole sequence of
+// mesh torques: per joint the state g_i = hysteresis_state(mesh torques,
+// T_i), T_i = eta_i / c_i, and its response T_i dg_i/dT_i to the threshold
+// (a forward difference), which the columns of eta_i and c_i carry: the
+// correction eta g(eta / c) moves by g + T g' per unit eta and by -T^2 g' per
+// unit c (calib/motion_correction.hpp, MotionModel::hysteresis).
+struct HysteresisRegressors {
+  std::vector<Eigen::Vector3d> g, slope;  // g_i and T_i g_i' per sample
+  Eigen::Vector3d threshold = Eigen::Vector3d::Zero();  // T_i (N m)
+};
+
+// Joint i's mesh torques over the whole sequence.
+std::vector<double> joint_torques(const std::vector<Eigen::Vector3d>& mesh, int i) {
+  std::vector<double> t(mesh.size());
+  for (std::size_t j = 0; j < mesh.size(); ++j) t[j] = mesh[j][i];
+  return t;
+}
+
+// The thresholds T_i = eta_i / c_i (N m) of the joints with a hysteresis (c_i
+// the estimate, or model's where none): within a factor 2 of the previous
+// ones (> 0: a Gauss-Newton step on a regressor whose shape it moves), and at
+// most a quarter of the torque's range (beyond it the element never slides
+// from one end to the other: g is the torque's, the compliance's, own).
+Eigen::Vector3d hysteresis_thresholds(const MotionModel& model, const std::vector<Eigen::Vector3d>& mesh,
+                                      const std::array<double, 3>& eta, const std::array<double, 3>& compliance,
+                                      const Eigen::Vector3d& previous) {
+  Eigen::Vector3d T = Eigen::Vector3d::Zero();
+  for (int i = 0; i < 3; ++i) {
+    const auto k = static_cast<std::size_t>(i);
+    if (!model.hysteresis[k] || mesh.empty()) continue;
+    const double c = compliance[k] > 0.0 ? compliance[k] : model.hysteresis_compliance_rad_per_Nm;
+    T[i] = std::max(eta[k], kHysteresisMinRad) / c;
+    if (previous[i] > 0.0) T[i] = std::clamp(T[i], 0.5 * previous[i], 2.0 * previous[i]);
+    const auto [lo, hi] = std::ranges::minmax(joint_torques(mesh, i));
+    T[i] = std::min(T[i], kMaxThresholdShare * (hi - lo));
+  }
+  return T;
+}
+
+HysteresisRegressors hysteresis_regressors(const MotionModel& model, const std::vector<Eigen::Vector3d>& mesh,
+                                           const std::vector<std::size_t>& at, const Eigen::Vector3d& threshold) {
+  constexpr double kRelativeStep = 1e-3;
+  HysteresisRegressors h{std::vector<Eigen::Vector3d>(at.size(), Eigen::Vector3d::Zero()),
+                         std::vector<Eigen::Vector3d>(at.size(), Eigen::Vector3d::Zero()), threshold};
+  for (int i = 0; i < 3; ++i) {
+    const std::vector<double> t = joint_torques(mesh, i);
+    if (!model.hysteresis[static_cast<std::size_t>(i)] || t.empty()) continue;
+    const std::vector<double> g = hysteresis_state(t, h.threshold[i]);
+    const std::vector<double> g_up = hysteresis_state(t, h.threshold[i] * (1.0 + kRelativeStep));
+    const auto [lo, hi] = std::ranges::minmax(t);
+    const bool held = h.threshold[i] >= kMaxThresholdShare * (hi - lo) * (1.0 - 1e-9);  // at its bound: it does not move
+    for (std::size_t j = 0; j < at.size(); ++j) {
+      h.g[j][i] = g[at[j]];
+      h.slope[j][i] = held ? 0.0 : (g_up[at[j]] - g[at[j]]) / kRelativeStep;
+    }
+  }
+  return h;
+}
+
 // The samples calibrate_in_motion keeps: after the first model.skip_first,
 // those whose clearance regressors are all certain (with drop_uncertain) and
 // whose meshes' flanks are certain where a backlash is estimated.
@@ -355,6 +443,7 @@ double* noise_sigma_slot(MotionFit& fit, int k) {
   if (k >= kClearance && k < kBefore) return &fit.noise_sigma.clearance[at(kClearance)];
   if (k >= kBefore && k < kFirstCyclic) return &fit.noise_sigma.torque_before[at(kBefore)];
   if (k >= kBacklash && k < kHarmonic) return &fit.noise_sigma.backlash[at(kBacklash)];
+  if (k >= kHysteresis) return &fit.noise_sigma.hysteresis[at(kHysteresis)];
   if (k >= kHarmonic) return &fit.noise_sigma.harmonic[at(kHarmonic) / 6][at(kHarmonic) % 6];
   return nullptr;
 }
@@ -368,6 +457,7 @@ double& nuisance_sigma_slot(MotionFit& fit, int k) {
   if (k < kFirstCyclic) return fit.torque_before_sigma[at(kBefore)];
   if (k < kBacklash) return fit.cyclic_sigma[at(kFirstCyclic)];
   if (k < kHarmonic) return fit.backlash_sigma[at(kBacklash)];
+  if (k >= kHysteresis) return fit.hysteresis_sigma[at(kHysteresis)];
   return fit.harmonic_sigma[at(kHarmonic) / 6][at(kHarmonic) % 6];
 }
 
@@ -421,6 +511,9 @@ struct MotionSamples {
 // the clearance's at the start geometry and with its force threshold.
 struct EffectRegressors {
   std::vector<Eigen::Vector3d> fric, tau_t, clr, flank;
+  HysteresisRegressors hyst;
+  std::vector<Eigen::Vector3d> mesh;  // the mesh torques of the whole sequence (hysteresis_state runs on it)
+  std::vector<std::size_t> at;        // each regressor's sample in mesh
   std::vector<SampleWaves> wave;  // of the raw readings
   double tension_min = 0.0;
 };
@@ -452,6 +545,12 @@ EffectRegressors effect_regressors(const Geometry& start, const MotionSamples& s
   e.clr.assign(s.theta_m.size(), Eigen::Vector3d::Zero());
   if (model.clearance) e.clr = clearance_regressors(forces, e.tension_min);
   e.flank = flank_regressors(model, s.omega, s.tau, s.alpha);
+  e.mesh = mesh_torques(model, s.omega, s.tau, s.alpha);
+  e.at.resize(s.theta_m.size());
+  std::iota(e.at.begin(), e.at.end(), std::size_t{0});
+  const double eta0 = model.hysteresis_start_rad;
+  e.hyst = hysteresis_regressors(model, e.mesh, e.at,
+                                 hysteresis_thresholds(model, e.mesh, {eta0, eta0, eta0}, {}, Eigen::Vector3d::Zero()));
   return e;  // the waves are the fit's (fit_in_motion), on the samples it keeps
 }
 
@@ -460,7 +559,12 @@ EffectRegressors effect_regressors(const Geometry& start, const MotionSamples& s
 EffectRegressors kept_regressors(const EffectRegressors& e, const std::vector<std::size_t>& kept) {
   EffectRegressors k;
   k.tension_min = e.tension_min;
+  k.mesh = e.mesh;
+  k.hyst.threshold = e.hyst.threshold;
   for (std::size_t j : kept) {
+    k.hyst.g.push_back(e.hyst.g[j]);
+    k.hyst.slope.push_back(e.hyst.slope[j]);
+    k.at.push_back(e.at[j]);
     k.fric.push_back(e.fric[j]);
     k.tau_t.push_back(e.tau_t[j]);
     k.clr.push_back(e.clr[j]);
@@ -479,10 +583,12 @@ MotionFit unestimated_fit() {
   fit.torque_before_sigma.fill(nan);
   fit.cyclic_sigma.fill(nan);
   fit.backlash_sigma.fill(nan);
+  fit.hysteresis_sigma.fill(nan);
   for (auto& h : fit.harmonic_sigma) h.fill(nan);
   fit.noise_sigma.clearance = fit.clearance_sigma;
   fit.noise_sigma.torque_before = fit.torque_before_sigma;
   fit.noise_sigma.backlash = fit.backlash_sigma;
+  fit.noise_sigma.hysteresis = fit.hysteresis_sigma;
   fit.noise_sigma.harmonic = fit.harmonic_sigma;
   return fit;
 }
@@ -496,6 +602,7 @@ void unpack_nuisance(const std::array<double, kNuisance>& nu_all, MotionFit& fit
   std::copy_n(at(kBefore), 3, fit.torque_before.begin());
   std::copy_n(at(kFirstCyclic), 6, fit.cyclic.begin());
   std::copy_n(at(kBacklash), 3, fit.backlash.begin());
+  std::copy_n(at(kHysteresis), 3, fit.hysteresis.begin());
   for (std::size_t o = 0; o < 3; ++o) std::copy_n(at(kHarmonic + 6 * static_cast<int>(o)), 6, fit.harmonic[o].begin());
 }
 
@@ -511,6 +618,7 @@ std::vector<Eigen::Vector3d> twist_corrected(const MotionFit& fit, const MotionS
       if (!s.nb.empty()) out[j][k] -= fit.torque_before[i] * s.nb[j][k];
       out[j][k] -= fit.cyclic[i] * w[0] + fit.cyclic[i + 3] * w[1];
       out[j][k] -= fit.backlash[i] * e.flank[j][k];
+      out[j][k] += fit.hysteresis[i] * e.hyst.g[j][k];
       for (std::size_t o = 0; o < 3; ++o) out[j][k] -= fit.harmonic[o][i] * w[2 + 2 * o] + fit.harmonic[o][i + 3] * w[3 + 2 * o];
     }
   return out;
@@ -554,7 +662,7 @@ Linearisation linearise(const Geometry& g, const std::vector<Eigen::Vector3d>& t
   for (std::size_t j = 0; j < th.size(); ++j) {
     l.r[static_cast<Eigen::Index>(j)] = ml_residual(x, th[j]);
     const SampleRegressors reg{s.omega[j], s.tau[j], e.fric[j], e.clr[j], s.nb.empty() ? Eigen::Vector3d::Zero() : s.nb[j],
-                               e.wave[j], e.flank[j]};
+                               e.wave[j], e.flank[j], e.hyst.g[j], e.hyst.slope[j], e.hyst.threshold};
     fill_nuisance_row(reading_sensitivity(J_all, j), reg, cols, static_cast<Eigen::Index>(j), l.Jn, l.Jc);
   }
   return l;
@@ -617,7 +725,8 @@ void joint_covariance(const Linearisation& l, const std::vector<int>& cols, doub
   Eigen::MatrixXd C = s2 * A;
   for (int c = 0; c < q; ++c)
     if (double* slot = noise_sigma_slot(fit, cols[static_cast<std::size_t>(c)])) *slot = std::sqrt(C(ng + c, ng + c));
-  if (options.encoder_sigma && dof > 0) fit.chi2_per_dof = l.r.squaredNorm() / s2 / dof;
+  if (options.encoder_sigma) fit.chi2 = l.r.squaredNorm() / s2;
+  if (options.encoder_sigma && dof > 0) fit.chi2_per_dof = fit.chi2 / dof;
   if (model.sandwich && options.encoder_sigma && dof > 0 && misfit(l.r.squaredNorm() / s2, dof)) {
     // The residuals exceed the noise: what the model leaves out moves the
     // estimate as much as it moves the residuals, correlated along the path.
@@ -646,6 +755,20 @@ std::vector<int> free_indices(const FreeMask& free) {
 
 MotionFit fit_in_motion(const Problem& problem, const MotionSamples& s, const LmOptions& options,
                         const MotionModel& model, const EffectRegressors* given = nullptr);
+
+// The nuisance values the passes start from: 0, but a hysteresis at
+// model.hysteresis_start_rad and its joint's compliance (where estimated) at
+// model.hysteresis_compliance_rad_per_Nm, where its threshold starts.
+std::array<double, kNuisance> starting_nuisance(const MotionModel& model, const std::vector<int>& cols) {
+  std::array<double, kNuisance> nu{};
+  for (int c : cols)
+    if (c >= kHysteresis) {
+      nu[static_cast<std::size_t>(c)] = model.hysteresis_start_rad;
+      if (std::ranges::find(cols, kCompliance + c - kHysteresis) != cols.end())
+        nu[static_cast<std::size_t>(kCompliance + c - kHysteresis)] = model.hysteresis_compliance_rad_per_Nm;
+    }
+  return nu;
+}
 
 // fit_in_motion on the samples kept only (indices into s), with the force
 // threshold of all of them; the fit's indices and clearance shares are of all.
@@ -702,7 +825,7 @@ MotionFit fit_in_motion(const Problem& problem, const MotionSamples& s, const Lm
   MotionModel with_prior = model;
   if (!options.encoder_sigma) with_prior.cyclic_prior_rad = 0.0;
   const double prior_weight = with_prior.cyclic_prior_rad > 0.0 ? *options.encoder_sigma / with_prior.cyclic_prior_rad : 0.0;
-  const std::vector<int> cols = excited_columns(with_prior, s.omega, s.tau, e.fric, e.clr, s.nb, e.flank);
+  const std::vector<int> cols = excited_columns(with_prior, s.omega, s.tau, e.fric, e.clr, s.nb, e.flank, e.hyst.g);
   const std::vector<int> free_index = free_indices(problem.free);
   MotionFit fit = unestimated_fit();
   Problem p = problem;
@@ -710,12 +833,22 @@ MotionFit fit_in_motion(const Problem& problem, const MotionSamples& s, const Lm
   lm.compute_covariance = false;
   // The passes only lead the nuisance values; the last fit polishes.
   lm.function_tolerance = std::max(options.function_tolerance, kPassFunctionTolerance);
-  std::array<double, kNuisance> nu_all{};
+  std::array<double, kNuisance> nu_all = starting_nuisance(model, cols);
+  unpack_nuisance(nu_all, fit);
   std::vector<LmIteration> iterations;
   Linearisation l;
-  for (fit.passes = 1; fit.passes <= std::max(1, model.max_passes); ++fit.passes) {
+  // The hysteresis's threshold moves its regressor: a few more passes for its Gauss-Newton steps.
+  const bool hysteresis = std::ranges::any_of(cols, [](int c) { return c >= kHysteresis; });
+  const int max_passes = std::max(1, model.max_passes) + (hysteresis ? kHysteresisPasses : 0);
+  for (fit.passes = 1; fit.passes <= max_passes; ++fit.passes) {
     if (model.clearance && fit.passes > 1)
       e.clr = clearance_regressors(passive_forces(p.start, twist_corrected(fit, s, e), e.tau_t), e.tension_min);
+    // The hysteresis's threshold eta_i / c_i from the estimates so far: its
+    // regressor's shape follows them (a Gauss-Newton step on both, through the slope).
+    if (fit.passes > 1)
+      e.hyst = hysteresis_regressors(model, e.mesh, e.at,
+                                     hysteresis_thresholds(model, e.mesh, fit.hysteresis, {fit.nu[2], fit.nu[3], fit.nu[4]},
+                                                           e.hyst.threshold));
     p.theta_m = fully_corrected(fit, s, e);
     fit.result = calibrate_lm(p, lm);
     // The first pass checked the samples and the free set at the start; the
@@ -730,7 +863,7 @@ MotionFit fit_in_motion(const Problem& problem, const MotionSamples& s, const Lm
     unpack_nuisance(nu_all, fit);
     if (change < 1e-6) break;
   }
-  fit.passes = std::min(fit.passes, std::max(1, model.max_passes));
+  fit.passes = std::min(fit.passes, max_passes);
   fit.corrected = fully_corrected(fit, s, e);
   fit.kept = std::move(kept);
   fit.tension_min_N = e.tension_min;
@@ -746,6 +879,8 @@ MotionFit fit_in_motion(const Problem& problem, const MotionSamples& s, const Lm
   fit.result.lm_iterations = std::move(iterations);
   if (options.compute_covariance && !cols.empty() && fit.result.covariance)
     joint_covariance(l, cols, prior_weight, free_index, options, model, fit);
+  else if (options.encoder_sigma)  // the chi-square without the joint covariance: at the last pass's geometry, as it
+    fit.chi2 = l.r.squaredNorm() / (*options.encoder_sigma * *options.encoder_sigma);
   return fit;
 }
 
@@ -775,8 +910,16 @@ std::array<double, kNumParams> motion_crb(const Geometry& truth, const FreeMask&
   }
   const std::vector<Eigen::Vector3d> nb_all = torques_before(model, tau);
   const std::vector<Eigen::Vector3d> flank_all = flank_regressors(model, omega, tau, alpha);
-  std::vector<Eigen::Vector3d> th, w, t, c, nb, flank;
+  std::vector<std::size_t> all(n);
+  std::iota(all.begin(), all.end(), std::size_t{0});
+  const double eta0 = model.hysteresis_start_rad;
+  const std::vector<Eigen::Vector3d> mesh = mesh_torques(model, omega, tau, alpha);
+  const HysteresisRegressors hyst_all = hysteresis_regressors(
+      model, mesh, all, hysteresis_thresholds(model, mesh, {eta0, eta0, eta0}, {}, Eigen::Vector3d::Zero()));
+  std::vector<Eigen::Vector3d> th, w, t, c, nb, flank, hyst, hyst_slope;
   for (std::size_t j : kept_samples(model, clr, flank_all)) {
+    hyst.push_back(hyst_all.g[j]);
+    hyst_slope.push_back(hyst_all.slope[j]);
     if (!nb_all.empty()) nb.push_back(nb_all[j]);
     th.push_back(theta_m[j]);
     w.push_back(omega[j]);
@@ -785,7 +928,7 @@ std::array<double, kNumParams> motion_crb(const Geometry& truth, const FreeMask&
     flank.push_back(flank_all[j]);
   }
   const std::vector<Eigen::Vector3d> fric = friction_regressors(model, w);
-  const std::vector<int> cols = excited_columns(model, w, t, fric, c, nb, flank);
+  const std::vector<int> cols = excited_columns(model, w, t, fric, c, nb, flank, hyst);
   const std::vector<int> free_index = free_indices(free);
   const Eigen::MatrixXd J_all = ml_jacobian(th, truth);
   const auto m = static_cast<Eigen::Index>(free_index.size() + cols.size());
@@ -794,7 +937,8 @@ std::array<double, kNumParams> motion_crb(const Geometry& truth, const FreeMask&
     const auto row = static_cast<Eigen::Index>(j);
     for (std::size_t k = 0; k < free_index.size(); ++k) J(row, static_cast<Eigen::Index>(k)) = J_all(row, free_index[k]);
     const SampleRegressors reg{w[j], t[j], fric[j], c[j], nb.empty() ? Eigen::Vector3d::Zero() : nb[j],
-                               reading_waves(th[j], model.gear_ratio), flank[j]};
+                               reading_waves(th[j], model.gear_ratio), flank[j], hyst[j], hyst_slope[j],
+                               hyst_all.threshold};
     fill_nuisance_row(reading_sensitivity(J_all, j), reg, cols, row, J, Jc, static_cast<Eigen::Index>(free_index.size()));
   }
   if (model.cyclic_prior_rad > 0.0 && sigma > 0.0)
@@ -814,6 +958,16 @@ std::array<double, kNumParams> motion_crb(const Geometry& truth, const FreeMask&
     out[static_cast<std::size_t>(free_index[k])] = std::sqrt(C(i, i)) / scale[i];
   }
   return out;
+}
+
+std::vector<double> hysteresis_state(const std::vector<double>& tau, double threshold_Nm) {
+  std::vector<double> g(tau.size(), 0.0);
+  for (std::size_t k = 1; k < tau.size(); ++k) {
+    const double change = tau[k] - tau[k - 1];
+    if (threshold_Nm > 0.0) g[k] = std::clamp(g[k - 1] + change / (2.0 * threshold_Nm), -1.0, 1.0);
+    else g[k] = change > 0.0 ? 1.0 : change < 0.0 ? -1.0 : g[k - 1];
+  }
+  return g;
 }
 
 bool clearance_detected(const MotionFit& fit, double k) {

@@ -1,7 +1,7 @@
 // Calibration from readings taken in motion (sampling on the fly): the
 // geometry estimated jointly with the reading model's nuisance values
 // (latch skew, transmission compliance and its lag, friction twist, joint
-// clearance, backlash, cyclic errors and harmonics) by Gauss-Newton passes
+// clearance, backlash, hysteresis, cyclic errors and harmonics) by Gauss-Newton passes
 // of an LM fit on corrected readings and a joint linearisation step; the
 // geometry's covariance from the joint Jacobian [J_g, J_nu]. The model, its
 // columns and why each is there: docs/MOTION_MODEL.md.
@@ -56,6 +56,13 @@ struct MotionModel {
   std::array<bool, 3> motor_harmonic1{};  // once per motor revolution: a sin(N theta_m) + b cos(N theta_m)
   std::array<bool, 3> motor_harmonic2{};  // twice per motor revolution: a sin(2 N theta_m) + b cos(2 N theta_m)
   double gear_ratio = 1.0;                // N: motor revolutions per joint revolution (the data sheet's)
+  // The reducer's hysteresis, per joint: half its loss eta_i = H_i / 2, theta_a = theta_m + eta_i g_i, g_i in
+  // [-1, 1] the state of the mesh's friction element (hysteresis_state) under the mesh torque at the threshold
+  // T_i = eta_i / c_i (c_i the compliance); T_i moves with the estimates (Gauss-Newton through dg/dT).
+  std::array<bool, 3> hysteresis{};
+  double hysteresis_start_rad = 7.3e-5;            // eta where the fit starts (0.25 arcmin: a loss of 0.5 arcmin)
+  double hysteresis_compliance_rad_per_Nm = 1e-4;  // c_i where the fit starts, and where it does not estimate it
+                                                   // (the data sheet's)
   bool sandwich = true;  // when the fit's residuals exceed the noise (chi-square test at 0.1 %), the covariance
                          // is the autocorrelation-robust sandwich of the residuals (Newey-West), not sigma^2 (J'J)^-1
   int skip_first = 0;          // leading samples left out (the drives' start transient)
@@ -81,14 +88,17 @@ struct MotionFit {
   // revolution; 0 where not estimated, sigma NaN.
   std::array<std::array<double, 6>, 3> harmonic{};
   std::array<std::array<double, 6>, 3> harmonic_sigma{};
+  std::array<double, 3> hysteresis{};        // eta_i (rad): half the hysteresis loss; 0 where not estimated
+  std::array<double, 3> hysteresis_sigma{};  // their 1-sigma (NaN where not estimated)
   // The 1-sigma of the noise model alone (sigma^2 (J'J)^-1: neither the
   // considered cyclic error nor the sandwich), which the tests of "is this
   // effect there" weigh the estimates by (NaN where not estimated).
   struct NoiseSigma {
-    std::array<double, 3> clearance{}, torque_before{}, backlash{};
+    std::array<double, 3> clearance{}, torque_before{}, backlash{}, hysteresis{};
     std::array<std::array<double, 6>, 3> harmonic{};
   } noise_sigma;
-  double chi2_per_dof = 0.0;                // (r'r / sigma^2) / (n - columns) of the fit (0 without sigma)
+  double chi2 = 0.0;                        // r'r / sigma^2 of the fit (0 without sigma)
+  double chi2_per_dof = 0.0;                // chi2 / (n - columns)
   bool sandwich_used = false;               // the covariance is the misfit's sandwich (MotionModel::sandwich)
   double sandwich_inflation = 1.0;          // RMS over the geometry of its 1-sigma over the noise-model 1-sigma
   double tension_min_N = 0.0;               // the force threshold used (MotionModel::tension_min_N or lower)
@@ -128,6 +138,13 @@ std::vector<Eigen::Vector3d> correct_readings(const std::vector<Eigen::Vector3d>
                                               const std::vector<Eigen::Vector3d>& omega,
                                               const std::vector<Eigen::Vector3d>& tau,
                                               const std::array<double, 5>& nu);
+
+// The normalised state g_k in [-1, 1] of a mesh's friction element (a
+// Prandtl element in parallel with its spring) under mesh torques tau_k (N m)
+// of threshold T (N m): g_k = clamp(g_(k-1) + (tau_k - tau_(k-1)) / (2 T), -1, 1),
+// g_0 = 0 (stuck, the element takes half of each torque change; sliding at
+// +-T). T <= 0: the sign of the last torque change.
+std::vector<double> hysteresis_state(const std::vector<double>& tau, double threshold_Nm);
 
 // True if some estimated play d_i of fit lies at least k 1-sigma (of the noise model) from 0 (the
 // test of "no joint clearance", d_i = 0, two-sided at k sigma per chain); a

@@ -1,8 +1,11 @@
 // Backward selection of a geared drive's reading effects (calib/reading_model_selection.hpp).
 #include "calib/reading_model_selection.hpp"
 
+#include <algorithm>
 #include <array>
 #include <cmath>
+#include <functional>
+#include <limits>
 #include <utility>
 
 #include <fmt/format.h>
@@ -49,10 +52,70 @@ std::array<bool, 3> tellable_backlash(const MotionModel& model, const std::vecto
   }
 }
 
+// The hysteresis candidates the samples can tell: a joint whose mesh torque
+// spans at least 4 T at the starting threshold T = eta / c
+// (MotionModel::hysteresis_start_rad and hysteresis_compliance_rad_per_Nm),
+// over which the element slides from one end to the other (a torque-off
+// joint's mesh carries its rotor's friction only).
+std::array<bool, 3> tellable_hysteresis(const MotionModel& model, const std::vector<Eigen::Vector3d>& omega,
+                                        const std::vector<Eigen::Vector3d>& tau,
+                                        const std::vector<Eigen::Vector3d>& alpha, std::array<bool, 3> wanted) {
+  const double threshold = model.hysteresis_start_rad / model.hysteresis_compliance_rad_per_Nm;
+  for (std::size_t i = 0; i < 3 && !tau.empty(); ++i) {
+    double lo = std::numeric_limits<double>::infinity(), hi = -lo;
+    for (std::size_t j = 0; j < tau.size(); ++j) {
+      const double t = mesh_torque(model.load, static_cast<int>(i), tau[j][i], omega[j][i], alpha.empty() ? 0.0 : alpha[j][i]);
+      lo = std::min(lo, t), hi = std::max(hi, t);
+    }
+    wanted[i] = wanted[i] && hi - lo >= 4.0 * threshold;
+  }
+  return wanted;
+}
+
+// Adds to `out` (the selection of the other effects) the hysteresis of the
+// joints in `wanted` that its fit shows: each at k sigma of the noise model
+// (a loss > 0 only), and all of them together only where they lower the
+// fit's chi-square by more than ln n each (the Bayesian information
+// criterion: the threshold moves with the loss, a Wald test alone does not
+// say whether the fit is better).
+void add_hysteresis(const Problem& problem, const std::vector<Eigen::Vector3d>& omega,
+                    const std::vector<Eigen::Vector3d>& tau, const LmOptions& options,
+                    const std::vector<Eigen::Vector3d>& alpha, const std::array<bool, 3>& wanted, double k,
+                    DriveEffectSelection& out) {
+  MotionModel with = out.model;
+  with.hysteresis = wanted;
+  if (!std::ranges::any_of(wanted, std::identity{})) return;
+  MotionFit fit = calibrate_in_motion(problem, omega, tau, options, with, alpha);
+  std::vector<std::string> shown;
+  for (std::size_t i = 0; i < 3; ++i) {
+    if (!with.hysteresis[i]) continue;
+    const double z = fit.hysteresis[i] / fit.noise_sigma.hysteresis[i];
+    const std::string what = fmt::format("hysteresis of joint {} (loss {:.2g} rad, {:.1f} sigma)", i + 1,
+                                         2.0 * fit.hysteresis[i], z);
+    if (z >= k) shown.push_back(what);
+    else out.dropped.push_back(what), with.hysteresis[i] = false;
+  }
+  const auto q = static_cast<double>(std::ranges::count(with.hysteresis, true));
+  if (q == 0.0) return;
+  if (with.hysteresis != wanted) fit = calibrate_in_motion(problem, omega, tau, options, with, alpha);
+  const double gain = out.fit.chi2 - fit.chi2, penalty = std::log(static_cast<double>(fit.kept.size()));
+  if (gain > q * penalty) {
+    out.model = with;
+    out.fit = std::move(fit);
+    out.kept.insert(out.kept.end(), shown.begin(), shown.end());
+  } else {
+    for (const std::string& h : shown)
+      out.dropped.push_back(fmt::format("{}: with it the fit's chi-square changes by {:+.4g}, not down by ln n = {:.3g} "
+                                        "per value", h, -gain, penalty));
+  }
+}
+
 // Every candidate effect of `candidates` added to `model`.
 MotionModel with_candidates(MotionModel model, const MotionModel& candidates) {
   model = with_harmonic_candidates(std::move(model), candidates);
-  for (std::size_t i = 0; i < 3; ++i) model.backlash[i] = model.backlash[i] || candidates.backlash[i];
+  for (std::size_t i = 0; i < 3; ++i) {
+    model.backlash[i] = model.backlash[i] || candidates.backlash[i];
+  }
   return model;
 }
 
@@ -71,6 +134,20 @@ DriveEffectSelection select_drive_effects(const Problem& problem, const std::vec
                                           const std::vector<Eigen::Vector3d>& tau, const LmOptions& options,
                                           const MotionModel& model, const std::vector<Eigen::Vector3d>& alpha,
                                           const MotionModel& candidates, double k, const MotionFit* fit_of_model) {
+  const std::array<bool, 3> hysteresis = tellable_hysteresis(model, omega, tau, alpha, candidates.hysteresis);
+  if (std::ranges::any_of(candidates.hysteresis, std::identity{})) {
+    // The hysteresis after the others, on the model they chose.
+    MotionModel linear = candidates;
+    linear.hysteresis = {};
+    DriveEffectSelection out = select_drive_effects(problem, omega, tau, options, model, alpha, linear, k, fit_of_model);
+    for (std::size_t i = 0; i < 3; ++i)
+      if (candidates.hysteresis[i] && !hysteresis[i])
+        out.dropped.push_back(fmt::format("hysteresis of joint {} (its mesh torque spans less than 4 x {:.2g} N m: the "
+                                          "element would not slide)", i + 1,
+                                          model.hysteresis_start_rad / model.hysteresis_compliance_rad_per_Nm));
+    add_hysteresis(problem, omega, tau, options, alpha, hysteresis, k, out);
+    return out;
+  }
   DriveEffectSelection out;
   MotionModel tellable = candidates;
   tellable.backlash = tellable_backlash(model, omega, tau, alpha, candidates.backlash);

@@ -1,6 +1,7 @@
 // Which of a geared drive's reading effects a robot's data need, per joint
 // (calib/motion_correction.hpp MotionModel: backlash, the harmonic errors
-// once per joint revolution and once and twice per motor revolution): a
+// once per joint revolution and once and twice per motor revolution,
+// hysteresis): a
 // backward selection by Wald tests. The calibration in motion is fitted with
 // every candidate the data excite; a backlash is kept where its estimate lies
 // k 1-sigma of the noise model (MotionFit::noise_sigma) from 0, a harmonic where its pair (a, b) does at the same level
@@ -8,7 +9,11 @@
 // level); the fit is made again with the kept ones. A backlash is a
 // candidate only where the samples can tell its flank (the mesh torque above
 // MotionModel::backlash_torque_min_Nm in half the samples, for all such
-// joints together too; else it is reported as dropped). A robot's data sheet says
+// joints together too; else it is reported as dropped). The hysteresis,
+// nonlinear in its loss, comes after the others, on the model they chose:
+// a candidate where the mesh torque spans 4 thresholds at the fit's start,
+// kept where its loss lies k 1-sigma above 0 and the fit with it lowers
+// the chi-square by more than ln n per joint (BIC). A robot's data sheet says
 // what its reducer may do; what this robot does is what its readings show.
 #pragma once
 

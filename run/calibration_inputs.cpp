@@ -65,10 +65,12 @@ CalibrationInputs calibration_inputs(const CalibrationSpec& c, const Robot& robo
   motion.clearance = c.estimate_clearance.value_or(in_motion);
   motion.load = transmission_load(c.drive_friction, robot.data_sheet, robot.geometry);
   motion.gear_ratio = robot.data_sheet.gear_ratio;
-  // On the fly the data choose, per joint, a backlash and the errors once
-  // and twice per motor revolution (calib/reading_model_selection.hpp).
+  motion.hysteresis_compliance_rad_per_Nm = robot.data_sheet.compliance_rad_per_Nm();
+  // On the fly the data choose, per joint, a backlash, the errors once and
+  // twice per motor revolution and a hysteresis (calib/reading_model_selection.hpp).
   if (in_motion && motion.compliance) {
     in.drive_candidates.backlash = {true, true, true};
+    in.drive_candidates.hysteresis = {true, true, true};
     in.drive_candidates.motor_harmonic1 = {true, true, true};
     in.drive_candidates.motor_harmonic2 = {true, true, true};
   }

@@ -11,7 +11,9 @@
 // (and ignoring it biases the fit); the cyclic encoder error carried in the
 // covariance adds what finite-difference responses of the fit to it say; the
 // reading sensitivities of the nuisance Jacobian (the dth columns of the ML
-// Jacobian) equal central differences over the readings.
+// Jacobian) equal central differences over the readings; the hysteresis
+// state follows the torque at half its rate until it slides at +-1, and holds
+// through a reversal smaller than its threshold.
 #include "calib/motion_correction.hpp"
 
 #include <cmath>
@@ -486,6 +488,24 @@ TEST(MotionCorrection, ReadingSensitivitiesAreTheOffsetColumnsOfTheMlJacobian) {
       const double central = (ra - rb) / 2e-6;
       EXPECT_NEAR(J(static_cast<Eigen::Index>(j), dth(k)), central, 1e-6 * std::abs(central) + 1e-9) << j << " " << k;
     }
+}
+
+// The friction element in parallel with the mesh's spring, by hand: stuck,
+// it takes half of each torque change (g moves by dtau / (2 T)); at +-1 it
+// slides; a reversal moves it back from there at the same rate.
+TEST(MotionCorrection, HysteresisStateFollowsHalfTheTorqueUntilItSlides) {
+  const double T = 0.5;  // N m
+  std::vector<double> tau;
+  for (int k = 0; k <= 10; ++k) tau.push_back(0.25 * k);        // 0 .. 2.5 N m: g = tau / (2 T) up to tau = 1
+  for (int k = 1; k <= 4; ++k) tau.push_back(2.5 - 0.25 * k);   // back to 1.5 N m
+  const std::vector<double> g = hysteresis_state(tau, T);
+  ASSERT_EQ(g.size(), tau.size());
+  for (int k = 0; k <= 4; ++k) EXPECT_NEAR(g[static_cast<std::size_t>(k)], 0.25 * k, 1e-15) << k;
+  for (int k = 4; k <= 10; ++k) EXPECT_EQ(g[static_cast<std::size_t>(k)], 1.0) << k;  // sliding
+  EXPECT_NEAR(g[14], 1.0 - 4 * 0.25, 1e-15);  // a reversal of 1 N m = 2 T: from +1 back to 0
+  // No threshold: the direction of the last change (a change of 0 keeps it).
+  const std::vector<double> sign = hysteresis_state({0.0, 1.0, 1.0, 0.5, 0.7}, 0.0);
+  EXPECT_EQ(sign, (std::vector<double>{0.0, 1.0, 1.0, -1.0, 1.0}));
 }
 
 }  // namespace

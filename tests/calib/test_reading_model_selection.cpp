@@ -7,7 +7,10 @@
 // train is far off; the sandwich covariance of a fit that leaves an effect
 // out covers its error, where the noise model's does not; on white noise the
 // sandwich is not taken; with none kept, a fit without them already made is
-// taken as it is; the harmonic candidates join a model without its backlash.
+// taken as it is; the harmonic candidates join a model without its backlash;
+// readings with a reducer hysteresis on two joints along a path give back
+// its loss and the geometry, a joint whose mesh torque is too small to slide
+// the element is no candidate, and a robot without it keeps none.
 #include "calib/reading_model_selection.hpp"
 
 #include <array>
@@ -207,6 +210,73 @@ TEST(ReadingModelSelection, MeshTorqueIsTheDriveTorqueLessFrictionAndRotorInerti
   load.friction_speed_rad_s = 0.0;
   EXPECT_DOUBLE_EQ(mesh_torque(load, 1, 2.0, 0.5, 10.0), 2.0 - 0.3 - 0.05 - 0.02);
   EXPECT_DOUBLE_EQ(mesh_torque(load, 1, 2.0, -0.5, 0.0), 2.0 + 0.3 + 0.05);
+}
+
+// Readings along a path whose joints 2 and 3 carry smooth torques through a
+// reducer with hysteresis: theta_m = theta - eta g(tau; eta / c) (the
+// correction of calib/motion_correction.hpp inverted), at compliance c the
+// model's; joint 1's torque stays within 0.3 N m.
+DriveData hysteresis_data(int n, std::uint64_t seed, const Eigen::Vector3d& eta, double c) {
+  DriveData d = make_data(n, seed, false, true);
+  for (int j = 0; j < n; ++j) {
+    const double u = 2.0 * M_PI * j / n;
+    d.tau[static_cast<std::size_t>(j)] = {0.3 * std::sin(7.0 * u), 3.0 * std::sin(4.0 * u) + 1.0 * std::sin(11.0 * u),
+                                          2.5 * std::cos(5.0 * u) - 1.2 * std::sin(13.0 * u)};
+  }
+  for (int i = 0; i < 3; ++i) {
+    std::vector<double> t;
+    for (const Eigen::Vector3d& v : d.tau) t.push_back(v[i]);
+    const std::vector<double> g = hysteresis_state(t, eta[i] / c);
+    for (std::size_t j = 0; j < t.size(); ++j) d.problem.theta_m[j][i] -= eta[i] * g[j];
+  }
+  for (Eigen::Vector3d& w : d.omega) w.setZero();  // the mesh torque is the drive's (no friction)
+  return d;
+}
+
+// The rigid geared model that knows the reducer's compliance c and may take a hysteresis on every joint.
+MotionModel hysteresis_model(double c) {
+  MotionModel m = rigid_geared();
+  m.hysteresis_compliance_rad_per_Nm = c;
+  return m;
+}
+
+TEST(ReadingModelSelection, RecoversTheReducersHysteresisAlongAPath) {
+  const double c = 1e-4;
+  const Eigen::Vector3d eta(0.0, 1.2e-4, 0.6e-4);  // half losses: 0.8 and 0.4 arcmin of loss
+  const DriveData d = hysteresis_data(3000, 21, eta, c);
+  LmOptions o;
+  o.encoder_sigma = kSigma;
+  MotionModel candidates;
+  candidates.hysteresis = {true, true, true};
+  const DriveEffectSelection s = select_drive_effects(d.problem, d.omega, d.tau, o, hysteresis_model(c), {}, candidates);
+  EXPECT_FALSE(s.model.hysteresis[0]);
+  EXPECT_TRUE(s.model.hysteresis[1]);
+  EXPECT_TRUE(s.model.hysteresis[2]);
+  ASSERT_FALSE(s.dropped.empty());
+  EXPECT_NE(s.dropped.front().find("hysteresis of joint 1 (its mesh torque spans less"), std::string::npos)
+      << s.dropped.front();
+  for (std::size_t i : {1u, 2u}) {
+    const double truth = eta[static_cast<Eigen::Index>(i)];
+    EXPECT_LT(std::abs(s.fit.hysteresis[i] - truth), std::max(4.0 * s.fit.hysteresis_sigma[i], 0.02 * truth)) << i;
+  }
+  EXPECT_LT(worst_in_sigmas(d, s.fit.result), 4.0);
+  // Without it the same readings calibrate far from the truth.
+  const MotionFit blind = calibrate_in_motion(d.problem, d.omega, d.tau, o, hysteresis_model(c));
+  EXPECT_GT(worst_in_sigmas(d, blind.result), 20.0);
+}
+
+TEST(ReadingModelSelection, KeepsNoHysteresisOnARobotWithout) {
+  const double c = 1e-4;
+  const DriveData d = hysteresis_data(3000, 23, Eigen::Vector3d::Zero(), c);
+  LmOptions o;
+  o.encoder_sigma = kSigma;
+  MotionModel candidates;
+  candidates.hysteresis = {true, true, true};
+  const DriveEffectSelection s = select_drive_effects(d.problem, d.omega, d.tau, o, hysteresis_model(c), {}, candidates);
+  EXPECT_EQ(s.model.hysteresis, (std::array<bool, 3>{false, false, false}));
+  EXPECT_TRUE(s.kept.empty());
+  EXPECT_EQ(s.dropped.size(), 3u);
+  EXPECT_LT(worst_in_sigmas(d, s.fit.result), 4.0);
 }
 
 }  // namespace
