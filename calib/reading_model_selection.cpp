@@ -134,8 +134,8 @@ DriveEffectSelection select_drive_effects(const Problem& problem, const std::vec
                                           const std::vector<Eigen::Vector3d>& tau, const LmOptions& options,
                                           const MotionModel& model, const std::vector<Eigen::Vector3d>& alpha,
                                           const MotionModel& candidates, double k, const MotionFit* fit_of_model) {
-  const std::array<bool, 3> hysteresis = tellable_hysteresis(model, omega, tau, alpha, candidates.hysteresis);
   if (std::ranges::any_of(candidates.hysteresis, std::identity{})) {
+    const std::array<bool, 3> hysteresis = tellable_hysteresis(model, omega, tau, alpha, candidates.hysteresis);
     // The hysteresis after the others, on the model they chose.
     MotionModel linear = candidates;
     linear.hysteresis = {};
