@@ -382,9 +382,15 @@ Eigen::Vector3d hysteresis_thresholds(const MotionModel& model, const std::vecto
     T[i] = std::max(eta[k], kHysteresisMinRad) / c;
     if (previous[i] > 0.0) T[i] = std::clamp(T[i], 0.5 * previous[i], 2.0 * previous[i]);
     const auto [lo, hi] = std::ranges::minmax(joint_torques(mesh, i));
-    T[i] = std::min(T[i], kMaxThresholdShare * (hi - lo));
+    T[i] = std::min(T[i], largest_hysteresis_threshold(hi - lo));
   }
   return T;
+}
+
+// The thresholds where the fit starts: starting_hysteresis_threshold, within each torque's range.
+Eigen::Vector3d starting_thresholds(const MotionModel& model, const std::vector<Eigen::Vector3d>& mesh) {
+  const double eta0 = model.hysteresis_start_rad;
+  return hysteresis_thresholds(model, mesh, {eta0, eta0, eta0}, {}, Eigen::Vector3d::Zero());
 }
 
 HysteresisRegressors hysteresis_regressors(const MotionModel& model, const std::vector<Eigen::Vector3d>& mesh,
@@ -398,7 +404,7 @@ HysteresisRegressors hysteresis_regressors(const MotionModel& model, const std::
     const std::vector<double> g = hysteresis_state(t, h.threshold[i]);
     const std::vector<double> g_up = hysteresis_state(t, h.threshold[i] * (1.0 + kRelativeStep));
     const auto [lo, hi] = std::ranges::minmax(t);
-    const bool held = h.threshold[i] >= kMaxThresholdShare * (hi - lo) * (1.0 - 1e-9);  // at its bound: it does not move
+    const bool held = h.threshold[i] >= largest_hysteresis_threshold(hi - lo) * (1.0 - 1e-9);  // at its bound: fixed
     for (std::size_t j = 0; j < at.size(); ++j) {
       h.g[j][i] = g[at[j]];
       h.slope[j][i] = held ? 0.0 : (g_up[at[j]] - g[at[j]]) / kRelativeStep;
@@ -548,9 +554,7 @@ EffectRegressors effect_regressors(const Geometry& start, const MotionSamples& s
   e.mesh = mesh_torques(model, s.omega, s.tau, s.alpha);
   e.at.resize(s.theta_m.size());
   std::iota(e.at.begin(), e.at.end(), std::size_t{0});
-  const double eta0 = model.hysteresis_start_rad;
-  e.hyst = hysteresis_regressors(model, e.mesh, e.at,
-                                 hysteresis_thresholds(model, e.mesh, {eta0, eta0, eta0}, {}, Eigen::Vector3d::Zero()));
+  e.hyst = hysteresis_regressors(model, e.mesh, e.at, starting_thresholds(model, e.mesh));
   return e;  // the waves are the fit's (fit_in_motion), on the samples it keeps
 }
 
@@ -912,10 +916,8 @@ std::array<double, kNumParams> motion_crb(const Geometry& truth, const FreeMask&
   const std::vector<Eigen::Vector3d> flank_all = flank_regressors(model, omega, tau, alpha);
   std::vector<std::size_t> all(n);
   std::iota(all.begin(), all.end(), std::size_t{0});
-  const double eta0 = model.hysteresis_start_rad;
   const std::vector<Eigen::Vector3d> mesh = mesh_torques(model, omega, tau, alpha);
-  const HysteresisRegressors hyst_all = hysteresis_regressors(
-      model, mesh, all, hysteresis_thresholds(model, mesh, {eta0, eta0, eta0}, {}, Eigen::Vector3d::Zero()));
+  const HysteresisRegressors hyst_all = hysteresis_regressors(model, mesh, all, starting_thresholds(model, mesh));
   std::vector<Eigen::Vector3d> th, w, t, c, nb, flank, hyst, hyst_slope;
   for (std::size_t j : kept_samples(model, clr, flank_all)) {
     hyst.push_back(hyst_all.g[j]);
@@ -969,6 +971,12 @@ std::vector<double> hysteresis_state(const std::vector<double>& tau, double thre
   }
   return g;
 }
+
+double starting_hysteresis_threshold(const MotionModel& model) {
+  return model.hysteresis_start_rad / model.hysteresis_compliance_rad_per_Nm;
+}
+
+double largest_hysteresis_threshold(double torque_range_Nm) { return 0.25 * torque_range_Nm; }
 
 bool clearance_detected(const MotionFit& fit, double k) {
   for (std::size_t i = 0; i < 3; ++i)

@@ -146,6 +146,15 @@ std::vector<Eigen::Vector3d> correct_readings(const std::vector<Eigen::Vector3d>
 // +-T). T <= 0: the sign of the last torque change.
 std::vector<double> hysteresis_state(const std::vector<double>& tau, double threshold_Nm);
 
+// The threshold T = eta / c (N m) where a hysteresis fit starts
+// (MotionModel::hysteresis_start_rad over hysteresis_compliance_rad_per_Nm).
+double starting_hysteresis_threshold(const MotionModel& model);
+
+// The largest threshold (N m) a mesh torque spanning `torque_range_Nm` can
+// tell: a quarter of it, over which the element slides from one end to the
+// other (at a larger T it never does, and g is the torque's own shape).
+double largest_hysteresis_threshold(double torque_range_Nm);
+
 // True if some estimated play d_i of fit lies at least k 1-sigma (of the noise model) from 0 (the
 // test of "no joint clearance", d_i = 0, two-sided at k sigma per chain); a
 // play not estimated (sigma NaN) does not count.

@@ -53,21 +53,20 @@ std::array<bool, 3> tellable_backlash(const MotionModel& model, const std::vecto
 }
 
 // The hysteresis candidates the samples can tell: a joint whose mesh torque
-// spans at least 4 T at the starting threshold T = eta / c
-// (MotionModel::hysteresis_start_rad and hysteresis_compliance_rad_per_Nm),
-// over which the element slides from one end to the other (a torque-off
-// joint's mesh carries its rotor's friction only).
+// spans enough for the starting threshold (largest_hysteresis_threshold of
+// starting_hysteresis_threshold; a torque-off joint's mesh carries its
+// rotor's friction only).
 std::array<bool, 3> tellable_hysteresis(const MotionModel& model, const std::vector<Eigen::Vector3d>& omega,
                                         const std::vector<Eigen::Vector3d>& tau,
                                         const std::vector<Eigen::Vector3d>& alpha, std::array<bool, 3> wanted) {
-  const double threshold = model.hysteresis_start_rad / model.hysteresis_compliance_rad_per_Nm;
+  const double threshold = starting_hysteresis_threshold(model);
   for (std::size_t i = 0; i < 3 && !tau.empty(); ++i) {
     double lo = std::numeric_limits<double>::infinity(), hi = -lo;
     for (std::size_t j = 0; j < tau.size(); ++j) {
       const double t = mesh_torque(model.load, static_cast<int>(i), tau[j][i], omega[j][i], alpha.empty() ? 0.0 : alpha[j][i]);
       lo = std::min(lo, t), hi = std::max(hi, t);
     }
-    wanted[i] = wanted[i] && hi - lo >= 4.0 * threshold;
+    wanted[i] = wanted[i] && threshold <= largest_hysteresis_threshold(hi - lo);
   }
   return wanted;
 }
@@ -144,7 +143,7 @@ DriveEffectSelection select_drive_effects(const Problem& problem, const std::vec
       if (candidates.hysteresis[i] && !hysteresis[i])
         out.dropped.push_back(fmt::format("hysteresis of joint {} (its mesh torque spans less than 4 x {:.2g} N m: the "
                                           "element would not slide)", i + 1,
-                                          model.hysteresis_start_rad / model.hysteresis_compliance_rad_per_Nm));
+                                          starting_hysteresis_threshold(model)));
     add_hysteresis(problem, omega, tau, options, alpha, hysteresis, k, out);
     return out;
   }

@@ -508,5 +508,23 @@ TEST(MotionCorrection, HysteresisStateFollowsHalfTheTorqueUntilItSlides) {
   EXPECT_EQ(sign, (std::vector<double>{0.0, 1.0, 1.0, -1.0, 1.0}));
 }
 
+// The largest threshold a torque range tells is the one at which a sweep over
+// the range takes the element from one end to the other, and no larger.
+TEST(MotionCorrection, LargestHysteresisThresholdIsTheOneASweepJustSlides) {
+  const double lo = -0.7, hi = 1.3;  // N m
+  std::vector<double> tau;
+  for (int cycle = 0; cycle < 3; ++cycle)
+    for (double t : {lo, hi}) tau.push_back(t);
+  const double T = largest_hysteresis_threshold(hi - lo);
+  const std::vector<double> g = hysteresis_state(tau, T);
+  EXPECT_NEAR(g[tau.size() - 2], -1.0, 1e-12);
+  EXPECT_NEAR(g.back(), 1.0, 1e-12);
+  const std::vector<double> g_above = hysteresis_state(tau, 1.05 * T);
+  EXPECT_LT(g_above.back() - g_above[tau.size() - 2], 2.0 - 0.09) << "a larger threshold never slides";
+  MotionModel m;
+  m.hysteresis_start_rad = 2e-4, m.hysteresis_compliance_rad_per_Nm = 5e-4;
+  EXPECT_DOUBLE_EQ(starting_hysteresis_threshold(m), 0.4);
+}
+
 }  // namespace
 }  // namespace gpm::calib
