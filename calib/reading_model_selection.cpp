@@ -20,10 +20,14 @@ double sigmas(double value, double sigma) { return std::abs(value) / sigma; }
 
 // The backlash candidates whose flank the samples can tell: a joint's mesh
 // torque at least model.backlash_torque_min_Nm in kMinFlankShare of the
-// samples, and together (every such joint's flank certain) in kMinFlankShare
-// of them, the joint of the fewest certain samples given up first (a joint
-// whose mesh carries little torque, e.g. a robot of little friction or preload).
+// samples, and together (every such joint's flank certain) in
+// kMinFlankShareTogether of them, the joint of the fewest certain samples
+// given up first (a joint whose mesh carries little torque, e.g. a robot of
+// little friction or preload). Together a quarter: a lost motion left out of
+// the model costs the geometry far more than the samples whose flank is in
+// doubt (docs/PROCEDURES.md, "Backlash on every joint").
 constexpr double kMinFlankShare = 0.5;
+constexpr double kMinFlankShareTogether = 0.25;
 std::array<bool, 3> tellable_backlash(const MotionModel& model, const std::vector<Eigen::Vector3d>& omega,
                                       const std::vector<Eigen::Vector3d>& tau,
                                       const std::vector<Eigen::Vector3d>& alpha, std::array<bool, 3> wanted) {
@@ -44,7 +48,7 @@ std::array<bool, 3> tellable_backlash(const MotionModel& model, const std::vecto
       for (std::size_t i = 0; i < 3; ++i) all = all && (!wanted[i] || certain[j][i]);
       together += all ? 1.0 / static_cast<double>(n) : 0.0;
     }
-    if (together >= kMinFlankShare || n == 0) return wanted;
+    if (together >= kMinFlankShareTogether || n == 0) return wanted;
     std::size_t weakest = 3;
     for (std::size_t i = 0; i < 3; ++i)
       if (wanted[i] && (weakest == 3 || share[i] < share[weakest])) weakest = i;

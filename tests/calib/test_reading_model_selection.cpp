@@ -8,6 +8,8 @@
 // out covers its error, where the noise model's does not; on white noise the
 // sandwich is not taken; with none kept, a fit without them already made is
 // taken as it is; the harmonic candidates join a model without its backlash;
+// two backlashes whose flanks are certain together in a third of the samples
+// are both estimated;
 // readings with a reducer hysteresis on two joints along a path give back
 // its loss and the geometry, a joint whose mesh torque is too small to slide
 // the element is no candidate, and a robot without it keeps none.
@@ -132,6 +134,27 @@ TEST(ReadingModelSelection, ABacklashWhoseFlankTheSamplesCannotTellIsNoCandidate
   ASSERT_FALSE(s.dropped.empty());
   EXPECT_NE(s.dropped.front().find("backlash of joint 1"), std::string::npos) << s.dropped.front();
   EXPECT_GT(s.fit.kept.size(), 500u);  // joints 2 and 3 tell theirs in nearly every sample
+  EXPECT_LT(worst_in_sigmas(d, s.fit.result), 4.0);
+}
+
+// Two joints whose flanks are each in doubt in 40 % of the samples, at
+// different times: together certain in about a third of them, which is
+// enough to estimate both lost motions (rather than leave one out).
+TEST(ReadingModelSelection, KeepsTwoBacklashesWhoseFlanksAreCertainTogetherInAThird) {
+  DriveData d = make_data(1500, 27);
+  Rng rng(28);
+  for (Eigen::Vector3d& t : d.tau)
+    for (int i : {1, 2})
+      if (rng.uniform(0.0, 1.0) < 0.4) t[i] = (t[i] > 0.0 ? 1.0 : -1.0) * 0.01;  // flank kept, torque in doubt
+  LmOptions o;
+  o.encoder_sigma = kSigma;
+  const DriveEffectSelection s =
+      select_drive_effects(d.problem, d.omega, d.tau, o, rigid_geared(), {}, every_candidate());
+  EXPECT_TRUE(s.model.backlash[1]);
+  EXPECT_TRUE(s.model.backlash[2]);
+  EXPECT_NEAR(static_cast<double>(s.fit.kept.size()) / 1500.0, 0.36, 0.05);  // 0.6 x 0.6 of them
+  for (std::size_t i : {1u, 2u})
+    EXPECT_LT(std::abs(s.fit.backlash[i] - kBeta[static_cast<Eigen::Index>(i)]), 4.0 * s.fit.backlash_sigma[i]);
   EXPECT_LT(worst_in_sigmas(d, s.fit.result), 4.0);
 }
 
