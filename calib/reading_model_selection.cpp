@@ -6,11 +6,13 @@
 #include <cmath>
 #include <functional>
 #include <limits>
+#include <optional>
 #include <utility>
 
 #include <fmt/format.h>
 
 #include "calib/passive_tension.hpp"
+#include "models/errors.hpp"
 
 namespace gpm::calib {
 namespace {
@@ -56,6 +58,19 @@ std::array<bool, 3> tellable_backlash(const MotionModel& model, const std::vecto
   }
 }
 
+// The fit of model with the candidates, or none where it diverges: its
+// nuisance passes take the readings where no robot fits them (InputError of
+// the samples' check), which a model lacking a larger effect can do.
+std::optional<MotionFit> candidates_fit(const Problem& problem, const std::vector<Eigen::Vector3d>& omega,
+                                        const std::vector<Eigen::Vector3d>& tau, const LmOptions& options,
+                                        const MotionModel& model, const std::vector<Eigen::Vector3d>& alpha) {
+  try {
+    return calibrate_in_motion(problem, omega, tau, options, model, alpha);
+  } catch (const InputError&) {
+    return std::nullopt;
+  }
+}
+
 // The hysteresis candidates the samples can tell: a joint whose mesh torque
 // spans enough for the starting threshold (largest_hysteresis_threshold of
 // starting_hysteresis_threshold; a torque-off joint's mesh carries its
@@ -88,7 +103,10 @@ void add_hysteresis(const Problem& problem, const std::vector<Eigen::Vector3d>& 
   MotionModel with = out.model;
   with.hysteresis = wanted;
   if (!std::ranges::any_of(wanted, std::identity{})) return;
-  MotionFit fit = calibrate_in_motion(problem, omega, tau, options, with, alpha);
+  const char* diverged = "hysteresis: the fit with it diverged (the readings corrected by it no longer fit a robot)";
+  std::optional<MotionFit> fitted = candidates_fit(problem, omega, tau, options, with, alpha);
+  if (!fitted) return out.dropped.push_back(diverged);
+  MotionFit fit = std::move(*fitted);
   std::vector<std::string> shown;
   for (std::size_t i = 0; i < 3; ++i) {
     if (!with.hysteresis[i]) continue;
@@ -100,7 +118,11 @@ void add_hysteresis(const Problem& problem, const std::vector<Eigen::Vector3d>& 
   }
   const auto q = static_cast<double>(std::ranges::count(with.hysteresis, true));
   if (q == 0.0) return;
-  if (with.hysteresis != wanted) fit = calibrate_in_motion(problem, omega, tau, options, with, alpha);
+  if (with.hysteresis != wanted) {
+    fitted = candidates_fit(problem, omega, tau, options, with, alpha);
+    if (!fitted) return out.dropped.push_back(diverged);
+    fit = std::move(*fitted);
+  }
   const double gain = out.fit.chi2 - fit.chi2, penalty = std::log(static_cast<double>(fit.kept.size()));
   if (gain > q * penalty) {
     out.model = with;
@@ -159,7 +181,15 @@ DriveEffectSelection select_drive_effects(const Problem& problem, const std::vec
       out.dropped.push_back(fmt::format("backlash of joint {} (its mesh torque too often below {:.2g} N m to tell the flank)",
                                         i + 1, model.backlash_torque_min_Nm));
   out.model = with_candidates(model, tellable);
-  const MotionFit all = calibrate_in_motion(problem, omega, tau, options, out.model, alpha);
+  const std::optional<MotionFit> fitted = candidates_fit(problem, omega, tau, options, out.model, alpha);
+  if (!fitted) {
+    out.dropped.push_back("every drive-train candidate: the fit with them diverged (the readings corrected by "
+                          "them no longer fit a robot; an effect the model lacks is larger than they are)");
+    out.model = model;
+    out.fit = fit_of_model ? *fit_of_model : calibrate_in_motion(problem, omega, tau, options, model, alpha);
+    return out;
+  }
+  const MotionFit& all = *fitted;
   // A pair (a, b) at the two-sided k-sigma level: chi-square(2) > -2 ln(erfc(k / sqrt 2)).
   const double pair_level = std::sqrt(-2.0 * std::log(std::erfc(k / std::sqrt(2.0))));
   const char* order_name[3] = {"once per joint revolution", "once per motor revolution", "twice per motor revolution"};

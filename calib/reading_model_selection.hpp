@@ -39,7 +39,9 @@ MotionModel with_harmonic_candidates(MotionModel model, const MotionModel& candi
 // switched on there), then again with those the Wald test at k sigma keeps
 // (calibrate_in_motion: omega, tau, alpha as there); when it keeps none and
 // fit_of_model is given (the fit of model, already made), that fit is taken
-// instead of being made again. Throws as calibrate_in_motion.
+// instead of being made again. Where the fit with the candidates diverges
+// (its corrected readings fit no robot), none is kept and the fit of model
+// is taken (a note in dropped). Throws as calibrate_in_motion on model.
 DriveEffectSelection select_drive_effects(const Problem& problem, const std::vector<Eigen::Vector3d>& omega,
                                           const std::vector<Eigen::Vector3d>& tau, const LmOptions& options,
                                           const MotionModel& model, const std::vector<Eigen::Vector3d>& alpha,

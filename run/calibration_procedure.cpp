@@ -266,6 +266,23 @@ void fit_motion(MotionStage& m, const CalibrationInputs& in, bool in_motion) {
   }
 }
 
+// fit_motion with the drive train's harmonic candidates in the model (no
+// selection without sigma: without them), or, where that fit diverges (a
+// larger effect the model lacks, which they chase), without them.
+void first_fit(MotionStage& m, const CalibrationInputs& in, bool in_motion) {
+  if (!(m.sigma > 0.0)) return fit_motion(m, in, in_motion);
+  MotionStage without = m;
+  m.motion = calib::with_harmonic_candidates(m.motion, in.drive_candidates);
+  try {
+    fit_motion(m, in, in_motion);
+  } catch (const InputError& e) {
+    m = std::move(without);
+    fit_motion(m, in, in_motion);
+    m.drive_notes.push_back(
+        fmt::format("the drive train's harmonics left out of the first fit: with them it diverged ({})", e.what()));
+  }
+}
+
 // The clearance and the lag on the torque before stay in the model only
 // where the data show them (some value 3 sigma from 0); else the fit is made
 // again without (the clearance's: every sample used, no force signs needed).
@@ -433,8 +450,7 @@ CalibrationOutcome calibrate_samples(const SampleSeries& samples, const Calibrat
     // clearance's force signs wrong); the selection then drops the harmonics
     // the data do not show. Not the backlash: whether its flank can be told
     // depends on the friction being chosen. No selection without sigma.
-    if (m.sigma > 0.0) m.motion = calib::with_harmonic_candidates(m.motion, inputs.drive_candidates);
-    fit_motion(m, inputs, options.in_motion);
+    first_fit(m, inputs, options.in_motion);
     drop_undetected(m, options.keep_clearance);
     select_drive_train(m, inputs);
     // What looked like a play before the drive train was in the model may be

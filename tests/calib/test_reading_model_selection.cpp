@@ -9,7 +9,7 @@
 // sandwich is not taken; with none kept, a fit without them already made is
 // taken as it is; the harmonic candidates join a model without its backlash;
 // two backlashes whose flanks are certain together in a third of the samples
-// are both estimated;
+// are both estimated; a candidates' fit that diverges leaves them out;
 // readings with a reducer hysteresis on two joints along a path give back
 // its loss and the geometry, a joint whose mesh torque is too small to slide
 // the element is no candidate, and a robot without it keeps none.
@@ -23,6 +23,7 @@
 #include "calib/paper_values.hpp"
 #include "calib/passive_tension.hpp"
 #include "calib/synthetic.hpp"
+#include "models/errors.hpp"
 #include "models/rng.hpp"
 
 namespace gpm::calib {
@@ -156,6 +157,31 @@ TEST(ReadingModelSelection, KeepsTwoBacklashesWhoseFlanksAreCertainTogetherInATh
   for (std::size_t i : {1u, 2u})
     EXPECT_LT(std::abs(s.fit.backlash[i] - kBeta[static_cast<Eigen::Index>(i)]), 4.0 * s.fit.backlash_sigma[i]);
   EXPECT_LT(worst_in_sigmas(d, s.fit.result), 4.0);
+}
+
+// A backlash the candidates lack (its flank in doubt) whose misfit the
+// harmonics chase: their fit diverges, and the selection keeps the model
+// without them, saying so, rather than failing the calibration.
+TEST(ReadingModelSelection, ACandidateFitThatDivergesLeavesTheCandidatesOut) {
+  DriveData d = make_data(1500, 27);
+  Rng rng(28);
+  for (Eigen::Vector3d& t : d.tau)
+    for (int i : {1, 2})
+      if (rng.uniform(0.0, 1.0) < 0.4) t[i] = (t[i] > 0.0 ? 1.0 : -1.0) * 0.01;
+  LmOptions o;
+  o.encoder_sigma = kSigma;
+  MotionModel harmonics_only = every_candidate();
+  harmonics_only.backlash = {};
+  EXPECT_THROW(calibrate_in_motion(d.problem, d.omega, d.tau, o, with_harmonic_candidates(rigid_geared(), harmonics_only)),
+               InputError) << "the case: the candidates' own fit diverges";
+  const MotionFit plain = calibrate_in_motion(d.problem, d.omega, d.tau, o, rigid_geared());
+  const DriveEffectSelection s =
+      select_drive_effects(d.problem, d.omega, d.tau, o, rigid_geared(), {}, harmonics_only, 3.0, &plain);
+  EXPECT_EQ(s.model.motor_harmonic1, (std::array<bool, 3>{}));
+  EXPECT_EQ(s.model.joint_harmonic, (std::array<bool, 3>{}));
+  ASSERT_EQ(s.dropped.size(), 1u);
+  EXPECT_NE(s.dropped.front().find("diverged"), std::string::npos) << s.dropped.front();
+  EXPECT_EQ(s.fit.result.geometry.values, plain.result.geometry.values);
 }
 
 TEST(ReadingModelSelection, FindsNothingOnARobotWithoutADriveTrain) {
