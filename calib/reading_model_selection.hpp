@@ -8,8 +8,8 @@
 // (a^2/sa^2 + b^2/sb^2 >= the chi-square(2) quantile of the two-sided k-sigma
 // level); the fit is made again with the kept ones. A backlash is a
 // candidate only where the samples can tell its flank (the mesh torque above
-// MotionModel::backlash_torque_min_Nm in half the samples, for all such
-// joints together too; else it is reported as dropped). The hysteresis,
+// MotionModel::backlash_torque_min_Nm in half the samples, and for all such
+// joints together in a quarter of them; else it is reported as dropped). The hysteresis,
 // nonlinear in its loss, comes after the others, on the model they chose:
 // a candidate where the mesh torque spans 4 thresholds at the fit's start,
 // kept where its loss lies k 1-sigma above 0 and the fit with it lowers

@@ -1,8 +1,9 @@
 # The twin's effects beyond its basic set (geometry, compliance and stiffness
 # bands, passive clearance, drive friction, masses, thermal growth, the
 # encoders' own errors and latch skew), each as the `effects:` key that turns
-# it off; sourced by scripts/study_effect_budget.sh and
-# scripts/study_friction_balance.sh, which start from `preset: randomized`.
+# it off; sourced by scripts/study_effect_budget.sh,
+# scripts/study_friction_balance.sh and scripts/study_backlash_joint.sh,
+# which start from `preset: randomized` (and study_setup for their inputs).
 names=(backlash hysteresis te_joint te_motor stiction load_friction torque_constant cogging hub_pins jitter)
 declare -A off=(
   [backlash]="backlash_rad: 0"
@@ -21,4 +22,16 @@ all_off_but() {
   local keys="" n
   for n in "${names[@]}"; do [[ $n == "$1" ]] || keys+="${keys:+, }${off[$n]}"; done
   echo "$keys"
+}
+
+# The study's inputs: gpm (GPM, else ./build/app/gpm, built if missing), the
+# output folder out=$1 (made), count=$2 robots from seed first=$3 (seeds, a
+# comma-separated list) and the robot file (robot, an absolute path).
+study_setup() {
+  out=$1 count=$2 first=$3
+  gpm=${GPM:-./build/app/gpm}
+  [[ -x $gpm ]] || bash scripts/build.sh
+  mkdir -p "$out"
+  seeds=$(seq -s, "$first" $((first + count - 1)))
+  robot=$(realpath models/gpm2002.yaml)
 }

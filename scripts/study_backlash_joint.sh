@@ -11,16 +11,9 @@
 #   7 arcmin, within the twin's draw of 0.3-10 arcmin; about 2 minutes)
 set -euo pipefail
 cd "$(dirname "$0")/.."
-out=${1:-out/backlash_joint}
-count=${2:-20}
-first=${3:-26000}
-b=${4:-2.1e-3}
-gpm=${GPM:-./build/app/gpm}
-[[ -x $gpm ]] || bash scripts/build.sh
-mkdir -p "$out"
-seeds=$(seq -s, "$first" $((first + count - 1)))
-robot=$(realpath models/gpm2002.yaml)
 source scripts/effects_beyond_basic.sh
+study_setup "${1:-out/backlash_joint}" "${2:-20}" "${3:-26000}"
+b=${4:-2.1e-3}
 basic=$(all_off_but none | sed 's/backlash_rad: 0, //')
 
 # Runs row $1 with the backlash list $2.

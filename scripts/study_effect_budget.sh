@@ -15,17 +15,9 @@
 #   about 6 minutes on 2 idle cores)
 set -euo pipefail
 cd "$(dirname "$0")/.."
-out=${1:-out/effect_budget}
-count=${2:-10}
-first=${3:-2026}
-gpm=${GPM:-./build/app/gpm}
-[[ -x $gpm ]] || bash scripts/build.sh
-mkdir -p "$out"
-seeds=$(seq -s, "$first" $((first + count - 1)))
-robot=$(realpath models/gpm2002.yaml)
-
-# The effects beyond the basic set (names, off, all_off_but).
 source scripts/effects_beyond_basic.sh
+study_setup "${1:-out/effect_budget}" "${2:-10}" "${3:-2026}"
+
 # Runs row $1 with the effects keys $2 (after `preset: randomized`).
 row() {
   local name=$1 keys=$2 f=$out/$1.yaml

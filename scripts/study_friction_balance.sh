@@ -14,15 +14,8 @@
 #   (default out/friction_balance, 20 robots from seed 20000: about 5 minutes on 2 idle cores)
 set -euo pipefail
 cd "$(dirname "$0")/.."
-out=${1:-out/friction_balance}
-count=${2:-20}
-first=${3:-20000}
-gpm=${GPM:-./build/app/gpm}
-[[ -x $gpm ]] || bash scripts/build.sh
-mkdir -p "$out"
-seeds=$(seq -s, "$first" $((first + count - 1)))
-robot=$(realpath models/gpm2002.yaml)
 source scripts/effects_beyond_basic.sh
+study_setup "${1:-out/friction_balance}" "${2:-20}" "${3:-20000}"
 declare -A effects=([basic]="{preset: randomized, $(all_off_but none)}" [randomized]="randomized" [preset]="realistic")
 kinds=(basic randomized preset)
 for kind in "${kinds[@]}"; do

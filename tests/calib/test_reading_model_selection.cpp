@@ -138,19 +138,30 @@ TEST(ReadingModelSelection, ABacklashWhoseFlankTheSamplesCannotTellIsNoCandidate
   EXPECT_LT(worst_in_sigmas(d, s.fit.result), 4.0);
 }
 
+// select_drive_effects of d: every candidate on the rigid geared model, at the noise kSigma.
+DriveEffectSelection select_every(const DriveData& d) {
+  LmOptions o;
+  o.encoder_sigma = kSigma;
+  return select_drive_effects(d.problem, d.omega, d.tau, o, rigid_geared(), {}, every_candidate());
+}
+
+// n samples of make_data whose joints 2 and 3 each have their mesh torque
+// in doubt (0.01 N m, its sign kept) in 40 % of the samples, at random.
+DriveData flanks_in_doubt(int n) {
+  DriveData d = make_data(n, 27);
+  Rng rng(28);
+  for (Eigen::Vector3d& t : d.tau)
+    for (int i : {1, 2})
+      if (rng.uniform(0.0, 1.0) < 0.4) t[i] = (t[i] > 0.0 ? 1.0 : -1.0) * 0.01;
+  return d;
+}
+
 // Two joints whose flanks are each in doubt in 40 % of the samples, at
 // different times: together certain in about a third of them, which is
 // enough to estimate both lost motions (rather than leave one out).
 TEST(ReadingModelSelection, KeepsTwoBacklashesWhoseFlanksAreCertainTogetherInAThird) {
-  DriveData d = make_data(1500, 27);
-  Rng rng(28);
-  for (Eigen::Vector3d& t : d.tau)
-    for (int i : {1, 2})
-      if (rng.uniform(0.0, 1.0) < 0.4) t[i] = (t[i] > 0.0 ? 1.0 : -1.0) * 0.01;  // flank kept, torque in doubt
-  LmOptions o;
-  o.encoder_sigma = kSigma;
-  const DriveEffectSelection s =
-      select_drive_effects(d.problem, d.omega, d.tau, o, rigid_geared(), {}, every_candidate());
+  const DriveData d = flanks_in_doubt(1500);
+  const DriveEffectSelection s = select_every(d);
   EXPECT_TRUE(s.model.backlash[1]);
   EXPECT_TRUE(s.model.backlash[2]);
   EXPECT_NEAR(static_cast<double>(s.fit.kept.size()) / 1500.0, 0.36, 0.05);  // 0.6 x 0.6 of them
@@ -163,11 +174,7 @@ TEST(ReadingModelSelection, KeepsTwoBacklashesWhoseFlanksAreCertainTogetherInATh
 // harmonics chase: their fit diverges, and the selection keeps the model
 // without them, saying so, rather than failing the calibration.
 TEST(ReadingModelSelection, ACandidateFitThatDivergesLeavesTheCandidatesOut) {
-  DriveData d = make_data(1500, 27);
-  Rng rng(28);
-  for (Eigen::Vector3d& t : d.tau)
-    for (int i : {1, 2})
-      if (rng.uniform(0.0, 1.0) < 0.4) t[i] = (t[i] > 0.0 ? 1.0 : -1.0) * 0.01;
+  const DriveData d = flanks_in_doubt(1500);
   LmOptions o;
   o.encoder_sigma = kSigma;
   MotionModel harmonics_only = every_candidate();
