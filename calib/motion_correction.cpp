@@ -316,25 +316,24 @@ std::vector<Eigen::Vector3d> transmitted_torques(const MotionModel& model, const
 std::vector<Eigen::Vector3d> flank_regressors(const MotionModel& model, const std::vector<Eigen::Vector3d>& omega,
                                               const std::vector<Eigen::Vector3d>& tau,
                                               const std::vector<Eigen::Vector3d>& alpha) {
+  const std::vector<Eigen::Vector3d> mesh = mesh_torques(model.load, omega, tau, alpha);
   std::vector<Eigen::Vector3d> flank(omega.size(), Eigen::Vector3d::Zero());
   for (std::size_t j = 0; j < omega.size(); ++j)
-    for (int i = 0; i < 3; ++i) {
-      if (!model.backlash[static_cast<std::size_t>(i)]) continue;
-      const double t = mesh_torque(model.load, i, tau[j][i], omega[j][i], alpha.empty() ? 0.0 : alpha[j][i]);
-      if (std::abs(t) >= model.backlash_torque_min_Nm) flank[j][i] = t > 0.0 ? 1.0 : -1.0;
-    }
+    for (int i = 0; i < 3; ++i)
+      if (model.backlash[static_cast<std::size_t>(i)] && std::abs(mesh[j][i]) >= model.backlash_torque_min_Nm)
+        flank[j][i] = mesh[j][i] > 0.0 ? 1.0 : -1.0;
   return flank;
 }
 
 // The mesh torque of each sample where model estimates a hysteresis (0 elsewhere).
-std::vector<Eigen::Vector3d> mesh_torques(const MotionModel& model, const std::vector<Eigen::Vector3d>& omega,
-                                          const std::vector<Eigen::Vector3d>& tau,
-                                          const std::vector<Eigen::Vector3d>& alpha) {
-  std::vector<Eigen::Vector3d> mesh(omega.size(), Eigen::Vector3d::Zero());
-  for (std::size_t j = 0; j < omega.size(); ++j)
+std::vector<Eigen::Vector3d> hysteresis_mesh_torques(const MotionModel& model,
+                                                     const std::vector<Eigen::Vector3d>& omega,
+                                                     const std::vector<Eigen::Vector3d>& tau,
+                                                     const std::vector<Eigen::Vector3d>& alpha) {
+  std::vector<Eigen::Vector3d> mesh = mesh_torques(model.load, omega, tau, alpha);
+  for (Eigen::Vector3d& m : mesh)
     for (int i = 0; i < 3; ++i)
-      if (model.hysteresis[static_cast<std::size_t>(i)])
-        mesh[j][i] = mesh_torque(model.load, i, tau[j][i], omega[j][i], alpha.empty() ? 0.0 : alpha[j][i]);
+      if (!model.hysteresis[static_cast<std::size_t>(i)]) m[i] = 0.0;
   return mesh;
 }
 
@@ -551,7 +550,7 @@ EffectRegressors effect_regressors(const Geometry& start, const MotionSamples& s
   e.clr.assign(s.theta_m.size(), Eigen::Vector3d::Zero());
   if (model.clearance) e.clr = clearance_regressors(forces, e.tension_min);
   e.flank = flank_regressors(model, s.omega, s.tau, s.alpha);
-  e.mesh = mesh_torques(model, s.omega, s.tau, s.alpha);
+  e.mesh = hysteresis_mesh_torques(model, s.omega, s.tau, s.alpha);
   e.at.resize(s.theta_m.size());
   std::iota(e.at.begin(), e.at.end(), std::size_t{0});
   e.hyst = hysteresis_regressors(model, e.mesh, e.at, starting_thresholds(model, e.mesh));
@@ -916,7 +915,7 @@ std::array<double, kNumParams> motion_crb(const Geometry& truth, const FreeMask&
   const std::vector<Eigen::Vector3d> flank_all = flank_regressors(model, omega, tau, alpha);
   std::vector<std::size_t> all(n);
   std::iota(all.begin(), all.end(), std::size_t{0});
-  const std::vector<Eigen::Vector3d> mesh = mesh_torques(model, omega, tau, alpha);
+  const std::vector<Eigen::Vector3d> mesh = hysteresis_mesh_torques(model, omega, tau, alpha);
   const HysteresisRegressors hyst_all = hysteresis_regressors(model, mesh, all, starting_thresholds(model, mesh));
   std::vector<Eigen::Vector3d> th, w, t, c, nb, flank, hyst, hyst_slope;
   for (std::size_t j : kept_samples(model, clr, flank_all)) {

@@ -22,6 +22,16 @@ double mesh_torque(const TransmissionLoad& load, int i, double tau, double omega
   return tau - load.coulomb_Nm[k] * sign - load.viscous_Nm_s[k] * omega - load.rotor_inertia_kg_m2[k] * alpha;
 }
 
+std::vector<Eigen::Vector3d> mesh_torques(const TransmissionLoad& load, const std::vector<Eigen::Vector3d>& omega,
+                                          const std::vector<Eigen::Vector3d>& tau,
+                                          const std::vector<Eigen::Vector3d>& alpha) {
+  std::vector<Eigen::Vector3d> mesh(omega.size());
+  for (std::size_t j = 0; j < omega.size(); ++j)
+    for (int i = 0; i < 3; ++i)
+      mesh[j][i] = mesh_torque(load, i, tau[j][i], omega[j][i], alpha.empty() ? 0.0 : alpha[j][i]);
+  return mesh;
+}
+
 double passive_link_tension(const Geometry& g, int i, double theta_a, double theta_b, double tau_t) {
   return -tau_t / (1e-3 * g.la_(i) * std::sin(theta_b - theta_a));
 }

@@ -29,6 +29,9 @@
 #pragma once
 
 #include <array>
+#include <vector>
+
+#include <Eigen/Core>
 
 #include "models/parameters.hpp"
 
@@ -63,6 +66,12 @@ double transmitted_torque(const TransmissionLoad& load, int i, double tau, doubl
 // tau less the motor-side friction and the rotor's inertia,
 // tau - F_i tanh(omega / v_F) - b_i omega - J_r_i alpha (the flank in contact is its sign).
 double mesh_torque(const TransmissionLoad& load, int i, double tau, double omega, double alpha);
+
+// mesh_torque of each joint of each sample (omega, tau, alpha per sample;
+// alpha empty: 0).
+std::vector<Eigen::Vector3d> mesh_torques(const TransmissionLoad& load, const std::vector<Eigen::Vector3d>& omega,
+                                          const std::vector<Eigen::Vector3d>& tau,
+                                          const std::vector<Eigen::Vector3d>& alpha);
 
 // Axial force T_i (N, > 0 in tension) of passive link i (0..2) of geometry g
 // (mm) at active angle theta_a and passive angle theta_b (rad), from the

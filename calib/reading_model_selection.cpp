@@ -34,12 +34,12 @@ std::array<bool, 3> tellable_backlash(const MotionModel& model, const std::vecto
                                       const std::vector<Eigen::Vector3d>& tau,
                                       const std::vector<Eigen::Vector3d>& alpha, std::array<bool, 3> wanted) {
   const std::size_t n = tau.size();
+  const std::vector<Eigen::Vector3d> mesh = mesh_torques(model.load, omega, tau, alpha);
   std::vector<std::array<bool, 3>> certain(n);
   std::array<double, 3> share{};
   for (std::size_t j = 0; j < n; ++j)
     for (int i = 0; i < 3; ++i) {
-      const double t = mesh_torque(model.load, i, tau[j][i], omega[j][i], alpha.empty() ? 0.0 : alpha[j][i]);
-      certain[j][static_cast<std::size_t>(i)] = std::abs(t) >= model.backlash_torque_min_Nm;
+      certain[j][static_cast<std::size_t>(i)] = std::abs(mesh[j][i]) >= model.backlash_torque_min_Nm;
       share[static_cast<std::size_t>(i)] += certain[j][static_cast<std::size_t>(i)] ? 1.0 / static_cast<double>(n) : 0.0;
     }
   for (std::size_t i = 0; i < 3; ++i) wanted[i] = wanted[i] && share[i] >= kMinFlankShare;
@@ -79,12 +79,10 @@ std::array<bool, 3> tellable_hysteresis(const MotionModel& model, const std::vec
                                         const std::vector<Eigen::Vector3d>& tau,
                                         const std::vector<Eigen::Vector3d>& alpha, std::array<bool, 3> wanted) {
   const double threshold = starting_hysteresis_threshold(model);
+  const std::vector<Eigen::Vector3d> mesh = mesh_torques(model.load, omega, tau, alpha);
   for (std::size_t i = 0; i < 3 && !tau.empty(); ++i) {
     double lo = std::numeric_limits<double>::infinity(), hi = -lo;
-    for (std::size_t j = 0; j < tau.size(); ++j) {
-      const double t = mesh_torque(model.load, static_cast<int>(i), tau[j][i], omega[j][i], alpha.empty() ? 0.0 : alpha[j][i]);
-      lo = std::min(lo, t), hi = std::max(hi, t);
-    }
+    for (const Eigen::Vector3d& t : mesh) lo = std::min(lo, t[static_cast<Eigen::Index>(i)]), hi = std::max(hi, t[static_cast<Eigen::Index>(i)]);
     wanted[i] = wanted[i] && threshold <= largest_hysteresis_threshold(hi - lo);
   }
   return wanted;

@@ -266,6 +266,12 @@ TEST(ReadingModelSelection, MeshTorqueIsTheDriveTorqueLessFrictionAndRotorInerti
   load.friction_speed_rad_s = 0.0;
   EXPECT_DOUBLE_EQ(mesh_torque(load, 1, 2.0, 0.5, 10.0), 2.0 - 0.3 - 0.05 - 0.02);
   EXPECT_DOUBLE_EQ(mesh_torque(load, 1, 2.0, -0.5, 0.0), 2.0 + 0.3 + 0.05);
+  // Over a series, each sample's and joint's; no accelerations: none.
+  const std::vector<Eigen::Vector3d> omega{{0.5, -0.5, 0.0}}, tau{{2.0, 2.0, 1.0}};
+  const std::vector<Eigen::Vector3d> with_alpha = mesh_torques(load, omega, tau, {{10.0, 0.0, 0.0}});
+  EXPECT_DOUBLE_EQ(with_alpha[0][0], 2.0 - 0.3 - 0.05 - 0.02);
+  EXPECT_DOUBLE_EQ(mesh_torques(load, omega, tau, {})[0][1], 2.0 + 0.3 + 0.05);
+  EXPECT_DOUBLE_EQ(with_alpha[0][2], 1.0);  // at rest: the friction's sign is 0
 }
 
 // Readings along a path whose joints 2 and 3 carry smooth torques through a
