@@ -162,6 +162,7 @@ BalanceFriction friction_from_force_balance(const Geometry& g, const BalanceSamp
     out.viscous_sigma_Nm_s[i] = std::sqrt(var[c + 3]);
   }
   out.residual_rms_N = std::sqrt(sum_sq / static_cast<double>(2 * rows.size()));
+  out.tension_sigma_N = out.residual_rms_N * std::sqrt(2.0 / 3.0);
   out.samples = rows.size();
   return out;
 }

@@ -17,6 +17,11 @@
 // 244 mm link is 0.4 % of a moment arm), a_C the second difference of the hub
 // position over the readings. Rows are weighted by Huber's rule (stiction,
 // cogging and the drives' start are outliers of this model, not its noise).
+// With an error of 1-sigma sigma_T in each link's force, independent of the
+// other links', the residual's two components have the variance
+// sigma_T^2 sum_i |u_i|^2 / 2 = 1.5 sigma_T^2 (u_i unit vectors), so one
+// link's force is known to sigma_T = residual_rms sqrt(2/3): what the
+// clearance's force signs are judged by (run/calibration_procedure.cpp).
 #pragma once
 
 #include <array>
@@ -37,6 +42,8 @@ struct BalanceFriction {
   std::array<double, 3> coulomb_sigma_Nm{};  // their 1-sigma, from the rows' scatter
   std::array<double, 3> viscous_sigma_Nm_s{};
   double residual_rms_N = 0.0;  // RMS of the balance's residual force (N) over the rows used
+  double tension_sigma_N = 0.0; // 1-sigma of one passive link's force as the balance sees it (N):
+                                // residual_rms_N sqrt(2/3) (below)
   std::size_t samples = 0;      // samples used (each two rows)
 };
 

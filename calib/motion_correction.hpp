@@ -29,7 +29,8 @@ struct MotionModel {
                            // lb_i + d_i sign(T_i), T_i its axial force (calib/passive_tension.hpp)
   TransmissionLoad load;       // for the force signs: the friction and inertia the transmissions take off
   double tension_min_N = 1.5;  // |T_i| below this: the sign is uncertain (on the realistic twin 5 % of the
-                               // signs were wrong above 0.3 N, 1 % above 1 N, 0.3 % above 1.5 N)
+                               // signs were wrong above 0.3 N, 1 % above 1 N, 0.3 % above 1.5 N); on the
+                               // fly set from BalanceFriction::tension_sigma_N (calib/friction_balance.hpp)
   bool drop_uncertain = true;  // with clearance: a sample where some chain's force sign is uncertain is left
                                // out (false: only that chain's play is left out of it)
   double min_kept_share = 0.25;  // with drop_uncertain: when fewer samples than this share have every

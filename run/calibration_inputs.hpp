@@ -22,6 +22,7 @@ struct CalibrationInputs {
   calib::MotionModel drive_candidates;
   DriveFriction drive_friction;  // calibration.drive_friction (default: the data sheet's)
   double hub_mass_kg = 0.0;      // what the hub's force balance moves: the end effector and half of each passive link
+  bool tension_min_stated = false;  // calibration.tension_min_N given: else the force balance sets the threshold
   MonitorReadingModel monitor;   // the monitor's reading model before calibration (monitor:)
 };
 

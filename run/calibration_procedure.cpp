@@ -35,6 +35,11 @@ constexpr double kWalkTrust = 2.0;
 // The Wald test's level at which a drive train's effect is kept (calib/reading_model_selection.hpp).
 constexpr double kDriveEffectSigmas = 3.0;
 
+// A passive link's force sign is taken as certain beyond this many of the
+// force's 1-sigma as the hub's force balance sees it (calib/friction_balance.hpp),
+// unless calibration.tension_min_N states the threshold.
+constexpr double kForceSignSigmas = 2.0;
+
 // The motion model's fit in progress: the problem, the samples' rates and
 // torques, the LM options and the notes each stage leaves.
 struct MotionStage {
@@ -233,14 +238,19 @@ void friction_from_balance(MotionStage& m, const CalibrationInputs& in) {
     const std::vector<int> viscous = take_measured(m.motion.load.viscous_Nm_s, f.viscous_Nm_s, f.viscous_sigma_Nm_s);
     m.balance = f;
     m.balance_taken = static_cast<int>(coulomb.size() + viscous.size());
+    if (!in.tension_min_stated && f.tension_sigma_N > 0.0) m.motion.tension_min_N = kForceSignSigmas * f.tension_sigma_N;
     m.balance_note = fmt::format(
         "drive friction per joint from the hub's force balance on the drives' torques: Coulomb {:.3g}, {:.3g}, "
         "{:.3g} N m (1-sigma {:.2g}, {:.2g}, {:.2g}), viscous {:.3g}, {:.3g}, {:.3g} N m s/rad (1-sigma {:.2g}, "
-        "{:.2g}, {:.2g}; the balance's residual force {:.2g} N RMS over {} samples); taken where 3 sigma from the "
-        "stated values: Coulomb of {}, viscous of {}",
+        "{:.2g}, {:.2g}; the balance's residual force {:.2g} N RMS over {} samples, a link's force known to {:.2g} N); "
+        "taken where 3 sigma from the stated values: Coulomb of {}, viscous of {}{}",
         f.coulomb_Nm[0], f.coulomb_Nm[1], f.coulomb_Nm[2], f.coulomb_sigma_Nm[0], f.coulomb_sigma_Nm[1],
         f.coulomb_sigma_Nm[2], f.viscous_Nm_s[0], f.viscous_Nm_s[1], f.viscous_Nm_s[2], f.viscous_sigma_Nm_s[0],
-        f.viscous_sigma_Nm_s[1], f.viscous_sigma_Nm_s[2], f.residual_rms_N, f.samples, joints(coulomb), joints(viscous));
+        f.viscous_sigma_Nm_s[1], f.viscous_sigma_Nm_s[2], f.residual_rms_N, f.samples, f.tension_sigma_N,
+        joints(coulomb), joints(viscous),
+        in.tension_min_stated ? std::string()
+                              : fmt::format("; a passive link's force sign taken as certain above {:.2g} N ({} sigma)",
+                                            m.motion.tension_min_N, kForceSignSigmas));
   } catch (const InputError& e) {
     m.balance_note = fmt::format("drive friction as stated, not from the force balance: {}", e.what());
   }

@@ -2,7 +2,8 @@
 // against the centripetal a = -w^2 r; each drive's friction recovered from
 // torques made by the hub's force balance itself (a torque-off drive and two
 // that hold the path, every friction different), to rounding without noise
-// and within its jackknife 1-sigma with noisy torques; a negative friction
+// and within its jackknife 1-sigma with noisy torques; a link's force error
+// recovered from the residual (sqrt 1.5 of it); a negative friction
 // clipped to 0; short or mismatched series refused.
 #include "calib/friction_balance.hpp"
 
@@ -53,12 +54,13 @@ Path lissajous() {
 struct Record {
   std::vector<Eigen::Vector3d> omega, alpha, tau;
   std::vector<Eigen::Vector2d> hub_accel;
+  std::vector<Eigen::Vector3d> lever;  // la_i S_i (m): a link force T_i takes -T_i la_i S_i off drive i's torque
 };
 Record drive_torques(const Path& p, const TransmissionLoad& load, double hub_mass_kg) {
   RateOptions ro;
   ro.alpha_span = kAlphaSpan;
   const ReadingRates rates = reading_rates(p.t, p.theta_m, ro);
-  Record r{rates.omega, rates.alpha, {}, hub_accelerations(p.g, p.t, p.theta_m, kAlphaSpan)};
+  Record r{rates.omega, rates.alpha, {}, hub_accelerations(p.g, p.t, p.theta_m, kAlphaSpan), {}};
   for (std::size_t j = 0; j < p.t.size(); ++j) {
     const Eigen::Vector3d ta = active_from_readings(p.g, p.theta_m[j]);
     const Eigen::Vector3d tb = forward_kinematics(p.g, ta)->theta_b;
@@ -76,6 +78,7 @@ Record drive_torques(const Path& p, const TransmissionLoad& load, double hub_mas
     U << u[1], u[2];
     const Eigen::Vector2d T23 = U.lu().solve(-hub_mass_kg * r.hub_accel[j] - T1 * u[0]);
     r.tau.emplace_back(0.0, load_torque[1] - T23[0] * lever[1], load_torque[2] - T23[1] * lever[2]);
+    r.lever.push_back(lever);
   }
   return r;
 }
@@ -129,6 +132,22 @@ TEST(FrictionBalance, NoisyTorquesLandWithinTheJackknifeSigma) {
     EXPECT_LT(std::abs(f.viscous_Nm_s[i] - truth.viscous_Nm_s[i]), 4.0 * f.viscous_sigma_Nm_s[i]) << "joint " << i + 1;
     EXPECT_LT(f.coulomb_sigma_Nm[i], 0.05) << "joint " << i + 1;  // the path determines the friction
   }
+}
+
+TEST(FrictionBalance, ALinksForceErrorIsTheResidualOverTheSquareRootOfOneAndAHalf) {
+  // Each drive's torque off by the torque of a link force error of 1-sigma
+  // 0.4 N: the balance's residual has 1.5 x its variance per component.
+  const Path p = lissajous();
+  const TransmissionLoad truth = drawn_load();
+  Record r = drive_torques(p, truth, 0.475);
+  std::mt19937 rng(11);
+  const double sigma_T = 0.4;
+  std::normal_distribution<double> dT(0.0, sigma_T);
+  for (std::size_t j = 0; j < r.tau.size(); ++j)
+    for (int i = 0; i < 3; ++i) r.tau[j][i] -= dT(rng) * r.lever[j][i];
+  const BalanceFriction f = friction_from_force_balance(p.g, {p.theta_m, r.omega, r.alpha, r.tau, r.hub_accel}, truth, 0.475, 20);
+  EXPECT_NEAR(f.residual_rms_N, sigma_T * std::sqrt(1.5), 0.03 * sigma_T);
+  EXPECT_NEAR(f.tension_sigma_N, sigma_T, 0.03 * sigma_T);
 }
 
 TEST(FrictionBalance, ANegativeFrictionIsClippedToZero) {

@@ -12,6 +12,7 @@
 #include <iterator>
 #include <limits>
 
+#include <fmt/format.h>
 #include <gtest/gtest.h>
 
 #include "models/errors.hpp"
@@ -140,6 +141,30 @@ TEST(CalibrationProcedure, TheForceBalanceFindsEachDrivesFrictionOnTheTwin) {
   ASSERT_NE(note, c.result.notes.end());
   EXPECT_TRUE(note->find("Coulomb of joints 1, 3,") != std::string::npos ||
               note->find("Coulomb of joints 1, 2, 3,") != std::string::npos) << *note;
+  // The clearance's force signs are taken as certain beyond twice a link's
+  // force 1-sigma as the balance sees it (no threshold stated); the fit's may
+  // be lower, to keep a quarter of the samples.
+  EXPECT_GT(f.tension_sigma_N, 0.0);
+  EXPECT_EQ(c.motion.tension_min_N, 2.0 * f.tension_sigma_N);
+  EXPECT_LE(c.fit.tension_min_N, c.motion.tension_min_N);
+  EXPECT_NE(note->find(fmt::format("force sign taken as certain above {:.2g} N", c.motion.tension_min_N)), std::string::npos)
+      << *note;
+}
+
+// A threshold the user states (calibration.tension_min_N) is the one the
+// clearance's force signs are judged by, not the balance's.
+TEST(CalibrationProcedure, AStatedForceSignThresholdIsKept) {
+  const RunOutcome& o = small_run();
+  const Samples s = parse_samples_csv(sim::samples_csv(o.sim.samples), "samples.csv");
+  const Robot robot = load_robot(std::string(GPM_SOURCE_DIR) + "/models/gpm2002.yaml");
+  FileProcedure p = samples_file_procedure(s, robot, robot.geometry, ~parse_param_list("xa1,ya1,xa2,ya2", "--fix"), {},
+                                           std::nullopt, false);
+  p.inputs.tension_min_stated = true;
+  p.inputs.motion.tension_min_N = 0.5;
+  const CalibrationOutcome c = calibrate_samples(sample_series(s), p.inputs, p.options);
+  ASSERT_TRUE(c.friction_balance);
+  ASSERT_NE(2.0 * c.friction_balance->tension_sigma_N, 0.5);
+  EXPECT_EQ(c.motion.tension_min_N, 0.5);
 }
 
 TEST(CalibrationProcedure, WithoutTimesAndTorquesTheStaticFitAndItsModelTest) {

@@ -1,0 +1,57 @@
+#!/usr/bin/env bash
+# What the passive links' force-sign threshold from the hub's force balance
+# gives the main job: the same robots of scenarios/main.yaml (same seeds, same
+# draws) calibrated with calibration.tension_min_N stated at 1.5 N (the one
+# threshold of before) and with the default (twice a link's force 1-sigma as
+# the balance sees it), for three kinds of robot: the basic set of effects
+# (as scripts/study_effect_budget.sh's "basic set only"), every effect drawn
+# (effects: randomized) and the realistic preset's effects with drawn
+# geometry. Writes DIR/force_sign.md. A study already in DIR (its
+# population.json) is kept: remove DIR to measure again.
+#   bash scripts/study_force_sign.sh [DIR] [COUNT] [FIRST_SEED]
+#   (default out/force_sign, 20 robots from seed 27100: about 5 minutes on 2 idle cores)
+set -euo pipefail
+cd "$(dirname "$0")/.."
+source scripts/effects_beyond_basic.sh
+study_setup "${1:-out/force_sign}" "${2:-20}" "${3:-27100}"
+declare -A effects=([basic]="{preset: randomized, $(all_off_but none)}" [randomized]="randomized" [preset]="realistic")
+declare -A threshold=([stated]=", tension_min_N: 1.5" [balance]="")
+kinds=(basic randomized preset)
+for kind in "${kinds[@]}"; do
+  for rule in stated balance; do
+    f=$out/${kind}_$rule.yaml
+    sed -e "s|^robot: .*|robot: $robot|" -e "s|^effects: .*|effects: ${effects[$kind]}|" -e '/^expect:/,$d' \
+        -e "s|^calibration: {\(.*\)}$|calibration: {\1${threshold[$rule]}}|" scenarios/main.yaml > "$f"
+    [[ $rule == balance ]] || grep -q "tension_min_N: 1.5" "$f"
+    [[ -f $out/${kind}_$rule/population.json ]] && continue
+    echo "study force sign: $kind effects, threshold $rule" >&2
+    "$gpm" study population "$f" --keep-effects --seeds "$seeds" -o "$out/${kind}_$rule" --progress none > "$out/${kind}_$rule.log"
+  done
+done
+/usr/bin/python3 - "$out" "$count" "$first" "${kinds[@]}" <<'PY'
+import json, sys
+out, count, first, kinds = sys.argv[1], int(sys.argv[2]), int(sys.argv[3]), sys.argv[4:]
+label = {'basic': 'the basic set', 'randomized': 'every effect drawn', 'preset': 'the `realistic` preset'}
+lines = [f"{count} robots of `scenarios/main.yaml` each (seeds {first}..{first + count - 1}); "
+         "`bash scripts/study_force_sign.sh`. Before -> after: `tension_min_N: 1.5` stated -> the default "
+         "(twice a link's force 1-sigma by the hub's force balance).", "",
+         "| robots' effects | positioning RMS median (um) | worst robot (um) | parameters within 3 sigma | "
+         "worst parameter (sigma) | error / stated 1-sigma (median) | model test passes | robots better / worse |",
+         "| --- | ---: | ---: | ---: | ---: | ---: | ---: | ---: |"]
+for kind in kinds:
+    a, b = (json.load(open(f"{out}/{kind}_{x}/population.json")) for x in ("stated", "balance"))
+    sa, sb = a["summary"], b["summary"]
+    ra = {r["seed"]: r["positioning_um"]["rms"] for r in a["robots"] if r["failure"] is None}
+    rb = {r["seed"]: r["positioning_um"]["rms"] for r in b["robots"] if r["failure"] is None}
+    better = sum(1 for s in ra if s in rb and rb[s] < ra[s])
+    worse = sum(1 for s in ra if s in rb and rb[s] > ra[s])
+    lines.append(f"| {label[kind]} | {sa['positioning_median_um']:.1f} -> {sb['positioning_median_um']:.1f} | "
+                 f"{sa['positioning_max_um']:.0f} -> {sb['positioning_max_um']:.0f} | "
+                 f"{100 * sa['within_3_sigma_fraction']:.0f} -> {100 * sb['within_3_sigma_fraction']:.0f} % | "
+                 f"{sa['worst_sigma_ratio']:.1f} -> {sb['worst_sigma_ratio']:.1f} | "
+                 f"{sa['normalised_positioning_median']:.2f} -> {sb['normalised_positioning_median']:.2f} | "
+                 f"{100 * sa['model_test_pass_fraction']:.0f} -> {100 * sb['model_test_pass_fraction']:.0f} % | "
+                 f"{better} / {worse} |")
+open(f"{out}/force_sign.md", "w").write("\n".join(lines) + "\n")
+print("\n".join(lines))
+PY
