@@ -29,7 +29,9 @@ for kind in "${kinds[@]}"; do
   done
 done
 /usr/bin/python3 - "$out" "$count" "$first" "${kinds[@]}" <<'PY'
-import json, sys
+import sys
+sys.path.insert(0, "scripts")
+from population_pair import before_after, load_pair
 out, count, first, kinds = sys.argv[1], int(sys.argv[2]), int(sys.argv[3]), sys.argv[4:]
 label = {'basic': 'the basic set', 'randomized': 'every effect drawn', 'preset': 'the `realistic` preset'}
 lines = [f"{count} robots of `scenarios/main.yaml` each (seeds {first}..{first + count - 1}); "
@@ -39,19 +41,9 @@ lines = [f"{count} robots of `scenarios/main.yaml` each (seeds {first}..{first +
          "worst parameter (sigma) | error / stated 1-sigma (median) | model test passes | robots better / worse |",
          "| --- | ---: | ---: | ---: | ---: | ---: | ---: | ---: |"]
 for kind in kinds:
-    a, b = (json.load(open(f"{out}/{kind}_{x}/population.json")) for x in ("stated", "balance"))
-    sa, sb = a["summary"], b["summary"]
-    ra = {r["seed"]: r["positioning_um"]["rms"] for r in a["robots"] if r["failure"] is None}
-    rb = {r["seed"]: r["positioning_um"]["rms"] for r in b["robots"] if r["failure"] is None}
-    better = sum(1 for s in ra if s in rb and rb[s] < ra[s])
-    worse = sum(1 for s in ra if s in rb and rb[s] > ra[s])
-    lines.append(f"| {label[kind]} | {sa['positioning_median_um']:.1f} -> {sb['positioning_median_um']:.1f} | "
-                 f"{sa['positioning_max_um']:.0f} -> {sb['positioning_max_um']:.0f} | "
-                 f"{100 * sa['within_3_sigma_fraction']:.0f} -> {100 * sb['within_3_sigma_fraction']:.0f} % | "
-                 f"{sa['worst_sigma_ratio']:.1f} -> {sb['worst_sigma_ratio']:.1f} | "
-                 f"{sa['normalised_positioning_median']:.2f} -> {sb['normalised_positioning_median']:.2f} | "
-                 f"{100 * sa['model_test_pass_fraction']:.0f} -> {100 * sb['model_test_pass_fraction']:.0f} % | "
-                 f"{better} / {worse} |")
+    c = before_after(*load_pair(out, kind, "stated", "balance"))
+    lines.append(f"| {label[kind]} | {c['median']} | {c['worst']} | {c['within']} | {c['worst_sigma']} | "
+                 f"{c['per_sigma']} | {c['passes']} | {c['better_worse']} |")
 open(f"{out}/force_sign.md", "w").write("\n".join(lines) + "\n")
 print("\n".join(lines))
 PY

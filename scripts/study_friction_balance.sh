@@ -30,7 +30,9 @@ for kind in "${kinds[@]}"; do
   done
 done
 /usr/bin/python3 - "$out" "$count" "$first" "${kinds[@]}" <<'PY'
-import json, statistics, sys
+import statistics, sys
+sys.path.insert(0, "scripts")
+from population_pair import before_after, load_pair
 out, count, first, kinds = sys.argv[1], int(sys.argv[2]), int(sys.argv[3]), sys.argv[4:]
 MODEL_DAMPING = 0.05  # N m s/rad the model has before the effects' viscous friction (sim MjcfOptions)
 label = {'basic': 'the basic set', 'randomized': 'every effect drawn', 'preset': 'the `realistic` preset'}
@@ -41,12 +43,8 @@ lines = [f"{count} robots of `scenarios/main.yaml` each (seeds {first}..{first +
          "viscous friction error (N m s/rad), likewise |",
          "| --- | ---: | ---: | ---: | ---: | ---: | ---: | ---: |"]
 for kind in kinds:
-    a, b = (json.load(open(f"{out}/{kind}_{x}/population.json")) for x in ("false", "true"))
-    sa, sb = a["summary"], b["summary"]
-    ra = {r["seed"]: r["positioning_um"]["rms"] for r in a["robots"] if r["failure"] is None}
-    rb = {r["seed"]: r["positioning_um"]["rms"] for r in b["robots"] if r["failure"] is None}
-    better = sum(1 for s in ra if s in rb and rb[s] < ra[s])
-    worse = sum(1 for s in ra if s in rb and rb[s] > ra[s])
+    a, b = load_pair(out, kind, "false", "true")
+    c = before_after(a, b)
     def errors(key, truth_key, stated, offset):
         sheet, found = [], []
         for r in b["robots"]:
@@ -58,10 +56,8 @@ for kind in kinds:
                 if found else "-")
     fr = errors("coulomb_Nm", "coulomb_friction_Nm", 0.3, 0.0) + " | " + \
          errors("viscous_Nm_s", "viscous_friction_Nm_s", 0.15, MODEL_DAMPING)
-    lines.append(f"| {label[kind]} | {sa['positioning_median_um']:.1f} -> {sb['positioning_median_um']:.1f} | "
-                 f"{sa['positioning_max_um']:.0f} -> {sb['positioning_max_um']:.0f} | "
-                 f"{100 * sa['within_3_sigma_fraction']:.0f} -> {100 * sb['within_3_sigma_fraction']:.0f} % | "
-                 f"{sa['worst_sigma_ratio']:.1f} -> {sb['worst_sigma_ratio']:.1f} | {better} / {worse} | {fr} |")
+    lines.append(f"| {label[kind]} | {c['median']} | {c['worst']} | {c['within']} | {c['worst_sigma']} | "
+                 f"{c['better_worse']} | {fr} |")
 open(f"{out}/friction_balance.md", "w").write("\n".join(lines) + "\n")
 print("\n".join(lines))
 PY

@@ -1,0 +1,30 @@
+"""Table cells "before -> after" of two `gpm study population` results of the
+same robots (their population.json), for the studies that compare two
+versions of the procedure (scripts/study_force_sign.sh,
+scripts/study_friction_balance.sh)."""
+import json
+
+
+def load_pair(out, kind, before, after):
+    """The population.json of DIR/KIND_BEFORE and DIR/KIND_AFTER."""
+    return tuple(json.load(open(f"{out}/{kind}_{x}/population.json")) for x in (before, after))
+
+
+def before_after(a, b):
+    """Cells of summaries a -> b: positioning median and worst (um), share within 3
+    sigma, worst parameter (sigma), error / stated 1-sigma, model test passes,
+    and the robots whose positioning got better / worse."""
+    sa, sb = a["summary"], b["summary"]
+    ra = {r["seed"]: r["positioning_um"]["rms"] for r in a["robots"] if r["failure"] is None}
+    rb = {r["seed"]: r["positioning_um"]["rms"] for r in b["robots"] if r["failure"] is None}
+    better = sum(1 for s in ra if s in rb and rb[s] < ra[s])
+    worse = sum(1 for s in ra if s in rb and rb[s] > ra[s])
+    return {
+        "median": f"{sa['positioning_median_um']:.1f} -> {sb['positioning_median_um']:.1f}",
+        "worst": f"{sa['positioning_max_um']:.0f} -> {sb['positioning_max_um']:.0f}",
+        "within": f"{100 * sa['within_3_sigma_fraction']:.0f} -> {100 * sb['within_3_sigma_fraction']:.0f} %",
+        "worst_sigma": f"{sa['worst_sigma_ratio']:.1f} -> {sb['worst_sigma_ratio']:.1f}",
+        "per_sigma": f"{sa['normalised_positioning_median']:.2f} -> {sb['normalised_positioning_median']:.2f}",
+        "passes": f"{100 * sa['model_test_pass_fraction']:.0f} -> {100 * sb['model_test_pass_fraction']:.0f} %",
+        "better_worse": f"{better} / {worse}",
+    }
