@@ -2,7 +2,8 @@
 # bands, passive clearance, drive friction, masses, thermal growth, the
 # encoders' own errors and latch skew), each as the `effects:` key that turns
 # it off; sourced by scripts/study_effect_budget.sh,
-# scripts/study_friction_balance.sh and scripts/study_backlash_joint.sh,
+# scripts/study_friction_balance.sh, scripts/study_force_sign.sh and
+# scripts/study_backlash_joint.sh,
 # which start from `preset: randomized` (and study_setup for their inputs).
 names=(backlash hysteresis te_joint te_motor stiction load_friction torque_constant cogging hub_pins jitter)
 declare -A off=(
@@ -34,4 +35,23 @@ study_setup() {
   mkdir -p "$out"
   seeds=$(seq -s, "$first" $((first + count - 1)))
   robot=$(realpath models/gpm2002.yaml)
+}
+
+# The three kinds of robot the before/after studies compare on: the basic set
+# (every effect above off), every effect drawn and the realistic preset's.
+declare -A kind_effects=([basic]="{preset: randomized, $(all_off_but none)}" [randomized]="randomized" [preset]="realistic")
+
+# The robots of kind $2 (kind_effects) calibrated by scenarios/main.yaml with
+# ", ..." $4 appended to its calibration map, into $out/$2_$3 (study_setup's
+# inputs; kept when its population.json is there); $1 names the study.
+study_main_variant() {
+  local study=$1 kind=$2 variant=$3 extra=$4
+  local f=$out/${kind}_$variant.yaml
+  sed -e "s|^robot: .*|robot: $robot|" -e "s|^effects: .*|effects: ${kind_effects[$kind]}|" -e '/^expect:/,$d' \
+      -e "s|^calibration: {\(.*\)}$|calibration: {\1$extra}|" scenarios/main.yaml > "$f"
+  [[ -z $extra ]] || grep -qF "${extra#, }" "$f"
+  [[ -f $out/${kind}_$variant/population.json ]] && return
+  echo "study $study: $kind effects, $variant" >&2
+  "$gpm" study population "$f" --keep-effects --seeds "$seeds" -o "$out/${kind}_$variant" --progress none \
+    > "$out/${kind}_$variant.log"
 }

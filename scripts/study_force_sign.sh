@@ -14,19 +14,10 @@ set -euo pipefail
 cd "$(dirname "$0")/.."
 source scripts/effects_beyond_basic.sh
 study_setup "${1:-out/force_sign}" "${2:-20}" "${3:-27100}"
-declare -A effects=([basic]="{preset: randomized, $(all_off_but none)}" [randomized]="randomized" [preset]="realistic")
-declare -A threshold=([stated]=", tension_min_N: 1.5" [balance]="")
 kinds=(basic randomized preset)
 for kind in "${kinds[@]}"; do
-  for rule in stated balance; do
-    f=$out/${kind}_$rule.yaml
-    sed -e "s|^robot: .*|robot: $robot|" -e "s|^effects: .*|effects: ${effects[$kind]}|" -e '/^expect:/,$d' \
-        -e "s|^calibration: {\(.*\)}$|calibration: {\1${threshold[$rule]}}|" scenarios/main.yaml > "$f"
-    [[ $rule == balance ]] || grep -q "tension_min_N: 1.5" "$f"
-    [[ -f $out/${kind}_$rule/population.json ]] && continue
-    echo "study force sign: $kind effects, threshold $rule" >&2
-    "$gpm" study population "$f" --keep-effects --seeds "$seeds" -o "$out/${kind}_$rule" --progress none > "$out/${kind}_$rule.log"
-  done
+  study_main_variant "force sign" "$kind" stated ", tension_min_N: 1.5"
+  study_main_variant "force sign" "$kind" balance ""
 done
 /usr/bin/python3 - "$out" "$count" "$first" "${kinds[@]}" <<'PY'
 import sys

@@ -16,17 +16,10 @@ set -euo pipefail
 cd "$(dirname "$0")/.."
 source scripts/effects_beyond_basic.sh
 study_setup "${1:-out/friction_balance}" "${2:-20}" "${3:-20000}"
-declare -A effects=([basic]="{preset: randomized, $(all_off_but none)}" [randomized]="randomized" [preset]="realistic")
 kinds=(basic randomized preset)
 for kind in "${kinds[@]}"; do
   for balance in false true; do
-    f=$out/${kind}_$balance.yaml
-    sed -e "s|^robot: .*|robot: $robot|" -e "s|^effects: .*|effects: ${effects[$kind]}|" -e '/^expect:/,$d' \
-        -e "s|^calibration: {\(.*\)}$|calibration: {\1, drive_friction: {from_balance: $balance}}|" scenarios/main.yaml > "$f"
-    grep -q "from_balance: $balance" "$f"
-    [[ -f $out/${kind}_$balance/population.json ]] && continue
-    echo "study friction balance: $kind effects, from_balance $balance" >&2
-    "$gpm" study population "$f" --keep-effects --seeds "$seeds" -o "$out/${kind}_$balance" --progress none > "$out/${kind}_$balance.log"
+    study_main_variant "friction balance" "$kind" "$balance" ", drive_friction: {from_balance: $balance}"
   done
 done
 /usr/bin/python3 - "$out" "$count" "$first" "${kinds[@]}" <<'PY'
