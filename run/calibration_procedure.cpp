@@ -225,9 +225,10 @@ std::string joints(const std::vector<int>& j) { return j.empty() ? "none" : fmt:
 // Each drive's friction from the hub's force balance on the drives' torques
 // (calib/friction_balance.hpp), taken in place of a stated value where the
 // two differ by more than 3 of the balance's 1-sigma; all stated where the
-// balance cannot be made (too few samples away from the singularities). The
-// geometry is the controller's; the hub's acceleration is differenced over
-// the readings as the joints' accelerations are.
+// balance cannot be made (too few samples away from the singularities); and,
+// unless stated, the force signs' threshold from how well the balance knows a
+// link's force (kForceSignSigmas). The geometry is the controller's; the hub's
+// acceleration is differenced over the readings as the joints' accelerations are.
 void friction_from_balance(MotionStage& m, const CalibrationInputs& in) {
   try {
     const Geometry& g = m.problem.start;
