@@ -4,6 +4,9 @@ versions of the procedure (scripts/study_force_sign.sh,
 scripts/study_friction_balance.sh)."""
 import json
 
+# The table's names of the kinds of robot (kind_effects in scripts/effects_beyond_basic.sh).
+KIND_LABEL = {'basic': 'the basic set', 'randomized': 'every effect drawn', 'preset': 'the `realistic` preset'}
+
 
 def load_pair(out, kind, before, after):
     """The population.json of DIR/KIND_BEFORE and DIR/KIND_AFTER."""

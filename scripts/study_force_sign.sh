@@ -22,9 +22,8 @@ done
 /usr/bin/python3 - "$out" "$count" "$first" "${kinds[@]}" <<'PY'
 import sys
 sys.path.insert(0, "scripts")
-from population_pair import before_after, load_pair
+from population_pair import KIND_LABEL, before_after, load_pair
 out, count, first, kinds = sys.argv[1], int(sys.argv[2]), int(sys.argv[3]), sys.argv[4:]
-label = {'basic': 'the basic set', 'randomized': 'every effect drawn', 'preset': 'the `realistic` preset'}
 lines = [f"{count} robots of `scenarios/main.yaml` each (seeds {first}..{first + count - 1}); "
          "`bash scripts/study_force_sign.sh`. Before -> after: `tension_min_N: 1.5` stated -> the default "
          "(twice a link's force 1-sigma by the hub's force balance).", "",
@@ -33,7 +32,7 @@ lines = [f"{count} robots of `scenarios/main.yaml` each (seeds {first}..{first +
          "| --- | ---: | ---: | ---: | ---: | ---: | ---: | ---: |"]
 for kind in kinds:
     c = before_after(*load_pair(out, kind, "stated", "balance"))
-    lines.append(f"| {label[kind]} | {c['median']} | {c['worst']} | {c['within']} | {c['worst_sigma']} | "
+    lines.append(f"| {KIND_LABEL[kind]} | {c['median']} | {c['worst']} | {c['within']} | {c['worst_sigma']} | "
                  f"{c['per_sigma']} | {c['passes']} | {c['better_worse']} |")
 open(f"{out}/force_sign.md", "w").write("\n".join(lines) + "\n")
 print("\n".join(lines))

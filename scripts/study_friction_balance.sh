@@ -25,10 +25,9 @@ done
 /usr/bin/python3 - "$out" "$count" "$first" "${kinds[@]}" <<'PY'
 import statistics, sys
 sys.path.insert(0, "scripts")
-from population_pair import before_after, load_pair
+from population_pair import KIND_LABEL, before_after, load_pair
 out, count, first, kinds = sys.argv[1], int(sys.argv[2]), int(sys.argv[3]), sys.argv[4:]
 MODEL_DAMPING = 0.05  # N m s/rad the model has before the effects' viscous friction (sim MjcfOptions)
-label = {'basic': 'the basic set', 'randomized': 'every effect drawn', 'preset': 'the `realistic` preset'}
 lines = [f"{count} robots of `scenarios/main.yaml` each (seeds {first}..{first + count - 1}); "
          "`bash scripts/study_friction_balance.sh`. Before -> after: `drive_friction.from_balance` false -> true.", "",
          "| robots' effects | positioning RMS median (um) | worst robot (um) | parameters within 3 sigma | worst parameter (sigma) | "
@@ -49,7 +48,7 @@ for kind in kinds:
                 if found else "-")
     fr = errors("coulomb_Nm", "coulomb_friction_Nm", 0.3, 0.0) + " | " + \
          errors("viscous_Nm_s", "viscous_friction_Nm_s", 0.15, MODEL_DAMPING)
-    lines.append(f"| {label[kind]} | {c['median']} | {c['worst']} | {c['within']} | {c['worst_sigma']} | "
+    lines.append(f"| {KIND_LABEL[kind]} | {c['median']} | {c['worst']} | {c['within']} | {c['worst_sigma']} | "
                  f"{c['better_worse']} | {fr} |")
 open(f"{out}/friction_balance.md", "w").write("\n".join(lines) + "\n")
 print("\n".join(lines))

@@ -11,6 +11,7 @@
 #include <fstream>
 #include <iterator>
 #include <limits>
+#include <optional>
 
 #include <fmt/format.h>
 #include <gtest/gtest.h>
@@ -78,13 +79,19 @@ TEST(CalibrationProcedure, EstimatedReadingModelTakesTheEstimatesWhereMade) {
 }
 
 // defaults): the robot file's data sheet, no scenario.
-// friction_from_balance false: the data sheet's friction, not the force balance's.
-CalibrationOutcome calibrate_file(const Samples& s, bool static_model = false, bool friction_from_balance = true) {
+// friction_from_balance false: the data sheet's friction, not the force balance's;
+// tension_min_N: the force signs' threshold stated (calibration.tension_min_N).
+CalibrationOutcome calibrate_file(const Samples& s, bool static_model = false, bool friction_from_balance = true,
+                                  std::optional<double> tension_min_N = std::nullopt) {
   const Robot robot = load_robot(std::string(GPM_SOURCE_DIR) + "/models/gpm2002.yaml");
   calib::MethodOptions mo;
   FileProcedure p = samples_file_procedure(s, robot, robot.geometry, ~parse_param_list("xa1,ya1,xa2,ya2", "--fix"), mo,
                                            std::nullopt, static_model);
   p.inputs.drive_friction.from_balance = friction_from_balance;
+  if (tension_min_N) {
+    p.inputs.tension_min_stated = true;
+    p.inputs.motion.tension_min_N = *tension_min_N;
+  }
   EXPECT_EQ(p.options.in_motion, !static_model && taken_on_the_fly(s));
   return calibrate_samples(sample_series(s), p.inputs, p.options);
 }
@@ -156,12 +163,7 @@ TEST(CalibrationProcedure, TheForceBalanceFindsEachDrivesFrictionOnTheTwin) {
 TEST(CalibrationProcedure, AStatedForceSignThresholdIsKept) {
   const RunOutcome& o = small_run();
   const Samples s = parse_samples_csv(sim::samples_csv(o.sim.samples), "samples.csv");
-  const Robot robot = load_robot(std::string(GPM_SOURCE_DIR) + "/models/gpm2002.yaml");
-  FileProcedure p = samples_file_procedure(s, robot, robot.geometry, ~parse_param_list("xa1,ya1,xa2,ya2", "--fix"), {},
-                                           std::nullopt, false);
-  p.inputs.tension_min_stated = true;
-  p.inputs.motion.tension_min_N = 0.5;
-  const CalibrationOutcome c = calibrate_samples(sample_series(s), p.inputs, p.options);
+  const CalibrationOutcome c = calibrate_file(s, false, true, 0.5);
   ASSERT_TRUE(c.friction_balance);
   ASSERT_NE(2.0 * c.friction_balance->tension_sigma_N, 0.5);
   EXPECT_EQ(c.motion.tension_min_N, 0.5);
