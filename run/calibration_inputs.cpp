@@ -2,6 +2,9 @@
 
 #include <algorithm>
 #include <cmath>
+#include <numbers>
+
+#include <fmt/format.h>
 
 namespace gpm::scenario {
 
@@ -57,8 +60,11 @@ CalibrationInputs calibration_inputs(const CalibrationSpec& c, const Robot& robo
   // over the joints' range of motion it is nearly the geometry's own
   // directions, docs/PROCEDURES.md). Ideal encoders (bits 0: no noise to
   // weigh a prior against) have none.
-  if (in_motion && encoder_bits > 0)
+  if (in_motion && encoder_bits > 0) {
     motion.cyclic_prior_rad = robot.data_sheet.joint_harmonic_max_rad() / std::sqrt(2.0);
+    in.encoder_cyclic_prior_rad = robot.data_sheet.encoder_accuracy_rad.max() / std::sqrt(2.0);
+  }
+  in.encoder_bits = encoder_bits;
   if (c.tension_min_N) motion.tension_min_N = *c.tension_min_N;
   // On the fly the joint clearance is estimated (a play whose force sign
   // never changes is left to lb_i).
@@ -78,6 +84,21 @@ CalibrationInputs calibration_inputs(const CalibrationSpec& c, const Robot& robo
   in.tension_min_stated = c.tension_min_N.has_value();
   in.hub_mass_kg = robot.data_sheet.end_effector_mass_kg.nominal + 1.5 * robot.data_sheet.passive_link_mass_kg.nominal;
   return in;
+}
+
+std::optional<std::string> encoder_turns_with_joint(CalibrationInputs& in, double step_rad) {
+  const double ratio = in.motion.gear_ratio;
+  if (in.encoder_bits <= 0 || !(ratio > 1.0) || !(step_rad > 0.0) || !(in.motion.cyclic_prior_rad > 0.0))
+    return std::nullopt;
+  const double counts = 2.0 * std::numbers::pi / step_rad, encoder = std::ldexp(1.0, in.encoder_bits);
+  // The step is a lattice's gap, exact to the 2 % reading_step checks it to.
+  if (std::abs(counts / encoder - 1.0) > 0.02) return std::nullopt;
+  in.motion.cyclic_prior_rad = in.encoder_cyclic_prior_rad;
+  return fmt::format(
+      "the encoders turn once per joint revolution ({:.0f} counts per joint revolution, their 2^{}; behind the data "
+      "sheet's {:g}:1 reducer they would read {:g} times finer): the error once per joint revolution is theirs "
+      "(data sheet +-{:.2g} rad), not the reducer's",
+      counts, in.encoder_bits, ratio, ratio, in.encoder_cyclic_prior_rad * std::sqrt(2.0));
 }
 
 }  // namespace gpm::scenario

@@ -5,6 +5,9 @@
 // every truth value and see the inputs stay bit-identical.
 #pragma once
 
+#include <optional>
+#include <string>
+
 #include "calib/motion_correction.hpp"
 #include "models/robot.hpp"
 #include "run/run_spec.hpp"
@@ -23,6 +26,8 @@ struct CalibrationInputs {
   DriveFriction drive_friction;  // calibration.drive_friction (default: the data sheet's)
   double hub_mass_kg = 0.0;      // what the hub's force balance moves: the end effector and half of each passive link
   bool tension_min_stated = false;  // calibration.tension_min_N given: else the force balance sets the threshold
+  int encoder_bits = 0;                   // 2^bits counts per encoder revolution (0: ideal encoders)
+  double encoder_cyclic_prior_rad = 0.0;  // the encoder's own error once per revolution, per component (data sheet)
   MonitorReadingModel monitor;   // the monitor's reading model before calibration (monitor:)
 };
 
@@ -43,6 +48,15 @@ CalibrationInputs calibration_inputs(const RunSpec& spec, const Robot& robot);
 // at the scenario's values.
 CalibrationInputs calibration_inputs(const CalibrationSpec& c, const Robot& robot, bool in_motion, int encoder_bits,
                                      double sigma_rad);
+
+// in for readings whose step (rad) shows the encoder turning once per joint
+// revolution (2^bits counts, where the data sheet's gear ratio N > 1 would
+// give 2^bits N): the error once per joint revolution carried in the 1-sigma
+// is the encoder's own (its accuracy), not the reducer's transmission error,
+// which acts before it. Returns the note saying so; nullopt (in unchanged)
+// when the step agrees with the data sheet, no encoder is stated or no such
+// error is carried.
+std::optional<std::string> encoder_turns_with_joint(CalibrationInputs& in, double step_rad);
 
 // The transmission load the force signs subtract from each drive torque
 // (calib/passive_tension.hpp): the stated friction and, from the data sheet,

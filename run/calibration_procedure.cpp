@@ -430,21 +430,24 @@ CalibrationOutcome static_outcome(const SampleSeries& s, const ProcedureOptions&
 
 }  // namespace
 
-CalibrationOutcome calibrate_samples(const SampleSeries& samples, const CalibrationInputs& inputs,
+CalibrationOutcome calibrate_samples(const SampleSeries& samples, const CalibrationInputs& inputs_stated,
                                      const ProcedureOptions& options_in) {
   check_sizes(samples);
   ProcedureOptions options = options_in;
-  std::string step_note;
-  if (options.in_motion && options.sigma_from_step) {
-    // Single readings on the fly show their encoders' step (calib/reading_step.hpp):
-    // a geared drive's motor encoder is finer at the joint than its bits say.
-    if (const std::optional<double> q = calib::reading_step(samples.theta_m)) {
-      options.sigma_rad = calib::reading_sigma(*q, options.reading_noise_rad);
-      step_note = fmt::format("reading resolution from the samples: {:.4g} rad ({:.4g} counts per joint revolution), "
-                              "reading 1-sigma {:.3g} rad",
-                              *q, 2.0 * M_PI / *q, options.sigma_rad);
-    }
+  CalibrationInputs inputs = inputs_stated;
+  std::vector<std::string> step_notes;
+  // Single readings on the fly show their encoders' step (calib/reading_step.hpp):
+  // a geared drive's motor encoder is finer at the joint than its bits say,
+  // one that turns with the joint is not.
+  const std::optional<double> q = options.in_motion ? calib::reading_step(samples.theta_m) : std::nullopt;
+  if (q && options.sigma_from_step) {
+    options.sigma_rad = calib::reading_sigma(*q, options.reading_noise_rad);
+    step_notes.push_back(fmt::format("reading resolution from the samples: {:.4g} rad ({:.4g} counts per joint "
+                                     "revolution), reading 1-sigma {:.3g} rad",
+                                     *q, 2.0 * M_PI / *q, options.sigma_rad));
   }
+  if (q)
+    if (std::optional<std::string> note = encoder_turns_with_joint(inputs, *q)) step_notes.push_back(std::move(*note));
   const calib::MotionModel& model = inputs.motion;
   const bool with_effects = model.compliance || model.skew || model.clearance;
   if (with_effects && (options.method.method != calib::Method::kLM || options.method.cost != calib::Cost::kML))
@@ -474,7 +477,7 @@ CalibrationOutcome calibrate_samples(const SampleSeries& samples, const Calibrat
     out = static_outcome(samples, options);
   }
   out.sigma_rad = options.sigma_rad;
-  if (!step_note.empty()) out.result.notes.insert(out.result.notes.begin(), step_note);
+  out.result.notes.insert(out.result.notes.begin(), step_notes.begin(), step_notes.end());
   const bool tested_cost = options.test_any_cost || out.result.cost == calib::Cost::kML;
   if (tested_cost && options.sigma_rad > 0.0 && out.used.size() > options.free.count()) {
     out.model_test = calib::model_test(out.result.geometry, options.free, out.used, options.sigma_rad);

@@ -1,13 +1,17 @@
 // Tests of run/calibration_inputs.cpp: no value of the twin's truth reaches
 // the calibration or the monitor (every field of sim::Effects and of
 // MjcfOptions changed, the inputs bit-identical), and the robot's data sheet
-// does (its values, by independent arithmetic).
+// does (its values, by independent arithmetic); readings of the encoders'
+// own step tell that they turn with the joints.
 #include "run/calibration_inputs.hpp"
 
 #include <bit>
 #include <cmath>
 #include <cstdint>
 #include <cstring>
+#include <numbers>
+#include <optional>
+#include <string>
 #include <type_traits>
 
 #include <gtest/gtest.h>
@@ -183,6 +187,39 @@ TEST(CalibrationInputs, TheRobotsDataSheetReachesThem) {
   for (std::size_t i = 0; i < 3; ++i) EXPECT_NEAR(o.motion.load.inertia_kg_m2[i] - in.motion.load.inertia_kg_m2[i], 0.0026, 1e-12);
   EXPECT_DOUBLE_EQ(o.motion.cyclic_prior_rad, 2.0 * in.motion.cyclic_prior_rad);
   EXPECT_EQ(o.drive_friction.coulomb_Nm, in.drive_friction.coulomb_Nm);
+}
+
+// Readings whose step is one of the encoder's 2^17 counts per joint
+// revolution, where the data sheet's 10:1 reducer would make it ten times
+// finer: the encoders turn with the joints, so the error once per joint
+// revolution is carried with the encoder's accuracy (+-2e-5 rad: 2e-5 / sqrt 2
+// per component) instead of the reducer's 1.5 arcmin; the drive train's
+// candidates stay. A step that fits the reducer, or neither, or no stated
+// encoder, changes nothing.
+TEST(CalibrationInputs, ReadingsOfTheEncodersOwnStepMeanTheyTurnWithTheJoints) {
+  const RunSpec spec = load_run_spec(kMain);
+  const CalibrationInputs stated = calibration_inputs(spec, spec.sim.controller);
+  ASSERT_EQ(stated.encoder_bits, 17);
+  ASSERT_EQ(stated.motion.gear_ratio, 10.0);
+  const double turn = 2.0 * std::numbers::pi;
+  CalibrationInputs direct = stated;
+  const std::optional<std::string> note = encoder_turns_with_joint(direct, turn / 131072.0);
+  ASSERT_TRUE(note);
+  EXPECT_NE(note->find("131072 counts per joint revolution"), std::string::npos) << *note;
+  EXPECT_DOUBLE_EQ(direct.motion.cyclic_prior_rad, 2e-5 / std::sqrt(2.0));
+  EXPECT_EQ(direct.motion.gear_ratio, 10.0);
+  EXPECT_EQ(direct.drive_candidates.motor_harmonic1, stated.drive_candidates.motor_harmonic1);
+  for (const double step : {turn / 1310720.0, turn / (131072.0 * 1.05)}) {
+    CalibrationInputs geared = stated;
+    EXPECT_FALSE(encoder_turns_with_joint(geared, step)) << step;
+    EXPECT_EQ(geared.motion.gear_ratio, 10.0);
+    EXPECT_EQ(geared.motion.cyclic_prior_rad, stated.motion.cyclic_prior_rad);
+    EXPECT_EQ(geared.drive_candidates.motor_harmonic1, stated.drive_candidates.motor_harmonic1);
+  }
+  CalibrationInputs ideal = stated;
+  ideal.encoder_bits = 0;
+  EXPECT_FALSE(encoder_turns_with_joint(ideal, turn / 131072.0));
+  EXPECT_EQ(ideal.motion.gear_ratio, 10.0);
 }
 
 // A robot file's data sheet sets the scenario's defaults (calibration.drive_friction,

@@ -80,14 +80,16 @@ TEST(CalibrationProcedure, EstimatedReadingModelTakesTheEstimatesWhereMade) {
 
 // defaults): the robot file's data sheet, no scenario.
 // friction_from_balance false: the data sheet's friction, not the force balance's;
-// tension_min_N: the force signs' threshold stated (calibration.tension_min_N).
+// tension_min_N: the force signs' threshold stated (calibration.tension_min_N); ratio_from_step false:
+// the encoders' counts unstated, so the reducer's error once per joint revolution is carried whatever the readings' step.
 CalibrationOutcome calibrate_file(const Samples& s, bool static_model = false, bool friction_from_balance = true,
-                                  std::optional<double> tension_min_N = std::nullopt) {
+                                  std::optional<double> tension_min_N = std::nullopt, bool ratio_from_step = true) {
   const Robot robot = load_robot(std::string(GPM_SOURCE_DIR) + "/models/gpm2002.yaml");
   calib::MethodOptions mo;
   FileProcedure p = samples_file_procedure(s, robot, robot.geometry, ~parse_param_list("xa1,ya1,xa2,ya2", "--fix"), mo,
                                            std::nullopt, static_model);
   p.inputs.drive_friction.from_balance = friction_from_balance;
+  if (!ratio_from_step) p.inputs.encoder_bits = 0;  // the encoders' counts unknown: the data sheet's gear ratio stands
   if (tension_min_N) {
     p.inputs.tension_min_stated = true;
     p.inputs.motion.tension_min_N = *tension_min_N;
@@ -113,6 +115,21 @@ TEST(CalibrationProcedure, SamplesFileGivesTheRunsResultBitForBit) {
   EXPECT_EQ(c.model_test->passed, o.model_test->passed);
   EXPECT_EQ(c.result.notes, o.calibration->notes);
   EXPECT_EQ(c.fit.nu, o.motion_nu);
+}
+
+// The realistic twin's encoders read 2^17 counts per joint revolution, not
+// the data sheet's 10:1 reducer's 2^17 x 10: the procedure takes them as
+// turning with the joints (run/calibration_inputs.hpp encoder_turns_with_joint)
+// and says so after the step it found.
+TEST(CalibrationProcedure, EncodersOfTheTwinsStepTurnWithTheJoints) {
+  const RunOutcome& o = small_run();
+  const Samples s = parse_samples_csv(sim::samples_csv(o.sim.samples), "samples.csv");
+  const CalibrationOutcome c = calibrate_file(s);
+  EXPECT_DOUBLE_EQ(c.motion.cyclic_prior_rad, 2e-5 / std::sqrt(2.0));  // the data sheet's encoder accuracy
+  const auto step = std::ranges::find_if(c.result.notes, [](const std::string& n) { return n.starts_with("reading resolution"); });
+  ASSERT_NE(step, c.result.notes.end());
+  ASSERT_NE(std::next(step), c.result.notes.end());
+  EXPECT_TRUE(std::next(step)->starts_with("the encoders turn once per joint revolution")) << *std::next(step);
 }
 
 // The small run on a twin whose drives' friction differs per joint and from
@@ -229,10 +246,13 @@ TEST(CalibrationProcedure, ReadingsPolledInTurnAreCarriedToJointOnesInstant) {
   // (its residuals no longer show the encoders' step), which on this robot
   // tips the choice of the friction's speed and of a drive-train harmonic,
   // and those move the skew; this test is about the read times.
-  const CalibrationOutcome base = calibrate_file(s, false, false), carried = calibrate_file(polled, false, false);
+  // Nor do they tell that the encoders turn with the joints: each fit
+  // carries the reducer's error once per joint revolution.
+  const CalibrationOutcome base = calibrate_file(s, false, false, std::nullopt, false),
+                           carried = calibrate_file(polled, false, false, std::nullopt, false);
   Samples unlabelled = polled;
   unlabelled.t_read.clear();
-  const CalibrationOutcome skewed = calibrate_file(unlabelled, false, false);
+  const CalibrationOutcome skewed = calibrate_file(unlabelled, false, false, std::nullopt, false);
   ASSERT_TRUE(base.with_effects && carried.with_effects && skewed.with_effects);
   // The readings interpolated between samples carry the error of a straight
   // line through the path's curvature: the skews carried back land within
