@@ -7,6 +7,7 @@
 #include <limits>
 #include <numeric>
 #include <optional>
+#include <string>
 
 #include <Eigen/Dense>
 #include <fmt/format.h>
@@ -990,6 +991,106 @@ bool torque_before_detected(const MotionFit& fit, double k) {
         std::abs(fit.torque_before[i]) >= k * fit.noise_sigma.torque_before[i])
       return true;
   return false;
+}
+
+namespace {
+
+// A candidate effect of left_out_effects: its name and its nuisance columns.
+struct Candidate {
+  std::string name;
+  std::vector<int> cols;
+};
+
+// The effects model leaves out, each with its columns (nuisance_columns' slots).
+std::vector<Candidate> left_out_candidates(const MotionModel& model) {
+  std::vector<Candidate> c;
+  if (!model.skew) c.push_back({"the encoders' latch skew", {kSkew, kSkew + 1}});
+  if (!model.compliance) c.push_back({"transmission compliance", {kCompliance, kCompliance + 1, kCompliance + 2}});
+  if (!(model.compliance && model.friction)) c.push_back({"the drives' friction twist", {kFriction, kFriction + 1, kFriction + 2}});
+  if (!model.clearance) c.push_back({"joint clearance", {kClearance, kClearance + 1, kClearance + 2}});
+  if (!model.estimate_cyclic)
+    c.push_back({"an error once per joint revolution", {kFirstCyclic, kFirstCyclic + 1, kFirstCyclic + 2, kFirstCyclic + 3,
+                                                         kFirstCyclic + 4, kFirstCyclic + 5}});
+  for (int i = 0; i < 3; ++i) {
+    const auto k = static_cast<std::size_t>(i);
+    if (!model.backlash[k]) c.push_back({fmt::format("backlash of joint {}", i + 1), {kBacklash + i}});
+    if (!model.motor_harmonic1[k])
+      c.push_back({fmt::format("an error once per motor revolution of joint {}", i + 1), {kHarmonic + 6 + i, kHarmonic + 9 + i}});
+    if (!model.motor_harmonic2[k])
+      c.push_back({fmt::format("an error twice per motor revolution of joint {}", i + 1), {kHarmonic + 12 + i, kHarmonic + 15 + i}});
+  }
+  return c;
+}
+
+// model with every candidate of left_out_candidates in it (the regressors' model).
+MotionModel with_every_candidate(MotionModel all) {
+  all.skew = all.compliance = all.friction = all.clearance = true;
+  if (!(all.load.friction_speed_rad_s > 0.0)) all.load.friction_speed_rad_s = 0.1;
+  all.estimate_cyclic = true;
+  if (!(all.cyclic_prior_rad > 0.0)) all.cyclic_prior_rad = 1.0;  // the columns only: no prior rows are used
+  all.backlash = all.motor_harmonic1 = all.motor_harmonic2 = {true, true, true};
+  all.drop_uncertain = false;
+  return all;
+}
+
+// The chi-square drop (in units of sigma^2) of residuals r when the columns G
+// join the columns Q: |P r|^2 for P the projection on G with Q projected out.
+double score_chi2(const Eigen::MatrixXd& Q, const Eigen::MatrixXd& G, const Eigen::VectorXd& r, int& rank) {
+  const Eigen::HouseholderQR<Eigen::MatrixXd> qr(Q);
+  const Eigen::MatrixXd Qo = qr.householderQ() * Eigen::MatrixXd::Identity(Q.rows(), Q.cols());
+  const Eigen::MatrixXd Gp = G - Qo * (Qo.transpose() * G);
+  const Eigen::VectorXd rp = r - Qo * (Qo.transpose() * r);
+  Eigen::ColPivHouseholderQR<Eigen::MatrixXd> g(Gp);
+  g.setThreshold(1e-6);
+  rank = static_cast<int>(g.rank());
+  if (rank == 0) return 0.0;
+  const Eigen::MatrixXd Go = (g.householderQ() * Eigen::MatrixXd::Identity(Gp.rows(), Gp.cols())).leftCols(rank);
+  return (Go.transpose() * rp).squaredNorm();
+}
+
+}  // namespace
+
+std::vector<LeftOutEffect> left_out_effects(const Problem& problem, const std::vector<Eigen::Vector3d>& omega,
+                                            const std::vector<Eigen::Vector3d>& tau, const MotionModel& model,
+                                            const MotionFit& fit, double sigma,
+                                            const std::vector<Eigen::Vector3d>& alpha) {
+  std::vector<LeftOutEffect> out;
+  if (!(sigma > 0.0) || fit.kept.empty() || fit.corrected.size() != fit.kept.size()) return out;
+  const MotionModel all = with_every_candidate(model);
+  const std::vector<Eigen::Vector3d> nb_all = torques_before(model, tau);
+  const EffectRegressors e_all =
+      effect_regressors(fit.result.geometry, MotionSamples{problem.theta_m, omega, tau, nb_all, alpha}, all);
+  EffectRegressors e = kept_regressors(e_all, fit.kept);
+  std::vector<Eigen::Vector3d> th, w, t, nb, no_alpha;
+  for (std::size_t j : fit.kept) {
+    th.push_back(problem.theta_m[j]), w.push_back(omega[j]), t.push_back(tau[j]);
+    if (!nb_all.empty()) nb.push_back(nb_all[j]);
+    e.wave.push_back(reading_waves(problem.theta_m[j], model.gear_ratio));
+  }
+  const MotionSamples s{th, w, t, nb, no_alpha};
+  const std::vector<int> own = excited_columns(model, s.omega, s.tau, e.fric, e.clr, s.nb, e.flank, e.hyst.g);
+  const std::vector<int> candidates = excited_columns(all, s.omega, s.tau, e.fric, e.clr, s.nb, e.flank, e.hyst.g);
+  std::vector<int> cols = own;
+  for (int c : candidates)
+    if (std::ranges::find(own, c) == own.end()) cols.push_back(c);
+  const Linearisation l = linearise(fit.result.geometry, fit.corrected, s, e, free_indices(problem.free), cols);
+  const auto n_own = static_cast<Eigen::Index>(own.size());
+  Eigen::MatrixXd Q(l.r.size(), l.Jg.cols() + n_own);
+  Q << l.Jg, l.Jn.leftCols(n_own);
+  for (const Candidate& c : left_out_candidates(model)) {
+    std::vector<Eigen::Index> at;
+    for (int col : c.cols)
+      if (const auto it = std::ranges::find(cols, col); it != cols.end() && std::ranges::find(own, col) == own.end())
+        at.push_back(static_cast<Eigen::Index>(it - cols.begin()));
+    if (at.empty()) continue;
+    Eigen::MatrixXd G(l.r.size(), static_cast<Eigen::Index>(at.size()));
+    for (std::size_t k = 0; k < at.size(); ++k) G.col(static_cast<Eigen::Index>(k)) = l.Jn.col(at[k]);
+    int rank = 0;
+    const double drop = score_chi2(Q, G, l.r / sigma, rank);
+    if (rank > 0 && chi2_survival(rank, drop) < 1e-3) out.push_back({c.name, drop, rank});
+  }
+  std::ranges::sort(out, std::greater<>{}, &LeftOutEffect::chi2_drop);
+  return out;
 }
 
 }  // namespace gpm::calib

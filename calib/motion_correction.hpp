@@ -8,6 +8,7 @@
 #pragma once
 
 #include <array>
+#include <string>
 #include <vector>
 
 #include <Eigen/Core>
@@ -165,5 +166,26 @@ bool clearance_detected(const MotionFit& fit, double k = 3.0);
 // least k 1-sigma (of the noise model) from 0 (the test of "the twist follows the torque of its
 // instant", two-sided at k sigma per joint); one not estimated does not count.
 bool torque_before_detected(const MotionFit& fit, double k = 3.0);
+
+// A reading effect the model leaves out, as the residuals of a fit ask for
+// it (left_out_effects): its name and the chi-square its columns would take
+// out of the fit's.
+struct LeftOutEffect {
+  std::string name;     // e.g. "transmission compliance", "backlash of joint 2"
+  double chi2_drop = 0.0;
+  int columns = 0;      // its values (the score test's degrees of freedom)
+};
+
+// The reading effects model leaves out that fit's residuals call for, the
+// model test's diagnosis (readings problem.theta_m, speeds omega, torques
+// tau, accelerations alpha, reading 1-sigma sigma): each candidate's
+// chi-square drop were its columns added to the fit at its estimate (a score
+// test: the residuals projected on the candidate's columns, the geometry's
+// and the model's own projected out), on the samples the fit kept; those
+// significant at p < 0.001 for their count of values, largest first.
+std::vector<LeftOutEffect> left_out_effects(const Problem& problem, const std::vector<Eigen::Vector3d>& omega,
+                                            const std::vector<Eigen::Vector3d>& tau, const MotionModel& model,
+                                            const MotionFit& fit, double sigma,
+                                            const std::vector<Eigen::Vector3d>& alpha = {});
 
 }  // namespace gpm::calib

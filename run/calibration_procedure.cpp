@@ -428,6 +428,24 @@ CalibrationOutcome static_outcome(const SampleSeries& s, const ProcedureOptions&
   return out;
 }
 
+// What the failed model test t adds of the reading effects the motion model
+// left out (calib::left_out_effects): the ones the residuals call for, each
+// with its share of the chi-square above the noise, or that none does.
+std::string left_out_sentence(const std::vector<calib::LeftOutEffect>& left_out, const calib::ModelTest& t) {
+  if (left_out.empty())
+    return "; no reading effect the motion model leaves out accounts for it (each one's score test at p < 0.001)";
+  const double excess = std::max(t.chi2 - t.dof, 1.0);
+  std::string s = "; of the reading effects the motion model leaves out, the residuals call for ";
+  const std::size_t shown = std::min<std::size_t>(left_out.size(), 3);
+  for (std::size_t k = 0; k < shown; ++k) {
+    const calib::LeftOutEffect& e = left_out[k];
+    s += fmt::format("{}{} (chi2 down by {:.0f}, {:.0f} % of the {:.0f} above the noise)",
+                     k == 0 ? "" : (k + 1 == shown ? " and " : ", "), e.name, e.chi2_drop,
+                     100.0 * e.chi2_drop / excess, excess);
+  }
+  return s;
+}
+
 }  // namespace
 
 CalibrationOutcome calibrate_samples(const SampleSeries& samples, const CalibrationInputs& inputs_stated,
@@ -454,6 +472,7 @@ CalibrationOutcome calibrate_samples(const SampleSeries& samples, const Calibrat
     throw InputError("calibration: estimating compliance, skew or clearance with the geometry needs the method lm "
                      "with the cost ml");
   CalibrationOutcome out;
+  std::vector<calib::LeftOutEffect> left_out;
   if (with_effects) {
     MotionStage m = motion_stage(samples, inputs, options);
     // The drive train's harmonic candidates (the errors per motor revolution)
@@ -472,6 +491,7 @@ CalibrationOutcome calibrate_samples(const SampleSeries& samples, const Calibrat
     // 3 sigma that its harmonics then took): the clearance is judged again.
     drop_undetected(m, options.keep_clearance);
     note_sandwich(m);
+    left_out = calib::left_out_effects(m.problem, m.omega, m.tau, m.motion, m.fit, m.sigma, m.alpha);
     out = motion_outcome(std::move(m), inputs.monitor.reading);
   } else {
     out = static_outcome(samples, options);
@@ -481,7 +501,10 @@ CalibrationOutcome calibrate_samples(const SampleSeries& samples, const Calibrat
   const bool tested_cost = options.test_any_cost || out.result.cost == calib::Cost::kML;
   if (tested_cost && options.sigma_rad > 0.0 && out.used.size() > options.free.count()) {
     out.model_test = calib::model_test(out.result.geometry, options.free, out.used, options.sigma_rad);
-    if (!out.model_test->passed) out.result.notes.push_back(out.model_test->diagnosis);
+    if (!out.model_test->passed) {
+      if (with_effects) out.model_test->diagnosis += left_out_sentence(left_out, *out.model_test);
+      out.result.notes.push_back(out.model_test->diagnosis);
+    }
   }
   return out;
 }

@@ -13,7 +13,8 @@
 // reading sensitivities of the nuisance Jacobian (the dth columns of the ML
 // Jacobian) equal central differences over the readings; the hysteresis
 // state follows the torque at half its rate until it slides at +-1, and holds
-// through a reversal smaller than its threshold.
+// through a reversal smaller than its threshold; the score test of an
+// effect left out agrees with the chi-square the full fit takes out.
 #include "calib/motion_correction.hpp"
 
 #include <cmath>
@@ -22,6 +23,7 @@
 
 #include "calib/crb.hpp"
 #include "calib/identifiability.hpp"
+#include "calib/model_test.hpp"
 #include "calib/residuals.hpp"
 #include "calib/paper_values.hpp"
 #include "calib/synthetic.hpp"
@@ -110,6 +112,29 @@ TEST(MotionCorrection, RecoversGeometryComplianceAndSkewWithinTheirSigma) {
   // The rigid fit of the same readings is biased far beyond its own 1-sigma.
   const Result rigid = calibrate_lm(d.problem, o);
   EXPECT_GT(worst_in_sigmas(d, rigid), 10.0);
+}
+
+// Readings with compliance and skew fitted without the compliance: the
+// score test names the compliance first, its chi-square drop (one
+// linearisation at the reduced fit) within 5 % of the drop the full fit
+// makes (the likelihood ratio, two fits); the full fit leaves nothing to name.
+TEST(MotionCorrection, LeftOutEffectsNamesTheComplianceLeftOutAsTheFullFitMeasuresIt) {
+  const MotionData d = make_data(600, 11);
+  LmOptions o;
+  o.encoder_sigma = kSigma;
+  MotionModel stiff;
+  stiff.compliance = stiff.friction = false;
+  const MotionFit reduced = calibrate_in_motion(d.problem, d.omega, d.tau, o, stiff);
+  const MotionFit full = calibrate_in_motion(d.problem, d.omega, d.tau, o);
+  const std::vector<LeftOutEffect> named = left_out_effects(d.problem, d.omega, d.tau, stiff, reduced, kSigma);
+  ASSERT_FALSE(named.empty());
+  EXPECT_EQ(named.front().name, "transmission compliance");
+  EXPECT_EQ(named.front().columns, 3);
+  const double lr = model_test(reduced.result.geometry, d.problem.free, reduced.corrected, kSigma).chi2 -
+                    model_test(full.result.geometry, d.problem.free, full.corrected, kSigma).chi2;
+  EXPECT_NEAR(named.front().chi2_drop, lr, 0.05 * lr);
+  const std::vector<LeftOutEffect> none = left_out_effects(d.problem, d.omega, d.tau, MotionModel{}, full, kSigma);
+  for (const LeftOutEffect& e : none) ADD_FAILURE() << e.name << " named: chi2 down by " << e.chi2_drop;
 }
 
 TEST(MotionCorrection, WithoutNuisanceItIsTheRigidCalibration) {

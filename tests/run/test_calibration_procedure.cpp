@@ -4,7 +4,8 @@
 // does) gives the same result to the last bit; samples without times or
 // torques get the static fit and its model test; missing inputs refused;
 // readings of drives polled one after another are carried to joint 1's
-// instant by their read times (t_read1..3), which the latch skew otherwise takes up.
+// instant by their read times (t_read1..3), which the latch skew otherwise
+// takes up; a failed model test names the effect the model leaves out.
 #include "run/calibration_procedure.hpp"
 
 #include <algorithm>
@@ -198,6 +199,42 @@ TEST(CalibrationProcedure, WithoutTimesAndTorquesTheStaticFitAndItsModelTest) {
   EXPECT_FALSE(c.model_test->passed);
   EXPECT_NE(model_test_line(*c.model_test, true).find("the stated 1-sigma understates the error"), std::string::npos);
   EXPECT_NE(model_test_yaml(*c.model_test, 2).find("  model_test_chi2: "), std::string::npos);
+}
+
+// The small run's readings (realistic twin: its drives twist by 1e-4 rad/N m
+// of their torque) calibrated with the compliance left out of the motion
+// model: the model test fails and names the transmission's compliance first
+// of the effects the model leaves out; with every effect of the procedure
+// in it, the compliance is not among those named; with the encoders' latch
+// skew left out instead, the skew is named.
+TEST(CalibrationProcedure, AFailedModelTestNamesTheEffectLeftOut) {
+  const RunOutcome& o = small_run();
+  const Samples s = parse_samples_csv(sim::samples_csv(o.sim.samples), "samples.csv");
+  const Robot robot = load_robot(std::string(GPM_SOURCE_DIR) + "/models/gpm2002.yaml");
+  FileProcedure p = samples_file_procedure(s, robot, robot.geometry, ~parse_param_list("xa1,ya1,xa2,ya2", "--fix"), {},
+                                           std::nullopt, false);
+  const CalibrationOutcome full = calibrate_samples(sample_series(s), p.inputs, p.options);
+  p.inputs.motion.compliance = p.inputs.motion.friction = p.inputs.motion.torque_before = false;
+  p.inputs.drive_candidates = {};
+  const CalibrationOutcome stiff = calibrate_samples(sample_series(s), p.inputs, p.options);
+  ASSERT_TRUE(stiff.model_test && full.model_test);
+  ASSERT_FALSE(stiff.model_test->passed);
+  const std::string& d = stiff.model_test->diagnosis;
+  EXPECT_NE(d.find("the residuals call for transmission compliance (chi2 down by"), std::string::npos) << d;
+  EXPECT_GT(stiff.model_test->chi2 - stiff.model_test->dof, 3.0 * (full.model_test->chi2 - full.model_test->dof));
+  if (!full.model_test->passed) {
+    EXPECT_EQ(full.model_test->diagnosis.find("transmission compliance ("), std::string::npos) << full.model_test->diagnosis;
+  }
+  // The latch skew (50 and 100 us on the twin) left out instead.
+  FileProcedure q = samples_file_procedure(s, robot, robot.geometry, ~parse_param_list("xa1,ya1,xa2,ya2", "--fix"), {},
+                                           std::nullopt, false);
+  q.inputs.motion.skew = false;
+  const CalibrationOutcome unskewed = calibrate_samples(sample_series(s), q.inputs, q.options);
+  ASSERT_TRUE(unskewed.model_test);
+  ASSERT_FALSE(unskewed.model_test->passed);
+  EXPECT_NE(unskewed.model_test->diagnosis.find("the residuals call for the encoders' latch skew (chi2 down by"),
+            std::string::npos)
+      << unskewed.model_test->diagnosis;
 }
 
 TEST(CalibrationProcedure, MotionModelWithoutTimesOrTorquesRefused) {
