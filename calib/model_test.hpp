@@ -34,6 +34,10 @@ struct ModelTest {
   std::string diagnosis;
   // Sample indices of the largest normalised residuals, largest first (at most 5).
   std::vector<long> worst_samples;
+  // When failed on the fly: the reading effects the motion model leaves out
+  // that the residuals call for, largest share first (set by the procedure:
+  // calib/motion_correction.hpp left_out_effects).
+  std::vector<std::string> calls_for;
 };
 
 // Chi-square test of the ML residuals of readings theta_m at geometry g with

@@ -502,7 +502,10 @@ CalibrationOutcome calibrate_samples(const SampleSeries& samples, const Calibrat
   if (tested_cost && options.sigma_rad > 0.0 && out.used.size() > options.free.count()) {
     out.model_test = calib::model_test(out.result.geometry, options.free, out.used, options.sigma_rad);
     if (!out.model_test->passed) {
-      if (with_effects) out.model_test->diagnosis += left_out_sentence(left_out, *out.model_test);
+      if (with_effects) {
+        out.model_test->diagnosis += left_out_sentence(left_out, *out.model_test);
+        for (const calib::LeftOutEffect& e : left_out) out.model_test->calls_for.push_back(e.name);
+      }
       out.result.notes.push_back(out.model_test->diagnosis);
     }
   }

@@ -96,6 +96,7 @@ PopulationRobot robot_of(const RunOutcome& o, PopulationRobot r) {
   r.floor_ratio = r.calibrated_static_um / r.floor_um;
   if (o.model_test) {
     r.model_test_passed = o.model_test->passed;
+    r.calls_for = o.model_test->calls_for;
     r.chi2_per_dof = o.model_test->dof > 0 ? o.model_test->chi2 / o.model_test->dof : NAN;
   } else {
     r.chi2_per_dof = NAN;
@@ -299,7 +300,7 @@ nlohmann::json robot_json(const PopulationRobot& r) {
   j["floor_ratio"] = number(r.floor_ratio);
   j["plan_deviation_mm"] = number(r.plan_deviation_mm);
   j["model_test"] = {{"passed", r.model_test_passed ? nlohmann::json(*r.model_test_passed) : nlohmann::json(nullptr)},
-                     {"chi2_per_dof", number(r.chi2_per_dof)}};
+                     {"chi2_per_dof", number(r.chi2_per_dof)}, {"calls_for", r.calls_for}};
   nlohmann::json params = nlohmann::json::object();
   for (int k = 0; k < kNumParams; ++k)
     if (std::isfinite(r.sigma[static_cast<size_t>(k)]))

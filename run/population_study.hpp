@@ -41,6 +41,7 @@ struct PopulationRobot {
   double calibrated_static_um = 0.0, floor_um = 0.0, floor_ratio = 0.0;  // NaN if not measured
   std::optional<bool> model_test_passed;
   double chi2_per_dof = 0.0;
+  std::vector<std::string> calls_for;   // failed on the fly: the effects left out the residuals call for
   std::array<double, kNumParams> error{};  // estimated - actual (mm, rad; NaN where not estimated)
   std::array<double, kNumParams> sigma{};  // the stated 1-sigma (NaN where not estimated)
   std::string worst_param;                 // largest |error| / sigma
