@@ -2,9 +2,10 @@
 # bands, passive clearance, drive friction, masses, thermal growth, the
 # encoders' own errors and latch skew), each as the `effects:` key that turns
 # it off; sourced by scripts/study_effect_budget.sh,
-# scripts/study_friction_balance.sh, scripts/study_force_sign.sh and
-# scripts/study_backlash_joint.sh,
-# which start from `preset: randomized` (and study_setup for their inputs).
+# scripts/study_friction_balance.sh, scripts/study_force_sign.sh,
+# scripts/study_backlash_joint.sh, scripts/study_preset_misfit.sh and
+# scripts/study_model_test_names.sh (study_setup for their inputs; the
+# first four start from `preset: randomized`).
 names=(backlash hysteresis te_joint te_motor stiction load_friction torque_constant cogging hub_pins jitter)
 declare -A off=(
   [backlash]="backlash_rad: 0"
@@ -50,8 +51,13 @@ study_main_variant() {
   sed -e "s|^robot: .*|robot: $robot|" -e "s|^effects: .*|effects: ${kind_effects[$kind]}|" -e '/^expect:/,$d' \
       -e "s|^calibration: {\(.*\)}$|calibration: {\1$extra}|" scenarios/main.yaml > "$f"
   [[ -z $extra ]] || grep -qF "${extra#, }" "$f"
-  [[ -f $out/${kind}_$variant/population.json ]] && return
-  echo "study $study: $kind effects, $variant" >&2
-  "$gpm" study population "$f" --keep-effects --seeds "$seeds" -o "$out/${kind}_$variant" --progress none \
-    > "$out/${kind}_$variant.log"
+  study_population_of "${kind}_$variant" "$f" "study $study: $kind effects, $variant"
+}
+
+# The robots of scenario file $2 (their effects kept) into $out/$1 (kept
+# when its population.json is there); $3 says so on stderr.
+study_population_of() {
+  [[ -f $out/$1/population.json ]] && return
+  echo "$3" >&2
+  "$gpm" study population "$2" --keep-effects --seeds "$seeds" -o "$out/$1" --progress none > "$out/$1.log"
 }

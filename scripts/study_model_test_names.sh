@@ -17,14 +17,7 @@ variants=(none compliance skew clearance)
 declare -A estimate=([compliance]="skew, clearance" [skew]="compliance, friction, clearance"
                      [clearance]="compliance, skew, friction")
 for v in "${variants[@]}"; do
-  f=$out/$v.yaml
-  extra=${estimate[$v]:+, estimate: [${estimate[$v]}]}
-  sed -e "s|^robot: .*|robot: $robot|" -e '/^expect:/,$d' \
-      -e "s|^calibration: {\(.*\)}$|calibration: {\1$extra}|" scenarios/main.yaml > "$f"
-  [[ -z $extra ]] || grep -qF "${extra#, }" "$f"
-  [[ -f $out/$v/population.json ]] && continue
-  echo "study model test names: $v left out" >&2
-  "$gpm" study population "$f" --keep-effects --seeds "$seeds" -o "$out/$v" --progress none > "$out/$v.log"
+  study_main_variant "model test names" preset "$v" "${estimate[$v]:+, estimate: [${estimate[$v]}]}"
 done
 /usr/bin/python3 - "$out" "$count" "$first" "${variants[@]}" <<'PY'
 import collections, json, sys
@@ -35,7 +28,7 @@ lines = [f"{count} robots of `scenarios/main.yaml` with the realistic preset's e
          "| left out of the calibration | model test fails | names it first | names it | first named, most often |",
          "| --- | ---: | ---: | ---: | --- |"]
 for v in variants:
-    robots = [r for r in json.load(open(f"{out}/{v}/population.json"))["robots"] if r["failure"] is None]
+    robots = [r for r in json.load(open(f"{out}/preset_{v}/population.json"))["robots"] if r["failure"] is None]
     failed = [r for r in robots if r["model_test"]["passed"] is False]
     calls = [r["model_test"].get("calls_for", []) for r in failed]
     want = named.get(v)

@@ -43,9 +43,7 @@ for v in "${variants[@]}"; do
   f=$out/$v.yaml
   sed -e "s|^robot: .*|robot: $robot|" -e '/^expect:/,$d' \
       -e "s|^effects: .*|effects: {preset: realistic$(variant_keys "$v")}|" scenarios/main.yaml > "$f"
-  [[ -f $out/$v/population.json ]] && continue
-  echo "study preset misfit: $v" >&2
-  "$gpm" study population "$f" --keep-effects --seeds "$seeds" -o "$out/$v" --progress none > "$out/$v.log"
+  study_population_of "$v" "$f" "study preset misfit: $v"
 done
 /usr/bin/python3 - "$out" "$count" "$first" "${variants[@]}" <<'PY'
 import json, statistics, sys

@@ -66,6 +66,13 @@ MotionData make_data(int n, std::uint64_t seed) {
   return d;
 }
 
+// LM options with the readings' 1-sigma kSigma.
+LmOptions at_sigma() {
+  LmOptions o;
+  o.encoder_sigma = kSigma;
+  return o;
+}
+
 // The largest error of the free parameters of fit r against d's truth, in r's 1-sigma.
 double worst_in_sigmas(const MotionData& d, const Result& r) {
   double w = 0.0;
@@ -96,8 +103,7 @@ TEST(MotionCorrection, CorrectionInvertsTheGeneratingModel) {
 
 TEST(MotionCorrection, RecoversGeometryComplianceAndSkewWithinTheirSigma) {
   const MotionData d = make_data(600, 11);
-  LmOptions o;
-  o.encoder_sigma = kSigma;
+  const LmOptions o = at_sigma();
   const MotionFit fit = calibrate_in_motion(d.problem, d.omega, d.tau, o);
   for (int k = 0; k < 5; ++k) {
     ASSERT_TRUE(std::isfinite(fit.nu_sigma[k]));
@@ -120,8 +126,7 @@ TEST(MotionCorrection, RecoversGeometryComplianceAndSkewWithinTheirSigma) {
 // makes (the likelihood ratio, two fits); the full fit leaves nothing to name.
 TEST(MotionCorrection, LeftOutEffectsNamesTheComplianceLeftOutAsTheFullFitMeasuresIt) {
   const MotionData d = make_data(600, 11);
-  LmOptions o;
-  o.encoder_sigma = kSigma;
+  const LmOptions o = at_sigma();
   MotionModel stiff;
   stiff.compliance = stiff.friction = false;
   const MotionFit reduced = calibrate_in_motion(d.problem, d.omega, d.tau, o, stiff);
@@ -139,8 +144,7 @@ TEST(MotionCorrection, LeftOutEffectsNamesTheComplianceLeftOutAsTheFullFitMeasur
 
 TEST(MotionCorrection, WithoutNuisanceItIsTheRigidCalibration) {
   const MotionData d = make_data(100, 3);
-  LmOptions o;
-  o.encoder_sigma = kSigma;
+  const LmOptions o = at_sigma();
   MotionModel none;
   none.skew = none.compliance = false;
   const MotionFit fit = calibrate_in_motion(d.problem, d.omega, d.tau, o, none);
@@ -156,8 +160,7 @@ TEST(MotionCorrection, ATorqueOffJointsComplianceIsNotEstimated) {
     d.problem.theta_m[j][0] -= kNu[2] * d.tau[j][0];
     d.tau[j][0] = 0.0;
   }
-  LmOptions o;
-  o.encoder_sigma = kSigma;
+  const LmOptions o = at_sigma();
   const MotionFit fit = calibrate_in_motion(d.problem, d.omega, d.tau, o);
   EXPECT_EQ(fit.nu[2], 0.0);
   EXPECT_TRUE(std::isnan(fit.nu_sigma[2]));
@@ -173,8 +176,7 @@ TEST(MotionCorrection, RecoversTheFrictionTwistAndIgnoringItBiasesTheFit) {
   const std::array<double, 3> cf = {2e-5, -3e-5, 4e-5};
   for (std::size_t j = 0; j < d.omega.size(); ++j)
     for (int k = 0; k < 3; ++k) d.problem.theta_m[j][k] -= cf[static_cast<std::size_t>(k)] * std::tanh(d.omega[j][k] / 0.01);
-  LmOptions o;
-  o.encoder_sigma = kSigma;
+  const LmOptions o = at_sigma();
   const MotionFit fit = calibrate_in_motion(d.problem, d.omega, d.tau, o);
   for (std::size_t k = 0; k < 3; ++k) {
     ASSERT_TRUE(std::isfinite(fit.friction_sigma[k]));
@@ -199,8 +201,7 @@ TEST(MotionCorrection, AConstantTorqueJointsTwistGoesIntoItsOffset) {
     d.problem.theta_m[j][0] += kNu[2] * (tau0 - d.tau[j][0]);
     d.tau[j][0] = tau0;
   }
-  LmOptions o;
-  o.encoder_sigma = kSigma;
+  const LmOptions o = at_sigma();
   const MotionFit fit = calibrate_in_motion(d.problem, d.omega, d.tau, o);
   EXPECT_EQ(fit.nu[2], 0.0);
   EXPECT_TRUE(std::isnan(fit.nu_sigma[2]));
@@ -253,8 +254,7 @@ TEST(MotionCorrection, RecoversTheJointClearanceAndIgnoringItBiasesTheFit) {
     d.tau.push_back(t);
     d.problem.theta_m.push_back(readings_from_active(gj, qj.theta_a) + noise - s.cwiseProduct(w) + c.cwiseProduct(t));
   }
-  LmOptions o;
-  o.encoder_sigma = kSigma;
+  const LmOptions o = at_sigma();
   model.clearance = true;
   const MotionFit fit = calibrate_in_motion(d.problem, d.omega, d.tau, o, model);
   ASSERT_LT(fit.kept.size(), poses.size());
@@ -288,8 +288,7 @@ TEST(MotionCorrection, RecoversTheJointClearanceAndIgnoringItBiasesTheFit) {
 // (the strongest: every kept sample's forces clear the threshold used).
 TEST(MotionCorrection, TooHighAForceThresholdKeepsTheStrongestShare) {
   const MotionData d = make_data(200, 23);
-  LmOptions o;
-  o.encoder_sigma = kSigma;
+  const LmOptions o = at_sigma();
   MotionModel model;
   model.clearance = true;
   model.tension_min_N = 1e4;
@@ -310,8 +309,7 @@ TEST(MotionCorrection, AOneSignedLinksPlayIsNotEstimated) {
     d.problem.theta_m[j][0] += kNu[2] * (2.0 - d.tau[j][0]);
     d.tau[j][0] = 2.0;
   }
-  LmOptions o;
-  o.encoder_sigma = kSigma;
+  const LmOptions o = at_sigma();
   MotionModel model;
   model.clearance = true;
   model.tension_min_N = 0.0;
@@ -326,8 +324,7 @@ TEST(MotionCorrection, AOneSignedLinksPlayIsNotEstimated) {
 // estimated chain, a play not estimated (sigma NaN) never counts.
 TEST(MotionCorrection, NoClearanceIsDetectedWhereThereIsNone) {
   const MotionData d = make_data(300, 31);
-  LmOptions o;
-  o.encoder_sigma = kSigma;
+  const LmOptions o = at_sigma();
   MotionModel model;
   model.clearance = true;
   model.tension_min_N = 0.0;
@@ -360,8 +357,7 @@ TEST(MotionCorrection, JointBoundCrossChecks) {
   const auto plain = crb_sigma(d.truth, d.problem.free, smp.theta_m, kSigma);
   const auto rigid = motion_crb(d.truth, d.problem.free, smp.theta_m, d.omega, d.tau, none, {}, kSigma);
   const auto joint = motion_crb(d.truth, d.problem.free, smp.theta_m, d.omega, d.tau, MotionModel{}, {}, kSigma);
-  LmOptions o;
-  o.encoder_sigma = kSigma;
+  const LmOptions o = at_sigma();
   const MotionFit fit = calibrate_in_motion(d.problem, d.omega, d.tau, o);
   for (int k = 0; k < kNumParams; ++k) {
     if (!d.problem.free[k]) {
@@ -384,8 +380,7 @@ TEST(MotionCorrection, RecoversTheTwistOfTheTorqueBefore) {
   MotionData d = make_data(600, 19);
   const Eigen::Vector3d h(-0.5e-4, 0.6e-4, -0.4e-4);
   for (std::size_t j = 1; j < d.tau.size(); ++j) d.problem.theta_m[j] += h.cwiseProduct(d.tau[j - 1] - d.tau[j]);
-  LmOptions o;
-  o.encoder_sigma = kSigma;
+  const LmOptions o = at_sigma();
   MotionModel before;
   before.torque_before = true;
   const MotionFit fit = calibrate_in_motion(d.problem, d.omega, d.tau, o, before);
@@ -414,8 +409,7 @@ TEST(MotionCorrection, RecoversTheTwistOfTheTorquesBetweenSamples) {
     between[j] = d.tau[j > 0 ? j - 1 : 0] + 0.8 * Eigen::Vector3d(std::sin(0.9 * t), std::cos(1.7 * t), std::sin(2.3 * t + 0.4));
     d.problem.theta_m[j] += h.cwiseProduct(between[j] - d.tau[j]);
   }
-  LmOptions o;
-  o.encoder_sigma = kSigma;
+  const LmOptions o = at_sigma();
   MotionModel recorded;
   recorded.torque_before = true;
   recorded.torque_between = between;
@@ -441,8 +435,7 @@ TEST(MotionCorrection, RecoversTheTwistOfTheTorquesBetweenSamples) {
 // joint bound of calib/motion_correction.hpp widens by the same term.
 TEST(MotionCorrection, ConsideredCyclicErrorAddsTheFitsResponseToIt) {
   const MotionData d = make_data(400, 23);
-  LmOptions o;
-  o.encoder_sigma = kSigma;
+  const LmOptions o = at_sigma();
   MotionModel plain, considered;
   considered.cyclic_prior_rad = 2e-5;
   const MotionFit fit0 = calibrate_in_motion(d.problem, d.omega, d.tau, o, plain);
