@@ -1033,13 +1033,12 @@ MotionModel with_every_candidate(MotionModel all) {
   return all;
 }
 
-// The chi-square drop (in units of sigma^2) of residuals r when the columns G
-// join the columns Q: |P r|^2 for P the projection on G with Q projected out.
-double score_chi2(const Eigen::MatrixXd& Q, const Eigen::MatrixXd& G, const Eigen::VectorXd& r, int& rank) {
-  const Eigen::HouseholderQR<Eigen::MatrixXd> qr(Q);
-  const Eigen::MatrixXd Qo = qr.householderQ() * Eigen::MatrixXd::Identity(Q.rows(), Q.cols());
+// The chi-square drop (in units of sigma^2) of residuals rp when the columns
+// G join the columns with orthonormal basis Qo (rp: the residuals with those
+// columns projected out): |P rp|^2 for P the projection on G with Qo
+// projected out; rank: of G so projected.
+double score_chi2(const Eigen::MatrixXd& Qo, const Eigen::MatrixXd& G, const Eigen::VectorXd& rp, int& rank) {
   const Eigen::MatrixXd Gp = G - Qo * (Qo.transpose() * G);
-  const Eigen::VectorXd rp = r - Qo * (Qo.transpose() * r);
   Eigen::ColPivHouseholderQR<Eigen::MatrixXd> g(Gp);
   g.setThreshold(1e-6);
   rank = static_cast<int>(g.rank());
@@ -1077,6 +1076,10 @@ std::vector<LeftOutEffect> left_out_effects(const Problem& problem, const std::v
   const auto n_own = static_cast<Eigen::Index>(own.size());
   Eigen::MatrixXd Q(l.r.size(), l.Jg.cols() + n_own);
   Q << l.Jg, l.Jn.leftCols(n_own);
+  // The fit's own columns, orthonormal, and the residuals with them projected out: the same for every candidate.
+  const Eigen::MatrixXd Qo =
+      Eigen::HouseholderQR<Eigen::MatrixXd>(Q).householderQ() * Eigen::MatrixXd::Identity(Q.rows(), Q.cols());
+  const Eigen::VectorXd rp = l.r / sigma - Qo * (Qo.transpose() * (l.r / sigma));
   for (const Candidate& c : left_out_candidates(model)) {
     std::vector<Eigen::Index> at;
     for (int col : c.cols)
@@ -1086,7 +1089,7 @@ std::vector<LeftOutEffect> left_out_effects(const Problem& problem, const std::v
     Eigen::MatrixXd G(l.r.size(), static_cast<Eigen::Index>(at.size()));
     for (std::size_t k = 0; k < at.size(); ++k) G.col(static_cast<Eigen::Index>(k)) = l.Jn.col(at[k]);
     int rank = 0;
-    const double drop = score_chi2(Q, G, l.r / sigma, rank);
+    const double drop = score_chi2(Qo, G, rp, rank);
     if (rank > 0 && chi2_survival(rank, drop) < 1e-3) out.push_back({c.name, drop, rank});
   }
   std::ranges::sort(out, std::greater<>{}, &LeftOutEffect::chi2_drop);

@@ -472,7 +472,7 @@ CalibrationOutcome calibrate_samples(const SampleSeries& samples, const Calibrat
     throw InputError("calibration: estimating compliance, skew or clearance with the geometry needs the method lm "
                      "with the cost ml");
   CalibrationOutcome out;
-  std::vector<calib::LeftOutEffect> left_out;
+  calib::Problem fitted;  // with effects: the motion fit's problem (its readings carried to joint 1's instant)
   if (with_effects) {
     MotionStage m = motion_stage(samples, inputs, options);
     // The drive train's harmonic candidates (the errors per motor revolution)
@@ -491,7 +491,7 @@ CalibrationOutcome calibrate_samples(const SampleSeries& samples, const Calibrat
     // 3 sigma that its harmonics then took): the clearance is judged again.
     drop_undetected(m, options.keep_clearance);
     note_sandwich(m);
-    left_out = calib::left_out_effects(m.problem, m.omega, m.tau, m.motion, m.fit, m.sigma, m.alpha);
+    fitted = m.problem;
     out = motion_outcome(std::move(m), inputs.monitor.reading);
   } else {
     out = static_outcome(samples, options);
@@ -503,6 +503,9 @@ CalibrationOutcome calibrate_samples(const SampleSeries& samples, const Calibrat
     out.model_test = calib::model_test(out.result.geometry, options.free, out.used, options.sigma_rad);
     if (!out.model_test->passed) {
       if (with_effects) {
+        // Only when the test fails: the score tests are of the effects its misfit may need.
+        const std::vector<calib::LeftOutEffect> left_out =
+            calib::left_out_effects(fitted, out.omega, out.tau, out.motion, out.fit, options.sigma_rad, out.alpha);
         out.model_test->diagnosis += left_out_sentence(left_out, *out.model_test);
         for (const calib::LeftOutEffect& e : left_out) out.model_test->calls_for.push_back(e.name);
       }
