@@ -1011,7 +1011,7 @@ std::vector<Candidate> left_out_candidates(const MotionModel& model) {
   if (!model.estimate_cyclic)
     c.push_back({"an error once per joint revolution", {kFirstCyclic, kFirstCyclic + 1, kFirstCyclic + 2, kFirstCyclic + 3,
                                                          kFirstCyclic + 4, kFirstCyclic + 5}});
-  for (int i = 0; i < 3; ++i) {
+  for (int i = 0; model.encoder_on_motor && i < 3; ++i) {
     const auto k = static_cast<std::size_t>(i);
     if (!model.backlash[k]) c.push_back({fmt::format("backlash of joint {}", i + 1), {kBacklash + i}});
     if (!model.motor_harmonic1[k])

@@ -58,6 +58,9 @@ struct MotionModel {
   std::array<bool, 3> motor_harmonic1{};  // once per motor revolution: a sin(N theta_m) + b cos(N theta_m)
   std::array<bool, 3> motor_harmonic2{};  // twice per motor revolution: a sin(2 N theta_m) + b cos(2 N theta_m)
   double gear_ratio = 1.0;                // N: motor revolutions per joint revolution (the data sheet's)
+  bool encoder_on_motor = true;  // the encoders read the motors: the reducers' backlash and errors per motor
+                                 // revolution lie between reading and link (left_out_effects names them);
+                                 // false where the encoders turn with the joints, after the reducers
   // The reducer's hysteresis, per joint: half its loss eta_i = H_i / 2, theta_a = theta_m + eta_i g_i, g_i in
   // [-1, 1] the state of the mesh's friction element (hysteresis_state) under the mesh torque at the threshold
   // T_i = eta_i / c_i (c_i the compliance); T_i moves with the estimates (Gauss-Newton through dg/dT).

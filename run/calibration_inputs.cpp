@@ -94,10 +94,16 @@ std::optional<std::string> encoder_turns_with_joint(CalibrationInputs& in, doubl
   // The step is a lattice's gap, exact to the 2 % reading_step checks it to.
   if (std::abs(counts / encoder - 1.0) > 0.02) return std::nullopt;
   in.motion.cyclic_prior_rad = in.encoder_cyclic_prior_rad;
+  // The reducer is before the encoder: its backlash, hysteresis and errors
+  // per motor revolution move the reading with the link, not between them.
+  in.motion.encoder_on_motor = false;
+  in.drive_candidates.backlash = in.drive_candidates.hysteresis = {false, false, false};
+  in.drive_candidates.motor_harmonic1 = in.drive_candidates.motor_harmonic2 = {false, false, false};
   return fmt::format(
       "the encoders turn once per joint revolution ({:.0f} counts per joint revolution, their 2^{}; behind the data "
       "sheet's {:g}:1 reducer they would read {:g} times finer): the error once per joint revolution is theirs "
-      "(data sheet +-{:.2g} rad), not the reducer's",
+      "(data sheet +-{:.2g} rad), not the reducer's, and the reducer's backlash, hysteresis and errors per motor "
+      "revolution, before the encoders, are no candidates of the reading model",
       counts, in.encoder_bits, ratio, ratio, in.encoder_cyclic_prior_rad * std::sqrt(2.0));
 }
 

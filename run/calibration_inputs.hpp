@@ -53,7 +53,9 @@ CalibrationInputs calibration_inputs(const CalibrationSpec& c, const Robot& robo
 // revolution (2^bits counts, where the data sheet's gear ratio N > 1 would
 // give 2^bits N): the error once per joint revolution carried in the 1-sigma
 // is the encoder's own (its accuracy), not the reducer's transmission error,
-// which acts before it. Returns the note saying so; nullopt (in unchanged)
+// which acts before it, and the reducer's backlash, hysteresis and errors per
+// motor revolution are no drive-train candidates (nor left-out effects the
+// model test names). Returns the note saying so; nullopt (in unchanged)
 // when the step agrees with the data sheet, no encoder is stated or no such
 // error is carried.
 std::optional<std::string> encoder_turns_with_joint(CalibrationInputs& in, double step_rad);

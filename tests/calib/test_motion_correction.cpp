@@ -142,6 +142,26 @@ TEST(MotionCorrection, LeftOutEffectsNamesTheComplianceLeftOutAsTheFullFitMeasur
   for (const LeftOutEffect& e : none) ADD_FAILURE() << e.name << " named: chi2 down by " << e.chi2_drop;
 }
 
+// Readings with an error once per motor revolution on joint 2 (10:1, 20
+// sigma): named when the encoders read the motors; where they turn with the
+// joints (after the reducer) no reducer effect is a candidate to name.
+TEST(MotionCorrection, LeftOutEffectsNameTheReducersOnlyBehindAMotorEncoder) {
+  MotionData d = make_data(600, 13);
+  for (Eigen::Vector3d& theta_m : d.problem.theta_m) theta_m[1] += 20.0 * kSigma * std::sin(10.0 * theta_m[1]);
+  const LmOptions o = at_sigma();
+  MotionModel motor;
+  motor.gear_ratio = 10.0;
+  const MotionFit fit = calibrate_in_motion(d.problem, d.omega, d.tau, o, motor);
+  const std::vector<LeftOutEffect> named = left_out_effects(d.problem, d.omega, d.tau, motor, fit, kSigma);
+  ASSERT_FALSE(named.empty());
+  EXPECT_EQ(named.front().name, "an error once per motor revolution of joint 2");
+  MotionModel joint = motor;
+  joint.encoder_on_motor = false;
+  for (const LeftOutEffect& e : left_out_effects(d.problem, d.omega, d.tau, joint, fit, kSigma))
+    EXPECT_TRUE(e.name.find("motor revolution") == std::string::npos && e.name.find("backlash") == std::string::npos)
+        << e.name << " named behind an encoder that turns with the joint";
+}
+
 TEST(MotionCorrection, WithoutNuisanceItIsTheRigidCalibration) {
   const MotionData d = make_data(100, 3);
   const LmOptions o = at_sigma();

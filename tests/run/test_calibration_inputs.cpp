@@ -201,6 +201,8 @@ TEST(CalibrationInputs, ReadingsOfTheEncodersOwnStepMeanTheyTurnWithTheJoints) {
   const CalibrationInputs stated = calibration_inputs(spec, spec.sim.controller);
   ASSERT_EQ(stated.encoder_bits, 17);
   ASSERT_EQ(stated.motion.gear_ratio, 10.0);
+  ASSERT_EQ(stated.drive_candidates.backlash, (std::array<bool, 3>{true, true, true}));
+  ASSERT_TRUE(stated.motion.encoder_on_motor);
   const double turn = 2.0 * std::numbers::pi;
   CalibrationInputs direct = stated;
   const std::optional<std::string> note = encoder_turns_with_joint(direct, turn / 131072.0);
@@ -208,13 +210,21 @@ TEST(CalibrationInputs, ReadingsOfTheEncodersOwnStepMeanTheyTurnWithTheJoints) {
   EXPECT_NE(note->find("131072 counts per joint revolution"), std::string::npos) << *note;
   EXPECT_DOUBLE_EQ(direct.motion.cyclic_prior_rad, 2e-5 / std::sqrt(2.0));
   EXPECT_EQ(direct.motion.gear_ratio, 10.0);
-  EXPECT_EQ(direct.drive_candidates.motor_harmonic1, stated.drive_candidates.motor_harmonic1);
+  // The reducer acts before such an encoder: none of its drive-train effects is a candidate.
+  const std::array<bool, 3> none{};
+  EXPECT_FALSE(direct.motion.encoder_on_motor);
+  EXPECT_EQ(direct.drive_candidates.backlash, none);
+  EXPECT_EQ(direct.drive_candidates.hysteresis, none);
+  EXPECT_EQ(direct.drive_candidates.motor_harmonic1, none);
+  EXPECT_EQ(direct.drive_candidates.motor_harmonic2, none);
   for (const double step : {turn / 1310720.0, turn / (131072.0 * 1.05)}) {
     CalibrationInputs geared = stated;
     EXPECT_FALSE(encoder_turns_with_joint(geared, step)) << step;
     EXPECT_EQ(geared.motion.gear_ratio, 10.0);
     EXPECT_EQ(geared.motion.cyclic_prior_rad, stated.motion.cyclic_prior_rad);
     EXPECT_EQ(geared.drive_candidates.motor_harmonic1, stated.drive_candidates.motor_harmonic1);
+    EXPECT_EQ(geared.drive_candidates.backlash, stated.drive_candidates.backlash);
+    EXPECT_TRUE(geared.motion.encoder_on_motor);
   }
   CalibrationInputs ideal = stated;
   ideal.encoder_bits = 0;

@@ -131,6 +131,11 @@ TEST(CalibrationProcedure, EncodersOfTheTwinsStepTurnWithTheJoints) {
   ASSERT_NE(step, c.result.notes.end());
   ASSERT_NE(std::next(step), c.result.notes.end());
   EXPECT_TRUE(std::next(step)->starts_with("the encoders turn once per joint revolution")) << *std::next(step);
+  // The reducer is before them: no backlash, hysteresis or error per motor revolution is estimated.
+  EXPECT_FALSE(c.motion.encoder_on_motor);
+  for (std::size_t i = 0; i < 3; ++i)
+    EXPECT_FALSE(c.motion.backlash[i] || c.motion.hysteresis[i] || c.motion.motor_harmonic1[i] || c.motion.motor_harmonic2[i])
+        << "joint " << i + 1;
 }
 
 // The small run on a twin whose drives' friction differs per joint and from
