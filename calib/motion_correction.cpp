@@ -712,6 +712,16 @@ void append_iterations(std::vector<LmIteration>& all, const std::vector<LmIterat
   }
 }
 
+// The 15 x 15 covariance whose free rows and columns (free_index) are the
+// leading block of C, zero elsewhere.
+Eigen::Matrix<double, kNumParams, kNumParams> scatter_free(const Eigen::MatrixXd& C, const std::vector<int>& free_index) {
+  Eigen::Matrix<double, kNumParams, kNumParams> cov = Eigen::Matrix<double, kNumParams, kNumParams>::Zero();
+  for (std::size_t a = 0; a < free_index.size(); ++a)
+    for (std::size_t b = 0; b < free_index.size(); ++b)
+      cov(free_index[a], free_index[b]) = C(static_cast<Eigen::Index>(a), static_cast<Eigen::Index>(b));
+  return cov;
+}
+
 // The joint covariance sigma^2 (J' J)^-1 of [J_g, J_nu] at l (the misfit's
 // sandwich in its place when model.sandwich and the residuals exceed the
 // noise; the considered cyclic error added): its geometry block replaces
@@ -738,12 +748,14 @@ void joint_covariance(const Linearisation& l, const std::vector<int>& cols, doub
     fit.sandwich_inflation = std::sqrt(S.diagonal().head(ng).sum() / C.diagonal().head(ng).sum());
     if (fit.sandwich_inflation > 1.0) C = S, fit.sandwich_used = true;
   }
-  if (considers_cyclic(model)) add_considered(A, J, l.Jc, model.cyclic_prior_rad, C);
-  auto& cov = *fit.result.covariance;
-  cov.setZero();
-  for (std::size_t a = 0; a < free_index.size(); ++a)
-    for (std::size_t b = 0; b < free_index.size(); ++b)
-      cov(free_index[a], free_index[b]) = C(static_cast<Eigen::Index>(a), static_cast<Eigen::Index>(b));
+  fit.result.carried_covariance.reset();
+  if (considers_cyclic(model)) {
+    Eigen::MatrixXd carried = Eigen::MatrixXd::Zero(m, m);
+    add_considered(A, J, l.Jc, model.cyclic_prior_rad, carried);
+    C += carried;
+    fit.result.carried_covariance = scatter_free(carried, free_index);
+  }
+  fit.result.covariance = scatter_free(C, free_index);
   for (std::size_t a = 0; a < free_index.size(); ++a)
     fit.result.sigma[static_cast<std::size_t>(free_index[a])] = std::sqrt(C(static_cast<Eigen::Index>(a), static_cast<Eigen::Index>(a)));
   for (int c = 0; c < q; ++c) nuisance_sigma_slot(fit, cols[static_cast<std::size_t>(c)]) = std::sqrt(C(ng + c, ng + c));

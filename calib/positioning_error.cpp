@@ -88,9 +88,10 @@ std::optional<Eigen::Matrix<double, 2, kNumParams>> sensitivity(const Robot& act
 }  // namespace
 
 PositioningError positioning_error(const Robot& actual, const Robot& model, const WorkspaceDisc& disc,
-                                   const std::optional<Eigen::Matrix<double, kNumParams, kNumParams>>& covariance) {
+                                   const std::optional<Eigen::Matrix<double, kNumParams, kNumParams>>& covariance,
+                                   const std::optional<Eigen::Matrix<double, kNumParams, kNumParams>>& carried) {
   PositioningError out;
-  double sum2 = 0.0, sigma2 = 0.0, maha = 0.0;
+  double sum2 = 0.0, sigma2 = 0.0, maha = 0.0, carried2 = 0.0;
   for (const Eigen::Vector2d& p : grid(disc)) {
     const auto at = position_for(actual, model.geometry, model.branch, p);
     if (!at) continue;
@@ -104,6 +105,7 @@ PositioningError positioning_error(const Robot& actual, const Robot& model, cons
     const Eigen::Matrix2d S = *J * *covariance * J->transpose();
     sigma2 += S.trace() / 2.0;
     maha += e.dot(S.ldlt().solve(e)) / 2.0;
+    if (carried) carried2 += (*J * *carried * J->transpose()).trace() / 2.0;
   }
   if (out.points == 0)
     throw InputError(fmt::format("positioning error: no point of the {} mm disc round ({}, {}) is reachable",
@@ -112,6 +114,7 @@ PositioningError positioning_error(const Robot& actual, const Robot& model, cons
   if (covariance) {
     out.stated_sigma_rms_um = std::sqrt(sigma2 / out.points) * 1e3;
     out.normalised_rms = std::sqrt(maha / out.points);
+    out.carried_sigma_rms_um = std::sqrt(carried2 / out.points) * 1e3;
   }
   return out;
 }

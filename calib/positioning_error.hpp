@@ -37,14 +37,19 @@ struct PositioningError {
   // 1-sigma is honest: the squared distance is chi-square with 2 dof).
   double stated_sigma_rms_um = 0.0;
   double normalised_rms = 0.0;
+  // With a carried covariance too: the same RMS of the 1-sigma it alone
+  // gives, its share of stated_sigma_rms_um in quadrature (0 without).
+  double carried_sigma_rms_um = 0.0;
 };
 
 // Positioning error of model (the calibrated robot) on actual over disc.
 // covariance (15 x 15, zero rows for fixed parameters), when given, is the
 // calibration's; the 1-sigma map is taken by central differences of the
-// commanded position in the model's parameters. Throws InputError if no
-// grid point is reachable.
+// commanded position in the model's parameters; carried, when given, is the
+// part of it an error carried unestimated adds (calib::Result::
+// carried_covariance). Throws InputError if no grid point is reachable.
 PositioningError positioning_error(const Robot& actual, const Robot& model, const WorkspaceDisc& disc,
-                                   const std::optional<Eigen::Matrix<double, kNumParams, kNumParams>>& covariance = {});
+                                   const std::optional<Eigen::Matrix<double, kNumParams, kNumParams>>& covariance = {},
+                                   const std::optional<Eigen::Matrix<double, kNumParams, kNumParams>>& carried = {});
 
 }  // namespace gpm::calib

@@ -84,6 +84,10 @@ struct Result {
   // Covariance of all 15 parameters (zero rows/columns for fixed ones), when
   // the solver computed one (calib/lm.hpp); sigma holds its diagonal's roots.
   std::optional<Eigen::Matrix<double, kNumParams, kNumParams>> covariance;
+  // The part of covariance that an error carried unestimated adds (the error
+  // once per joint revolution under its prior: calib/motion_correction.hpp),
+  // when one is carried; covariance includes it.
+  std::optional<Eigen::Matrix<double, kNumParams, kNumParams>> carried_covariance;
 };
 
 }  // namespace gpm::calib

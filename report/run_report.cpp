@@ -398,13 +398,18 @@ void add_verdict(ReportDocument& d, const RunReport& o) {
 }
 
 // The calibrated model's positioning error over the workspace.
-void add_positioning(ReportDocument& d, const std::array<double, 4>& p) {
+void add_positioning(ReportDocument& d, const std::array<double, 5>& p) {
   d.heading(2, "Positioning error of the calibrated model");
   d.paragraph(fmt::format(
       "Over a disc of 80 mm round home (points 10 mm apart), the readings the calibrated model commands and where "
       "the actual robot stands when its three drives hold them, noise-free: RMS {}, max {}. The calibration's "
-      "covariance states {} per axis (RMS over the points); error / stated 1σ {} (1 when the 1σ is honest).",
-      distance(p[0]), distance(p[1]), distance(p[2]), sig(p[3], 2)));
+      "covariance states {} per axis (RMS over the points); error / stated 1σ {} (1 when the 1σ is honest).{}",
+      distance(p[0]), distance(p[1]), distance(p[2]), sig(p[3], 2),
+      p[4] > 0.0 ? fmt::format(" Of that 1σ, {} (in quadrature) is the error once per joint revolution carried at the "
+                               "data sheet's amplitude, which the readings cannot tell from the geometry: the floor "
+                               "of this procedure with these encoders.",
+                               distance(p[4]))
+                 : std::string()));
 }
 
 // The accuracy table of the nominal, calibrated and actual controller models and their ratios.

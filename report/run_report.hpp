@@ -87,8 +87,9 @@ struct RunReport {
   std::optional<RunAccuracy> floor;         // the controller given the actual parameters
   std::optional<RunModelTest> model_test;
   // The calibrated model's positioning error over the workspace (um): RMS,
-  // max, the stated 1-sigma per axis and error / 1-sigma (1 when honest).
-  std::optional<std::array<double, 4>> positioning_um;
+  // max, the stated 1-sigma per axis, error / 1-sigma (1 when honest) and
+  // the share of the 1-sigma an error carried unestimated adds (0: none).
+  std::optional<std::array<double, 5>> positioning_um;
   double robot_time_s = 0.0;                // robot time of the sampling
   bool on_the_fly = false;                  // the samples taken while moving (else at rest at each pose)
   std::vector<RunCheck> checks;

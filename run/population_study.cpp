@@ -295,7 +295,8 @@ nlohmann::json robot_json(const PopulationRobot& r) {
   j["failure"] = r.failure ? nlohmann::json(*r.failure) : nlohmann::json(nullptr);
   j["positioning_um"] = {{"rms", number(r.positioning.rms_um)}, {"max", number(r.positioning.max_um)},
                          {"stated_sigma_rms", number(r.positioning.stated_sigma_rms_um)},
-                         {"normalised_rms", number(r.positioning.normalised_rms)}, {"points", r.positioning.points}};
+                         {"normalised_rms", number(r.positioning.normalised_rms)},
+                         {"carried_sigma_rms", number(r.positioning.carried_sigma_rms_um)}, {"points", r.positioning.points}};
   j["static_rms_um"] = {{"calibrated", number(r.calibrated_static_um)}, {"actual", number(r.floor_um)}};
   j["floor_ratio"] = number(r.floor_ratio);
   j["plan_deviation_mm"] = number(r.plan_deviation_mm);

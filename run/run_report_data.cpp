@@ -72,8 +72,9 @@ report::RunReport run_report_data(const RunOutcome& o) {
   r.robot_time_s = o.sim.sampling_s;
   r.on_the_fly = o.in_motion;
   if (o.positioning)
-    r.positioning_um = std::array<double, 4>{o.positioning->rms_um, o.positioning->max_um,
-                                             o.positioning->stated_sigma_rms_um, o.positioning->normalised_rms};
+    r.positioning_um = std::array<double, 5>{o.positioning->rms_um, o.positioning->max_um,
+                                             o.positioning->stated_sigma_rms_um, o.positioning->normalised_rms,
+                                             o.positioning->carried_sigma_rms_um};
   for (const Check& c : o.checks) r.checks.push_back({c.name, c.detail, c.passed});
   return r;
 }

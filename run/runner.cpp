@@ -53,7 +53,7 @@ namespace {
 std::optional<calib::PositioningError> calibrated_positioning(const RunOutcome& o) {
   try {
     return calib::positioning_error(o.sim.actual, o.calibrated, calib::WorkspaceDisc{o.nominal.home},
-                                    o.calibration->covariance);
+                                    o.calibration->covariance, o.calibration->carried_covariance);
   } catch (const InputError&) {
     return std::nullopt;
   }

@@ -31,6 +31,7 @@ std::string summary_json(const RunOutcome& o) {
                            {"max", number(o.positioning->max_um)},
                            {"stated_sigma_rms", number(o.positioning->stated_sigma_rms_um)},
                            {"normalised_rms", number(o.positioning->normalised_rms)},
+                           {"carried_sigma_rms", number(o.positioning->carried_sigma_rms_um)},
                            {"points", o.positioning->points}};
   else
     j["positioning_um"] = nullptr;

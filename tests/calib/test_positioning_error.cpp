@@ -51,5 +51,27 @@ TEST(PositioningError, ErrorsDrawnFromTheCovarianceAreCoveredByIt) {
   EXPECT_LT(sigma, 10.0);
 }
 
+// The carried part's 1-sigma adds in quadrature: the whole covariance
+// carried gives the stated 1-sigma, a quarter of it half that, none 0; the
+// covariance split in two parts gives two shares whose squares sum to it.
+TEST(PositioningError, TheCarriedShareOfTheOneSigmaAddsInQuadrature) {
+  const Robot actual;
+  Eigen::Matrix<double, kNumParams, kNumParams> C = Eigen::Matrix<double, kNumParams, kNumParams>::Zero();
+  for (int k = 4; k < kNumParams; ++k) C(k, k) = is_offset(k) ? 1e-10 : 1e-6;
+  const WorkspaceDisc coarse{actual.home, 80.0, 40.0};
+  const PositioningError all = positioning_error(actual, actual, coarse, C, C);
+  EXPECT_NEAR(all.carried_sigma_rms_um, all.stated_sigma_rms_um, 1e-9);
+  EXPECT_NEAR(positioning_error(actual, actual, coarse, C, 0.25 * C).carried_sigma_rms_um,
+              0.5 * all.stated_sigma_rms_um, 1e-9);
+  EXPECT_EQ(positioning_error(actual, actual, coarse, C).carried_sigma_rms_um, 0.0);
+  Eigen::Matrix<double, kNumParams, kNumParams> lengths = C, offsets = C;
+  for (int k = 0; k < kNumParams; ++k) (is_offset(k) ? lengths : offsets)(k, k) = 0.0;
+  const double a = positioning_error(actual, actual, coarse, C, lengths).carried_sigma_rms_um;
+  const double b = positioning_error(actual, actual, coarse, C, offsets).carried_sigma_rms_um;
+  EXPECT_GT(a, 0.0);
+  EXPECT_GT(b, 0.0);
+  EXPECT_NEAR(a * a + b * b, all.stated_sigma_rms_um * all.stated_sigma_rms_um, 1e-9);
+}
+
 }  // namespace
 }  // namespace gpm::calib

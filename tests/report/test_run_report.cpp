@@ -152,7 +152,7 @@ TEST(RunReport, AFailedModelTestCoveredByTheStatedSigmaReadsAsSuch) {
   RunReport o = testing::run_report_example();
   for (RunCheck& c : o.checks) c.passed = true;
   o.checks.push_back({"model_test", "chi2 2.844e+05 for 10058 degrees of freedom (fails; expected to fail)", true});
-  o.positioning_um = std::array<double, 4>{9.3, 20.1, 10.1, 0.92};
+  o.positioning_um = std::array<double, 5>{9.3, 20.1, 10.1, 0.92, 0.0};
   o.model_test->diagnosis = "model test failed (chi2 2.844e+05 for 10058 degrees of freedom, p = 0): residuals are "
                             "5.32x the encoder noise throughout: an unmodelled effect; sample with the redundant joint "
                             "torque-off, or model the effect";
@@ -171,7 +171,7 @@ TEST(RunReport, AFailedModelTestCoveredByTheStatedSigmaReadsAsSuch) {
   EXPECT_EQ(md.find("PASSED"), std::string::npos);
 
   // Not covered: the stated 1-sigma understates the error and the cause is named, once.
-  o.positioning_um = std::array<double, 4>{30.0, 60.0, 10.0, 3.0};
+  o.positioning_um = std::array<double, 5>{30.0, 60.0, 10.0, 3.0, 0.0};
   const std::string bad = spaced(build_run_report(o).markdown());
   EXPECT_NE(bad.find("The stated 1σ understates the error: the positioning error is 3.0× it. Likely cause: residuals are "
                      "5.32× the encoder noise throughout"),
@@ -217,16 +217,28 @@ TEST(RunReport, ModelTestVerdictEitherSideOfTheThreshold) {
   o.model_test->dof = 10058;
   o.model_test->passed = false;
   for (const double p : {1.49, 1.51}) {
-    o.positioning_um = std::array<double, 4>{9.3, 20.1, 10.1, p};
+    o.positioning_um = std::array<double, 5>{9.3, 20.1, 10.1, p, 0.0};
     const std::string md = spaced(build_run_report(o).markdown());
     EXPECT_EQ(md.find("The stated 1σ accounts for it") != std::string::npos, p < kStatedSigmaCovers) << p;
     EXPECT_EQ(md.find("The stated 1σ understates the error") != std::string::npos, p > kStatedSigmaCovers) << p;
   }
 }
 
+// The positioning section says how much of the stated 1-sigma the error
+// carried unestimated is, and nothing of it when none is carried.
+TEST(RunReport, PositioningSaysTheShareOfTheCarriedError) {
+  RunReport o = testing::run_report_example();
+  o.positioning_um = std::array<double, 5>{9.3, 20.1, 10.1, 0.92, 7.4};
+  const std::string md = spaced(build_run_report(o).markdown());
+  EXPECT_NE(md.find("Of that 1σ, 7.40 µm (in quadrature) is the error once per joint revolution carried"), std::string::npos)
+      << md;
+  o.positioning_um = std::array<double, 5>{9.3, 20.1, 10.1, 0.92, 0.0};
+  EXPECT_EQ(spaced(build_run_report(o).markdown()).find("Of that 1σ"), std::string::npos);
+}
+
 TEST(RunReport, EveryTableIsValidMarkdownAndNoMarkdownLeaksIntoHtml) {
   RunReport o = testing::run_report_example();
-  o.positioning_um = std::array<double, 4>{9.3, 20.1, 10.1, 0.92};
+  o.positioning_um = std::array<double, 5>{9.3, 20.1, 10.1, 0.92, 0.0};
   const ReportDocument d = build_run_report(o);
   int tables = 0;
   const auto errors = testing::markdown_table_errors(d.markdown(), &tables);
