@@ -25,6 +25,7 @@
 #include "calib/calibrate.hpp"
 #include "calib/initial.hpp"
 #include "calib/lm.hpp"
+#include "calib/positioning_error.hpp"
 #include "calib/result_yaml.hpp"
 #include "calib/sample_check.hpp"
 #include "models/bounds.hpp"
@@ -108,6 +109,27 @@ std::vector<double> parse_numbers(const std::string& text, size_t n, const std::
   return v;
 }
 
+// The positioning 1-sigma the calibration states over the 80 mm disc round
+// home (the calibrated model's own sensitivities: no actual robot to judge it
+// by) and its carried share, as gpm run's position line states them; empty
+// without a covariance or where the disc is out of reach.
+std::string positioning_sigma_line(const Robot& robot, const calib::Result& r) {
+  if (!r.covariance) return {};
+  Robot calibrated = robot;
+  calibrated.geometry = r.geometry;
+  try {
+    const calib::PositioningError p =
+        calib::positioning_error(calibrated, calibrated, calib::WorkspaceDisc{robot.home}, r.covariance, r.carried_covariance);
+    std::string line = fmt::format("positioning over the 80 mm disc: stated 1-sigma {:.2f} um per axis", p.stated_sigma_rms_um);
+    if (p.carried_sigma_rms_um > 0.0)
+      line += fmt::format(", {:.2f} um of it the error once per joint revolution the readings cannot tell from the "
+                          "geometry, carried at the data sheet's amplitude", p.carried_sigma_rms_um);
+    return line + "\n";
+  } catch (const InputError&) {
+    return {};
+  }
+}
+
 // The terminal's account of the calibration: parameters, diagnostics, model test.
 void print_result(const CalibrateOptions& o, const Robot& robot, const Samples& samples, const calib::Problem& problem,
                   const scenario::CalibrationOutcome& outcome, const scenario::FileProcedure& proc) {
@@ -124,6 +146,7 @@ void print_result(const CalibrateOptions& o, const Robot& robot, const Samples& 
              r.final_cost, r.iterations, r.evaluations, r.rank, r.free.count(), r.condition_number);
   if (r.kmrmse_mm) fmt::print(", kmrmse {:.6g} mm", *r.kmrmse_mm);
   fmt::print(", {:.3f} s\n", r.seconds);
+  fmt::print("{}", terminal_text(positioning_sigma_line(robot, r)));
   if (outcome.model_test)
     fmt::print("{}\n", terminal_text(scenario::model_test_line(*outcome.model_test, proc.sigma_stated)));
   else

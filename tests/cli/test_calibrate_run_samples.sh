@@ -39,6 +39,18 @@ holds "samples.csv has t" grep -qE '^sample,.*,tau_between3,t$' "$S"
 check "calibrate on the run's samples" 0 "$GPM" calibrate --data "$S" --model "$SRC/models/gpm2002.yaml" -o "$tmp/r.yaml"
 expect_out "the motion model" "the motion model"
 expect_out "model test line" "^model test (passes|fails) \(chi2/dof"
+# The positioning 1-sigma and its carried share, as gpm run states them (its
+# own sensitivities at the calibrated model instead of the actual robot's:
+# equal to the printed digits on this robot).
+holds "positioning 1-sigma as gpm run's" python3 - "$tmp/run/summary.json" "$tmp/out" <<'PY'
+import json, re, sys
+p = json.load(open(sys.argv[1]))["positioning_um"]
+line = next(l for l in open(sys.argv[2]) if l.startswith("positioning over the 80 mm disc"))
+m = re.search(r"stated 1-sigma ([0-9.]+) um per axis, ([0-9.]+) um of it the error once per joint revolution", line)
+ok = m and m.group(1) == f"{p['stated_sigma_rms']:.2f}" and m.group(2) == f"{p['carried_sigma_rms']:.2f}"
+print("" if ok else f"line {line!r}, gpm run's {p}")
+sys.exit(0 if ok else 1)
+PY
 # On a UTF-8 terminal (a pty) the line and the notes say χ²; in the C locale chi2.
 if command -v script >/dev/null; then
   LC_ALL= LC_CTYPE= LANG=C.UTF-8 script -qec "'$GPM' calibrate --data '$S' --model '$SRC/models/gpm2002.yaml' -o '$tmp/r.yaml'" /dev/null >"$tmp/out"
