@@ -209,10 +209,10 @@ TEST(OffsetsFirst, ThroughTheHardwareInterfaceTheFirstPassIsKeptAndResumable) {
   std::printf("through the twin backend: first pass %zu samples, %.2f s; second pass %zu samples; positioning RMS "
               "%.2f um (stated %.2f um)\n",
               o.first_pass->samples, o.first_pass->robot_time_s, o.sim.samples.size(), p.rms_um, p.stated_sigma_rms_um);
-  // The main job's robot: 13.3 um against a stated 4.0 measured (3.4x; 10.4
-  // um, 2.6x, while the reducer's drive-train effects were candidates behind
-  // encoders that turn with the joints, which on the main job's 30 robots
-  // took the worst from 20 to 12.6 um, docs/PROCEDURES.md).
+  // This robot (seed 10009): 13.3 um against a stated 4.0 measured (3.4x;
+  // 10.4 um, 2.6x, while the reducer's drive-train effects were candidates
+  // behind encoders that turn with the joints, which on the main job's 30
+  // robots took the worst from 20 to 12.6 um, docs/PROCEDURES.md).
   EXPECT_LE(p.rms_um, 4.0 * p.stated_sigma_rms_um);
   RunSpec again = spec;
   again.hardware_resume = true;
