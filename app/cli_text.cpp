@@ -68,6 +68,12 @@ const char* chi2() { return terminal_utf8() ? "\u03c7\u00b2" : "chi2"; }
 
 std::string terminal_text(const std::string& text) { return terminal_utf8() ? report::unit_symbols(text) : text; }
 
+std::string carried_share(double carried_um) {
+  if (!(carried_um > 0.0)) return {};
+  return fmt::format(", {:.2f} {} of it the error once per joint revolution the readings cannot tell from the geometry",
+                     carried_um, um());
+}
+
 std::string count_of(std::size_t n, const std::string& noun, const std::string& plural) {
   return fmt::format("{} {}", n, n == 1 ? noun : (plural.empty() ? noun + "s" : plural));
 }

@@ -23,6 +23,11 @@ const char* um();
 // "χ²" on a UTF-8 terminal, else "chi2".
 const char* chi2();
 
+// ", X µm of it the error once per joint revolution the readings cannot tell
+// from the geometry": the share carried_um of a stated positioning 1-sigma
+// (gpm run's and gpm calibrate's lines); empty when it is 0.
+std::string carried_share(double carried_um);
+
 // Text of the libraries (notes, the model test's line, the monitor's
 // learning and explanations, written in ASCII) as this terminal shows it:
 // units as symbols (report::unit_symbols: µm, µrad, χ²) on a UTF-8

@@ -120,10 +120,9 @@ std::string positioning_sigma_line(const Robot& robot, const calib::Result& r) {
   try {
     const calib::PositioningError p =
         calib::positioning_error(calibrated, calibrated, calib::WorkspaceDisc{robot.home}, r.covariance, r.carried_covariance);
-    std::string line = fmt::format("positioning over the 80 mm disc: stated 1-sigma {:.2f} um per axis", p.stated_sigma_rms_um);
-    if (p.carried_sigma_rms_um > 0.0)
-      line += fmt::format(", {:.2f} um of it the error once per joint revolution the readings cannot tell from the "
-                          "geometry, carried at the data sheet's amplitude", p.carried_sigma_rms_um);
+    std::string line = fmt::format("positioning over the 80 mm disc: stated 1-sigma {:.2f} {} per axis{}",
+                                   p.stated_sigma_rms_um, um(), carried_share(p.carried_sigma_rms_um));
+    if (p.carried_sigma_rms_um > 0.0) line += ", carried at the data sheet's amplitude";
     return line + "\n";
   } catch (const InputError&) {
     return {};

@@ -83,10 +83,7 @@ void print_summary(const scenario::RunOutcome& o, const std::string& dir) {
     fmt::print("position   calibrated model over the 80 mm disc: RMS {:.2f} {u}, max {:.2f} {u} (stated 1-sigma {:.2f} "
                "{u} per axis{}; error / 1-sigma {:.2f}, 1 when honest)\n",
                o.positioning->rms_um, o.positioning->max_um, o.positioning->stated_sigma_rms_um,
-               o.positioning->carried_sigma_rms_um > 0.0
-                   ? fmt::format(", {:.2f} {} of it the error once per joint revolution the readings cannot tell from "
-                                 "the geometry", o.positioning->carried_sigma_rms_um, um())
-                   : std::string(),
+               carried_share(o.positioning->carried_sigma_rms_um),
                o.positioning->normalised_rms, fmt::arg("u", um()));
   }
   if (o.before) {

@@ -748,7 +748,6 @@ void joint_covariance(const Linearisation& l, const std::vector<int>& cols, doub
     fit.sandwich_inflation = std::sqrt(S.diagonal().head(ng).sum() / C.diagonal().head(ng).sum());
     if (fit.sandwich_inflation > 1.0) C = S, fit.sandwich_used = true;
   }
-  fit.result.carried_covariance.reset();
   if (considers_cyclic(model)) {
     Eigen::MatrixXd carried = Eigen::MatrixXd::Zero(m, m);
     add_considered(A, J, l.Jc, model.cyclic_prior_rad, carried);
