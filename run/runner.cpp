@@ -463,7 +463,7 @@ void calibrate_run(RunOutcome& out, const RunSpec& spec, const CalibrationInputs
 // calibrated and (simulation only) the actual parameters.
 void measure_compensation(RunOutcome& out, const RunSpec& spec, const Progress& progress, const Stage& stage) {
   const Robot& actual = out.sim.actual;
-  // A constant-torque joint preloads the chain for the sampling only; the
+  // A torque-mode joint preloads the chain for the sampling only; the
   // accuracy test runs the robot as in operation (that joint torque-off).
   sim::TwinConfig test_twin = spec.sim.twin;
   for (sim::ServoDrive& d : test_twin.drives)

@@ -158,19 +158,21 @@ void parse_servo(const YAML::Node& n, const Ctx& c, TwinConfig& t) {
   if (const YAML::Node m = n["modes"]) {
     const Ctx cm = c.at("modes");
     if (!m.IsSequence() || m.size() != 3)
-      fail(cm, m, "expected three modes, each position, torque_off or {torque: N m}, e.g. [position, position, torque_off]");
+      fail(cm, m, "expected three modes, each position, torque_off or {torque: N m[, alternate_s: s]}, e.g. [position, position, torque_off]");
     int active = 0;
     for (size_t i = 0; i < 3; ++i) {
       const Ctx ci{c.file, fmt::format("{}[{}]", cm.path, i)};
-      if (m[i].IsMap()) {  // {torque: N m}: a constant torque (preloads the chain one way)
-        yaml_check_keys(m[i], c.file, ci.path, {"torque"});
-        if (!m[i]["torque"]) fail(ci, m[i], "expected {torque: N m}, e.g. {torque: 0.5}");
+      if (m[i].IsMap()) {  // {torque: N m[, alternate_s: s]}: a preload one way, or each way in turn
+        yaml_check_keys(m[i], c.file, ci.path, {"torque", "alternate_s"});
+        if (!m[i]["torque"]) fail(ci, m[i], "expected {torque: N m}, e.g. {torque: 0.5} or {torque: 2, alternate_s: 1.2}");
         const double tq = number(m[i]["torque"], ci.at("torque"));
         if (!std::isfinite(tq) || std::abs(tq) > t.drives[i].torque_limit)
           fail(ci.at("torque"), m[i]["torque"],
                fmt::format("must be within +-torque_limit ({} N m), got {}", t.drives[i].torque_limit, tq));
         t.drives[i].mode = ServoMode::kTorque;
         t.drives[i].torque_Nm = tq;
+        if (m[i]["alternate_s"])
+          t.drives[i].alternate_s = bounded(m[i]["alternate_s"], ci.at("alternate_s"), 0.01, 600.0, "s");
         continue;
       }
       const std::string s = yaml_string(m[i], c.file, ci.path);

@@ -18,14 +18,25 @@ double angle_diff(double a, double b) {
 
 }  // namespace
 
+double preload_torque(const ServoDrive& drive, long updates) {
+  const double tau = std::clamp(drive.torque_Nm, -drive.torque_limit, drive.torque_limit);
+  if (drive.alternate_s <= 0.0) return tau;
+  // The half-period index of the update's instant (a small epsilon so that an
+  // instant on a multiple of alternate_s counts as the new half period).
+  const auto half = static_cast<long>(std::floor(updates * drive.period_s / drive.alternate_s + 1e-9));
+  return half % 2 == 0 ? tau : -tau;
+}
+
 double servo_update(const ServoDrive& drive, ServoState& state, const ServoInput& in) {
   if (drive.mode == ServoMode::kTorqueOff) {
     state = ServoState{};
     return 0.0;
   }
   if (drive.mode == ServoMode::kTorque) {
+    const long updates = state.updates;
     state = ServoState{};
-    state.torque = std::clamp(drive.torque_Nm, -drive.torque_limit, drive.torque_limit);
+    state.torque = preload_torque(drive, updates);
+    state.updates = updates + 1;
     return state.torque;
   }
   const double e = angle_diff(in.position_command, in.position);

@@ -17,8 +17,9 @@ namespace gpm::sim {
 enum class ServoMode {
   kPosition,   // closes the position loop on its command
   kTorqueOff,  // no torque; the encoder is still read (redundant joint as sensor)
-  kTorque,     // a constant torque (ServoDrive::torque_Nm): the redundant joint preloads the
-               // chain one way, so every joint clearance is taken up along the same direction
+  kTorque,     // a torque (ServoDrive::torque_Nm): the redundant joint preloads the chain one way,
+               // so every joint clearance is taken up along the same direction; with
+               // ServoDrive::alternate_s > 0 the preload changes sign every alternate_s seconds
 };
 
 // Constant settings of one drive (defaults: 400 W servo behind a 10:1 reducer,
@@ -32,7 +33,8 @@ struct ServoDrive {
   double torque_limit = 38.0;    // N m (peak torque at the reducer output)
   double velocity_limit = 6.0;   // rad/s
   double period_s = 0.0005;      // loop period (1 / loop rate)
-  double torque_Nm = 0.0;        // kTorque: the constant torque applied (clamped to +-torque_limit)
+  double torque_Nm = 0.0;        // kTorque: the torque applied (clamped to +-torque_limit)
+  double alternate_s = 0.0;      // kTorque: seconds between changes of its sign (0: constant)
 
   // Holding stiffness at rest, kp * kv (N m/rad).
   double stiffness() const { return kp * kv; }
@@ -42,7 +44,12 @@ struct ServoDrive {
 struct ServoState {
   double integral = 0.0;  // integral term, N m (clamped to +-torque_limit)
   double torque = 0.0;    // last torque output, held until the next update
+  long updates = 0;       // kTorque: loop updates since the drive last left torque-off
 };
+
+// kTorque's torque after `updates` loop updates: torque_Nm, its sign changed
+// at every whole multiple of alternate_s (when > 0) of updates * period_s.
+double preload_torque(const ServoDrive& drive, long updates);
 
 // Inputs of one loop update (angles in the drive's own reading frame).
 struct ServoInput {

@@ -26,7 +26,8 @@ const sim::TwinModel& TwinBackend::model(const std::array<JointMode, 3>& modes) 
 
 const sim::TwinModel& TwinBackend::model_for(unsigned mask, bool enabled) {
   // A joint out of position mode is torque-off, or pulls with the scenario's
-  // constant torque while the drives are enabled (the twin's preload).
+  // preload torque while the drives are enabled (the twin's preload, constant or
+  // alternating: sim::preload_torque).
   unsigned key = mask;
   for (int i = 0; i < 3; ++i)
     if (enabled && !((mask >> i) & 1u) && config_.twin.drives[i].mode == sim::ServoMode::kTorque) key |= 8u << i;

@@ -136,6 +136,28 @@ TEST(DriveTrainStep, StaticDeflectionFollowsDeadBandAndBands) {
   EXPECT_NEAR(plus - minus, 6e-4 + 2 * (7.0 / 1.3e4 + (applied - 7.0) / 1.8e4), 2e-5 * expected) << "lost motion";
 }
 
+// The alternating preload (sim::preload_torque) takes the lost motion up on
+// one flank, then on the other: the twist at rest flips with the torque.
+TEST(DriveTrainStep, AlternatingPreloadTakesUpEachFlankInTurn) {
+  TwinConfig c = fast_config();
+  DriveChain& d = c.effects.drive.chain[0];
+  d.stiffness_Nm_per_rad = {1.3e4, 1.3e4, 1.3e4};
+  d.band_Nm = {7.0, 25.0};
+  d.backlash_rad = 6e-4;
+  c.drives[0].mode = ServoMode::kTorque;
+  c.drives[0].torque_Nm = 4.0;
+  c.drives[0].alternate_s = 1.5;
+  const double expected = 3e-4 + 4.0 / 1.3e4;  // b/2 + T/K
+  const TwinModel m(Robot{}, c);
+  TwinState s(m, 1);
+  for (const double sign : {1.0, -1.0, 1.0}) {
+    run_for(m, s, 1.5);  // to just before the next change of sign (the drive's updates start at 0)
+    twin_sense(m, s);
+    EXPECT_EQ(s.last.torque[0], sign * 4.0);
+    EXPECT_NEAR(s.last.theta_motor[0] - s.last.theta_a[0], sign * expected, 1e-3 * expected);
+  }
+}
+
 TEST(DriveTrainStep, LinkStandsOffByTheTransmissionError) {
   const Robot robot;
   TwinConfig c = fast_config();

@@ -48,6 +48,17 @@ TEST(Scenario, ExampleScenariosParse) {
   EXPECT_DOUBLE_EQ(*c.actual.explicit_values[kLa3], 244.5);
 }
 
+TEST(Scenario, AlternatingPreloadLandsOnItsDrive) {
+  const Scenario s = parse(std::string(kMinimal) +
+                           "servo: {modes: [{torque: -2, alternate_s: 1.2}, position, position]}\n");
+  EXPECT_EQ(s.twin.drives[0].mode, ServoMode::kTorque);
+  EXPECT_EQ(s.twin.drives[0].torque_Nm, -2.0);
+  EXPECT_EQ(s.twin.drives[0].alternate_s, 1.2);
+  EXPECT_EQ(s.twin.drives[1].alternate_s, 0.0);
+  const Scenario constant = parse(std::string(kMinimal) + "servo: {modes: [{torque: 1}, position, position]}\n");
+  EXPECT_EQ(constant.twin.drives[0].alternate_s, 0.0);
+}
+
 TEST(Scenario, SettingsLandWhereTheyBelong) {
   const Scenario s = parse(R"(
 robot: gpm2002.yaml
@@ -123,6 +134,12 @@ TEST(Scenario, ErrorsNameTheKeyPath) {
   EXPECT_NE(error_of(std::string(kMinimal) + "servo: {modes: [{torque: 1}, position, torque_off]}").find("at least two"),
             std::string::npos);
   EXPECT_NE(error_of(std::string(kMinimal) + "servo: {modes: [{torq: 1}, position, position]}").find("servo.modes[0]"),
+            std::string::npos);
+  EXPECT_NE(error_of(std::string(kMinimal) + "servo: {modes: [{torque: 1, alternate_s: 0}, position, position]}")
+                .find("servo.modes[0].alternate_s: must be from 0.01 to 600 s, got 0"),
+            std::string::npos);
+  EXPECT_NE(error_of(std::string(kMinimal) + "servo: {modes: [{alternate_s: 1}, position, position]}")
+                .find("servo.modes[0]: expected {torque: N m}"),
             std::string::npos);
   EXPECT_NE(error_of(std::string(kMinimal) + "servo: {modes: [position, torque_off, torque_off]}").find("at least two"),
             std::string::npos);

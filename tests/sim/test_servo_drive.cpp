@@ -8,6 +8,38 @@
 namespace gpm::sim {
 namespace {
 
+TEST(ServoDrive, PreloadIsConstantWithoutAlternation) {
+  ServoDrive d;
+  d.mode = ServoMode::kTorque;
+  d.torque_Nm = -2.0;
+  ServoState s;
+  for (int k = 0; k < 5000; ++k) EXPECT_EQ(servo_update(d, s, {0.0, 0.0, 0.3, 1.0}), -2.0);
+  d.torque_Nm = -50.0;  // clamped to the drive's limit
+  EXPECT_EQ(servo_update(d, s, {0.0, 0.0, 0.3, 1.0}), -38.0);
+}
+
+// Hand-worked: a 1 kHz loop alternating every 0.01 s applies +tau on updates
+// 0-9, -tau on 10-19, +tau on 20-29; torque-off starts the count again.
+TEST(ServoDrive, PreloadChangesSignEveryAlternation) {
+  ServoDrive d;
+  d.mode = ServoMode::kTorque;
+  d.torque_Nm = 2.0;
+  d.alternate_s = 0.01;
+  d.period_s = 0.001;
+  ServoState s;
+  for (int k = 0; k < 30; ++k) {
+    const double expected = (k / 10) % 2 == 0 ? 2.0 : -2.0;
+    EXPECT_EQ(servo_update(d, s, {0.0, 0.0, 0.0, 0.0}), expected) << "update " << k;
+    EXPECT_EQ(s.torque, expected);
+  }
+  EXPECT_EQ(preload_torque(d, 10), -2.0);
+  EXPECT_EQ(preload_torque(d, 9), 2.0);
+  ServoDrive off = d;
+  off.mode = ServoMode::kTorqueOff;
+  EXPECT_EQ(servo_update(off, s, {0.0, 0.0, 0.0, 0.0}), 0.0);
+  EXPECT_EQ(servo_update(d, s, {0.0, 0.0, 0.0, 0.0}), 2.0);  // update 0 again
+}
+
 TEST(ServoDrive, AtRestActsAsSpringOfStiffnessKpKv) {
   ServoDrive d;  // kp 100 1/s, kv 10 N m s/rad
   ServoState s;
