@@ -1,6 +1,7 @@
 #include "sim/scenario.hpp"
 #include "models/data_dir.hpp"
 
+#include <algorithm>
 #include <cmath>
 #include <filesystem>
 
@@ -163,7 +164,7 @@ void parse_servo(const YAML::Node& n, const Ctx& c, TwinConfig& t) {
     for (size_t i = 0; i < 3; ++i) {
       const Ctx ci{c.file, fmt::format("{}[{}]", cm.path, i)};
       if (m[i].IsMap()) {  // {torque: N m[, alternate_s: s]}: a preload one way, or each way in turn
-        yaml_check_keys(m[i], c.file, ci.path, {"torque", "alternate_s"});
+        yaml_check_keys(m[i], c.file, ci.path, {"torque", "alternate_s", "ramp_s"});
         if (!m[i]["torque"]) fail(ci, m[i], "expected {torque: N m}, e.g. {torque: 0.5} or {torque: 2, alternate_s: 1.2}");
         const double tq = number(m[i]["torque"], ci.at("torque"));
         if (!std::isfinite(tq) || std::abs(tq) > t.drives[i].torque_limit)
@@ -173,6 +174,11 @@ void parse_servo(const YAML::Node& n, const Ctx& c, TwinConfig& t) {
         t.drives[i].torque_Nm = tq;
         if (m[i]["alternate_s"])
           t.drives[i].alternate_s = bounded(m[i]["alternate_s"], ci.at("alternate_s"), 0.01, 600.0, "s");
+        if (m[i]["ramp_s"] && !m[i]["alternate_s"]) fail(ci.at("ramp_s"), m[i]["ramp_s"], "needs alternate_s");
+        if (m[i]["alternate_s"])  // the change of sign within half the time between changes
+          t.drives[i].ramp_s = m[i]["ramp_s"] ? bounded(m[i]["ramp_s"], ci.at("ramp_s"), 0.0,
+                                                        0.5 * t.drives[i].alternate_s, "s")
+                                              : std::min(t.drives[i].ramp_s, 0.5 * t.drives[i].alternate_s);
         continue;
       }
       const std::string s = yaml_string(m[i], c.file, ci.path);

@@ -23,8 +23,12 @@ double preload_torque(const ServoDrive& drive, long updates) {
   if (drive.alternate_s <= 0.0) return tau;
   // The half-period index of the update's instant (a small epsilon so that an
   // instant on a multiple of alternate_s counts as the new half period).
-  const auto half = static_cast<long>(std::floor(updates * drive.period_s / drive.alternate_s + 1e-9));
-  return half % 2 == 0 ? tau : -tau;
+  const double t = static_cast<double>(updates) * drive.period_s;
+  const auto half = static_cast<long>(std::floor(t / drive.alternate_s + 1e-9));
+  const double signed_tau = half % 2 == 0 ? tau : -tau;
+  const double into = t - static_cast<double>(half) * drive.alternate_s;
+  if (half == 0 || into >= drive.ramp_s) return signed_tau;
+  return -signed_tau * std::cos(std::numbers::pi * into / drive.ramp_s);  // from -signed_tau to signed_tau
 }
 
 double servo_update(const ServoDrive& drive, ServoState& state, const ServoInput& in) {

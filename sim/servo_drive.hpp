@@ -35,6 +35,7 @@ struct ServoDrive {
   double period_s = 0.0005;      // loop period (1 / loop rate)
   double torque_Nm = 0.0;        // kTorque: the torque applied (clamped to +-torque_limit)
   double alternate_s = 0.0;      // kTorque: seconds between changes of its sign (0: constant)
+  double ramp_s = 0.2;           // kTorque alternating: seconds each change of sign takes (a cosine)
 
   // Holding stiffness at rest, kp * kv (N m/rad).
   double stiffness() const { return kp * kv; }
@@ -48,7 +49,8 @@ struct ServoState {
 };
 
 // kTorque's torque after `updates` loop updates: torque_Nm, its sign changed
-// at every whole multiple of alternate_s (when > 0) of updates * period_s.
+// at every whole multiple of alternate_s (when > 0) of updates * period_s,
+// from -tau to tau as -tau cos(pi u / ramp_s) over the ramp_s after it.
 double preload_torque(const ServoDrive& drive, long updates);
 
 // Inputs of one loop update (angles in the drive's own reading frame).

@@ -54,6 +54,13 @@ TEST(Scenario, AlternatingPreloadLandsOnItsDrive) {
   EXPECT_EQ(s.twin.drives[0].mode, ServoMode::kTorque);
   EXPECT_EQ(s.twin.drives[0].torque_Nm, -2.0);
   EXPECT_EQ(s.twin.drives[0].alternate_s, 1.2);
+  EXPECT_EQ(s.twin.drives[0].ramp_s, 0.2) << "the default ramp";
+  const Scenario fast = parse(std::string(kMinimal) +
+                              "servo: {modes: [{torque: 1, alternate_s: 0.1}, position, position]}\n");
+  EXPECT_EQ(fast.twin.drives[0].ramp_s, 0.05) << "at most half the time between changes";
+  const Scenario step = parse(std::string(kMinimal) +
+                              "servo: {modes: [{torque: 1, alternate_s: 1, ramp_s: 0}, position, position]}\n");
+  EXPECT_EQ(step.twin.drives[0].ramp_s, 0.0);
   EXPECT_EQ(s.twin.drives[1].alternate_s, 0.0);
   const Scenario constant = parse(std::string(kMinimal) + "servo: {modes: [{torque: 1}, position, position]}\n");
   EXPECT_EQ(constant.twin.drives[0].alternate_s, 0.0);
@@ -137,6 +144,12 @@ TEST(Scenario, ErrorsNameTheKeyPath) {
             std::string::npos);
   EXPECT_NE(error_of(std::string(kMinimal) + "servo: {modes: [{torque: 1, alternate_s: 0}, position, position]}")
                 .find("servo.modes[0].alternate_s: must be from 0.01 to 600 s, got 0"),
+            std::string::npos);
+  EXPECT_NE(error_of(std::string(kMinimal) + "servo: {modes: [{torque: 1, alternate_s: 1, ramp_s: 0.6}, position, position]}")
+                .find("servo.modes[0].ramp_s: must be from 0 to 0.5 s, got 0.6"),
+            std::string::npos);
+  EXPECT_NE(error_of(std::string(kMinimal) + "servo: {modes: [{torque: 1, ramp_s: 0.1}, position, position]}")
+                .find("servo.modes[0].ramp_s: needs alternate_s"),
             std::string::npos);
   EXPECT_NE(error_of(std::string(kMinimal) + "servo: {modes: [{alternate_s: 1}, position, position]}")
                 .find("servo.modes[0]: expected {torque: N m}"),

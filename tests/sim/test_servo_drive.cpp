@@ -1,6 +1,7 @@
 // Tests of sim/servo_drive.cpp against hand-computed loop outputs.
 #include "sim/servo_drive.hpp"
 
+#include <cmath>
 #include <numbers>
 
 #include <gtest/gtest.h>
@@ -18,13 +19,15 @@ TEST(ServoDrive, PreloadIsConstantWithoutAlternation) {
   EXPECT_EQ(servo_update(d, s, {0.0, 0.0, 0.3, 1.0}), -38.0);
 }
 
-// Hand-worked: a 1 kHz loop alternating every 0.01 s applies +tau on updates
-// 0-9, -tau on 10-19, +tau on 20-29; torque-off starts the count again.
+// Hand-worked: a 1 kHz loop alternating every 0.01 s without a ramp applies
+// +tau on updates 0-9, -tau on 10-19, +tau on 20-29; torque-off starts the
+// count again.
 TEST(ServoDrive, PreloadChangesSignEveryAlternation) {
   ServoDrive d;
   d.mode = ServoMode::kTorque;
   d.torque_Nm = 2.0;
   d.alternate_s = 0.01;
+  d.ramp_s = 0.0;
   d.period_s = 0.001;
   ServoState s;
   for (int k = 0; k < 30; ++k) {
@@ -38,6 +41,25 @@ TEST(ServoDrive, PreloadChangesSignEveryAlternation) {
   off.mode = ServoMode::kTorqueOff;
   EXPECT_EQ(servo_update(off, s, {0.0, 0.0, 0.0, 0.0}), 0.0);
   EXPECT_EQ(servo_update(d, s, {0.0, 0.0, 0.0, 0.0}), 2.0);  // update 0 again
+}
+
+// Hand-worked: with a ramp of 0.004 s each change of sign is -tau_new cos(pi u / 0.004):
+// +2 at the change (u = 0), 2 cos(pi / 4) one update later, 0 halfway, -2 from u = 0.004.
+TEST(ServoDrive, PreloadRampsThroughZeroAtEachChange) {
+  ServoDrive d;
+  d.mode = ServoMode::kTorque;
+  d.torque_Nm = 2.0;
+  d.alternate_s = 0.01;
+  d.ramp_s = 0.004;
+  d.period_s = 0.001;
+  EXPECT_EQ(preload_torque(d, 0), 2.0) << "no ramp at the start";
+  EXPECT_NEAR(preload_torque(d, 10), 2.0, 1e-12);
+  EXPECT_NEAR(preload_torque(d, 11), 2.0 * std::cos(std::numbers::pi / 4.0), 1e-12);
+  EXPECT_NEAR(preload_torque(d, 12), 0.0, 1e-12);
+  EXPECT_NEAR(preload_torque(d, 13), -2.0 * std::cos(std::numbers::pi / 4.0), 1e-12);
+  EXPECT_EQ(preload_torque(d, 14), -2.0);
+  EXPECT_NEAR(preload_torque(d, 22), 0.0, 1e-12);
+  EXPECT_EQ(preload_torque(d, 24), 2.0);
 }
 
 TEST(ServoDrive, AtRestActsAsSpringOfStiffnessKpKv) {
