@@ -6,6 +6,7 @@
 #include <numbers>
 #include <numeric>
 
+#include <Eigen/Dense>
 #include <fmt/format.h>
 
 #include "calib/chi_square.hpp"
@@ -15,8 +16,20 @@
 
 namespace gpm::calib {
 
+double carried_chi2(const Eigen::MatrixXd& Gp, const Eigen::VectorXd& r, double prior, double sigma2) {
+  if (!(prior > 0.0) || !(sigma2 > 0.0))
+    throw InputError(fmt::format("carried chi-square: the prior ({}) and the noise variance ({}) must be positive",
+                                 prior, sigma2));
+  if (Gp.cols() == 0) return 0.0;
+  const Eigen::VectorXd u = Gp.transpose() * r;
+  Eigen::MatrixXd M = Gp.transpose() * Gp;
+  M.diagonal().array() += sigma2 / (prior * prior);
+  return u.dot(M.ldlt().solve(u)) / sigma2;
+}
+
 ModelTest model_test(const Geometry& g, const FreeMask& free,
-                     const std::vector<Eigen::Vector3d>& theta_m, double sigma, double alpha) {
+                     const std::vector<Eigen::Vector3d>& theta_m, double sigma, double alpha,
+                     double carried_chi2) {
   if (!(sigma > 0.0) || !std::isfinite(sigma))
     throw InputError(fmt::format("model test: the reading noise sigma must be positive, got {}", sigma));
   if (!(alpha > 0.0 && alpha < 1.0))
@@ -37,7 +50,8 @@ ModelTest model_test(const Geometry& g, const FreeMask& free,
   t.sigma_rad = sigma;
   t.alpha = alpha;
   t.dof = static_cast<double>(n - p);
-  t.chi2 = std::accumulate(z2.begin(), z2.end(), 0.0);
+  t.carried_chi2 = std::clamp(carried_chi2, 0.0, std::accumulate(z2.begin(), z2.end(), 0.0));
+  t.chi2 = std::accumulate(z2.begin(), z2.end(), 0.0) - t.carried_chi2;
   t.rms_ratio = std::sqrt(t.chi2 / t.dof);
   t.p_value = chi2_survival(t.dof, t.chi2);
   t.passed = t.p_value >= alpha;

@@ -23,7 +23,8 @@
 namespace gpm::calib {
 
 struct ModelTest {
-  double chi2 = 0.0;       // sum of squared normalised ML residuals
+  double chi2 = 0.0;       // sum of squared normalised ML residuals, less carried_chi2
+  double carried_chi2 = 0.0;  // what errors carried within their priors explain of that sum
   double dof = 0.0;        // n - p
   double p_value = 1.0;    // Pr(chi-square(dof) > chi2)
   double sigma_rad = 0.0;  // the reading noise the test assumed
@@ -44,8 +45,19 @@ struct ModelTest {
 // `free` estimated (p = free count), assuming reading noise sigma (rad) and
 // significance alpha. Throws InputError for sigma <= 0, alpha outside (0, 1)
 // or no degrees of freedom (n <= p).
+// The chi-square that columns Gp (the fitted columns projected out, one per
+// carried value, each value of 1-sigma prior a priori) explain of residuals r
+// with noise variance sigma2, the share the marginal test takes off:
+//   chi2(r) - min_c (|r - Gp c|^2 / sigma2 + |c|^2 / prior^2)
+//     = u' (sigma2 / prior^2 I + Gp' Gp)^-1 u / sigma2,  u = Gp' r.
+// Zero without columns; throws InputError for prior or sigma2 <= 0.
+double carried_chi2(const Eigen::MatrixXd& Gp, const Eigen::VectorXd& r, double prior, double sigma2);
+
+// carried_chi2 (>= 0): of the residuals' chi-square, what errors carried
+// within their priors explain (the marginal test: calib::MotionFit::
+// carried_chi2); the test weighs chi2 less it.
 ModelTest model_test(const Geometry& g, const FreeMask& free,
                      const std::vector<Eigen::Vector3d>& theta_m, double sigma,
-                     double alpha = 0.01);
+                     double alpha = 0.01, double carried_chi2 = 0.0);
 
 }  // namespace gpm::calib

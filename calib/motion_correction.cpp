@@ -14,6 +14,7 @@
 
 #include "calib/chi_square.hpp"
 #include "calib/identifiability.hpp"
+#include "calib/model_test.hpp"
 #include "calib/parameterization.hpp"
 #include "calib/passive_tension.hpp"
 #include "calib/reading_model.hpp"
@@ -722,6 +723,15 @@ Eigen::Matrix<double, kNumParams, kNumParams> scatter_free(const Eigen::MatrixXd
   return cov;
 }
 
+// The chi-square the carried columns l.Jc explain of l.r within their prior
+// (calib::carried_chi2), the fitted columns J (A = (J' J)^-1) projected out
+// of them: Gp = (I - J A J') Jc.
+double carried_chi2_of(const Eigen::MatrixXd& A, const Eigen::MatrixXd& J, const Linearisation& l, double prior,
+                       double s2) {
+  const Eigen::MatrixXd Jr = J.topRows(l.r.size());
+  return carried_chi2(l.Jc - Jr * (A * (Jr.transpose() * l.Jc)), l.r, prior, s2);
+}
+
 // The joint covariance sigma^2 (J' J)^-1 of [J_g, J_nu] at l (the misfit's
 // sandwich in its place when model.sandwich and the residuals exceed the
 // noise; the considered cyclic error added): its geometry block replaces
@@ -749,6 +759,7 @@ void joint_covariance(const Linearisation& l, const std::vector<int>& cols, doub
     if (fit.sandwich_inflation > 1.0) C = S, fit.sandwich_used = true;
   }
   if (considers_cyclic(model)) {
+    if (options.encoder_sigma) fit.carried_chi2 = carried_chi2_of(A, J, l, model.cyclic_prior_rad, s2);
     Eigen::MatrixXd carried = Eigen::MatrixXd::Zero(m, m);
     add_considered(A, J, l.Jc, model.cyclic_prior_rad, carried);
     C += carried;

@@ -104,6 +104,10 @@ struct MotionFit {
   } noise_sigma;
   double chi2 = 0.0;                        // r'r / sigma^2 of the fit (0 without sigma)
   double chi2_per_dof = 0.0;                // chi2 / (n - columns)
+  // Of chi2, what an error carried within its prior (MotionModel::cyclic_prior_rad,
+  // not estimated) explains: r' Gp (sigma^2 / prior^2 + Gp' Gp)^-1 Gp' r / sigma^2,
+  // Gp its columns with the fit's projected out (0 without a carried error).
+  double carried_chi2 = 0.0;
   bool sandwich_used = false;               // the covariance is the misfit's sandwich (MotionModel::sandwich)
   double sandwich_inflation = 1.0;          // RMS over the geometry of its 1-sigma over the noise-model 1-sigma
   double tension_min_N = 0.0;               // the force threshold used (MotionModel::tension_min_N or lower)

@@ -500,7 +500,13 @@ CalibrationOutcome calibrate_samples(const SampleSeries& samples, const Calibrat
   out.result.notes.insert(out.result.notes.begin(), step_notes.begin(), step_notes.end());
   const bool tested_cost = options.test_any_cost || out.result.cost == calib::Cost::kML;
   if (tested_cost && options.sigma_rad > 0.0 && out.used.size() > options.free.count()) {
-    out.model_test = calib::model_test(out.result.geometry, options.free, out.used, options.sigma_rad);
+    out.model_test = calib::model_test(out.result.geometry, options.free, out.used, options.sigma_rad, 0.01,
+                                       with_effects ? out.fit.carried_chi2 : 0.0);
+    if (out.model_test->carried_chi2 > 0.0)
+      out.result.notes.push_back(fmt::format(
+          "the model test weighs chi2 less {:.3g} of it, what the error once per joint revolution carried within its "
+          "prior explains (the marginal test)",
+          out.model_test->carried_chi2));
     if (!out.model_test->passed) {
       if (with_effects) {
         // Only when the test fails: the score tests are of the effects its misfit may need.
@@ -604,6 +610,7 @@ std::string model_test_yaml(const calib::ModelTest& test, int indent) {
   out += fmt::format("{}model_test_dof: {}\n", p, format_exact(test.dof));
   out += fmt::format("{}model_test_chi2_per_dof: {}\n", p, format_exact(test.chi2 / test.dof));
   out += fmt::format("{}model_test_p_value: {}\n", p, format_exact(test.p_value));
+  if (test.carried_chi2 > 0.0) out += fmt::format("{}model_test_carried_chi2: {}\n", p, format_exact(test.carried_chi2));
   out += fmt::format("{}model_test_sigma_rad: {}\n", p, format_exact(test.sigma_rad));
   out += fmt::format("{}model_test_passed: {}\n", p, test.passed ? "true" : "false");
   if (!test.passed) {

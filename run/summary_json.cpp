@@ -51,6 +51,7 @@ std::string summary_json(const RunOutcome& o) {
     j["model_test"] = {{"chi2", number(o.model_test->chi2)},
                        {"dof", number(o.model_test->dof)},
                        {"p_value", number(o.model_test->p_value)},
+                       {"carried_chi2", number(o.model_test->carried_chi2)},
                        {"passed", o.model_test->passed}};
   } else {
     j["model_test"] = nullptr;
