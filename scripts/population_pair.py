@@ -1,6 +1,6 @@
 """Table cells "before -> after" of two `gpm study population` results of the
 same robots (their population.json), for the studies that compare two
-versions of the procedure (scripts/study_force_sign.sh,
+versions of the procedure (scripts/study_force_sign.sh, scripts/study_alternating_preload.sh,
 scripts/study_friction_balance.sh)."""
 import json
 
@@ -31,3 +31,17 @@ def before_after(a, b):
         "passes": f"{100 * sa['model_test_pass_fraction']:.0f} -> {100 * sb['model_test_pass_fraction']:.0f} %",
         "better_worse": f"{better} / {worse}",
     }
+
+
+def before_after_table(out, kinds, before, after, lead):
+    """The lines of the markdown table "before -> after" (before_after's cells)
+    of DIR/KIND_BEFORE and DIR/KIND_AFTER for each kind, under the sentence lead."""
+    lines = [lead, "",
+             "| robots' effects | positioning RMS median (um) | worst robot (um) | parameters within 3 sigma | "
+             "worst parameter (sigma) | error / stated 1-sigma (median) | model test passes | robots better / worse |",
+             "| --- | ---: | ---: | ---: | ---: | ---: | ---: | ---: |"]
+    for kind in kinds:
+        c = before_after(*load_pair(out, kind, before, after))
+        lines.append(f"| {KIND_LABEL[kind]} | {c['median']} | {c['worst']} | {c['within']} | {c['worst_sigma']} | "
+                     f"{c['per_sigma']} | {c['passes']} | {c['better_worse']} |")
+    return lines

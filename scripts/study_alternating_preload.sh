@@ -33,19 +33,12 @@ done
 /usr/bin/python3 - "$out" "$count" "$first" "$torque" "$alternate" "${kinds[@]}" <<'PY'
 import sys
 sys.path.insert(0, "scripts")
-from population_pair import KIND_LABEL, before_after, load_pair
-out, count, first, torque, alternate, kinds = (sys.argv[1], int(sys.argv[2]), int(sys.argv[3]), sys.argv[4],
-                                               sys.argv[5], sys.argv[6:])
-lines = [f"{count} robots of `scenarios/main.yaml` each (seeds {first}..{first + count - 1}); "
-         "`bash scripts/study_alternating_preload.sh`. Before -> after: joint 1 torque-off (the main job) -> "
-         f"joint 1 pushing {torque} N m, its sign changed every {alternate} s.", "",
-         "| robots' effects | positioning RMS median (um) | worst robot (um) | parameters within 3 sigma | "
-         "worst parameter (sigma) | error / stated 1-sigma (median) | model test passes | robots better / worse |",
-         "| --- | ---: | ---: | ---: | ---: | ---: | ---: | ---: |"]
-for kind in kinds:
-    c = before_after(*load_pair(out, kind, "torque_off", "alternating"))
-    lines.append(f"| {KIND_LABEL[kind]} | {c['median']} | {c['worst']} | {c['within']} | {c['worst_sigma']} | "
-                 f"{c['per_sigma']} | {c['passes']} | {c['better_worse']} |")
+from population_pair import before_after_table
+out, count, first, torque, alternate = sys.argv[1], int(sys.argv[2]), int(sys.argv[3]), sys.argv[4], sys.argv[5]
+lines = before_after_table(out, sys.argv[6:], "torque_off", "alternating",
+                           f"{count} robots of `scenarios/main.yaml` each (seeds {first}..{first + count - 1}); "
+                           "`bash scripts/study_alternating_preload.sh`. Before -> after: joint 1 torque-off (the "
+                           f"main job) -> joint 1 pushing {torque} N m, its sign changed every {alternate} s.")
 open(f"{out}/alternating_preload.md", "w").write("\n".join(lines) + "\n")
 print("\n".join(lines))
 PY

@@ -22,18 +22,12 @@ done
 /usr/bin/python3 - "$out" "$count" "$first" "${kinds[@]}" <<'PY'
 import sys
 sys.path.insert(0, "scripts")
-from population_pair import KIND_LABEL, before_after, load_pair
+from population_pair import before_after_table
 out, count, first, kinds = sys.argv[1], int(sys.argv[2]), int(sys.argv[3]), sys.argv[4:]
-lines = [f"{count} robots of `scenarios/main.yaml` each (seeds {first}..{first + count - 1}); "
-         "`bash scripts/study_force_sign.sh`. Before -> after: `tension_min_N: 1.5` stated -> the default "
-         "(twice a link's force 1-sigma by the hub's force balance).", "",
-         "| robots' effects | positioning RMS median (um) | worst robot (um) | parameters within 3 sigma | "
-         "worst parameter (sigma) | error / stated 1-sigma (median) | model test passes | robots better / worse |",
-         "| --- | ---: | ---: | ---: | ---: | ---: | ---: | ---: |"]
-for kind in kinds:
-    c = before_after(*load_pair(out, kind, "stated", "balance"))
-    lines.append(f"| {KIND_LABEL[kind]} | {c['median']} | {c['worst']} | {c['within']} | {c['worst_sigma']} | "
-                 f"{c['per_sigma']} | {c['passes']} | {c['better_worse']} |")
+lines = before_after_table(out, kinds, "stated", "balance",
+                           f"{count} robots of `scenarios/main.yaml` each (seeds {first}..{first + count - 1}); "
+                           "`bash scripts/study_force_sign.sh`. Before -> after: `tension_min_N: 1.5` stated -> the "
+                           "default (twice a link's force 1-sigma by the hub's force balance).")
 open(f"{out}/force_sign.md", "w").write("\n".join(lines) + "\n")
 print("\n".join(lines))
 PY

@@ -19,16 +19,22 @@ TEST(ServoDrive, PreloadIsConstantWithoutAlternation) {
   EXPECT_EQ(servo_update(d, s, {0.0, 0.0, 0.3, 1.0}), -38.0);
 }
 
-// Hand-worked: a 1 kHz loop alternating every 0.01 s without a ramp applies
-// +tau on updates 0-9, -tau on 10-19, +tau on 20-29; torque-off starts the
-// count again.
-TEST(ServoDrive, PreloadChangesSignEveryAlternation) {
+// A 1 kHz drive preloading 2 N m, its sign changed every 0.01 s over ramp_s.
+ServoDrive alternating_drive(double ramp_s) {
   ServoDrive d;
   d.mode = ServoMode::kTorque;
   d.torque_Nm = 2.0;
   d.alternate_s = 0.01;
-  d.ramp_s = 0.0;
+  d.ramp_s = ramp_s;
   d.period_s = 0.001;
+  return d;
+}
+
+// Hand-worked: a 1 kHz loop alternating every 0.01 s without a ramp applies
+// +tau on updates 0-9, -tau on 10-19, +tau on 20-29; torque-off starts the
+// count again.
+TEST(ServoDrive, PreloadChangesSignEveryAlternation) {
+  const ServoDrive d = alternating_drive(0.0);
   ServoState s;
   for (int k = 0; k < 30; ++k) {
     const double expected = (k / 10) % 2 == 0 ? 2.0 : -2.0;
@@ -46,12 +52,7 @@ TEST(ServoDrive, PreloadChangesSignEveryAlternation) {
 // Hand-worked: with a ramp of 0.004 s each change of sign is -tau_new cos(pi u / 0.004):
 // +2 at the change (u = 0), 2 cos(pi / 4) one update later, 0 halfway, -2 from u = 0.004.
 TEST(ServoDrive, PreloadRampsThroughZeroAtEachChange) {
-  ServoDrive d;
-  d.mode = ServoMode::kTorque;
-  d.torque_Nm = 2.0;
-  d.alternate_s = 0.01;
-  d.ramp_s = 0.004;
-  d.period_s = 0.001;
+  const ServoDrive d = alternating_drive(0.004);
   EXPECT_EQ(preload_torque(d, 0), 2.0) << "no ramp at the start";
   EXPECT_NEAR(preload_torque(d, 10), 2.0, 1e-12);
   EXPECT_NEAR(preload_torque(d, 11), 2.0 * std::cos(std::numbers::pi / 4.0), 1e-12);
