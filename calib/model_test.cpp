@@ -50,8 +50,9 @@ ModelTest model_test(const Geometry& g, const FreeMask& free,
   t.sigma_rad = sigma;
   t.alpha = alpha;
   t.dof = static_cast<double>(n - p);
-  t.carried_chi2 = std::clamp(carried_chi2, 0.0, std::accumulate(z2.begin(), z2.end(), 0.0));
-  t.chi2 = std::accumulate(z2.begin(), z2.end(), 0.0) - t.carried_chi2;
+  const double residual_chi2 = std::accumulate(z2.begin(), z2.end(), 0.0);
+  t.carried_chi2 = std::clamp(carried_chi2, 0.0, residual_chi2);
+  t.chi2 = residual_chi2 - t.carried_chi2;
   t.rms_ratio = std::sqrt(t.chi2 / t.dof);
   t.p_value = chi2_survival(t.dof, t.chi2);
   t.passed = t.p_value >= alpha;

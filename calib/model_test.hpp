@@ -41,10 +41,6 @@ struct ModelTest {
   std::vector<std::string> calls_for;
 };
 
-// Chi-square test of the ML residuals of readings theta_m at geometry g with
-// `free` estimated (p = free count), assuming reading noise sigma (rad) and
-// significance alpha. Throws InputError for sigma <= 0, alpha outside (0, 1)
-// or no degrees of freedom (n <= p).
 // The chi-square that columns Gp (the fitted columns projected out, one per
 // carried value, each value of 1-sigma prior a priori) explain of residuals r
 // with noise variance sigma2, the share the marginal test takes off:
@@ -53,9 +49,12 @@ struct ModelTest {
 // Zero without columns; throws InputError for prior or sigma2 <= 0.
 double carried_chi2(const Eigen::MatrixXd& Gp, const Eigen::VectorXd& r, double prior, double sigma2);
 
-// carried_chi2 (>= 0): of the residuals' chi-square, what errors carried
-// within their priors explain (the marginal test: calib::MotionFit::
-// carried_chi2); the test weighs chi2 less it.
+// Chi-square test of the ML residuals of readings theta_m at geometry g with
+// `free` estimated (p = free count), assuming reading noise sigma (rad) and
+// significance alpha. Throws InputError for sigma <= 0, alpha outside (0, 1)
+// or no degrees of freedom (n <= p). carried_chi2 (>= 0): of the residuals'
+// chi-square, what errors carried within their priors explain (the marginal
+// test: calib::MotionFit::carried_chi2); the test weighs chi2 less it.
 ModelTest model_test(const Geometry& g, const FreeMask& free,
                      const std::vector<Eigen::Vector3d>& theta_m, double sigma,
                      double alpha = 0.01, double carried_chi2 = 0.0);
