@@ -172,13 +172,15 @@ void parse_servo(const YAML::Node& n, const Ctx& c, TwinConfig& t) {
                fmt::format("must be within +-torque_limit ({} N m), got {}", t.drives[i].torque_limit, tq));
         t.drives[i].mode = ServoMode::kTorque;
         t.drives[i].torque_Nm = tq;
-        if (m[i]["alternate_s"])
-          t.drives[i].alternate_s = bounded(m[i]["alternate_s"], ci.at("alternate_s"), 0.01, 600.0, "s");
-        if (m[i]["ramp_s"] && !m[i]["alternate_s"]) fail(ci.at("ramp_s"), m[i]["ramp_s"], "needs alternate_s");
-        if (m[i]["alternate_s"])  // the change of sign within half the time between changes
-          t.drives[i].ramp_s = m[i]["ramp_s"] ? bounded(m[i]["ramp_s"], ci.at("ramp_s"), 0.0,
-                                                        0.5 * t.drives[i].alternate_s, "s")
-                                              : std::min(t.drives[i].ramp_s, 0.5 * t.drives[i].alternate_s);
+        ServoDrive& d = t.drives[i];
+        if (const YAML::Node alt = m[i]["alternate_s"]) {
+          d.alternate_s = bounded(alt, ci.at("alternate_s"), 0.01, 600.0, "s");
+          const double half = 0.5 * d.alternate_s;  // each change of sign within half the time between changes
+          const YAML::Node ramp = m[i]["ramp_s"];
+          d.ramp_s = ramp ? bounded(ramp, ci.at("ramp_s"), 0.0, half, "s") : std::min(d.ramp_s, half);
+        } else if (m[i]["ramp_s"]) {
+          fail(ci.at("ramp_s"), m[i]["ramp_s"], "needs alternate_s");
+        }
         continue;
       }
       const std::string s = yaml_string(m[i], c.file, ci.path);
