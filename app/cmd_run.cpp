@@ -81,10 +81,13 @@ void print_summary(const scenario::RunOutcome& o, const std::string& dir) {
   if (o.refused) fmt::print("refused    {}\n", *o.refused);
   if (o.positioning) {
     fmt::print("position   calibrated model over the 80 mm disc: RMS {:.2f} {u}, max {:.2f} {u} (stated 1-sigma {:.2f} "
-               "{u} per axis{}; error / 1-sigma {:.2f}, 1 when honest)\n",
+               "{u} per axis{}; error / 1-sigma {:.2f}, 1 when honest){}\n",
                o.positioning->rms_um, o.positioning->max_um, o.positioning->stated_sigma_rms_um,
-               carried_share(o.positioning->carried_sigma_rms_um),
-               o.positioning->normalised_rms, fmt::arg("u", um()));
+               carried_share(o.positioning->carried_sigma_rms_um), o.positioning->normalised_rms,
+               o.positioning_bound_um
+                   ? fmt::format("; these readings allow an RMS of {:.2f} {} at best", *o.positioning_bound_um, um())
+                   : std::string(),
+               fmt::arg("u", um()));
   }
   if (o.before) {
     fmt::print("accuracy   nominal model:    static RMS {:9.2f} {u}, max {:9.2f} {u}; path RMS {:9.2f} {u}\n",

@@ -919,11 +919,10 @@ MotionFit calibrate_in_motion(const Problem& problem, const std::vector<Eigen::V
   return fit_in_motion(problem, MotionSamples{problem.theta_m, omega, tau, nb, alpha}, options, model);
 }
 
-std::array<double, kNumParams> motion_crb(const Geometry& truth, const FreeMask& free,
-                                          const std::vector<Eigen::Vector3d>& theta_m,
-                                          const std::vector<Eigen::Vector3d>& omega,
-                                          const std::vector<Eigen::Vector3d>& tau, const MotionModel& model,
-                                          const std::vector<Eigen::Vector3d>& alpha, double sigma) {
+Eigen::Matrix<double, kNumParams, kNumParams> motion_crb_covariance(
+    const Geometry& truth, const FreeMask& free, const std::vector<Eigen::Vector3d>& theta_m,
+    const std::vector<Eigen::Vector3d>& omega, const std::vector<Eigen::Vector3d>& tau, const MotionModel& model,
+    const std::vector<Eigen::Vector3d>& alpha, double sigma) {
   const std::size_t n = theta_m.size();
   if (omega.size() != n || tau.size() != n || (!alpha.empty() && alpha.size() != n))
     throw InputError(fmt::format("motion bound: {} readings but {} joint speeds, {} torques, {} accelerations", n,
@@ -975,12 +974,25 @@ std::array<double, kNumParams> motion_crb(const Geometry& truth, const FreeMask&
   const Eigen::MatrixXd A = (Js.transpose() * Js).ldlt().solve(Eigen::MatrixXd::Identity(m, m));
   Eigen::MatrixXd C = sigma * sigma * A;  // of the scaled coefficients
   if (considers_cyclic(model)) add_considered(A, Js, Jc, model.cyclic_prior_rad, C);
+  Eigen::Matrix<double, kNumParams, kNumParams> out = Eigen::Matrix<double, kNumParams, kNumParams>::Zero();
+  for (std::size_t k = 0; k < free_index.size(); ++k)
+    for (std::size_t l = 0; l < free_index.size(); ++l) {
+      const auto i = static_cast<Eigen::Index>(k), j = static_cast<Eigen::Index>(l);
+      out(free_index[k], free_index[l]) = C(i, j) / (scale[i] * scale[j]);
+    }
+  return out;
+}
+
+std::array<double, kNumParams> motion_crb(const Geometry& truth, const FreeMask& free,
+                                          const std::vector<Eigen::Vector3d>& theta_m,
+                                          const std::vector<Eigen::Vector3d>& omega,
+                                          const std::vector<Eigen::Vector3d>& tau, const MotionModel& model,
+                                          const std::vector<Eigen::Vector3d>& alpha, double sigma) {
+  const Eigen::Matrix<double, kNumParams, kNumParams> C =
+      motion_crb_covariance(truth, free, theta_m, omega, tau, model, alpha, sigma);
   std::array<double, kNumParams> out;
   out.fill(std::numeric_limits<double>::quiet_NaN());
-  for (std::size_t k = 0; k < free_index.size(); ++k) {
-    const auto i = static_cast<Eigen::Index>(k);
-    out[static_cast<std::size_t>(free_index[k])] = std::sqrt(C(i, i)) / scale[i];
-  }
+  for (int k : free_indices(free)) out[static_cast<std::size_t>(k)] = std::sqrt(C(k, k));
   return out;
 }
 

@@ -141,6 +141,13 @@ std::array<double, kNumParams> motion_crb(const Geometry& truth, const FreeMask&
                                           const std::vector<Eigen::Vector3d>& tau, const MotionModel& model,
                                           const std::vector<Eigen::Vector3d>& alpha, double sigma);
 
+// The covariance (15 x 15, zero rows and columns for fixed parameters) whose
+// diagonal's square roots motion_crb gives; same inputs, same throws.
+Eigen::Matrix<double, kNumParams, kNumParams> motion_crb_covariance(
+    const Geometry& truth, const FreeMask& free, const std::vector<Eigen::Vector3d>& theta_m,
+    const std::vector<Eigen::Vector3d>& omega, const std::vector<Eigen::Vector3d>& tau, const MotionModel& model,
+    const std::vector<Eigen::Vector3d>& alpha, double sigma);
+
 // The readings corrected for nuisance values nu (as in MotionFit::nu):
 // theta_m + s omega - c tau per joint.
 std::vector<Eigen::Vector3d> correct_readings(const std::vector<Eigen::Vector3d>& theta_m,

@@ -87,6 +87,7 @@ def robot_row(seed, summary, failure=None):
         stated_sigma_rms_um=_number(pos.get("stated_sigma_rms")),
         normalised_rms=_number(pos.get("normalised_rms")),
         carried_sigma_rms_um=_number(pos.get("carried_sigma_rms")),
+        positioning_bound_um=_number(pos.get("bound_rms")),
         nominal_static_rms_um=_accuracy(summary, "nominal", "static_rms_um"),
         calibrated_static_rms_um=_accuracy(summary, "calibrated", "static_rms_um"),
         calibrated_path_rms_um=_accuracy(summary, "calibrated", "path_rms_um"),

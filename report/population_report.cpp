@@ -31,7 +31,7 @@ std::vector<std::string> monitor_cells(const PopulationRobotRow& r) {
 
 // The row of a robot whose run failed.
 std::vector<std::string> failed_row(const PopulationRobotRow& r, bool monitored) {
-  std::vector<std::string> row{std::to_string(r.seed), "failed: " + *r.failure, "-", "-", "-", "-", "-", "-", "-"};
+  std::vector<std::string> row{std::to_string(r.seed), "failed: " + *r.failure, "-", "-", "-", "-", "-", "-", "-", "-"};
   if (monitored) row.insert(row.end(), {"-", "-", "-", "-", "-"});
   row.push_back(cell(r.seconds, "{:.0f}"));
   return row;
@@ -42,7 +42,7 @@ std::vector<std::string> robot_row(const PopulationRobotRow& r, bool monitored) 
   const std::string test = r.model_test_passed ? (*r.model_test_passed ? "passes" : "fails") : "-";
   std::vector<std::string> row{
       std::to_string(r.seed), cell(r.positioning_rms_um, "{:.2f}"), cell(r.positioning_max_um, "{:.2f}"),
-      cell(r.stated_sigma_rms_um, "{:.2f}"),
+      cell(r.stated_sigma_rms_um, "{:.2f}"), cell(r.positioning_bound_um, "{:.2f}"),
       r.worst_param.empty() ? "-" : fmt::format("{} ({})", cell(r.worst_sigma_ratio, "{:.2f}"), r.worst_param),
       fmt::format("{}/{}", r.within_3_sigma, r.estimated), cell(r.calibrated_static_um, "{:.2f}"),
       cell(r.floor_ratio, "{:.2f}"), fmt::format("{} ({})", test, cell(r.chi2_per_dof, "{:.2f}"))};
@@ -76,6 +76,12 @@ std::string summary_text(const PopulationReport& p) {
       s.failed, cell(s.positioning_median_um, "{:.2f}"), cell(s.positioning_max_um, "{:.2f}"),
       cell(100.0 * s.within_3_sigma_fraction, "{:.0f}"), cell(s.worst_sigma_ratio, "{:.1f}"),
       cell(s.normalised_positioning_median, "{:.2f}"), cell(100.0 * s.model_test_pass_fraction, "{:.0f}")) +
+         (std::isfinite(s.positioning_bound_median_um)
+              ? fmt::format(" The least positioning RMS the robots' readings allow (the Cramér-Rao bound at the "
+                            "truth of the calibration's reading model, its carried error estimated under its "
+                            "prior): median {} µm.",
+                            cell(s.positioning_bound_median_um, "{:.2f}"))
+              : std::string()) +
          (std::isfinite(s.plan_deviation_max_mm)
               ? fmt::format(" The sampling path: the farthest a robot went from its plan, median {} mm, worst {} mm "
                             "(robot {}; every pass and retreat).",
@@ -138,6 +144,7 @@ std::string sigma_plot(const PopulationReport& p) {
 
 std::vector<std::string> population_table_header(const PopulationReport& p) {
   std::vector<std::string> h{"seed", "positioning RMS (um)", "max (um)", "its stated 1-sigma (um)",
+                             "least RMS the readings allow (um)",
                              "worst parameter / its 1-sigma", "within 3 sigma", "static RMS (um)",
                              "calibrated / floor", "model test (chi2/dof)"};
   if (any_monitored(p))

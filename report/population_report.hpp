@@ -19,6 +19,7 @@ namespace gpm::report {
 struct PopulationSummary {
   int robots = 0, failed = 0;
   double positioning_median_um = 0.0, positioning_max_um = 0.0;  // of each robot's RMS
+  double positioning_bound_median_um = NAN;  // of each robot's least RMS its readings allow (NaN: none)
   double within_3_sigma_fraction = 0.0;  // of all estimated parameters
   double worst_sigma_ratio = 0.0;
   double model_test_pass_fraction = 0.0;
@@ -44,6 +45,7 @@ struct PopulationRobotRow {
   std::uint64_t seed = 0;
   std::optional<std::string> failure;  // why the run failed
   double positioning_rms_um = 0.0, positioning_max_um = 0.0, stated_sigma_rms_um = 0.0;
+  double positioning_bound_um = NAN;  // the least RMS its readings allow (NaN: not computed)
   double calibrated_static_um = 0.0, floor_ratio = 0.0;  // NaN if not measured
   std::optional<bool> model_test_passed;
   double chi2_per_dof = 0.0;

@@ -398,7 +398,7 @@ void add_verdict(ReportDocument& d, const RunReport& o) {
 }
 
 // The calibrated model's positioning error over the workspace.
-void add_positioning(ReportDocument& d, const std::array<double, 5>& p) {
+void add_positioning(ReportDocument& d, const std::array<double, 5>& p, const std::optional<double>& bound) {
   d.heading(2, "Positioning error of the calibrated model");
   d.paragraph(fmt::format(
       "Over a disc of 80 mm round home (points 10 mm apart), the readings the calibrated model commands and where "
@@ -409,7 +409,11 @@ void add_positioning(ReportDocument& d, const std::array<double, 5>& p) {
                                "data sheet's amplitude, which the readings cannot tell from the geometry: the floor "
                                "of this procedure with these encoders.",
                                distance(p[4]))
-                 : std::string()));
+                 : std::string()) +
+      (bound ? fmt::format(" These readings allow an RMS of {} at best: the Cramér-Rao bound at the actual robot of "
+                           "the calibration's reading model with that carried error estimated under its prior.",
+                           distance(*bound))
+             : std::string()));
 }
 
 // The accuracy table of the nominal, calibrated and actual controller models and their ratios.
@@ -541,7 +545,7 @@ void add_figures(ReportDocument& d, const RunReport& o) {
 ReportDocument build_run_report(const RunReport& o) {
   ReportDocument d;
   add_verdict(d, o);
-  if (o.positioning_um) add_positioning(d, *o.positioning_um);
+  if (o.positioning_um) add_positioning(d, *o.positioning_um, o.positioning_bound_um);
   if (o.before) add_accuracy(d, o);
   add_calibration(d, o);
   if (!o.checks.empty()) add_expectations(d, o.checks);

@@ -90,6 +90,7 @@ struct RunReport {
   // max, the stated 1-sigma per axis, error / 1-sigma (1 when honest) and
   // the share of the 1-sigma an error carried unestimated adds (0: none).
   std::optional<std::array<double, 5>> positioning_um;
+  std::optional<double> positioning_bound_um;  // the least RMS the readings allow (none: not known)
   double robot_time_s = 0.0;                // robot time of the sampling
   bool on_the_fly = false;                  // the samples taken while moving (else at rest at each pose)
   std::vector<RunCheck> checks;

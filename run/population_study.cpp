@@ -103,6 +103,7 @@ PopulationRobot robot_of(const RunOutcome& o, PopulationRobot r) {
   }
   if (!o.positioning) return failed_robot(r, "the calibrated model reaches no point of the workspace disc");
   r.positioning = *o.positioning;
+  r.positioning_bound_um = o.positioning_bound_um.value_or(NAN);
   judge_parameters(*o.calibration, o.sim.actual.geometry, r);
   if (o.monitor) judge_monitor(*o.monitor, r);
   return r;
@@ -184,7 +185,7 @@ PopulationStudy run_population_study(const std::string& scenario_file, const Pop
 PopulationSummary PopulationStudy::summary() const {
   PopulationSummary s;
   s.robots = static_cast<int>(robots.size());
-  std::vector<double> rms, normalised;
+  std::vector<double> rms, normalised, bound;
   int estimated = 0, within = 0, tested = 0, passed = 0;
   for (const PopulationRobot& r : robots) {
     if (r.failure) {
@@ -193,12 +194,14 @@ PopulationSummary PopulationStudy::summary() const {
     }
     rms.push_back(r.positioning.rms_um);
     if (r.positioning.stated_sigma_rms_um > 0.0) normalised.push_back(r.positioning.normalised_rms);
+    if (std::isfinite(r.positioning_bound_um)) bound.push_back(r.positioning_bound_um);
     estimated += r.estimated, within += r.within_3_sigma;
     s.worst_sigma_ratio = std::max(s.worst_sigma_ratio, r.worst_sigma_ratio);
     if (r.model_test_passed) ++tested, passed += *r.model_test_passed ? 1 : 0;
   }
   s.positioning_median_um = median(rms);
   s.positioning_max_um = rms.empty() ? NAN : *std::max_element(rms.begin(), rms.end());
+  s.positioning_bound_median_um = median(bound);
   s.within_3_sigma_fraction = estimated > 0 ? static_cast<double>(within) / estimated : NAN;
   s.model_test_pass_fraction = tested > 0 ? static_cast<double>(passed) / tested : NAN;
   s.normalised_positioning_median = median(normalised);
@@ -233,7 +236,7 @@ report::PopulationReport population_report_data(const PopulationStudy& study) {
   report::PopulationReport p{study.name, study.randomized, study.seconds, study.summary(), {}};
   for (const PopulationRobot& r : study.robots)
     p.robots.push_back({r.seed, r.failure, r.positioning.rms_um, r.positioning.max_um,
-                        r.positioning.stated_sigma_rms_um, r.calibrated_static_um, r.floor_ratio, r.model_test_passed,
+                        r.positioning.stated_sigma_rms_um, r.positioning_bound_um, r.calibrated_static_um, r.floor_ratio, r.model_test_passed,
                         r.chi2_per_dof, r.error, r.sigma, r.worst_param, r.worst_sigma_ratio, r.estimated,
                         r.within_3_sigma, r.monitored, r.learning_s, r.learned_scale, r.monitored_s, r.false_alarms,
                         r.false_alarms_per_hour, r.event, r.detection_delay_s, r.detection, r.seconds});
@@ -296,7 +299,8 @@ nlohmann::json robot_json(const PopulationRobot& r) {
   j["positioning_um"] = {{"rms", number(r.positioning.rms_um)}, {"max", number(r.positioning.max_um)},
                          {"stated_sigma_rms", number(r.positioning.stated_sigma_rms_um)},
                          {"normalised_rms", number(r.positioning.normalised_rms)},
-                         {"carried_sigma_rms", number(r.positioning.carried_sigma_rms_um)}, {"points", r.positioning.points}};
+                         {"carried_sigma_rms", number(r.positioning.carried_sigma_rms_um)},
+                         {"bound_rms", number(r.positioning_bound_um)}, {"points", r.positioning.points}};
   j["static_rms_um"] = {{"calibrated", number(r.calibrated_static_um)}, {"actual", number(r.floor_um)}};
   j["floor_ratio"] = number(r.floor_ratio);
   j["plan_deviation_mm"] = number(r.plan_deviation_mm);
@@ -354,6 +358,7 @@ std::string population_json(const PopulationStudy& study) {
                   {"failed", s.failed},
                   {"positioning_median_um", number(s.positioning_median_um)},
                   {"positioning_max_um", number(s.positioning_max_um)},
+                  {"positioning_bound_median_um", number(s.positioning_bound_median_um)},
                   {"within_3_sigma_fraction", number(s.within_3_sigma_fraction)},
                   {"worst_sigma_ratio", number(s.worst_sigma_ratio)},
                   {"model_test_pass_fraction", number(s.model_test_pass_fraction)},

@@ -38,6 +38,7 @@ struct PopulationRobot {
   sim::Effects effects;                 // its drawn effects
   std::optional<std::string> failure;   // refused, diverged, stopped or not converged: why
   calib::PositioningError positioning;  // of the calibrated model (RunOutcome::positioning; zero when failed)
+  double positioning_bound_um = NAN;    // the least the readings allow (RunOutcome::positioning_bound_um; NaN: none)
   double calibrated_static_um = 0.0, floor_um = 0.0, floor_ratio = 0.0;  // NaN if not measured
   std::optional<bool> model_test_passed;
   double chi2_per_dof = 0.0;

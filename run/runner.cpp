@@ -371,6 +371,24 @@ void take_motion_fit(RunOutcome& o, const CalibrationOutcome& c, const FreeMask&
   }
 }
 
+// RunOutcome::positioning_bound_um of o's calibration c in motion (none
+// when the information is singular or no point of the disc is reachable).
+std::optional<double> positioning_bound(const RunOutcome& o, const CalibrationOutcome& c, const FreeMask& free,
+                                        const std::vector<Eigen::Vector3d>& noiseless) {
+  calib::MotionModel estimated = c.motion;
+  estimated.estimate_cyclic = estimated.cyclic_prior_rad > 0.0;  // the carried error's columns in the bound
+  try {
+    const Eigen::Matrix<double, kNumParams, kNumParams> C = calib::motion_crb_covariance(
+        o.sim.actual.geometry, free, noiseless, c.omega, c.tau, estimated, c.alpha, o.crb_sigma_rad);
+    if (!C.allFinite()) return std::nullopt;
+    const calib::PositioningError e =
+        calib::positioning_error(o.sim.actual, o.sim.actual, calib::WorkspaceDisc{o.nominal.home}, C);
+    return std::sqrt(2.0) * e.stated_sigma_rms_um;  // the 1-sigma per axis to the RMS of |e|
+  } catch (const InputError&) {
+    return std::nullopt;
+  }
+}
+
 using Stage = std::function<void(const std::string&)>;
 
 // The run-time pose design of spec's sampling; with hardware the poses must
@@ -437,6 +455,8 @@ void calibrate_run(RunOutcome& out, const RunSpec& spec, const CalibrationInputs
     used = c.used;
     out.model_test = c.model_test;
     if (c.with_effects) take_motion_fit(out, c, po.free, actual.geometry, noiseless);
+    if (c.with_effects && !spec.hardware && out.crb_sigma_rad > 0.0)
+      out.positioning_bound_um = positioning_bound(out, c, po.free, noiseless);
     // A result that is not a robot (a link of no length, home out of reach)
     // fails the run (gpm::Error, exit 1) instead of becoming the controller.
     out.calibrated = calib::usable_robot(out.calibrated, out.calibration->geometry);

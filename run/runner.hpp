@@ -65,6 +65,11 @@ struct RunOutcome {
   // over an 80 mm disc round home, with the 1-sigma its covariance states
   // (calib/positioning_error.hpp; simulation only: the truth is known).
   std::optional<calib::PositioningError> positioning;
+  // The least positioning error the readings allow (um, RMS over the same
+  // disc of sqrt(trace(J C J')), C the Cramer-Rao covariance at the truth of
+  // the calibration's reading model with its carried error estimated under
+  // its prior); on the fly in simulation only, else none.
+  std::optional<double> positioning_bound_um;
   // Chi-square test of the ML residuals against the encoder noise (ML cost).
   std::optional<calib::ModelTest> model_test;
   // Samples taken on the fly: compliance and skew estimated with the geometry.

@@ -32,6 +32,7 @@ std::string summary_json(const RunOutcome& o) {
                            {"stated_sigma_rms", number(o.positioning->stated_sigma_rms_um)},
                            {"normalised_rms", number(o.positioning->normalised_rms)},
                            {"carried_sigma_rms", number(o.positioning->carried_sigma_rms_um)},
+                           {"bound_rms", o.positioning_bound_um ? number(*o.positioning_bound_um) : nullptr},
                            {"points", o.positioning->points}};
   else
     j["positioning_um"] = nullptr;

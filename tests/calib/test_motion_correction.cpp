@@ -19,6 +19,7 @@
 
 #include <cmath>
 
+#include <Eigen/Eigenvalues>
 #include <gtest/gtest.h>
 
 #include "calib/crb.hpp"
@@ -490,6 +491,50 @@ TEST(MotionCorrection, ConsideredCyclicErrorAddsTheFitsResponseToIt) {
   }
   EXPECT_GT(widened, 0);  // the test has something to check
   for (double v : fit.cyclic) EXPECT_EQ(v, 0.0);  // considered, not estimated
+}
+
+// The bound's covariance: its diagonal is motion_crb's squared, it is
+// symmetric with zero rows for fixed parameters; with the cyclic error
+// estimated under its prior (the Bayesian bound) it lies between the bound
+// without that error (a smaller prior only tightens it) and the bound that
+// carries it unestimated (an estimator that ignores the error does no
+// better than the one that uses its prior), in the PSD sense.
+TEST(MotionCorrection, BoundCovarianceLiesBetweenNoErrorAndTheErrorCarried) {
+  const MotionData d = make_data(400, 23);
+  Robot a;
+  a.geometry = d.truth;
+  const Samples smp = samples_at(a, disc_poses(a, 400, a.home, 100.0, 23), 0.0, 24);
+  MotionModel plain, considered, estimated;
+  considered.cyclic_prior_rad = estimated.cyclic_prior_rad = 2e-5;
+  estimated.estimate_cyclic = true;
+  const auto cov = [&](const MotionModel& m) {
+    return motion_crb_covariance(d.truth, d.problem.free, smp.theta_m, d.omega, d.tau, m, {}, kSigma);
+  };
+  const Eigen::Matrix<double, kNumParams, kNumParams> C0 = cov(plain), Cc = cov(considered), Ce = cov(estimated);
+  const auto sigma = motion_crb(d.truth, d.problem.free, smp.theta_m, d.omega, d.tau, estimated, {}, kSigma);
+  for (int k = 0; k < kNumParams; ++k) {
+    if (!d.problem.free[k]) {
+      EXPECT_EQ(Ce.row(k).norm(), 0.0) << param_name(k);
+      EXPECT_TRUE(std::isnan(sigma[static_cast<std::size_t>(k)])) << param_name(k);
+      continue;
+    }
+    EXPECT_NEAR(std::sqrt(Ce(k, k)), sigma[static_cast<std::size_t>(k)], 1e-12 * sigma[static_cast<std::size_t>(k)]);
+  }
+  EXPECT_LT((Ce - Ce.transpose()).norm(), 1e-12 * Ce.norm());
+  // Smallest eigenvalue of a difference, relative to the larger matrix's scale.
+  const auto least = [](const Eigen::MatrixXd& D, const Eigen::MatrixXd& big) {
+    return Eigen::SelfAdjointEigenSolver<Eigen::MatrixXd>(0.5 * (D + D.transpose())).eigenvalues().minCoeff() /
+           big.diagonal().maxCoeff();
+  };
+  EXPECT_GT(least(Ce - C0, Ce), -1e-9);
+  EXPECT_GT(least(Cc - Ce, Cc), -1e-9);
+  // Strictly between on this path: the data tell a little of the error (2 % of
+  // the carried widening), the prior the rest.
+  const double widening = (Cc - C0).diagonal().maxCoeff();
+  EXPECT_GT((Cc - Ce).diagonal().maxCoeff(), 0.01 * widening);
+  EXPECT_GT((Ce - C0).diagonal().maxCoeff(), 0.5 * widening);
+  estimated.cyclic_prior_rad = 1e-12;  // a prior that pins the error at 0: no error at all
+  EXPECT_LT((cov(estimated) - C0).norm(), 1e-6 * C0.norm());
 }
 
 TEST(MotionCorrection, RefusesMismatchedSizesAndOtherCosts) {

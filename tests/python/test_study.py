@@ -4,6 +4,7 @@
 # gpm.run's summary of that robot's scenario; a robot whose run fails is a row
 # with its seed and reason; the table, the progress lines and the figure.
 import json
+import math
 import sys
 import tempfile
 
@@ -57,6 +58,8 @@ def test_rows_equal_the_command_lines_study(serial, scratch):
     assert cpp["seed"] == row["seed"] == 301 and cpp["failure"] is None
     assert cpp["positioning_um"]["rms"] == row["positioning_rms_um"]
     assert cpp["positioning_um"]["stated_sigma_rms"] == row["stated_sigma_rms_um"]
+    # Poses stop-and-go: no bound of readings on the fly (null, NaN in the row).
+    assert cpp["positioning_um"]["bound_rms"] is None and math.isnan(row["positioning_bound_um"])
     assert cpp["static_rms_um"]["calibrated"] == row["calibrated_static_rms_um"]
     assert cpp["floor_ratio"] == row["floor_ratio"]
     assert cpp["within_3_sigma"] == row["within_3_sigma"] and cpp["estimated"] == row["estimated"]

@@ -26,6 +26,7 @@ PopulationReport two_robots() {
   PopulationRobotRow ok;
   ok.seed = 7;
   ok.positioning_rms_um = 9.4, ok.positioning_max_um = 20.0, ok.stated_sigma_rms_um = 8.0;
+  ok.positioning_bound_um = 4.5;
   ok.calibrated_static_um = 3.0, ok.floor_ratio = 1.2, ok.model_test_passed = true, ok.chi2_per_dof = 1.1;
   ok.error.fill(NAN), ok.sigma.fill(NAN);
   ok.error[kLa1] = 0.003, ok.sigma[kLa1] = 0.002;
@@ -40,16 +41,18 @@ PopulationReport two_robots() {
 
 TEST(PopulationReport, SummaryAndOneRowPerRobot) {
   const PopulationReport p = two_robots();
-  EXPECT_EQ(population_table_header(p).size(), 10u);
+  EXPECT_EQ(population_table_header(p).size(), 11u);
   const auto rows = population_table_rows(p);
   ASSERT_EQ(rows.size(), 2u);
-  EXPECT_EQ(rows[0], (std::vector<std::string>{"7", "9.40", "20.00", "8.00", "1.50 (la1)", "1/1", "3.00", "1.20",
-                                               "passes (1.10)", "6"}));
+  EXPECT_EQ(rows[0], (std::vector<std::string>{"7", "9.40", "20.00", "8.00", "4.50", "1.50 (la1)", "1/1", "3.00",
+                                               "1.20", "passes (1.10)", "6"}));
+  EXPECT_EQ(rows[1].size(), rows[0].size());
   EXPECT_EQ(rows[1][1], "failed: diverged");
   const std::string md = population_markdown(p);
   EXPECT_NE(md.find("2 robots of `class` (every effect drawn per chain from its plausible range), 1 failed."),
             std::string::npos);
   EXPECT_EQ(md.find("Monitoring the operation"), std::string::npos);
+  EXPECT_EQ(md.find("The least positioning RMS"), std::string::npos);  // no bound in the summary: no sentence
   const ReportDocument doc = population_report(p);
   ASSERT_EQ(doc.figure_files().size(), 2u);
   EXPECT_NE(doc.markdown().find("2 robots in 12 s."), std::string::npos);
@@ -64,12 +67,18 @@ TEST(PopulationReport, MonitorColumnsWhenARobotWasMonitored) {
   p.robots[0].detection_delay_s = 0.25;
   p.robots[0].detection = "la1";
   p.summary.monitored = 1;
-  EXPECT_EQ(population_table_header(p).size(), 15u);
+  EXPECT_EQ(population_table_header(p).size(), 16u);
   const auto rows = population_table_rows(p);
-  EXPECT_EQ(rows[0][9], "0 in 30.0 s");
-  EXPECT_EQ(rows[0][13], "0.250 (la1)");
-  EXPECT_EQ(rows[1].size(), 15u);
+  EXPECT_EQ(rows[0][10], "0 in 30.0 s");
+  EXPECT_EQ(rows[0][14], "0.250 (la1)");
+  EXPECT_EQ(rows[1].size(), 16u);
   EXPECT_NE(population_markdown(p).find("Monitoring the operation after calibration (1 robots)"), std::string::npos);
+}
+
+TEST(PopulationReport, TheBoundsMedianInTheSummary) {
+  PopulationReport p = two_robots();
+  p.summary.positioning_bound_median_um = 4.5;
+  EXPECT_NE(population_markdown(p).find("median 4.50 µm."), std::string::npos);
 }
 
 }  // namespace

@@ -236,6 +236,16 @@ TEST(RunReport, PositioningSaysTheShareOfTheCarriedError) {
   EXPECT_EQ(spaced(build_run_report(o).markdown()).find("Of that 1σ"), std::string::npos);
 }
 
+// The least RMS the readings allow, when the run knows it (the twin's truth), and nothing of it otherwise.
+TEST(RunReport, PositioningSaysTheBoundWhenKnown) {
+  RunReport o = testing::run_report_example();
+  o.positioning_um = std::array<double, 5>{9.3, 20.1, 10.1, 0.92, 7.4};
+  EXPECT_EQ(spaced(build_run_report(o).markdown()).find("at best"), std::string::npos);
+  o.positioning_bound_um = 6.25;
+  const std::string md = spaced(build_run_report(o).markdown());
+  EXPECT_NE(md.find("These readings allow an RMS of 6.25 µm at best"), std::string::npos) << md;
+}
+
 TEST(RunReport, EveryTableIsValidMarkdownAndNoMarkdownLeaksIntoHtml) {
   RunReport o = testing::run_report_example();
   o.positioning_um = std::array<double, 5>{9.3, 20.1, 10.1, 0.92, 0.0};

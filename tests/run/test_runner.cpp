@@ -270,6 +270,14 @@ TEST(Runner, InProcessIsTheTwinBackendThroughTheHardwareInterfaceBitForBit) {
   // is part of that 1-sigma, not all of it (the noise and the misfit's sandwich).
   EXPECT_GT(in_process.carried_sigma_rms_um, 0.3 * in_process.stated_sigma_rms_um);
   EXPECT_LT(in_process.carried_sigma_rms_um, in_process.stated_sigma_rms_um);
+  // The least RMS the readings allow (the bound with that error estimated
+  // under its prior): known in process only (the truth), and below the RMS
+  // error the stated 1-sigma stands for (sqrt 2 of it per axis), which
+  // carries that error whole.
+  ASSERT_TRUE(twin.positioning_bound_um.has_value());
+  EXPECT_FALSE(hw.positioning_bound_um.has_value());
+  EXPECT_GT(*twin.positioning_bound_um, 0.0);
+  EXPECT_LT(*twin.positioning_bound_um, std::sqrt(2.0) * in_process.stated_sigma_rms_um);
 #ifdef GPM_MOTION_CARD_PLUGIN
   // The same through the sample plugin (a motion card over the same twin,
   // behind the C ABI, reading all encoders in one call with its own clock).
