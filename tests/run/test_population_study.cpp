@@ -93,11 +93,24 @@ namespace {
 // hour of healthy monitored time, detection delays over the robots that
 // detected, failed robots left out; the table gains the monitor's columns
 // only when the study monitored.
+// The bound's median is over the robots that have one (on the fly) and did not fail.
+TEST(PopulationStudy, TheBoundsMedianIsOverTheRobotsThatHaveOne) {
+  PopulationStudy study;
+  study.robots.resize(5);
+  const double bound[] = {4.0, 9.0, NAN, 5.0, 1.0};
+  for (std::size_t k = 0; k < study.robots.size(); ++k) study.robots[k].positioning_bound_um = bound[k];
+  study.robots[4].failure = "diverged";  // not counted
+  EXPECT_DOUBLE_EQ(study.summary().positioning_bound_median_um, 5.0);
+  EXPECT_NE(population_json(study).find("\"positioning_bound_median_um\": 5.0"), std::string::npos);
+  for (PopulationRobot& r : study.robots) r.positioning_bound_um = NAN;
+  EXPECT_TRUE(std::isnan(study.summary().positioning_bound_median_um));
+}
+
 TEST(PopulationStudy, MonitorFiguresArePooledOverTheMonitoredRobots) {
   PopulationStudy study;
   study.robots.resize(4);
   for (std::size_t k = 0; k < study.robots.size(); ++k) study.robots[k].seed = k + 1;
-  EXPECT_EQ(population_table_header(study).size(), 10u);  // nothing monitored: no monitor columns
+  EXPECT_EQ(population_table_header(study).size(), 11u);  // nothing monitored: no monitor columns
   PopulationRobot& a = study.robots[0];
   a.monitored = a.event = true;
   a.false_alarms = 2, a.monitored_s = 30.0, a.false_alarms_per_hour = 240.0;
@@ -121,10 +134,10 @@ TEST(PopulationStudy, MonitorFiguresArePooledOverTheMonitoredRobots) {
   EXPECT_DOUBLE_EQ(s.detection_delay_median_s, 0.4);
   EXPECT_DOUBLE_EQ(s.detection_delay_max_s, 0.6);
   const auto header = population_table_header(study);
-  EXPECT_EQ(header.size(), 15u);
+  EXPECT_EQ(header.size(), 16u);
   const auto rows = population_table_rows(study);
   for (const auto& row : rows) EXPECT_EQ(row.size(), header.size());
-  EXPECT_EQ(rows[1][13], "missed");
+  EXPECT_EQ(rows[1][14], "missed");
   EXPECT_NE(population_json(study).find("\"false_alarms_per_hour\": 60.0"), std::string::npos);
 }
 
