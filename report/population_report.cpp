@@ -190,7 +190,9 @@ ReportDocument population_report(const PopulationReport& p) {
       "Positioning error: at points 10 mm apart within 80 mm of home, the readings the calibrated model commands, "
       "and where the actual robot stands when its three drives hold them (equally stiff: its joint angles nearest "
       "to the commanded ones), noise-free. Its stated 1-sigma propagates the calibration's covariance to the same "
-      "points (per axis; the RMS of the 2-d error is about 1.4 times it when the 1-sigma is honest).");
+      "points (per axis; the RMS of the 2-d error is about 1.4 times it when the 1-sigma is honest). The least RMS "
+      "the readings allow is of the 2-d error, as the positioning RMS is: a robot far above it is held back by its "
+      "reading model, one near it by its data (on the fly, in simulation; '-' otherwise).");
   doc.table(population_table_header(p), population_table_rows(p));
   doc.figure("population_positioning", "Positioning error of the calibrated model per robot, with its stated 1-sigma",
              positioning_plot(p));
