@@ -100,6 +100,10 @@ void print_summary(const scenario::RunOutcome& o, const std::string& dir) {
   if (o.floor) {
     fmt::print("           actual (floor):   static RMS {:9.2f} {u}, max {:9.2f} {u}; path RMS {:9.2f} {u}\n",
                o.floor->static_rms_um, o.floor->static_max_um, o.floor->path_rms_um, fmt::arg("u", um()));
+    if (o.floor_ratio_ci95)
+      fmt::print("           calibrated / floor {:.2f} (95 % interval {:.2f}-{:.2f} over the {} test poses)\n",
+                 o.after->static_rms_um / o.floor->static_rms_um, (*o.floor_ratio_ci95)[0], (*o.floor_ratio_ci95)[1],
+                 o.after->static_error_um.size());
   }
   if (o.hardware_description.empty())
     fmt::print("robot time {:.2f} s of sampling {} (the time the robot is kept from its work)\n", o.sim.sampling_s,

@@ -298,7 +298,7 @@ std::string lead_sentence(const RunReport& o) {
         distance(o.before->static_rms_um), o.test_poses.empty() ? std::string("the") : std::to_string(o.test_poses.size()),
         readings, distance(o.after->static_rms_um), ratio_text(o.before->static_rms_um / o.after->static_rms_um));
     if (o.floor)
-      s += fmt::format(", and {}× the error of a controller that knew the true parameters ({})",
+      s += fmt::format(", and {}× the error of a controller that knew the true parameters and reading errors ({})",
                        ratio_text(o.after->static_rms_um / o.floor->static_rms_um), distance(o.floor->static_rms_um));
     return s + ".";
   }
@@ -441,13 +441,20 @@ void add_accuracy(ReportDocument& d, const RunReport& o) {
     d.paragraph(fmt::format(
         "Static RMS is the tool tip at rest; path RMS is the tool tip while it moves, where the drives' lag behind "
         "the moving target adds an error no calibration removes ({} a path RMS of {} against {} at rest).",
-        o.floor ? "the controller given the true parameters has" : "the calibrated model has",
+        o.floor ? "the controller given the true parameters and reading errors has" : "the calibrated model has",
         distance(ref.path_rms_um), distance(ref.static_rms_um)));
   }
   if (o.after && o.floor) {
-    d.paragraph(fmt::format("The row “actual” is the floor: the controller given the true parameters. The calibrated "
-                            "static RMS is {}× the floor. Sampling took {} s of robot time.",
+    d.paragraph(fmt::format("The row “actual” is the floor: the controller given the true parameters and the "
+                            "twin's transmission and encoder errors (it commands the readings that put the links "
+                            "where they should be), so what it leaves is what no model of the geometry and those "
+                            "errors removes. The calibrated static RMS is {}× the floor{}. Sampling took {} s of "
+                            "robot time.",
                             sig(o.after->static_rms_um / std::max(1e-12, o.floor->static_rms_um), 3),
+                            o.floor_ratio_ci95
+                                ? fmt::format(" (95 % interval {}-{}, the bootstrap over the test poses)",
+                                              sig((*o.floor_ratio_ci95)[0], 3), sig((*o.floor_ratio_ci95)[1], 3))
+                                : std::string(),
                             sig(o.robot_time_s, 3)));
   }
 }

@@ -84,7 +84,8 @@ struct RunReport {
   std::array<double, kNumParams> crb{};     // CRB 1-sigma at the truth (NaN: fixed)
   std::vector<double> residual_urad;        // ML residual per sample after calibration
   std::optional<RunAccuracy> before, after;
-  std::optional<RunAccuracy> floor;         // the controller given the actual parameters
+  std::optional<RunAccuracy> floor;         // the controller given the actual parameters and reading errors
+  std::optional<std::array<double, 2>> floor_ratio_ci95;  // 95 % interval of calibrated / floor (none: not known)
   std::optional<RunModelTest> model_test;
   // The calibrated model's positioning error over the workspace (um): RMS,
   // max, the stated 1-sigma per axis, error / 1-sigma (1 when honest) and

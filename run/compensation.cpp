@@ -1,10 +1,15 @@
 #include "run/compensation.hpp"
 
+#include <algorithm>
 #include <cmath>
+
+#include <fmt/format.h>
 
 #include <Eigen/Cholesky>
 
+#include "models/errors.hpp"
 #include "models/kinematics.hpp"
+#include "models/rng.hpp"
 #include "sim/waypoint_path.hpp"
 
 namespace gpm::scenario {
@@ -45,13 +50,14 @@ double internal_preload(const Geometry& g, const Eigen::Vector2d& p, const Eigen
 Accuracy measure_accuracy(const Robot& actual, const sim::TwinConfig& twin,
                           const Robot& controller, const CompensationPlan& plan,
                           unsigned long long seed, const std::string& label, Progress* progress,
-                          double max_tracking_mm) {
+                          double max_tracking_mm, bool oracle) {
   Accuracy acc;
   acc.label = label;
   const sim::TwinModel model(actual, twin);
   sim::TwinState state(model, seed);
   sim::Session session = sim::make_session(model, state, controller, nullptr);
   session.max_tracking_mm = max_tracking_mm;
+  session.oracle = oracle;
 
   // The poses are visited in a short tour from where the robot stands
   // (sim/waypoint_path.hpp), their errors kept in the plan's order.
@@ -86,6 +92,26 @@ Accuracy measure_accuracy(const Robot& actual, const sim::TwinConfig& twin,
   acc.path_preload_rms_nm = rms(path_preload);
   if (progress) progress->finish();
   return acc;
+}
+
+std::array<double, 2> rms_ratio_interval(const std::vector<double>& a, const std::vector<double>& b,
+                                         std::uint64_t seed, int resamples) {
+  if (a.size() != b.size() || a.empty() || resamples < 40)
+    throw InputError(fmt::format("ratio interval: {} and {} errors, {} resamples (equal sizes, at least one pose and "
+                                 "40 resamples)", a.size(), b.size(), resamples));
+  Rng rng(seed);
+  std::vector<double> ratio(static_cast<std::size_t>(resamples));
+  for (double& q : ratio) {
+    double sa = 0.0, sb = 0.0;
+    for (std::size_t k = 0; k < a.size(); ++k) {
+      const std::size_t j = rng.below(a.size());
+      sa += a[j] * a[j], sb += b[j] * b[j];
+    }
+    q = sb > 0.0 ? std::sqrt(sa / sb) : INFINITY;
+  }
+  std::sort(ratio.begin(), ratio.end());
+  const auto at = [&](double p) { return ratio[static_cast<std::size_t>(std::lround(p * (resamples - 1)))]; };
+  return {at(0.025), at(0.975)};
 }
 
 }  // namespace gpm::scenario

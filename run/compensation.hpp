@@ -4,6 +4,8 @@
 // with the servos' internal preload.
 #pragma once
 
+#include <array>
+#include <cstdint>
 #include <string>
 #include <vector>
 
@@ -45,11 +47,20 @@ struct Accuracy {
 // Runs the plan on a fresh twin of `actual` driven by `controller`; with
 // progress, reports the test poses done (then the path, one more step). With
 // max_tracking_mm > 0 the twin loop's tracking watch is on
-// (sim::Session::max_tracking_mm: sim::TrackingStop when it trips).
+// (sim::Session::max_tracking_mm: sim::TrackingStop when it trips); with
+// oracle the controller (the actual geometry) knows the twin's transmission
+// and encoder errors too (sim::Session::oracle: the floor).
 Accuracy measure_accuracy(const Robot& actual, const sim::TwinConfig& twin,
                           const Robot& controller, const CompensationPlan& plan,
                           unsigned long long seed, const std::string& label, Progress* progress = nullptr,
-                          double max_tracking_mm = 0.0);
+                          double max_tracking_mm = 0.0, bool oracle = false);
+
+// The 95 % interval of rms(a) / rms(b), a and b errors at the same poses
+// (paired by index, equal sizes): the percentile bootstrap over the poses,
+// `resamples` draws of them with replacement from a generator seeded with
+// seed. Throws InputError for sizes that differ, no poses or resamples < 40.
+std::array<double, 2> rms_ratio_interval(const std::vector<double>& a, const std::vector<double>& b,
+                                         std::uint64_t seed, int resamples = 2000);
 
 // |P tau| for torques tau at joint configuration q of geometry g (N m).
 double internal_preload(const Geometry& g, const Eigen::Vector2d& p, const Eigen::Vector3d& tau,

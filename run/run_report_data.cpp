@@ -66,6 +66,7 @@ report::RunReport run_report_data(const RunOutcome& o) {
   if (o.before) r.before = accuracy_data(*o.before);
   if (o.after) r.after = accuracy_data(*o.after);
   if (o.floor) r.floor = accuracy_data(*o.floor);
+  r.floor_ratio_ci95 = o.floor_ratio_ci95;
   if (o.model_test)
     r.model_test = report::RunModelTest{o.model_test->chi2, o.model_test->dof, o.model_test->p_value,
                                         o.model_test->sigma_rad, o.model_test->passed, o.model_test->diagnosis};

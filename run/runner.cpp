@@ -507,11 +507,14 @@ void measure_compensation(RunOutcome& out, const RunSpec& spec, const Progress& 
                                &steps("calibrated model"), spec.sim.max_tracking_mm);
   }
   if (!spec.hardware) {
-    stage("measuring accuracy with the actual parameters (the floor)");
+    stage("measuring accuracy with the actual parameters and reading errors (the floor)");
     Robot truth = out.nominal;
     truth.geometry = actual.geometry;
     out.floor = measure_accuracy(actual, test_twin, truth, *spec.compensation, seed, "actual",
-                               &steps("actual parameters"), spec.sim.max_tracking_mm);
+                                 &steps("actual parameters"), spec.sim.max_tracking_mm, true);
+    if (out.after)
+      out.floor_ratio_ci95 = rms_ratio_interval(out.after->static_error_um, out.floor->static_error_um,
+                                                derive_seed(spec.sim.seed, Stream::kAccuracyTest) + 1);
   }
 }
 

@@ -59,8 +59,12 @@ struct RunOutcome {
   std::array<double, kNumParams> crb{};        // CRB 1-sigma at the truth (NaN: fixed)
   std::vector<double> residual_urad;           // ML residual per sample after calibration
   std::optional<Accuracy> before, after;
-  // The floor: the controller given the actual parameters.
+  // The floor: the controller given the actual parameters and the twin's
+  // transmission and encoder errors (an oracle; run/compensation.hpp).
   std::optional<Accuracy> floor;
+  // The 95 % interval of the calibrated static RMS over the floor's (the
+  // bootstrap over the test poses, rms_ratio_interval); none without both.
+  std::optional<std::array<double, 2>> floor_ratio_ci95;
   // What a user gets: the calibrated model's noise-free positioning error
   // over an 80 mm disc round home, with the 1-sigma its covariance states
   // (calib/positioning_error.hpp; simulation only: the truth is known).

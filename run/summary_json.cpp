@@ -37,6 +37,9 @@ std::string summary_json(const RunOutcome& o) {
   else
     j["positioning_um"] = nullptr;
   j["accuracy"] = {{"nominal", accuracy(o.before)}, {"calibrated", accuracy(o.after)}, {"actual", accuracy(o.floor)}};
+  if (o.floor_ratio_ci95)
+    j["floor_ratio"] = {{"value", number(o.after->static_rms_um / o.floor->static_rms_um)},
+                        {"ci95", {number((*o.floor_ratio_ci95)[0]), number((*o.floor_ratio_ci95)[1])}}};
   nlohmann::json params = nlohmann::json::object();
   if (o.calibration) {
     for (int k = 0; k < kNumParams; ++k) {

@@ -5,6 +5,7 @@
 #include <fmt/format.h>
 
 #include "models/kinematics.hpp"
+#include "sim/oracle_command.hpp"
 
 namespace gpm::sim {
 namespace {
@@ -31,7 +32,12 @@ Session make_session(const TwinModel& model, TwinState& state, const Robot& cont
 }
 
 TwinSnapshot advance(Session& s, const PathPoint& desired) {
-  const JointCommand c = command_for(s.controller, desired);
+  JointCommand c = command_for(s.controller, desired);
+  if (s.oracle) {
+    const Geometry& g = s.controller.geometry;
+    const JointAngles q = inverse_kinematics(g, desired.p, s.controller.branch);
+    c.position = oracle_readings(s.model, q.theta_a, Eigen::Vector3d(g.dth_(0), g.dth_(1), g.dth_(2)));
+  }
   twin_command(s.state, c.position, c.velocity);
   s.desired = desired.p;
   // Align to the drive loop so the first step below is a tick.

@@ -97,6 +97,10 @@ struct Session {
   // assembly mode shows) and compared with the desired point; beyond this
   // (mm) advance() throws TrackingStop. 0: not watched.
   double max_tracking_mm = 0.0;
+  // The controller is the floor's oracle (its model the actual geometry):
+  // its commands know the twin's transmission and encoder errors too
+  // (sim/oracle_command.hpp).
+  bool oracle = false;
 };
 
 // The end-effector left the plan by more than Session::max_tracking_mm: the

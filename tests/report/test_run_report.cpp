@@ -134,11 +134,12 @@ TEST(RunReport, LeadsWithBeforeAndAfterAtTheToolTip) {
             "With its nominal model the robot's tool tip stood 9.68 mm from where it was sent (RMS over 8 test "
             "poses); calibrated from 3000 of its own encoder readings, taken on the fly in 10 s of robot time (all "
             "the time the calibration keeps the robot from its work), it stands 28.1 µm away: 344× closer, and 2.63× "
-            "the error of a controller that knew the true parameters (10.7 µm).");
+            "the error of a controller that knew the true parameters and reading errors (10.7 µm).");
   EXPECT_EQ(md.rfind("# gpm run: example\n\n**With its nominal model", 0), 0u);  // the first paragraph
   // The path against the static error, in one sentence.
   EXPECT_NE(md.find("path RMS is the tool tip while it moves, where the drives' lag behind the moving target adds an "
-                    "error no calibration removes (the controller given the true parameters has a path RMS of 11.8 µm "
+                    "error no calibration removes (the controller given the true parameters and reading errors has a "
+                    "path RMS of 11.8 µm "
                     "against 10.7 µm at rest)"),
             std::string::npos);
   RunReport refused = o;
@@ -234,6 +235,19 @@ TEST(RunReport, PositioningSaysTheShareOfTheCarriedError) {
       << md;
   o.positioning_um = std::array<double, 5>{9.3, 20.1, 10.1, 0.92, 0.0};
   EXPECT_EQ(spaced(build_run_report(o).markdown()).find("Of that 1σ"), std::string::npos);
+}
+
+// The floor's paragraph says what the floor knows and, when the run has it,
+// the interval of calibrated / floor.
+TEST(RunReport, TheFloorsParagraphGivesTheRatiosInterval) {
+  RunReport o = testing::run_report_example();
+  EXPECT_EQ(spaced(build_run_report(o).markdown()).find("95 % interval"), std::string::npos);
+  o.floor_ratio_ci95 = std::array<double, 2>{2.31, 2.97};
+  const std::string md = spaced(build_run_report(o).markdown());
+  EXPECT_NE(md.find("the twin's transmission and encoder errors"), std::string::npos);
+  EXPECT_NE(md.find("is 2.63× the floor (95 % interval 2.31-2.97, the bootstrap over the test poses)"),
+            std::string::npos)
+      << md;
 }
 
 // The least RMS the readings allow, when the run knows it (the twin's truth), and nothing of it otherwise.

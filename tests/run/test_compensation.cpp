@@ -1,14 +1,21 @@
 // Tests of run/compensation.cpp: the internal-preload projection by
 // hand, the twin's accuracy with the true model against a wrong one, and
-// the test poses visited in a short tour whatever their order.
+// the test poses visited in a short tour whatever their order, the oracle's
+// floor below the true geometry's alone on a twin with encoder errors, and
+// the bootstrap interval of an RMS ratio against hand-worked cases.
 #include "run/compensation.hpp"
 
 #include <algorithm>
+#include <cmath>
+#include <tuple>
+#include <vector>
 
 #include <Eigen/Geometry>
 #include <gtest/gtest.h>
 
+#include "models/errors.hpp"
 #include "models/kinematics.hpp"
+#include "models/rng.hpp"
 
 namespace gpm::scenario {
 namespace {
@@ -46,6 +53,60 @@ TEST(Compensation, TrueModelIsAccurateAndAWrongOneIsNot) {
   EXPECT_GT(bad.static_preload_rms_nm, 100 * good.static_preload_rms_nm);
   EXPECT_GT(bad.path_rms_um, 10 * good.path_rms_um);
   EXPECT_FALSE(good.path_log.rows.empty());
+}
+
+// The floor's oracle knows the twin's encoder error: with one of 5e-5 rad
+// per chain the true geometry alone stands off by it (about 12 um at the
+// links), the oracle by the drives' resolution.
+TEST(Compensation, TheOracleKnowsTheEncodersErrors) {
+  const Robot actual;
+  sim::TwinConfig twin;
+  twin.encoder.bits = 0;
+  for (std::size_t k = 0; k < 3; ++k)
+    twin.effects.encoder_cyclic_rad[k] = 5e-5, twin.effects.encoder_phase_rad[k] = 0.7 * static_cast<double>(k);
+  CompensationPlan plan;
+  plan.poses = {{216.5, 250}, {250, 280}, {190, 220}};
+  plan.path = sim::CirclePath{{216.5, 250}, 30.0, 3.0, 0.25};
+  const Accuracy geometry = measure_accuracy(actual, twin, actual, plan, 1, "true");
+  const Accuracy oracle = measure_accuracy(actual, twin, actual, plan, 1, "oracle", nullptr, 0.0, true);
+  EXPECT_GT(geometry.static_rms_um, 3.0);
+  EXPECT_LT(oracle.static_rms_um, 1.0);
+}
+
+// The interval of rms(a) / rms(b): a fixed multiple has no spread; equal
+// errors give an interval round 1; it holds the ratio of the whole sample
+// and narrows with more poses; bad input is refused.
+TEST(Compensation, RatioIntervalOfPairedErrors) {
+  const std::vector<double> b = {1.0, 2.0, 3.0, 4.0, 5.0, 6.0};
+  std::vector<double> a = b;
+  for (double& v : a) v *= 1.5;
+  const auto fixed = rms_ratio_interval(a, b, 7);
+  EXPECT_NEAR(fixed[0], 1.5, 1e-12);
+  EXPECT_NEAR(fixed[1], 1.5, 1e-12);
+  Rng rng(3);
+  std::vector<double> x12, y12, x100, y100;
+  for (int k = 0; k < 100; ++k) {
+    const double u = rng.uniform(5.0, 15.0), v = rng.uniform(5.0, 15.0);
+    (k < 12 ? x12 : x100).push_back(u), (k < 12 ? y12 : y100).push_back(v);
+  }
+  x100.insert(x100.end(), x12.begin(), x12.end()), y100.insert(y100.end(), y12.begin(), y12.end());
+  const auto rms_of = [](const std::vector<double>& v) {
+    double s = 0.0;
+    for (double e : v) s += e * e;
+    return std::sqrt(s / static_cast<double>(v.size()));
+  };
+  const auto few = rms_ratio_interval(x12, y12, 7), many = rms_ratio_interval(x100, y100, 7);
+  for (const auto& [ci, x, y] : {std::tuple{few, x12, y12}, std::tuple{many, x100, y100}}) {
+    EXPECT_LT(ci[0], rms_of(x) / rms_of(y));
+    EXPECT_GT(ci[1], rms_of(x) / rms_of(y));
+    EXPECT_LT(ci[0], 1.0);  // the same spread of errors: 1 within
+    EXPECT_GT(ci[1], 1.0);
+  }
+  EXPECT_LT(many[1] - many[0], 0.6 * (few[1] - few[0]));
+  EXPECT_EQ(rms_ratio_interval(x12, y12, 7), few);  // seeded
+  EXPECT_THROW(rms_ratio_interval(x12, y100, 7), InputError);
+  EXPECT_THROW(rms_ratio_interval({}, {}, 7), InputError);
+  EXPECT_THROW(rms_ratio_interval(x12, y12, 7, 10), InputError);
 }
 
 // The test poses are visited in a short tour from where the robot stands,
