@@ -53,6 +53,26 @@ void print_result(const scenario::RunOutcome& o) {
                                             : std::string());
 }
 
+// The accuracy lines: nominal, calibrated and the floor, with calibrated / floor and its interval.
+void print_accuracy(const scenario::RunOutcome& o) {
+  if (o.before) {
+    fmt::print("accuracy   nominal model:    static RMS {:9.2f} {u}, max {:9.2f} {u}; path RMS {:9.2f} {u}\n",
+               o.before->static_rms_um, o.before->static_max_um, o.before->path_rms_um, fmt::arg("u", um()));
+  }
+  if (o.after) {
+    fmt::print("           calibrated model: static RMS {:9.2f} {u}, max {:9.2f} {u}; path RMS {:9.2f} {u}\n",
+               o.after->static_rms_um, o.after->static_max_um, o.after->path_rms_um, fmt::arg("u", um()));
+  }
+  if (o.floor) {
+    fmt::print("           actual (floor):   static RMS {:9.2f} {u}, max {:9.2f} {u}; path RMS {:9.2f} {u}\n",
+               o.floor->static_rms_um, o.floor->static_max_um, o.floor->path_rms_um, fmt::arg("u", um()));
+    if (o.floor_ratio_ci95)
+      fmt::print("           calibrated / floor {:.2f} (95 % interval {:.2f}-{:.2f} over the {} test poses)\n",
+                 o.after->static_rms_um / o.floor->static_rms_um, (*o.floor_ratio_ci95)[0], (*o.floor_ratio_ci95)[1],
+                 o.after->static_error_um.size());
+  }
+}
+
 void print_summary(const scenario::RunOutcome& o, const std::string& dir) {
   fmt::print("scenario   {} ({})\n", o.spec.sim.name, o.scenario_file);
   fmt::print("samples    {} {}\n", o.sim.samples.size(),
@@ -89,22 +109,7 @@ void print_summary(const scenario::RunOutcome& o, const std::string& dir) {
                    : std::string(),
                fmt::arg("u", um()));
   }
-  if (o.before) {
-    fmt::print("accuracy   nominal model:    static RMS {:9.2f} {u}, max {:9.2f} {u}; path RMS {:9.2f} {u}\n",
-               o.before->static_rms_um, o.before->static_max_um, o.before->path_rms_um, fmt::arg("u", um()));
-  }
-  if (o.after) {
-    fmt::print("           calibrated model: static RMS {:9.2f} {u}, max {:9.2f} {u}; path RMS {:9.2f} {u}\n",
-               o.after->static_rms_um, o.after->static_max_um, o.after->path_rms_um, fmt::arg("u", um()));
-  }
-  if (o.floor) {
-    fmt::print("           actual (floor):   static RMS {:9.2f} {u}, max {:9.2f} {u}; path RMS {:9.2f} {u}\n",
-               o.floor->static_rms_um, o.floor->static_max_um, o.floor->path_rms_um, fmt::arg("u", um()));
-    if (o.floor_ratio_ci95)
-      fmt::print("           calibrated / floor {:.2f} (95 % interval {:.2f}-{:.2f} over the {} test poses)\n",
-                 o.after->static_rms_um / o.floor->static_rms_um, (*o.floor_ratio_ci95)[0], (*o.floor_ratio_ci95)[1],
-                 o.after->static_error_um.size());
-  }
+  print_accuracy(o);
   if (o.hardware_description.empty())
     fmt::print("robot time {:.2f} s of sampling {} (the time the robot is kept from its work)\n", o.sim.sampling_s,
                o.in_motion ? "on the fly" : "at rest at each pose");
