@@ -98,6 +98,8 @@ def robot_row(seed, summary, failure=None):
     )
     row["floor_ratio"] = row["calibrated_static_rms_um"] / row["floor_static_rms_um"] \
         if row["floor_static_rms_um"] > 0 else float("nan")
+    ci = (summary.get("floor_ratio") or {}).get("ci95") or [None, None]
+    row["floor_ratio_ci95_lo"], row["floor_ratio_ci95_hi"] = _number(ci[0]), _number(ci[1])
     _parameter_columns(row, summary.get("parameters") or {})
     mon = summary.get("monitor")
     if mon:

@@ -76,6 +76,12 @@ std::string summary_text(const PopulationReport& p) {
       s.failed, cell(s.positioning_median_um, "{:.2f}"), cell(s.positioning_max_um, "{:.2f}"),
       cell(100.0 * s.within_3_sigma_fraction, "{:.0f}"), cell(s.worst_sigma_ratio, "{:.1f}"),
       cell(s.normalised_positioning_median, "{:.2f}"), cell(100.0 * s.model_test_pass_fraction, "{:.0f}")) +
+         (std::isfinite(s.floor_ratio_median)
+              ? fmt::format(" Calibrated static RMS over the floor's (a controller given the actual parameters and "
+                            "the twin's transmission and encoder errors): median {}; {} robots with its 95 % "
+                            "interval below 1.",
+                            cell(s.floor_ratio_median, "{:.2f}"), s.robots_below_floor)
+              : std::string()) +
          (std::isfinite(s.positioning_bound_median_um)
               ? fmt::format(" The least positioning RMS the robots' readings allow (the Cramér-Rao bound at the "
                             "truth of the calibration's reading model, its carried error estimated under its "

@@ -20,6 +20,10 @@ struct PopulationSummary {
   int robots = 0, failed = 0;
   double positioning_median_um = 0.0, positioning_max_um = 0.0;  // of each robot's RMS
   double positioning_bound_median_um = NAN;  // of each robot's least RMS its readings allow (NaN: none)
+  // Calibrated static RMS over the floor's (an oracle): the median over the
+  // robots measured, and the robots whose 95 % interval lies below 1.
+  double floor_ratio_median = NAN;
+  int robots_below_floor = 0;
   double within_3_sigma_fraction = 0.0;  // of all estimated parameters
   double worst_sigma_ratio = 0.0;
   double model_test_pass_fraction = 0.0;

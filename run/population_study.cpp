@@ -94,6 +94,7 @@ PopulationRobot robot_of(const RunOutcome& o, PopulationRobot r) {
   r.calibrated_static_um = o.after ? o.after->static_rms_um : NAN;
   r.floor_um = o.floor ? o.floor->static_rms_um : NAN;
   r.floor_ratio = r.calibrated_static_um / r.floor_um;
+  if (o.floor_ratio_ci95) r.floor_ratio_ci95 = *o.floor_ratio_ci95;
   if (o.model_test) {
     r.model_test_passed = o.model_test->passed;
     r.calls_for = o.model_test->calls_for;
@@ -185,7 +186,7 @@ PopulationStudy run_population_study(const std::string& scenario_file, const Pop
 PopulationSummary PopulationStudy::summary() const {
   PopulationSummary s;
   s.robots = static_cast<int>(robots.size());
-  std::vector<double> rms, normalised, bound;
+  std::vector<double> rms, normalised, bound, floor;
   int estimated = 0, within = 0, tested = 0, passed = 0;
   for (const PopulationRobot& r : robots) {
     if (r.failure) {
@@ -195,6 +196,8 @@ PopulationSummary PopulationStudy::summary() const {
     rms.push_back(r.positioning.rms_um);
     if (r.positioning.stated_sigma_rms_um > 0.0) normalised.push_back(r.positioning.normalised_rms);
     if (std::isfinite(r.positioning_bound_um)) bound.push_back(r.positioning_bound_um);
+    if (std::isfinite(r.floor_ratio)) floor.push_back(r.floor_ratio);
+    if (r.floor_ratio_ci95[1] < 1.0) ++s.robots_below_floor;
     estimated += r.estimated, within += r.within_3_sigma;
     s.worst_sigma_ratio = std::max(s.worst_sigma_ratio, r.worst_sigma_ratio);
     if (r.model_test_passed) ++tested, passed += *r.model_test_passed ? 1 : 0;
@@ -202,6 +205,7 @@ PopulationSummary PopulationStudy::summary() const {
   s.positioning_median_um = median(rms);
   s.positioning_max_um = rms.empty() ? NAN : *std::max_element(rms.begin(), rms.end());
   s.positioning_bound_median_um = median(bound);
+  s.floor_ratio_median = median(floor);
   s.within_3_sigma_fraction = estimated > 0 ? static_cast<double>(within) / estimated : NAN;
   s.model_test_pass_fraction = tested > 0 ? static_cast<double>(passed) / tested : NAN;
   s.normalised_positioning_median = median(normalised);
@@ -303,6 +307,7 @@ nlohmann::json robot_json(const PopulationRobot& r) {
                          {"bound_rms", number(r.positioning_bound_um)}, {"points", r.positioning.points}};
   j["static_rms_um"] = {{"calibrated", number(r.calibrated_static_um)}, {"actual", number(r.floor_um)}};
   j["floor_ratio"] = number(r.floor_ratio);
+  j["floor_ratio_ci95"] = {number(r.floor_ratio_ci95[0]), number(r.floor_ratio_ci95[1])};
   j["plan_deviation_mm"] = number(r.plan_deviation_mm);
   j["model_test"] = {{"passed", r.model_test_passed ? nlohmann::json(*r.model_test_passed) : nlohmann::json(nullptr)},
                      {"chi2_per_dof", number(r.chi2_per_dof)}, {"calls_for", r.calls_for}};
@@ -359,6 +364,8 @@ std::string population_json(const PopulationStudy& study) {
                   {"positioning_median_um", number(s.positioning_median_um)},
                   {"positioning_max_um", number(s.positioning_max_um)},
                   {"positioning_bound_median_um", number(s.positioning_bound_median_um)},
+                  {"floor_ratio_median", number(s.floor_ratio_median)},
+                  {"robots_below_floor", s.robots_below_floor},
                   {"within_3_sigma_fraction", number(s.within_3_sigma_fraction)},
                   {"worst_sigma_ratio", number(s.worst_sigma_ratio)},
                   {"model_test_pass_fraction", number(s.model_test_pass_fraction)},

@@ -40,6 +40,7 @@ struct PopulationRobot {
   calib::PositioningError positioning;  // of the calibrated model (RunOutcome::positioning; zero when failed)
   double positioning_bound_um = NAN;    // the least the readings allow (RunOutcome::positioning_bound_um; NaN: none)
   double calibrated_static_um = 0.0, floor_um = 0.0, floor_ratio = 0.0;  // NaN if not measured
+  std::array<double, 2> floor_ratio_ci95{NAN, NAN};  // its 95 % interval (RunOutcome::floor_ratio_ci95)
   std::optional<bool> model_test_passed;
   double chi2_per_dof = 0.0;
   std::vector<std::string> calls_for;   // failed on the fly: the effects left out the residuals call for

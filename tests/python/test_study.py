@@ -62,6 +62,7 @@ def test_rows_equal_the_command_lines_study(serial, scratch):
     assert cpp["positioning_um"]["bound_rms"] is None and math.isnan(row["positioning_bound_um"])
     assert cpp["static_rms_um"]["calibrated"] == row["calibrated_static_rms_um"]
     assert cpp["floor_ratio"] == row["floor_ratio"]
+    assert cpp["floor_ratio_ci95"] == [row["floor_ratio_ci95_lo"], row["floor_ratio_ci95_hi"]]
     assert cpp["within_3_sigma"] == row["within_3_sigma"] and cpp["estimated"] == row["estimated"]
     for name, p in cpp["parameters"].items():
         assert (p["error"], p["sigma"]) == (row["err_" + name], row["std_" + name]), name

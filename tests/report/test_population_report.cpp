@@ -75,6 +75,13 @@ TEST(PopulationReport, MonitorColumnsWhenARobotWasMonitored) {
   EXPECT_NE(population_markdown(p).find("Monitoring the operation after calibration (1 robots)"), std::string::npos);
 }
 
+TEST(PopulationReport, TheFloorRatioInTheSummary) {
+  PopulationReport p = two_robots();
+  EXPECT_EQ(population_markdown(p).find("over the floor's"), std::string::npos);  // not measured: not said
+  p.summary.floor_ratio_median = 1.09, p.summary.robots_below_floor = 2;
+  EXPECT_NE(population_markdown(p).find("median 1.09; 2 robots with its 95 % interval below 1."), std::string::npos);
+}
+
 TEST(PopulationReport, TheBoundsMedianInTheSummary) {
   PopulationReport p = two_robots();
   p.summary.positioning_bound_median_um = 4.5;

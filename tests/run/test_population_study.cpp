@@ -93,6 +93,22 @@ namespace {
 // hour of healthy monitored time, detection delays over the robots that
 // detected, failed robots left out; the table gains the monitor's columns
 // only when the study monitored.
+// Calibrated / floor: its median over the robots measured, and the robots
+// whose interval lies wholly below 1 (an upper end of exactly 1 does not).
+TEST(PopulationStudy, FloorRatiosMedianAndTheRobotsBelowIt) {
+  PopulationStudy study;
+  study.robots.resize(4);
+  const double ratio[] = {0.9, 1.2, 1.05, NAN};
+  const std::array<double, 2> ci[] = {{0.8, 0.99}, {1.1, 1.3}, {0.9, 1.0}, {NAN, NAN}};
+  for (std::size_t k = 0; k < 4; ++k) study.robots[k].floor_ratio = ratio[k], study.robots[k].floor_ratio_ci95 = ci[k];
+  const PopulationSummary s = study.summary();
+  EXPECT_DOUBLE_EQ(s.floor_ratio_median, 1.05);
+  EXPECT_EQ(s.robots_below_floor, 1);
+  const std::string json = population_json(study);
+  EXPECT_NE(json.find("\"robots_below_floor\": 1"), std::string::npos);
+  EXPECT_NE(json.find("\"floor_ratio_ci95\": [\n"), std::string::npos);
+}
+
 // The bound's median is over the robots that have one (on the fly) and did not fail.
 TEST(PopulationStudy, TheBoundsMedianIsOverTheRobotsThatHaveOne) {
   PopulationStudy study;
