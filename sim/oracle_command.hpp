@@ -6,7 +6,7 @@
 // sim/drive_train.hpp, zero at the motor's home theta_m0), and its encoder
 // then reads r + e(r), r = theta_m - dth (sim/encoder_error.hpp). What the
 // twin does not fix by the pose (backlash flank, twist under load,
-// quantisation) stays the floor's error.
+// quantisation, thermal growth since the start) stays the floor's error.
 #pragma once
 
 #include <Eigen/Core>
