@@ -97,28 +97,34 @@ std::string summary_text(const PopulationReport& p) {
          (s.monitored > 0 ? " " + monitor_summary_text(s) : std::string());
 }
 
-// Figure: each robot's positioning RMS and its stated 1-sigma, robots sorted by the RMS.
+// Figure: each robot's positioning RMS, its stated 1-sigma and (where known)
+// the least RMS its readings allow, robots sorted by the RMS.
 std::string positioning_plot(const PopulationReport& p) {
   std::vector<const PopulationRobotRow*> ok;
   for (const PopulationRobotRow& r : p.robots)
     if (!r.failure) ok.push_back(&r);
   std::sort(ok.begin(), ok.end(),
             [](const auto* a, const auto* b) { return a->positioning_rms_um < b->positioning_rms_um; });
-  Series rms, sigma;
+  Series rms, sigma, bound;
   rms.label = "positioning error RMS";
   sigma.label = "its stated 1-sigma (RMS per axis)";
+  bound.label = "the least RMS its readings allow";
   rms.style = Series::Style::kLineMarkers;
-  sigma.style = Series::Style::kMarkers;
+  sigma.style = bound.style = Series::Style::kMarkers;
   sigma.marker = Series::Marker::kTriangle;
+  bound.marker = Series::Marker::kCross;
   for (size_t k = 0; k < ok.size(); ++k) {
     const double f = (k + 0.5) / static_cast<double>(ok.size());
     rms.x.push_back(f), rms.y.push_back(ok[k]->positioning_rms_um);
     sigma.x.push_back(f), sigma.y.push_back(ok[k]->stated_sigma_rms_um);
+    if (std::isfinite(ok[k]->positioning_bound_um)) bound.x.push_back(f), bound.y.push_back(ok[k]->positioning_bound_um);
   }
   PlotOptions po = titled_plot("Positioning error of the calibrated model, over the population",
                                "fraction of robots (sorted by their error)", "µm");
   po.log_y = true;
-  return svg_plot({rms, sigma}, po);
+  std::vector<Series> series{rms, sigma};
+  if (!bound.x.empty()) series.push_back(bound);
+  return svg_plot(series, po);
 }
 
 // Figure: every estimated parameter's |error| / stated 1-sigma, per parameter.
@@ -200,7 +206,9 @@ ReportDocument population_report(const PopulationReport& p) {
       "the readings allow is of the 2-d error, as the positioning RMS is: a robot far above it is held back by its "
       "reading model, one near it by its data (on the fly, in simulation; '-' otherwise).");
   doc.table(population_table_header(p), population_table_rows(p));
-  doc.figure("population_positioning", "Positioning error of the calibrated model per robot, with its stated 1-sigma",
+  doc.figure("population_positioning",
+             "Positioning error of the calibrated model per robot, with its stated 1-sigma and the least its readings "
+             "allow",
              positioning_plot(p));
   doc.figure("population_sigma", "Every estimated parameter's error in units of its stated 1-sigma", sigma_plot(p));
   doc.paragraph(fmt::format("{} robots in {:.0f} s.", p.robots.size(), p.seconds));

@@ -88,5 +88,21 @@ TEST(PopulationReport, TheBoundsMedianInTheSummary) {
   EXPECT_NE(population_markdown(p).find("median 4.50 µm."), std::string::npos);
 }
 
+// The positioning figure marks each robot's bound where the study knows it.
+TEST(PopulationReport, ThePositioningFigureMarksTheBoundsWhereKnown) {
+  const auto positioning_svg = [](const PopulationReport& p) {
+    for (const auto& [name, svg] : population_report(p).figure_files())
+      if (name.find("population_positioning") != std::string::npos) return svg;
+    return std::string();
+  };
+  PopulationReport p = two_robots();
+  p.robots[0].positioning_bound_um = NAN;
+  const std::string without = positioning_svg(p);
+  ASSERT_FALSE(without.empty());
+  EXPECT_EQ(without.find("the least RMS its readings allow"), std::string::npos);
+  p.robots[0].positioning_bound_um = 4.5;
+  EXPECT_NE(positioning_svg(p).find("the least RMS its readings allow"), std::string::npos);
+}
+
 }  // namespace
 }  // namespace gpm::report
