@@ -5,6 +5,7 @@
 
 #include <Eigen/Core>
 
+#include "models/kinematics.hpp"
 #include "models/robot.hpp"
 #include "sim/trajectory.hpp"
 
@@ -21,5 +22,9 @@ struct JointCommand {
 // (eq. 31), reading = theta_a - dth (eq. 35), rate = J v with J the active
 // Jacobian (eq. 11). Throws ReachError if the point is out of reach.
 JointCommand command_for(const Robot& controller, const PathPoint& target);
+
+// The same from the joint angles q that inverse kinematics of controller gave
+// for target (a caller that needs q itself solves it once).
+JointCommand command_at(const Robot& controller, const JointAngles& q, const PathPoint& target);
 
 }  // namespace gpm::sim

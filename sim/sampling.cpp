@@ -32,12 +32,10 @@ Session make_session(const TwinModel& model, TwinState& state, const Robot& cont
 }
 
 TwinSnapshot advance(Session& s, const PathPoint& desired) {
-  JointCommand c = command_for(s.controller, desired);
-  if (s.oracle) {
-    const Geometry& g = s.controller.geometry;
-    const JointAngles q = inverse_kinematics(g, desired.p, s.controller.branch);
-    c.position = oracle_readings(s.model, q.theta_a, Eigen::Vector3d(g.dth_(0), g.dth_(1), g.dth_(2)));
-  }
+  const Geometry& g = s.controller.geometry;
+  const JointAngles q = inverse_kinematics(g, desired.p, s.controller.branch);
+  JointCommand c = command_at(s.controller, q, desired);
+  if (s.oracle) c.position = oracle_readings(s.model, q.theta_a, Eigen::Vector3d(g.dth_(0), g.dth_(1), g.dth_(2)));
   twin_command(s.state, c.position, c.velocity);
   s.desired = desired.p;
   // Align to the drive loop so the first step below is a tick.

@@ -1,5 +1,6 @@
 // Tests of sim/controller.cpp: commands are the controller's IK in the
-// reading frame (eq. 35) and the velocity feed-forward is d theta / dt.
+// reading frame (eq. 35), the same from the solved angles, and the velocity
+// feed-forward is d theta / dt.
 #include "sim/controller.hpp"
 
 #include <numbers>
@@ -35,6 +36,17 @@ TEST(Controller, VelocityFeedForwardIsTheJointRate) {
   const auto qm = inverse_kinematics(ctrl.geometry, p - h * v, ctrl.branch);
   const Eigen::Vector3d fd = (qp.theta_a - qm.theta_a) / (2 * h);
   EXPECT_LT((command_for(ctrl, {p, v}).velocity - fd).norm(), 1e-6);
+}
+
+// From the joint angles inverse kinematics gave, the same commands, bit for bit.
+TEST(Controller, CommandAtTheSolvedAnglesIsCommandFor) {
+  Robot ctrl;
+  ctrl.geometry[kDth2] = 0.3;
+  const PathPoint target{{200.0, 240.0}, {30.0, -40.0}};
+  const JointCommand a = command_for(ctrl, target);
+  const JointCommand b = command_at(ctrl, inverse_kinematics(ctrl.geometry, target.p, ctrl.branch), target);
+  EXPECT_EQ(a.position, b.position);
+  EXPECT_EQ(a.velocity, b.velocity);
 }
 
 TEST(Controller, OutOfReachThrows) {
