@@ -99,11 +99,13 @@ PositioningError positioning_error(const Robot& actual, const Robot& model, cons
     ++out.points;
     sum2 += e.squaredNorm();
     out.max_um = std::max(out.max_um, e.norm() * 1e3);
+    out.map.push_back({p, e, 0.0});
     if (!covariance) continue;
     const auto J = sensitivity(actual, model, p);
     if (!J) continue;
     const Eigen::Matrix2d S = *J * *covariance * J->transpose();
     sigma2 += S.trace() / 2.0;
+    out.map.back().sigma_um = std::sqrt(S.trace() / 2.0) * 1e3;
     maha += e.dot(S.ldlt().solve(e)) / 2.0;
     if (carried) carried2 += (*J * *carried * J->transpose()).trace() / 2.0;
   }

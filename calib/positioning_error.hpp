@@ -12,6 +12,7 @@
 #pragma once
 
 #include <optional>
+#include <vector>
 
 #include <Eigen/Core>
 
@@ -27,7 +28,16 @@ struct WorkspaceDisc {
   double step_mm = 10.0;
 };
 
+// One point of the map: where the model commanded the robot, how far off
+// the actual robot stands, and the stated 1-sigma there.
+struct PositioningPoint {
+  Eigen::Vector2d p = Eigen::Vector2d::Zero();      // commanded position (mm)
+  Eigen::Vector2d error = Eigen::Vector2d::Zero();  // actual - commanded (mm)
+  double sigma_um = 0.0;  // sqrt(trace(J C J') / 2) with a covariance, else 0
+};
+
 struct PositioningError {
+  std::vector<PositioningPoint> map;  // every reachable grid point, row by row
   int points = 0;            // grid points the model reaches
   double rms_um = 0.0;       // RMS of |p_actual - p| over the points
   double max_um = 0.0;

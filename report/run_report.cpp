@@ -397,8 +397,9 @@ void add_verdict(ReportDocument& d, const RunReport& o) {
   }
 }
 
-// The calibrated model's positioning error over the workspace.
-void add_positioning(ReportDocument& d, const std::array<double, 5>& p, const std::optional<double>& bound) {
+// The calibrated model's positioning error over the workspace, and its map when measured.
+void add_positioning(ReportDocument& d, const std::array<double, 5>& p, const std::optional<double>& bound,
+                     const std::vector<RunPositioningPoint>& map) {
   d.heading(2, "Positioning error of the calibrated model");
   d.paragraph(fmt::format(
       "Over a disc of 80 mm round home (points 10 mm apart), the readings the calibrated model commands and where "
@@ -414,6 +415,11 @@ void add_positioning(ReportDocument& d, const std::array<double, 5>& p, const st
                            "the calibration's reading model with that carried error estimated under its prior.",
                            distance(*bound))
              : std::string()));
+  if (!map.empty())
+    d.figure("positioning",
+             "Where the actual robot stands, noise-free, when the calibrated model commands each point of the disc: "
+             "points coloured by the size of the error, the error drawn as an arrow",
+             positioning_map_svg(map));
 }
 
 // The accuracy table of the nominal, calibrated and actual controller models and their ratios.
@@ -552,7 +558,7 @@ void add_figures(ReportDocument& d, const RunReport& o) {
 ReportDocument build_run_report(const RunReport& o) {
   ReportDocument d;
   add_verdict(d, o);
-  if (o.positioning_um) add_positioning(d, *o.positioning_um, o.positioning_bound_um);
+  if (o.positioning_um) add_positioning(d, *o.positioning_um, o.positioning_bound_um, o.positioning_map);
   if (o.before) add_accuracy(d, o);
   add_calibration(d, o);
   if (!o.checks.empty()) add_expectations(d, o.checks);

@@ -14,6 +14,7 @@
 
 #include "models/parameters.hpp"
 #include "models/robot.hpp"
+#include "report/positioning_map_svg.hpp"
 #include "report/report_document.hpp"
 
 namespace gpm::report {
@@ -92,6 +93,7 @@ struct RunReport {
   // the share of the 1-sigma an error carried unestimated adds (0: none).
   std::optional<std::array<double, 5>> positioning_um;
   std::optional<double> positioning_bound_um;  // the least RMS the readings allow (none: not known)
+  std::vector<RunPositioningPoint> positioning_map;  // the error at each point of the disc (empty: not measured)
   double robot_time_s = 0.0;                // robot time of the sampling
   bool on_the_fly = false;                  // the samples taken while moving (else at rest at each pose)
   std::vector<RunCheck> checks;

@@ -274,14 +274,20 @@ std::string point_svg(const Frame& f, const Series& s, size_t i, const std::stri
 // One series: its bands, or its error bars, markers and labels and then its line.
 std::string series_svg(const Frame& f, const Series& s, const std::string& color) {
   std::string svg, path;
+  bool pen_up = true;  // the next point starts a new piece of the line
   for (size_t i = 0; i < s.x.size() && i < s.y.size(); ++i) {
-    if (!drawn(s, i, f.log_y)) continue;
+    if (!drawn(s, i, f.log_y)) {
+      if (!std::isfinite(s.x[i]) || !std::isfinite(s.y[i])) pen_up = true;
+      continue;
+    }
     if (s.style == Series::Style::kBand) {
       svg += band_svg(f, s, i, color);
       continue;
     }
     if (s.style != Series::Style::kMarkers)
-      path += fmt::format("{}{:.2f},{:.2f}", path.empty() ? "M" : " L", f.px(s.x[i]), f.py(f.ty(s.y[i])));
+      path += fmt::format("{}{:.2f},{:.2f}", pen_up ? (path.empty() ? "M" : " M") : " L", f.px(s.x[i]),
+                          f.py(f.ty(s.y[i])));
+    pen_up = false;
     svg += point_svg(f, s, i, color);
   }
   if (!path.empty()) svg += fmt::format("<path d=\"{}\" fill=\"none\" stroke=\"{}\" stroke-width=\"1.5\"/>\n", path, color);

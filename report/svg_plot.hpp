@@ -18,6 +18,8 @@ struct Series {
   };
   enum class Marker { kCircle, kTriangle, kCross };
   std::string label;
+  // A line breaks at a point whose x or y is not finite (NaN): one series
+  // draws many separate pieces, e.g. arrows.
   std::vector<double> x;
   std::vector<double> y;
   std::vector<double> y_err;  // optional symmetric error bars (same size as y); kBand: the half-height

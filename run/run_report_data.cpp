@@ -76,6 +76,8 @@ report::RunReport run_report_data(const RunOutcome& o) {
     r.positioning_um = std::array<double, 5>{o.positioning->rms_um, o.positioning->max_um,
                                              o.positioning->stated_sigma_rms_um, o.positioning->normalised_rms,
                                              o.positioning->carried_sigma_rms_um};
+  if (o.positioning)
+    for (const calib::PositioningPoint& m : o.positioning->map) r.positioning_map.push_back({m.p, m.error * 1e3});
   r.positioning_bound_um = o.positioning_bound_um;
   for (const Check& c : o.checks) r.checks.push_back({c.name, c.detail, c.passed});
   return r;

@@ -1,8 +1,9 @@
 // Tests of calib/positioning_error.cpp: the model that is the robot positions
 // without error; a model whose base is shifted by d positions every point off
-// by exactly |d| (the mechanism is translation invariant); and parameter
-// errors drawn from a covariance give a normalised error of 1 on average
-// (the squared Mahalanobis distance of a 2-d Gaussian has mean 2).
+// by exactly |d| (the mechanism is translation invariant), its map -d at
+// every point; and parameter errors drawn from a covariance give a
+// normalised error of 1 on average (the squared Mahalanobis distance of a
+// 2-d Gaussian has mean 2), the map's points giving the RMS figures.
 #include "calib/positioning_error.hpp"
 
 #include <cmath>
@@ -29,6 +30,9 @@ TEST(PositioningError, AShiftedBaseMissesEveryPointByTheShift) {
   const PositioningError e = positioning_error(actual, model, WorkspaceDisc{});
   EXPECT_NEAR(e.rms_um, 5.0, 1e-6);
   EXPECT_NEAR(e.max_um, 5.0, 1e-6);
+  // The map: every point, each off by -d (the model's bases stand d from the actual ones).
+  ASSERT_EQ(static_cast<int>(e.map.size()), e.points);
+  for (const PositioningPoint& m : e.map) EXPECT_LT((m.error + d).norm(), 1e-9) << m.p.transpose();
 }
 
 TEST(PositioningError, ErrorsDrawnFromTheCovarianceAreCoveredByIt) {
@@ -45,6 +49,10 @@ TEST(PositioningError, ErrorsDrawnFromTheCovarianceAreCoveredByIt) {
     const PositioningError e = positioning_error(actual, model, coarse, C);
     mean_sq += e.normalised_rms * e.normalised_rms / draws;
     sigma = e.stated_sigma_rms_um;
+    double map_sigma2 = 0.0, map_error2 = 0.0;  // the map's points give the RMS figures
+    for (const PositioningPoint& m : e.map) map_sigma2 += m.sigma_um * m.sigma_um, map_error2 += m.error.squaredNorm();
+    EXPECT_NEAR(std::sqrt(map_sigma2 / e.points), e.stated_sigma_rms_um, 1e-9);
+    EXPECT_NEAR(std::sqrt(map_error2 / e.points) * 1e3, e.rms_um, 1e-9);
   }
   EXPECT_NEAR(mean_sq, 1.0, 0.15);
   EXPECT_GT(sigma, 0.5);  // per-axis 1-sigma of a few um from 1 um / 10 urad parameters

@@ -250,6 +250,24 @@ TEST(RunReport, TheFloorsParagraphGivesTheRatiosInterval) {
       << md;
 }
 
+// The positioning section shows the error map when the run measured it, right after its paragraph.
+TEST(RunReport, PositioningShowsTheErrorMapWhenMeasured) {
+  RunReport o = testing::run_report_example();
+  o.positioning_um = std::array<double, 5>{9.3, 20.1, 10.1, 0.92, 0.0};
+  EXPECT_EQ(build_run_report(o).markdown().find("positioning.svg"), std::string::npos);
+  for (int i = 0; i < 5; ++i)
+    o.positioning_map.push_back({o.nominal.home + Eigen::Vector2d(10.0 * i, 0.0), Eigen::Vector2d(4.0 * i, 0.0)});
+  const ReportDocument d = build_run_report(o);
+  const std::string md = d.markdown();
+  const size_t figure = md.find("positioning.svg"), next = md.find("\n## ", md.find("## Positioning error"));
+  ASSERT_NE(figure, std::string::npos) << md;
+  EXPECT_LT(figure, next);
+  const auto files = d.figure_files();
+  EXPECT_TRUE(std::any_of(files.begin(), files.end(), [](const auto& f) {
+    return f.first == "positioning.svg" && f.second.find("15–20 µm") != std::string::npos;
+  }));
+}
+
 // The least RMS the readings allow, when the run knows it (the twin's truth), and nothing of it otherwise.
 TEST(RunReport, PositioningSaysTheBoundWhenKnown) {
   RunReport o = testing::run_report_example();

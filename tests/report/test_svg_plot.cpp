@@ -1,7 +1,10 @@
 // Tests of report/svg_plot.cpp: ticks, escaping, that points and bands land
-// where the axis mapping says, legends inside the figure, stacked panels.
+// where the axis mapping says, lines break at NaN, legends inside the
+// figure, stacked panels.
 #include "report/svg_plot.hpp"
 
+#include <algorithm>
+#include <cmath>
 #include <regex>
 
 #include <gtest/gtest.h>
@@ -43,6 +46,28 @@ TEST(SvgPlot, MarkersAreMonotoneInData) {
   EXPECT_GT(pts[0].second, pts[1].second);
   EXPECT_NEAR(pts[1].first - pts[0].first, pts[2].first - pts[1].first, 0.02);
   EXPECT_NEAR(pts[0].second - pts[1].second, pts[1].second - pts[2].second, 0.02);
+}
+
+// The d attribute of the first line in svg ("" when none).
+std::string line_path(const std::string& svg) {
+  std::smatch m;
+  return std::regex_search(svg, m, std::regex("<path d=\"(M[^\"]*)\" fill=\"none\"")) ? m[1].str() : "";
+}
+
+// A line lifts its pen at a NaN point: two pieces, each starting with M,
+// and the NaN point not drawn; with it finite, one piece through all five.
+TEST(SvgPlot, ALineBreaksAtANaNPoint) {
+  Series s;
+  s.x = {0, 1, std::nan(""), 2, 3};
+  s.y = {0, 1, 5, 0, 1};
+  s.style = Series::Style::kLine;
+  const std::string two = line_path(svg_plot({s}, PlotOptions()));
+  EXPECT_EQ(std::count(two.begin(), two.end(), 'M'), 2) << two;
+  EXPECT_EQ(std::count(two.begin(), two.end(), 'L'), 2) << two;
+  s.x[2] = 1.5;
+  const std::string one = line_path(svg_plot({s}, PlotOptions()));
+  EXPECT_EQ(std::count(one.begin(), one.end(), 'M'), 1) << one;
+  EXPECT_EQ(std::count(one.begin(), one.end(), 'L'), 4) << one;
 }
 
 TEST(SvgPlot, LogAxisSkipsNonPositiveAndSpacesDecadesEqually) {
