@@ -121,4 +121,13 @@ PositioningError positioning_error(const Robot& actual, const Robot& model, cons
   return out;
 }
 
+std::string positioning_csv(const PositioningError& e) {
+  std::string out = "x_mm,y_mm,error_x_um,error_y_um,error_um,sigma_um\n";
+  for (const PositioningPoint& m : e.map) {
+    const Eigen::Vector2d um = m.error * 1e3;
+    out += fmt::format("{},{},{},{},{},{}\n", m.p.x(), m.p.y(), um.x(), um.y(), um.norm(), m.sigma_um);
+  }
+  return out;
+}
+
 }  // namespace gpm::calib

@@ -12,6 +12,7 @@
 #pragma once
 
 #include <optional>
+#include <string>
 #include <vector>
 
 #include <Eigen/Core>
@@ -61,5 +62,10 @@ struct PositioningError {
 PositioningError positioning_error(const Robot& actual, const Robot& model, const WorkspaceDisc& disc,
                                    const std::optional<Eigen::Matrix<double, kNumParams, kNumParams>>& covariance = {},
                                    const std::optional<Eigen::Matrix<double, kNumParams, kNumParams>>& carried = {});
+
+// The map as CSV text: a header `x_mm,y_mm,error_x_um,error_y_um,error_um,sigma_um`
+// and a row per point (sigma_um 0 without a covariance), numbers in their
+// shortest exact form.
+std::string positioning_csv(const PositioningError& e);
 
 }  // namespace gpm::calib

@@ -753,6 +753,7 @@ void write_run(const RunOutcome& o, const std::string& dir, const MeasuredFolder
     out.add("calibration.yaml", calib::result_to_yaml(*o.calibration, o.nominal.name) +
                                     monitor_reading_model_yaml(reading_model_after_calibration(o)));
   out.add("summary.json", summary_json(o));
+  if (o.positioning) out.add("positioning.csv", calib::positioning_csv(*o.positioning));
   if (o.monitor) {
     out.add("alarms.csv", monitor_alarms_csv(*o.monitor));
     out.add("estimates.csv", monitor_estimates_csv(*o.monitor));

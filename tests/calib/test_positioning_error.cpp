@@ -3,10 +3,14 @@
 // by exactly |d| (the mechanism is translation invariant), its map -d at
 // every point; and parameter errors drawn from a covariance give a
 // normalised error of 1 on average (the squared Mahalanobis distance of a
-// 2-d Gaussian has mean 2), the map's points giving the RMS figures.
+// 2-d Gaussian has mean 2), the map's points giving the RMS figures; the
+// map's CSV reads back to it.
 #include "calib/positioning_error.hpp"
 
+#include <array>
 #include <cmath>
+#include <sstream>
+#include <string>
 
 #include <gtest/gtest.h>
 
@@ -33,6 +37,41 @@ TEST(PositioningError, AShiftedBaseMissesEveryPointByTheShift) {
   // The map: every point, each off by -d (the model's bases stand d from the actual ones).
   ASSERT_EQ(static_cast<int>(e.map.size()), e.points);
   for (const PositioningPoint& m : e.map) EXPECT_LT((m.error + d).norm(), 1e-9) << m.p.transpose();
+}
+
+// The CSV holds the map row by row and reads back to the same numbers, bit for bit.
+TEST(PositioningError, TheCsvReadsBackToTheMap) {
+  const Robot actual;
+  Robot model = actual;
+  model.geometry[kLa3] += 0.004, model.geometry[kDth2] -= 3e-5;
+  Eigen::Matrix<double, kNumParams, kNumParams> C = Eigen::Matrix<double, kNumParams, kNumParams>::Zero();
+  for (int k = 4; k < kNumParams; ++k) C(k, k) = is_offset(k) ? 1e-10 : 1e-6;
+  const PositioningError e = positioning_error(actual, model, WorkspaceDisc{actual.home, 80.0, 40.0}, C);
+  std::istringstream in(positioning_csv(e));
+  std::string line;
+  std::getline(in, line);
+  EXPECT_EQ(line, "x_mm,y_mm,error_x_um,error_y_um,error_um,sigma_um");
+  size_t row = 0;
+  while (std::getline(in, line)) {
+    ASSERT_LT(row, e.map.size());
+    std::array<double, 6> v{};
+    std::istringstream fields(line);
+    for (double& x : v) {
+      std::string f;
+      std::getline(fields, f, ',');
+      x = std::stod(f);
+    }
+    const PositioningPoint& m = e.map[row++];
+    EXPECT_EQ(v[0], m.p.x());
+    EXPECT_EQ(v[1], m.p.y());
+    EXPECT_EQ(v[2], m.error.x() * 1e3);
+    EXPECT_EQ(v[3], m.error.y() * 1e3);
+    EXPECT_EQ(v[4], (m.error * 1e3).norm());
+    EXPECT_EQ(v[5], m.sigma_um);
+    EXPECT_GT(v[5], 0.0);
+  }
+  EXPECT_EQ(row, e.map.size());
+  EXPECT_EQ(static_cast<int>(row), e.points);
 }
 
 TEST(PositioningError, ErrorsDrawnFromTheCovarianceAreCoveredByIt) {

@@ -57,7 +57,8 @@ TEST(Runner, CalibratesCompensatesAndPasses) {
   fs::remove_all(dir);
   write_run(o, dir.string());
   for (const char* f : {"samples.csv", "trajectory.csv", "actual.yaml", "model.xml", "calibration.yaml",
-                        "report.md", "report.html", "layout.svg", "errors_mm.svg", "tracking.svg"}) {
+                        "report.md", "report.html", "layout.svg", "errors_mm.svg", "tracking.svg",
+                        "positioning.svg", "positioning.csv"}) {
     EXPECT_TRUE(fs::exists(dir / f)) << f;
   }
   size_t entries = 0;
