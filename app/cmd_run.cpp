@@ -109,6 +109,10 @@ void print_summary(const scenario::RunOutcome& o, const std::string& dir) {
                    : std::string(),
                fmt::arg("u", um()));
   }
+  if (o.stated_positioning)
+    fmt::print("position   calibrated model over the 80 mm disc: stated 1-sigma {:.2f} {} per axis{} (its error "
+               "needs the truth: known in simulation only)\n",
+               o.stated_positioning->stated_sigma_rms_um, um(), carried_share(o.stated_positioning->carried_sigma_rms_um));
   print_accuracy(o);
   if (o.hardware_description.empty())
     fmt::print("robot time {:.2f} s of sampling {} (the time the robot is kept from its work)\n", o.sim.sampling_s,

@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <utility>
 
 #include <Eigen/Geometry>
 #include <fmt/format.h>
@@ -26,18 +27,38 @@ double band_step(double max_um) {
   return step > 0.0 ? step : 1.0;
 }
 
-// The points whose |error| falls in band k, as one labelled series.
-Series band_series(const std::vector<RunPositioningPoint>& map, double step, int k, bool last) {
+// What a map colours a point by (um).
+using PointValue = double (*)(const RunPositioningPoint&);
+double error_size(const RunPositioningPoint& m) { return m.error_um.norm(); }
+double stated_sigma(const RunPositioningPoint& m) { return m.sigma_um; }
+
+// The points whose value falls in band k, as one labelled series.
+Series band_series(const std::vector<RunPositioningPoint>& map, PointValue value, double step, int k, bool last) {
   Series s;
   s.style = Series::Style::kMarkers;
   s.color = kBandColors[k];
   s.marker_size = 4.0;
   s.label = fmt::format("{:g}–{:g} µm", k * step, (k + 1) * step);
   for (const RunPositioningPoint& m : map) {
-    const int band = std::min(static_cast<int>(m.error_um.norm() / step), kBands - 1);
+    const int band = std::min(static_cast<int>(value(m) / step), kBands - 1);
     if (band == k || (last && band > k)) s.x.push_back(m.p.x()), s.y.push_back(m.p.y());
   }
   return s;
+}
+
+// The bands of value over the map that hold a point, smallest first (the
+// largest value sets their step).
+std::vector<Series> band_series(const std::vector<RunPositioningPoint>& map, PointValue value, double& max_um) {
+  max_um = 0.0;
+  for (const RunPositioningPoint& m : map) max_um = std::max(max_um, value(m));
+  const double step = band_step(max_um);
+  const int bands = std::clamp(static_cast<int>(std::ceil(max_um / step - 1e-9)), 1, kBands);
+  std::vector<Series> all;
+  for (int k = 0; k < bands; ++k) {
+    Series s = band_series(map, value, step, k, k == bands - 1);
+    if (!s.x.empty()) all.push_back(std::move(s));  // an empty band is left out of the legend too
+  }
+  return all;
 }
 
 // Appends segment a-b to a line series that NaN separates into pieces.
@@ -78,15 +99,18 @@ double arrow_scale(double max_um, double length_mm) {
 
 std::string positioning_map_svg(const std::vector<RunPositioningPoint>& map) {
   double max_um = 0.0;
-  for (const RunPositioningPoint& m : map) max_um = std::max(max_um, m.error_um.norm());
-  const double step = band_step(max_um);
-  const int bands = std::clamp(static_cast<int>(std::ceil(max_um / step - 1e-9)), 1, kBands);
-  std::vector<Series> all;
-  for (int k = 0; k < bands; ++k) all.push_back(band_series(map, step, k, k == bands - 1));
+  std::vector<Series> all = band_series(map, error_size, max_um);
   all.push_back(arrow_series(map, arrow_scale(max_um, kArrowMm)));
   PlotOptions po = workspace_plot("Positioning error of the calibrated model (noise-free)");
   po.height = 440;
   return svg_plot(all, po);
+}
+
+std::string stated_sigma_map_svg(const std::vector<RunPositioningPoint>& map) {
+  double max_um = 0.0;
+  PlotOptions po = workspace_plot("Positioning 1-sigma the calibration states, per axis");
+  po.height = 440;
+  return svg_plot(band_series(map, stated_sigma, max_um), po);
 }
 
 }  // namespace gpm::report

@@ -15,6 +15,7 @@ namespace gpm::report {
 struct RunPositioningPoint {
   Eigen::Vector2d p = Eigen::Vector2d::Zero();         // commanded position (mm)
   Eigen::Vector2d error_um = Eigen::Vector2d::Zero();  // where the robot stands - p (um)
+  double sigma_um = 0.0;                               // the stated 1-sigma per axis there (um)
 };
 
 // The factor the arrows are drawn at: the largest of 1, 2 or 5 times a power
@@ -23,8 +24,12 @@ struct RunPositioningPoint {
 double arrow_scale(double max_um, double length_mm);
 
 // SVG text of the map: points in colour bands of |error| (round steps, from
-// light to dark), arrows error_um x arrow_scale(max, 8 mm), the disc at one
+// light to dark; a band without a point is not drawn), arrows error_um x arrow_scale(max, 8 mm), the disc at one
 // scale on x and y. An empty map gives an empty chart.
 std::string positioning_map_svg(const std::vector<RunPositioningPoint>& map);
+
+// SVG text of the map of the stated 1-sigma: points in colour bands of
+// sigma_um as positioning_map_svg's, no arrows (no error known).
+std::string stated_sigma_map_svg(const std::vector<RunPositioningPoint>& map);
 
 }  // namespace gpm::report

@@ -93,6 +93,9 @@ struct RunReport {
   // the share of the 1-sigma an error carried unestimated adds (0: none).
   std::optional<std::array<double, 5>> positioning_um;
   std::optional<double> positioning_bound_um;  // the least RMS the readings allow (none: not known)
+  // Through hardware (no truth): the stated 1-sigma per axis and its carried
+  // share (um; RMS over the disc), positioning_map then holding each point's 1-sigma.
+  std::optional<std::array<double, 2>> stated_positioning_um;
   std::vector<RunPositioningPoint> positioning_map;  // the error at each point of the disc (empty: not measured)
   double robot_time_s = 0.0;                // robot time of the sampling
   bool on_the_fly = false;                  // the samples taken while moving (else at rest at each pose)

@@ -77,7 +77,14 @@ report::RunReport run_report_data(const RunOutcome& o) {
                                              o.positioning->stated_sigma_rms_um, o.positioning->normalised_rms,
                                              o.positioning->carried_sigma_rms_um};
   if (o.positioning)
-    for (const calib::PositioningPoint& m : o.positioning->map) r.positioning_map.push_back({m.p, m.error * 1e3});
+    for (const calib::PositioningPoint& m : o.positioning->map)
+      r.positioning_map.push_back({m.p, m.error * 1e3, m.sigma_um});
+  if (o.stated_positioning) {
+    r.stated_positioning_um = std::array<double, 2>{o.stated_positioning->stated_sigma_rms_um,
+                                                    o.stated_positioning->carried_sigma_rms_um};
+    for (const calib::PositioningPoint& m : o.stated_positioning->map)
+      r.positioning_map.push_back({m.p, Eigen::Vector2d::Zero(), m.sigma_um});
+  }
   r.positioning_bound_um = o.positioning_bound_um;
   for (const Check& c : o.checks) r.checks.push_back({c.name, c.detail, c.passed});
   return r;

@@ -69,6 +69,10 @@ struct RunOutcome {
   // over an 80 mm disc round home, with the 1-sigma its covariance states
   // (calib/positioning_error.hpp; simulation only: the truth is known).
   std::optional<calib::PositioningError> positioning;
+  // Through hardware (no truth): the 1-sigma the calibration states over the
+  // same disc, by the calibrated model's own sensitivities (its error and
+  // normalised_rms 0: not known).
+  std::optional<calib::PositioningError> stated_positioning;
   // The least positioning error the readings allow (um, RMS over the same
   // disc of sqrt(trace(J C J')), C the Cramer-Rao covariance at the truth of
   // the calibration's reading model with its carried error estimated under

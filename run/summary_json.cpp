@@ -34,6 +34,14 @@ std::string summary_json(const RunOutcome& o) {
                            {"carried_sigma_rms", number(o.positioning->carried_sigma_rms_um)},
                            {"bound_rms", o.positioning_bound_um ? number(*o.positioning_bound_um) : nullptr},
                            {"points", o.positioning->points}};
+  else if (o.stated_positioning)  // through hardware: the 1-sigma stated, the error not known
+    j["positioning_um"] = {{"rms", nullptr},
+                           {"max", nullptr},
+                           {"stated_sigma_rms", number(o.stated_positioning->stated_sigma_rms_um)},
+                           {"normalised_rms", nullptr},
+                           {"carried_sigma_rms", number(o.stated_positioning->carried_sigma_rms_um)},
+                           {"bound_rms", nullptr},
+                           {"points", o.stated_positioning->points}};
   else
     j["positioning_um"] = nullptr;
   j["accuracy"] = {{"nominal", accuracy(o.before)}, {"calibrated", accuracy(o.after)}, {"actual", accuracy(o.floor)}};

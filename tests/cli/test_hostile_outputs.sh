@@ -61,6 +61,14 @@ op "$SRC/models/gpm2002.yaml" 100 >"$tmp/opfar.yaml"
 D="$tmp/D"
 check "hardware run" 0 "$GPM" run "$tmp/hwrun.yaml" -o "$D" --hardware "$tmp/twin.yaml" --quiet
 holds "the marker is written" test -f "$D/.gpm-measured"
+# No truth through hardware: the position line and summary.json state the
+# 1-sigma the calibration gives over the disc, and no error.
+expect_out "hardware position line" "^position   calibrated model over the 80 mm disc: stated 1-sigma [0-9.]+ um per axis.*known in simulation only"
+holds "hardware summary: stated 1-sigma, no error" python3 -c "
+import json, sys
+p = json.load(open(sys.argv[1]))['positioning_um']
+sys.exit(0 if p['rms'] is None and p['bound_rms'] is None and p['stated_sigma_rms'] > 0 and p['points'] > 150 else 1)" "$D/summary.json"
+holds "no positioning.csv without the truth" test ! -e "$D/positioning.csv"
 holds "20 measured samples" test "$(tail -n +2 "$D/samples.csv" | wc -l)" -eq 20
 cp "$D/samples.csv" "$tmp/measured.csv"
 # E: a samples.csv no hardware session recorded there. D2: measured, one id twice.

@@ -1,7 +1,7 @@
 // Tests of report/positioning_map_svg.cpp: the arrows' factor against
 // hand-worked cases, every point in the band of its error's size, one arrow
-// (shaft and two head strokes) per point that has an error, and no arrow
-// for the robot that positions without error.
+// (shaft and two head strokes) per point that has an error, no arrow for
+// the robot that positions without error; the stated 1-sigma's map.
 #include "report/positioning_map_svg.hpp"
 
 #include <algorithm>
@@ -65,6 +65,25 @@ TEST(PositioningMapSvg, NoErrorDrawsNoArrow) {
   const std::string svg = positioning_map_svg(map);
   EXPECT_EQ(markers_of(svg, "#fee8a0"), 2);
   EXPECT_EQ(arrow_pieces(svg), 0);
+}
+
+// The stated 1-sigma's map: bands of sigma_um (1.5, 3.5 and 5.5 um: 0-2, 2-4 and
+// 4-6 um), whatever the errors, and no arrow.
+TEST(PositioningMapSvg, TheStatedSigmaMapBandsTheSigmaWithoutArrows) {
+  std::vector<RunPositioningPoint> map;
+  const double sigma[] = {1.5, 3.5, 5.5};
+  for (int i = 0; i < 3; ++i)
+    map.push_back({Eigen::Vector2d(200.0 + 10 * i, 250.0), Eigen::Vector2d(0.0, 100.0), sigma[i]});
+  const std::string svg = stated_sigma_map_svg(map);
+  EXPECT_NE(svg.find("4–6 µm"), std::string::npos) << svg;
+  EXPECT_EQ(svg.find("6–8 µm"), std::string::npos);
+  map.erase(map.begin());  // no point in 0-2 um: the band is left out of the legend
+  EXPECT_EQ(stated_sigma_map_svg(map).find("0–2 µm"), std::string::npos);
+  EXPECT_EQ(markers_of(svg, "#fee8a0"), 1);
+  EXPECT_EQ(markers_of(svg, "#fdb863"), 1);
+  EXPECT_EQ(markers_of(svg, "#f4743b"), 1);
+  EXPECT_EQ(arrow_pieces(svg), 0);
+  EXPECT_EQ(svg.find("(arrow)"), std::string::npos);
 }
 
 }  // namespace

@@ -268,6 +268,25 @@ TEST(RunReport, PositioningShowsTheErrorMapWhenMeasured) {
   }));
 }
 
+// Through hardware (no truth): the section states the 1-sigma and its carried
+// share, says the error needs the truth, and maps the 1-sigma.
+TEST(RunReport, WithoutTheTruthThePositioningSectionStatesTheOneSigma) {
+  RunReport o = testing::run_report_example();
+  o.stated_positioning_um = std::array<double, 2>{5.46, 3.56};
+  for (int i = 0; i < 5; ++i)
+    o.positioning_map.push_back({o.nominal.home + Eigen::Vector2d(10.0 * i, 0.0), Eigen::Vector2d::Zero(), 5.0 + i});
+  const ReportDocument d = build_run_report(o);
+  const std::string md = spaced(d.markdown());
+  EXPECT_NE(md.find("## Positioning 1σ of the calibrated model"), std::string::npos) << md;
+  EXPECT_NE(md.find("states a positioning 1σ of 5.46 µm per axis"), std::string::npos) << md;
+  EXPECT_NE(md.find("Of that 1σ, 3.56 µm (in quadrature)"), std::string::npos) << md;
+  EXPECT_NE(md.find("known in simulation only"), std::string::npos);
+  EXPECT_NE(md.find("positioning.svg"), std::string::npos);
+  // With the truth the error's section comes instead.
+  o.positioning_um = std::array<double, 5>{9.3, 20.1, 10.1, 0.92, 0.0};
+  EXPECT_EQ(spaced(build_run_report(o).markdown()).find("## Positioning 1σ"), std::string::npos);
+}
+
 // The least RMS the readings allow, when the run knows it (the twin's truth), and nothing of it otherwise.
 TEST(RunReport, PositioningSaysTheBoundWhenKnown) {
   RunReport o = testing::run_report_example();

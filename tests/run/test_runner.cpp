@@ -277,6 +277,17 @@ TEST(Runner, InProcessIsTheTwinBackendThroughTheHardwareInterfaceBitForBit) {
   // carries that error whole.
   ASSERT_TRUE(twin.positioning_bound_um.has_value());
   EXPECT_FALSE(hw.positioning_bound_um.has_value());
+  // Through hardware no error (no truth), but the 1-sigma stated over the
+  // same disc by the calibrated model's own sensitivities: within 2 % of the
+  // one the actual robot's give (the same covariance; models 10 um apart).
+  EXPECT_FALSE(hw.positioning.has_value());
+  EXPECT_FALSE(twin.stated_positioning.has_value());
+  ASSERT_TRUE(hw.stated_positioning.has_value());
+  EXPECT_NEAR(hw.stated_positioning->stated_sigma_rms_um, in_process.stated_sigma_rms_um,
+              0.02 * in_process.stated_sigma_rms_um);
+  EXPECT_NEAR(hw.stated_positioning->carried_sigma_rms_um, in_process.carried_sigma_rms_um,
+              0.02 * in_process.carried_sigma_rms_um);
+  EXPECT_EQ(hw.stated_positioning->points, in_process.points);
   EXPECT_GT(*twin.positioning_bound_um, 0.0);
   EXPECT_LT(*twin.positioning_bound_um, std::sqrt(2.0) * in_process.stated_sigma_rms_um);
 #ifdef GPM_MOTION_CARD_PLUGIN
