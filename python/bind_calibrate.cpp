@@ -13,6 +13,7 @@
 
 #include "calib/lm.hpp"
 #include "calib/parameterization.hpp"
+#include "calib/positioning_error.hpp"
 #include "calib/residuals.hpp"
 #include "calib/result_yaml.hpp"
 #include "calib/sample_check.hpp"
@@ -225,10 +226,32 @@ py::dict sigma_dict(const CalibrationResult& c) {
   return d;
 }
 
-// CalibrationResult.diagnostics: the solver's diagnostics and the model test.
+// The positioning 1-sigma the result states over the 80 mm disc round the
+// robot's home, by the calibrated model's own sensitivities, as `gpm
+// calibrate` prints it (none without a covariance or out of reach).
+py::object stated_positioning_dict(const CalibrationResult& c) {
+  if (!c.result.covariance) return py::none();
+  Robot calibrated = c.base;
+  calibrated.geometry = c.result.geometry;
+  try {
+    const calib::PositioningError p = calib::positioning_error(
+        calibrated, calibrated, calib::WorkspaceDisc{c.base.home}, c.result.covariance, c.result.carried_covariance);
+    py::dict d;
+    d["stated_sigma_rms"] = p.stated_sigma_rms_um;
+    d["carried_sigma_rms"] = p.carried_sigma_rms_um;
+    d["points"] = p.points;
+    return d;
+  } catch (const InputError&) {
+    return py::none();
+  }
+}
+
+// CalibrationResult.diagnostics: the solver's diagnostics, the model test and the stated positioning 1-sigma.
 py::dict diagnostics_dict(const CalibrationResult& c) {
   py::dict d = diagnostics(c.result);
   if (c.model_test) d["model_test"] = model_test_dict(*c.model_test);
+  const py::object positioning = stated_positioning_dict(c);
+  if (!positioning.is_none()) d["positioning_um"] = positioning;
   return d;
 }
 
@@ -275,7 +298,10 @@ result file by `gpm calibrate` (docs/FORMATS.md file contracts).
           &diagnostics_dict,
           "Dict: method, cost_function, cost (final J), iterations, evaluations, rank, free_parameters, "
           "condition_number, kmrmse_mm (when true_xy was given), seconds, converged, rank_deficient, notes, and "
-          "model_test (chi2, dof, chi2_per_dof, p_value, sigma_rad, passed, diagnosis when failed; when made).")
+          "model_test (chi2, dof, chi2_per_dof, p_value, sigma_rad, passed, diagnosis when failed; when made), and "
+          "positioning_um (with a covariance: stated_sigma_rms, the positioning 1-sigma per axis over the 80 mm "
+          "disc round home, carried_sigma_rms, its share of the error once per joint revolution carried, and "
+          "points; um, as `gpm calibrate` prints them).")
       .def_property_readonly(
           "start", [](const CalibrationResult& c) { return geometry_dict(c.base.geometry); },
           "Dict of the 15 parameters the calibration started from (the robot given to gpm.calibrate; the "

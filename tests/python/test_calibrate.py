@@ -146,8 +146,8 @@ def samples_columns(path):
 def test_on_the_fly_samples_get_the_runs_procedure(on_the_fly_run, scratch):
     # Times and torques given: gpm run's motion model, as gpm calibrate runs it on the file, to the last bit.
     path = on_the_fly_run / "samples.csv"
-    code, _, err = run_gpm("calibrate", "--data", path, "--model", ROOT / "models" / "gpm2002.yaml",
-                           "-o", scratch / "cli.yaml")
+    code, out, err = run_gpm("calibrate", "--data", path, "--model", ROOT / "models" / "gpm2002.yaml",
+                             "-o", scratch / "cli.yaml")
     assert code == 0, err
     cli = gpm.load_result(scratch / "cli.yaml")
     c = samples_columns(path)
@@ -163,6 +163,14 @@ def test_on_the_fly_samples_get_the_runs_procedure(on_the_fly_run, scratch):
     test = r.diagnostics["model_test"]
     assert (test["chi2"], test["dof"], test["passed"]) == (summary["chi2"], summary["dof"], summary["passed"])
     assert "model_test_chi2" in r.to_yaml()
+    # The positioning 1-sigma it states: what gpm calibrate printed, and
+    # within 2 % of gpm run's (taken at the actual robot's sensitivities).
+    p = r.diagnostics["positioning_um"]
+    line = next(l for l in out.splitlines() if l.startswith("positioning over the 80 mm disc"))
+    assert f"stated 1-sigma {p['stated_sigma_rms']:.2f} um per axis" in line, line
+    run = json.loads((on_the_fly_run / "summary.json").read_text())["positioning_um"]
+    assert abs(p["stated_sigma_rms"] - run["stated_sigma_rms"]) <= 0.02 * run["stated_sigma_rms"]
+    assert p["points"] == run["points"]
     # Readings alone: the static fit, whose model test says the readings disagree with it.
     assert static.geometry != r.geometry
     assert not static.diagnostics["model_test"]["passed"]
