@@ -397,47 +397,56 @@ void add_verdict(ReportDocument& d, const RunReport& o) {
   }
 }
 
+// The carried share of the stated 1-sigma in a sentence ending in `ending`
+// and a full stop (empty when nothing is carried).
+std::string carried_sentence(double carried_um, const std::string& ending) {
+  if (!(carried_um > 0.0)) return {};
+  return fmt::format(" Of that 1σ, {} (in quadrature) is the error once per joint revolution carried at the data "
+                     "sheet's amplitude, which the readings cannot tell from the geometry{}.",
+                     distance(carried_um), ending);
+}
+
+// A positioning section: heading, paragraph, and the map when there is one (svg not empty).
+void positioning_section(ReportDocument& d, const std::string& heading, const std::string& text,
+                         const std::string& caption, const std::string& svg) {
+  d.heading(2, heading);
+  d.paragraph(text);
+  if (!svg.empty()) d.figure("positioning", caption, svg);
+}
+
 // The calibrated model's positioning error over the workspace, and its map when measured.
 void add_positioning(ReportDocument& d, const std::array<double, 5>& p, const std::optional<double>& bound,
                      const std::vector<RunPositioningPoint>& map) {
-  d.heading(2, "Positioning error of the calibrated model");
-  d.paragraph(fmt::format(
-      "Over a disc of 80 mm round home (points 10 mm apart), the readings the calibrated model commands and where "
-      "the actual robot stands when its three drives hold them, noise-free: RMS {}, max {}. The calibration's "
-      "covariance states {} per axis (RMS over the points); error / stated 1σ {} (1 when the 1σ is honest).{}",
-      distance(p[0]), distance(p[1]), distance(p[2]), sig(p[3], 2),
-      p[4] > 0.0 ? fmt::format(" Of that 1σ, {} (in quadrature) is the error once per joint revolution carried at the "
-                               "data sheet's amplitude, which the readings cannot tell from the geometry: the floor "
-                               "of this procedure with these encoders.",
-                               distance(p[4]))
-                 : std::string()) +
+  const std::string text =
+      fmt::format(
+          "Over a disc of 80 mm round home (points 10 mm apart), the readings the calibrated model commands and "
+          "where the actual robot stands when its three drives hold them, noise-free: RMS {}, max {}. The "
+          "calibration's covariance states {} per axis (RMS over the points); error / stated 1σ {} (1 when the 1σ "
+          "is honest).{}",
+          distance(p[0]), distance(p[1]), distance(p[2]), sig(p[3], 2),
+          carried_sentence(p[4], ": the floor of this procedure with these encoders")) +
       (bound ? fmt::format(" These readings allow an RMS of {} at best: the Cramér-Rao bound at the actual robot of "
                            "the calibration's reading model with that carried error estimated under its prior.",
                            distance(*bound))
-             : std::string()));
-  if (!map.empty())
-    d.figure("positioning",
-             "Where the actual robot stands, noise-free, when the calibrated model commands each point of the disc: "
-             "points coloured by the size of the error, the error drawn as an arrow",
-             positioning_map_svg(map));
+             : std::string());
+  positioning_section(d, "Positioning error of the calibrated model", text,
+                      "Where the actual robot stands, noise-free, when the calibrated model commands each point of "
+                      "the disc: points coloured by the size of the error, the error drawn as an arrow",
+                      map.empty() ? std::string() : positioning_map_svg(map));
 }
 
 // Through hardware: the positioning 1-sigma the calibration states (s[0] per
 // axis, s[1] its carried share), and its map.
 void add_stated_positioning(ReportDocument& d, const std::array<double, 2>& s,
                             const std::vector<RunPositioningPoint>& map) {
-  d.heading(2, "Positioning 1σ of the calibrated model");
-  d.paragraph(fmt::format(
-      "Over a disc of 80 mm round home (points 10 mm apart), the calibration's covariance states a positioning 1σ of "
-      "{} per axis (RMS over the points), by the calibrated model's own sensitivities.{} The error itself needs the "
-      "actual robot, known in simulation only.",
-      distance(s[0]),
-      s[1] > 0.0 ? fmt::format(" Of that 1σ, {} (in quadrature) is the error once per joint revolution carried at the "
-                               "data sheet's amplitude, which the readings cannot tell from the geometry.",
-                               distance(s[1]))
-                 : std::string()));
-  if (!map.empty())
-    d.figure("positioning", "The stated positioning 1σ per axis at each point of the disc", stated_sigma_map_svg(map));
+  positioning_section(
+      d, "Positioning 1σ of the calibrated model",
+      fmt::format("Over a disc of 80 mm round home (points 10 mm apart), the calibration's covariance states a "
+                  "positioning 1σ of {} per axis (RMS over the points), by the calibrated model's own "
+                  "sensitivities.{} The error itself needs the actual robot, known in simulation only.",
+                  distance(s[0]), carried_sentence(s[1], "")),
+      "The stated positioning 1σ per axis at each point of the disc",
+      map.empty() ? std::string() : stated_sigma_map_svg(map));
 }
 
 // The accuracy table of the nominal, calibrated and actual controller models and their ratios.
