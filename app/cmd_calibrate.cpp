@@ -114,19 +114,12 @@ std::vector<double> parse_numbers(const std::string& text, size_t n, const std::
 // by) and its carried share, as gpm run's position line states them; empty
 // without a covariance or where the disc is out of reach.
 std::string positioning_sigma_line(const Robot& robot, const calib::Result& r) {
-  if (!r.covariance) return {};
-  Robot calibrated = robot;
-  calibrated.geometry = r.geometry;
-  try {
-    const calib::PositioningError p =
-        calib::positioning_error(calibrated, calibrated, calib::WorkspaceDisc{robot.home}, r.covariance, r.carried_covariance);
-    std::string line = fmt::format("positioning over the 80 mm disc: stated 1-sigma {:.2f} {} per axis{}",
-                                   p.stated_sigma_rms_um, um(), carried_share(p.carried_sigma_rms_um));
-    if (p.carried_sigma_rms_um > 0.0) line += ", carried at the data sheet's amplitude";
-    return line + "\n";
-  } catch (const InputError&) {
-    return {};
-  }
+  const std::optional<calib::PositioningError> p = calib::stated_positioning(robot, r);
+  if (!p) return {};
+  std::string line = fmt::format("positioning over the 80 mm disc: stated 1-sigma {:.2f} {} per axis{}",
+                                 p->stated_sigma_rms_um, um(), carried_share(p->carried_sigma_rms_um));
+  if (p->carried_sigma_rms_um > 0.0) line += ", carried at the data sheet's amplitude";
+  return line + "\n";
 }
 
 // The terminal's account of the calibration: parameters, diagnostics, model test.

@@ -121,6 +121,18 @@ PositioningError positioning_error(const Robot& actual, const Robot& model, cons
   return out;
 }
 
+std::optional<PositioningError> stated_positioning(const Robot& robot, const Result& result) {
+  if (!result.covariance) return std::nullopt;
+  Robot calibrated = robot;
+  calibrated.geometry = result.geometry;
+  try {
+    return positioning_error(calibrated, calibrated, WorkspaceDisc{robot.home}, result.covariance,
+                             result.carried_covariance);
+  } catch (const InputError&) {
+    return std::nullopt;
+  }
+}
+
 std::string positioning_csv(const PositioningError& e) {
   std::string out = "x_mm,y_mm,error_x_um,error_y_um,error_um,sigma_um\n";
   for (const PositioningPoint& m : e.map) {

@@ -17,6 +17,7 @@
 
 #include <Eigen/Core>
 
+#include "calib/problem.hpp"
 #include "models/parameters.hpp"
 #include "models/robot.hpp"
 
@@ -62,6 +63,12 @@ struct PositioningError {
 PositioningError positioning_error(const Robot& actual, const Robot& model, const WorkspaceDisc& disc,
                                    const std::optional<Eigen::Matrix<double, kNumParams, kNumParams>>& covariance = {},
                                    const std::optional<Eigen::Matrix<double, kNumParams, kNumParams>>& carried = {});
+
+// The positioning 1-sigma result states over the disc round robot's home,
+// by the calibrated model's own sensitivities (robot with result's geometry
+// as both actual and model: no truth to judge it by, its error 0); nullopt
+// without a covariance or where that model reaches no point of the disc.
+std::optional<PositioningError> stated_positioning(const Robot& robot, const Result& result);
 
 // The map as CSV text: a header `x_mm,y_mm,error_x_um,error_y_um,error_um,sigma_um`
 // and a row per point (sigma_um 0 without a covariance), numbers in their

@@ -230,20 +230,13 @@ py::dict sigma_dict(const CalibrationResult& c) {
 // robot's home, by the calibrated model's own sensitivities, as `gpm
 // calibrate` prints it (none without a covariance or out of reach).
 py::object stated_positioning_dict(const CalibrationResult& c) {
-  if (!c.result.covariance) return py::none();
-  Robot calibrated = c.base;
-  calibrated.geometry = c.result.geometry;
-  try {
-    const calib::PositioningError p = calib::positioning_error(
-        calibrated, calibrated, calib::WorkspaceDisc{c.base.home}, c.result.covariance, c.result.carried_covariance);
-    py::dict d;
-    d["stated_sigma_rms"] = p.stated_sigma_rms_um;
-    d["carried_sigma_rms"] = p.carried_sigma_rms_um;
-    d["points"] = p.points;
-    return d;
-  } catch (const InputError&) {
-    return py::none();
-  }
+  const std::optional<calib::PositioningError> p = calib::stated_positioning(c.base, c.result);
+  if (!p) return py::none();
+  py::dict d;
+  d["stated_sigma_rms"] = p->stated_sigma_rms_um;
+  d["carried_sigma_rms"] = p->carried_sigma_rms_um;
+  d["points"] = p->points;
+  return d;
 }
 
 // CalibrationResult.diagnostics: the solver's diagnostics, the model test and the stated positioning 1-sigma.

@@ -59,17 +59,6 @@ std::optional<calib::PositioningError> calibrated_positioning(const RunOutcome& 
   }
 }
 
-// The positioning 1-sigma the calibration states over the workspace, by the
-// calibrated model's own sensitivities (nullopt when the disc is out of its reach).
-std::optional<calib::PositioningError> stated_positioning(const RunOutcome& o) {
-  try {
-    return calib::positioning_error(o.calibrated, o.calibrated, calib::WorkspaceDisc{o.nominal.home},
-                                    o.calibration->covariance, o.calibration->carried_covariance);
-  } catch (const InputError&) {
-    return std::nullopt;
-  }
-}
-
 // A Cramer-Rao bound that bound() computes at unit reading noise, scaled to
 // sigma (rad; 0 for ideal encoders); NaN in every slot when the information
 // is singular (reported as unidentifiable).
@@ -710,7 +699,7 @@ RunOutcome run_scenario(const RunSpec& spec_in, const std::string& scenario_file
 
   if (spec.compensation) measure_compensation(out, spec, progress, stage);
   if (out.calibration && !spec.hardware) out.positioning = calibrated_positioning(out);
-  if (out.calibration && spec.hardware) out.stated_positioning = stated_positioning(out);
+  if (out.calibration && spec.hardware) out.stated_positioning = calib::stated_positioning(out.nominal, *out.calibration);
   if (spec.sim.operation) {
     stage("monitoring the operation with the calibrated model");
     out.monitor = monitor_after_calibration(out);

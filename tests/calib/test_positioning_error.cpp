@@ -4,7 +4,7 @@
 // every point; and parameter errors drawn from a covariance give a
 // normalised error of 1 on average (the squared Mahalanobis distance of a
 // 2-d Gaussian has mean 2), the map's points giving the RMS figures; the
-// map's CSV reads back to it.
+// map's CSV reads back to it; a result's stated positioning is its own map.
 #include "calib/positioning_error.hpp"
 
 #include <array>
@@ -72,6 +72,29 @@ TEST(PositioningError, TheCsvReadsBackToTheMap) {
   }
   EXPECT_EQ(row, e.map.size());
   EXPECT_EQ(static_cast<int>(row), e.points);
+}
+
+// A result's stated positioning is the map of the robot with its geometry
+// judged against itself: no error, the 1-sigma its covariance gives; none
+// without a covariance.
+TEST(PositioningError, AResultsStatedPositioningIsItsOwnMap) {
+  const Robot robot;
+  Result r;
+  r.geometry = robot.geometry;
+  r.geometry[kLa3] += 0.004;
+  EXPECT_FALSE(stated_positioning(robot, r).has_value());
+  Eigen::Matrix<double, kNumParams, kNumParams> C = Eigen::Matrix<double, kNumParams, kNumParams>::Zero();
+  for (int k = 4; k < kNumParams; ++k) C(k, k) = is_offset(k) ? 1e-10 : 1e-6;
+  r.covariance = C;
+  const auto stated = stated_positioning(robot, r);
+  ASSERT_TRUE(stated.has_value());
+  Robot calibrated = robot;
+  calibrated.geometry = r.geometry;
+  const PositioningError own = positioning_error(calibrated, calibrated, WorkspaceDisc{robot.home}, C);
+  EXPECT_EQ(stated->stated_sigma_rms_um, own.stated_sigma_rms_um);
+  EXPECT_GT(stated->stated_sigma_rms_um, 0.0);
+  EXPECT_LT(stated->max_um, 1e-6);
+  EXPECT_EQ(stated->carried_sigma_rms_um, 0.0);
 }
 
 TEST(PositioningError, ErrorsDrawnFromTheCovarianceAreCoveredByIt) {
