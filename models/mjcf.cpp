@@ -55,6 +55,14 @@ struct ChainText {
   std::string damping, friction, limit;
 };
 
+// The drives' friction time constant as a solreffriction attribute (none at
+// MuJoCo's default; 0: two physics steps).
+std::string friction_solref(const MjcfOptions& o) {
+  const double T = o.effects.friction_timeconst_s;
+  if (T == kMujocoFrictionTimeconst) return {};
+  return fmt::format(" solreffriction=\"{} 1\"", num(T > 0.0 ? T : 2.0 * o.timestep_s));
+}
+
 // Chain i's values at the home assembly q.
 ChainText chain_text(const Geometry& g, const JointAngles& q, const MjcfOptions& o, int i) {
   const MjcfEffects& fx = o.effects;
@@ -69,7 +77,7 @@ ChainText chain_text(const Geometry& g, const JointAngles& q, const MjcfOptions&
   t.compliance = fx.compliance_rad_per_Nm[static_cast<size_t>(i)];
   t.damping = num(o.active_damping + fx.viscous_Nm_s[static_cast<size_t>(i)]);
   t.friction = fx.coulomb_Nm[static_cast<size_t>(i)] > 0.0
-                   ? fmt::format(" frictionloss=\"{}\"", num(fx.coulomb_Nm[static_cast<size_t>(i)]))
+                   ? fmt::format(" frictionloss=\"{}\"{}", num(fx.coulomb_Nm[static_cast<size_t>(i)]), friction_solref(o))
                    : std::string();
   // Loose passive joints (docs/ARCHITECTURE.md: clearance). A radial
   // clearance c at the elbow pin and at the hub pin lets the hub sit

@@ -49,6 +49,9 @@ namespace gpm {
 // The one place where millimetres become metres for MuJoCo.
 inline constexpr double kMetresPerMm = 1e-3;
 
+// MuJoCo's default time constant of a frictionloss row (solreffriction), s.
+inline constexpr double kMujocoFrictionTimeconst = 0.02;
+
 // Effects built into the MuJoCo model (per chain; 0 = off).
 struct MjcfEffects {
   std::array<double, 3> compliance_rad_per_Nm{};  // transmission, motor to link
@@ -56,6 +59,11 @@ struct MjcfEffects {
   std::array<double, 3> coulomb_Nm{};             // frictionloss at the actuated joint
   std::array<double, 3> viscous_Nm_s{};           // damping added to active_damping
   double rotor_mass_kg = 0.05;                    // rotor body (compliance only; inertia is the armature)
+  // Time constant (s) of the drives' friction, MuJoCo's soft frictionloss
+  // (solreffriction): below F a drive creeps, a coasting rotor slows as
+  // exp(-t / ~T/2). MuJoCo's default, 0.02, is written as no attribute; 0:
+  // two physics steps, the stiffest MuJoCo allows (a rotor near hard Coulomb).
+  double friction_timeconst_s = kMujocoFrictionTimeconst;
   double clearance_stiffness_N_per_m = 200.0;     // soft centring spring of each loose pin
   double clearance_damping_N_s_per_m = 2.0;       // damping of each loose pin (two pins in series per link)
   // Limit time constant: 2 steps at 0.25 ms (MuJoCo raises it to 2 timesteps

@@ -282,6 +282,7 @@ nlohmann::json effects_json(const sim::Effects& e) {
           {"passive_clearance_mm", three(e.mjcf.clearance_m, 1e3)},
           {"coulomb_friction_Nm", three(e.mjcf.coulomb_Nm)},
           {"viscous_friction_Nm_s", three(e.mjcf.viscous_Nm_s)},
+          {"friction_timeconst_s", e.mjcf.friction_timeconst_s},
           {"encoder_cyclic_rad", three(e.encoder_cyclic_rad)},
           {"encoder_skew_s", three(e.encoder_skew_s)},
           {"gear_ratio", e.gear_ratio},

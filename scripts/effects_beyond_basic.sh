@@ -38,9 +38,11 @@ study_setup() {
   robot=$(realpath models/gpm2002.yaml)
 }
 
-# The three kinds of robot the before/after studies compare on: the basic set
-# (every effect above off), every effect drawn and the realistic preset's.
-declare -A kind_effects=([basic]="{preset: randomized, $(all_off_but none)}" [randomized]="randomized" [preset]="realistic")
+# The kinds of robot the before/after studies compare on: the basic set
+# (every effect above off), every effect drawn, the realistic preset's and
+# the basic set with the backlash drawn.
+declare -A kind_effects=([basic]="{preset: randomized, $(all_off_but none)}" [randomized]="randomized" [preset]="realistic"
+                        [backlash]="{preset: randomized, $(all_off_but backlash)}")
 
 # The robots of kind $2 (kind_effects) calibrated by scenarios/main.yaml with
 # ", ..." $4 appended to its calibration map, into $out/$2_$3 (study_setup's

@@ -5,7 +5,8 @@ scripts/study_friction_balance.sh)."""
 import json
 
 # The table's names of the kinds of robot (kind_effects in scripts/effects_beyond_basic.sh).
-KIND_LABEL = {'basic': 'the basic set', 'randomized': 'every effect drawn', 'preset': 'the `realistic` preset'}
+KIND_LABEL = {'basic': 'the basic set', 'randomized': 'every effect drawn', 'preset': 'the `realistic` preset',
+              'backlash': 'the basic set and backlash'}
 
 
 def load_pair(out, kind, before, after):

@@ -200,7 +200,7 @@ Effects parse_effects(const YAML::Node& n, const std::string& file, std::uint64_
                      "stiction_excess_Nm", "stribeck_speed_rad_s", "friction_load_coefficient",
                      "torque_constant_delta", "cogging_Nm", "cogging_periods_per_motor_rev",
                      "preset", "transmission_compliance_rad_per_Nm", "passive_clearance_mm", "coulomb_friction_Nm",
-                     "viscous_friction_Nm_s", "thermal", "encoder_cyclic_rad", "encoder_skew_s", "gear_ratio",
+                     "viscous_friction_Nm_s", "friction_timeconst_s", "thermal", "encoder_cyclic_rad", "encoder_skew_s", "gear_ratio",
                      // encoder harmonics, latch jitter, hub pins (parse_encoder_and_geometry)
                      "encoder_harmonics", "encoder_jitter_s", "hub_pin_offset_um"});
     if (n["preset"]) e = preset(n["preset"], file, c + ".preset", seed, sheet);
@@ -214,6 +214,10 @@ Effects parse_effects(const YAML::Node& n, const std::string& file, std::uint64_
       e.mjcf.coulomb_Nm = per_chain(v, file, key("coulomb_friction_Nm"), {0.0, 20.0, "0 to 20 N m"});
     if (const YAML::Node v = n["viscous_friction_Nm_s"])
       e.mjcf.viscous_Nm_s = per_chain(v, file, key("viscous_friction_Nm_s"), {0.0, 100.0, "0 to 100 N m s/rad"});
+    if (const YAML::Node v = n["friction_timeconst_s"])
+      e.mjcf.friction_timeconst_s = bounded(
+          v, file, key("friction_timeconst_s"),
+          {0.0, 1.0, "0 (two physics steps: as stiff as MuJoCo allows) to 1 s; MuJoCo's default 0.02"});
     if (const YAML::Node v = n["encoder_cyclic_rad"])
       e.encoder_cyclic_rad = per_chain(v, file, key("encoder_cyclic_rad"), {0.0, 0.01, "0 to 0.01 rad"});
     if (const YAML::Node v = n["encoder_skew_s"]) {

@@ -50,6 +50,9 @@ TEST(EffectsYaml, KeysLandInTheirUnits) {
   EXPECT_DOUBLE_EQ(e.encoder_skew_s[0], 0.0);  // a scalar: encoders 2 and 3 relative to encoder 1
   EXPECT_DOUBLE_EQ(e.encoder_skew_s[2], 1e-4);
   EXPECT_DOUBLE_EQ(e.thermal.growth(100.0), 23e-6 * 3.0 * (1.0 - std::exp(-1.0)));
+  // The drives' friction time constant: MuJoCo's default unless given.
+  EXPECT_DOUBLE_EQ(e.mjcf.friction_timeconst_s, 0.02);
+  EXPECT_DOUBLE_EQ(parse("{preset: realistic, friction_timeconst_s: 0}", kFast).twin.effects.mjcf.friction_timeconst_s, 0.0);
 }
 
 TEST(EffectsYaml, PresetWithOverridesAndSeededPhases) {
@@ -76,6 +79,9 @@ TEST(EffectsYaml, BadValuesNameFileLineAndKey) {
   EXPECT_NE(unknown.find("effects.coulomb_friction"), std::string::npos) << unknown;
   EXPECT_NE(unknown.find("coulomb_friction_Nm"), std::string::npos) << unknown;
   EXPECT_NE(error_of("optimistic").find("not a preset"), std::string::npos);
+  const std::string slow = error_of("{friction_timeconst_s: 2}", kFast);
+  EXPECT_NE(slow.find("s.yaml:4: effects.friction_timeconst_s"), std::string::npos) << slow;
+  EXPECT_NE(slow.find("0 (two physics steps"), std::string::npos) << slow;
   EXPECT_NE(error_of("{thermal: {rise_K: 3, time_constant_s: 0}}").find("effects.thermal.time_constant_s"),
             std::string::npos);
   // A stiffness the timestep cannot integrate is refused at parse time, with the line.

@@ -8,13 +8,16 @@
 // soft friction) and slips in both directions; the two trajectories agree to
 // round-off (about 1e-14 rad). A hard Coulomb clamp (regulariser 0)
 // gives a trajectory visibly different under the same sweep, so the
-// agreement is a property of the soft model, not of a loose tolerance.
+// agreement is a property of the soft model, not of a loose tolerance. And
+// the friction time constant (effects friction_timeconst_s) against a coasting
+// rotor worked by hand: hard Coulomb at two steps, MuJoCo's soft law at 0.02 s.
 #include "sim/rotor_friction.hpp"
 
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
 #include <numbers>
+#include <string>
 
 #include <gtest/gtest.h>
 
@@ -126,6 +129,42 @@ TEST(RotorFriction, HardClampWouldDifferSoTheComparisonDiscriminates) {
   const Sweep soft = sweep(1.0);
   const Sweep hard = sweep(1.0, true);
   EXPECT_GT(hard.max_dq_rad, 1e3 * std::max(soft.max_dq_rad, 1e-12));
+}
+
+// A free rotor (armature I, frictionloss F, no damping) coasting from omega0,
+// MuJoCo's row with solreffriction T (empty: its default, 0.02 s): the
+// joint speed after t seconds.
+double coasting_speed(const std::string& solref, double omega0, double t) {
+  const std::string xml = R"(<mujoco>
+  <option timestep="0.00025"><flag contact="disable"/></option>
+  <worldbody><body name="rotor">
+    <joint name="joint_m" type="hinge" axis="0 0 1" armature="0.0026" frictionloss="0.3" )" + solref + R"(/>
+    <inertial pos="0 0 0" mass="0.5" diaginertia="1e-6 1e-6 1e-6"/>
+  </body></worldbody>
+</mujoco>)";
+  const ModelPtr m = load_model_from_xml(xml);
+  const DataPtr d(mj_makeData(m.get()));
+  d->qvel[0] = omega0;
+  while (d->time < t) mj_step(m.get(), d.get());
+  return d->qvel[0];
+}
+
+// The drives' friction time constant (effects friction_timeconst_s,
+// models/mjcf.cpp): at two physics steps a coasting rotor stops as hard
+// Coulomb friction says, at t_c = I omega0 / F; at MuJoCo's default the
+// friction is soft below F (b I omega / (1 + I R) with b = 2 / (dmax T), R =
+// (1 - dmin) / dmin / I) and the rotor still turns at exp(-b t / (1 + I R)) of
+// its speed then.
+TEST(RotorFriction, TimeconstSetsHowACoastingRotorStops) {
+  const double I = 0.0026 + 1e-6, F = kFriction_Nm, omega0 = 1.0;
+  const double t_c = I * omega0 / F;  // 8.7 ms
+  const double t = 1.2 * t_c;
+  EXPECT_LT(std::abs(coasting_speed(R"(solreffriction="0.0005 1")", omega0, t)), 0.01 * omega0);
+  const double b = 2.0 / (0.95 * 0.02), IR = (1.0 - 0.9) / 0.9;
+  ASSERT_LT(b * I * omega0 / (1.0 + IR), F);  // the default's friction at omega0 is below F: soft from the start
+  const double soft = coasting_speed("", omega0, t);
+  EXPECT_NEAR(soft, omega0 * std::exp(-b * t / (1.0 + IR)), 0.05 * soft);
+  EXPECT_GT(soft, 0.3 * omega0);
 }
 
 TEST(RotorFriction, RejectsADofThatIsNotARootTree) {
