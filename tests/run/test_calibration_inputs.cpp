@@ -44,6 +44,7 @@ sim::TwinConfig changed_truth(sim::TwinConfig t) {
     m->coulomb_Nm = {0.7, 0.8, 0.9};
     m->viscous_Nm_s = {0.21, 0.22, 0.23};
     m->rotor_mass_kg = 0.07;
+    m->friction_timeconst_s = 0.001;
     m->clearance_stiffness_N_per_m = 333.0;
     m->clearance_damping_N_s_per_m = 3.3;
     m->clearance_solref_s = 0.0007;
