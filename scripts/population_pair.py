@@ -1,8 +1,11 @@
 """Table cells "before -> after" of two `gpm study population` results of the
 same robots (their population.json), for the studies that compare two
 versions of the procedure (scripts/study_force_sign.sh, scripts/study_alternating_preload.sh,
-scripts/study_friction_balance.sh)."""
+scripts/study_friction_balance.sh) or of the twin (scripts/study_friction_timeconst.sh),
+and the table written into a document between its markers (those and
+scripts/study_effect_budget.sh)."""
 import json
+import re
 
 # The table's names of the kinds of robot (kind_effects in scripts/effects_beyond_basic.sh).
 KIND_LABEL = {'basic': 'the basic set', 'randomized': 'every effect drawn', 'preset': 'the `realistic` preset',
@@ -34,15 +37,28 @@ def before_after(a, b):
     }
 
 
-def before_after_table(out, kinds, before, after, lead):
+def before_after_table(out, kinds, before, after, lead, extra=()):
     """The lines of the markdown table "before -> after" (before_after's cells)
-    of DIR/KIND_BEFORE and DIR/KIND_AFTER for each kind, under the sentence lead."""
+    of DIR/KIND_BEFORE and DIR/KIND_AFTER for each kind, under the sentence lead;
+    extra: further columns, each (header, cell(a, b) of the two population.json)."""
     lines = [lead, "",
              "| robots' effects | positioning RMS median (um) | worst robot (um) | parameters within 3 sigma | "
-             "worst parameter (sigma) | error / stated 1-sigma (median) | model test passes | robots better / worse |",
-             "| --- | ---: | ---: | ---: | ---: | ---: | ---: | ---: |"]
+             "worst parameter (sigma) | error / stated 1-sigma (median) | model test passes | robots better / worse |"
+             + "".join(f" {h} |" for h, _ in extra),
+             "| --- | ---: | ---: | ---: | ---: | ---: | ---: | ---: |" + " ---: |" * len(extra)]
     for kind in kinds:
-        c = before_after(*load_pair(out, kind, before, after))
+        a, b = load_pair(out, kind, before, after)
+        c = before_after(a, b)
         lines.append(f"| {KIND_LABEL[kind]} | {c['median']} | {c['worst']} | {c['within']} | {c['worst_sigma']} | "
-                     f"{c['per_sigma']} | {c['passes']} | {c['better_worse']} |")
+                     f"{c['per_sigma']} | {c['passes']} | {c['better_worse']} |" + "".join(f" {f(a, b)} |" for _, f in extra))
     return lines
+
+
+def write_between_markers(doc, name, table):
+    """Replaces what lies between the markers <!-- NAME:begin --> and <!-- NAME:end -->
+    of file doc with table (nothing happens where the markers are missing)."""
+    text = open(doc).read()
+    begin, end = f"<!-- {name}:begin -->\n", f"<!-- {name}:end -->"
+    if begin in text and end in text:
+        text = re.sub(re.escape(begin) + ".*?" + re.escape(end), lambda m: begin + table + end, text, flags=re.S)
+        open(doc, "w").write(text)

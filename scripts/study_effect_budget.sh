@@ -33,7 +33,9 @@ row basic "$(all_off_but none)"
 for n in "${names[@]}"; do row "only_$n" "$(all_off_but "$n")"; done
 
 python3 - "$out" "$count" "$first" "${names[@]}" <<'EOF'
-import json, re, sys
+import json, sys
+sys.path.insert(0, 'scripts')
+from population_pair import write_between_markers
 out, count, first, names = sys.argv[1], int(sys.argv[2]), int(sys.argv[3]), sys.argv[4:]
 label = {'backlash': 'backlash', 'hysteresis': 'drive hysteresis', 'te_joint': 'transmission error per joint revolution',
          'te_motor': 'transmission error per motor revolution', 'stiction': 'stiction', 'load_friction': 'load friction',
@@ -53,11 +55,6 @@ lines += [f"| the basic set only (none of the above) | {cells('basic')} |"]
 lines += [f"| the basic set and {label[n]} | {cells('only_' + n)} |" for n in names]
 table = "\n".join(lines) + "\n"
 open(f'{out}/effect_budget.md', 'w').write(table)
-doc = 'docs/PROCEDURES.md'
-text = open(doc).read()
-begin, end = '<!-- effect-budget:begin -->\n', '<!-- effect-budget:end -->'
-if begin in text and end in text:
-    text = re.sub(re.escape(begin) + '.*?' + re.escape(end), lambda m: begin + table + end, text, flags=re.S)
-    open(doc, 'w').write(text)
+write_between_markers('docs/PROCEDURES.md', 'effect-budget', table)
 print(table)
 EOF

@@ -31,29 +31,19 @@ for kind in "${kinds[@]}"; do
   done
 done
 /usr/bin/python3 - "$out" "$count" "$first" "${kinds[@]}" <<'PY'
-import json, re, sys
+import sys
 sys.path.insert(0, "scripts")
-from population_pair import KIND_LABEL, before_after, load_pair
+from population_pair import before_after_table, write_between_markers
 out, count, first, kinds = sys.argv[1], int(sys.argv[2]), int(sys.argv[3]), sys.argv[4:]
-lines = [f"{count} robots of `scenarios/main.yaml` each (seeds {first}..{first + count - 1}); "
-         "`bash scripts/study_friction_timeconst.sh`. Soft -> stiff: the drives' friction at MuJoCo's default "
-         "time constant (0.02 s) -> at two physics steps (`friction_timeconst_s: 0`); the calibration the same.", "",
-         "| robots' effects | positioning RMS median (um) | worst robot (um) | least RMS the readings allow, median (um) "
-         "| parameters within 3 sigma | worst parameter (sigma) | model test passes | robots better / worse |",
-         "| --- | ---: | ---: | ---: | ---: | ---: | ---: | ---: |"]
-for kind in kinds:
-    a, b = load_pair(out, kind, "soft", "stiff")
-    c = before_after(a, b)
-    bound = " -> ".join(f"{p['summary']['positioning_bound_median_um']:.1f}" for p in (a, b))
-    lines.append(f"| {KIND_LABEL[kind]} | {c['median']} | {c['worst']} | {bound} | {c['within']} | "
-                 f"{c['worst_sigma']} | {c['passes']} | {c['better_worse']} |")
+bound = ("least RMS the readings allow, median (um)",
+         lambda a, b: " -> ".join(f"{p['summary']['positioning_bound_median_um']:.1f}" for p in (a, b)))
+lines = before_after_table(out, kinds, "soft", "stiff",
+                           f"{count} robots of `scenarios/main.yaml` each (seeds {first}..{first + count - 1}); "
+                           "`bash scripts/study_friction_timeconst.sh`. Soft -> stiff: the drives' friction at MuJoCo's "
+                           "default time constant (0.02 s) -> at two physics steps (`friction_timeconst_s: 0`); the "
+                           "calibration the same.", [bound])
 table = "\n".join(lines) + "\n"
 open(f"{out}/friction_timeconst.md", "w").write(table)
-doc = "docs/PROCEDURES.md"
-text = open(doc).read()
-begin, end = "<!-- friction-timeconst:begin -->\n", "<!-- friction-timeconst:end -->"
-if begin in text and end in text:
-    text = re.sub(re.escape(begin) + ".*?" + re.escape(end), lambda m: begin + table + end, text, flags=re.S)
-    open(doc, "w").write(text)
+write_between_markers("docs/PROCEDURES.md", "friction-timeconst", table)
 print(table)
 PY
