@@ -8,8 +8,9 @@
 // soft friction) and slips in both directions; the two trajectories agree to
 // round-off (about 1e-14 rad). A hard Coulomb clamp (regulariser 0)
 // gives a trajectory visibly different under the same sweep, so the
-// agreement is a property of the soft model, not of a loose tolerance. And
-// the friction time constant (effects friction_timeconst_s) against a coasting
+// agreement is a property of the soft model, not of a loose tolerance. The
+// soft friction as a law of the motion, on MuJoCo's own solver: -F sat((omega
+// + alpha / b) / (F R / b)), the speed 1 / b ahead. And the friction time constant (effects friction_timeconst_s) against a coasting
 // rotor worked by hand: hard Coulomb at two steps, MuJoCo's soft law at 0.02 s.
 #include "sim/rotor_friction.hpp"
 
@@ -129,6 +130,41 @@ TEST(RotorFriction, HardClampWouldDifferSoTheComparisonDiscriminates) {
   const Sweep soft = sweep(1.0);
   const Sweep hard = sweep(1.0, true);
   EXPECT_GT(hard.max_dq_rad, 1e3 * std::max(soft.max_dq_rad, 1e-12));
+}
+
+// MuJoCo's soft friction as a law of the rotor's motion: inside +-F the
+// frictionloss row's force is -(a - aref) / R with a = alpha the rotor's
+// acceleration and aref = -b omega, so f = -(omega + alpha / b) b / R: the
+// friction of the speed the rotor will have 1 / b ahead (9.5 ms at MuJoCo's
+// default time constant), saturated at F where |omega + alpha / b| >= F R / b.
+// Checked on MuJoCo's own solver (the reference model, not the closed form)
+// through the stick and slip of the sweep.
+TEST(RotorFriction, MujocosSoftFrictionActsOnTheSpeedOneOverBAhead) {
+  const ModelPtr m = load_model_from_xml(kRotorAndLink);
+  const int dof = m->jnt_dofadr[require_id(m.get(), mjOBJ_JOINT, "joint_m")];
+  const double I = 0.0026 + 1e-6;
+  const double b = 2.0 / (0.95 * 0.02), R = (1.0 - 0.9) / 0.9 * m->dof_invweight0[dof];
+  ASSERT_NEAR(m->dof_invweight0[dof], 1.0 / I, 1e-6 / I);  // the rotor's own tree: w0 = 1 / I
+  const DataPtr d(mj_makeData(m.get()));
+  int inside = 0, saturated = 0;
+  double worst = 0.0;
+  while (d->time < 1.0) {
+    d->ctrl[0] = 1.5 * kFriction_Nm * std::sin(2.0 * std::numbers::pi * d->time / 0.5);
+    const double omega = d->qvel[dof];
+    mj_step(m.get(), d.get());
+    const double f = d->qfrc_constraint[dof], lead = omega + d->qacc[dof] / b;
+    if (std::abs(f) < (1.0 - 1e-9) * kFriction_Nm) {
+      ++inside;
+      worst = std::max(worst, std::abs(f + b * lead / R));
+    } else {
+      ++saturated;
+      EXPECT_LT(f * lead, 0.0) << "t " << d->time;
+      EXPECT_GE(b * std::abs(lead), (1.0 - 1e-6) * kFriction_Nm * R) << "t " << d->time;
+    }
+  }
+  EXPECT_GT(inside, 100);
+  EXPECT_GT(saturated, 100);
+  EXPECT_LT(worst, 1e-9 * kFriction_Nm) << worst;
 }
 
 // A free rotor (armature I, frictionloss F, no damping) coasting from omega0,
