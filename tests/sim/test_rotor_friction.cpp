@@ -9,8 +9,9 @@
 // round-off (about 1e-14 rad). A hard Coulomb clamp (regulariser 0)
 // gives a trajectory visibly different under the same sweep, so the
 // agreement is a property of the soft model, not of a loose tolerance. The
-// soft friction as a law of the motion, on MuJoCo's own solver: -F sat((omega
-// + alpha / b) / (F R / b)), the speed 1 / b ahead. And the friction time constant (effects friction_timeconst_s) against a coasting
+// soft friction as a law of the motion, on MuJoCo's own solver:
+// -F sat((omega + alpha / b) / (F R / b)), the speed 1 / b ahead. And the
+// friction time constant (effects friction_timeconst_s) against a coasting
 // rotor worked by hand: hard Coulomb at two steps, MuJoCo's soft law at 0.02 s.
 #include "sim/rotor_friction.hpp"
 
