@@ -1081,6 +1081,32 @@ double score_chi2(const Eigen::MatrixXd& Qo, const Eigen::MatrixXd& G, const Eig
   return (Go.transpose() * rp).squaredNorm();
 }
 
+// The candidate of left_out_effects beside left_out_candidates' (its columns: friction_dynamics_columns).
+constexpr const char* kFrictionDynamics =
+    "the drives' friction dynamics (a friction that is no function of the speed alone: it leads, lags or sticks)";
+
+// The columns of the drives' friction dynamics, a candidate of
+// left_out_effects: a friction that acts on the speed kappa_i ahead (kappa_i
+// < 0: behind, as presliding makes it) twists by c_i F_i tanh((omega_i +
+// kappa_i alpha_i) / v), whose change to first order is c_i F_i kappa_i
+// alpha_i sech^2(omega_i / v) / v: per joint the column u_i alpha_i
+// sech^2(omega_i / v) / v (u_i the reading sensitivity at the corrected
+// readings th), value c_i F_i kappa_i; rows beyond the samples (a prior's) 0.
+Eigen::MatrixXd friction_dynamics_columns(const Geometry& g, const std::vector<Eigen::Vector3d>& th,
+                                          const std::vector<Eigen::Vector3d>& omega,
+                                          const std::vector<Eigen::Vector3d>& alpha, double v, Eigen::Index rows) {
+  const Eigen::MatrixXd J_all = ml_jacobian(th, g);
+  Eigen::MatrixXd G = Eigen::MatrixXd::Zero(rows, 3);
+  for (std::size_t j = 0; j < th.size(); ++j) {
+    const Eigen::Vector3d u = reading_sensitivity(J_all, j);
+    for (int i = 0; i < 3; ++i) {
+      const double c = std::cosh(omega[j][i] / v);
+      G(static_cast<Eigen::Index>(j), i) = u[i] * alpha[j][i] / (v * c * c);
+    }
+  }
+  return G;
+}
+
 }  // namespace
 
 std::vector<LeftOutEffect> left_out_effects(const Problem& problem, const std::vector<Eigen::Vector3d>& omega,
@@ -1125,6 +1151,16 @@ std::vector<LeftOutEffect> left_out_effects(const Problem& problem, const std::v
     int rank = 0;
     const double drop = score_chi2(Qo, G, rp, rank);
     if (rank > 0 && chi2_survival(rank, drop) < 1e-3) out.push_back({c.name, drop, rank});
+  }
+  const double v = model.load.friction_speed_rad_s;
+  if (model.compliance && model.friction && v > 0.0 && !alpha.empty()) {
+    std::vector<Eigen::Vector3d> a;
+    for (std::size_t j : fit.kept) a.push_back(alpha[j]);
+    int rank = 0;
+    const double drop =
+        score_chi2(Qo, friction_dynamics_columns(fit.result.geometry, fit.corrected, w, a, v, l.r.size()), rp, rank);
+    if (rank > 0 && chi2_survival(rank, drop) < 1e-3)
+      out.push_back({kFrictionDynamics, drop, rank});
   }
   std::ranges::sort(out, std::greater<>{}, &LeftOutEffect::chi2_drop);
   return out;

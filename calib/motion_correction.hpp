@@ -196,7 +196,10 @@ struct LeftOutEffect {
 // chi-square drop were its columns added to the fit at its estimate (a score
 // test: the residuals projected on the candidate's columns, the geometry's
 // and the model's own projected out), on the samples the fit kept; those
-// significant at p < 0.001 for their count of values, largest first.
+// significant at p < 0.001 for their count of values, largest first. With
+// accelerations and the friction twist in model, the drives' friction
+// dynamics are one candidate: the twist of a friction that acts on the speed
+// a time ahead or behind (docs/PROCEDURES.md "What the model test names").
 std::vector<LeftOutEffect> left_out_effects(const Problem& problem, const std::vector<Eigen::Vector3d>& omega,
                                             const std::vector<Eigen::Vector3d>& tau, const MotionModel& model,
                                             const MotionFit& fit, double sigma,

@@ -14,7 +14,8 @@
 // Jacobian) equal central differences over the readings; the hysteresis
 // state follows the torque at half its rate until it slides at +-1, and holds
 // through a reversal smaller than its threshold; the score test of an
-// effect left out agrees with the chi-square the full fit takes out.
+// effect left out agrees with the chi-square the full fit takes out; a
+// friction that leads the speed is named as the drives' friction dynamics.
 #include "calib/motion_correction.hpp"
 
 #include <cmath>
@@ -161,6 +162,39 @@ TEST(MotionCorrection, LeftOutEffectsNameTheReducersOnlyBehindAMotorEncoder) {
   for (const LeftOutEffect& e : left_out_effects(d.problem, d.omega, d.tau, joint, fit, kSigma))
     EXPECT_TRUE(e.name.find("motor revolution") == std::string::npos && e.name.find("backlash") == std::string::npos)
         << e.name << " named behind an encoder that turns with the joint";
+}
+
+// Readings whose friction twist acts on the speed 10 ms ahead, c_i F_i
+// tanh((omega_i + 0.01 s alpha_i) / v) at v = 0.5 rad/s, fitted with the
+// twist of the speed alone: the drives' friction dynamics are named first;
+// with the twist of the speed itself nothing is named, and without the
+// accelerations the candidate cannot be scored.
+TEST(MotionCorrection, LeftOutEffectsNameAFrictionThatLeadsTheSpeed) {
+  const std::array<double, 3> cf = {2e-4, -3e-4, 2.5e-4};
+  MotionModel model;
+  model.load.friction_speed_rad_s = 0.5;
+  const LmOptions o = at_sigma();
+  const auto named_with_lead = [&](double lead_s, bool with_alpha) {
+    MotionData d = make_data(600, 17);
+    Rng rng(99);
+    std::vector<Eigen::Vector3d> alpha;
+    for (std::size_t j = 0; j < d.omega.size(); ++j) {
+      alpha.emplace_back(rng.normal(0, 20.0), rng.normal(0, 20.0), rng.normal(0, 20.0));
+      for (int k = 0; k < 3; ++k)
+        d.problem.theta_m[j][k] -=
+            cf[static_cast<std::size_t>(k)] * std::tanh((d.omega[j][k] + lead_s * alpha[j][k]) / 0.5);
+    }
+    const MotionFit fit = calibrate_in_motion(d.problem, d.omega, d.tau, o, model, alpha);
+    return left_out_effects(d.problem, d.omega, d.tau, model, fit, kSigma,
+                            with_alpha ? alpha : std::vector<Eigen::Vector3d>{});
+  };
+  const std::vector<LeftOutEffect> lead = named_with_lead(0.01, true);
+  ASSERT_FALSE(lead.empty());
+  EXPECT_NE(lead.front().name.find("friction dynamics"), std::string::npos) << lead.front().name;
+  EXPECT_EQ(lead.front().columns, 3);
+  for (const LeftOutEffect& e : named_with_lead(0.0, true)) ADD_FAILURE() << e.name << " named without a lead";
+  for (const LeftOutEffect& e : named_with_lead(0.01, false))
+    EXPECT_EQ(e.name.find("friction dynamics"), std::string::npos) << "named without accelerations";
 }
 
 TEST(MotionCorrection, WithoutNuisanceItIsTheRigidCalibration) {
