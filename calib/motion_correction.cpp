@@ -648,10 +648,12 @@ void fill_nuisance_row(const Eigen::Vector3d& u, const SampleRegressors& reg, co
 }
 
 // The fit's linearisation at one geometry: the free geometry columns Jg, the
-// excited nuisance columns Jn, the cyclic columns Jc and the ML residuals r.
+// excited nuisance columns Jn, the cyclic columns Jc, the ML residuals r and
+// each sample's reading sensitivities U (a row each, reading_sensitivity).
 struct Linearisation {
   Eigen::MatrixXd Jg, Jn, Jc;
   Eigen::VectorXd r;
+  Eigen::MatrixXd U;
 };
 
 // Linearisation at geometry g of the corrected readings th (raw readings and
@@ -662,13 +664,16 @@ Linearisation linearise(const Geometry& g, const std::vector<Eigen::Vector3d>& t
   const ParamVector x = to_solver(g, Cost::kML);
   const Eigen::MatrixXd J_all = ml_jacobian(th, g);
   Linearisation l{Eigen::MatrixXd(n, static_cast<Eigen::Index>(free_index.size())),
-                  Eigen::MatrixXd(n, static_cast<Eigen::Index>(cols.size())), Eigen::MatrixXd(n, 6), Eigen::VectorXd(n)};
+                  Eigen::MatrixXd(n, static_cast<Eigen::Index>(cols.size())), Eigen::MatrixXd(n, 6), Eigen::VectorXd(n),
+                  Eigen::MatrixXd(n, 3)};
   for (std::size_t k = 0; k < free_index.size(); ++k) l.Jg.col(static_cast<Eigen::Index>(k)) = J_all.col(free_index[k]);
   for (std::size_t j = 0; j < th.size(); ++j) {
     l.r[static_cast<Eigen::Index>(j)] = ml_residual(x, th[j]);
     const SampleRegressors reg{s.omega[j], s.tau[j], e.fric[j], e.clr[j], s.nb.empty() ? Eigen::Vector3d::Zero() : s.nb[j],
                                e.wave[j], e.flank[j], e.hyst.g[j], e.hyst.slope[j], e.hyst.threshold};
-    fill_nuisance_row(reading_sensitivity(J_all, j), reg, cols, static_cast<Eigen::Index>(j), l.Jn, l.Jc);
+    const Eigen::Vector3d u = reading_sensitivity(J_all, j);
+    l.U.row(static_cast<Eigen::Index>(j)) = u.transpose();
+    fill_nuisance_row(u, reg, cols, static_cast<Eigen::Index>(j), l.Jn, l.Jc);
   }
   return l;
 }
@@ -1090,20 +1095,17 @@ constexpr const char* kFrictionDynamics =
 // < 0: behind, as presliding makes it) twists by c_i F_i tanh((omega_i +
 // kappa_i alpha_i) / v), whose change to first order is c_i F_i kappa_i
 // alpha_i sech^2(omega_i / v) / v: per joint the column u_i alpha_i
-// sech^2(omega_i / v) / v (u_i the reading sensitivity at the corrected
-// readings th), value c_i F_i kappa_i; rows beyond the samples (a prior's) 0.
-Eigen::MatrixXd friction_dynamics_columns(const Geometry& g, const std::vector<Eigen::Vector3d>& th,
-                                          const std::vector<Eigen::Vector3d>& omega,
-                                          const std::vector<Eigen::Vector3d>& alpha, double v, Eigen::Index rows) {
-  const Eigen::MatrixXd J_all = ml_jacobian(th, g);
-  Eigen::MatrixXd G = Eigen::MatrixXd::Zero(rows, 3);
-  for (std::size_t j = 0; j < th.size(); ++j) {
-    const Eigen::Vector3d u = reading_sensitivity(J_all, j);
+// sech^2(omega_i / v) / v (u_i the sample's reading sensitivity, a row of
+// the linearisation's U), value c_i F_i kappa_i.
+Eigen::MatrixXd friction_dynamics_columns(const Eigen::MatrixXd& U, const std::vector<Eigen::Vector3d>& omega,
+                                          const std::vector<Eigen::Vector3d>& alpha, double v) {
+  Eigen::MatrixXd G(U.rows(), 3);
+  for (Eigen::Index j = 0; j < U.rows(); ++j)
     for (int i = 0; i < 3; ++i) {
-      const double c = std::cosh(omega[j][i] / v);
-      G(static_cast<Eigen::Index>(j), i) = u[i] * alpha[j][i] / (v * c * c);
+      const auto k = static_cast<std::size_t>(j);
+      const double c = std::cosh(omega[k][i] / v);
+      G(j, i) = U(j, i) * alpha[k][i] / (v * c * c);
     }
-  }
   return G;
 }
 
@@ -1157,8 +1159,7 @@ std::vector<LeftOutEffect> left_out_effects(const Problem& problem, const std::v
     std::vector<Eigen::Vector3d> a;
     for (std::size_t j : fit.kept) a.push_back(alpha[j]);
     int rank = 0;
-    const double drop =
-        score_chi2(Qo, friction_dynamics_columns(fit.result.geometry, fit.corrected, w, a, v, l.r.size()), rp, rank);
+    const double drop = score_chi2(Qo, friction_dynamics_columns(l.U, w, a, v), rp, rank);
     if (rank > 0 && chi2_survival(rank, drop) < 1e-3)
       out.push_back({kFrictionDynamics, drop, rank});
   }
