@@ -61,9 +61,10 @@ struct MjcfEffects {
   double rotor_mass_kg = 0.05;                    // rotor body (compliance only; inertia is the armature)
   // Time constant (s) of the drives' friction, MuJoCo's soft frictionloss
   // (solreffriction): below F a drive creeps, a coasting rotor slows as
-  // exp(-t / ~T/2). MuJoCo's default, 0.02, is written as no attribute; 0:
-  // two physics steps, the stiffest MuJoCo allows (a rotor near hard Coulomb).
-  double friction_timeconst_s = kMujocoFrictionTimeconst;
+  // exp(-t / ~T/2). 0 (the twin's): two physics steps, the stiffest MuJoCo
+  // allows (a rotor near hard Coulomb); MuJoCo's default, 0.02, is written
+  // as no attribute.
+  double friction_timeconst_s = 0.0;
   double clearance_stiffness_N_per_m = 200.0;     // soft centring spring of each loose pin
   double clearance_damping_N_s_per_m = 2.0;       // damping of each loose pin (two pins in series per link)
   // Limit time constant: 2 steps at 0.25 ms (MuJoCo raises it to 2 timesteps

@@ -14,7 +14,7 @@ void check(std::vector<Check>& out, const std::string& name, bool ok, const std:
 }
 
 
-// The per-parameter checks: each free parameter's error against its tolerance and its CRB.
+// The per-parameter checks: each free parameter's error against its tolerance, its CRB and its stated 1-sigma.
 void check_parameters(std::vector<Check>& out, const RunOutcome& o, const calib::Result& r) {
   const Expectations& e = o.spec.expect;
   const Geometry& truth = o.sim.actual.geometry;
@@ -33,6 +33,13 @@ void check_parameters(std::vector<Check>& out, const RunOutcome& o, const calib:
       check(out, fmt::format("crb_ratio.{}", param_name(i)), std::isfinite(ratio) && ratio <= *e.crb_ratio_max,
             fmt::format("|error| / CRB = {:.3g} / {:.3g} = {:.3g} (limit {:.3g})", err, bound, ratio,
                         *e.crb_ratio_max));
+    }
+    if (e.sigma_ratio_max) {
+      const double sigma = r.sigma[static_cast<size_t>(i)];
+      const double ratio = err / sigma;
+      check(out, fmt::format("sigma_ratio.{}", param_name(i)), std::isfinite(ratio) && ratio <= *e.sigma_ratio_max,
+            fmt::format("|error| / stated 1-sigma = {:.3g} / {:.3g} = {:.3g} (limit {:.3g})", err, sigma, ratio,
+                        *e.sigma_ratio_max));
     }
   }
 }
@@ -127,7 +134,7 @@ std::vector<Check> evaluate_expectations(const RunOutcome& o) {
   if (!o.calibration) {
     // Nothing else can be checked; any other expectation fails honestly.
     const bool others = e.converged || e.base_mm || e.link_mm || e.offset_rad || e.cost_max ||
-                        e.kmrmse_mm_max || e.crb_ratio_max || e.static_rms_um_max ||
+                        e.kmrmse_mm_max || e.crb_ratio_max || e.sigma_ratio_max || e.static_rms_um_max ||
                         e.path_rms_um_max || e.improvement_min;
     if (others) check(out, "calibration", false, "no calibration result to check");
     return out;

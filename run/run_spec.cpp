@@ -256,7 +256,7 @@ Expectations parse_expect(const YAML::Node& n, const std::string& file) {
   Expectations e;
   if (!n) return e;
   yaml_check_keys(n, file, "expect",
-                  {"converged", "error", "cost_max", "kmrmse_mm_max", "crb_ratio_max", "static_rms_um_max",
+                  {"converged", "error", "cost_max", "kmrmse_mm_max", "crb_ratio_max", "sigma_ratio_max", "static_rms_um_max",
                    "path_rms_um_max", "improvement_min", "refused_contains", "note_contains", "floor_ratio_max",
                    "robot_time_s_max", "model_test_passes", "positioning_rms_um_max"});
   if (n["converged"]) e.converged = yaml_bool(n["converged"], file, "expect.converged");
@@ -280,6 +280,7 @@ Expectations parse_expect(const YAML::Node& n, const std::string& file) {
   opt_number(n, "cost_max", file, e.cost_max);
   opt_number(n, "kmrmse_mm_max", file, e.kmrmse_mm_max);
   opt_number(n, "crb_ratio_max", file, e.crb_ratio_max);
+  opt_number(n, "sigma_ratio_max", file, e.sigma_ratio_max);
   opt_number(n, "static_rms_um_max", file, e.static_rms_um_max);
   opt_number(n, "path_rms_um_max", file, e.path_rms_um_max);
   opt_number(n, "improvement_min", file, e.improvement_min);

@@ -132,6 +132,7 @@ struct Expectations {
   std::optional<double> cost_max;
   std::optional<double> kmrmse_mm_max;
   std::optional<double> crb_ratio_max;                    // |error| / CRB sigma, every free parameter
+  std::optional<double> sigma_ratio_max;                  // |error| / the stated 1-sigma, every free parameter
   std::optional<double> static_rms_um_max;                // after compensation
   std::optional<double> path_rms_um_max;
   std::optional<double> improvement_min;                  // static RMS nominal / calibrated

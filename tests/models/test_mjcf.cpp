@@ -160,22 +160,22 @@ TEST(Mjcf, EffectsOffLeaveTheIdealModelAndOnAddTheirParts) {
   EXPECT_EQ(x1.find("<spatial"), std::string::npos);
 }
 
-// The drives' friction time constant: MuJoCo's default writes no attribute
-// (the committed model's text), another value its solreffriction on every
-// drive joint with friction, and 0 two physics steps (the stiffest MuJoCo allows).
+// The drives' friction time constant: the default, 0, two physics steps (the
+// stiffest MuJoCo allows); MuJoCo's own default writes no attribute, another
+// value its solreffriction on every drive joint with friction.
 TEST(Mjcf, FrictionTimeconstReachesTheDriveJoints) {
   MjcfOptions o;
   o.timestep_s = 0.00025;
   o.effects.compliance_rad_per_Nm = {1e-4, 0.0, 0.0};
   o.effects.coulomb_Nm = {0.3, 0.3, 0.0};
+  EXPECT_EQ(attribute(mjcf_from_robot(Robot{}, o), "joint_m1", "solreffriction"), "0.0005 1");  // the default
+  o.effects.friction_timeconst_s = kMujocoFrictionTimeconst;
   EXPECT_EQ(mjcf_from_robot(Robot{}, o).find("solreffriction"), std::string::npos);
   o.effects.friction_timeconst_s = 0.004;
   const std::string x = mjcf_from_robot(Robot{}, o);
   EXPECT_EQ(attribute(x, "joint_m1", "solreffriction"), "0.004 1");  // the rotor of a compliant drive
   EXPECT_EQ(attribute(x, "joint_a2", "solreffriction"), "0.004 1");  // a rigid drive
   EXPECT_EQ(attribute(x, "joint_a3", "solreffriction"), "<missing>");  // no friction on chain 3
-  o.effects.friction_timeconst_s = 0.0;
-  EXPECT_EQ(attribute(mjcf_from_robot(Robot{}, o), "joint_m1", "solreffriction"), "0.0005 1");
 }
 
 TEST(Mjcf, TransmissionRateIsHookesLawOnTheTwoInertias) {

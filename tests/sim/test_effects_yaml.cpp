@@ -50,9 +50,9 @@ TEST(EffectsYaml, KeysLandInTheirUnits) {
   EXPECT_DOUBLE_EQ(e.encoder_skew_s[0], 0.0);  // a scalar: encoders 2 and 3 relative to encoder 1
   EXPECT_DOUBLE_EQ(e.encoder_skew_s[2], 1e-4);
   EXPECT_DOUBLE_EQ(e.thermal.growth(100.0), 23e-6 * 3.0 * (1.0 - std::exp(-1.0)));
-  // The drives' friction time constant: MuJoCo's default unless given.
-  EXPECT_DOUBLE_EQ(e.mjcf.friction_timeconst_s, 0.02);
-  EXPECT_DOUBLE_EQ(parse("{preset: realistic, friction_timeconst_s: 0}", kFast).twin.effects.mjcf.friction_timeconst_s, 0.0);
+  // The drives' friction time constant: two physics steps (0) unless given.
+  EXPECT_DOUBLE_EQ(e.mjcf.friction_timeconst_s, 0.0);
+  EXPECT_DOUBLE_EQ(parse("{preset: realistic, friction_timeconst_s: 0.02}", kFast).twin.effects.mjcf.friction_timeconst_s, 0.02);
 }
 
 TEST(EffectsYaml, PresetWithOverridesAndSeededPhases) {
