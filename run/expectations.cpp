@@ -13,6 +13,15 @@ void check(std::vector<Check>& out, const std::string& name, bool ok, const std:
   out.push_back({name, ok, detail});
 }
 
+// The check `name`: a parameter's error over its scale (what `what` calls
+// it) at most limit; a scale that is not known fails.
+void check_ratio(std::vector<Check>& out, const std::string& name, const char* what, double err, double scale,
+                 double limit) {
+  const double ratio = err / scale;
+  check(out, name, std::isfinite(ratio) && ratio <= limit,
+        fmt::format("|error| / {} = {:.3g} / {:.3g} = {:.3g} (limit {:.3g})", what, err, scale, ratio, limit));
+}
+
 
 // The per-parameter checks: each free parameter's error against its tolerance, its CRB and its stated 1-sigma.
 void check_parameters(std::vector<Check>& out, const RunOutcome& o, const calib::Result& r) {
@@ -28,18 +37,12 @@ void check_parameters(std::vector<Check>& out, const RunOutcome& o, const calib:
             fmt::format("|{:.6g} - {:.6g}| = {:.3g} (limit {:.3g})", r.geometry[i], truth[i], err, *tol));
     }
     if (e.crb_ratio_max) {
-      const double bound = o.crb[static_cast<size_t>(i)];
-      const double ratio = err / bound;
-      check(out, fmt::format("crb_ratio.{}", param_name(i)), std::isfinite(ratio) && ratio <= *e.crb_ratio_max,
-            fmt::format("|error| / CRB = {:.3g} / {:.3g} = {:.3g} (limit {:.3g})", err, bound, ratio,
-                        *e.crb_ratio_max));
+      check_ratio(out, fmt::format("crb_ratio.{}", param_name(i)), "CRB", err, o.crb[static_cast<size_t>(i)],
+                  *e.crb_ratio_max);
     }
     if (e.sigma_ratio_max) {
-      const double sigma = r.sigma[static_cast<size_t>(i)];
-      const double ratio = err / sigma;
-      check(out, fmt::format("sigma_ratio.{}", param_name(i)), std::isfinite(ratio) && ratio <= *e.sigma_ratio_max,
-            fmt::format("|error| / stated 1-sigma = {:.3g} / {:.3g} = {:.3g} (limit {:.3g})", err, sigma, ratio,
-                        *e.sigma_ratio_max));
+      check_ratio(out, fmt::format("sigma_ratio.{}", param_name(i)), "stated 1-sigma", err,
+                  r.sigma[static_cast<size_t>(i)], *e.sigma_ratio_max);
     }
   }
 }
