@@ -204,6 +204,11 @@ long polish_gauss_newton(const std::vector<std::unique_ptr<ceres::CostFunction>>
 // Throws InputError for samples, a free set, an iteration budget or a noise that LM cannot use.
 void check_lm_inputs(const Problem& problem, const LmOptions& opt) {
   check_samples(problem);
+  if (!problem.weight.empty() && problem.weight.size() != problem.theta_m.size())
+    throw InputError(fmt::format("calibration: {} sample weights for {} samples", problem.weight.size(),
+                                 problem.theta_m.size()));
+  if (std::ranges::any_of(problem.weight, [](double w) { return !(w >= 0.0) || !std::isfinite(w); }))
+    throw InputError("calibration: a sample weight is negative or not finite (valid: finite, >= 0)");
   check_free_set(problem.free, opt.cost);
   if (opt.max_iterations < 1) throw InputError("--budget: LM needs at least one iteration");
   if (opt.encoder_sigma) check_bound(*opt.encoder_sigma, limits::kEncoderSigma, "--sigma");
@@ -240,12 +245,37 @@ ceres::Problem::Options borrowed_blocks() {
   return po;
 }
 
-// One residual function per sample of problem (autodiff or analytic per opt).
+// A sample's residuals times its weight w (Problem::weight): w r(x), w dr/dx.
+class WeightedSample final : public ceres::CostFunction {
+ public:
+  WeightedSample(std::unique_ptr<ceres::CostFunction> f, double w) : f_(std::move(f)), w_(w) {
+    set_num_residuals(f_->num_residuals());
+    *mutable_parameter_block_sizes() = f_->parameter_block_sizes();
+  }
+  bool Evaluate(double const* const* x, double* r, double** jac) const override {
+    if (!f_->Evaluate(x, r, jac)) return false;
+    const int rows = num_residuals();
+    for (int q = 0; q < rows; ++q) r[q] *= w_;
+    if (jac && jac[0])
+      for (int k = 0; k < rows * parameter_block_sizes()[0]; ++k) jac[0][k] *= w_;
+    return true;
+  }
+
+ private:
+  std::unique_ptr<ceres::CostFunction> f_;
+  double w_;
+};
+
+// One residual function per sample of problem (autodiff or analytic per opt), weighted by problem.weight.
 std::vector<std::unique_ptr<ceres::CostFunction>> sample_functions(const Problem& problem, const LmOptions& opt) {
   std::vector<std::unique_ptr<ceres::CostFunction>> functions;
   functions.reserve(problem.theta_m.size());
-  for (const auto& t : problem.theta_m)
-    functions.emplace_back(opt.autodiff ? make_autodiff_residual(opt.cost, t) : make_residual(opt.cost, t));
+  for (std::size_t j = 0; j < problem.theta_m.size(); ++j) {
+    const Eigen::Vector3d& t = problem.theta_m[j];
+    std::unique_ptr<ceres::CostFunction> f(opt.autodiff ? make_autodiff_residual(opt.cost, t) : make_residual(opt.cost, t));
+    if (!problem.weight.empty()) f = std::make_unique<WeightedSample>(std::move(f), problem.weight[j]);
+    functions.push_back(std::move(f));
+  }
   return functions;
 }
 
@@ -397,6 +427,7 @@ Mat15 reading_noise_meat(const Problem& problem, const LmSolve& s, const Weighte
   Mat15 M = Mat15::Zero();
   for (size_t j = 0; j < problem.theta_m.size(); ++j) {
     Eigen::MatrixXd R = reading_jacobian(cost, problem.theta_m[j], s.x, s.rows);
+    if (!problem.weight.empty()) R *= problem.weight[j];
     if (!fin.W.empty()) R = fin.W[j] * R;
     const auto Jj = fin.e.J.middleRows(static_cast<Eigen::Index>(j) * s.rows, s.rows);
     const Eigen::MatrixXd JR = Jj.transpose() * R;

@@ -19,6 +19,7 @@
 #include "calib/passive_tension.hpp"
 #include "calib/reading_model.hpp"
 #include "calib/residuals.hpp"
+#include "calib/sample_weights.hpp"
 #include "models/errors.hpp"
 #include "models/kinematics.hpp"
 
@@ -148,6 +149,18 @@ std::vector<Eigen::Vector3d> clearance_regressors(const std::vector<std::optiona
       out[j][i] = (tension > 0.0 ? 1.0 : -1.0) * forces[j]->per_mm[i];
     }
   }
+  return out;
+}
+
+// sign_flip_variance per sample and chain of the signs clearance_regressors
+// uses (|T_i| >= tension_min_N), the forces known within sigma_N (0: certain).
+std::vector<Eigen::Vector3d> flip_variances(const std::vector<std::optional<PassiveForces>>& forces,
+                                            double tension_min_N, double sigma_N) {
+  std::vector<Eigen::Vector3d> out(forces.size(), Eigen::Vector3d::Zero());
+  for (std::size_t j = 0; j < forces.size(); ++j)
+    for (int i = 0; forces[j] && i < 3; ++i)
+      if (std::abs(forces[j]->tension[i]) >= tension_min_N)
+        out[j][i] = sign_flip_variance(forces[j]->tension[i], sigma_N, forces[j]->per_mm[i]);
   return out;
 }
 
@@ -522,6 +535,9 @@ struct EffectRegressors {
   std::vector<Eigen::Vector3d> mesh;  // the mesh torques of the whole sequence (hysteresis_state runs on it)
   std::vector<std::size_t> at;        // each regressor's sample in mesh
   std::vector<SampleWaves> wave;  // of the raw readings
+  // Per sample and chain, what a wrong force sign adds to the reading's
+  // variance per mm^2 of play (sign_flip_variance; 0 where the sign is not used).
+  std::vector<Eigen::Vector3d> flip;
   double tension_min = 0.0;
 };
 
@@ -550,7 +566,9 @@ EffectRegressors effect_regressors(const Geometry& start, const MotionSamples& s
   if (model.clearance) forces = passive_forces(start, s.theta_m, e.tau_t);
   e.tension_min = effective_tension_min(model, forces);
   e.clr.assign(s.theta_m.size(), Eigen::Vector3d::Zero());
+  e.flip = e.clr;
   if (model.clearance) e.clr = clearance_regressors(forces, e.tension_min);
+  if (model.clearance) e.flip = flip_variances(forces, e.tension_min, model.tension_sigma_N);
   e.flank = flank_regressors(model, s.omega, s.tau, s.alpha);
   e.mesh = hysteresis_mesh_torques(model, s.omega, s.tau, s.alpha);
   e.at.resize(s.theta_m.size());
@@ -573,6 +591,7 @@ EffectRegressors kept_regressors(const EffectRegressors& e, const std::vector<st
     k.fric.push_back(e.fric[j]);
     k.tau_t.push_back(e.tau_t[j]);
     k.clr.push_back(e.clr[j]);
+    k.flip.push_back(e.flip[j]);
     k.flank.push_back(e.flank[j]);
   }
   return k;
@@ -654,18 +673,21 @@ struct Linearisation {
   Eigen::MatrixXd Jg, Jn, Jc;
   Eigen::VectorXd r;
   Eigen::MatrixXd U;
+  Eigen::VectorXd w;  // the samples' weights, applied to the rows of Jg, Jn, Jc and r (not U)
 };
 
 // Linearisation at geometry g of the corrected readings th (raw readings and
-// regressors from s and e), for the free parameters free_index and columns cols.
+// regressors from s and e), for the free parameters free_index and columns
+// cols, each sample's rows weighted by w (empty: 1).
 Linearisation linearise(const Geometry& g, const std::vector<Eigen::Vector3d>& th, const MotionSamples& s,
-                        const EffectRegressors& e, const std::vector<int>& free_index, const std::vector<int>& cols) {
+                        const EffectRegressors& e, const std::vector<int>& free_index, const std::vector<int>& cols,
+                        const std::vector<double>& w = {}) {
   const auto n = static_cast<Eigen::Index>(th.size());
   const ParamVector x = to_solver(g, Cost::kML);
   const Eigen::MatrixXd J_all = ml_jacobian(th, g);
   Linearisation l{Eigen::MatrixXd(n, static_cast<Eigen::Index>(free_index.size())),
                   Eigen::MatrixXd(n, static_cast<Eigen::Index>(cols.size())), Eigen::MatrixXd(n, 6), Eigen::VectorXd(n),
-                  Eigen::MatrixXd(n, 3)};
+                  Eigen::MatrixXd(n, 3), Eigen::VectorXd::Ones(n)};
   for (std::size_t k = 0; k < free_index.size(); ++k) l.Jg.col(static_cast<Eigen::Index>(k)) = J_all.col(free_index[k]);
   for (std::size_t j = 0; j < th.size(); ++j) {
     l.r[static_cast<Eigen::Index>(j)] = ml_residual(x, th[j]);
@@ -675,7 +697,42 @@ Linearisation linearise(const Geometry& g, const std::vector<Eigen::Vector3d>& t
     l.U.row(static_cast<Eigen::Index>(j)) = u.transpose();
     fill_nuisance_row(u, reg, cols, static_cast<Eigen::Index>(j), l.Jn, l.Jc);
   }
+  if (!w.empty()) l.w = Eigen::Map<const Eigen::VectorXd>(w.data(), n);
+  l.r.array() *= l.w.array();
+  l.Jg = l.w.asDiagonal() * l.Jg;
+  l.Jn = l.w.asDiagonal() * l.Jn;
+  l.Jc = l.w.asDiagonal() * l.Jc;
   return l;
+}
+
+// The samples' weights for the next pass (calib/sample_weights.hpp) from the
+// reading sensitivities U, the friction twists and plays fit estimated so far
+// and the force signs' doubts e.flip; empty (all 1) without a stick speed or
+// a force's 1-sigma, or without the reading noise.
+std::vector<double> fit_weights(const MotionModel& model, const LmOptions& options, const Eigen::MatrixXd& U,
+                                const std::vector<Eigen::Vector3d>& omega, const EffectRegressors& e,
+                                const MotionFit& fit) {
+  const bool rest = model.stick_speed_rad_s > 0.0, signs = model.tension_sigma_N > 0.0 && e.flip.size() == omega.size();
+  if (!(rest || signs) || !options.encoder_sigma || U.rows() != static_cast<Eigen::Index>(omega.size())) return {};
+  std::vector<double> w(omega.size(), 1.0);
+  for (std::size_t j = 0; j < omega.size(); ++j) {
+    Eigen::Vector3d v = Eigen::Vector3d::Zero();
+    for (std::size_t i = 0; i < 3; ++i) {
+      const auto k = static_cast<Eigen::Index>(i);
+      if (rest) v[k] += rest_twist_variance(omega[j][k], fit.friction[i], model.stick_speed_rad_s);
+      if (signs) v[k] += fit.clearance[i] * fit.clearance[i] * e.flip[j][k];
+    }
+    w[j] = sample_weight(U.row(static_cast<Eigen::Index>(j)).transpose(), v, *options.encoder_sigma);
+  }
+  return w;
+}
+
+// The largest change between weights a and b (empty: all 1).
+double weight_change(const std::vector<double>& a, const std::vector<double>& b) {
+  double d = 0.0;
+  for (std::size_t j = 0; j < std::max(a.size(), b.size()); ++j)
+    d = std::max(d, std::abs((j < a.size() ? a[j] : 1.0) - (j < b.size() ? b[j] : 1.0)));
+  return d;
 }
 
 // [Jg, Jn] with the cyclic prior's rows (append_cyclic_prior).
@@ -809,6 +866,7 @@ MotionFit fit_on_kept(const Problem& problem, const MotionSamples& s, const LmOp
   Problem sub = problem;
   sub.theta_m.clear();
   sub.true_xy.clear();
+  sub.weight.clear();
   std::vector<Eigen::Vector3d> omega, tau, nb, alpha;
   for (std::size_t j : kept) {
     if (!s.nb.empty()) nb.push_back(s.nb[j]);
@@ -868,12 +926,16 @@ MotionFit fit_in_motion(const Problem& problem, const MotionSamples& s, const Lm
   unpack_nuisance(nu_all, fit);
   std::vector<LmIteration> iterations;
   Linearisation l;
+  std::vector<double> w;  // the samples' weights, from the pass before's estimates (the first pass: all 1)
   // The hysteresis's threshold moves its regressor: a few more passes for its Gauss-Newton steps.
   const bool hysteresis = std::ranges::any_of(cols, [](int c) { return c >= kHysteresis; });
   const int max_passes = std::max(1, model.max_passes) + (hysteresis ? kHysteresisPasses : 0);
   for (fit.passes = 1; fit.passes <= max_passes; ++fit.passes) {
-    if (model.clearance && fit.passes > 1)
-      e.clr = clearance_regressors(passive_forces(p.start, twist_corrected(fit, s, e), e.tau_t), e.tension_min);
+    if (model.clearance && fit.passes > 1) {
+      const auto forces = passive_forces(p.start, twist_corrected(fit, s, e), e.tau_t);
+      e.clr = clearance_regressors(forces, e.tension_min);
+      e.flip = flip_variances(forces, e.tension_min, model.tension_sigma_N);
+    }
     // The hysteresis's threshold eta_i / c_i from the estimates so far: its
     // regressor's shape follows them (a Gauss-Newton step on both, through the slope).
     if (fit.passes > 1)
@@ -881,18 +943,23 @@ MotionFit fit_in_motion(const Problem& problem, const MotionSamples& s, const Lm
                                      hysteresis_thresholds(model, e.mesh, fit.hysteresis, {fit.nu[2], fit.nu[3], fit.nu[4]},
                                                            e.hyst.threshold));
     p.theta_m = fully_corrected(fit, s, e);
+    p.weight = w;
     fit.result = calibrate_lm(p, lm);
     // The first pass checked the samples and the free set at the start; the
     // next ones move the readings by the nuisance corrections only (the last fit checks again).
     lm.checks = fit.result.rank_deficient;
     append_iterations(iterations, fit.result.lm_iterations);
     p.start = fit.result.geometry;  // warm start for the next pass
-    l = linearise(fit.result.geometry, p.theta_m, s, e, free_index, cols);
+    l = linearise(fit.result.geometry, p.theta_m, s, e, free_index, cols, w);
     if (cols.empty()) break;
-    // Converged when the nuisance step moves the residuals by a negligible fraction.
+    // Converged when the nuisance step moves the residuals by a negligible
+    // fraction and the weights it gives move by less than 1e-3.
     const double change = nuisance_step(l, cols, prior_weight, nu_all);
     unpack_nuisance(nu_all, fit);
-    if (change < 1e-6) break;
+    std::vector<double> next = fit_weights(model, options, l.U, s.omega, e, fit);
+    const double moved = weight_change(next, w);
+    w = std::move(next);
+    if (change < 1e-6 && moved < 1e-3) break;
   }
   fit.passes = std::min(fit.passes, max_passes);
   fit.corrected = fully_corrected(fit, s, e);
@@ -902,6 +969,8 @@ MotionFit fit_in_motion(const Problem& problem, const MotionSamples& s, const Lm
     for (int k = 0; k < 3; ++k)
       if (e.clr[j][k] != 0.0) fit.clearance_used[static_cast<std::size_t>(k)] += 1.0 / static_cast<double>(s.theta_m.size());
   p.theta_m = fit.corrected;
+  p.weight = w;
+  fit.weight = w;
   lm.compute_covariance = options.compute_covariance;
   lm.function_tolerance = options.function_tolerance;
   lm.checks = options.checks;
@@ -1134,7 +1203,8 @@ std::vector<LeftOutEffect> left_out_effects(const Problem& problem, const std::v
   std::vector<int> cols = own;
   for (int c : candidates)
     if (std::ranges::find(own, c) == own.end()) cols.push_back(c);
-  const Linearisation l = linearise(fit.result.geometry, fit.corrected, s, e, free_indices(problem.free), cols);
+  const Linearisation l = linearise(fit.result.geometry, fit.corrected, s, e, free_indices(problem.free), cols,
+                                    fit.weight.size() == fit.kept.size() ? fit.weight : std::vector<double>{});
   const auto n_own = static_cast<Eigen::Index>(own.size());
   Eigen::MatrixXd Q(l.r.size(), l.Jg.cols() + n_own);
   Q << l.Jg, l.Jn.leftCols(n_own);
@@ -1159,7 +1229,7 @@ std::vector<LeftOutEffect> left_out_effects(const Problem& problem, const std::v
     std::vector<Eigen::Vector3d> a;
     for (std::size_t j : fit.kept) a.push_back(alpha[j]);
     int rank = 0;
-    const double drop = score_chi2(Qo, friction_dynamics_columns(l.U, w, a, v), rp, rank);
+    const double drop = score_chi2(Qo, l.w.asDiagonal() * friction_dynamics_columns(l.U, w, a, v), rp, rank);
     if (rank > 0 && chi2_survival(rank, drop) < 1e-3)
       out.push_back({kFrictionDynamics, drop, rank});
   }

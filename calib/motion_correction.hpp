@@ -70,6 +70,11 @@ struct MotionModel {
                                                    // (the data sheet's)
   bool sandwich = true;  // when the fit's residuals exceed the noise (chi-square test at 0.1 %), the covariance
                          // is the autocorrelation-robust sandwich of the residuals (Newey-West), not sigma^2 (J'J)^-1
+  // Samples the friction leaves uncertain weigh less (calib/sample_weights.hpp; needs LmOptions::encoder_sigma):
+  double stick_speed_rad_s = 0.0;  // > 0: below about this speed a rotor may be at rest, its friction twist
+                                   // known within +-c_i F_i only (with the friction twist); 0: no such doubt
+  double tension_sigma_N = 0.0;    // > 0: a passive link's force known within this 1-sigma (N), its sign (with
+                                   // the clearance) wrong with Phi(-|T| / this); 0: the signs used are certain
   int skip_first = 0;          // leading samples left out (the drives' start transient)
   int max_passes = 6;      // Gauss-Newton passes (each one LM fit)
 };
@@ -115,6 +120,7 @@ struct MotionFit {
   int passes = 0;
   std::vector<std::size_t> kept;            // the samples the fit used (indices into the readings)
   std::vector<Eigen::Vector3d> corrected;   // those readings corrected with nu (rad)
+  std::vector<double> weight;               // their residuals' weights (calib/sample_weights.hpp); empty: all 1
 };
 
 // Estimates problem.free and the nuisance values of model from readings

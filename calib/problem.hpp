@@ -45,6 +45,9 @@ struct Problem {
   // The samples' true end-effector positions (mm), one per reading, where
   // known (simulation, a tracker): Result::kmrmse_mm (eq. 40); empty: unknown.
   std::vector<Eigen::Vector2d> true_xy{};
+  // Each sample's residual weight, one per reading (1 / its 1-sigma in units
+  // of the reading noise, e.g. calib/sample_weights.hpp); empty: all 1.
+  std::vector<double> weight{};
 };
 
 // Search box of the global solvers (paper Table 5 by default).

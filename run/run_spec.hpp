@@ -38,6 +38,12 @@ struct DriveFriction {
   // on the fly, where the samples carry torques and times): the stated values
   // are then only the fallback, and fit_scale walks from the estimates.
   bool from_balance = true;
+  // On the fly: samples the friction leaves uncertain weigh less
+  // (calib/sample_weights.hpp): a joint slower than a reading step per
+  // sample may be at rest, its friction twist known within +-c F only; a
+  // passive link's force sign may be wrong, its force known within the
+  // force balance's 1-sigma. false: every sample weighs 1.
+  bool weigh_uncertain = true;
 };
 
 // The drives' friction a data sheet states (the default of

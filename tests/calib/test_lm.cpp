@@ -5,7 +5,8 @@
 // 12-parameter gauge refused as rank-deficient, the minimum-norm solve, bad
 // input, the 1-sigma against the Cramer-Rao bound, the analytic Jacobians
 // giving the autodiff reference's estimate and 1-sigma on noisy data, and
-// noisy fits ending at the optimum (the Gauss-Newton step there is nil).
+// noisy fits ending at the optimum (the Gauss-Newton step there is nil),
+// and the samples' weights (a zero weight, a uniform one).
 #include "calib/lm.hpp"
 
 #include <cmath>
@@ -392,6 +393,40 @@ TEST(CalibrateLm, NoisyFitsEndAtTheGaussNewtonFixedPoint) {
       }
     }
   }
+}
+
+TEST(CalibrateLm, AZeroWeightLeavesTheSampleOutAndAUniformWeightChangesNothing) {
+  // Two algorithms for one answer: a corrupted sample at weight 0 against the
+  // fit without it; every weight 2 against no weights (the sandwich 1-sigma
+  // with the reading noise scales the rows' noise with them).
+  const Problem p = noisy_disc_problem(78);
+  LmOptions o;
+  o.cost = Cost::kML;
+  o.encoder_sigma = 1e-4;
+  Problem corrupted = p;
+  corrupted.theta_m[5][1] += 0.01;
+  corrupted.weight.assign(p.theta_m.size(), 1.0);
+  corrupted.weight[5] = 0.0;
+  Problem without = p;
+  without.theta_m.erase(without.theta_m.begin() + 5);
+  Problem doubled = p;
+  doubled.weight.assign(p.theta_m.size(), 2.0);
+  const Result rc = calibrate_lm(corrupted, o), rw = calibrate_lm(without, o), r1 = calibrate_lm(p, o),
+               r2 = calibrate_lm(doubled, o);
+  for (int i = 0; i < kNumParams; ++i) {
+    const auto k = static_cast<size_t>(i);
+    if (!default_free_mask().test(k)) continue;
+    EXPECT_NEAR(rc.geometry[i], rw.geometry[i], 1e-5 * rw.sigma[k]) << param_name(i);
+    EXPECT_NEAR(rc.sigma[k], rw.sigma[k], 1e-5 * rw.sigma[k]) << param_name(i);
+    EXPECT_NEAR(r2.geometry[i], r1.geometry[i], 1e-5 * r1.sigma[k]) << param_name(i);
+    EXPECT_NEAR(r2.sigma[k], r1.sigma[k], 1e-5 * r1.sigma[k]) << param_name(i);
+  }
+  Problem wrong = p;
+  wrong.weight = {1.0, 1.0};
+  EXPECT_THROW(calibrate_lm(wrong, o), InputError);
+  wrong.weight.assign(p.theta_m.size(), 1.0);
+  wrong.weight[0] = -1.0;
+  EXPECT_THROW(calibrate_lm(wrong, o), InputError);
 }
 
 }  // namespace

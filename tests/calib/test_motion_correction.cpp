@@ -15,7 +15,8 @@
 // state follows the torque at half its rate until it slides at +-1, and holds
 // through a reversal smaller than its threshold; the score test of an
 // effect left out agrees with the chi-square the full fit takes out; a
-// friction that leads the speed is named as the drives' friction dynamics.
+// friction that leads the speed is named as the drives' friction dynamics;
+// samples whose rotors rest weigh less, and so pass the model test.
 #include "calib/motion_correction.hpp"
 
 #include <cmath>
@@ -246,6 +247,48 @@ TEST(MotionCorrection, RecoversTheFrictionTwistAndIgnoringItBiasesTheFit) {
   EXPECT_EQ(biased.friction[0], 0.0);
   EXPECT_TRUE(std::isnan(biased.friction_sigma[0]));
   EXPECT_GT(worst_in_sigmas(d, biased.result), 4.0);
+}
+
+TEST(MotionCorrection, SamplesWhoseRotorsRestWeighLessAndPassTheTest) {
+  // Every fourth sample at rest (its rates read 0), its twist anywhere within
+  // +-c F (uniform); the others slide, their twist c F tanh(omega / 0.01).
+  // Unweighted, the rest's twist is misfit; weighted by
+  // calib/sample_weights.hpp it is the variance the test expects.
+  MotionData d = make_data(800, 17);
+  const std::array<double, 3> cf = {4e-5, -5e-5, 6e-5};
+  Rng rng(18);
+  for (std::size_t j = 0; j < d.omega.size(); ++j)
+    for (int k = 0; k < 3; ++k) {
+      const double c = cf[static_cast<std::size_t>(k)];
+      if (j % 4 == 0) {  // at rest: no skew's share either
+        d.problem.theta_m[j][k] += (k == 0 ? 0.0 : kNu[static_cast<std::size_t>(k) - 1]) * d.omega[j][k];
+        d.omega[j][k] = 0.0;
+      }
+      const double twist = j % 4 == 0 ? rng.uniform(-1.0, 1.0) * c : c * std::tanh(d.omega[j][k] / 0.01);
+      d.problem.theta_m[j][k] -= twist;  // theta_m = theta_a - dth - s omega + c tau - twist
+    }
+  const LmOptions o = at_sigma();
+  MotionModel weighted;
+  weighted.stick_speed_rad_s = 0.05;
+  const MotionFit plain = calibrate_in_motion(d.problem, d.omega, d.tau, o);
+  const MotionFit fit = calibrate_in_motion(d.problem, d.omega, d.tau, o, weighted);
+  ASSERT_TRUE(plain.weight.empty());
+  ASSERT_EQ(fit.weight.size(), fit.kept.size());
+  for (std::size_t j = 0; j < fit.weight.size(); ++j) {
+    if (j % 4 == 0) {
+      EXPECT_LT(fit.weight[j], 0.7) << j;
+    } else if (d.omega[j].cwiseAbs().minCoeff() > 0.2) {  // 4 stick speeds
+      EXPECT_GT(fit.weight[j], 0.99) << j;
+    }
+  }
+  const ModelTest t_plain =
+      model_test(plain.result.geometry, d.problem.free, plain.corrected, kSigma, 0.01, 0.0, plain.weight);
+  const ModelTest t_fit = model_test(fit.result.geometry, d.problem.free, fit.corrected, kSigma, 0.01, 0.0, fit.weight);
+  EXPECT_FALSE(t_plain.passed) << t_plain.rms_ratio;
+  EXPECT_TRUE(t_fit.passed) << t_fit.rms_ratio;
+  for (std::size_t k = 0; k < 3; ++k)
+    EXPECT_LT(std::abs(fit.friction[k] - cf[k]), 4.0 * fit.friction_sigma[k]) << "c F of joint " << k + 1;
+  EXPECT_LT(worst_in_sigmas(d, fit.result), 4.0);
 }
 
 TEST(MotionCorrection, AConstantTorqueJointsTwistGoesIntoItsOffset) {

@@ -147,6 +147,11 @@ TEST(RunSpec, DriveFrictionStatedByTheCalibration) {
                    .calibration.drive_friction.from_balance);
   EXPECT_NE(error_of(kHead + "calibration: {drive_friction: {from_balance: 2}}\n").find("calibration.drive_friction.from_balance"),
             std::string::npos);
+  EXPECT_TRUE(d.calibration.drive_friction.weigh_uncertain);  // default: samples the friction leaves uncertain weigh less
+  EXPECT_FALSE(parse_run_spec(kHead + "calibration: {drive_friction: {weigh_uncertain: false}}\n", "s.yaml", kBase)
+                   .calibration.drive_friction.weigh_uncertain);
+  EXPECT_NE(error_of(kHead + "calibration: {drive_friction: {weigh_uncertain: 2}}\n").find("calibration.drive_friction.weigh_uncertain"),
+            std::string::npos);
   EXPECT_EQ(error_of(kHead + "calibration: {drive_friction: {coulomb_Nm: -0.3}}\n"),
             "s.yaml:3: calibration.drive_friction.coulomb_Nm: -0.3 is out of range (valid: 0 to 20 N m)");
   EXPECT_NE(error_of(kHead + "calibration: {drive_friction: {viscous_Nm_s: [0.1, 0.2]}}\n")
