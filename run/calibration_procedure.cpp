@@ -241,7 +241,7 @@ void friction_from_balance(MotionStage& m, const CalibrationInputs& in) {
     m.balance = f;
     m.balance_taken = static_cast<int>(coulomb.size() + viscous.size());
     if (!in.tension_min_stated && f.tension_sigma_N > 0.0) m.motion.tension_min_N = kForceSignSigmas * f.tension_sigma_N;
-    if (in.drive_friction.weigh_uncertain) m.motion.tension_sigma_N = f.tension_sigma_N;  // (calib/sample_weights.hpp)
+    if (in.drive_friction.weigh_signs) m.motion.tension_sigma_N = f.tension_sigma_N;  // (calib/sample_weights.hpp)
     m.balance_note = fmt::format(
         "drive friction per joint from the hub's force balance on the drives' torques: Coulomb {:.3g}, {:.3g}, "
         "{:.3g} N m (1-sigma {:.2g}, {:.2g}, {:.2g}), viscous {:.3g}, {:.3g}, {:.3g} N m s/rad (1-sigma {:.2g}, "
@@ -468,15 +468,14 @@ CalibrationOutcome calibrate_samples(const SampleSeries& samples, const Calibrat
   }
   if (q)
     if (std::optional<std::string> note = encoder_turns_with_joint(inputs, *q)) step_notes.push_back(std::move(*note));
-  if (q && options.in_motion && inputs.drive_friction.weigh_uncertain && samples.t_s.size() > 1) {
+  if (q && options.in_motion && inputs.drive_friction.weigh_rest && samples.t_s.size() > 1) {
     // A rotor may rest where its reading moves less than a step per sample (calib/sample_weights.hpp).
     const double dt = (samples.t_s.back() - samples.t_s.front()) / static_cast<double>(samples.t_s.size() - 1);
     inputs.motion.stick_speed_rad_s = calib::stick_speed(*q, dt);
     if (inputs.motion.stick_speed_rad_s > 0.0)
       step_notes.push_back(fmt::format(
-          "samples the friction leaves uncertain weigh less in the fit and the model test: a joint slower than "
-          "{:.3g} rad/s (a reading step per sample) may be at rest, its friction twist known within +-c F only; "
-          "a passive link's force sign is wrong with the chance the force balance's 1-sigma gives",
+          "a joint slower than {:.3g} rad/s (a reading step per sample) may be at rest, its friction twist then "
+          "known within +-c F only: such samples weigh less in the fit and the model test",
           inputs.motion.stick_speed_rad_s));
   }
   const calib::MotionModel& model = inputs.motion;

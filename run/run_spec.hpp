@@ -38,12 +38,15 @@ struct DriveFriction {
   // on the fly, where the samples carry torques and times): the stated values
   // are then only the fallback, and fit_scale walks from the estimates.
   bool from_balance = true;
-  // On the fly: samples the friction leaves uncertain weigh less
-  // (calib/sample_weights.hpp): a joint slower than a reading step per
-  // sample may be at rest, its friction twist known within +-c F only; a
-  // passive link's force sign may be wrong, its force known within the
-  // force balance's 1-sigma. false: every sample weighs 1.
-  bool weigh_uncertain = true;
+  // On the fly, samples the friction leaves uncertain weigh less
+  // (calib/sample_weights.hpp): with weigh_rest, where a joint turns slower
+  // than a reading step per sample (it may be at rest, its friction twist
+  // known within +-c F only); with weigh_signs, where a passive link's force
+  // sign may be wrong (its force known within the force balance's 1-sigma;
+  // off by default: on robots whose readings the model misses it weighs the
+  // misfit away, docs/PROCEDURES.md "Samples the friction leaves uncertain").
+  bool weigh_rest = true;
+  bool weigh_signs = false;
 };
 
 // The drives' friction a data sheet states (the default of
