@@ -315,7 +315,8 @@ TEST(MotionCorrection, AConstantTorqueJointsTwistGoesIntoItsOffset) {
 // and skew of make_data. The clearance model recovers d_i and the geometry
 // within 4 sigma and leaves out the samples with some |T_i| below
 // tension_min_N (judged at the start geometry: to 10 %); without it the same
-// samples give a fit biased beyond 4 sigma.
+// samples give a fit biased beyond 4 sigma; with a force's 1-sigma the
+// samples whose signs are near the threshold weigh less.
 TEST(MotionCorrection, RecoversTheJointClearanceAndIgnoringItBiasesTheFit) {
   const std::array<double, 3> play = {0.010, 0.008, 0.012};  // mm
   Robot a;
@@ -375,6 +376,25 @@ TEST(MotionCorrection, RecoversTheJointClearanceAndIgnoringItBiasesTheFit) {
   for (int k = 0; k < 5; ++k) EXPECT_LT(std::abs(fit.nu[k] - kNu[k]), 4.0 * fit.nu_sigma[k]) << "nuisance " << k;
   EXPECT_LT(worst_in_sigmas(d, fit.result), 4.0);
   EXPECT_TRUE(clearance_detected(fit));
+  // A link's force known within 1 N: the samples whose weakest force is near
+  // the threshold weigh less (a sign wrong with Phi(-|T|)), those far from
+  // it 1; the play is still recovered.
+  MotionModel doubted = model;
+  doubted.tension_sigma_N = 1.0;
+  const MotionFit weighed = calibrate_in_motion(d.problem, d.omega, d.tau, o, doubted);
+  ASSERT_EQ(weighed.weight.size(), weighed.kept.size());
+  int near = 0, near_less = 0;  // (a sign the fit's own forces put below the threshold is not used: no doubt)
+  for (std::size_t k = 0; k < weighed.kept.size(); ++k) {
+    const double weak = weakest[weighed.kept[k]];
+    if (weak > 6.0) {
+      EXPECT_GT(weighed.weight[k], 0.999) << "sample " << weighed.kept[k];
+    }
+    if (weak < 1.8) ++near, near_less += weighed.weight[k] < 0.99;
+  }
+  EXPECT_GT(near, 10);
+  EXPECT_GE(near_less, 0.9 * near);
+  for (std::size_t k = 0; k < 3; ++k)
+    EXPECT_LT(std::abs(weighed.clearance[k] - play[k]), 4.0 * weighed.clearance_sigma[k]) << "play of chain " << k + 1;
   model.clearance = false;
   model.sandwich = false;  // judged by the noise model's 1-sigma (the sandwich widens it to the misfit)
   const MotionFit biased = calibrate_in_motion(d.problem, d.omega, d.tau, o, model);
