@@ -891,6 +891,23 @@ MotionFit fit_on_kept(const Problem& problem, const MotionSamples& s, const LmOp
   return fit;
 }
 
+// The regressors that move with the estimates, for a pass after the first:
+// with the clearance its regressors and its signs' doubts (e.clr, e.flip)
+// from the forces at geometry g with the readings corrected for fit's twist
+// so far; the hysteresis's threshold eta_i / c_i from the estimates so far,
+// whose regressor's shape follows them (a Gauss-Newton step on both, through the slope).
+void refresh_regressors(const Geometry& g, const MotionModel& model, const MotionFit& fit, const MotionSamples& s,
+                        EffectRegressors& e) {
+  if (model.clearance) {
+    const auto forces = passive_forces(g, twist_corrected(fit, s, e), e.tau_t);
+    e.clr = clearance_regressors(forces, e.tension_min);
+    e.flip = flip_variances(forces, e.tension_min, model.tension_sigma_N);
+  }
+  e.hyst = hysteresis_regressors(
+      model, e.mesh, e.at,
+      hysteresis_thresholds(model, e.mesh, fit.hysteresis, {fit.nu[2], fit.nu[3], fit.nu[4]}, e.hyst.threshold));
+}
+
 // calibrate_in_motion on samples s (the torque changes nb given: torques_before
 // of the whole sequence; empty without model.torque_before). Passes of an LM
 // fit of the geometry on readings corrected with the nuisance values, then a
@@ -931,17 +948,7 @@ MotionFit fit_in_motion(const Problem& problem, const MotionSamples& s, const Lm
   const bool hysteresis = std::ranges::any_of(cols, [](int c) { return c >= kHysteresis; });
   const int max_passes = std::max(1, model.max_passes) + (hysteresis ? kHysteresisPasses : 0);
   for (fit.passes = 1; fit.passes <= max_passes; ++fit.passes) {
-    if (model.clearance && fit.passes > 1) {
-      const auto forces = passive_forces(p.start, twist_corrected(fit, s, e), e.tau_t);
-      e.clr = clearance_regressors(forces, e.tension_min);
-      e.flip = flip_variances(forces, e.tension_min, model.tension_sigma_N);
-    }
-    // The hysteresis's threshold eta_i / c_i from the estimates so far: its
-    // regressor's shape follows them (a Gauss-Newton step on both, through the slope).
-    if (fit.passes > 1)
-      e.hyst = hysteresis_regressors(model, e.mesh, e.at,
-                                     hysteresis_thresholds(model, e.mesh, fit.hysteresis, {fit.nu[2], fit.nu[3], fit.nu[4]},
-                                                           e.hyst.threshold));
+    if (fit.passes > 1) refresh_regressors(p.start, model, fit, s, e);
     p.theta_m = fully_corrected(fit, s, e);
     p.weight = w;
     fit.result = calibrate_lm(p, lm);

@@ -448,6 +448,20 @@ std::string left_out_sentence(const std::vector<calib::LeftOutEffect>& left_out,
   return s;
 }
 
+// On the fly with drive_friction.weigh_rest: the speed below which a rotor
+// may rest, where its reading moves less than a step q per sample
+// (calib/sample_weights.hpp), into inputs.motion, and a note saying so.
+void set_stick_speed(const SampleSeries& samples, double q, CalibrationInputs& inputs, std::vector<std::string>& notes) {
+  if (!inputs.drive_friction.weigh_rest || samples.t_s.size() < 2) return;
+  const double dt = (samples.t_s.back() - samples.t_s.front()) / static_cast<double>(samples.t_s.size() - 1);
+  inputs.motion.stick_speed_rad_s = calib::stick_speed(q, dt);
+  if (inputs.motion.stick_speed_rad_s > 0.0)
+    notes.push_back(fmt::format(
+        "a joint slower than {:.3g} rad/s (a reading step per sample) may be at rest, its friction twist then "
+        "known within +-c F only: such samples weigh less in the fit and the model test",
+        inputs.motion.stick_speed_rad_s));
+}
+
 }  // namespace
 
 CalibrationOutcome calibrate_samples(const SampleSeries& samples, const CalibrationInputs& inputs_stated,
@@ -468,16 +482,7 @@ CalibrationOutcome calibrate_samples(const SampleSeries& samples, const Calibrat
   }
   if (q)
     if (std::optional<std::string> note = encoder_turns_with_joint(inputs, *q)) step_notes.push_back(std::move(*note));
-  if (q && options.in_motion && inputs.drive_friction.weigh_rest && samples.t_s.size() > 1) {
-    // A rotor may rest where its reading moves less than a step per sample (calib/sample_weights.hpp).
-    const double dt = (samples.t_s.back() - samples.t_s.front()) / static_cast<double>(samples.t_s.size() - 1);
-    inputs.motion.stick_speed_rad_s = calib::stick_speed(*q, dt);
-    if (inputs.motion.stick_speed_rad_s > 0.0)
-      step_notes.push_back(fmt::format(
-          "a joint slower than {:.3g} rad/s (a reading step per sample) may be at rest, its friction twist then "
-          "known within +-c F only: such samples weigh less in the fit and the model test",
-          inputs.motion.stick_speed_rad_s));
-  }
+  if (q && options.in_motion) set_stick_speed(samples, *q, inputs, step_notes);
   const calib::MotionModel& model = inputs.motion;
   const bool with_effects = model.compliance || model.skew || model.clearance;
   if (with_effects && (options.method.method != calib::Method::kLM || options.method.cost != calib::Cost::kML))
