@@ -153,14 +153,24 @@ std::vector<Eigen::Vector3d> clearance_regressors(const std::vector<std::optiona
 }
 
 // sign_flip_variance per sample and chain of the signs clearance_regressors
-// uses (|T_i| >= tension_min_N), the forces known within sigma_N (0: certain).
+// uses (|T_i| >= tension_min_N), each force known within
+// model.tension_sigma_N (0: certain) and, where its joint may be at rest
+// (speeds omega below the stick speed), within the friction F_i it may hold
+// as well: a torque uniform on +-F_i moves T_i by it over la_i sin(theta_b - theta_a).
 std::vector<Eigen::Vector3d> flip_variances(const std::vector<std::optional<PassiveForces>>& forces,
-                                            double tension_min_N, double sigma_N) {
+                                            double tension_min_N, const MotionModel& model,
+                                            const std::vector<Eigen::Vector3d>& omega) {
   std::vector<Eigen::Vector3d> out(forces.size(), Eigen::Vector3d::Zero());
+  if (!(model.tension_sigma_N > 0.0)) return out;
   for (std::size_t j = 0; j < forces.size(); ++j)
-    for (int i = 0; forces[j] && i < 3; ++i)
-      if (std::abs(forces[j]->tension[i]) >= tension_min_N)
-        out[j][i] = sign_flip_variance(forces[j]->tension[i], sigma_N, forces[j]->per_mm[i]);
+    for (int i = 0; forces[j] && i < 3; ++i) {
+      if (!(std::abs(forces[j]->tension[i]) >= tension_min_N)) continue;
+      const double per_m = 1e3 * forces[j]->per_mm[i];  // 1 / (la_i sin(theta_b - theta_a)), la_i in m
+      const double rest = rest_twist_variance(omega[j][i], model.load.coulomb_Nm[static_cast<std::size_t>(i)] * per_m,
+                                              model.stick_speed_rad_s);
+      const double sigma = std::sqrt(model.tension_sigma_N * model.tension_sigma_N + rest);
+      out[j][i] = sign_flip_variance(forces[j]->tension[i], sigma, forces[j]->per_mm[i]);
+    }
   return out;
 }
 
@@ -568,7 +578,7 @@ EffectRegressors effect_regressors(const Geometry& start, const MotionSamples& s
   e.clr.assign(s.theta_m.size(), Eigen::Vector3d::Zero());
   e.flip = e.clr;
   if (model.clearance) e.clr = clearance_regressors(forces, e.tension_min);
-  if (model.clearance) e.flip = flip_variances(forces, e.tension_min, model.tension_sigma_N);
+  if (model.clearance) e.flip = flip_variances(forces, e.tension_min, model, s.omega);
   e.flank = flank_regressors(model, s.omega, s.tau, s.alpha);
   e.mesh = hysteresis_mesh_torques(model, s.omega, s.tau, s.alpha);
   e.at.resize(s.theta_m.size());
@@ -901,7 +911,7 @@ void refresh_regressors(const Geometry& g, const MotionModel& model, const Motio
   if (model.clearance) {
     const auto forces = passive_forces(g, twist_corrected(fit, s, e), e.tau_t);
     e.clr = clearance_regressors(forces, e.tension_min);
-    e.flip = flip_variances(forces, e.tension_min, model.tension_sigma_N);
+    e.flip = flip_variances(forces, e.tension_min, model, s.omega);
   }
   e.hyst = hysteresis_regressors(
       model, e.mesh, e.at,

@@ -73,8 +73,9 @@ struct MotionModel {
   // Samples the friction leaves uncertain weigh less (calib/sample_weights.hpp; needs LmOptions::encoder_sigma):
   double stick_speed_rad_s = 0.0;  // > 0: below about this speed a rotor may be at rest, its friction twist
                                    // known within +-c_i F_i only (with the friction twist); 0: no such doubt
-  double tension_sigma_N = 0.0;    // > 0: a passive link's force known within this 1-sigma (N), its sign (with
-                                   // the clearance) wrong with Phi(-|T| / this); 0: the signs used are certain
+  double tension_sigma_N = 0.0;    // > 0: a passive link's force known within this 1-sigma (N; where its joint
+                                   // may be at rest, also within the friction F_i it may hold), its sign (with
+                                   // the clearance) wrong with Phi(-|T| / that); 0: the signs used are certain
   int skip_first = 0;          // leading samples left out (the drives' start transient)
   int max_passes = 6;      // Gauss-Newton passes (each one LM fit)
 };

@@ -13,7 +13,8 @@
 //
 // A force sign. Passive link i acts as lb_i + d_i sgn(T_i) (its play d_i;
 // calib/passive_tension.hpp), its force T_i known within a 1-sigma sigma_T
-// (the hub's force balance, calib/friction_balance.hpp): the sign is wrong
+// (the hub's force balance, calib/friction_balance.hpp, and where its joint
+// may be at rest the friction it may hold): the sign is wrong
 // with probability p_i = Phi(-|T_i| / sigma_T), and a wrong sign moves the
 // reading by 2 d_i k_i (k_i the reading per mm of length): a variance
 // (2 d_i k_i)^2 p_i (1 - p_i).

@@ -42,9 +42,10 @@ struct DriveFriction {
   // (calib/sample_weights.hpp): with weigh_rest, where a joint turns slower
   // than a reading step per sample (it may be at rest, its friction twist
   // known within +-c F only); with weigh_signs, where a passive link's force
-  // sign may be wrong (its force known within the force balance's 1-sigma;
-  // off by default: on robots whose readings the model misses it weighs the
-  // misfit away, docs/PROCEDURES.md "Samples the friction leaves uncertain").
+  // sign may be wrong (its force known within the force balance's 1-sigma
+  // and, where its joint may be at rest, the friction it may hold; off by
+  // default: on robots whose readings the model misses it weighs the misfit
+  // away, docs/PROCEDURES.md "Samples the friction leaves uncertain").
   bool weigh_rest = true;
   bool weigh_signs = false;
 };
