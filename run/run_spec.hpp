@@ -43,11 +43,11 @@ struct DriveFriction {
   // than a reading step per sample (it may be at rest, its friction twist
   // known within +-c F only); with weigh_signs, where a passive link's force
   // sign may be wrong (its force known within the force balance's 1-sigma
-  // and, where its joint may be at rest, the friction it may hold; off by
-  // default: on robots whose readings the model misses it weighs the misfit
-  // away, docs/PROCEDURES.md "Samples the friction leaves uncertain").
+  // and, where its joint may be at rest, the friction it may hold), and only
+  // where the model fits the readings within chi2/dof 2 (elsewhere it would
+  // weigh the misfit away, docs/PROCEDURES.md "Samples the friction leaves uncertain").
   bool weigh_rest = true;
-  bool weigh_signs = false;
+  bool weigh_signs = true;
 };
 
 // The drives' friction a data sheet states (the default of
