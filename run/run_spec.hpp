@@ -45,9 +45,11 @@ struct DriveFriction {
   // sign may be wrong (its force known within the force balance's 1-sigma
   // and, where its joint may be at rest, the friction it may hold), and only
   // where the model fits the readings within chi2/dof 2 (elsewhere it would
-  // weigh the misfit away, docs/PROCEDURES.md "Samples the friction leaves uncertain").
+  // weigh the misfit away); off by default: with an effect left out the play
+  // it inflates can weigh that effect's misfit away too (docs/PROCEDURES.md
+  // "Samples the friction leaves uncertain").
   bool weigh_rest = true;
-  bool weigh_signs = true;
+  bool weigh_signs = false;
 };
 
 // The drives' friction a data sheet states (the default of

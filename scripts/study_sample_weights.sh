@@ -3,11 +3,11 @@
 # (calib/sample_weights.hpp): the same robots of scenarios/main.yaml (same
 # seeds, same draws) calibrated with calibration.drive_friction
 #   none:  weigh_rest and weigh_signs false (every sample weighs 1),
-#   rest:  weigh_rest true (a sample with some joint slower than a reading
-#          step per sample weighs as its friction twist, known within +-c F
-#          only, allows),
-#   signs: weigh_rest and weigh_signs true, the default (also a force sign
-#          its doubt leaves uncertain, where the model fits within chi2/dof 2),
+#   rest:  weigh_rest true, the default (a sample with some joint slower
+#          than a reading step per sample weighs as its friction twist, known
+#          within +-c F only, allows),
+#   signs: weigh_rest and weigh_signs true (also a force sign its doubt
+#          leaves uncertain, where the model fits within chi2/dof 2),
 # for four kinds of robot: the basic set of effects, the basic set with the
 # backlash drawn, every effect drawn and the realistic preset's. Writes
 # DIR/sample_weights.md and the tables into docs/PROCEDURES.md between its
@@ -40,9 +40,9 @@ def chi2(p):
 misfit = ("model test chi2/dof, median", lambda a, b: f"{chi2(a)} -> {chi2(b)}")
 lead = f"{count} robots of `scenarios/main.yaml` each (seeds {first}..{first + count - 1}); `bash scripts/study_sample_weights.sh`."
 rest = before_after_table(out, kinds, "none", "rest", lead + " Before -> after: `drive_friction.weigh_rest` false -> "
-                          "true (`weigh_signs` false).", [bound, misfit])
-signs = before_after_table(out, kinds, "rest", "signs", "The same robots, before -> after: `weigh_signs` false -> true "
-                           "(the default, both true).", [bound, misfit])
+                          "true (the default; `weigh_signs` false).", [bound, misfit])
+signs = before_after_table(out, kinds, "rest", "signs", "The same robots, before -> after: `weigh_signs` false (the "
+                           "default) -> true.", [bound, misfit])
 table = "\n".join(rest) + "\n\n" + "\n".join(signs) + "\n"
 open(f"{out}/sample_weights.md", "w").write(table)
 write_between_markers("docs/PROCEDURES.md", "sample-weights", table)
