@@ -1,11 +1,13 @@
 """Table cells "before -> after" of two `gpm study population` results of the
 same robots (their population.json), for the studies that compare two
 versions of the procedure (scripts/study_force_sign.sh, scripts/study_alternating_preload.sh,
-scripts/study_friction_balance.sh) or of the twin (scripts/study_friction_timeconst.sh),
+scripts/study_friction_balance.sh, scripts/study_sample_weights.sh) or of the twin
+(scripts/study_friction_timeconst.sh),
 and the table written into a document between its markers (those and
 scripts/study_effect_budget.sh)."""
 import json
 import re
+import statistics
 
 # The table's names of the kinds of robot (kind_effects in scripts/effects_beyond_basic.sh).
 KIND_LABEL = {'basic': 'the basic set', 'randomized': 'every effect drawn', 'preset': 'the `realistic` preset',
@@ -35,6 +37,18 @@ def before_after(a, b):
         "passes": f"{100 * sa['model_test_pass_fraction']:.0f} -> {100 * sb['model_test_pass_fraction']:.0f} %",
         "better_worse": f"{better} / {worse}",
     }
+
+
+def _chi2_median(p):
+    """The median model-test chi2/dof of population p ("-" without a test)."""
+    v = [r["model_test"]["chi2_per_dof"] for r in p["robots"] if r.get("model_test")]
+    return f"{statistics.median(v):.3g}" if v else "-"
+
+
+# Further columns of before_after_table: the least RMS the readings allow and the model test's chi2/dof.
+BOUND_COLUMN = ("least RMS the readings allow, median (um)",
+                lambda a, b: " -> ".join(f"{p['summary']['positioning_bound_median_um']:.1f}" for p in (a, b)))
+MISFIT_COLUMN = ("model test chi2/dof, median", lambda a, b: f"{_chi2_median(a)} -> {_chi2_median(b)}")
 
 
 def before_after_table(out, kinds, before, after, lead, extra=()):

@@ -37,16 +37,14 @@ done
 /usr/bin/python3 - "$out" "$count" "$first" "${kinds[@]}" <<'PY'
 import sys
 sys.path.insert(0, "scripts")
-from population_pair import before_after_table, write_between_markers
+from population_pair import BOUND_COLUMN, before_after_table, write_between_markers
 out, count, first, kinds = sys.argv[1], int(sys.argv[2]), int(sys.argv[3]), sys.argv[4:]
-bound = ("least RMS the readings allow, median (um)",
-         lambda a, b: " -> ".join(f"{p['summary']['positioning_bound_median_um']:.1f}" for p in (a, b)))
 lines = before_after_table(out, kinds, "soft", "stiff",
                            f"{count} robots of `scenarios/main.yaml` each (seeds {first}..{first + count - 1}); "
                            "`bash scripts/study_friction_timeconst.sh`. Soft -> stiff: the drives' friction at MuJoCo's "
                            "default time constant (`friction_timeconst_s: 0.02`) and P/P drives (`servo: {ki: 0}`) -> "
                            "the twin's friction at two physics steps and the main job's PI velocity loop; the "
-                           "calibration the same.", [bound])
+                           "calibration the same.", [BOUND_COLUMN])
 table = "\n".join(lines) + "\n"
 open(f"{out}/friction_timeconst.md", "w").write(table)
 write_between_markers("docs/PROCEDURES.md", "friction-timeconst", table)

@@ -28,21 +28,15 @@ for kind in "${kinds[@]}"; do
   done
 done
 /usr/bin/python3 - "$out" "$count" "$first" "${kinds[@]}" <<'PY'
-import statistics, sys
+import sys
 sys.path.insert(0, "scripts")
-from population_pair import before_after_table, write_between_markers
+from population_pair import BOUND_COLUMN, MISFIT_COLUMN, before_after_table, write_between_markers
 out, count, first, kinds = sys.argv[1], int(sys.argv[2]), int(sys.argv[3]), sys.argv[4:]
-bound = ("least RMS the readings allow, median (um)",
-         lambda a, b: " -> ".join(f"{p['summary']['positioning_bound_median_um']:.1f}" for p in (a, b)))
-def chi2(p):
-    v = [r["model_test"]["chi2_per_dof"] for r in p["robots"] if r.get("model_test")]
-    return f"{statistics.median(v):.3g}" if v else "-"
-misfit = ("model test chi2/dof, median", lambda a, b: f"{chi2(a)} -> {chi2(b)}")
 lead = f"{count} robots of `scenarios/main.yaml` each (seeds {first}..{first + count - 1}); `bash scripts/study_sample_weights.sh`."
 rest = before_after_table(out, kinds, "none", "rest", lead + " Before -> after: `drive_friction.weigh_rest` false -> "
-                          "true (the default; `weigh_signs` false).", [bound, misfit])
+                          "true (the default; `weigh_signs` false).", [BOUND_COLUMN, MISFIT_COLUMN])
 signs = before_after_table(out, kinds, "rest", "signs", "The same robots, before -> after: `weigh_signs` false (the "
-                           "default) -> true.", [bound, misfit])
+                           "default) -> true.", [BOUND_COLUMN, MISFIT_COLUMN])
 table = "\n".join(rest) + "\n\n" + "\n".join(signs) + "\n"
 open(f"{out}/sample_weights.md", "w").write(table)
 write_between_markers("docs/PROCEDURES.md", "sample-weights", table)
