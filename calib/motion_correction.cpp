@@ -563,6 +563,14 @@ void check_motion_inputs(const MotionSamples& s, const LmOptions& options) {
     throw InputError(fmt::format("calibration in motion: {} readings but {} joint accelerations", n, s.alpha.size()));
 }
 
+// The clearance's regressors and its signs' doubts (e.clr, e.flip) from the
+// passive links' forces, at the threshold e.tension_min.
+void set_force_signs(const std::vector<std::optional<PassiveForces>>& forces, const MotionModel& model,
+                     const std::vector<Eigen::Vector3d>& omega, EffectRegressors& e) {
+  e.clr = clearance_regressors(forces, e.tension_min);
+  e.flip = flip_variances(forces, e.tension_min, model, omega);
+}
+
 // EffectRegressors of samples s for model at geometry start.
 EffectRegressors effect_regressors(const Geometry& start, const MotionSamples& s, const MotionModel& model) {
   EffectRegressors e;
@@ -577,8 +585,7 @@ EffectRegressors effect_regressors(const Geometry& start, const MotionSamples& s
   e.tension_min = effective_tension_min(model, forces);
   e.clr.assign(s.theta_m.size(), Eigen::Vector3d::Zero());
   e.flip = e.clr;
-  if (model.clearance) e.clr = clearance_regressors(forces, e.tension_min);
-  if (model.clearance) e.flip = flip_variances(forces, e.tension_min, model, s.omega);
+  if (model.clearance) set_force_signs(forces, model, s.omega, e);
   e.flank = flank_regressors(model, s.omega, s.tau, s.alpha);
   e.mesh = hysteresis_mesh_torques(model, s.omega, s.tau, s.alpha);
   e.at.resize(s.theta_m.size());
@@ -908,11 +915,7 @@ MotionFit fit_on_kept(const Problem& problem, const MotionSamples& s, const LmOp
 // whose regressor's shape follows them (a Gauss-Newton step on both, through the slope).
 void refresh_regressors(const Geometry& g, const MotionModel& model, const MotionFit& fit, const MotionSamples& s,
                         EffectRegressors& e) {
-  if (model.clearance) {
-    const auto forces = passive_forces(g, twist_corrected(fit, s, e), e.tau_t);
-    e.clr = clearance_regressors(forces, e.tension_min);
-    e.flip = flip_variances(forces, e.tension_min, model, s.omega);
-  }
+  if (model.clearance) set_force_signs(passive_forces(g, twist_corrected(fit, s, e), e.tau_t), model, s.omega, e);
   e.hyst = hysteresis_regressors(
       model, e.mesh, e.at,
       hysteresis_thresholds(model, e.mesh, fit.hysteresis, {fit.nu[2], fit.nu[3], fit.nu[4]}, e.hyst.threshold));

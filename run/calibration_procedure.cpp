@@ -343,7 +343,6 @@ void select_drive_train(MotionStage& m, const CalibrationInputs& in) {
   }
 }
 
-// The note of a covariance widened to the misfit (the sandwich), when it was.
 // With drive_friction.weigh_signs and the clearance in the model: the
 // force signs' doubt weighed too (the balance's 1-sigma of a link's force),
 // the fit made again, where the model fits the readings within
@@ -365,6 +364,7 @@ void weigh_signs(MotionStage& m, const CalibrationInputs& in) {
       m.balance->tension_sigma_N, before, m.fit.chi2_per_dof));
 }
 
+// The note of a covariance widened to the misfit (the sandwich), when it was.
 void note_sandwich(MotionStage& m) {
   if (m.fit.sandwich_used)
     m.drive_notes.push_back(fmt::format(
