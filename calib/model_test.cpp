@@ -29,7 +29,7 @@ double carried_chi2(const Eigen::MatrixXd& Gp, const Eigen::VectorXd& r, double 
 
 ModelTest model_test(const Geometry& g, const FreeMask& free,
                      const std::vector<Eigen::Vector3d>& theta_m, double sigma, double alpha,
-                     double carried_chi2, const std::vector<double>& weight) {
+                     double carried_chi2) {
   if (!(sigma > 0.0) || !std::isfinite(sigma))
     throw InputError(fmt::format("model test: the reading noise sigma must be positive, got {}", sigma));
   if (!(alpha > 0.0 && alpha < 1.0))
@@ -39,14 +39,11 @@ ModelTest model_test(const Geometry& g, const FreeMask& free,
   if (n <= p)
     throw InputError(fmt::format("model test: {} samples for {} free parameters leave no degree of freedom", n, p));
 
-  if (!weight.empty() && weight.size() != theta_m.size())
-    throw InputError(fmt::format("model test: {} weights for {} samples", weight.size(), theta_m.size()));
   const ParamVector x = to_solver(g, Cost::kML);
   std::vector<double> z2(n);  // squared normalised residuals
   for (long j = 0; j < n; ++j) {
     double r = 0.0;
     if (!MlResidual(theta_m[j])(x.data(), &r)) r = std::numeric_limits<double>::infinity();
-    if (!weight.empty()) r *= weight[static_cast<std::size_t>(j)];
     z2[j] = (r / sigma) * (r / sigma);
   }
   ModelTest t;

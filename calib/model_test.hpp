@@ -55,12 +55,8 @@ double carried_chi2(const Eigen::MatrixXd& Gp, const Eigen::VectorXd& r, double 
 // or no degrees of freedom (n <= p). carried_chi2 (>= 0): of the residuals'
 // chi-square, what errors carried within their priors explain (the marginal
 // test: calib::MotionFit::carried_chi2); the test weighs chi2 less it.
-// weight (one per reading, or empty: all 1): each residual's weight sigma /
-// sigma_j where a sample's 1-sigma sigma_j exceeds the reading noise's
-// (calib/sample_weights.hpp): the test sums (w_j r_j / sigma)^2. Throws
-// InputError for a weight count other than the readings'.
 ModelTest model_test(const Geometry& g, const FreeMask& free,
                      const std::vector<Eigen::Vector3d>& theta_m, double sigma,
-                     double alpha = 0.01, double carried_chi2 = 0.0, const std::vector<double>& weight = {});
+                     double alpha = 0.01, double carried_chi2 = 0.0);
 
 }  // namespace gpm::calib

@@ -811,10 +811,28 @@ double carried_chi2_of(const Eigen::MatrixXd& A, const Eigen::MatrixXd& J, const
   return carried_chi2(l.Jc - Jr * (A * (Jr.transpose() * l.Jc)), l.r, prior, s2);
 }
 
+// l with its samples' weights taken off (the rows of Jg, Jn, Jc and r over
+// w): the residuals as the encoders' noise alone judges them.
+Linearisation unweighted(Linearisation l) {
+  if (l.w.size() == 0) return l;
+  const Eigen::VectorXd inv = l.w.cwiseInverse();
+  l.Jg = inv.asDiagonal() * l.Jg;
+  l.Jn = inv.asDiagonal() * l.Jn;
+  l.Jc = inv.asDiagonal() * l.Jc;
+  l.r = l.r.cwiseProduct(inv);
+  l.w.resize(0);
+  return l;
+}
+
 // The joint covariance sigma^2 (J' J)^-1 of [J_g, J_nu] at l (the misfit's
 // sandwich in its place when model.sandwich and the residuals exceed the
 // noise; the considered cyclic error added): its geometry block replaces
-// fit.result's, its nuisance diagonal gives the nuisance 1-sigma.
+// fit.result's, its nuisance diagonal gives the nuisance 1-sigma. With
+// samples' weights, whether the residuals exceed the noise and what the
+// carried error explains of them are judged unweighted, by the noise alone
+// as the model test judges them: a weight is a doubt the reading model
+// states, and misfit that lies where it weighs less must still widen the
+// 1-sigma (the sandwich is of the weighted fit).
 void joint_covariance(const Linearisation& l, const std::vector<int>& cols, double prior_weight,
                       const std::vector<int>& free_index, const LmOptions& options, const MotionModel& model,
                       MotionFit& fit) {
@@ -830,7 +848,9 @@ void joint_covariance(const Linearisation& l, const std::vector<int>& cols, doub
     if (double* slot = noise_sigma_slot(fit, cols[static_cast<std::size_t>(c)])) *slot = std::sqrt(C(ng + c, ng + c));
   if (options.encoder_sigma) fit.chi2 = l.r.squaredNorm() / s2;
   if (options.encoder_sigma && dof > 0) fit.chi2_per_dof = fit.chi2 / dof;
-  if (model.sandwich && options.encoder_sigma && dof > 0 && misfit(l.r.squaredNorm() / s2, dof)) {
+  const bool weighted = l.w.size() > 0;
+  const Linearisation judged = unweighted(l);
+  if (model.sandwich && options.encoder_sigma && dof > 0 && misfit(judged.r.squaredNorm() / s2, dof)) {
     // The residuals exceed the noise: what the model leaves out moves the
     // estimate as much as it moves the residuals, correlated along the path.
     const Eigen::MatrixXd S = newey_west_sandwich(A, J.topRows(l.r.size()), l.r);
@@ -838,7 +858,12 @@ void joint_covariance(const Linearisation& l, const std::vector<int>& cols, doub
     if (fit.sandwich_inflation > 1.0) C = S, fit.sandwich_used = true;
   }
   if (considers_cyclic(model)) {
-    if (options.encoder_sigma) fit.carried_chi2 = carried_chi2_of(A, J, l, model.cyclic_prior_rad, s2);
+    if (options.encoder_sigma && !weighted) fit.carried_chi2 = carried_chi2_of(A, J, l, model.cyclic_prior_rad, s2);
+    if (options.encoder_sigma && weighted) {
+      const Eigen::MatrixXd Ju = joint_jacobian(judged, cols, prior_weight);
+      const Eigen::MatrixXd Au = (Ju.transpose() * Ju).ldlt().solve(Eigen::MatrixXd::Identity(m, m));
+      fit.carried_chi2 = carried_chi2_of(Au, Ju, judged, model.cyclic_prior_rad, s2);
+    }
     Eigen::MatrixXd carried = Eigen::MatrixXd::Zero(m, m);
     add_considered(A, J, l.Jc, model.cyclic_prior_rad, carried);
     C += carried;

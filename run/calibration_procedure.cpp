@@ -485,7 +485,7 @@ void set_stick_speed(const SampleSeries& samples, double q, CalibrationInputs& i
   if (inputs.motion.stick_speed_rad_s > 0.0)
     notes.push_back(fmt::format(
         "a joint slower than {:.3g} rad/s (a reading step per sample) may be at rest, its friction twist then "
-        "known within +-c F only: such samples weigh less in the fit and the model test",
+        "known within +-c F only: such samples weigh less in the fit (the model test judges them unweighted)",
         inputs.motion.stick_speed_rad_s));
 }
 
@@ -545,10 +545,10 @@ CalibrationOutcome calibrate_samples(const SampleSeries& samples, const Calibrat
   out.result.notes.insert(out.result.notes.begin(), step_notes.begin(), step_notes.end());
   const bool tested_cost = options.test_any_cost || out.result.cost == calib::Cost::kML;
   if (tested_cost && options.sigma_rad > 0.0 && out.used.size() > options.free.count()) {
-    const bool weighted = with_effects && out.fit.weight.size() == out.used.size();
+    // Judged by the encoders' noise alone, unweighted: the samples' weights
+    // (the friction's doubt) make the estimate efficient, not the test lenient.
     out.model_test = calib::model_test(out.result.geometry, options.free, out.used, options.sigma_rad, 0.01,
-                                       with_effects ? out.fit.carried_chi2 : 0.0,
-                                       weighted ? out.fit.weight : std::vector<double>{});
+                                       with_effects ? out.fit.carried_chi2 : 0.0);
     if (out.model_test->carried_chi2 > 0.0)
       out.result.notes.push_back(fmt::format(
           "the model test weighs chi2 less {:.3g} of it, what the error once per joint revolution carried within its "

@@ -38,19 +38,19 @@ struct DriveFriction {
   // on the fly, where the samples carry torques and times): the stated values
   // are then only the fallback, and fit_scale walks from the estimates.
   bool from_balance = true;
-  // On the fly, samples the friction leaves uncertain may weigh less
-  // (calib/sample_weights.hpp): with weigh_rest, where a joint turns slower
-  // than a reading step per sample (it may be at rest, its friction twist
-  // known within +-c F only); with weigh_signs, where a passive link's force
-  // sign may be wrong (its force known within the force balance's 1-sigma
-  // and, where its joint may be at rest, the friction it may hold), and only
-  // where the model fits the readings within chi2/dof 2 (elsewhere it would
-  // weigh the misfit away); off by default: with an effect left out the play
-  // it inflates can weigh that effect's misfit away too (docs/PROCEDURES.md
-  // "Samples the friction leaves uncertain"). Both off by default: weighed,
-  // the model test passes on two of the main procedure's variants whose
-  // model misses (its error then 1.9x and 4.1x the stated 1-sigma).
-  bool weigh_rest = false;
+  // On the fly, samples the friction leaves uncertain may weigh less in the
+  // fit (calib/sample_weights.hpp; the model test and the misfit's sandwich
+  // judge the residuals unweighted, by the encoders' noise alone): with
+  // weigh_rest (on by default), where a joint turns slower than a reading
+  // step per sample (it may be at rest, its friction twist known within
+  // +-c F only); with weigh_signs (off by default), where a passive link's
+  // force sign may be wrong (its force known within the force balance's
+  // 1-sigma and, where its joint may be at rest, the friction it may hold),
+  // and only where the model fits the readings within chi2/dof 2 (elsewhere
+  // it would weigh the misfit away): with an effect left out the play it
+  // inflates can weigh that effect's misfit away too (docs/PROCEDURES.md
+  // "Samples the friction leaves uncertain").
+  bool weigh_rest = true;
   bool weigh_signs = false;
 };
 

@@ -2,7 +2,7 @@
 // distribution on data generated under the model (mean dof, p-values spread
 // over (0, 1)), and a smooth unmodelled bias, a small inflation of every
 // residual or a few outliers make it fail with the matching diagnosis; the
-// share a carried error explains, three ways; the samples' weights.
+// share a carried error explains, three ways.
 #include "calib/model_test.hpp"
 
 #include <cmath>
@@ -173,19 +173,6 @@ TEST(ModelTest, RefusesMeaninglessSettings) {
   EXPECT_THROW(model_test(a.geometry, default_free_mask(), smp.theta_m, kSigma, 1.5), InputError);
   const std::vector<Eigen::Vector3d> few(smp.theta_m.begin(), smp.theta_m.begin() + 11);
   EXPECT_THROW(model_test(a.geometry, default_free_mask(), few, kSigma), InputError);
-}
-
-TEST(ModelTest, WeightsScaleEachResidualsShare) {
-  // Every residual at weight 1 / sqrt(2): half the chi-square; a weight
-  // count other than the readings' is refused.
-  const Robot a = actual_robot();
-  const Samples smp = samples_at(a, disc_poses(a, 60, a.home, 90.0, 300), kSigma, 301);
-  const Geometry g = fit(smp.theta_m);
-  const ModelTest plain = model_test(g, default_free_mask(), smp.theta_m, kSigma);
-  const ModelTest half = model_test(g, default_free_mask(), smp.theta_m, kSigma, 0.01, 0.0,
-                                    std::vector<double>(smp.theta_m.size(), 1.0 / std::sqrt(2.0)));
-  EXPECT_NEAR(half.chi2, 0.5 * plain.chi2, 1e-9 * plain.chi2);
-  EXPECT_THROW(model_test(g, default_free_mask(), smp.theta_m, kSigma, 0.01, 0.0, {1.0}), InputError);
 }
 
 }  // namespace

@@ -249,11 +249,13 @@ TEST(MotionCorrection, RecoversTheFrictionTwistAndIgnoringItBiasesTheFit) {
   EXPECT_GT(worst_in_sigmas(d, biased.result), 4.0);
 }
 
-TEST(MotionCorrection, SamplesWhoseRotorsRestWeighLessAndPassTheTest) {
+TEST(MotionCorrection, SamplesWhoseRotorsRestWeighLessAndStillFailTheNoiseTest) {
   // Every fourth sample at rest (its rates read 0), its twist anywhere within
   // +-c F (uniform); the others slide, their twist c F tanh(omega / 0.01).
-  // Unweighted, the rest's twist is misfit; weighted by
-  // calib/sample_weights.hpp it is the variance the test expects.
+  // Weighted by calib/sample_weights.hpp, the rest's twist is the variance
+  // the fit's chi-square expects; the model test still judges the residuals
+  // by the encoders' noise alone, which the rest's twist exceeds, and so does
+  // the misfit's sandwich.
   MotionData d = make_data(800, 17);
   const std::array<double, 3> cf = {4e-5, -5e-5, 6e-5};
   Rng rng(18);
@@ -281,11 +283,15 @@ TEST(MotionCorrection, SamplesWhoseRotorsRestWeighLessAndPassTheTest) {
       EXPECT_GT(fit.weight[j], 0.99) << j;
     }
   }
-  const ModelTest t_plain =
-      model_test(plain.result.geometry, d.problem.free, plain.corrected, kSigma, 0.01, 0.0, plain.weight);
-  const ModelTest t_fit = model_test(fit.result.geometry, d.problem.free, fit.corrected, kSigma, 0.01, 0.0, fit.weight);
+  // The weighted chi-square is the noise's (chi2/dof within 3 of its
+  // 1-sigma sqrt(2 / dof)); the unweighted one is not.
+  EXPECT_LT(fit.chi2_per_dof, 1.0 + 3.0 * std::sqrt(2.0 / 800.0)) << fit.chi2_per_dof;
+  EXPECT_GT(plain.chi2_per_dof, 1.0 + 3.0 * std::sqrt(2.0 / 800.0)) << plain.chi2_per_dof;
+  const ModelTest t_plain = model_test(plain.result.geometry, d.problem.free, plain.corrected, kSigma);
+  const ModelTest t_fit = model_test(fit.result.geometry, d.problem.free, fit.corrected, kSigma);
   EXPECT_FALSE(t_plain.passed) << t_plain.rms_ratio;
-  EXPECT_TRUE(t_fit.passed) << t_fit.rms_ratio;
+  EXPECT_FALSE(t_fit.passed) << t_fit.rms_ratio;
+  EXPECT_NE(fit.sandwich_inflation, 1.0);  // reckoned: the unweighted residuals exceed the noise
   for (std::size_t k = 0; k < 3; ++k)
     EXPECT_LT(std::abs(fit.friction[k] - cf[k]), 4.0 * fit.friction_sigma[k]) << "c F of joint " << k + 1;
   EXPECT_LT(worst_in_sigmas(d, fit.result), 4.0);

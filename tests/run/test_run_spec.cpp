@@ -147,12 +147,12 @@ TEST(RunSpec, DriveFrictionStatedByTheCalibration) {
                    .calibration.drive_friction.from_balance);
   EXPECT_NE(error_of(kHead + "calibration: {drive_friction: {from_balance: 2}}\n").find("calibration.drive_friction.from_balance"),
             std::string::npos);
-  EXPECT_FALSE(d.calibration.drive_friction.weigh_rest);   // default: every sample weighs 1
+  EXPECT_TRUE(d.calibration.drive_friction.weigh_rest);    // default: a sample whose rotor may rest weighs less
   EXPECT_FALSE(d.calibration.drive_friction.weigh_signs);  // default: the force signs used weigh 1
-  const DriveFriction both = parse_run_spec(kHead + "calibration: {drive_friction: {weigh_rest: true, weigh_signs: true}}\n",
-                                            "s.yaml", kBase).calibration.drive_friction;
-  EXPECT_TRUE(both.weigh_rest);
-  EXPECT_TRUE(both.weigh_signs);
+  const DriveFriction swapped = parse_run_spec(kHead + "calibration: {drive_friction: {weigh_rest: false, weigh_signs: true}}\n",
+                                               "s.yaml", kBase).calibration.drive_friction;
+  EXPECT_FALSE(swapped.weigh_rest);
+  EXPECT_TRUE(swapped.weigh_signs);
   EXPECT_NE(error_of(kHead + "calibration: {drive_friction: {weigh_rest: 2}}\n").find("calibration.drive_friction.weigh_rest"),
             std::string::npos);
   EXPECT_EQ(error_of(kHead + "calibration: {drive_friction: {coulomb_Nm: -0.3}}\n"),
