@@ -858,10 +858,9 @@ void joint_covariance(const Linearisation& l, const std::vector<int>& cols, doub
     if (fit.sandwich_inflation > 1.0) C = S, fit.sandwich_used = true;
   }
   if (considers_cyclic(model)) {
-    if (options.encoder_sigma && !weighted) fit.carried_chi2 = carried_chi2_of(A, J, l, model.cyclic_prior_rad, s2);
-    if (options.encoder_sigma && weighted) {
-      const Eigen::MatrixXd Ju = joint_jacobian(judged, cols, prior_weight);
-      const Eigen::MatrixXd Au = (Ju.transpose() * Ju).ldlt().solve(Eigen::MatrixXd::Identity(m, m));
+    if (options.encoder_sigma) {  // of the unweighted residuals, the unweighted columns projected out
+      const Eigen::MatrixXd Ju = weighted ? joint_jacobian(judged, cols, prior_weight) : J;
+      const Eigen::MatrixXd Au = weighted ? (Ju.transpose() * Ju).ldlt().solve(Eigen::MatrixXd::Identity(m, m)) : A;
       fit.carried_chi2 = carried_chi2_of(Au, Ju, judged, model.cyclic_prior_rad, s2);
     }
     Eigen::MatrixXd carried = Eigen::MatrixXd::Zero(m, m);

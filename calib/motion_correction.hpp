@@ -68,8 +68,9 @@ struct MotionModel {
   double hysteresis_start_rad = 7.3e-5;            // eta where the fit starts (0.25 arcmin: a loss of 0.5 arcmin)
   double hysteresis_compliance_rad_per_Nm = 1e-4;  // c_i where the fit starts, and where it does not estimate it
                                                    // (the data sheet's)
-  bool sandwich = true;  // when the fit's residuals exceed the noise (chi-square test at 0.1 %), the covariance
-                         // is the autocorrelation-robust sandwich of the residuals (Newey-West), not sigma^2 (J'J)^-1
+  bool sandwich = true;  // when the fit's residuals, unweighted, exceed the noise (chi-square test at 0.1 %), the
+                         // covariance is the autocorrelation-robust sandwich of the residuals (Newey-West), not
+                         // sigma^2 (J'J)^-1
   // Samples the friction leaves uncertain weigh less (calib/sample_weights.hpp; needs LmOptions::encoder_sigma):
   double stick_speed_rad_s = 0.0;  // > 0: below about this speed a rotor may be at rest, its friction twist
                                    // known within +-c_i F_i only (with the friction twist); 0: no such doubt
@@ -108,10 +109,10 @@ struct MotionFit {
     std::array<double, 3> clearance{}, torque_before{}, backlash{}, hysteresis{};
     std::array<std::array<double, 6>, 3> harmonic{};
   } noise_sigma;
-  double chi2 = 0.0;                        // r'r / sigma^2 of the fit (0 without sigma)
+  double chi2 = 0.0;                        // r'r / sigma^2 of the fit, its residuals weighted (0 without sigma)
   double chi2_per_dof = 0.0;                // chi2 / (n - columns)
-  // Of chi2, what an error carried within its prior (MotionModel::cyclic_prior_rad,
-  // not estimated) explains: r' Gp (sigma^2 / prior^2 + Gp' Gp)^-1 Gp' r / sigma^2,
+  // Of the residuals' unweighted chi-square (the model test's), what an error carried within its prior
+  // (MotionModel::cyclic_prior_rad, not estimated) explains: r' Gp (sigma^2 / prior^2 + Gp' Gp)^-1 Gp' r / sigma^2,
   // Gp its columns with the fit's projected out (0 without a carried error).
   double carried_chi2 = 0.0;
   bool sandwich_used = false;               // the covariance is the misfit's sandwich (MotionModel::sandwich)

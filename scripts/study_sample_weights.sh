@@ -2,8 +2,8 @@
 # What weighing the samples the friction leaves uncertain gives the main job
 # (calib/sample_weights.hpp): the same robots of scenarios/main.yaml (same
 # seeds, same draws) calibrated with calibration.drive_friction
-#   none:  weigh_rest and weigh_signs false, the default (every sample weighs 1),
-#   rest:  weigh_rest true (a sample with some joint slower
+#   none:  weigh_rest and weigh_signs false (every sample weighs 1),
+#   rest:  weigh_rest true, the default (a sample with some joint slower
 #          than a reading step per sample weighs as its friction twist, known
 #          within +-c F only, allows),
 #   signs: weigh_rest and weigh_signs true (also a force sign its doubt
@@ -34,7 +34,8 @@ from population_pair import BOUND_COLUMN, MISFIT_COLUMN, before_after_table, wri
 out, count, first, kinds = sys.argv[1], int(sys.argv[2]), int(sys.argv[3]), sys.argv[4:]
 lead = f"{count} robots of `scenarios/main.yaml` each (seeds {first}..{first + count - 1}); `bash scripts/study_sample_weights.sh`."
 rest = before_after_table(out, kinds, "none", "rest", lead + " Before -> after: `drive_friction.weigh_rest` false -> "
-                          "true (`weigh_signs` false; the default is both false).", [BOUND_COLUMN, MISFIT_COLUMN])
+                          "true (`weigh_signs` false; the default weighs the rest, not the signs; the model test judges the residuals "
+                          "unweighted).", [BOUND_COLUMN, MISFIT_COLUMN])
 signs = before_after_table(out, kinds, "rest", "signs", "The same robots, before -> after: `weigh_signs` false -> true "
                            "(`weigh_rest` true).", [BOUND_COLUMN, MISFIT_COLUMN])
 table = "\n".join(rest) + "\n\n" + "\n".join(signs) + "\n"
