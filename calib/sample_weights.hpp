@@ -22,8 +22,9 @@
 // Through the sample's reading sensitivities u (dr / dtheta_m of its ML
 // residual, calib/residuals.hpp, normalised) its residual's variance is
 //   sigma_j^2 = sigma^2 + sum_i u_i^2 v_i,
-// v_i the two variances of joint i, and the fit and the model test weigh it
-// by w_j = sigma / sigma_j.
+// v_i the two variances of joint i, and the fit weighs it by w_j = sigma /
+// sigma_j (the model test judges the residuals unweighted, by sigma alone:
+// calib/motion_correction.hpp).
 #pragma once
 
 #include <vector>
