@@ -811,17 +811,28 @@ double carried_chi2_of(const Eigen::MatrixXd& A, const Eigen::MatrixXd& J, const
   return carried_chi2(l.Jc - Jr * (A * (Jr.transpose() * l.Jc)), l.r, prior, s2);
 }
 
-// l with its samples' weights taken off (the rows of Jg, Jn, Jc and r over
-// w): the residuals as the encoders' noise alone judges them.
-Linearisation unweighted(Linearisation l) {
-  if (l.w.size() == 0) return l;
+// r'r of l's residuals with the samples' weights taken off (r over w): as
+// the encoders' noise alone judges them.
+double unweighted_norm2(const Linearisation& l) {
+  return l.w.size() == 0 ? l.r.squaredNorm() : l.r.cwiseQuotient(l.w).squaredNorm();
+}
+
+// carried_chi2_of for the residuals unweighted, as the model test sums them:
+// at l itself (J, A = (J' J)^-1 its fitted columns) when it has no weights,
+// else with the rows of Jg, Jn, Jc and r over w and their own columns projected out.
+double unweighted_carried_chi2(const Linearisation& l, const Eigen::MatrixXd& A, const Eigen::MatrixXd& J,
+                               const std::vector<int>& cols, double prior_weight, double prior, double s2) {
+  if (l.w.size() == 0) return carried_chi2_of(A, J, l, prior, s2);
+  Linearisation u = l;
   const Eigen::VectorXd inv = l.w.cwiseInverse();
-  l.Jg = inv.asDiagonal() * l.Jg;
-  l.Jn = inv.asDiagonal() * l.Jn;
-  l.Jc = inv.asDiagonal() * l.Jc;
-  l.r = l.r.cwiseProduct(inv);
-  l.w.resize(0);
-  return l;
+  u.Jg = inv.asDiagonal() * l.Jg;
+  u.Jn = inv.asDiagonal() * l.Jn;
+  u.Jc = inv.asDiagonal() * l.Jc;
+  u.r = l.r.cwiseProduct(inv);
+  u.w.resize(0);
+  const Eigen::MatrixXd Ju = joint_jacobian(u, cols, prior_weight);
+  const Eigen::MatrixXd Au = (Ju.transpose() * Ju).ldlt().solve(Eigen::MatrixXd::Identity(Ju.cols(), Ju.cols()));
+  return carried_chi2_of(Au, Ju, u, prior, s2);
 }
 
 // The joint covariance sigma^2 (J' J)^-1 of [J_g, J_nu] at l (the misfit's
@@ -848,9 +859,7 @@ void joint_covariance(const Linearisation& l, const std::vector<int>& cols, doub
     if (double* slot = noise_sigma_slot(fit, cols[static_cast<std::size_t>(c)])) *slot = std::sqrt(C(ng + c, ng + c));
   if (options.encoder_sigma) fit.chi2 = l.r.squaredNorm() / s2;
   if (options.encoder_sigma && dof > 0) fit.chi2_per_dof = fit.chi2 / dof;
-  const bool weighted = l.w.size() > 0;
-  const Linearisation judged = unweighted(l);
-  if (model.sandwich && options.encoder_sigma && dof > 0 && misfit(judged.r.squaredNorm() / s2, dof)) {
+  if (model.sandwich && options.encoder_sigma && dof > 0 && misfit(unweighted_norm2(l) / s2, dof)) {
     // The residuals exceed the noise: what the model leaves out moves the
     // estimate as much as it moves the residuals, correlated along the path.
     const Eigen::MatrixXd S = newey_west_sandwich(A, J.topRows(l.r.size()), l.r);
@@ -858,11 +867,8 @@ void joint_covariance(const Linearisation& l, const std::vector<int>& cols, doub
     if (fit.sandwich_inflation > 1.0) C = S, fit.sandwich_used = true;
   }
   if (considers_cyclic(model)) {
-    if (options.encoder_sigma) {  // of the unweighted residuals, the unweighted columns projected out
-      const Eigen::MatrixXd Ju = weighted ? joint_jacobian(judged, cols, prior_weight) : J;
-      const Eigen::MatrixXd Au = weighted ? (Ju.transpose() * Ju).ldlt().solve(Eigen::MatrixXd::Identity(m, m)) : A;
-      fit.carried_chi2 = carried_chi2_of(Au, Ju, judged, model.cyclic_prior_rad, s2);
-    }
+    if (options.encoder_sigma)
+      fit.carried_chi2 = unweighted_carried_chi2(l, A, J, cols, prior_weight, model.cyclic_prior_rad, s2);
     Eigen::MatrixXd carried = Eigen::MatrixXd::Zero(m, m);
     add_considered(A, J, l.Jc, model.cyclic_prior_rad, carried);
     C += carried;
