@@ -19,6 +19,7 @@
 #include "calib/passive_tension.hpp"
 #include "calib/reading_model.hpp"
 #include "calib/residuals.hpp"
+#include "calib/play_crossing.hpp"
 #include "calib/sample_weights.hpp"
 #include "models/errors.hpp"
 #include "models/kinematics.hpp"
@@ -571,6 +572,19 @@ void set_force_signs(const std::vector<std::optional<PassiveForces>>& forces, co
   e.flip = flip_variances(forces, e.tension_min, model, omega);
 }
 
+// The force signs of the samples in which a passive link may be crossing its
+// play (calib/play_crossing.hpp) made uncertain: their clearance regressors
+// and signs' doubts 0, as below the force threshold.
+void leave_crossings_uncertain(const std::vector<std::optional<PassiveForces>>& forces, int samples, EffectRegressors& e) {
+  std::vector<std::optional<Eigen::Vector3d>> tension(forces.size());
+  for (std::size_t j = 0; j < forces.size(); ++j)
+    if (forces[j]) tension[j] = forces[j]->tension;
+  const std::vector<std::array<bool, 3>> crossing = play_crossing(tension, samples);
+  for (std::size_t j = 0; j < forces.size(); ++j)
+    for (int i = 0; i < 3; ++i)
+      if (crossing[j][static_cast<std::size_t>(i)]) e.clr[j][i] = e.flip[j][i] = 0.0;
+}
+
 // EffectRegressors of samples s for model at geometry start.
 EffectRegressors effect_regressors(const Geometry& start, const MotionSamples& s, const MotionModel& model) {
   EffectRegressors e;
@@ -586,6 +600,7 @@ EffectRegressors effect_regressors(const Geometry& start, const MotionSamples& s
   e.clr.assign(s.theta_m.size(), Eigen::Vector3d::Zero());
   e.flip = e.clr;
   if (model.clearance) set_force_signs(forces, model, s.omega, e);
+  if (model.clearance && model.crossing_samples > 0) leave_crossings_uncertain(forces, model.crossing_samples, e);
   e.flank = flank_regressors(model, s.omega, s.tau, s.alpha);
   e.mesh = hysteresis_mesh_torques(model, s.omega, s.tau, s.alpha);
   e.at.resize(s.theta_m.size());
@@ -926,6 +941,7 @@ MotionFit fit_on_kept(const Problem& problem, const MotionSamples& s, const LmOp
   MotionModel sub_model = model;
   sub_model.skip_first = 0;
   sub_model.drop_uncertain = false;
+  sub_model.crossing_samples = 0;  // the kept samples are not consecutive: e's crossings stand
   sub_model.tension_min_N = e.tension_min;
   const EffectRegressors sub_e = kept_regressors(e, kept);  // what the kept samples alone give: not computed again
   MotionFit fit = fit_in_motion(sub, MotionSamples{sub.theta_m, omega, tau, nb, alpha}, options, sub_model, &sub_e);

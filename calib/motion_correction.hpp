@@ -77,6 +77,9 @@ struct MotionModel {
   double tension_sigma_N = 0.0;    // > 0: a passive link's force known within this 1-sigma (N; where its joint
                                    // may be at rest, also within the friction F_i it may hold), its sign (with
                                    // the clearance) wrong with Phi(-|T| / that); 0: the signs used are certain
+  int crossing_samples = 0;    // with the clearance: after a passive link's force changes sign, this many samples
+                               // (from the first of the new sign) have its sign uncertain (dropped with
+                               // drop_uncertain): the link may still be crossing its play (calib/play_crossing.hpp)
   int skip_first = 0;          // leading samples left out (the drives' start transient)
   int max_passes = 6;      // Gauss-Newton passes (each one LM fit)
 };

@@ -34,6 +34,8 @@ inline constexpr Bound kEncoderSigma{1e-12, 1.0, false, "rad"};
 inline constexpr Bound kEncoderBits{0, 40, true, "bits"};
 // Simulated encoder noise of synthetic samples (0: noiseless).
 inline constexpr Bound kNoiseSigma{0.0, 1.0, false, "rad"};
+// Time a passive link may take to cross its play after its force changes sign (calibration.crossing_s).
+inline constexpr Bound kCrossingTime{0.0, 1.0, false, "s"};
 // Scale of a robust loss (--loss cauchy:SCALE, calibration.loss), residual units.
 inline constexpr Bound kLossScale{1e-12, 1e6, false, "(residual units: rad for ml)"};
 // Samples (poses) generated in one data set (study --n, compare --samples).

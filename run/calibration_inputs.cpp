@@ -82,6 +82,7 @@ CalibrationInputs calibration_inputs(const CalibrationSpec& c, const Robot& robo
   }
   in.drive_friction = c.drive_friction;
   in.tension_min_stated = c.tension_min_N.has_value();
+  in.crossing_s = c.crossing_s;
   in.hub_mass_kg = robot.data_sheet.end_effector_mass_kg.nominal + 1.5 * robot.data_sheet.passive_link_mass_kg.nominal;
   return in;
 }

@@ -25,6 +25,7 @@ struct CalibrationInputs {
   calib::MotionModel drive_candidates;
   DriveFriction drive_friction;  // calibration.drive_friction (default: the data sheet's)
   double hub_mass_kg = 0.0;      // what the hub's force balance moves: the end effector and half of each passive link
+  double crossing_s = 0.0;          // calibration.crossing_s: a passive link crossing its play, in seconds
   bool tension_min_stated = false;  // calibration.tension_min_N given: else the force balance sets the threshold
   int encoder_bits = 0;                   // 2^bits counts per encoder revolution (0: ideal encoders)
   double encoder_cyclic_prior_rad = 0.0;  // the encoder's own error once per revolution, per component (data sheet)

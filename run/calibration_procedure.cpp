@@ -41,11 +41,14 @@ constexpr double kDriveEffectSigmas = 3.0;
 // unless calibration.tension_min_N states the threshold.
 constexpr double kForceSignSigmas = 2.0;
 
-// The largest chi2/dof at which the force signs' doubt is weighed
-// (drive_friction.weigh_signs, calib/sample_weights.hpp): a refinement of
-// the noise model, for a model that fits the readings to about the noise
+// The largest chi2/dof at which the force signs are refined: the samples
+// of a passive link crossing its play left out (calibration.crossing_s,
+// calib/play_crossing.hpp) and the signs' doubt weighed
+// (drive_friction.weigh_signs, calib/sample_weights.hpp). Refinements of the
+// clearance model, for a model that fits the readings to about the noise
 // (the realistic preset's robots 1.0-1.3); where it misses more (the geared
-// robots' drive trains, 5 to 1000) the weights would take up that misfit.
+// robots' drive trains, 5 to 1000) fewer samples or their weights would
+// leave the geometry to that misfit.
 constexpr double kSignsFitChi2PerDof = 2.0;
 
 // The motion model's fit in progress: the problem, the samples' rates and
@@ -343,6 +346,64 @@ void select_drive_train(MotionStage& m, const CalibrationInputs& in) {
   }
 }
 
+// The samples a passive link's crossing of its play spans (calibration.
+// crossing_s) at the mean period of the samples' times; 0 without times.
+int crossing_samples(const SampleSeries& samples, double crossing_s) {
+  if (!(crossing_s > 0.0) || samples.t_s.size() < 2) return 0;
+  const double dt = (samples.t_s.back() - samples.t_s.front()) / static_cast<double>(samples.t_s.size() - 1);
+  return dt > 0.0 ? static_cast<int>(std::ceil(crossing_s / dt - 1e-9)) : 0;
+}
+
+// The fits of the reading model in motion on samples (its friction, the
+// drive train's effects the data call for, the clearance where detected).
+MotionStage motion_fits(const SampleSeries& samples, const CalibrationInputs& inputs, const ProcedureOptions& options) {
+  MotionStage m = motion_stage(samples, inputs, options);
+  // The drive train's harmonic candidates (the errors per motor revolution)
+  // are in the model from the first fit on: the friction's speed and scale
+  // are chosen by chi2/dof, and a transmission error left out until
+  // select_drive_train made those choices on its misfit (0.1 mrad twice per
+  // motor revolution: chi2/dof in the hundreds, the friction 1.4x, the
+  // clearance's force signs wrong); the selection then drops the harmonics
+  // the data do not show. Not the backlash: whether its flank can be told
+  // depends on the friction being chosen. No selection without sigma.
+  first_fit(m, inputs, options.in_motion);
+  drop_undetected(m, options.keep_clearance);
+  select_drive_train(m, inputs);
+  // What looked like a play before the drive train was in the model may be
+  // the drive train's (a geared robot with no clearance showed a play at
+  // 3 sigma that its harmonics then took): the clearance is judged again.
+  drop_undetected(m, options.keep_clearance);
+  return m;
+}
+
+// With the clearance in the model and calibration.crossing_s > 0, where the
+// model fits the readings within kSignsFitChi2PerDof: the fits made again
+// with the samples in which a passive link may be crossing its play after
+// its force changed sign left out (calib/play_crossing.hpp), from the first
+// on (the friction's speed and scale and the drive train are chosen on them
+// too); a note either way.
+void leave_out_crossings(MotionStage& m, const SampleSeries& samples, const CalibrationInputs& inputs,
+                         const ProcedureOptions& options) {
+  const int crossing = crossing_samples(samples, inputs.crossing_s);
+  if (crossing <= 0 || !m.motion.clearance) return;
+  const double before = m.fit.chi2_per_dof;
+  if (!(before > 0.0 && before <= kSignsFitChi2PerDof)) {
+    m.drive_notes.push_back(fmt::format("the samples of a passive link crossing its play kept: chi2/dof {:.3g} above "
+                                        "{:.3g}, the model misses more than the crossings",
+                                        before, kSignsFitChi2PerDof));
+    return;
+  }
+  CalibrationInputs guarded = inputs;
+  guarded.motion.crossing_samples = crossing;
+  MotionStage g = motion_fits(samples, guarded, options);
+  g.drive_notes.push_back(fmt::format(
+      "the {} samples in which a passive link may be crossing its play left out ({:.3g} s after its force changed "
+      "sign), the fits made again: chi2/dof {:.3g} -> {:.3g}",
+      static_cast<long>(m.fit.kept.size()) - static_cast<long>(g.fit.kept.size()), inputs.crossing_s, before,
+      g.fit.chi2_per_dof));
+  m = std::move(g);
+}
+
 // With drive_friction.weigh_signs and the clearance in the model: the
 // force signs' doubt weighed too (the balance's 1-sigma of a link's force),
 // the fit made again, where the model fits the readings within
@@ -518,22 +579,8 @@ CalibrationOutcome calibrate_samples(const SampleSeries& samples, const Calibrat
   CalibrationOutcome out;
   calib::Problem fitted;  // with effects: the motion fit's problem (its readings carried to joint 1's instant)
   if (with_effects) {
-    MotionStage m = motion_stage(samples, inputs, options);
-    // The drive train's harmonic candidates (the errors per motor revolution)
-    // are in the model from the first fit on: the friction's speed and scale
-    // are chosen by chi2/dof, and a transmission error left out until
-    // select_drive_train made those choices on its misfit (0.1 mrad twice per
-    // motor revolution: chi2/dof in the hundreds, the friction 1.4x, the
-    // clearance's force signs wrong); the selection then drops the harmonics
-    // the data do not show. Not the backlash: whether its flank can be told
-    // depends on the friction being chosen. No selection without sigma.
-    first_fit(m, inputs, options.in_motion);
-    drop_undetected(m, options.keep_clearance);
-    select_drive_train(m, inputs);
-    // What looked like a play before the drive train was in the model may be
-    // the drive train's (a geared robot with no clearance showed a play at
-    // 3 sigma that its harmonics then took): the clearance is judged again.
-    drop_undetected(m, options.keep_clearance);
+    MotionStage m = motion_fits(samples, inputs, options);
+    leave_out_crossings(m, samples, inputs, options);
     weigh_signs(m, inputs);
     note_sandwich(m);
     fitted = m.problem;

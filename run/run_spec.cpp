@@ -167,7 +167,7 @@ CalibrationSpec parse_calibration(const YAML::Node& n, const std::string& file, 
   if (!n) return c;
   yaml_check_keys(n, file, "calibration",
                   {"cost", "method", "fix", "budget", "seed", "sigma", "allow_rank_deficient", "start", "reference_at", "estimate", "loss", "tension_min_N",
-                   "drive_friction"});
+                   "crossing_s", "drive_friction"});
   if (n["cost"]) {
     const std::string s = yaml_string(n["cost"], file, "calibration.cost");
     const auto cost = calib::parse_cost(s);
@@ -196,6 +196,7 @@ CalibrationSpec parse_calibration(const YAML::Node& n, const std::string& file, 
       throw InputError(yaml_where(file, n["tension_min_N"], "calibration.tension_min_N") +
                        fmt::format("{} N leaves no sample of a GPM2002 (valid: 0 < N <= 100)", *c.tension_min_N));
   }
+  if (n["crossing_s"]) c.crossing_s = yaml_within(n["crossing_s"], file, "calibration.crossing_s", limits::kCrossingTime);
   if (n["drive_friction"])
     c.drive_friction = parse_drive_friction(n["drive_friction"], file, "calibration.drive_friction",
                                             c.drive_friction, true);

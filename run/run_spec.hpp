@@ -135,6 +135,10 @@ struct CalibrationSpec {
   // With the clearance: samples where some passive link's axial force is
   // below this (N) are left out (its sign is uncertain); unset = MotionModel's.
   std::optional<double> tension_min_N;
+  // With the clearance, where the reading model fits: a sample within this
+  // long (s) after a passive link's force changed sign is left out, the link
+  // may still be crossing its play (calib/play_crossing.hpp); 0: none.
+  double crossing_s = 0.02;
   calib::RobustLoss loss;               // `loss: cauchy|huber[:SCALE]` (calib/robust_loss.hpp)
 };
 

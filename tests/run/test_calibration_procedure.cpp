@@ -82,14 +82,17 @@ TEST(CalibrationProcedure, EstimatedReadingModelTakesTheEstimatesWhereMade) {
 // defaults): the robot file's data sheet, no scenario.
 // friction_from_balance false: the data sheet's friction, not the force balance's;
 // tension_min_N: the force signs' threshold stated (calibration.tension_min_N); ratio_from_step false:
-// the encoders' counts unstated, so the reducer's error once per joint revolution is carried whatever the readings' step.
+// the encoders' counts unstated, so the reducer's error once per joint revolution is carried whatever the readings' step;
+// crossing_s: calibration.crossing_s (the default 0.02 s).
 CalibrationOutcome calibrate_file(const Samples& s, bool static_model = false, bool friction_from_balance = true,
-                                  std::optional<double> tension_min_N = std::nullopt, bool ratio_from_step = true) {
+                                  std::optional<double> tension_min_N = std::nullopt, bool ratio_from_step = true,
+                                  double crossing_s = 0.02) {
   const Robot robot = load_robot(std::string(GPM_SOURCE_DIR) + "/models/gpm2002.yaml");
   calib::MethodOptions mo;
   FileProcedure p = samples_file_procedure(s, robot, robot.geometry, ~parse_param_list("xa1,ya1,xa2,ya2", "--fix"), mo,
                                            std::nullopt, static_model);
   p.inputs.drive_friction.from_balance = friction_from_balance;
+  p.inputs.crossing_s = crossing_s;
   if (!ratio_from_step) p.inputs.encoder_bits = 0;  // the encoders' counts unknown: the data sheet's gear ratio stands
   if (tension_min_N) {
     p.inputs.tension_min_stated = true;
@@ -242,6 +245,39 @@ TEST(CalibrationProcedure, AFailedModelTestNamesTheEffectLeftOut) {
       << unskewed.model_test->diagnosis;
 }
 
+// The small run's passive links cross their play (5 um on the realistic
+// twin) wherever their force changes sign: with calibration.crossing_s the
+// samples of the 20 ms after each change are left out and the fits made
+// again, so fewer samples are used and their chi-square per degree of
+// freedom falls (the crossings were misfit); without it (0) no note and
+// every such sample kept; where the model misses the readings by more than
+// the gate allows (the compliance left out), the crossings are kept.
+TEST(CalibrationProcedure, ThePlaysCrossingsAreLeftOutWhereTheModelFits) {
+  const RunOutcome& o = small_run();
+  const Samples s = parse_samples_csv(sim::samples_csv(o.sim.samples), "samples.csv");
+  const Robot robot = load_robot(std::string(GPM_SOURCE_DIR) + "/models/gpm2002.yaml");
+  FileProcedure p = samples_file_procedure(s, robot, robot.geometry, ~parse_param_list("xa1,ya1,xa2,ya2", "--fix"), {},
+                                           std::nullopt, false);
+  ASSERT_EQ(p.inputs.crossing_s, 0.02);  // the default of calibration.crossing_s
+  const CalibrationOutcome guarded = calibrate_samples(sample_series(s), p.inputs, p.options);
+  p.inputs.crossing_s = 0.0;
+  const CalibrationOutcome all = calibrate_samples(sample_series(s), p.inputs, p.options);
+  const auto note = [](const CalibrationOutcome& c, const std::string& what) {
+    return std::any_of(c.result.notes.begin(), c.result.notes.end(),
+                       [&](const std::string& n) { return n.find(what) != std::string::npos; });
+  };
+  ASSERT_TRUE(guarded.model_test && all.model_test);
+  EXPECT_TRUE(note(guarded, "may be crossing its play left out (0.02 s after its force changed sign)"));
+  EXPECT_FALSE(note(all, "crossing its play"));
+  EXPECT_LT(guarded.used.size(), all.used.size());
+  EXPECT_LT(guarded.model_test->chi2 / guarded.model_test->dof, all.model_test->chi2 / all.model_test->dof);
+  p.inputs.crossing_s = 0.02;
+  p.inputs.motion.compliance = p.inputs.motion.friction = p.inputs.motion.torque_before = false;
+  p.inputs.drive_candidates = {};
+  const CalibrationOutcome stiff = calibrate_samples(sample_series(s), p.inputs, p.options);
+  EXPECT_TRUE(note(stiff, "the samples of a passive link crossing its play kept: chi2/dof"));
+}
+
 TEST(CalibrationProcedure, MotionModelWithoutTimesOrTorquesRefused) {
   const RunOutcome& o = small_run();
   const Samples s = parse_samples_csv(sim::samples_csv(o.sim.samples), "samples.csv");
@@ -289,12 +325,14 @@ TEST(CalibrationProcedure, ReadingsPolledInTurnAreCarriedToJointOnesInstant) {
   // tips the choice of the friction's speed and of a drive-train harmonic,
   // and those move the skew; this test is about the read times.
   // Nor do they tell that the encoders turn with the joints: each fit
-  // carries the reducer's error once per joint revolution.
-  const CalibrationOutcome base = calibrate_file(s, false, false, std::nullopt, false),
-                           carried = calibrate_file(polled, false, false, std::nullopt, false);
+  // carries the reducer's error once per joint revolution. And the samples
+  // of the passive links' crossings are kept: whether they are left out is
+  // decided by the fit's chi2/dof, which the interpolation moves too.
+  const CalibrationOutcome base = calibrate_file(s, false, false, std::nullopt, false, 0.0),
+                           carried = calibrate_file(polled, false, false, std::nullopt, false, 0.0);
   Samples unlabelled = polled;
   unlabelled.t_read.clear();
-  const CalibrationOutcome skewed = calibrate_file(unlabelled, false, false, std::nullopt, false);
+  const CalibrationOutcome skewed = calibrate_file(unlabelled, false, false, std::nullopt, false, 0.0);
   ASSERT_TRUE(base.with_effects && carried.with_effects && skewed.with_effects);
   // The readings interpolated between samples carry the error of a straight
   // line through the path's curvature: the skews carried back land within

@@ -115,6 +115,13 @@ TEST(RunSpec, LossAndEstimatedEffects) {
   EXPECT_EQ(c.calibration.estimate_clearance, true);
   EXPECT_EQ(c.calibration.estimate_compliance, false);
   EXPECT_EQ(c.calibration.tension_min_N, 0.5);
+  // The crossing of a passive link's play: 20 ms unless stated, 0 none, at most 1 s.
+  EXPECT_EQ(parse_run_spec(kHead, "s.yaml", kBase).calibration.crossing_s, 0.02);
+  EXPECT_EQ(parse_run_spec(kHead + "calibration: {crossing_s: 0}\n", "s.yaml", kBase).calibration.crossing_s, 0.0);
+  EXPECT_EQ(parse_run_spec(kHead + "calibration: {crossing_s: 0.05}\n", "s.yaml", kBase).calibration.crossing_s, 0.05);
+  const std::string e = error_of(kHead + "calibration: {crossing_s: 2}\n");
+  EXPECT_EQ(e.rfind("s.yaml:3: calibration.crossing_s: ", 0), 0u) << e;
+  EXPECT_NE(e.find("1"), std::string::npos) << e;
 }
 
 // calibration.drive_friction: what the procedure assumes, independent of the
