@@ -68,7 +68,8 @@ struct MotionModel {
   double hysteresis_start_rad = 7.3e-5;            // eta where the fit starts (0.25 arcmin: a loss of 0.5 arcmin)
   double hysteresis_compliance_rad_per_Nm = 1e-4;  // c_i where the fit starts, and where it does not estimate it
                                                    // (the data sheet's)
-  bool sandwich = true;  // when the fit's residuals, unweighted, exceed the noise (chi-square test at 0.1 %), the
+  bool sandwich = true;  // when the fit's residuals, unweighted, exceed the noise (the model test's chi-square at 1 %,
+                         // less what the carried error explains), the
                          // covariance is the autocorrelation-robust sandwich of the residuals (Newey-West), not
                          // sigma^2 (J'J)^-1
   // Samples the friction leaves uncertain weigh less (calib/sample_weights.hpp; needs LmOptions::encoder_sigma):
