@@ -63,3 +63,14 @@ study_population_of() {
   echo "$3" >&2
   "$gpm" study population "$2" --keep-effects --seeds "$seeds" -o "$out/$1" --progress none > "$out/$1.log"
 }
+
+# The robots of every kind in kinds (kind_effects) calibrated as $2 with
+# ", ..." $3 appended to the calibration map, then as $4 with $5 appended
+# (study_main_variant's variants, into $out); $1 names the study.
+study_kinds_before_after() {
+  local kind
+  for kind in "${kinds[@]}"; do
+    study_main_variant "$1" "$kind" "$2" "$3"
+    study_main_variant "$1" "$kind" "$4" "$5"
+  done
+}

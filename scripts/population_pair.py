@@ -76,3 +76,16 @@ def write_between_markers(doc, name, table):
     if begin in text and end in text:
         text = re.sub(re.escape(begin) + ".*?" + re.escape(end), lambda m: begin + table + end, text, flags=re.S)
         open(doc, "w").write(text)
+
+
+if __name__ == "__main__":
+    # python3 scripts/population_pair.py OUT BEFORE AFTER NAME LEAD KIND...: the
+    # before -> after table of OUT/KIND_BEFORE and OUT/KIND_AFTER with the bound's
+    # and the misfit's columns, into OUT/NAME.md, docs/PROCEDURES.md between its
+    # NAME markers and stdout.
+    import sys
+    out, before, after, name, lead, kinds = sys.argv[1], sys.argv[2], sys.argv[3], sys.argv[4], sys.argv[5], sys.argv[6:]
+    table = "\n".join(before_after_table(out, kinds, before, after, lead, [BOUND_COLUMN, MISFIT_COLUMN])) + "\n"
+    open(f"{out}/{name}.md", "w").write(table)
+    write_between_markers("docs/PROCEDURES.md", name, table)
+    print(table)

@@ -15,10 +15,7 @@ cd "$(dirname "$0")/.."
 source scripts/effects_beyond_basic.sh
 study_setup "${1:-out/force_sign}" "${2:-20}" "${3:-27100}"
 kinds=(basic randomized preset)
-for kind in "${kinds[@]}"; do
-  study_main_variant "force sign" "$kind" stated ", tension_min_N: 1.5"
-  study_main_variant "force sign" "$kind" balance ""
-done
+study_kinds_before_after "force sign" stated ", tension_min_N: 1.5" balance ""
 /usr/bin/python3 - "$out" "$count" "$first" "${kinds[@]}" <<'PY'
 import sys
 sys.path.insert(0, "scripts")

@@ -34,6 +34,14 @@ const RunOutcome& small_run() {
   return o;
 }
 
+// gpm calibrate's procedure for samples s with the GPM2002's robot file,
+// xa1, ya1, xa2, ya2 fixed, the model in motion where s allows it.
+FileProcedure gpm2002_file_procedure(const Samples& s) {
+  const Robot robot = load_robot(std::string(GPM_SOURCE_DIR) + "/models/gpm2002.yaml");
+  return samples_file_procedure(s, robot, robot.geometry, ~parse_param_list("xa1,ya1,xa2,ya2", "--fix"), {},
+                                std::nullopt, false);
+}
+
 // What gpm calibrate runs on a samples file (app/cmd_calibrate.cpp at its
 // The reading model after a calibration in motion: the statement with the
 // estimates in place where made (skew and compliance with a positive
@@ -218,9 +226,7 @@ TEST(CalibrationProcedure, WithoutTimesAndTorquesTheStaticFitAndItsModelTest) {
 TEST(CalibrationProcedure, AFailedModelTestNamesTheEffectLeftOut) {
   const RunOutcome& o = small_run();
   const Samples s = parse_samples_csv(sim::samples_csv(o.sim.samples), "samples.csv");
-  const Robot robot = load_robot(std::string(GPM_SOURCE_DIR) + "/models/gpm2002.yaml");
-  FileProcedure p = samples_file_procedure(s, robot, robot.geometry, ~parse_param_list("xa1,ya1,xa2,ya2", "--fix"), {},
-                                           std::nullopt, false);
+  FileProcedure p = gpm2002_file_procedure(s);
   const CalibrationOutcome full = calibrate_samples(sample_series(s), p.inputs, p.options);
   p.inputs.motion.compliance = p.inputs.motion.friction = p.inputs.motion.torque_before = false;
   p.inputs.drive_candidates = {};
@@ -234,8 +240,7 @@ TEST(CalibrationProcedure, AFailedModelTestNamesTheEffectLeftOut) {
     EXPECT_EQ(full.model_test->diagnosis.find("transmission compliance ("), std::string::npos) << full.model_test->diagnosis;
   }
   // The latch skew (50 and 100 us on the twin) left out instead.
-  FileProcedure q = samples_file_procedure(s, robot, robot.geometry, ~parse_param_list("xa1,ya1,xa2,ya2", "--fix"), {},
-                                           std::nullopt, false);
+  FileProcedure q = gpm2002_file_procedure(s);
   q.inputs.motion.skew = false;
   const CalibrationOutcome unskewed = calibrate_samples(sample_series(s), q.inputs, q.options);
   ASSERT_TRUE(unskewed.model_test);
@@ -255,9 +260,7 @@ TEST(CalibrationProcedure, AFailedModelTestNamesTheEffectLeftOut) {
 TEST(CalibrationProcedure, ThePlaysCrossingsAreLeftOutWhereTheModelFits) {
   const RunOutcome& o = small_run();
   const Samples s = parse_samples_csv(sim::samples_csv(o.sim.samples), "samples.csv");
-  const Robot robot = load_robot(std::string(GPM_SOURCE_DIR) + "/models/gpm2002.yaml");
-  FileProcedure p = samples_file_procedure(s, robot, robot.geometry, ~parse_param_list("xa1,ya1,xa2,ya2", "--fix"), {},
-                                           std::nullopt, false);
+  FileProcedure p = gpm2002_file_procedure(s);
   ASSERT_EQ(p.inputs.crossing_s, 0.02);  // the default of calibration.crossing_s
   const CalibrationOutcome guarded = calibrate_samples(sample_series(s), p.inputs, p.options);
   p.inputs.crossing_s = 0.0;
