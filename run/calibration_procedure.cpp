@@ -390,7 +390,9 @@ MotionStage motion_fits(const SampleSeries& samples, const CalibrationInputs& in
 // the first on (the friction's speed and scale and the drive train are
 // chosen on them too), and taken where the model fits the readings within
 // kSignsFitChi2PerDof with the crossings, or within kCrossingsLeftChi2PerDof
-// without them; a note either way.
+// without them, and the play is still detected without them (else the fits
+// without the play are another model, not the crossings' answer); a note
+// either way.
 void leave_out_crossings(MotionStage& m, const SampleSeries& samples, const CalibrationInputs& inputs,
                          const ProcedureOptions& options) {
   const int crossing = crossing_samples(samples, inputs.crossing_s);
@@ -399,6 +401,13 @@ void leave_out_crossings(MotionStage& m, const SampleSeries& samples, const Cali
   guarded.motion.crossing_samples = crossing;
   MotionStage g = motion_fits(samples, guarded, options);
   const double before = m.fit.chi2_per_dof, after = g.fit.chi2_per_dof;
+  if (!g.motion.clearance) {  // the play not detected without them: a model of its own, not these samples' question
+    m.drive_notes.push_back(fmt::format(
+        "the samples of a passive link crossing its play kept: without them the play was not detected (chi2/dof "
+        "{:.3g} with them, {:.3g} without the play)",
+        before, after));
+    return;
+  }
   if (!(before > 0.0 && before <= kSignsFitChi2PerDof) && !(after > 0.0 && after <= kCrossingsLeftChi2PerDof)) {
     m.drive_notes.push_back(fmt::format(
         "the samples of a passive link crossing its play kept: chi2/dof {:.3g} with them, {:.3g} without (above {:.3g}): "
