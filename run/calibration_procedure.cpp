@@ -98,6 +98,11 @@ void check_sizes(const SampleSeries& s) {
   check(s.tau_between.size(), "mean drive torques since the sample before");
 }
 
+// The mean interval between samples taken at times t_s (s); 0 for fewer than two.
+double sample_period_s(const std::vector<double>& t_s) {
+  return t_s.size() < 2 ? 0.0 : (t_s.back() - t_s.front()) / static_cast<double>(t_s.size() - 1);
+}
+
 // The joints' speeds and accelerations (rad/s, rad/s^2): on the fly
 // differences of the readings themselves (calib/reading_rates.hpp: speeds
 // central over +-1 sample, accelerations over +-kAccelerationHalfWindow_s;
@@ -109,7 +114,7 @@ void reading_rates_of(const SampleSeries& s, bool in_motion, MotionStage& m) {
   if (!in_motion) return;
   if (s.t_s.size() != n || n < 2)
     throw InputError("calibration: samples on the fly need the time of each reading (samples.csv column t)");
-  const double dt = (s.t_s.back() - s.t_s.front()) / static_cast<double>(n - 1);  // the sample interval
+  const double dt = sample_period_s(s.t_s);
   calib::RateOptions ro;
   ro.alpha_span = std::max(1, static_cast<int>(std::lround(kAccelerationHalfWindow_s / dt)));
   calib::ReadingRates rates = calib::reading_rates(s.t_s, s.theta_m, ro);
@@ -357,9 +362,8 @@ void select_drive_train(MotionStage& m, const CalibrationInputs& in) {
 // The samples a passive link's crossing of its play spans (calibration.
 // crossing_s) at the mean period of the samples' times; 0 without times.
 int crossing_samples(const SampleSeries& samples, double crossing_s) {
-  if (!(crossing_s > 0.0) || samples.t_s.size() < 2) return 0;
-  const double dt = (samples.t_s.back() - samples.t_s.front()) / static_cast<double>(samples.t_s.size() - 1);
-  return dt > 0.0 ? static_cast<int>(std::ceil(crossing_s / dt - 1e-9)) : 0;
+  const double dt = sample_period_s(samples.t_s);
+  return crossing_s > 0.0 && dt > 0.0 ? static_cast<int>(std::ceil(crossing_s / dt - 1e-9)) : 0;
 }
 
 // The fits of the reading model in motion on samples (its friction, the
@@ -559,8 +563,7 @@ std::string left_out_sentence(const std::vector<calib::LeftOutEffect>& left_out,
 // (calib/sample_weights.hpp), into inputs.motion, and a note saying so.
 void set_stick_speed(const SampleSeries& samples, double q, CalibrationInputs& inputs, std::vector<std::string>& notes) {
   if (!inputs.drive_friction.weigh_rest || samples.t_s.size() < 2) return;
-  const double dt = (samples.t_s.back() - samples.t_s.front()) / static_cast<double>(samples.t_s.size() - 1);
-  inputs.motion.stick_speed_rad_s = calib::stick_speed(q, dt);
+  inputs.motion.stick_speed_rad_s = calib::stick_speed(q, sample_period_s(samples.t_s));
   if (inputs.motion.stick_speed_rad_s > 0.0)
     notes.push_back(fmt::format(
         "a joint slower than {:.3g} rad/s (a reading step per sample) may be at rest, its friction twist then "

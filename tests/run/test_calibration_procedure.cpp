@@ -35,11 +35,11 @@ const RunOutcome& small_run() {
 }
 
 // gpm calibrate's procedure for samples s with the GPM2002's robot file,
-// xa1, ya1, xa2, ya2 fixed, the model in motion where s allows it.
-FileProcedure gpm2002_file_procedure(const Samples& s) {
+// xa1, ya1, xa2, ya2 fixed, the model in motion where s allows it (unless static_model).
+FileProcedure gpm2002_file_procedure(const Samples& s, bool static_model = false) {
   const Robot robot = load_robot(std::string(GPM_SOURCE_DIR) + "/models/gpm2002.yaml");
   return samples_file_procedure(s, robot, robot.geometry, ~parse_param_list("xa1,ya1,xa2,ya2", "--fix"), {},
-                                std::nullopt, false);
+                                std::nullopt, static_model);
 }
 
 // What gpm calibrate runs on a samples file (app/cmd_calibrate.cpp at its
@@ -95,10 +95,7 @@ TEST(CalibrationProcedure, EstimatedReadingModelTakesTheEstimatesWhereMade) {
 CalibrationOutcome calibrate_file(const Samples& s, bool static_model = false, bool friction_from_balance = true,
                                   std::optional<double> tension_min_N = std::nullopt, bool ratio_from_step = true,
                                   double crossing_s = 0.02) {
-  const Robot robot = load_robot(std::string(GPM_SOURCE_DIR) + "/models/gpm2002.yaml");
-  calib::MethodOptions mo;
-  FileProcedure p = samples_file_procedure(s, robot, robot.geometry, ~parse_param_list("xa1,ya1,xa2,ya2", "--fix"), mo,
-                                           std::nullopt, static_model);
+  FileProcedure p = gpm2002_file_procedure(s, static_model);
   p.inputs.drive_friction.from_balance = friction_from_balance;
   p.inputs.crossing_s = crossing_s;
   if (!ratio_from_step) p.inputs.encoder_bits = 0;  // the encoders' counts unknown: the data sheet's gear ratio stands
@@ -287,9 +284,7 @@ TEST(CalibrationProcedure, ThePlaysCrossingsAreLeftOutWhereTheModelFits) {
 TEST(CalibrationProcedure, MotionModelWithoutTimesOrTorquesRefused) {
   const RunOutcome& o = small_run();
   const Samples s = parse_samples_csv(sim::samples_csv(o.sim.samples), "samples.csv");
-  const Robot robot = load_robot(std::string(GPM_SOURCE_DIR) + "/models/gpm2002.yaml");
-  const FileProcedure p = samples_file_procedure(s, robot, robot.geometry, ~parse_param_list("xa1,ya1,xa2,ya2", "--fix"),
-                                                 {}, std::nullopt, false);
+  const FileProcedure p = gpm2002_file_procedure(s);
   const CalibrationInputs& in = p.inputs;
   const ProcedureOptions& po = p.options;
   SampleSeries no_t = sample_series(s), no_tau = sample_series(s), short_t = sample_series(s);
