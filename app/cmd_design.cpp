@@ -68,6 +68,12 @@ Json bounds_json(const ex::Bounds& b) {
   return j;
 }
 
+// With the positioning criterion: the bound it reached, for the file's comment.
+std::string positioning_note(const ex::Design& design) {
+  if (!(design.positioning_bound_um > 0.0)) return "";
+  return fmt::format("\npositioning bound over the disc round home: {:.3g} um RMS", design.positioning_bound_um);
+}
+
 std::string bound_note(const ex::Bounds& b) {
   return fmt::format("{:.4g} mm ({})", b.worst_mm, b.worst_param >= 0 ? std::string(param_name(b.worst_param)) : "-");
 }
@@ -77,7 +83,7 @@ void run_design(const DesignCliOptions& o) {
   ex::DesignOptions d = design_options(o);
   const Robot robot = load_robot(o.model);
   // The design's stages on a terminal (models/progress.hpp).
-  gpm::Progress progress = gpm::Progress::terminal("gpm design", "stages", d.criterion == ex::Criterion::kWorst ? 6 : 2);
+  gpm::Progress progress = gpm::Progress::terminal("gpm design", "stages", ex::design_stages(d.criterion));
   if (progress.active()) d.progress = [&progress](int done, int) { progress.update(done); };
   const ex::Design design = ex::design_poses(robot, d);
   progress.finish();
@@ -85,10 +91,10 @@ void run_design(const DesignCliOptions& o) {
       "gpm design: {} poses, criterion {}, encoder noise {} rad, free {}\n"
       "designed at the geometry of {} (nominal: what is known before calibration)\n"
       "candidates: {} grid points of {} mm reachable with the robot's margins + guard {} mm\n"
-      "Cramer-Rao bound here: worst {}, mean {:.4g} mm (offsets as rad x la_i)\n"
+      "Cramer-Rao bound here: worst {}, mean {:.4g} mm (offsets as rad x la_i){}\n"
       "use: gpm simulate THIS_FILE -o DIR, or paste the sampling block into a scenario",
       d.count, ex::criterion_name(d.criterion), d.sigma, format_param_list(d.free), o.model, design.candidates,
-      d.grid_step_mm, d.guard.reach_mm, bound_note(design.bounds), design.bounds.mean_mm);
+      d.grid_step_mm, d.guard.reach_mm, bound_note(design.bounds), design.bounds.mean_mm, positioning_note(design));
   const std::string text = ex::pose_list_yaml(design.poses, comment);
   write_output_file(o.out, text, {o.model});
   if (o.json) {
@@ -109,6 +115,8 @@ void run_design(const DesignCliOptions& o) {
     info["start_bounds"] = bounds_json(design.start_bounds);
     info["bounds"] = bounds_json(design.bounds);
     info["exchanges"] = design.exchanges;
+    info["positioning_bound_um"] = d.criterion == ex::Criterion::kPositioning ? json_number(design.positioning_bound_um)
+                                                                              : Json(nullptr);
     doc["design"] = info;
     print_json(doc);
     return;
@@ -120,6 +128,9 @@ void run_design(const DesignCliOptions& o) {
              design.start_bounds.mean_mm, design.start_bounds.log_det);
   fmt::print("optimised        worst {}, mean {:.4g} mm, log det F {:.3f}\n", bound_note(design.bounds),
              design.bounds.mean_mm, design.bounds.log_det);
+  if (d.criterion == ex::Criterion::kPositioning)
+    fmt::print("positioning      {:.3g} um RMS over the {:g} mm disc at best ({} readings per pose)\n",
+               design.positioning_bound_um, d.positioning.radius_mm, d.positioning.samples_per_pose);
   fmt::print("exchanges        {} in {:.2f} s\n", design.exchanges, wall);
   fmt::print("wrote            {} ({} poses)\n", o.out, design.poses.size());
 }
@@ -194,7 +205,10 @@ void add_design(CLI::App& app) {
   cmd->add_option("--sigma", opt->sigma, "Encoder noise, rad (scales the bounds; the poses do not depend on it)")
       ->capture_default_str();
   cmd->add_option("--fix", opt->fix, "Fixed (known) parameters, comma-separated")->capture_default_str();
-  cmd->add_option("--criterion", opt->criterion, "d (max log det Fisher) or worst (min largest bound)")
+  cmd->add_option("--criterion", opt->criterion,
+                  "d (max log det Fisher), worst (min largest bound) or positioning (min positioning bound over the "
+                  "80 mm disc, the encoders' error once per joint revolution estimated under the data sheet's prior; "
+                  "depends on --sigma)")
       ->capture_default_str();
   cmd->add_option("--grid-step", opt->grid_step, "Candidate grid spacing, mm")->capture_default_str();
   cmd->add_option("--guard", opt->guard_mm, "Extra reach margin of the candidates, mm (also +0.02 on both singularity margins)")

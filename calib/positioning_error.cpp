@@ -121,6 +121,21 @@ PositioningError positioning_error(const Robot& actual, const Robot& model, cons
   return out;
 }
 
+Eigen::Matrix<double, kNumParams, kNumParams> positioning_weight(const Robot& robot, const WorkspaceDisc& disc) {
+  Eigen::Matrix<double, kNumParams, kNumParams> W = Eigen::Matrix<double, kNumParams, kNumParams>::Zero();
+  int points = 0;
+  for (const Eigen::Vector2d& p : grid(disc)) {
+    const auto J = sensitivity(robot, robot, p);
+    if (!J) continue;
+    W += J->transpose() * *J;
+    ++points;
+  }
+  if (points == 0)
+    throw InputError(fmt::format("positioning weight: no point of the {} mm disc round ({}, {}) is reachable",
+                                 disc.radius_mm, disc.centre.x(), disc.centre.y()));
+  return W / points;
+}
+
 std::optional<PositioningError> stated_positioning(const Robot& robot, const Result& result) {
   if (!result.covariance) return std::nullopt;
   Robot calibrated = robot;

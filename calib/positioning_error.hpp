@@ -64,6 +64,12 @@ PositioningError positioning_error(const Robot& actual, const Robot& model, cons
                                    const std::optional<Eigen::Matrix<double, kNumParams, kNumParams>>& covariance = {},
                                    const std::optional<Eigen::Matrix<double, kNumParams, kNumParams>>& carried = {});
 
+// Mean over the disc's points that robot reaches of J' J, J = d p / d
+// geometry (mm per mm or rad, robot's model on robot itself): for a geometry
+// covariance C, trace(W C) is the mean square positioning error it causes
+// (the RMS of |e| squared, mm^2). Throws InputError if no point is reachable.
+Eigen::Matrix<double, kNumParams, kNumParams> positioning_weight(const Robot& robot, const WorkspaceDisc& disc);
+
 // The positioning 1-sigma result states over the disc round robot's home,
 // by the calibrated model's own sensitivities (robot with result's geometry
 // as both actual and model: no truth to judge it by, its error 0); nullopt

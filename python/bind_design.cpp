@@ -78,6 +78,13 @@ nominal geometry (calib/excitation/excitation.hpp).
           "candidates", [](const PyDesign& d) { return d.design.candidates; }, "Size of the candidate grid.")
       .def_property_readonly(
           "exchanges", [](const PyDesign& d) { return d.design.exchanges; }, "Swaps made by the exchange stages.")
+      .def_property_readonly(
+          "positioning_bound_um",
+          [](const PyDesign& d) -> py::object {
+            if (d.options.criterion != ex::Criterion::kPositioning) return py::none();
+            return py::float_(d.design.positioning_bound_um);
+          },
+          "With the positioning criterion: its value, the positioning RMS over the 80 mm disc at best (um); else None.")
       .def(
           "to_yaml",
           [](const PyDesign& d, const std::string& comment) { return ex::pose_list_yaml(d.design.poses, comment); },
@@ -109,7 +116,7 @@ void bind_design_function(py::module_& m) {
         auto out = std::make_shared<PyDesign>();
         out->options = ex::checked_design_options(
             number_arg(count, "count", limits::kDesignPoses), number_arg(sigma, "sigma", limits::kEncoderSigma),
-            ~param_set(fix, "fix"), text_arg(criterion, "criterion", "d or worst"), number_arg(grid_step, "grid_step", limits::kGridStep),
+            ~param_set(fix, "fix"), text_arg(criterion, "criterion", "d, worst or positioning"), number_arg(grid_step, "grid_step", limits::kGridStep),
             number_arg(guard, "guard", limits::kDesignGuard), false);
         const Robot r = robot.is_none() ? Robot{} : robot_arg(robot, "robot");
         py::gil_scoped_release unlocked;
@@ -125,8 +132,12 @@ accurate (excitation design, as `gpm design`), at the geometry of `robot`
 (default: the nominal GPM2002, what is known before calibration).
 
 criterion  "worst" (minimise the largest Cramer-Rao bound, offsets as
-           rad x la_i) or "d" (maximise log det of the Fisher information);
-sigma      encoder noise (rad); scales the bounds, not the poses;
+           rad x la_i), "d" (maximise log det of the Fisher information)
+           or "positioning" (minimise the positioning bound over the 80 mm
+           disc round home, each encoder's error once per joint revolution
+           estimated under the data sheet's prior; depends on sigma);
+sigma      encoder noise (rad); scales the bounds, not the poses (but for
+           "positioning", where it weighs the readings against the prior);
 fix        parameters held fixed (default xa1, ya1, xa2, ya2);
 grid_step  candidate grid spacing (mm); guard  extra reach margin (mm).
 Returns a gpm.Design. Raises gpm.InputError for bad options.

@@ -34,7 +34,7 @@ const Word kWords[] = {
     {"fix", "fix", Kind::kList, ""},
     {"cost", "cost", Kind::kText, "j1|j2|j3|ml"},
     {"method", "method", Kind::kText, "de\\+lm|lm|ga|pso|de"},
-    {"criterion", "criterion", Kind::kText, "d|worst"},
+    {"criterion", "criterion", Kind::kText, "d|worst|positioning"},
     {"model", "robot", Kind::kName, ""},
     {"data", "readings", Kind::kName, ""},
     {"sigma", "sigma", Kind::kName, ""},

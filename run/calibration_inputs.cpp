@@ -65,6 +65,7 @@ CalibrationInputs calibration_inputs(const CalibrationSpec& c, const Robot& robo
     in.encoder_cyclic_prior_rad = robot.data_sheet.encoder_accuracy_rad.max() / std::sqrt(2.0);
   }
   in.encoder_bits = encoder_bits;
+  in.estimate_encoder_error = c.estimate_encoder_error.value_or(in_motion);
   if (c.tension_min_N) motion.tension_min_N = *c.tension_min_N;
   // On the fly the joint clearance is estimated (a play whose force sign
   // never changes is left to lb_i).
@@ -95,6 +96,12 @@ std::optional<std::string> encoder_turns_with_joint(CalibrationInputs& in, doubl
   // The step is a lattice's gap, exact to the 2 % reading_step checks it to.
   if (std::abs(counts / encoder - 1.0) > 0.02) return std::nullopt;
   in.motion.cyclic_prior_rad = in.encoder_cyclic_prior_rad;
+  // Small beside the reading noise and seen by nothing else the model
+  // misses, the encoders' own error is estimated under its prior: poses
+  // designed for it tell it from the geometry (calib/excitation/
+  // positioning_design.hpp). The reducers' error, 20 times larger, stays
+  // carried: where the model misses a drive train it would take up the misfit.
+  in.motion.estimate_cyclic = in.estimate_encoder_error;
   // The reducer is before the encoder: its backlash, hysteresis and errors
   // per motor revolution move the reading with the link, not between them.
   in.motion.encoder_on_motor = false;
@@ -103,9 +110,10 @@ std::optional<std::string> encoder_turns_with_joint(CalibrationInputs& in, doubl
   return fmt::format(
       "the encoders turn once per joint revolution ({:.0f} counts per joint revolution, their 2^{}; behind the data "
       "sheet's {:g}:1 reducer they would read {:g} times finer): the error once per joint revolution is theirs "
-      "(data sheet +-{:.2g} rad), not the reducer's, and the reducer's backlash, hysteresis and errors per motor "
-      "revolution, before the encoders, are no candidates of the reading model",
-      counts, in.encoder_bits, ratio, ratio, in.encoder_cyclic_prior_rad * std::sqrt(2.0));
+      "(data sheet +-{:.2g} rad, {} under that prior), not the reducer's, and the reducer's backlash, hysteresis "
+      "and errors per motor revolution, before the encoders, are no candidates of the reading model",
+      counts, in.encoder_bits, ratio, ratio, in.encoder_cyclic_prior_rad * std::sqrt(2.0),
+      in.estimate_encoder_error ? "estimated with the geometry" : "carried in the 1-sigma");
 }
 
 }  // namespace gpm::scenario

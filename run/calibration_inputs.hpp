@@ -29,6 +29,8 @@ struct CalibrationInputs {
   bool tension_min_stated = false;  // calibration.tension_min_N given: else the force balance sets the threshold
   int encoder_bits = 0;                   // 2^bits counts per encoder revolution (0: ideal encoders)
   double encoder_cyclic_prior_rad = 0.0;  // the encoder's own error once per revolution, per component (data sheet)
+  bool estimate_encoder_error = false;    // calibration.estimate's encoder_error: estimated where the encoders turn
+                                          // with the joints (encoder_turns_with_joint)
   MonitorReadingModel monitor;   // the monitor's reading model before calibration (monitor:)
 };
 

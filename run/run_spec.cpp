@@ -121,11 +121,13 @@ FreeMask parse_fixed(const YAML::Node& fix, const std::string& file) {
 // calibration.estimate: the reading effects estimated beside the geometry (a list, each once; [] none).
 void parse_estimated_effects(const YAML::Node& est, const std::string& file, CalibrationSpec& c) {
   if (!est.IsSequence())
-    throw InputError(yaml_where(file, est, "calibration.estimate") + "expected a list of compliance, skew, friction, clearance (or [])");
+    throw InputError(yaml_where(file, est, "calibration.estimate") +
+                     "expected a list of compliance, skew, friction, clearance, encoder_error (or [])");
   c.estimate_compliance = false;
   c.estimate_skew = false;
   c.estimate_friction = false;
   c.estimate_clearance = false;
+  c.estimate_encoder_error = false;
   for (size_t k = 0; k < est.size(); ++k) {
     const std::string key = fmt::format("calibration.estimate[{}]", k);
     const std::string what = yaml_string(est[k], file, key);
@@ -137,7 +139,10 @@ void parse_estimated_effects(const YAML::Node& est, const std::string& file, Cal
     else if (what == "skew") c.estimate_skew = true;
     else if (what == "friction") c.estimate_friction = true;
     else if (what == "clearance") c.estimate_clearance = true;
-    else throw InputError(yaml_where(file, est[k], key) + fmt::format("unknown effect '{}' (valid: compliance, skew, friction, clearance)", what));
+    else if (what == "encoder_error") c.estimate_encoder_error = true;
+    else
+      throw InputError(yaml_where(file, est[k], key) +
+                       fmt::format("unknown effect '{}' (valid: compliance, skew, friction, clearance, encoder_error)", what));
   }
 }
 

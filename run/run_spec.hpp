@@ -129,6 +129,10 @@ struct CalibrationSpec {
   // The axial play of the passive links (joint clearance), by the sign of each
   // link's force; unset = on the fly.
   std::optional<bool> estimate_clearance;
+  // The encoders' own error once per joint revolution, under the data sheet's
+  // prior, where the encoders turn with the joints (else carried in the
+  // 1-sigma); unset = on the fly.
+  std::optional<bool> estimate_encoder_error;
   // The drives' friction the procedure assumes (for the force signs);
   // default: the robot's data sheet (stated_drive_friction).
   DriveFriction drive_friction = stated_drive_friction(DataSheet{});

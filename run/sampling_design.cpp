@@ -60,7 +60,8 @@ std::string design_key(const sim::Scenario& s, const FreeMask& free, double sigm
   return fmt::format("{}|{}{}{}|{} {} {} {} {} {}|{} {}|{}|{}", robot_to_yaml(s.controller), drives[0], drives[1],
                      drives[2], format_exact(m.singularity), format_exact(m.reach_mm), format_exact(m.deviation_mm),
                      format_exact(m.tolerance.base_mm), format_exact(m.tolerance.link_mm),
-                     format_exact(m.tolerance.offset_rad), plan.count, static_cast<int>(plan.pattern),
+                     format_exact(m.tolerance.offset_rad), plan.count,
+                     static_cast<int>(plan.pattern) * 10 + static_cast<int>(plan.criterion),
                      free.to_string(), format_exact(sigma_rad));
 }
 
@@ -74,6 +75,29 @@ struct DesignMemo {
 DesignMemo& design_memo() {
   static DesignMemo memo;
   return memo;
+}
+
+// The criterion of s's design (sampling.criterion): by default, on the fly,
+// the positioning the user gets (calib/excitation/positioning_design.hpp)
+// where the data sheet states an error once per joint revolution and the
+// offsets are free; the worst parameter's bound otherwise.
+calib::excitation::Criterion design_criterion(const sim::Scenario& s, const FreeMask& free) {
+  using calib::excitation::Criterion;
+  const bool told = s.controller.data_sheet.joint_harmonic_max_rad() > 0.0 && free.test(kDth1) &&
+                    free.test(kDth1 + 1) && free.test(kDth1 + 2);
+  switch (s.sampling->criterion) {
+    case sim::DesignCriterion::kWorst: return Criterion::kWorst;
+    case sim::DesignCriterion::kD: return Criterion::kDOptimal;
+    case sim::DesignCriterion::kPositioning:
+      if (!told)
+        throw InputError(fmt::format(
+            "{}: sampling.criterion: positioning needs an error once per joint revolution in the robot file's data "
+            "sheet (encoder_accuracy_rad, transmission_error_rad) and dth1..dth3 free; use worst or d",
+            s.file));
+      return Criterion::kPositioning;
+    case sim::DesignCriterion::kAuto: break;
+  }
+  return told && s.sampling->pattern == sim::PosePattern::kTrajectory ? Criterion::kPositioning : Criterion::kWorst;
 }
 
 }  // namespace
@@ -115,6 +139,7 @@ void design_sampling(sim::Scenario& s, const FreeMask& free, double sigma_rad,
     o.guard.transmission = 0.06;
     o.guard.direct = 0.06;
   }
+  o.criterion = design_criterion(s, free);
   {
     // Only poses of the region, joined to home, that keeps sampling.path_margin
     // for the drives in position mode (models/drive_margin.hpp): on the fly

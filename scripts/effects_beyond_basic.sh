@@ -4,7 +4,8 @@
 # it off; sourced by scripts/study_effect_budget.sh,
 # scripts/study_friction_balance.sh, scripts/study_force_sign.sh,
 # scripts/study_backlash_joint.sh, scripts/study_preset_misfit.sh,
-# scripts/study_model_test_names.sh and scripts/study_alternating_preload.sh
+# scripts/study_model_test_names.sh, scripts/study_alternating_preload.sh and
+# scripts/study_positioning_design.sh
 # (study_setup for their inputs; the first four start from `preset: randomized`).
 names=(backlash hysteresis te_joint te_motor stiction load_friction torque_constant cogging hub_pins jitter)
 declare -A off=(

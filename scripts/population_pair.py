@@ -1,7 +1,8 @@
 """Table cells "before -> after" of two `gpm study population` results of the
 same robots (their population.json), for the studies that compare two
 versions of the procedure (scripts/study_force_sign.sh, scripts/study_alternating_preload.sh,
-scripts/study_friction_balance.sh, scripts/study_sample_weights.sh) or of the twin
+scripts/study_friction_balance.sh, scripts/study_sample_weights.sh,
+scripts/study_positioning_design.sh) or of the twin
 (scripts/study_friction_timeconst.sh),
 and the table written into a document between its markers (those and
 scripts/study_effect_budget.sh)."""

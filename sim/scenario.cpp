@@ -226,11 +226,24 @@ void parse_settle(const YAML::Node& s, const Ctx& c, SettleCriterion& settle) {
   opt_bounded(s, "timeout_s", cs, 1e-3, 60.0, "s", settle.timeout_s);
 }
 
+// sampling.criterion: worst, d, or (on the fly, whose readings along the
+// path it weighs) positioning.
+DesignCriterion parse_design_criterion(const YAML::Node& n, const Ctx& c, PosePattern pattern) {
+  const std::string name = yaml_string(n, c.file, c.at("criterion").path);
+  if (name == "worst") return DesignCriterion::kWorst;
+  if (name == "d") return DesignCriterion::kD;
+  if (name == "positioning" && pattern == PosePattern::kTrajectory) return DesignCriterion::kPositioning;
+  if (name == "positioning")
+    fail(c.at("criterion"), n, "positioning weighs the readings along an excitation path: only for pattern: trajectory "
+                               "(valid here: worst, d)");
+  fail(c.at("criterion"), n, fmt::format("'{}' is not worst, d or positioning", name));
+}
+
 SamplingPlan parse_sampling(const YAML::Node& n, const Ctx& c) {
   yaml_check_keys(n, c.file, c.path,
                   {"pattern", "centre", "radius", "count", "from", "to", "poses", "move_speed_mm_s",
                    "settle", "average_s", "max_speed_mm_s", "max_accel_mm_s2", "sample_every", "path_margin",
-                   "offsets_first_s"});
+                   "offsets_first_s", "criterion"});
   SamplingPlan p;
   require(n, "pattern", c, "disc, circle, line, list, designed or trajectory");
   const std::string pat = yaml_string(n["pattern"], c.file, c.at("pattern").path);
@@ -270,6 +283,7 @@ SamplingPlan parse_sampling(const YAML::Node& n, const Ctx& c) {
         p.poses.push_back(point(n["poses"][i], Ctx{c.file, fmt::format("{}[{}]", cp.path, i)}));
     }
     if (const YAML::Node m = n["path_margin"]) parse_path_margin(m, c, p.margin);
+    if (n["criterion"]) p.criterion = parse_design_criterion(n["criterion"], c, p.pattern);
     if (p.pattern == PosePattern::kTrajectory) {
       opt_bounded(n, "max_speed_mm_s", c, 1.0, 1000.0, "mm/s", p.path_limits.max_speed_mm_s);
       opt_bounded(n, "max_accel_mm_s2", c, 10.0, 20000.0, "mm/s^2", p.path_limits.max_accel_mm_s2);
@@ -281,8 +295,9 @@ SamplingPlan parse_sampling(const YAML::Node& n, const Ctx& c) {
   } else {
     fail(c.at("pattern"), n["pattern"], fmt::format("'{}' is not disc, circle, line, list, designed or trajectory", pat));
   }
-  if (p.pattern != PosePattern::kTrajectory && p.pattern != PosePattern::kDesigned && n["path_margin"])
-    fail(c.at("path_margin"), n["path_margin"], "only for pattern: designed or trajectory");
+  for (const char* key : {"path_margin", "criterion"})
+    if (p.pattern != PosePattern::kTrajectory && p.pattern != PosePattern::kDesigned && n[key])
+      fail(c.at(key), n[key], "only for pattern: designed or trajectory");
   if (p.pattern != PosePattern::kTrajectory)
     for (const char* key : {"max_speed_mm_s", "max_accel_mm_s2", "sample_every", "offsets_first_s"})
       if (n[key]) fail(c.at(key), n[key], "only for pattern: trajectory");

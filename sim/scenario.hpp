@@ -40,6 +40,12 @@ struct ActualSpec {
 // kTrajectory samples them on the fly along a continuous excitation path.
 enum class PosePattern { kDisc, kCircle, kLine, kList, kDesigned, kTrajectory };
 
+// The design criterion of kDesigned and kTrajectory poses (`sampling.criterion`;
+// calib/excitation/excitation.hpp). kAuto: kPositioning on the fly where the
+// data sheet states an error once per joint revolution and the offsets are
+// free, kWorst otherwise.
+enum class DesignCriterion { kAuto, kWorst, kD, kPositioning };
+
 struct SamplingPlan {
   PosePattern pattern = PosePattern::kDisc;
   Eigen::Vector2d centre{216.5, 250.0};
@@ -59,6 +65,7 @@ struct SamplingPlan {
   // and the encoder offsets fitted to them before the path is sampled whole
   // (`sampling.offsets_first_s`; 0: none).
   double offsets_first_s = 0.0;
+  DesignCriterion criterion = DesignCriterion::kAuto;  // kDesigned, kTrajectory
   // True when the poses still have to be designed (kDesigned, kTrajectory with no poses).
   bool needs_design() const {
     return (pattern == PosePattern::kDesigned || pattern == PosePattern::kTrajectory) && poses.empty();

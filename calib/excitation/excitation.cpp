@@ -69,15 +69,31 @@ double variance_objective(const Eigen::ArrayXd& v, int q, double ref) {
   return sum;
 }
 
+// The positioning criterion's exchange from chosen (the worst design) over
+// the candidates cand; sets bound_um to its value; returns the swaps.
+int positioning_stage(const Robot& nominal, const DesignOptions& o, const std::vector<Eigen::Vector2d>& cand,
+                      std::vector<int>& chosen, double& bound_um) {
+  const Eigen::MatrixXd rows = rows_with_cyclic_error(nominal, o.free, cand);
+  const PositioningCriterion c = positioning_criterion(nominal, o.free, o.positioning, o.sigma, rows);
+  const int swaps = exchange_positioning(rows, chosen, c, o.max_exchanges);
+  bound_um = positioning_bound_um(rows, chosen, c);
+  return swaps;
+}
+
 }  // namespace
 
 std::optional<Criterion> parse_criterion(std::string_view name) {
   if (name == "d") return Criterion::kDOptimal;
   if (name == "worst") return Criterion::kWorst;
+  if (name == "positioning") return Criterion::kPositioning;
   return std::nullopt;
 }
 
-std::string_view criterion_name(Criterion c) { return c == Criterion::kDOptimal ? "d" : "worst"; }
+std::string_view criterion_name(Criterion c) {
+  return c == Criterion::kDOptimal ? "d" : c == Criterion::kWorst ? "worst" : "positioning";
+}
+
+int design_stages(Criterion c) { return c == Criterion::kDOptimal ? 2 : c == Criterion::kWorst ? 6 : 7; }
 
 double criterion_value(Criterion c, const Bounds& b) {
   return c == Criterion::kDOptimal ? -b.log_det : b.worst_mm;
@@ -202,7 +218,9 @@ DesignOptions checked_design_options(double count, double sigma, const FreeMask&
   d.sigma = check_bound(sigma, limits::kEncoderSigma, name("--sigma", "sigma"));
   d.free = free;
   const auto c = parse_criterion(criterion);
-  if (!c) throw InputError(fmt::format("{}: '{}' is not d or worst", name("--criterion", "criterion"), criterion));
+  if (!c)
+    throw InputError(
+        fmt::format("{}: '{}' is not d, worst or positioning", name("--criterion", "criterion"), criterion));
   d.criterion = *c;
   d.grid_step_mm = check_bound(grid_step_mm, limits::kGridStep, name("--grid-step", "grid_step"));
   d.guard.reach_mm = check_bound(guard_mm, limits::kDesignGuard, name("--guard", "guard"));
@@ -248,7 +266,8 @@ Design design_poses(const Robot& nominal, const DesignOptions& o) {
     return bounds_from_rows(r, nominal.geometry, o.free, o.sigma);
   };
 
-  const int stages = o.criterion == Criterion::kWorst ? 6 : 2;
+  const bool worst_stages = o.criterion != Criterion::kDOptimal;  // positioning starts from the worst design
+  const int stages = design_stages(o.criterion);
   int stages_done = 0;
   const auto stage_done = [&] {
     if (o.progress) o.progress(++stages_done, stages);
@@ -266,12 +285,16 @@ Design design_poses(const Robot& nominal, const DesignOptions& o) {
   out.exchanges += exchange_d_optimal(rows_s, chosen, o.max_exchanges);
   keep_if_better();
   stage_done();
-  if (o.criterion == Criterion::kWorst) {
+  if (worst_stages) {
     for (int q : {1, 4, 16, 0}) {
       out.exchanges += exchange_variances(rows_s, chosen, q, o.max_exchanges);
       keep_if_better();
       stage_done();
     }
+  }
+  if (o.criterion == Criterion::kPositioning) {
+    out.exchanges += positioning_stage(nominal, o, cand, best, out.positioning_bound_um);
+    stage_done();
   }
   out.poses = poses_of(best);
   out.bounds = bounds_of(best);

@@ -19,6 +19,11 @@
 //               parameters and la_i for dth_i (the elbow displacement an
 //               offset error causes), i.e. the worst parameter's Cramer-Rao
 //               bound in mm.
+//   positioning: minimise the positioning RMS over the workspace disc that
+//               the geometry's bound causes, each encoder's error once per
+//               joint revolution estimated with it under the data sheet's
+//               prior (positioning_design.hpp); unlike the others it depends
+//               on sigma, through the prior's weight against the readings.
 //
 // The algorithm (greedy start, Fedorov exchange on smooth surrogates, then
 // the exact criterion) is described in excitation.cpp.
@@ -34,12 +39,13 @@
 
 #include "calib/excitation/candidates.hpp"
 #include "calib/excitation/fisher.hpp"
+#include "calib/excitation/positioning_design.hpp"
 #include "models/parameters.hpp"
 #include "models/robot.hpp"
 
 namespace gpm::calib::excitation {
 
-enum class Criterion { kDOptimal, kWorst };
+enum class Criterion { kDOptimal, kWorst, kPositioning };
 
 // "d" / "worst" -> Criterion; nullopt otherwise.
 std::optional<Criterion> parse_criterion(std::string_view name);
@@ -50,6 +56,7 @@ struct DesignOptions {
   double sigma = 1e-4;                  // encoder noise, rad (scales the bounds only)
   FreeMask free = default_free_mask();  // parameters to calibrate
   Criterion criterion = Criterion::kWorst;
+  PositioningPrior positioning;         // kPositioning: the error's prior, readings per pose, disc
   double grid_step_mm = 5.0;            // candidate grid spacing
   Guard guard;                          // candidates stricter than the robot's limits
   // Optional further test every candidate must pass (e.g. the hardware's
@@ -75,10 +82,14 @@ struct Design {
   Bounds start_bounds;                 // of the greedy start
   int candidates = 0;                  // size of the candidate grid
   int exchanges = 0;                   // swaps made in all exchange stages
+  double positioning_bound_um = 0.0;   // kPositioning: the criterion's value (um); 0 otherwise
 };
 
+// The stages design_poses reports to DesignOptions::progress for criterion c.
+int design_stages(Criterion c);
+
 // The value of a criterion for bounds b (smaller is better: -log det F for D,
-// worst_mm for worst).
+// worst_mm for worst and for positioning, whose own value needs more than b).
 double criterion_value(Criterion c, const Bounds& b);
 
 // Greedy D-optimal choice of count distinct rows (indices into rows), from

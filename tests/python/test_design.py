@@ -65,5 +65,18 @@ def test_design_errors_match_the_command_line(scratch):
     with pytest.raises(gpm.InputError) as e:
         gpm.design(count=5)
     assert str(e.value) == cli_error(err)
-    with pytest.raises(gpm.InputError, match="criterion: 'e' is not d or worst"):
+    with pytest.raises(gpm.InputError, match="criterion: 'e' is not d, worst or positioning"):
         gpm.design(criterion="e")
+
+
+def test_positioning_design_matches_the_command_line_and_states_its_bound(design, scratch):
+    assert design.positioning_bound_um is None  # not the positioning criterion
+    d = gpm.design(count=15, grid_step=15.0, sigma=1e-5, criterion="positioning")
+    code, out, err = run_gpm("design", "--count", 15, "--grid-step", 15, "--sigma", 1e-5, "--criterion",
+                             "positioning", "-o", scratch / "p.yaml", "--json")
+    assert code == 0, err
+    import json
+    info = json.loads(out)["design"]
+    assert info["criterion"] == "positioning"
+    assert info["positioning_bound_um"] == pytest.approx(d.positioning_bound_um, rel=1e-12)
+    assert 0 < d.positioning_bound_um < 1e3

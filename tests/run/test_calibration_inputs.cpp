@@ -211,6 +211,18 @@ TEST(CalibrationInputs, ReadingsOfTheEncodersOwnStepMeanTheyTurnWithTheJoints) {
   EXPECT_NE(note->find("131072 counts per joint revolution"), std::string::npos) << *note;
   EXPECT_DOUBLE_EQ(direct.motion.cyclic_prior_rad, 2e-5 / std::sqrt(2.0));
   EXPECT_EQ(direct.motion.gear_ratio, 10.0);
+  // Their own error is estimated under that prior on the fly (the main job),
+  // carried where calibration.estimate leaves encoder_error out.
+  EXPECT_FALSE(stated.motion.estimate_cyclic);
+  EXPECT_TRUE(direct.motion.estimate_cyclic);
+  EXPECT_NE(note->find("estimated with the geometry under that prior"), std::string::npos) << *note;
+  RunSpec listed = spec;
+  listed.calibration.estimate_encoder_error = false;
+  CalibrationInputs carried = calibration_inputs(listed, listed.sim.controller);
+  const std::optional<std::string> carried_note = encoder_turns_with_joint(carried, turn / 131072.0);
+  ASSERT_TRUE(carried_note);
+  EXPECT_FALSE(carried.motion.estimate_cyclic);
+  EXPECT_NE(carried_note->find("carried in the 1-sigma under that prior"), std::string::npos) << *carried_note;
   // The reducer acts before such an encoder: none of its drive-train effects is a candidate.
   const std::array<bool, 3> none{};
   EXPECT_FALSE(direct.motion.encoder_on_motor);

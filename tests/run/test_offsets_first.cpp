@@ -147,15 +147,16 @@ TEST(OffsetsFirst, RefusesTooFewSamples) {
   EXPECT_THROW(offsets_learnt(robot.geometry, few, ModelTolerance{}), InputError);
 }
 
-// The main job on the robot of seed 10009 (offsets dth2, dth3 beyond the
-// data sheet's tolerance): the first pass of its path ends early (past 0.7 of
+// The main job on the robot of seed 7011 (its offsets move 0.032, 0.026,
+// 0.012 rad from the nominal's, dth1 beyond the data sheet's tolerance of
+// 0.02): the first pass of its path ends early (past 0.7 of
 // the 20 mm tracking watch, sampling/test_sampling_design.cpp); the second,
 // planned with the offsets of the samples it kept, runs to its end within the
 // watch's bound, and the calibration from it places the tool better than the
 // nominal model by two orders of magnitude.
 TEST(OffsetsFirst, APathThatEndedEarlyIsSampledAgainAndCalibrated) {
   RunSpec spec = load_run_spec(gpm::scenarios_dir() + "/main.yaml");
-  spec.sim.seed = 10009;
+  spec.sim.seed = 7011;
   const RunOutcome o = run_scenario(spec, "main.yaml");
   ASSERT_TRUE(o.first_pass.has_value());
   EXPECT_NE(o.first_pass->why.find("retraced its path"), std::string::npos) << o.first_pass->why;
@@ -163,7 +164,7 @@ TEST(OffsetsFirst, APathThatEndedEarlyIsSampledAgainAndCalibrated) {
   const double deviation = gpm::test::worst_row_deviation_mm(o.sim.log.rows);
   ASSERT_TRUE(o.calibration.has_value());
   ASSERT_TRUE(o.before && o.after);
-  std::printf("seed 10009: first pass %zu samples, %.2f s; offsets moved %.4f %.4f %.4f rad; second pass within "
+  std::printf("seed 7011: first pass %zu samples, %.2f s; offsets moved %.4f %.4f %.4f rad; second pass within "
               "%.2f mm of its plan; static RMS nominal %.1f um, calibrated %.2f um, robot time %.2f s\n",
               o.first_pass->samples, o.first_pass->robot_time_s, o.first_pass->offsets_change_rad[0],
               o.first_pass->offsets_change_rad[1], o.first_pass->offsets_change_rad[2], deviation,
@@ -187,13 +188,13 @@ TEST(OffsetsFirst, APathThatEndedEarlyIsSampledAgainAndCalibrated) {
 }
 
 // The same robot through the hardware interface (a twin backend of the
-// scenario of seed 10009, the twin's own limits): the first pass's samples
+// scenario of seed 7011, the twin's own limits): the first pass's samples
 // stay in samples_first_pass.csv, the second pass records into samples.csv,
 // the calibration takes those; a resumed session plans the same second pass
 // from the first pass's file and gives the same calibration to the last bit.
 TEST(OffsetsFirst, ThroughTheHardwareInterfaceTheFirstPassIsKeptAndResumable) {
   const gpm::test::TempDir dir("offsets_first");
-  RunSpec spec = main_job_robot(dir, 10009);
+  RunSpec spec = main_job_robot(dir, 7011);
   through_twin_backend(dir, spec);
   spec.compensation.reset();
   const RunOutcome o = run_scenario(spec, "robot.yaml", {}, dir / "samples.csv");
@@ -209,10 +210,9 @@ TEST(OffsetsFirst, ThroughTheHardwareInterfaceTheFirstPassIsKeptAndResumable) {
   std::printf("through the twin backend: first pass %zu samples, %.2f s; second pass %zu samples; positioning RMS "
               "%.2f um (stated %.2f um)\n",
               o.first_pass->samples, o.first_pass->robot_time_s, o.sim.samples.size(), p.rms_um, p.stated_sigma_rms_um);
-  // This robot (seed 10009): 13.3 um against a stated 4.0 measured (3.4x;
-  // 10.4 um, 2.6x, while the reducer's drive-train effects were candidates
-  // behind encoders that turn with the joints, which on the main job's 30
-  // robots took the worst from 20 to 12.6 um, docs/PROCEDURES.md).
+  // This robot (seed 7011): 2.36 um against a stated 3.17 measured (with the
+  // poses for the positioning; seed 10009, this test's robot before them,
+  // no longer leaves its plan far enough to end the first pass early).
   EXPECT_LE(p.rms_um, 4.0 * p.stated_sigma_rms_um);
   RunSpec again = spec;
   again.hardware_resume = true;

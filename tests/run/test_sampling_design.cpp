@@ -12,6 +12,7 @@
 
 #include <gtest/gtest.h>
 
+#include "calib/excitation/positioning_design.hpp"
 #include "calib/model_test.hpp"
 #include "calib/reading_model.hpp"
 #include "models/data_dir.hpp"
@@ -110,6 +111,41 @@ TEST(SamplingDesign, ADesignIsRememberedForItsInputsOnly) {
             }),
             first);
   EXPECT_THROW(designed([](RunSpec& s) { s.sim.sampling->margin.singularity = 0.85; }), InputError);
+  EXPECT_NE(designed([](RunSpec& s) { s.sim.sampling->criterion = sim::DesignCriterion::kWorst; }), first);
+}
+
+// On the fly the poses are designed for the positioning (the data sheet
+// states an error once per joint revolution): their positioning bound is
+// below that of the poses designed for the worst parameter in the same
+// region; with the offsets fixed the criterion is refused in one line.
+TEST(SamplingDesign, OnTheFlyThePosesAreDesignedForThePositioning) {
+  namespace ex = calib::excitation;
+  const RunSpec worst = designed_main_job([](RunSpec& s) { s.sim.sampling->criterion = sim::DesignCriterion::kWorst; });
+  const RunSpec& positioning = main_job();
+  const FreeMask free = ~positioning.calibration.fixed;
+  const double sigma = calib::reading_sigma(calib::encoder_step_rad(17), 0.0);
+  const auto bound = [&](const std::vector<Eigen::Vector2d>& poses) {
+    const Eigen::MatrixXd rows = ex::rows_with_cyclic_error(positioning.sim.controller, free, poses);
+    std::vector<int> all(poses.size());
+    for (std::size_t k = 0; k < all.size(); ++k) all[k] = static_cast<int>(k);
+    return ex::positioning_bound_um(rows, all,
+                                    ex::positioning_criterion(positioning.sim.controller, free, {}, sigma, rows));
+  };
+  const double b_worst = bound(worst.sim.sampling->poses), b_positioning = bound(positioning.sim.sampling->poses);
+  std::printf("positioning bound of the main job's poses: %.2f um designed for the worst parameter, %.2f um for "
+              "the positioning\n",
+              b_worst, b_positioning);
+  EXPECT_LT(b_positioning, 0.9 * b_worst);
+  RunSpec fixed = load_run_spec(gpm::scenarios_dir() + "/main.yaml");
+  fixed.sim.sampling->criterion = sim::DesignCriterion::kPositioning;
+  fixed.calibration.fixed.set(kDth1);
+  try {
+    design_sampling(fixed.sim, ~fixed.calibration.fixed, sigma);
+    FAIL() << "designed for the positioning with dth1 fixed";
+  } catch (const InputError& e) {
+    EXPECT_NE(std::string(e.what()).find("main.yaml: sampling.criterion: positioning needs"), std::string::npos)
+        << e.what();
+  }
 }
 
 // The main job's path_margin.deviation_mm (10 mm, half the tracking watch's
@@ -149,17 +185,19 @@ TEST(SamplingDesign, MainJobTracksItsPathWithin20MmOnThreeRobots) {
 }
 
 // Robots whose geometry (offsets beyond the planner's tolerance) takes them
-// far from the main job's plan (without the early end, `gpm simulate` with
-// the watch off: 10009 22 mm; 7011 19 mm, its watch tripping at its 20 mm
-// bound): the path ends early, the robot retraces it, and it never leaves
-// its plan by more than 20 mm.
+// far from the main job's plan (on the path designed for the worst
+// parameter, without the early end, `gpm simulate` with the watch off: 10009
+// 22 mm; 7011 19 mm, its watch tripping at its 20 mm bound): 7011's path ends
+// early, the robot retraces it, and neither leaves its plan by more than
+// 20 mm (10009 now stays within it on the path designed for the positioning,
+// 15.5 mm, without an early end).
 TEST(SamplingDesign, ARobotBeyondItsToleranceEndsThePathWithin20Mm) {
   for (std::uint64_t seed : {10009u, 7011u}) {
     bool early = false;
     const double d = max_deviation_mm(seed, &early);
     std::printf("seed %llu: max deviation from the plan %.2f mm, ended early: %d\n",
                 static_cast<unsigned long long>(seed), d, early);
-    EXPECT_TRUE(early) << "seed " << seed;
+    if (seed == 7011u) EXPECT_TRUE(early);
     EXPECT_LE(d, 20.0) << "seed " << seed;
   }
 }

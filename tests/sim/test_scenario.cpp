@@ -216,6 +216,22 @@ TEST(Scenario, OffsetsStage) {
             std::string::npos);
 }
 
+// sampling.criterion: the design's criterion (designed and trajectory);
+// positioning weighs readings along a path, so on the fly only.
+TEST(Scenario, DesignCriterion) {
+  const std::string fly = "sampling: {pattern: trajectory, count: 11";
+  EXPECT_EQ(parse(fly + "}\n").sampling->criterion, DesignCriterion::kAuto);
+  EXPECT_EQ(parse(fly + ", criterion: positioning}\n").sampling->criterion, DesignCriterion::kPositioning);
+  EXPECT_EQ(parse(fly + ", criterion: worst}\n").sampling->criterion, DesignCriterion::kWorst);
+  EXPECT_EQ(parse("sampling: {pattern: designed, count: 11, criterion: d}\n").sampling->criterion, DesignCriterion::kD);
+  EXPECT_NE(error_of(fly + ", criterion: best}").find("sampling.criterion: 'best' is not worst, d or positioning"),
+            std::string::npos);
+  EXPECT_NE(error_of("sampling: {pattern: designed, count: 11, criterion: positioning}").find("only for pattern: trajectory"),
+            std::string::npos);
+  EXPECT_NE(error_of("sampling: {pattern: disc, radius: 10, count: 3, criterion: worst}").find("only for pattern: designed or trajectory"),
+            std::string::npos);
+}
+
 TEST(Scenario, UnknownTopLevelKeyIsAnErrorWithASuggestion) {
   EXPECT_NE(error_of(std::string(kMinimal) + "sampeling: {}").find("sampeling: unknown key (did you mean sampling?)"),
             std::string::npos);

@@ -1,0 +1,33 @@
+#!/usr/bin/env bash
+# What designing the main job's poses for the positioning, with the encoders'
+# own error once per joint revolution estimated under the data sheet's prior,
+# gives (calib/excitation/positioning_design.hpp, sampling.criterion,
+# calibration.estimate's encoder_error): the same robots of
+# scenarios/main.yaml (same seeds, same draws) calibrated with
+#   worst:       sampling.criterion worst, the error carried (calibration.estimate
+#                listing the four other effects): the procedure before;
+#   positioning: the defaults (poses for the positioning, the error estimated
+#                where the encoders turn with the joints),
+# for three kinds of robot: the basic set of effects, every effect drawn and
+# the realistic preset's. Writes DIR/positioning-design.md and the table into
+# docs/PROCEDURES.md between its positioning-design markers. A study already
+# in DIR (its population.json) is kept: remove DIR to measure again.
+#   bash scripts/study_positioning_design.sh [DIR] [COUNT] [FIRST_SEED]
+#   (default out/positioning_design, 30 robots from seed 30100: about 12 minutes on 2 idle cores)
+set -euo pipefail
+cd "$(dirname "$0")/.."
+source scripts/effects_beyond_basic.sh
+study_setup "${1:-out/positioning_design}" "${2:-30}" "${3:-30100}"
+kinds=(basic randomized preset)
+for kind in "${kinds[@]}"; do
+  f=$out/${kind}_worst.yaml
+  sed -e "s|^robot: .*|robot: $robot|" -e "s|^effects: .*|effects: ${kind_effects[$kind]}|" -e '/^expect:/,$d' \
+      -e "s|^calibration: {\(.*\)}$|calibration: {\1, estimate: [compliance, skew, friction, clearance]}|" \
+      -e "s|^sampling: {\(.*\)}$|sampling: {\1, criterion: worst}|" scenarios/main.yaml > "$f"
+  grep -q "criterion: worst" "$f" && grep -q "estimate: \[compliance" "$f"
+  study_population_of "${kind}_worst" "$f" "study positioning design: $kind effects, worst"
+  study_main_variant "positioning design" "$kind" positioning ""
+done
+/usr/bin/python3 scripts/population_pair.py "$out" worst positioning positioning-design \
+  "$count robots of \`scenarios/main.yaml\` each (seeds $first..$((first + count - 1))); \`bash scripts/study_positioning_design.sh\`. Before -> after: poses for the worst parameter with the encoders' error once per joint revolution carried -> poses for the positioning with it estimated (the defaults)." \
+  "${kinds[@]}"
