@@ -426,8 +426,9 @@ void add_positioning(ReportDocument& d, const std::array<double, 5>& p, const st
           distance(p[0]), distance(p[1]), distance(p[2]), sig(p[3], 2),
           carried_sentence(p[4], ": the floor of this procedure with these encoders")) +
       (bound ? fmt::format(" These readings allow an RMS of {} at best: the Cramér-Rao bound at the actual robot of "
-                           "the calibration's reading model with that carried error estimated under its prior.",
-                           distance(*bound))
+                           "the calibration's reading model with {} estimated under its prior.",
+                           distance(*bound),
+                           p[4] > 0.0 ? "that carried error" : "the error once per joint revolution")
              : std::string());
   positioning_section(d, "Positioning error of the calibrated model", text,
                       "Where the actual robot stands, noise-free, when the calibrated model commands each point of "

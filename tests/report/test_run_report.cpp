@@ -295,6 +295,12 @@ TEST(RunReport, PositioningSaysTheBoundWhenKnown) {
   o.positioning_bound_um = 6.25;
   const std::string md = spaced(build_run_report(o).markdown());
   EXPECT_NE(md.find("These readings allow an RMS of 6.25 µm at best"), std::string::npos) << md;
+  EXPECT_NE(md.find("with that carried error estimated under its prior"), std::string::npos) << md;
+  // Nothing carried (the calibration estimated the error): the bound names the error itself.
+  o.positioning_um = std::array<double, 5>{9.3, 20.1, 10.1, 0.92, 0.0};
+  const std::string estimated = spaced(build_run_report(o).markdown());
+  EXPECT_NE(estimated.find("with the error once per joint revolution estimated under its prior"), std::string::npos)
+      << estimated;
 }
 
 TEST(RunReport, EveryTableIsValidMarkdownAndNoMarkdownLeaksIntoHtml) {
