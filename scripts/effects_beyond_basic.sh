@@ -46,14 +46,17 @@ declare -A kind_effects=([basic]="{preset: randomized, $(all_off_but none)}" [ra
                         [backlash]="{preset: randomized, $(all_off_but backlash)}")
 
 # The robots of kind $2 (kind_effects) calibrated by scenarios/main.yaml with
-# ", ..." $4 appended to its calibration map, into $out/$2_$3 (study_setup's
-# inputs; kept when its population.json is there); $1 names the study.
+# ", ..." $4 appended to its calibration map (and $5, when given, to its
+# sampling map), into $out/$2_$3 (study_setup's inputs; kept when its
+# population.json is there); $1 names the study.
 study_main_variant() {
-  local study=$1 kind=$2 variant=$3 extra=$4
+  local study=$1 kind=$2 variant=$3 extra=$4 sampling=${5:-}
   local f=$out/${kind}_$variant.yaml
   sed -e "s|^robot: .*|robot: $robot|" -e "s|^effects: .*|effects: ${kind_effects[$kind]}|" -e '/^expect:/,$d' \
-      -e "s|^calibration: {\(.*\)}$|calibration: {\1$extra}|" scenarios/main.yaml > "$f"
+      -e "s|^calibration: {\(.*\)}$|calibration: {\1$extra}|" \
+      -e "s|^sampling: {\(.*\)}$|sampling: {\1$sampling}|" scenarios/main.yaml > "$f"
   [[ -z $extra ]] || grep -qF "${extra#, }" "$f"
+  [[ -z $sampling ]] || grep -qF "${sampling#, }" "$f"
   study_population_of "${kind}_$variant" "$f" "study $study: $kind effects, $variant"
 }
 

@@ -20,12 +20,8 @@ source scripts/effects_beyond_basic.sh
 study_setup "${1:-out/positioning_design}" "${2:-30}" "${3:-30100}"
 kinds=(basic randomized preset)
 for kind in "${kinds[@]}"; do
-  f=$out/${kind}_worst.yaml
-  sed -e "s|^robot: .*|robot: $robot|" -e "s|^effects: .*|effects: ${kind_effects[$kind]}|" -e '/^expect:/,$d' \
-      -e "s|^calibration: {\(.*\)}$|calibration: {\1, estimate: [compliance, skew, friction, clearance]}|" \
-      -e "s|^sampling: {\(.*\)}$|sampling: {\1, criterion: worst}|" scenarios/main.yaml > "$f"
-  grep -q "criterion: worst" "$f" && grep -q "estimate: \[compliance" "$f"
-  study_population_of "${kind}_worst" "$f" "study positioning design: $kind effects, worst"
+  study_main_variant "positioning design" "$kind" worst ", estimate: [compliance, skew, friction, clearance]" \
+    ", criterion: worst"
   study_main_variant "positioning design" "$kind" positioning ""
 done
 /usr/bin/python3 scripts/population_pair.py "$out" worst positioning positioning-design \
