@@ -197,7 +197,9 @@ TEST(SamplingDesign, ARobotBeyondItsToleranceEndsThePathWithin20Mm) {
     const double d = max_deviation_mm(seed, &early);
     std::printf("seed %llu: max deviation from the plan %.2f mm, ended early: %d\n",
                 static_cast<unsigned long long>(seed), d, early);
-    if (seed == 7011u) EXPECT_TRUE(early);
+    if (seed == 7011u) {
+      EXPECT_TRUE(early);
+    }
     EXPECT_LE(d, 20.0) << "seed " << seed;
   }
 }
