@@ -70,11 +70,12 @@ study_population_of() {
 
 # The robots of every kind in kinds (kind_effects) calibrated as $2 with
 # ", ..." $3 appended to the calibration map, then as $4 with $5 appended
-# (study_main_variant's variants, into $out); $1 names the study.
+# (and $6, $7, when given, to the sampling map of each; study_main_variant's
+# variants, into $out); $1 names the study.
 study_kinds_before_after() {
   local kind
   for kind in "${kinds[@]}"; do
-    study_main_variant "$1" "$kind" "$2" "$3"
-    study_main_variant "$1" "$kind" "$4" "$5"
+    study_main_variant "$1" "$kind" "$2" "$3" "${6:-}"
+    study_main_variant "$1" "$kind" "$4" "$5" "${7:-}"
   done
 }

@@ -19,11 +19,8 @@ cd "$(dirname "$0")/.."
 source scripts/effects_beyond_basic.sh
 study_setup "${1:-out/positioning_design}" "${2:-30}" "${3:-30100}"
 kinds=(basic randomized preset)
-for kind in "${kinds[@]}"; do
-  study_main_variant "positioning design" "$kind" worst ", estimate: [compliance, skew, friction, clearance]" \
-    ", criterion: worst"
-  study_main_variant "positioning design" "$kind" positioning ""
-done
+study_kinds_before_after "positioning design" worst ", estimate: [compliance, skew, friction, clearance]" \
+  positioning "" ", criterion: worst" ""
 /usr/bin/python3 scripts/population_pair.py "$out" worst positioning positioning-design \
   "$count robots of \`scenarios/main.yaml\` each (seeds $first..$((first + count - 1))); \`bash scripts/study_positioning_design.sh\`. Before -> after: poses for the worst parameter with the encoders' error once per joint revolution carried -> poses for the positioning with it estimated (the defaults)." \
   "${kinds[@]}"
