@@ -7,6 +7,7 @@
 
 #include <fmt/format.h>
 
+#include "calib/excitation/fisher.hpp"
 #include "calib/friction_profile.hpp"
 #include "calib/reading_model_selection.hpp"
 #include "calib/reading_rates.hpp"
@@ -396,20 +397,17 @@ MotionStage motion_fits(const SampleSeries& samples, const CalibrationInputs& in
   return m;
 }
 
-// The geometry's 1-sigma of result, RMS over its free parameters with the
-// offsets as the displacement of their elbows (rad x la_i, mm); NaN without
-// a covariance.
-double geometry_sigma_rms(const calib::Result& result) {
-  if (!result.covariance) return std::numeric_limits<double>::quiet_NaN();
+// The geometry's 1-sigma of result, RMS over the free parameters with the
+// offsets as the displacement of their elbows (rad x la_i, mm: calib/
+// excitation/fisher.hpp parameter_scale); NaN without a covariance.
+double geometry_sigma_rms(const calib::Result& result, const FreeMask& free) {
+  if (!result.covariance || free.none()) return std::numeric_limits<double>::quiet_NaN();
+  const Eigen::VectorXd scale = calib::excitation::parameter_scale(result.geometry, free);
   double sum = 0.0;
-  int n = 0;
-  for (int k = 0; k < kNumParams; ++k) {
-    const double v = (*result.covariance)(k, k);
-    if (!(v > 0.0)) continue;
-    const double scale = is_offset(k) ? result.geometry[la(k - kDth1)] : 1.0;
-    sum += v * scale * scale, ++n;
-  }
-  return n > 0 ? std::sqrt(sum / n) : std::numeric_limits<double>::quiet_NaN();
+  Eigen::Index n = 0;
+  for (int k = 0; k < kNumParams; ++k)
+    if (free.test(static_cast<size_t>(k))) sum += (*result.covariance)(k, k) * scale[n] * scale[n], ++n;
+  return std::sqrt(sum / static_cast<double>(n));
 }
 
 // With the clearance in the model and calibration.crossing_s > 0: the fits
@@ -444,7 +442,7 @@ void leave_out_crossings(MotionStage& m, const SampleSeries& samples, const Cali
         before, after, kCrossingsLeftChi2PerDof));
     return;
   }
-  const double growth = geometry_sigma_rms(g.fit.result) / geometry_sigma_rms(m.fit.result);
+  const double growth = geometry_sigma_rms(g.fit.result, options.free) / geometry_sigma_rms(m.fit.result, options.free);
   if (growth > kCrossingsLeftSigmaGrowth) {
     m.drive_notes.push_back(fmt::format(
         "the samples of a passive link crossing its play kept: without them {} of {} samples are left and the "

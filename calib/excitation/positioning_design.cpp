@@ -6,6 +6,8 @@
 // so one product of the candidates' rows with C- prices every swap of i.
 #include "calib/excitation/positioning_design.hpp"
 
+#include <algorithm>
+#include <array>
 #include <cmath>
 #include <limits>
 #include <optional>
@@ -20,12 +22,12 @@
 namespace gpm::calib::excitation {
 namespace {
 
-// Index among the free columns of parameter k (-1 when fixed).
-int free_column(const FreeMask& free, int k) {
-  if (!free.test(static_cast<size_t>(k))) return -1;
-  int col = 0;
-  for (int i = 0; i < k; ++i) col += free.test(static_cast<size_t>(i)) ? 1 : 0;
-  return col;
+// The parameter index of each free column, in index order.
+std::vector<int> free_index(const FreeMask& free) {
+  std::vector<int> index;
+  for (int k = 0; k < kNumParams; ++k)
+    if (free.test(static_cast<size_t>(k))) index.push_back(k);
+  return index;
 }
 
 // The chosen rows, scaled (rows' columns / column_scale, times row_weight).
@@ -54,20 +56,26 @@ double bound_of(const Eigen::MatrixXd& W, const Eigen::MatrixXd& C) {
 
 Eigen::MatrixXd rows_with_cyclic_error(const Robot& robot, const FreeMask& free,
                                        const std::vector<Eigen::Vector2d>& poses) {
-  const Eigen::MatrixXd rows = information_rows(robot, free, poses);
-  Eigen::MatrixXd out(rows.rows(), rows.cols() + 6);
-  out.leftCols(rows.cols()) = rows;
+  const std::vector<int> index = free_index(free);
+  std::array<Eigen::Index, 3> col{};
   for (int i = 0; i < kNumChains; ++i) {
-    const int col = free_column(free, dth(i));
-    if (col < 0)
+    const auto at = std::find(index.begin(), index.end(), dth(i));
+    if (at == index.end())
       throw InputError(fmt::format("the positioning criterion needs dth{} free: the encoders' error once per joint "
                                    "revolution is told from the geometry through the offsets' columns",
                                    i + 1));
-    for (Eigen::Index j = 0; j < rows.rows(); ++j) {
-      const JointAngles q = inverse_kinematics(robot.geometry, poses[static_cast<size_t>(j)], robot.branch);
-      const double theta_m = readings_from_active(robot.geometry, q.theta_a)[i];
-      out(j, rows.cols() + 2 * i) = -rows(j, col) * std::sin(theta_m);
-      out(j, rows.cols() + 2 * i + 1) = -rows(j, col) * std::cos(theta_m);
+    col[static_cast<size_t>(i)] = at - index.begin();
+  }
+  const Eigen::MatrixXd rows = information_rows(robot, free, poses);
+  Eigen::MatrixXd out(rows.rows(), rows.cols() + 6);
+  out.leftCols(rows.cols()) = rows;
+  for (Eigen::Index j = 0; j < rows.rows(); ++j) {
+    const JointAngles q = inverse_kinematics(robot.geometry, poses[static_cast<size_t>(j)], robot.branch);
+    const Eigen::Vector3d theta_m = readings_from_active(robot.geometry, q.theta_a);
+    for (int i = 0; i < kNumChains; ++i) {
+      const double g = rows(j, col[static_cast<size_t>(i)]);
+      out(j, rows.cols() + 2 * i) = -g * std::sin(theta_m[i]);
+      out(j, rows.cols() + 2 * i + 1) = -g * std::cos(theta_m[i]);
     }
   }
   return out;
@@ -95,9 +103,7 @@ PositioningCriterion positioning_criterion(const Robot& robot, const FreeMask& f
   const Eigen::Matrix<double, kNumParams, kNumParams> W15 =
       positioning_weight(robot, WorkspaceDisc{robot.home, prior.radius_mm, prior.step_mm});
   c.weight = Eigen::MatrixXd::Zero(p, p);
-  std::vector<int> index;
-  for (int k = 0; k < kNumParams; ++k)
-    if (free.test(static_cast<size_t>(k))) index.push_back(k);
+  const std::vector<int> index = free_index(free);
   // C in scaled columns is S C S: trace(W C) = trace(S^-1 W S^-1 (S C S)).
   for (Eigen::Index a = 0; a < ng; ++a)
     for (Eigen::Index b = 0; b < ng; ++b)
