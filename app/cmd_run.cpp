@@ -121,8 +121,12 @@ void print_summary(const scenario::RunOutcome& o, const std::string& dir) {
     const report::ModelTestVerdict v = report::model_test_verdict(
         o.model_test->passed, o.model_test->chi2, o.model_test->dof,
         o.positioning ? std::optional<double>(o.positioning->normalised_rms) : std::nullopt);
-    fmt::print("model test {} {:.4g} for {:.0f} degrees of freedom, p = {:.3g}: {}\n", chi2(), o.model_test->chi2,
-               o.model_test->dof, o.model_test->p_value, report::model_test_verdict_line(v));
+    const double expected = o.model_test->dof + o.model_test->doubt_chi2;
+    const std::string doubt = o.model_test->doubt_chi2 > 0.0
+                                  ? fmt::format(" ({:.0f} expected with the doubt where a joint may rest)", expected)
+                                  : "";
+    fmt::print("model test {} {:.4g} for {:.0f} degrees of freedom{}, p = {:.3g}: {}\n", chi2(), o.model_test->chi2,
+               o.model_test->dof, doubt, o.model_test->p_value, report::model_test_verdict_line(v));
   }
   if (o.monitor) {
     const scenario::MonitorOutcome& m = *o.monitor;

@@ -27,9 +27,26 @@ double carried_chi2(const Eigen::MatrixXd& Gp, const Eigen::VectorXd& r, double 
   return u.dot(M.ldlt().solve(u)) / sigma2;
 }
 
+SampleDoubt sample_doubt(const Eigen::VectorXd& w) {
+  SampleDoubt d;
+  for (Eigen::Index j = 0; j < w.size(); ++j) {
+    const double lambda = 1.0 / (w[j] * w[j]);
+    d.mean += lambda - 1.0;
+    d.spread += lambda * lambda - 1.0;
+  }
+  return d;
+}
+
+double doubted_chi2_survival(double dof, const SampleDoubt& doubt, double x) {
+  if (doubt.mean <= 0.0) return chi2_survival(dof, x);
+  const double mean = dof + doubt.mean, half_variance = dof + doubt.spread;
+  const double g = half_variance / mean, h = mean * mean / half_variance;
+  return chi2_survival(h, x / g);
+}
+
 ModelTest model_test(const Geometry& g, const FreeMask& free,
                      const std::vector<Eigen::Vector3d>& theta_m, double sigma, double alpha,
-                     double carried_chi2) {
+                     double carried_chi2, const SampleDoubt& doubt) {
   if (!(sigma > 0.0) || !std::isfinite(sigma))
     throw InputError(fmt::format("model test: the reading noise sigma must be positive, got {}", sigma));
   if (!(alpha > 0.0 && alpha < 1.0))
@@ -54,7 +71,8 @@ ModelTest model_test(const Geometry& g, const FreeMask& free,
   t.carried_chi2 = std::clamp(carried_chi2, 0.0, residual_chi2);
   t.chi2 = residual_chi2 - t.carried_chi2;
   t.rms_ratio = std::sqrt(t.chi2 / t.dof);
-  t.p_value = chi2_survival(t.dof, t.chi2);
+  t.doubt_chi2 = std::max(doubt.mean, 0.0);
+  t.p_value = doubted_chi2_survival(t.dof, doubt, t.chi2);
   t.passed = t.p_value >= alpha;
 
   std::vector<long> order(n);

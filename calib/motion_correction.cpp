@@ -492,9 +492,10 @@ double& nuisance_sigma_slot(MotionFit& fit, int k) {
   return fit.harmonic_sigma[at(kHarmonic) / 6][at(kHarmonic) % 6];
 }
 
-// True when chi2 for dof degrees of freedom exceeds the noise at the model
-// test's level, 1 % (calib/model_test.hpp: a test that fails widens the 1-sigma).
-bool misfit(double chi2, double dof) { return chi2_survival(dof, chi2) < 1e-2; }
+// True when chi2 for dof degrees of freedom exceeds the noise, with what the
+// samples' doubt adds, at the model test's level, 1 % (calib/model_test.hpp:
+// a test that fails widens the 1-sigma).
+bool misfit(double chi2, double dof, const SampleDoubt& doubt) { return doubted_chi2_survival(dof, doubt, chi2) < 1e-2; }
 
 // Bartlett bandwidth L of Andrews (1991) for residuals r along the path,
 // modelled as AR(1) with coefficient rho (their lag-1 autocorrelation):
@@ -768,6 +769,28 @@ double weight_change(const std::vector<double>& a, const std::vector<double>& b)
   return d;
 }
 
+// The doubt the model test expects (calib/model_test.hpp SampleDoubt) of the
+// samples at l (their rates omega): where a joint may rest, its twist within
+// +-c F, c the data sheet's compliance and F the drive friction the
+// calibration takes (model.load), not the fitted twist c F, which a misfit
+// where the joints are slow would inflate with its doubt. All 0 without a
+// stick speed or the reading noise.
+SampleDoubt stated_doubt(const MotionModel& model, const LmOptions& options, const Linearisation& l,
+                         const std::vector<Eigen::Vector3d>& omega) {
+  const auto n = static_cast<Eigen::Index>(omega.size());
+  if (!(model.stick_speed_rad_s > 0.0) || !options.encoder_sigma || l.U.rows() != n) return {};
+  Eigen::VectorXd w(n);
+  for (Eigen::Index j = 0; j < n; ++j) {
+    Eigen::Vector3d v;
+    for (std::size_t i = 0; i < 3; ++i)
+      v[static_cast<Eigen::Index>(i)] = rest_twist_variance(
+          omega[static_cast<std::size_t>(j)][static_cast<Eigen::Index>(i)],
+          model.hysteresis_compliance_rad_per_Nm * model.load.coulomb_Nm[i], model.stick_speed_rad_s);
+    w[j] = sample_weight(l.U.row(j).transpose(), v, *options.encoder_sigma);
+  }
+  return sample_doubt(w);
+}
+
 // [Jg, Jn] with the cyclic prior's rows (append_cyclic_prior).
 Eigen::MatrixXd joint_jacobian(const Linearisation& l, const std::vector<int>& cols, double prior_weight) {
   Eigen::MatrixXd J(l.r.size(), l.Jg.cols() + l.Jn.cols());
@@ -878,10 +901,10 @@ void joint_covariance(const Linearisation& l, const std::vector<int>& cols, doub
   if (considers_cyclic(model) && options.encoder_sigma)
     fit.carried_chi2 = unweighted_carried_chi2(l, A, J, cols, prior_weight, model.cyclic_prior_rad, s2);
   // As the model test judges (calib/model_test.hpp): the unweighted chi-square less what the carried error
-  // explains, on the samples' count less the geometry's free parameters.
+  // explains, on the samples' count less the geometry's free parameters, with what the weights' doubt adds.
   const double test_dof = static_cast<double>(l.r.size() - ng);
   if (model.sandwich && options.encoder_sigma && dof > 0 &&
-      misfit(unweighted_norm2(l) / s2 - fit.carried_chi2, test_dof)) {
+      misfit(unweighted_norm2(l) / s2 - fit.carried_chi2, test_dof, fit.doubt)) {
     // The residuals exceed the noise: what the model leaves out moves the
     // estimate as much as it moves the residuals, correlated along the path.
     const Eigen::MatrixXd S = newey_west_sandwich(A, J.topRows(l.r.size()), l.r);
@@ -1048,6 +1071,7 @@ MotionFit fit_in_motion(const Problem& problem, const MotionSamples& s, const Lm
   fit.result = calibrate_lm(p, lm);
   append_iterations(iterations, fit.result.lm_iterations);
   fit.result.lm_iterations = std::move(iterations);
+  fit.doubt = stated_doubt(model, options, l, s.omega);
   if (options.compute_covariance && !cols.empty() && fit.result.covariance)
     joint_covariance(l, cols, prior_weight, free_index, options, model, fit);
   else if (options.encoder_sigma)  // the chi-square without the joint covariance: at the last pass's geometry, as it

@@ -14,6 +14,7 @@
 #include <Eigen/Core>
 
 #include "calib/lm.hpp"
+#include "calib/model_test.hpp"
 #include "calib/passive_tension.hpp"
 #include "calib/reading_model.hpp"
 #include "calib/problem.hpp"
@@ -119,6 +120,10 @@ struct MotionFit {
   // (MotionModel::cyclic_prior_rad, not estimated) explains: r' Gp (sigma^2 / prior^2 + Gp' Gp)^-1 Gp' r / sigma^2,
   // Gp its columns with the fit's projected out (0 without a carried error).
   double carried_chi2 = 0.0;
+  // What the twist of a joint that may rest adds to that chi-square on average, as the model test expects it
+  // (calib/model_test.hpp SampleDoubt): within +-c F, c the data sheet's compliance
+  // (hysteresis_compliance_rad_per_Nm) and F the drives' friction (load); 0, 0 without a stick speed or sigma.
+  SampleDoubt doubt;
   bool sandwich_used = false;               // the covariance is the misfit's sandwich (MotionModel::sandwich)
   double sandwich_inflation = 1.0;          // RMS over the geometry of its 1-sigma over the noise-model 1-sigma
   double tension_min_N = 0.0;               // the force threshold used (MotionModel::tension_min_N or lower)

@@ -87,6 +87,7 @@ py::dict model_test_dict(const calib::ModelTest& t) {
   d["chi2_per_dof"] = t.chi2 / t.dof;
   d["p_value"] = t.p_value;
   d["carried_chi2"] = t.carried_chi2;
+  d["doubt_chi2"] = t.doubt_chi2;
   d["sigma_rad"] = t.sigma_rad;
   d["passed"] = t.passed;
   if (!t.passed) d["diagnosis"] = python_words(t.diagnosis);

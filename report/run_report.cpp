@@ -320,11 +320,14 @@ std::string lead_sentence(const RunReport& o) {
 // stated 1-sigma covers it (the positioning error against it) and the
 // scenario expects it.
 std::string model_test_sentence(const RunReport& o, const RunModelTest& t) {
-  const std::string numbers =
-      fmt::format("χ²/dof {}, p {}", sig(t.chi2 / t.dof, 3), t.p_value < 1e-3 ? "< 0.001" : "= " + sig(t.p_value, 2));
+  const std::string doubt = t.doubt_chi2 > 0.0 ? fmt::format("; {} expected with the doubt where a joint may rest",
+                                                            sig((t.dof + t.doubt_chi2) / t.dof, 3))
+                                              : "";
+  const std::string numbers = fmt::format("χ²/dof {}{}, p {}", sig(t.chi2 / t.dof, 3), doubt,
+                                          t.p_value < 1e-3 ? "< 0.001" : "= " + sig(t.p_value, 2));
   if (t.passed)
-    return fmt::format("Model test passed: the readings scatter no more than the encoders' noise explains ({}).",
-                       numbers);
+    return fmt::format("Model test passed: the readings scatter no more than the encoders' noise {} ({}).",
+                       t.doubt_chi2 > 0.0 ? "and the friction's doubt explain" : "explains", numbers);
   bool expected = false;
   for (const RunCheck& c : o.checks) expected = expected || (c.name == "model_test" && c.passed);
   const ModelTestVerdict v = model_test_verdict(

@@ -67,6 +67,7 @@ struct RunModelTest {
   double chi2 = 0.0, dof = 0.0, p_value = 1.0, sigma_rad = 0.0;
   bool passed = true;
   std::string diagnosis;
+  double doubt_chi2 = 0.0;  // what the doubt where a joint may rest adds to chi2 on average (calib/model_test.hpp)
 };
 
 // Everything the run report shows.

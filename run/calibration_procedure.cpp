@@ -645,14 +645,17 @@ CalibrationOutcome calibrate_samples(const SampleSeries& samples, const Calibrat
   const bool tested_cost = options.test_any_cost || out.result.cost == calib::Cost::kML;
   if (tested_cost && options.sigma_rad > 0.0 && out.used.size() > options.free.count()) {
     // Judged by the encoders' noise alone, unweighted: the samples' weights
-    // (the friction's doubt) make the estimate efficient, not the test lenient.
+    // (the friction's doubt) make the estimate efficient, not the test
+    // lenient; the test expects only what that doubt adds on average.
     out.model_test = calib::model_test(out.result.geometry, options.free, out.used, options.sigma_rad, 0.01,
-                                       with_effects ? out.fit.carried_chi2 : 0.0);
-    if (out.model_test->carried_chi2 > 0.0)
+                                       with_effects ? out.fit.carried_chi2 : 0.0,
+                                       with_effects ? out.fit.doubt : calib::SampleDoubt{});
+    if (out.model_test->doubt_chi2 > 0.0)
       out.result.notes.push_back(fmt::format(
-          "the model test weighs chi2 less {:.3g} of it, what the error once per joint revolution carried within its "
-          "prior explains (the marginal test)",
-          out.model_test->carried_chi2));
+          "the model test expects {:.3g} more of chi2 than its degrees of freedom: what the twist of a joint that may "
+          "rest adds on average, within +-c F of the data sheet's compliance and the drives' friction (it sums the "
+          "residuals unweighted)",
+          out.model_test->doubt_chi2));
     if (!out.model_test->passed) {
       if (with_effects) {
         // Only when the test fails: the score tests are of the effects its misfit may need.
@@ -757,6 +760,7 @@ std::string model_test_yaml(const calib::ModelTest& test, int indent) {
   out += fmt::format("{}model_test_chi2_per_dof: {}\n", p, format_exact(test.chi2 / test.dof));
   out += fmt::format("{}model_test_p_value: {}\n", p, format_exact(test.p_value));
   if (test.carried_chi2 > 0.0) out += fmt::format("{}model_test_carried_chi2: {}\n", p, format_exact(test.carried_chi2));
+  if (test.doubt_chi2 > 0.0) out += fmt::format("{}model_test_doubt_chi2: {}\n", p, format_exact(test.doubt_chi2));
   out += fmt::format("{}model_test_sigma_rad: {}\n", p, format_exact(test.sigma_rad));
   out += fmt::format("{}model_test_passed: {}\n", p, test.passed ? "true" : "false");
   if (!test.passed) {

@@ -69,7 +69,8 @@ report::RunReport run_report_data(const RunOutcome& o) {
   r.floor_ratio_ci95 = o.floor_ratio_ci95;
   if (o.model_test)
     r.model_test = report::RunModelTest{o.model_test->chi2, o.model_test->dof, o.model_test->p_value,
-                                        o.model_test->sigma_rad, o.model_test->passed, o.model_test->diagnosis};
+                                        o.model_test->sigma_rad, o.model_test->passed, o.model_test->diagnosis,
+                                        o.model_test->doubt_chi2};
   r.robot_time_s = o.sim.sampling_s;
   r.on_the_fly = o.in_motion;
   if (o.positioning)

@@ -64,6 +64,7 @@ std::string summary_json(const RunOutcome& o) {
                        {"dof", number(o.model_test->dof)},
                        {"p_value", number(o.model_test->p_value)},
                        {"carried_chi2", number(o.model_test->carried_chi2)},
+                       {"doubt_chi2", number(o.model_test->doubt_chi2)},
                        {"passed", o.model_test->passed}};
   } else {
     j["model_test"] = nullptr;

@@ -11,10 +11,12 @@
 #include <Eigen/Dense>
 #include <gtest/gtest.h>
 
+#include "calib/chi_square.hpp"
 #include "calib/lm.hpp"
 #include "calib/paper_values.hpp"
 #include "calib/synthetic.hpp"
 #include "models/errors.hpp"
+#include "models/rng.hpp"
 
 namespace gpm::calib {
 namespace {
@@ -37,6 +39,15 @@ Geometry fit(const std::vector<Eigen::Vector3d>& theta_m) {
   LmOptions o;
   o.compute_covariance = false;
   return calibrate_lm(p, o).geometry;
+}
+
+// Readings of 80 poses over a 90 mm disc with reading 2 off by amplitude x
+// sin(40 theta_1): an unmodelled bias spread over the samples.
+Samples biased_samples(double amplitude) {
+  const Robot a = actual_robot();
+  Samples smp = samples_at(a, disc_poses(a, 80, a.home, 90.0, 7), kSigma, 8);
+  for (auto& t : smp.theta_m) t[1] += amplitude * std::sin(40.0 * t[0]);
+  return smp;
 }
 
 TEST(ModelTest, UnderTheModelChiSquareHasItsMeanAndPValuesSpread) {
@@ -149,10 +160,7 @@ TEST(ModelTest, CarriedChiSquareIsTheRidgeFitsDropAndTheMarginalFormsOne) {
 // misfit of SpreadUnmodelledBias fails as it stands and passes when a
 // carried error is said to explain all of its excess; never below zero.
 TEST(ModelTest, WeighsTheChiSquareLessTheCarriedShare) {
-  const Robot a = actual_robot();
-  const auto poses = disc_poses(a, 80, a.home, 90.0, 7);
-  Samples smp = samples_at(a, poses, kSigma, 8);
-  for (auto& t : smp.theta_m) t[1] += 6.0 * kSigma * std::sin(40.0 * t[0]);
+  const Samples smp = biased_samples(6.0 * kSigma);
   const Geometry g = fit(smp.theta_m);
   const ModelTest plain = model_test(g, default_free_mask(), smp.theta_m, kSigma);
   ASSERT_FALSE(plain.passed);
@@ -164,6 +172,61 @@ TEST(ModelTest, WeighsTheChiSquareLessTheCarriedShare) {
   EXPECT_GT(carried.p_value, plain.p_value);
   const ModelTest all = model_test(g, default_free_mask(), smp.theta_m, kSigma, 0.01, 10.0 * plain.chi2);
   EXPECT_NEAR(all.chi2, 0.0, 1e-9 * plain.chi2);
+}
+
+TEST(ModelTest, SampleDoubtSumsWhatEachWeightAdds) {
+  Eigen::VectorXd w(3);
+  w << 1.0, 0.5, 1.0 / std::sqrt(2.0);  // lambda = 1, 4, 2
+  const SampleDoubt d = sample_doubt(w);
+  EXPECT_NEAR(d.mean, 0.0 + 3.0 + 1.0, 1e-12);
+  EXPECT_NEAR(d.spread, 0.0 + 15.0 + 3.0, 1e-12);
+  const SampleDoubt none = sample_doubt(Eigen::VectorXd());
+  EXPECT_EQ(none.mean, 0.0);
+  EXPECT_EQ(none.spread, 0.0);
+}
+
+TEST(ModelTest, WithoutDoubtTheSurvivalIsTheChiSquares) {
+  for (double x : {80.0, 100.0, 130.0}) EXPECT_EQ(doubted_chi2_survival(100.0, {}, x), chi2_survival(100.0, x));
+}
+
+// Residuals whose variance is lambda_j sigma^2, a tenth of them at lambda 4
+// (a joint that may rest), summed by sigma alone: drawn 4000 times, the
+// doubted p-value is spread as a p-value is (its 1 % and 50 % quantiles
+// where they belong), where the chi-square's own rejects most draws.
+TEST(ModelTest, TheDoubtedSurvivalHoldsItsLevelOnResidualsOfThatVariance) {
+  const int n = 2000, trials = 4000;
+  Eigen::VectorXd w = Eigen::VectorXd::Ones(n);
+  for (int j = 0; j < n; j += 10) w[j] = 0.5;
+  const SampleDoubt d = sample_doubt(w);
+  Rng rng(42);
+  int below_1 = 0, below_50 = 0, plain_below_1 = 0;
+  for (int t = 0; t < trials; ++t) {
+    double chi2 = 0.0;
+    for (int j = 0; j < n; ++j) chi2 += std::pow(rng.normal() / w[j], 2);
+    const double p = doubted_chi2_survival(n, d, chi2);
+    below_1 += p < 0.01, below_50 += p < 0.5;
+    plain_below_1 += chi2_survival(n, chi2) < 0.01;
+  }
+  // Binomial sd: 1 %: 6.3 of 4000 (40 expected), 50 %: 32 (2000 expected).
+  EXPECT_NEAR(below_1, 40, 25);
+  EXPECT_NEAR(below_50, 2000, 130);
+  EXPECT_GT(plain_below_1, trials / 2);
+}
+
+TEST(ModelTest, ExpectsTheDoubtsShareAndRecordsIt) {
+  const Samples smp = biased_samples(3.0 * kSigma);
+  const Geometry g = fit(smp.theta_m);
+  const ModelTest plain = model_test(g, default_free_mask(), smp.theta_m, kSigma);
+  ASSERT_FALSE(plain.passed);
+  const double excess = plain.chi2 - plain.dof;  // as if from samples of lambda 2: E = 3 D
+  const ModelTest doubted = model_test(g, default_free_mask(), smp.theta_m, kSigma, 0.01, 0.0, {excess, 3.0 * excess});
+  EXPECT_EQ(doubted.chi2, plain.chi2);  // summed unweighted as before
+  EXPECT_EQ(doubted.doubt_chi2, excess);
+  EXPECT_TRUE(doubted.passed);
+  EXPECT_GT(doubted.p_value, 0.3);
+  EXPECT_EQ(plain.doubt_chi2, 0.0);
+  // A doubt of a tenth of the excess does not cover it.
+  EXPECT_FALSE(model_test(g, default_free_mask(), smp.theta_m, kSigma, 0.01, 0.0, {0.1 * excess, 0.3 * excess}).passed);
 }
 
 TEST(ModelTest, RefusesMeaninglessSettings) {

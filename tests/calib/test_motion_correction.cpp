@@ -249,13 +249,9 @@ TEST(MotionCorrection, RecoversTheFrictionTwistAndIgnoringItBiasesTheFit) {
   EXPECT_GT(worst_in_sigmas(d, biased.result), 4.0);
 }
 
-TEST(MotionCorrection, SamplesWhoseRotorsRestWeighLessAndStillFailTheNoiseTest) {
-  // Every fourth sample at rest (its rates read 0), its twist anywhere within
-  // +-c F (uniform); the others slide, their twist c F tanh(omega / 0.01).
-  // Weighted by calib/sample_weights.hpp, the rest's twist is the variance
-  // the fit's chi-square expects; the model test still judges the residuals
-  // by the encoders' noise alone, which the rest's twist exceeds, and so does
-  // the misfit's sandwich.
+// Every fourth sample at rest (its rates read 0), its twist anywhere within
+// +-spread c F (uniform); the others slide, their twist c F tanh(omega / 0.01).
+MotionData data_with_rests(double spread) {
   MotionData d = make_data(800, 17);
   const std::array<double, 3> cf = {4e-5, -5e-5, 6e-5};
   Rng rng(18);
@@ -266,12 +262,25 @@ TEST(MotionCorrection, SamplesWhoseRotorsRestWeighLessAndStillFailTheNoiseTest) 
         d.problem.theta_m[j][k] += (k == 0 ? 0.0 : kNu[static_cast<std::size_t>(k) - 1]) * d.omega[j][k];
         d.omega[j][k] = 0.0;
       }
-      const double twist = j % 4 == 0 ? rng.uniform(-1.0, 1.0) * c : c * std::tanh(d.omega[j][k] / 0.01);
+      const double twist = j % 4 == 0 ? spread * rng.uniform(-1.0, 1.0) * c : c * std::tanh(d.omega[j][k] / 0.01);
       d.problem.theta_m[j][k] -= twist;  // theta_m = theta_a - dth - s omega + c tau - twist
     }
+  return d;
+}
+
+// Weighted by calib/sample_weights.hpp, the rest's twist is the variance the
+// fit's chi-square expects. The model test judges the residuals unweighted:
+// by the encoders' noise alone it fails, the rest's twist exceeds it; with
+// what the doubt the model states (the data sheet's compliance times the
+// drives' friction, here the twist's own) adds on average expected
+// (MotionFit::doubt) it passes, and the misfit's sandwich is not taken.
+TEST(MotionCorrection, SamplesWhoseRotorsRestWeighLessAndTheTestExpectsTheirDoubt) {
+  MotionData d = data_with_rests(1.0);
+  const std::array<double, 3> cf = {4e-5, -5e-5, 6e-5};  // data_with_rests's c F
   const LmOptions o = at_sigma();
   MotionModel weighted;
   weighted.stick_speed_rad_s = 0.05;
+  weighted.load.coulomb_Nm = {0.4, 0.5, 0.6};  // with the stated compliance 1e-4: c F of data_with_rests
   const MotionFit plain = calibrate_in_motion(d.problem, d.omega, d.tau, o);
   const MotionFit fit = calibrate_in_motion(d.problem, d.omega, d.tau, o, weighted);
   ASSERT_TRUE(plain.weight.empty());
@@ -288,13 +297,33 @@ TEST(MotionCorrection, SamplesWhoseRotorsRestWeighLessAndStillFailTheNoiseTest) 
   EXPECT_LT(fit.chi2_per_dof, 1.0 + 3.0 * std::sqrt(2.0 / 800.0)) << fit.chi2_per_dof;
   EXPECT_GT(plain.chi2_per_dof, 1.0 + 3.0 * std::sqrt(2.0 / 800.0)) << plain.chi2_per_dof;
   const ModelTest t_plain = model_test(plain.result.geometry, d.problem.free, plain.corrected, kSigma);
-  const ModelTest t_fit = model_test(fit.result.geometry, d.problem.free, fit.corrected, kSigma);
+  const ModelTest t_noise = model_test(fit.result.geometry, d.problem.free, fit.corrected, kSigma);
+  const ModelTest t_fit = model_test(fit.result.geometry, d.problem.free, fit.corrected, kSigma, 0.01, 0.0, fit.doubt);
   EXPECT_FALSE(t_plain.passed) << t_plain.rms_ratio;
-  EXPECT_FALSE(t_fit.passed) << t_fit.rms_ratio;
-  EXPECT_NE(fit.sandwich_inflation, 1.0);  // reckoned: the unweighted residuals exceed the noise
+  EXPECT_FALSE(t_noise.passed) << t_noise.rms_ratio;
+  EXPECT_EQ(plain.doubt.mean, 0.0);
+  EXPECT_GT(fit.doubt.mean, 0.0);
+  EXPECT_EQ(t_fit.chi2, t_noise.chi2);
+  EXPECT_TRUE(t_fit.passed) << t_fit.p_value;
+  EXPECT_FALSE(fit.sandwich_used);
   for (std::size_t k = 0; k < 3; ++k)
     EXPECT_LT(std::abs(fit.friction[k] - cf[k]), 4.0 * fit.friction_sigma[k]) << "c F of joint " << k + 1;
   EXPECT_LT(worst_in_sigmas(d, fit.result), 4.0);
+}
+
+// A rest whose twist lies three times beyond +-c F: misfit where a joint is
+// slow. The model states the doubt of +-c F only, so the test, expecting
+// that doubt and no more, fails, and the misfit's sandwich widens the 1-sigma.
+TEST(MotionCorrection, ARestBeyondItsDoubtStillFailsTheTest) {
+  MotionData d = data_with_rests(3.0);
+  MotionModel weighted;
+  weighted.stick_speed_rad_s = 0.05;
+  weighted.load.coulomb_Nm = {0.4, 0.5, 0.6};  // with the stated compliance 1e-4: c F of data_with_rests
+  const MotionFit fit = calibrate_in_motion(d.problem, d.omega, d.tau, at_sigma(), weighted);
+  ASSERT_GT(fit.doubt.mean, 0.0);
+  const ModelTest t = model_test(fit.result.geometry, d.problem.free, fit.corrected, kSigma, 0.01, 0.0, fit.doubt);
+  EXPECT_FALSE(t.passed) << t.chi2 << " for " << t.dof << " + " << t.doubt_chi2;
+  EXPECT_TRUE(fit.sandwich_used);
 }
 
 TEST(MotionCorrection, AConstantTorqueJointsTwistGoesIntoItsOffset) {

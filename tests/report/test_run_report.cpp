@@ -184,6 +184,13 @@ TEST(RunReport, AFailedModelTestCoveredByTheStatedSigmaReadsAsSuch) {
   EXPECT_NE(build_run_report(o).markdown().find("Model test passed: the readings scatter no more than the encoders' "
                                                  "noise explains (χ²/dof 28.3, p < 0.001)."),
             std::string::npos);
+  // With the doubt where a joint may rest expected: (10058 + 502.9) / 10058 = 1.05.
+  o.model_test->doubt_chi2 = 502.9;
+  EXPECT_NE(build_run_report(o).markdown().find("Model test passed: the readings scatter no more than the encoders' "
+                                                 "noise and the friction's doubt explain (χ²/dof 28.3; 1.05 expected "
+                                                 "with the doubt where a joint may rest, p < 0.001)."),
+            std::string::npos)
+      << build_run_report(o).markdown();
 }
 
 // The model test's verdict on hand-made outcomes either side of
