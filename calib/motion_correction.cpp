@@ -739,6 +739,16 @@ Linearisation linearise(const Geometry& g, const std::vector<Eigen::Vector3d>& t
   return l;
 }
 
+// rest_twist_variance of each joint at rates omega with twists c_i F_i (rad) and stick speed v_s.
+Eigen::Vector3d rest_variances(const Eigen::Vector3d& omega, const std::array<double, 3>& twist, double v_s) {
+  Eigen::Vector3d v;
+  for (std::size_t i = 0; i < 3; ++i) {
+    const auto k = static_cast<Eigen::Index>(i);
+    v[k] = rest_twist_variance(omega[k], twist[i], v_s);
+  }
+  return v;
+}
+
 // The samples' weights for the next pass (calib/sample_weights.hpp) from the
 // reading sensitivities U, the friction twists and plays fit estimated so far
 // and the force signs' doubts e.flip; empty (all 1) without a stick speed or
@@ -750,12 +760,9 @@ std::vector<double> fit_weights(const MotionModel& model, const LmOptions& optio
   if (!(rest || signs) || !options.encoder_sigma || U.rows() != static_cast<Eigen::Index>(omega.size())) return {};
   std::vector<double> w(omega.size(), 1.0);
   for (std::size_t j = 0; j < omega.size(); ++j) {
-    Eigen::Vector3d v = Eigen::Vector3d::Zero();
-    for (std::size_t i = 0; i < 3; ++i) {
-      const auto k = static_cast<Eigen::Index>(i);
-      if (rest) v[k] += rest_twist_variance(omega[j][k], fit.friction[i], model.stick_speed_rad_s);
-      if (signs) v[k] += fit.clearance[i] * fit.clearance[i] * e.flip[j][k];
-    }
+    Eigen::Vector3d v = rest ? rest_variances(omega[j], fit.friction, model.stick_speed_rad_s) : Eigen::Vector3d::Zero();
+    for (std::size_t i = 0; signs && i < 3; ++i)
+      v[static_cast<Eigen::Index>(i)] += fit.clearance[i] * fit.clearance[i] * e.flip[j][static_cast<Eigen::Index>(i)];
     w[j] = sample_weight(U.row(static_cast<Eigen::Index>(j)).transpose(), v, *options.encoder_sigma);
   }
   return w;
@@ -779,15 +786,13 @@ SampleDoubt stated_doubt(const MotionModel& model, const LmOptions& options, con
                          const std::vector<Eigen::Vector3d>& omega) {
   const auto n = static_cast<Eigen::Index>(omega.size());
   if (!(model.stick_speed_rad_s > 0.0) || !options.encoder_sigma || l.U.rows() != n) return {};
+  std::array<double, 3> twist{};  // c F
+  for (std::size_t i = 0; i < 3; ++i) twist[i] = model.hysteresis_compliance_rad_per_Nm * model.load.coulomb_Nm[i];
   Eigen::VectorXd w(n);
-  for (Eigen::Index j = 0; j < n; ++j) {
-    Eigen::Vector3d v;
-    for (std::size_t i = 0; i < 3; ++i)
-      v[static_cast<Eigen::Index>(i)] = rest_twist_variance(
-          omega[static_cast<std::size_t>(j)][static_cast<Eigen::Index>(i)],
-          model.hysteresis_compliance_rad_per_Nm * model.load.coulomb_Nm[i], model.stick_speed_rad_s);
-    w[j] = sample_weight(l.U.row(j).transpose(), v, *options.encoder_sigma);
-  }
+  for (Eigen::Index j = 0; j < n; ++j)
+    w[j] = sample_weight(l.U.row(j).transpose(),
+                         rest_variances(omega[static_cast<std::size_t>(j)], twist, model.stick_speed_rad_s),
+                         *options.encoder_sigma);
   return sample_doubt(w);
 }
 

@@ -650,6 +650,11 @@ CalibrationOutcome calibrate_samples(const SampleSeries& samples, const Calibrat
     out.model_test = calib::model_test(out.result.geometry, options.free, out.used, options.sigma_rad, 0.01,
                                        with_effects ? out.fit.carried_chi2 : 0.0,
                                        with_effects ? out.fit.doubt : calib::SampleDoubt{});
+    if (out.model_test->carried_chi2 > 0.0)
+      out.result.notes.push_back(fmt::format(
+          "the model test weighs chi2 less {:.3g} of it, what the error once per joint revolution carried within its "
+          "prior explains (the marginal test)",
+          out.model_test->carried_chi2));
     if (out.model_test->doubt_chi2 > 0.0)
       out.result.notes.push_back(fmt::format(
           "the model test expects {:.3g} more of chi2 than its degrees of freedom: what the twist of a joint that may "

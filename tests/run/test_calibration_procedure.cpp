@@ -247,6 +247,31 @@ TEST(CalibrationProcedure, AFailedModelTestNamesTheEffectLeftOut) {
       << unskewed.model_test->diagnosis;
 }
 
+// The model test's two adjustments each leave a note with the result: the
+// share of chi2 the error once per joint revolution carried within its prior
+// explains (here carried: calibration.estimate without encoder_error), taken
+// off; and the doubt where a joint may rest, expected. Neither without its value.
+TEST(CalibrationProcedure, TheModelTestsNotesSayWhatItTakesOffAndWhatItExpects) {
+  const RunOutcome& o = small_run();
+  const Samples s = parse_samples_csv(sim::samples_csv(o.sim.samples), "samples.csv");
+  FileProcedure p = gpm2002_file_procedure(s);
+  p.inputs.estimate_encoder_error = false;
+  const CalibrationOutcome c = calibrate_samples(sample_series(s), p.inputs, p.options);
+  ASSERT_TRUE(c.model_test);
+  ASSERT_GT(c.model_test->carried_chi2, 0.0);
+  ASSERT_GT(c.model_test->doubt_chi2, 0.0);
+  const auto has = [&](const std::string& start) {
+    return std::ranges::any_of(c.result.notes, [&](const std::string& n) { return n.starts_with(start); });
+  };
+  EXPECT_TRUE(has(fmt::format("the model test weighs chi2 less {:.3g} of it", c.model_test->carried_chi2)));
+  EXPECT_TRUE(has(fmt::format("the model test expects {:.3g} more of chi2", c.model_test->doubt_chi2)));
+  const CalibrationOutcome estimated = calibrate_file(s);  // the error estimated: nothing carried
+  ASSERT_TRUE(estimated.model_test);
+  EXPECT_EQ(estimated.model_test->carried_chi2, 0.0);
+  EXPECT_FALSE(std::ranges::any_of(estimated.result.notes,
+                                   [](const std::string& n) { return n.starts_with("the model test weighs chi2 less"); }));
+}
+
 // The small run's passive links cross their play (5 um on the realistic
 // twin) wherever their force changes sign: with calibration.crossing_s the
 // samples of the 20 ms after each change are left out and the fits made
