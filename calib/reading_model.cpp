@@ -48,6 +48,8 @@ void check_reading_model(const ReadingModel& m, const std::string& where) {
             fmt::format("clearance_mm of chain {} must be in 0..2", i));
   }
   for (const auto& h : m.harmonic) require(within(h, -0.01, 0.01), where, "harmonic coefficients must be in +-0.01 rad");
+  for (const double r : m.reducer_home_rad)
+    require(std::isnan(r) || std::isfinite(r), where, "reducer_home_rad must be finite (rad) where given");
   require(m.gear_ratio >= 1.0 && std::isfinite(m.gear_ratio), where, "gear_ratio must be finite and >= 1");
 }
 
@@ -76,6 +78,10 @@ double link_angle(const ReadingModel& m, int i, double theta_m, double omega, do
     if (h[k] == 0.0 && h[k + 3] == 0.0) continue;
     const double a = harmonic_angle(o, theta_m, m.gear_ratio);
     theta -= h[k] * std::sin(a) + h[k + 3] * std::cos(a);
+    if (o == kReducerHarmonic && std::isfinite(m.reducer_home_rad[k])) {  // referenced to 0 at home
+      const double a_home = harmonic_angle(o, m.reducer_home_rad[k], m.gear_ratio);
+      theta += h[k] * std::sin(a_home) + h[k + 3] * std::cos(a_home);
+    }
   }
   return theta;
 }

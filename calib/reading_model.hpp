@@ -7,6 +7,7 @@
 // The link angle a reading theta_m of joint i stands for is
 //   theta_a_i = theta_m_i + s_i omega_i - c_i tau_t_i - beta_i sgn(tau_mesh_i)
 //               - sum_o (a_oi sin(k_o theta_m_i) + b_oi cos(k_o theta_m_i))
+//               (the order 2N less its value at the home reading where one is given)
 // (latch skew s, compliance c under the transmitted torque tau_t, backlash
 // beta on the flank the mesh torque presses, drive-train harmonics of orders
 // k_o = 1, N, 2N per joint revolution, N the gear ratio), and passive link i
@@ -14,6 +15,7 @@
 #pragma once
 
 #include <array>
+#include <limits>
 #include <string>
 
 #include "calib/passive_tension.hpp"
@@ -23,6 +25,13 @@ namespace gpm::calib {
 // Orders of the drive-train harmonics: once per joint revolution, once and
 // twice per motor revolution.
 inline constexpr int kHarmonicOrders = 3;
+
+// The order that is the reducer's error (a harmonic drive's wave generator
+// flexes the spline twice a motor turn): twice per motor revolution.
+inline constexpr int kReducerHarmonic = 2;
+
+// ReadingModel::reducer_home_rad of a harmonic of mean 0.
+inline constexpr double kNotReferenced = std::numeric_limits<double>::quiet_NaN();
 
 // Mesh torque (N m) below which the flank a reducer's backlash sits on is
 // unknown (the link crossing its gap).
@@ -40,6 +49,10 @@ struct ReadingModel {
   // a_o1 a_o2 a_o3 b_o1 b_o2 b_o3 (rad) of each harmonic order o.
   std::array<std::array<double, 6>, kHarmonicOrders> harmonic{};
   double gear_ratio = 1.0;  // N: motor revolutions per joint revolution
+  // The readings at home (rad) where the reducer's error, the harmonic twice
+  // per motor revolution, is 0 (the offsets are the links' at home:
+  // calib/home_reference.hpp): that term is e(theta_m) - e(this); NaN: e(theta_m).
+  std::array<double, 3> reducer_home_rad{kNotReferenced, kNotReferenced, kNotReferenced};
 };
 
 // Throws InputError naming the first value of m out of its range (each

@@ -637,6 +637,10 @@ CalibrationOutcome calibrate_samples(const SampleSeries& samples, const Calibrat
     note_sandwich(m);
     fitted = m.problem;
     out = motion_outcome(std::move(m), inputs.monitor.reading);
+    if (options.home)
+      if (const auto moved = calib::offsets_at_home(*options.home, out.fit, out.motion.gear_ratio, out.result, out.used,
+                                                    out.reading ? &*out.reading : nullptr))
+        out.result.notes.push_back(calib::offsets_at_home_note(*moved));
   } else {
     out = static_outcome(samples, options);
   }
@@ -731,6 +735,7 @@ FileProcedure samples_file_procedure(const Samples& samples, const Robot& robot,
   p.options.sigma_from_step = !method.encoder_sigma.has_value();
   p.options.test_any_cost = true;
   p.options.method = method;
+  p.options.home = calib::HomePose{robot.home, robot.branch};
   CalibrationSpec c;
   c.drive_friction = stated_drive_friction(robot.data_sheet);
   p.inputs = calibration_inputs(c, robot, in_motion, bits, p.options.sigma_rad);

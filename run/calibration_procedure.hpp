@@ -23,6 +23,7 @@
 
 #include "calib/calibrate.hpp"
 #include "calib/friction_balance.hpp"
+#include "calib/home_reference.hpp"
 #include "calib/model_test.hpp"
 #include "calib/motion_correction.hpp"
 #include "run/calibration_inputs.hpp"
@@ -69,6 +70,9 @@ struct ProcedureOptions {
   bool keep_clearance = false;  // the clearance stays in the model where not detected (stated by the user)
   bool test_any_cost = false;   // the model test for every cost (default: the ML cost only, as gpm run)
   calib::MethodOptions method;  // method, cost, LM iterations, loss; encoder_sigma: the static fit's
+  // The robot file's home pose: where the reducer's error is referenced to 0,
+  // the encoder offsets stated there (calib/home_reference.hpp); none: not referenced.
+  std::optional<calib::HomePose> home;
 };
 
 struct CalibrationOutcome {

@@ -2,8 +2,10 @@
 
 #include "calib/calibrate.hpp"
 
+#include <algorithm>
 #include <cmath>
 #include <filesystem>
+#include <numbers>
 
 #include <fmt/format.h>
 
@@ -362,7 +364,7 @@ MonitorReadingModel parse_monitor_reading_model(const YAML::Node& n, const std::
                      "expected a preset (ideal, data_sheet) or a map of the monitor's reading model (see scenarios/SCHEMA.md)");
   yaml_check_keys(n, file, "monitor",
                   {"preset", "encoder_cyclic_rad", "clearance_mm", "drive_friction", "skew_s", "compliance_rad_per_Nm",
-                   "backlash_rad", "harmonic_rad", "thermal_time_constant_s", "learning_s", "scale_floor",
+                   "backlash_rad", "harmonic_rad", "reducer_home_rad", "thermal_time_constant_s", "learning_s", "scale_floor",
                    "map_radius_rad"});
   MonitorReadingModel m =
       n["preset"] ? reading_model_preset(n["preset"], file, "monitor.preset", sheet) : data_sheet_reading_model(sheet);
@@ -383,6 +385,8 @@ MonitorReadingModel parse_monitor_reading_model(const YAML::Node& n, const std::
     r.compliance_rad_per_Nm = per_joint(n["compliance_rad_per_Nm"], file, "monitor.compliance_rad_per_Nm", 1.0, "rad/N m");
   if (n["backlash_rad"]) r.backlash_rad = per_joint(n["backlash_rad"], file, "monitor.backlash_rad", 0.01, "rad");
   if (const YAML::Node h = n["harmonic_rad"]) r.harmonic = harmonic_orders(h, file, "monitor.harmonic_rad");
+  if (const YAML::Node h = n["reducer_home_rad"])
+    r.reducer_home_rad = per_joint(h, file, "monitor.reducer_home_rad", 2.0 * std::numbers::pi, "rad");
   if (const YAML::Node t = n["thermal_time_constant_s"]) {
     const double tau = yaml_number(t, file, "monitor.thermal_time_constant_s");
     if (!(tau >= 1.0 && tau <= 1e6))
@@ -429,10 +433,14 @@ std::string monitor_reading_model_yaml(const MonitorReadingModel& m) {
       "monitor:             # the drift monitor's reading model (gpm monitor --model reads it; scenario key monitor:)\n"
       "  encoder_cyclic_rad: {}\n  clearance_mm: {}\n"
       "  drive_friction: {{coulomb_Nm: {}, viscous_Nm_s: {}}}\n"
-      "  skew_s: {}\n  compliance_rad_per_Nm: {}\n  backlash_rad: {}\n  harmonic_rad: {}]\n"
+      "  skew_s: {}\n  compliance_rad_per_Nm: {}\n  backlash_rad: {}\n  harmonic_rad: {}]\n{}"
       "  thermal_time_constant_s: {}\n  learning_s: {}\n  scale_floor: {}\n  map_radius_rad: {}\n",
       three(r.cyclic_rad), three(pin), three(r.load.coulomb_Nm), three(r.load.viscous_Nm_s), three(r.skew_s),
-      three(r.compliance_rad_per_Nm), three(r.backlash_rad), harmonics, format_exact(m.thermal_time_constant_s),
+      three(r.compliance_rad_per_Nm), three(r.backlash_rad), harmonics,
+      std::ranges::all_of(r.reducer_home_rad, [](double v) { return std::isfinite(v); })
+          ? fmt::format("  reducer_home_rad: {}\n", three(r.reducer_home_rad))
+          : std::string(),
+      format_exact(m.thermal_time_constant_s),
       format_exact(m.learning_s), format_exact(m.scale_floor), format_exact(m.map_radius_rad));
 }
 

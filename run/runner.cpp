@@ -326,6 +326,7 @@ ProcedureOptions procedure_options(const RunSpec& spec, const Robot& nominal, co
   if (!mo.encoder_sigma && spec.sim.twin.encoder.noise_rad > 0) mo.encoder_sigma = po.sigma_rad;
   mo.allow_rank_deficient = spec.calibration.allow_rank_deficient;
   mo.loss = spec.calibration.loss;
+  po.home = calib::HomePose{nominal.home, nominal.branch};
   return po;
 }
 

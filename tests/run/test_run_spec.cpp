@@ -3,6 +3,8 @@
 #include "run/run_spec.hpp"
 #include "models/data_dir.hpp"
 
+#include <cmath>
+
 #include <gtest/gtest.h>
 
 #include "models/errors.hpp"
@@ -195,7 +197,9 @@ TEST(RunSpec, MonitorReadingModelYamlRoundTripsBitExact) {
   m.thermal_time_constant_s = 612.5;
   m.reading.backlash_rad = {0.0, 2.9088820866572158e-4, 1e-5};
   m.reading.harmonic[1] = {1.0 / 3.0 * 1e-5, 0.0, -2e-6, 0.0, 7e-7, 0.0};
-  for (const MonitorReadingModel& want : {m, ideal_reading_model(), data_sheet_reading_model(DataSheet{})}) {
+  MonitorReadingModel at_home = m;  // the reducer's error referenced to 0 at these readings
+  at_home.reading.reducer_home_rad = {1.0968648692113863, 3.0941265050681466, 4.825986318579954};
+  for (const MonitorReadingModel& want : {m, at_home, ideal_reading_model(), data_sheet_reading_model(DataSheet{})}) {
     const std::string text = monitor_reading_model_yaml(want);
     const MonitorReadingModel got = parse_monitor_reading_model(load_yaml_string(text, "r.yaml")["monitor"], "r.yaml", DataSheet{});
     EXPECT_EQ(got.reading.cyclic_rad, want.reading.cyclic_rad) << text;
@@ -207,6 +211,11 @@ TEST(RunSpec, MonitorReadingModelYamlRoundTripsBitExact) {
     EXPECT_EQ(got.thermal_time_constant_s, want.thermal_time_constant_s) << text;
     EXPECT_EQ(got.reading.backlash_rad, want.reading.backlash_rad) << text;
     EXPECT_EQ(got.reading.harmonic, want.reading.harmonic) << text;
+    for (std::size_t i = 0; i < 3; ++i)  // NaN (not referenced) where not written
+      EXPECT_TRUE(got.reading.reducer_home_rad[i] == want.reading.reducer_home_rad[i] ||
+                  (std::isnan(got.reading.reducer_home_rad[i]) && std::isnan(want.reading.reducer_home_rad[i])))
+          << text;
+    EXPECT_EQ(text.find("reducer_home_rad") != std::string::npos, std::isfinite(want.reading.reducer_home_rad[0]));
     // The same text is a scenario's monitor: section.
     EXPECT_EQ(parse_run_spec(kHead + text, "s.yaml", kBase).monitor.reading.skew_s, want.reading.skew_s);
   }
@@ -284,6 +293,8 @@ TEST(RunSpec, MonitorReadingModelIsStatedNotTakenFromTheTwin) {
   EXPECT_EQ(error_of(kHead + "monitor: {harmonic_rad: [[0, 0, 0, 0, 0, 0]]}\n"),
             "s.yaml:3: monitor.harmonic_rad: expected three lists of six numbers (a1 a2 a3 b1 b2 b3 in rad of each "
             "order: joint, motor, twice motor revolution), each within +-0.01 rad");
+  EXPECT_EQ(error_of(kHead + "monitor: {reducer_home_rad: [1, 2, 7]}\n"),
+            "s.yaml:3: monitor.reducer_home_rad[2]: 7 is out of range (valid: 0 to 6.283185307179586 rad)");
   EXPECT_EQ(error_of(kHead + "monitor: {backlash_rad: 0.5}\n"),
             "s.yaml:3: monitor.backlash_rad: 0.5 is out of range (valid: 0 to 0.01 rad)");
   EXPECT_EQ(error_of(kHead + "monitor: {compliance_rad_per_Nm: 2}\n"),
