@@ -86,4 +86,10 @@ double link_angle(const ReadingModel& m, int i, double theta_m, double omega, do
   return theta;
 }
 
+double reading_at(const ReadingModel& m, int i, double theta) {
+  double r = theta;
+  for (int step = 0; step < 4; ++step) r += theta - link_angle(m, i, r, 0.0, 0.0, 0.0);
+  return r;
+}
+
 }  // namespace gpm::calib

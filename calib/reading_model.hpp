@@ -80,4 +80,10 @@ double harmonic_angle(int o, double theta_m, double gear_ratio);
 // mesh torque flank (+-1; 0 where the flank is unknown).
 double link_angle(const ReadingModel& m, int i, double theta_m, double omega, double tau_t, double flank);
 
+// The reading (rad) at which joint i's link stands at theta (rad, the link
+// angle less the offset dth_i) under m's drive-train harmonics alone (no
+// speed, torque or flank: what a reading's own angle decides), solved by
+// fixed-point steps (the harmonics change by far less than 1 rad per rad).
+double reading_at(const ReadingModel& m, int i, double theta);
+
 }  // namespace gpm::calib

@@ -50,7 +50,7 @@ double internal_preload(const Geometry& g, const Eigen::Vector2d& p, const Eigen
 Accuracy measure_accuracy(const Robot& actual, const sim::TwinConfig& twin,
                           const Robot& controller, const CompensationPlan& plan,
                           unsigned long long seed, const std::string& label, Progress* progress,
-                          double max_tracking_mm, bool oracle) {
+                          double max_tracking_mm, bool oracle, const calib::ReadingModel* drive_train) {
   Accuracy acc;
   acc.label = label;
   const sim::TwinModel model(actual, twin);
@@ -58,6 +58,12 @@ Accuracy measure_accuracy(const Robot& actual, const sim::TwinConfig& twin,
   sim::Session session = sim::make_session(model, state, controller, nullptr);
   session.max_tracking_mm = max_tracking_mm;
   session.oracle = oracle;
+  if (drive_train)
+    session.readings_for = [m = *drive_train](const Eigen::Vector3d& theta_a, const Eigen::Vector3d& dth) {
+      Eigen::Vector3d r;
+      for (int i = 0; i < 3; ++i) r[i] = wrap_2pi(calib::reading_at(m, i, theta_a[i] - dth[i]));
+      return r;
+    };
 
   // The poses are visited in a short tour from where the robot stands
   // (sim/waypoint_path.hpp), their errors kept in the plan's order.

@@ -11,6 +11,7 @@
 
 #include <Eigen/Core>
 
+#include "calib/reading_model.hpp"
 #include "models/progress.hpp"
 #include "models/robot.hpp"
 #include "sim/sampling.hpp"
@@ -49,11 +50,15 @@ struct Accuracy {
 // max_tracking_mm > 0 the twin loop's tracking watch is on
 // (sim::Session::max_tracking_mm: sim::TrackingStop when it trips); with
 // oracle the controller (the actual geometry) knows the twin's transmission
-// and encoder errors too (sim::Session::oracle: the floor).
+// and encoder errors too (sim::Session::oracle: the floor); with
+// drive_train, the controller compensates that reading model's drive-train
+// harmonics (calib::reading_at: the calibration's estimates, as the
+// monitor takes them).
 Accuracy measure_accuracy(const Robot& actual, const sim::TwinConfig& twin,
                           const Robot& controller, const CompensationPlan& plan,
                           unsigned long long seed, const std::string& label, Progress* progress = nullptr,
-                          double max_tracking_mm = 0.0, bool oracle = false);
+                          double max_tracking_mm = 0.0, bool oracle = false,
+                          const calib::ReadingModel* drive_train = nullptr);
 
 // The 95 % interval of rms(a) / rms(b), a and b errors at the same poses
 // (paired by index, equal sizes): the percentile bootstrap over the poses,

@@ -504,8 +504,13 @@ void measure_compensation(RunOutcome& out, const RunSpec& spec, const Progress& 
                                &steps("nominal model"), spec.sim.max_tracking_mm);
   if (out.calibration) {
     stage("measuring accuracy with the calibrated model");
+    // The controller compensates the drive-train harmonics the calibration estimated (none: its geometry alone).
+    const bool harmonics = out.reading_estimated && std::ranges::any_of(out.reading_estimated->harmonic, [](const auto& h) {
+                             return std::ranges::any_of(h, [](double v) { return v != 0.0; });
+                           });
     out.after = measure_accuracy(actual, test_twin, out.calibrated, *spec.compensation, seed, "calibrated",
-                               &steps("calibrated model"), spec.sim.max_tracking_mm);
+                                 &steps("calibrated model"), spec.sim.max_tracking_mm, false,
+                                 harmonics ? &*out.reading_estimated : nullptr);
   }
   if (!spec.hardware) {
     stage("measuring accuracy with the actual parameters and reading errors (the floor)");

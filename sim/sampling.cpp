@@ -35,7 +35,9 @@ TwinSnapshot advance(Session& s, const PathPoint& desired) {
   const Geometry& g = s.controller.geometry;
   const JointAngles q = inverse_kinematics(g, desired.p, s.controller.branch);
   JointCommand c = command_at(s.controller, q, desired);
-  if (s.oracle) c.position = oracle_readings(s.model, q.theta_a, Eigen::Vector3d(g.dth_(0), g.dth_(1), g.dth_(2)));
+  const Eigen::Vector3d dth(g.dth_(0), g.dth_(1), g.dth_(2));
+  if (s.oracle) c.position = oracle_readings(s.model, q.theta_a, dth);
+  else if (s.readings_for) c.position = s.readings_for(q.theta_a, dth);
   twin_command(s.state, c.position, c.velocity);
   s.desired = desired.p;
   // Align to the drive loop so the first step below is a tick.

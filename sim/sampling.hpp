@@ -101,6 +101,10 @@ struct Session {
   // its commands know the twin's transmission and encoder errors too
   // (sim/oracle_command.hpp).
   bool oracle = false;
+  // Otherwise, when set: the readings the controller commands for the link
+  // angles theta_a at its offsets dth (rad; its reading model's errors of the
+  // reading's own angle compensated); unset: theta_a - dth (eq. 35).
+  std::function<Eigen::Vector3d(const Eigen::Vector3d& theta_a, const Eigen::Vector3d& dth)> readings_for = nullptr;
 };
 
 // The end-effector left the plan by more than Session::max_tracking_mm: the

@@ -1,6 +1,7 @@
 // Tests of calib/reading_model.cpp: the reading sigma of an encoder, the link
 // angle of a reading by hand and against the calibration's own correction
-// (calib/motion_correction.hpp correct_readings), and the range checks.
+// (calib/motion_correction.hpp correct_readings), the reading of a link angle
+// (its inverse), and the range checks.
 #include "calib/reading_model.hpp"
 
 #include <cmath>
@@ -47,6 +48,29 @@ TEST(ReadingModel, LinkAngleByHand) {
   EXPECT_EQ(harmonic_angle(0, 0.5, 10.0), 0.5);
   EXPECT_EQ(harmonic_angle(1, 0.5, 10.0), 5.0);
   EXPECT_EQ(harmonic_angle(2, 0.5, 10.0), 10.0);
+}
+
+// reading_at inverts link_angle's harmonics (at rest: no speed, torque or
+// flank), with the reducer's error referenced at home or of mean 0.
+TEST(ReadingModel, ReadingAtInvertsTheHarmonics) {
+  ReadingModel m;
+  m.gear_ratio = 10.0;
+  m.skew_s = {1e-4, 1e-4, 1e-4};  // speed, torque and flank are 0 there: no part of it
+  m.harmonic[0] = {2e-4, 0, 0, -1e-4, 0, 0};
+  m.harmonic[1] = {0, 3e-5, 0, 0, 1e-5, 0};
+  m.harmonic[2] = {1e-4, 0, 5e-5, 0, 0, -8e-5};
+  for (const bool at_home : {false, true}) {
+    if (at_home) m.reducer_home_rad = {1.1, 3.1, 4.8};
+    for (int i = 0; i < 3; ++i)
+      for (const double theta : {0.5, 1.7, 4.0}) {
+        const double r = reading_at(m, i, theta);
+        EXPECT_NEAR(link_angle(m, i, r, 0.0, 0.0, 0.0), theta, 1e-14);
+        if (i == 0) {
+          EXPECT_GT(std::abs(r - theta), 1e-5);  // joint 1 has errors to take off
+        }
+      }
+  }
+  EXPECT_NEAR(reading_at(m, 2, 4.8), 4.8, 1e-15);  // at home joint 3's only error, the reducer's, is 0
 }
 
 // Skew and compliance: the same link angles as the calibration's correction

@@ -1,8 +1,9 @@
 // Tests of run/compensation.cpp: the internal-preload projection by
 // hand, the twin's accuracy with the true model against a wrong one, and
 // the test poses visited in a short tour whatever their order, the oracle's
-// floor below the true geometry's alone on a twin with encoder errors, and
-// the bootstrap interval of an RMS ratio against hand-worked cases.
+// floor below the true geometry's alone on a twin with encoder errors, the
+// calibrated controller's compensation of its reading model's reducer error
+// (as the oracle's) and the bootstrap interval of an RMS ratio against hand-worked cases.
 #include "run/compensation.hpp"
 
 #include <algorithm>
@@ -71,6 +72,51 @@ TEST(Compensation, TheOracleKnowsTheEncodersErrors) {
   const Accuracy oracle = measure_accuracy(actual, twin, actual, plan, 1, "oracle", nullptr, 0.0, true);
   EXPECT_GT(geometry.static_rms_um, 3.0);
   EXPECT_LT(oracle.static_rms_um, 1.0);
+}
+
+// The calibrated controller compensates the drive-train harmonics of its
+// reading model (calib::reading_at), in the calibration's convention: a
+// harmonic of the reading twice per motor revolution referenced to 0 at the
+// home readings. Given the twin's own reducer error in that convention
+// (TE(theta_m) = A sin(2 N theta_m + phi), theta_m = r + dth, less its value
+// at the motors' home: a = A cos(2 N dth + phi), b = A sin(2 N dth + phi),
+// reducer_home_rad the home readings) it stands where the oracle does; the
+// geometry alone stands off by the error, and so does the harmonic given
+// with a mean of 0 (no home reading).
+TEST(Compensation, TheCalibratedControllerCompensatesItsDriveTrainHarmonics) {
+  const Robot actual;
+  sim::TwinConfig twin;
+  twin.encoder.bits = 0;
+  twin.effects.gear_ratio = 10.0;
+  twin.effects.mjcf.compliance_rad_per_Nm = {1e-4, 1e-4, 1e-4};  // the rotor a body of its own: a mesh between
+  twin.servo_rate_hz = 4000.0;  // the main job's drive loop, fast enough for the rotor alone
+  twin.mjcf.timestep_s = 0.00025;
+  const std::array<double, 3> A{1.2e-4, 0.8e-4, 1.0e-4}, phi{0.3, 2.0, 4.1};
+  calib::ReadingModel model;
+  model.gear_ratio = 10.0;
+  const JointAngles home = inverse_kinematics(actual.geometry, actual.home, actual.branch);
+  const Eigen::Vector3d r_home = readings_from_active(actual.geometry, home.theta_a);
+  for (std::size_t k = 0; k < 3; ++k) {
+    twin.effects.drive.chain[k].te_motor_rad = A[k];
+    twin.effects.drive.chain[k].te_motor_phase_rad = phi[k];
+    const double psi = 2.0 * 10.0 * actual.geometry.dth_(static_cast<int>(k)) + phi[k];
+    model.harmonic[calib::kReducerHarmonic][k] = A[k] * std::cos(psi);
+    model.harmonic[calib::kReducerHarmonic][k + 3] = A[k] * std::sin(psi);
+    model.reducer_home_rad[k] = wrap_2pi(r_home[static_cast<Eigen::Index>(k)]);
+  }
+  CompensationPlan plan;
+  plan.poses = {{216.5, 250}, {250, 280}, {190, 220}, {230, 215}};
+  plan.path = sim::CirclePath{{216.5, 250}, 30.0, 3.0, 0.25};
+  const Accuracy geometry = measure_accuracy(actual, twin, actual, plan, 1, "true");
+  const Accuracy oracle = measure_accuracy(actual, twin, actual, plan, 1, "oracle", nullptr, 0.0, true);
+  const Accuracy compensated = measure_accuracy(actual, twin, actual, plan, 1, "calibrated", nullptr, 0.0, false, &model);
+  calib::ReadingModel mean_zero = model;
+  mean_zero.reducer_home_rad.fill(calib::kNotReferenced);
+  const Accuracy unreferenced = measure_accuracy(actual, twin, actual, plan, 1, "mean 0", nullptr, 0.0, false, &mean_zero);
+  EXPECT_GT(geometry.static_rms_um, 5.0);
+  EXPECT_GT(unreferenced.static_rms_um, 5.0);
+  EXPECT_LT(std::abs(compensated.static_rms_um - oracle.static_rms_um), 0.2);
+  EXPECT_LT(compensated.static_rms_um, 0.1 * geometry.static_rms_um);
 }
 
 // The interval of rms(a) / rms(b): a fixed multiple has no spread; equal
