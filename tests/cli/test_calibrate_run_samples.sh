@@ -2,7 +2,8 @@
 # Tests of app/cmd_calibrate.cpp on gpm run's own samples (one calibration
 # for every entry point, run/calibration_procedure.hpp): gpm calibrate on the
 # samples.csv of a short on-the-fly run gives gpm run's geometry to the last
-# digit and its model test; a file without the time and torque columns gets
+# digit and its model test, on a geared robot too (the offsets stated at
+# home); a file without the time and torque columns gets
 # the static fit and a model test; a bad value in the new columns: one line, exit 2.
 set -u
 GPM="$1"; SRC="$2"
@@ -86,6 +87,15 @@ check "--static" 0 "$GPM" calibrate --data "$S" --model "$SRC/models/gpm2002.yam
 expect_out "--static: static model" "the static model"
 expect_out "stated sigma understated" "^model test fails .*: the stated 1-sigma understates the error"
 
+# A geared robot whose reducers err twice per motor revolution: both state
+# the encoder offsets at home (calib/home_reference.hpp), to the last digit.
+check "gpm run, geared" 0 "$GPM" run "$SRC/tests/fixtures/on_the_fly_geared_small.yaml" -o "$tmp/geared"
+check "calibrate on the geared run's samples" 0 "$GPM" calibrate --data "$tmp/geared/samples.csv" \
+  --model "$SRC/models/gpm2002.yaml" -o "$tmp/g.yaml"
+for f in "$tmp/geared/calibration.yaml" "$tmp/g.yaml"; do
+  holds "offsets at home in $(basename "$f")" grep -q "encoder offsets stated at home" "$f"
+done
+holds "geared geometry bit for bit" cmp <(geometry "$tmp/geared/calibration.yaml") <(geometry "$tmp/g.yaml")
 # A bad value in the new columns: one line naming file, line and column, exit 2, nothing written.
 awk -F, 'BEGIN{OFS=","} NR==5{$NF="0.x"} {print}' "$S" >"$tmp/bad_t.csv"
 rm -f "$tmp/r.yaml"
