@@ -10,13 +10,9 @@
 namespace gpm::calib {
 
 std::optional<Eigen::Vector3d> home_readings(const Geometry& g, const HomePose& home) {
-  Eigen::Vector3d theta_a;
-  for (int c = 0; c < kNumChains; ++c) {
-    const auto chain = try_chain_ik(g, c, home.p, home.branch[static_cast<std::size_t>(c)]);
-    if (!chain) return std::nullopt;
-    theta_a[c] = chain->theta_a;
-  }
-  Eigen::Vector3d r = readings_from_active(g, theta_a);
+  const std::optional<JointAngles> q = try_inverse_kinematics(g, home.p, home.branch);
+  if (!q) return std::nullopt;
+  Eigen::Vector3d r = readings_from_active(g, q->theta_a);
   for (int i = 0; i < 3; ++i) r[i] = wrap_2pi(r[i]);  // as the encoders report them
   return r;
 }

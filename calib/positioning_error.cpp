@@ -12,21 +12,10 @@
 namespace gpm::calib {
 namespace {
 
-// Joint angles of every chain at p (eq. 31, 34); nullopt when a chain cannot reach p.
-std::optional<JointAngles> joint_angles(const Geometry& g, const Branches& branch, const Eigen::Vector2d& p) {
-  JointAngles q;
-  for (int c = 0; c < kNumChains; ++c) {
-    const auto ch = try_chain_ik(g, c, p, branch[static_cast<size_t>(c)]);
-    if (!ch) return std::nullopt;
-    q.theta_a[c] = ch->theta_a, q.theta_b[c] = ch->theta_b;
-  }
-  return q;
-}
-
 // The readings the model commands for p (eq. 31 and eq. 35); nullopt when the
 // model cannot reach p.
 std::optional<Eigen::Vector3d> commanded(const Geometry& model, const Branches& branch, const Eigen::Vector2d& p) {
-  const auto q = joint_angles(model, branch, p);
+  const auto q = try_inverse_kinematics(model, p, branch);
   if (!q) return std::nullopt;
   return readings_from_active(model, q->theta_a);
 }
@@ -39,7 +28,7 @@ std::optional<Eigen::Vector3d> commanded(const Geometry& model, const Branches& 
 std::optional<Eigen::Vector2d> reached(const Robot& actual, const Eigen::Vector3d& theta_m, Eigen::Vector2d p) {
   const Eigen::Vector3d target = active_from_readings(actual.geometry, theta_m);  // eq. 35
   for (int it = 0; it < 8; ++it) {
-    const auto q = joint_angles(actual.geometry, actual.branch, p);
+    const auto q = try_inverse_kinematics(actual.geometry, p, actual.branch);
     if (!q) return std::nullopt;
     Eigen::Vector3d r;
     for (int c = 0; c < kNumChains; ++c) r[c] = wrap_pi(target[c] - q->theta_a[c]);

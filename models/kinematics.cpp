@@ -71,6 +71,17 @@ JointAngles inverse_kinematics(const Geometry& g, const Vector2d& p, const Branc
   return q;
 }
 
+std::optional<JointAngles> try_inverse_kinematics(const Geometry& g, const Vector2d& p, const Branches& branch) {
+  JointAngles q;
+  for (int i = 0; i < kNumChains; ++i) {
+    const std::optional<ChainAngles> c = try_chain_ik(g, i, p, branch[static_cast<size_t>(i)]);
+    if (!c) return std::nullopt;
+    q.theta_a[i] = c->theta_a;
+    q.theta_b[i] = c->theta_b;
+  }
+  return q;
+}
+
 std::array<Vector2d, 3> elbows(const Geometry& g, const Vector3d& theta_a) {
   std::array<Vector2d, 3> B;
   for (int i = 0; i < kNumChains; ++i) {

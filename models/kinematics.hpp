@@ -57,6 +57,10 @@ ChainAngles chain_ik(const Geometry& g, int i, const Eigen::Vector2d& p, int bra
 JointAngles inverse_kinematics(const Geometry& g, const Eigen::Vector2d& p,
                                const Branches& branch = {1, 1, 1});
 
+// As inverse_kinematics, but nullopt when some chain cannot reach p.
+std::optional<JointAngles> try_inverse_kinematics(const Geometry& g, const Eigen::Vector2d& p,
+                                                  const Branches& branch = {1, 1, 1});
+
 // Elbow points B_i = A_i + la_i (cos theta_a_i, sin theta_a_i) (eq. 30).
 std::array<Eigen::Vector2d, 3> elbows(const Geometry& g, const Eigen::Vector3d& theta_a);
 

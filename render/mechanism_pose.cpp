@@ -18,18 +18,8 @@ const sim::LogRow& row_at(const sim::TrajectoryLog& log, double t) {
 
 JointAngles pose_of(const Robot& actual, const sim::LogRow& row) {
   const Geometry& g = actual.geometry;
+  if (const std::optional<JointAngles> reached = try_inverse_kinematics(g, row.actual, actual.branch)) return *reached;
   JointAngles q;
-  bool reached = true;
-  for (int i = 0; i < 3; ++i) {
-    const auto c = try_chain_ik(g, i, row.actual, actual.branch[i]);
-    if (!c) {
-      reached = false;
-      break;
-    }
-    q.theta_a[i] = c->theta_a;
-    q.theta_b[i] = c->theta_b;
-  }
-  if (reached) return q;
   q.theta_a = active_from_readings(g, row.readings);
   const auto b = elbows(g, q.theta_a);
   for (int i = 0; i < 3; ++i) {

@@ -32,14 +32,9 @@ double max_of(const std::vector<double>& v) {
 
 double internal_preload(const Geometry& g, const Eigen::Vector2d& p, const Eigen::Vector3d& tau,
                         const Branches& branch) {
-  JointAngles angles;
-  for (int i = 0; i < 3; ++i) {
-    const auto c = try_chain_ik(g, i, p, branch[static_cast<size_t>(i)]);
-    if (!c) return NAN;
-    angles.theta_a[i] = c->theta_a;
-    angles.theta_b[i] = c->theta_b;
-  }
-  const Matrix32d J = active_jacobian(g, angles);
+  const std::optional<JointAngles> angles = try_inverse_kinematics(g, p, branch);
+  if (!angles) return NAN;
+  const Matrix32d J = active_jacobian(g, *angles);
   // P = I - J (J'J)^-1 J' (eq. 15): torques in the null space of J' do no
   // work on the end-effector (virtual work: f = J' tau).
   const Eigen::Matrix3d P =

@@ -1,6 +1,7 @@
 // Tests of models/kinematics.cpp: IK/FK round trips, cross checks of the
 // three-chain and two-chain forward kinematics, the eq. 11 Jacobian against
-// central differences, singularity measures, and hand-worked home angles.
+// central differences, singularity measures, hand-worked home angles, and
+// the inverse kinematics that returns nothing out of reach against the one that throws.
 #include "models/kinematics.hpp"
 #include "models/rng.hpp"
 
@@ -111,6 +112,20 @@ TEST(Kinematics, OutOfReachNamesChainAndShortfall) {
     EXPECT_NEAR(e.shortfall_mm, std::hypot(216.5, 500.0) - 488.0, 1e-9);
     EXPECT_NE(std::string(e.what()).find("chain 1"), std::string::npos);
   }
+}
+
+// try_inverse_kinematics: inverse_kinematics's angles where every chain
+// reaches, nullopt (no throw) where one does not.
+TEST(Kinematics, TryInverseKinematicsIsInverseKinematicsOrNothing) {
+  const Robot r = nominal();
+  for (const Eigen::Vector2d& p : {Eigen::Vector2d(216.5, 250.0), Eigen::Vector2d(260.0, 210.0)}) {
+    const JointAngles want = inverse_kinematics(r.geometry, p, r.branch);
+    const std::optional<JointAngles> got = try_inverse_kinematics(r.geometry, p, r.branch);
+    ASSERT_TRUE(got);
+    EXPECT_EQ(got->theta_a, want.theta_a);
+    EXPECT_EQ(got->theta_b, want.theta_b);
+  }
+  EXPECT_FALSE(try_inverse_kinematics(r.geometry, {216.5, 750.0}, r.branch));
 }
 
 TEST(Kinematics, BranchesGiveMirroredElbows) {
