@@ -2,6 +2,7 @@
 #include "calib/home_reference.hpp"
 
 #include <cmath>
+#include <limits>
 
 #include <fmt/format.h>
 
@@ -17,33 +18,62 @@ std::optional<Eigen::Vector3d> home_readings(const Geometry& g, const HomePose& 
   return r;
 }
 
-double reducer_error(const std::array<double, 6>& h, int i, double theta_m, double gear_ratio) {
-  const auto k = static_cast<std::size_t>(i);
-  const double a = harmonic_angle(kReducerHarmonic, theta_m, gear_ratio);
-  return h[k] * std::sin(a) + h[k + 3] * std::cos(a);
+ReducerErrors reducer_errors(const MotionFit& fit, const MotionModel& model) {
+  ReducerErrors e;
+  for (auto& s : e.sigma) s.fill(std::numeric_limits<double>::quiet_NaN());
+  e.h[kReducerHarmonic] = fit.harmonic[kReducerHarmonic];
+  e.sigma[kReducerHarmonic] = fit.harmonic_sigma[kReducerHarmonic];
+  if (estimates_reducer_joint_error(model)) {
+    e.h[kJointHarmonic] = fit.cyclic;
+    e.sigma[kJointHarmonic] = fit.cyclic_sigma;
+  }
+  return e;
 }
 
-std::optional<HomeOffsets> offsets_at_home(const HomePose& home, const MotionFit& fit, double gear_ratio,
+double reducer_error(const ReducerErrors& e, int i, double theta_m, double gear_ratio) {
+  const auto k = static_cast<std::size_t>(i);
+  double sum = 0.0;
+  for (int o = 0; o < kHarmonicOrders; ++o) {
+    const auto& h = e.h[static_cast<std::size_t>(o)];
+    const double a = harmonic_angle(o, theta_m, gear_ratio);
+    sum += h[k] * std::sin(a) + h[k + 3] * std::cos(a);
+  }
+  return sum;
+}
+
+namespace {
+
+// Variance of e_i at theta_m: sum over the orders of (sa sin)^2 + (sb cos)^2
+// (0 for a pair whose 1-sigma is not finite).
+double reducer_error_variance(const ReducerErrors& e, int i, double theta_m, double gear_ratio) {
+  const auto k = static_cast<std::size_t>(i);
+  double var = 0.0;
+  for (int o = 0; o < kHarmonicOrders; ++o) {
+    const auto& s = e.sigma[static_cast<std::size_t>(o)];
+    if (!(std::isfinite(s[k]) && std::isfinite(s[k + 3]))) continue;
+    const double a = harmonic_angle(o, theta_m, gear_ratio);
+    var += std::pow(s[k] * std::sin(a), 2) + std::pow(s[k + 3] * std::cos(a), 2);
+  }
+  return var;
+}
+
+}  // namespace
+
+std::optional<HomeOffsets> offsets_at_home(const HomePose& home, const ReducerErrors& e, double gear_ratio,
                                            Result& result, std::vector<Eigen::Vector3d>& used,
                                            ReadingModel* reading) {
-  const std::array<double, 6>& h = fit.harmonic[kReducerHarmonic];
-  const std::array<double, 6>& s = fit.harmonic_sigma[kReducerHarmonic];
   bool estimated = false;
-  for (double v : h) estimated = estimated || v != 0.0;
+  for (const auto& h : e.h)
+    for (double v : h) estimated = estimated || v != 0.0;
   if (!estimated) return std::nullopt;
   const std::optional<Eigen::Vector3d> r = home_readings(result.geometry, home);
   if (!r) return std::nullopt;
   HomeOffsets out;
   out.reading = *r;
   for (int i = 0; i < 3; ++i) {
-    const auto k = static_cast<std::size_t>(i);
-    const double e = reducer_error(h, i, (*r)[i], gear_ratio);
-    out.moved_rad[i] = e;
-    result.geometry[dth(i)] -= e;
-    const double a = harmonic_angle(kReducerHarmonic, (*r)[i], gear_ratio);
-    const double var = std::isfinite(s[k]) && std::isfinite(s[k + 3])
-                           ? std::pow(s[k] * std::sin(a), 2) + std::pow(s[k + 3] * std::cos(a), 2)
-                           : 0.0;
+    out.moved_rad[i] = reducer_error(e, i, (*r)[i], gear_ratio);
+    result.geometry[dth(i)] -= out.moved_rad[i];
+    const double var = reducer_error_variance(e, i, (*r)[i], gear_ratio);
     if (var > 0.0 && result.covariance) (*result.covariance)(dth(i), dth(i)) += var;
     auto& sd = result.sigma[static_cast<std::size_t>(dth(i))];
     if (var > 0.0 && std::isfinite(sd)) sd = std::sqrt(sd * sd + var);
@@ -56,7 +86,8 @@ std::optional<HomeOffsets> offsets_at_home(const HomePose& home, const MotionFit
 
 std::string offsets_at_home_note(const HomeOffsets& moved) {
   return fmt::format(
-      "encoder offsets stated at home: the reducer's error twice per motor revolution is referenced to 0 at the home "
+      "encoder offsets stated at home: the reducer's errors (twice per motor revolution, and once per joint revolution "
+      "where estimated) are referenced to 0 at the home "
       "readings {:.6g}, {:.6g}, {:.6g} rad (the robot zeroed at home; the same link angle at every reading), "
       "dth moved by {:.3g}, {:.3g}, {:.3g} rad",
       moved.reading[0], moved.reading[1], moved.reading[2], -moved.moved_rad[0], -moved.moved_rad[1],

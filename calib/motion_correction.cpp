@@ -492,10 +492,15 @@ double& nuisance_sigma_slot(MotionFit& fit, int k) {
   return fit.harmonic_sigma[at(kHarmonic) / 6][at(kHarmonic) % 6];
 }
 
-// True when chi2 for dof degrees of freedom exceeds the noise, with what the
-// samples' doubt adds, at the model test's level, 1 % (calib/model_test.hpp:
-// a test that fails widens the 1-sigma).
-bool misfit(double chi2, double dof, const SampleDoubt& doubt) { return doubted_chi2_survival(dof, doubt, chi2) < 1e-2; }
+// True when chi2 for dof degrees of freedom exceeds the noise alone at the
+// model test's level, 1 % (calib/model_test.hpp: a test that fails widens the
+// 1-sigma). Not with what the samples' doubt adds, as the test has it: the
+// twist a resting joint holds is one value over many samples, and an
+// estimate it moves (a harmonic of the joint angle most) moves with it, which
+// the weights, independent per sample, do not state; the sandwich, from the
+// residuals' autocorrelation, does (a robot with the reducer's error once
+// per joint revolution estimated: its geometry at 8.8 sigma without it).
+bool misfit(double chi2, double dof) { return doubted_chi2_survival(dof, SampleDoubt{}, chi2) < 1e-2; }
 
 // Bartlett bandwidth L of Andrews (1991) for residuals r along the path,
 // modelled as AR(1) with coefficient rho (their lag-1 autocorrelation):
@@ -906,10 +911,10 @@ void joint_covariance(const Linearisation& l, const std::vector<int>& cols, doub
   if (considers_cyclic(model) && options.encoder_sigma)
     fit.carried_chi2 = unweighted_carried_chi2(l, A, J, cols, prior_weight, model.cyclic_prior_rad, s2);
   // As the model test judges (calib/model_test.hpp): the unweighted chi-square less what the carried error
-  // explains, on the samples' count less the geometry's free parameters, with what the weights' doubt adds.
+  // explains, on the samples' count less the geometry's free parameters; against the noise alone (misfit).
   const double test_dof = static_cast<double>(l.r.size() - ng);
   if (model.sandwich && options.encoder_sigma && dof > 0 &&
-      misfit(unweighted_norm2(l) / s2 - fit.carried_chi2, test_dof, fit.doubt)) {
+      misfit(unweighted_norm2(l) / s2 - fit.carried_chi2, test_dof)) {
     // The residuals exceed the noise: what the model leaves out moves the
     // estimate as much as it moves the residuals, correlated along the path.
     const Eigen::MatrixXd S = newey_west_sandwich(A, J.topRows(l.r.size()), l.r);

@@ -86,6 +86,14 @@ struct MotionModel {
   int max_passes = 6;      // Gauss-Newton passes (each one LM fit)
 };
 
+// True where model estimates the reducer's error once per joint revolution:
+// the error under the data sheet's prior (cyclic_prior_rad with
+// estimate_cyclic) read by motor encoders behind a reducer, where it is the
+// reducer's transmission error, not the encoder's own (MotionFit::cyclic).
+inline bool estimates_reducer_joint_error(const MotionModel& m) {
+  return m.estimate_cyclic && m.cyclic_prior_rad > 0.0 && m.encoder_on_motor && m.gear_ratio > 1.0;
+}
+
 struct MotionFit {
   Result result;                            // geometry, 1-sigma (joint), diagnostics of the last pass
   std::array<double, 5> nu{};               // s2, s3 (s), c1, c2, c3 (rad/N m); 0 where not estimated

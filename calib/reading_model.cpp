@@ -78,7 +78,7 @@ double link_angle(const ReadingModel& m, int i, double theta_m, double omega, do
     if (h[k] == 0.0 && h[k + 3] == 0.0) continue;
     const double a = harmonic_angle(o, theta_m, m.gear_ratio);
     theta -= h[k] * std::sin(a) + h[k + 3] * std::cos(a);
-    if (o == kReducerHarmonic && std::isfinite(m.reducer_home_rad[k])) {  // referenced to 0 at home
+    if (referenced_at_home(o) && std::isfinite(m.reducer_home_rad[k])) {  // referenced to 0 at home
       const double a_home = harmonic_angle(o, m.reducer_home_rad[k], m.gear_ratio);
       theta += h[k] * std::sin(a_home) + h[k + 3] * std::cos(a_home);
     }

@@ -30,6 +30,15 @@ inline constexpr int kHarmonicOrders = 3;
 // flexes the spline twice a motor turn): twice per motor revolution.
 inline constexpr int kReducerHarmonic = 2;
 
+// The order once per joint revolution: on motor encoders the reducer's
+// transmission error per output revolution (its gears' run-out).
+inline constexpr int kJointHarmonic = 0;
+
+// True for the orders that are the reducer's errors, 0 at the robot's home
+// where ReadingModel::reducer_home_rad is set: once per joint revolution and
+// twice per motor revolution.
+constexpr bool referenced_at_home(int order) { return order == kJointHarmonic || order == kReducerHarmonic; }
+
 // ReadingModel::reducer_home_rad of a harmonic of mean 0.
 inline constexpr double kNotReferenced = std::numeric_limits<double>::quiet_NaN();
 
@@ -49,9 +58,10 @@ struct ReadingModel {
   // a_o1 a_o2 a_o3 b_o1 b_o2 b_o3 (rad) of each harmonic order o.
   std::array<std::array<double, 6>, kHarmonicOrders> harmonic{};
   double gear_ratio = 1.0;  // N: motor revolutions per joint revolution
-  // The readings at home (rad) where the reducer's error, the harmonic twice
-  // per motor revolution, is 0 (the offsets are the links' at home:
-  // calib/home_reference.hpp): that term is e(theta_m) - e(this); NaN: e(theta_m).
+  // The readings at home (rad) where the reducer's errors, the harmonics once
+  // per joint and twice per motor revolution (referenced_at_home), are 0 (the
+  // offsets are the links' at home: calib/home_reference.hpp): each such term
+  // is e(theta_m) - e(this); NaN: e(theta_m).
   std::array<double, 3> reducer_home_rad{kNotReferenced, kNotReferenced, kNotReferenced};
 };
 

@@ -31,6 +31,8 @@ struct CalibrationInputs {
   double encoder_cyclic_prior_rad = 0.0;  // the encoder's own error once per revolution, per component (data sheet)
   bool estimate_encoder_error = false;    // calibration.estimate's encoder_error: estimated where the encoders turn
                                           // with the joints (encoder_turns_with_joint)
+  bool estimate_joint_error = false;      // calibration.estimate's joint_error: the reducer's error once per joint
+                                          // revolution estimated where the readings hold it (on motor encoders)
   MonitorReadingModel monitor;   // the monitor's reading model before calibration (monitor:)
 };
 

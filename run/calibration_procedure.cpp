@@ -67,6 +67,13 @@ constexpr double kCrossingsLeftChi2PerDof = 10.0;
 // cover most of the samples whose signs are certain: the main job through
 // Modbus kept 996 of 8184 samples, its 1-sigma 2.7x, its error 2.4x).
 constexpr double kCrossingsLeftSigmaGrowth = 1.5;
+// The fit's chi2/dof within which the reducer's error once per joint
+// revolution is estimated under the data sheet's prior rather than carried
+// (estimate_joint_error): the readings' misfit at most about 3x their noise
+// RMS, the bound that leaves a passive link's crossings out
+// (kCrossingsLeftChi2PerDof). A larger misfit is an effect the model lacks,
+// which a harmonic with a prior 20x the noise would take up.
+constexpr double kJointErrorChi2PerDof = kCrossingsLeftChi2PerDof;
 
 // The motion model's fit in progress: the problem, the samples' rates and
 // torques, the LM options and the notes each stage leaves.
@@ -368,6 +375,57 @@ void select_drive_train(MotionStage& m, const CalibrationInputs& in) {
   }
 }
 
+// On motor encoders behind a reducer the reducer's error once per joint
+// revolution (the data sheet's transmission_error_rad) is carried in the
+// 1-sigma; it is estimated under that prior instead where the fit with it
+// explains the readings (chi2/dof within kJointErrorChi2PerDof) and the
+// readings show it (the information criterion): over the joints' range of
+// motion it is close to the geometry's own directions, and the closure of
+// the redundant chain tells them apart only where little else is missed; an
+// error that is not there, estimated, takes up what misfit is left. A note
+// either way.
+void estimate_joint_error(MotionStage& m, const CalibrationInputs& in) {
+  const calib::MotionModel& carried = m.motion;
+  if (!in.estimate_joint_error || !(m.sigma > 0.0) || !(carried.cyclic_prior_rad > 0.0) || carried.estimate_cyclic) return;
+  calib::MotionModel with = carried;
+  with.estimate_cyclic = true;
+  if (!calib::estimates_reducer_joint_error(with)) return;
+  calib::MotionFit fit;
+  try {
+    fit = calib::calibrate_in_motion(m.problem, m.omega, m.tau, m.lo, with, m.alpha);
+  } catch (const InputError& e) {
+    m.drive_notes.push_back(fmt::format(
+        "the reducer's error once per joint revolution carried in the 1-sigma, not estimated: estimated, the fit "
+        "diverged ({})", e.what()));
+    return;
+  }
+  if (!(fit.chi2_per_dof <= kJointErrorChi2PerDof)) {
+    m.drive_notes.push_back(fmt::format(
+        "the reducer's error once per joint revolution carried in the 1-sigma, not estimated: estimated it leaves "
+        "chi2/dof {:.3g} (above {:.3g}), a misfit it would take up",
+        fit.chi2_per_dof, kJointErrorChi2PerDof));
+    return;
+  }
+  // The Bayesian information criterion, the chi-square in units of the
+  // misfit left (chi2/dof): ln n per coefficient (a and b of three joints).
+  const double gain = (m.fit.chi2 - fit.chi2) / fit.chi2_per_dof;
+  const double penalty = 6.0 * std::log(static_cast<double>(fit.kept.size()));
+  if (!(gain > penalty)) {
+    m.drive_notes.push_back(fmt::format(
+        "the reducer's error once per joint revolution carried in the 1-sigma, not estimated: the readings do not "
+        "show it (estimated, chi2 {:.4g} -> {:.4g}, {:.3g} in units of the misfit left, under the {:.3g} of the "
+        "information criterion)",
+        m.fit.chi2, fit.chi2, gain, penalty));
+    return;
+  }
+  m.drive_notes.push_back(fmt::format(
+      "the reducer's error once per joint revolution estimated under the data sheet's prior (+-{:.2g} rad): "
+      "chi2/dof {:.3g} -> {:.3g} (chi2 {:.4g} -> {:.4g})",
+      carried.cyclic_prior_rad * std::sqrt(2.0), m.fit.chi2_per_dof, fit.chi2_per_dof, m.fit.chi2, fit.chi2));
+  m.motion = with;
+  m.fit = std::move(fit);
+}
+
 // The samples a passive link's crossing of its play spans (calibration.
 // crossing_s) at the mean period of the samples' times; 0 without times.
 int crossing_samples(const SampleSeries& samples, double crossing_s) {
@@ -394,6 +452,7 @@ MotionStage motion_fits(const SampleSeries& samples, const CalibrationInputs& in
   // the drive train's (a geared robot with no clearance showed a play at
   // 3 sigma that its harmonics then took): the clearance is judged again.
   drop_undetected(m, options.keep_clearance);
+  estimate_joint_error(m, inputs);
   return m;
 }
 
@@ -514,11 +573,19 @@ void estimate_notes(const MotionStage& m, std::vector<std::string>& notes) {
         "{:.3g}, {:.3g} rad/N m (1-sigma {}, {}, {})",
         f.torque_before[0], f.torque_before[1], f.torque_before[2], sigma(f.torque_before_sigma[0]),
         sigma(f.torque_before_sigma[1]), sigma(f.torque_before_sigma[2])));
-  if (m.motion.cyclic_prior_rad > 0.0)
+  if (m.motion.cyclic_prior_rad > 0.0 && !m.motion.estimate_cyclic)
     notes.push_back(fmt::format(
         "the error once per joint revolution (the reducer's transmission error and a direct drive's encoder: data "
         "sheet +-{:.2g} rad, random phase) is carried in the 1-sigma and the Cramer-Rao bound, not estimated",
         m.motion.cyclic_prior_rad * std::sqrt(2.0)));
+  if (m.motion.cyclic_prior_rad > 0.0 && m.motion.estimate_cyclic)
+    notes.push_back(fmt::format(
+        "the error once per joint revolution ({}) estimated with the geometry under the data sheet's prior: "
+        "a sin(theta_m) + b cos(theta_m) with a {:.3g}, {:.3g}, {:.3g}, b {:.3g}, {:.3g}, {:.3g} rad (1-sigma {}, {}, "
+        "{}, {}, {}, {})",
+        calib::estimates_reducer_joint_error(m.motion) ? "the reducer's" : "the encoders'", f.cyclic[0], f.cyclic[1],
+        f.cyclic[2], f.cyclic[3], f.cyclic[4], f.cyclic[5], sigma(f.cyclic_sigma[0]), sigma(f.cyclic_sigma[1]),
+        sigma(f.cyclic_sigma[2]), sigma(f.cyclic_sigma[3]), sigma(f.cyclic_sigma[4]), sigma(f.cyclic_sigma[5])));
   if (m.motion.clearance)
     notes.push_back(fmt::format(
         "joint clearance estimated with the geometry: passive links act as lb_i +- d_i by the sign of their axial "
@@ -638,7 +705,8 @@ CalibrationOutcome calibrate_samples(const SampleSeries& samples, const Calibrat
     fitted = m.problem;
     out = motion_outcome(std::move(m), inputs.monitor.reading);
     if (options.home)
-      if (const auto moved = calib::offsets_at_home(*options.home, out.fit, out.motion.gear_ratio, out.result, out.used,
+      if (const auto moved = calib::offsets_at_home(*options.home, calib::reducer_errors(out.fit, out.motion),
+                                                    out.motion.gear_ratio, out.result, out.used,
                                                     out.reading ? &*out.reading : nullptr))
         out.result.notes.push_back(calib::offsets_at_home_note(*moved));
   } else {
@@ -694,6 +762,9 @@ calib::ReadingModel estimated_reading_model(calib::ReadingModel r, const calib::
     r.load.viscous_Nm_s = motion.load.viscous_Nm_s;
   }
   r.harmonic = f.harmonic;
+  if (calib::estimates_reducer_joint_error(motion))  // the reducer's error once per joint revolution
+    for (std::size_t k = 0; k < 6; ++k)
+      if (std::isfinite(f.cyclic_sigma[k])) r.harmonic[calib::kJointHarmonic][k] = f.cyclic[k];
   r.gear_ratio = motion.gear_ratio;
   return r;
 }

@@ -124,12 +124,13 @@ FreeMask parse_fixed(const YAML::Node& fix, const std::string& file) {
 void parse_estimated_effects(const YAML::Node& est, const std::string& file, CalibrationSpec& c) {
   if (!est.IsSequence())
     throw InputError(yaml_where(file, est, "calibration.estimate") +
-                     "expected a list of compliance, skew, friction, clearance, encoder_error (or [])");
+                     "expected a list of compliance, skew, friction, clearance, encoder_error, joint_error (or [])");
   c.estimate_compliance = false;
   c.estimate_skew = false;
   c.estimate_friction = false;
   c.estimate_clearance = false;
   c.estimate_encoder_error = false;
+  c.estimate_joint_error = false;
   for (size_t k = 0; k < est.size(); ++k) {
     const std::string key = fmt::format("calibration.estimate[{}]", k);
     const std::string what = yaml_string(est[k], file, key);
@@ -142,9 +143,12 @@ void parse_estimated_effects(const YAML::Node& est, const std::string& file, Cal
     else if (what == "friction") c.estimate_friction = true;
     else if (what == "clearance") c.estimate_clearance = true;
     else if (what == "encoder_error") c.estimate_encoder_error = true;
+    else if (what == "joint_error") c.estimate_joint_error = true;
     else
       throw InputError(yaml_where(file, est[k], key) +
-                       fmt::format("unknown effect '{}' (valid: compliance, skew, friction, clearance, encoder_error)", what));
+                       fmt::format("unknown effect '{}' (valid: compliance, skew, friction, clearance, encoder_error, "
+                                   "joint_error)",
+                                   what));
   }
 }
 

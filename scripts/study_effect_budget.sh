@@ -18,13 +18,15 @@ cd "$(dirname "$0")/.."
 source scripts/effects_beyond_basic.sh
 study_setup "${1:-out/effect_budget}" "${2:-10}" "${3:-2026}"
 
-# Runs row $1 with the effects keys $2 (after `preset: randomized`).
+# Runs row $1 with the effects keys $2 (after `preset: randomized`); a row
+# whose population.json is in DIR is kept (a study stopped part way resumes).
 row() {
   local name=$1 keys=$2 f=$out/$1.yaml
   sed -e "s|^robot: .*|robot: $robot|" -e "s|^effects: .*|effects: {preset: randomized${keys:+, $keys}}|" \
       -e '/^expect:/,$d' scenarios/main.yaml > "$f"
   grep -q "^effects: {preset: randomized" "$f"
-  "$gpm" study population "$f" --keep-effects --seeds "$seeds" -o "$out/$name" --progress none > "$out/$name.log" 2>&1
+  [[ -f $out/$name/population.json ]] ||
+    "$gpm" study population "$f" --keep-effects --seeds "$seeds" -o "$out/$name" --progress none > "$out/$name.log" 2>&1
   echo "$name: $(sed -n 3p "$out/$name/population.md" | cut -c3-160)"
 }
 row all ""

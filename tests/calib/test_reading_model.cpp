@@ -51,7 +51,9 @@ TEST(ReadingModel, LinkAngleByHand) {
 }
 
 // reading_at inverts link_angle's harmonics (at rest: no speed, torque or
-// flank), with the reducer's error referenced at home or of mean 0.
+// flank), with the reducer's errors referenced at home or of mean 0; at home
+// the reducer's errors (once per joint, twice per motor revolution) are 0,
+// the motor encoder's own (once per motor revolution) is not.
 TEST(ReadingModel, ReadingAtInvertsTheHarmonics) {
   ReadingModel m;
   m.gear_ratio = 10.0;
@@ -71,6 +73,11 @@ TEST(ReadingModel, ReadingAtInvertsTheHarmonics) {
       }
   }
   EXPECT_NEAR(reading_at(m, 2, 4.8), 4.8, 1e-15);  // at home joint 3's only error, the reducer's, is 0
+  // Joint 1's errors once per joint and twice per motor revolution are both the reducer's: 0 at home.
+  EXPECT_NEAR(reading_at(m, 0, 1.1), 1.1, 1e-15);
+  // Joint 2's once per motor revolution is its motor encoder's own, of mean 0: not referenced.
+  EXPECT_NEAR(link_angle(m, 1, 3.1, 0.0, 0.0, 0.0), 3.1 - (3e-5 * std::sin(31.0) + 1e-5 * std::cos(31.0)), 1e-15);
+  EXPECT_TRUE(referenced_at_home(kJointHarmonic) && referenced_at_home(kReducerHarmonic) && !referenced_at_home(1));
 }
 
 // Skew and compliance: the same link angles as the calibration's correction

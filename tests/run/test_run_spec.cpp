@@ -73,7 +73,7 @@ TEST(RunSpec, OtherSchemaErrors) {
             0u);
   EXPECT_NE(error_of(kHead + "calibration: {loss: 'huber:-2'}\n").find("calibration.loss: 'huber:-2' has no valid scale"),
             std::string::npos);
-  EXPECT_NE(error_of(kHead + "calibration: {estimate: [drag]}\n").find("(valid: compliance, skew, friction, clearance, encoder_error)"),
+  EXPECT_NE(error_of(kHead + "calibration: {estimate: [drag]}\n").find("(valid: compliance, skew, friction, clearance, encoder_error, joint_error)"),
             std::string::npos);
   EXPECT_NE(error_of(kHead + "calibration: {tension_min_N: 0}\n").find("calibration.tension_min_N"), std::string::npos);
   EXPECT_NE(error_of(kHead + "calibration: {tension_min_N: 1000}\n").find("calibration.tension_min_N: 1000 N leaves no sample"),
@@ -116,6 +116,11 @@ TEST(RunSpec, LossAndEstimatedEffects) {
   EXPECT_EQ(parse_run_spec(kHead + "calibration: {estimate: [encoder_error]}\n", "s.yaml", kBase)
                 .calibration.estimate_encoder_error,
             true);
+  EXPECT_EQ(s.calibration.estimate_joint_error, false);
+  EXPECT_FALSE(parse_run_spec(kHead, "s.yaml", kBase).calibration.estimate_joint_error);  // unset: on the fly
+  const RunSpec j = parse_run_spec(kHead + "calibration: {estimate: [joint_error]}\n", "s.yaml", kBase);
+  EXPECT_EQ(j.calibration.estimate_joint_error, true);
+  EXPECT_EQ(j.calibration.estimate_encoder_error, false);
   EXPECT_FALSE(parse_run_spec(kHead, "s.yaml", kBase).calibration.loss.active());
   EXPECT_FALSE(parse_run_spec(kHead, "s.yaml", kBase).calibration.estimate_clearance);  // unset: the runner decides
   const RunSpec c = parse_run_spec(kHead + "calibration: {estimate: [clearance], tension_min_N: 0.5}\n", "s.yaml", kBase);
