@@ -375,11 +375,27 @@ void select_drive_train(MotionStage& m, const CalibrationInputs& in) {
   }
 }
 
+// True where some joint's error once per joint revolution in fit lies
+// kDriveEffectSigmas from 0, as the drive train's other effects are kept:
+// (a/sa)^2 + (b/sb)^2 above the chi-square of 2 degrees of freedom at that
+// level, -2 ln erfc(k / sqrt 2) (the 1-sigma the misfit's sandwich where the
+// residuals exceed the noise; a and b taken as independent).
+bool joint_error_detected(const calib::MotionFit& fit) {
+  const double bound = -2.0 * std::log(std::erfc(kDriveEffectSigmas / std::sqrt(2.0)));
+  for (std::size_t i = 0; i < 3; ++i) {
+    const double za = fit.cyclic[i] / fit.cyclic_sigma[i], zb = fit.cyclic[i + 3] / fit.cyclic_sigma[i + 3];
+    if (za * za + zb * zb > bound) return true;  // NaN (not estimated) compares false
+  }
+  return false;
+}
+
 // On motor encoders behind a reducer the reducer's error once per joint
 // revolution (the data sheet's transmission_error_rad) is carried in the
 // 1-sigma; it is estimated under that prior instead where the fit with it
 // explains the readings (chi2/dof within kJointErrorChi2PerDof) and the
-// readings show it (the information criterion): over the joints' range of
+// readings show it (the information criterion, and some joint's error 3
+// sigma from 0: residuals correlated along the path pass the criterion
+// alone, which counts every sample as independent): over the joints' range of
 // motion it is close to the geometry's own directions, and the closure of
 // the redundant chain tells them apart only where little else is missed; an
 // error that is not there, estimated, takes up what misfit is left. A note
@@ -416,6 +432,13 @@ void estimate_joint_error(MotionStage& m, const CalibrationInputs& in) {
         "show it (estimated, chi2 {:.4g} -> {:.4g}, {:.3g} in units of the misfit left, under the {:.3g} of the "
         "information criterion)",
         m.fit.chi2, fit.chi2, gain, penalty));
+    return;
+  }
+  if (!joint_error_detected(fit)) {
+    m.drive_notes.push_back(fmt::format(
+        "the reducer's error once per joint revolution carried in the 1-sigma, not estimated: no joint's lies {:g} "
+        "sigma from 0 (estimated, chi2/dof {:.3g} -> {:.3g})",
+        kDriveEffectSigmas, m.fit.chi2_per_dof, fit.chi2_per_dof));
     return;
   }
   m.drive_notes.push_back(fmt::format(

@@ -135,7 +135,9 @@ struct CalibrationSpec {
   std::optional<bool> estimate_encoder_error;
   // The reducer's error once per joint revolution on motor encoders, under
   // the data sheet's prior, where the fit with it explains the readings and
-  // they show it (else carried in the 1-sigma); unset = on the fly.
+  // they show it (else carried in the 1-sigma); unset = carried (not yet
+  // on by default: docs/MOTION_MODEL.md "The reducer's error once per joint
+  // revolution").
   std::optional<bool> estimate_joint_error;
   // The drives' friction the procedure assumes (for the force signs);
   // default: the robot's data sheet (stated_drive_friction).

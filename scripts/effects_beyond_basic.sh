@@ -4,8 +4,8 @@
 # it off; sourced by scripts/study_effect_budget.sh,
 # scripts/study_friction_balance.sh, scripts/study_force_sign.sh,
 # scripts/study_backlash_joint.sh, scripts/study_preset_misfit.sh,
-# scripts/study_model_test_names.sh, scripts/study_alternating_preload.sh and
-# scripts/study_positioning_design.sh
+# scripts/study_model_test_names.sh, scripts/study_alternating_preload.sh,
+# scripts/study_positioning_design.sh and scripts/study_joint_error.sh
 # (study_setup for their inputs; the first four start from `preset: randomized`).
 names=(backlash hysteresis te_joint te_motor stiction load_friction torque_constant cogging hub_pins jitter)
 declare -A off=(
@@ -40,10 +40,12 @@ study_setup() {
 }
 
 # The kinds of robot the before/after studies compare on: the basic set
-# (every effect above off), every effect drawn, the realistic preset's and
-# the basic set with the backlash drawn.
+# (every effect above off), every effect drawn, the realistic preset's, and
+# the basic set with the backlash or the reducer's error once per joint
+# revolution drawn.
 declare -A kind_effects=([basic]="{preset: randomized, $(all_off_but none)}" [randomized]="randomized" [preset]="realistic"
-                        [backlash]="{preset: randomized, $(all_off_but backlash)}")
+                        [backlash]="{preset: randomized, $(all_off_but backlash)}"
+                        [te_joint]="{preset: randomized, $(all_off_but te_joint)}")
 
 # The robots of kind $2 (kind_effects) calibrated by scenarios/main.yaml with
 # ", ..." $4 appended to its calibration map (and $5, when given, to its

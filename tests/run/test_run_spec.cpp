@@ -117,7 +117,7 @@ TEST(RunSpec, LossAndEstimatedEffects) {
                 .calibration.estimate_encoder_error,
             true);
   EXPECT_EQ(s.calibration.estimate_joint_error, false);
-  EXPECT_FALSE(parse_run_spec(kHead, "s.yaml", kBase).calibration.estimate_joint_error);  // unset: on the fly
+  EXPECT_FALSE(parse_run_spec(kHead, "s.yaml", kBase).calibration.estimate_joint_error);  // unset: carried
   const RunSpec j = parse_run_spec(kHead + "calibration: {estimate: [joint_error]}\n", "s.yaml", kBase);
   EXPECT_EQ(j.calibration.estimate_joint_error, true);
   EXPECT_EQ(j.calibration.estimate_encoder_error, false);
