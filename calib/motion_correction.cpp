@@ -498,8 +498,7 @@ double& nuisance_sigma_slot(MotionFit& fit, int k) {
 // twist a resting joint holds is one value over many samples, and an
 // estimate it moves (a harmonic of the joint angle most) moves with it, which
 // the weights, independent per sample, do not state; the sandwich, from the
-// residuals' autocorrelation, does (a robot with the reducer's error once
-// per joint revolution estimated: its geometry at 8.8 sigma without it).
+// residuals' autocorrelation, does, and is taken where it is wider.
 bool misfit(double chi2, double dof) { return doubted_chi2_survival(dof, SampleDoubt{}, chi2) < 1e-2; }
 
 // Bartlett bandwidth L of Andrews (1991) for residuals r along the path,

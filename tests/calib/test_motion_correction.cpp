@@ -273,7 +273,9 @@ MotionData data_with_rests(double spread) {
 // by the encoders' noise alone it fails, the rest's twist exceeds it; with
 // what the doubt the model states (the data sheet's compliance times the
 // drives' friction, here the twist's own) adds on average expected
-// (MotionFit::doubt) it passes, and the misfit's sandwich is not taken.
+// (MotionFit::doubt) it passes. The misfit's sandwich is computed (the
+// residuals exceed the noise alone) but not taken: these rests' twists are
+// independent from sample to sample, so it is no wider.
 TEST(MotionCorrection, SamplesWhoseRotorsRestWeighLessAndTheTestExpectsTheirDoubt) {
   MotionData d = data_with_rests(1.0);
   const std::array<double, 3> cf = {4e-5, -5e-5, 6e-5};  // data_with_rests's c F
@@ -309,6 +311,37 @@ TEST(MotionCorrection, SamplesWhoseRotorsRestWeighLessAndTheTestExpectsTheirDoub
   for (std::size_t k = 0; k < 3; ++k)
     EXPECT_LT(std::abs(fit.friction[k] - cf[k]), 4.0 * fit.friction_sigma[k]) << "c F of joint " << k + 1;
   EXPECT_LT(worst_in_sigmas(d, fit.result), 4.0);
+}
+
+// Rests held over runs of 40 consecutive samples, each run's twist one value
+// within +-c F: the doubt explains the residuals' size and the model test
+// passes, but the twist moves the estimate as one value per run, which the
+// weights, independent per sample, do not state: the sandwich, from the
+// residuals' autocorrelation, is wider and taken.
+TEST(MotionCorrection, RestsHeldOverManySamplesWidenTheOneSigma) {
+  MotionData d = make_data(800, 17);
+  const std::array<double, 3> cf = {4e-5, -5e-5, 6e-5};
+  Rng rng(18);
+  std::array<double, 3> held{};
+  for (std::size_t j = 0; j < d.omega.size(); ++j)
+    for (int k = 0; k < 3; ++k) {
+      const auto kk = static_cast<std::size_t>(k);
+      const bool rest = (j / 40) % 4 == 0;
+      if (rest && j % 40 == 0) held[kk] = rng.uniform(-1.0, 1.0) * cf[kk];
+      if (rest) {  // at rest: no skew's share either
+        d.problem.theta_m[j][k] += (k == 0 ? 0.0 : kNu[kk - 1]) * d.omega[j][k];
+        d.omega[j][k] = 0.0;
+      }
+      d.problem.theta_m[j][k] -= rest ? held[kk] : cf[kk] * std::tanh(d.omega[j][k] / 0.01);
+    }
+  MotionModel weighted;
+  weighted.stick_speed_rad_s = 0.05;
+  weighted.load.coulomb_Nm = {0.4, 0.5, 0.6};  // with the stated compliance 1e-4: the twists' c F
+  const MotionFit fit = calibrate_in_motion(d.problem, d.omega, d.tau, at_sigma(), weighted);
+  const ModelTest t = model_test(fit.result.geometry, d.problem.free, fit.corrected, kSigma, 0.01, 0.0, fit.doubt);
+  EXPECT_TRUE(t.passed) << t.p_value;
+  EXPECT_TRUE(fit.sandwich_used);
+  EXPECT_GT(fit.sandwich_inflation, 1.0);
 }
 
 // A rest whose twist lies three times beyond +-c F: misfit where a joint is
