@@ -499,7 +499,7 @@ double& nuisance_sigma_slot(MotionFit& fit, int k) {
 // estimate it moves (a harmonic of the joint angle most) moves with it, which
 // the weights, independent per sample, do not state; the sandwich, from the
 // residuals' autocorrelation, does, and is taken where it is wider.
-bool misfit(double chi2, double dof) { return doubted_chi2_survival(dof, SampleDoubt{}, chi2) < 1e-2; }
+bool misfit(double chi2, double dof) { return chi2_survival(dof, chi2) < 1e-2; }
 
 // Bartlett bandwidth L of Andrews (1991) for residuals r along the path,
 // modelled as AR(1) with coefficient rho (their lag-1 autocorrelation):

@@ -406,41 +406,30 @@ void estimate_joint_error(MotionStage& m, const CalibrationInputs& in) {
   calib::MotionModel with = carried;
   with.estimate_cyclic = true;
   if (!calib::estimates_reducer_joint_error(with)) return;
+  const auto stays_carried = [&m](const std::string& why) {
+    m.drive_notes.push_back("the reducer's error once per joint revolution carried in the 1-sigma, not estimated: " +
+                            why);
+  };
   calib::MotionFit fit;
   try {
     fit = calib::calibrate_in_motion(m.problem, m.omega, m.tau, m.lo, with, m.alpha);
   } catch (const InputError& e) {
-    m.drive_notes.push_back(fmt::format(
-        "the reducer's error once per joint revolution carried in the 1-sigma, not estimated: estimated, the fit "
-        "diverged ({})", e.what()));
-    return;
+    return stays_carried(fmt::format("estimated, the fit diverged ({})", e.what()));
   }
-  if (!(fit.chi2_per_dof <= kJointErrorChi2PerDof)) {
-    m.drive_notes.push_back(fmt::format(
-        "the reducer's error once per joint revolution carried in the 1-sigma, not estimated: estimated it leaves "
-        "chi2/dof {:.3g} (above {:.3g}), a misfit it would take up",
-        fit.chi2_per_dof, kJointErrorChi2PerDof));
-    return;
-  }
+  if (!(fit.chi2_per_dof <= kJointErrorChi2PerDof))
+    return stays_carried(fmt::format("estimated it leaves chi2/dof {:.3g} (above {:.3g}), a misfit it would take up",
+                                     fit.chi2_per_dof, kJointErrorChi2PerDof));
   // The Bayesian information criterion, the chi-square in units of the
   // misfit left (chi2/dof): ln n per coefficient (a and b of three joints).
   const double gain = (m.fit.chi2 - fit.chi2) / fit.chi2_per_dof;
   const double penalty = 6.0 * std::log(static_cast<double>(fit.kept.size()));
-  if (!(gain > penalty)) {
-    m.drive_notes.push_back(fmt::format(
-        "the reducer's error once per joint revolution carried in the 1-sigma, not estimated: the readings do not "
-        "show it (estimated, chi2 {:.4g} -> {:.4g}, {:.3g} in units of the misfit left, under the {:.3g} of the "
-        "information criterion)",
-        m.fit.chi2, fit.chi2, gain, penalty));
-    return;
-  }
-  if (!joint_error_detected(fit)) {
-    m.drive_notes.push_back(fmt::format(
-        "the reducer's error once per joint revolution carried in the 1-sigma, not estimated: no joint's lies {:g} "
-        "sigma from 0 (estimated, chi2/dof {:.3g} -> {:.3g})",
-        kDriveEffectSigmas, m.fit.chi2_per_dof, fit.chi2_per_dof));
-    return;
-  }
+  if (!(gain > penalty))
+    return stays_carried(fmt::format("the readings do not show it (estimated, chi2 {:.4g} -> {:.4g}, {:.3g} in units "
+                                     "of the misfit left, under the {:.3g} of the information criterion)",
+                                     m.fit.chi2, fit.chi2, gain, penalty));
+  if (!joint_error_detected(fit))
+    return stays_carried(fmt::format("no joint's lies {:g} sigma from 0 (estimated, chi2/dof {:.3g} -> {:.3g})",
+                                     kDriveEffectSigmas, m.fit.chi2_per_dof, fit.chi2_per_dof));
   m.drive_notes.push_back(fmt::format(
       "the reducer's error once per joint revolution estimated under the data sheet's prior (+-{:.2g} rad): "
       "chi2/dof {:.3g} -> {:.3g} (chi2 {:.4g} -> {:.4g})",
@@ -601,7 +590,7 @@ void estimate_notes(const MotionStage& m, std::vector<std::string>& notes) {
         "the error once per joint revolution (the reducer's transmission error and a direct drive's encoder: data "
         "sheet +-{:.2g} rad, random phase) is carried in the 1-sigma and the Cramer-Rao bound, not estimated",
         m.motion.cyclic_prior_rad * std::sqrt(2.0)));
-  if (m.motion.cyclic_prior_rad > 0.0 && m.motion.estimate_cyclic)
+  else if (m.motion.cyclic_prior_rad > 0.0)
     notes.push_back(fmt::format(
         "the error once per joint revolution ({}) estimated with the geometry under the data sheet's prior: "
         "a sin(theta_m) + b cos(theta_m) with a {:.3g}, {:.3g}, {:.3g}, b {:.3g}, {:.3g}, {:.3g} rad (1-sigma {}, {}, "
@@ -785,9 +774,9 @@ calib::ReadingModel estimated_reading_model(calib::ReadingModel r, const calib::
     r.load.viscous_Nm_s = motion.load.viscous_Nm_s;
   }
   r.harmonic = f.harmonic;
-  if (calib::estimates_reducer_joint_error(motion))  // the reducer's error once per joint revolution
-    for (std::size_t k = 0; k < 6; ++k)
-      if (std::isfinite(f.cyclic_sigma[k])) r.harmonic[calib::kJointHarmonic][k] = f.cyclic[k];
+  // The reducer's error once per joint revolution, where it was estimated (0 elsewhere).
+  const std::array<double, 6> joint_error = calib::reducer_errors(f, motion).h[calib::kJointHarmonic];
+  for (std::size_t k = 0; k < 6; ++k) r.harmonic[calib::kJointHarmonic][k] += joint_error[k];
   r.gear_ratio = motion.gear_ratio;
   return r;
 }
