@@ -3,6 +3,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 
 #include <Eigen/Cholesky>
 #include <fmt/format.h>
@@ -15,13 +16,15 @@
 namespace gpm::calib {
 namespace {
 
-constexpr int kColumns = 6;             // F1 F2 F3 b1 b2 b3
+constexpr int kFrictionColumns = 6;     // F1 F2 F3 b1 b2 b3
+constexpr int kColumns = 12;            // with the cogging: A1 A2 A3 B1 B2 B3
 constexpr int kReweightings = 8;        // IRLS passes
 constexpr std::size_t kBlocks = 10;     // the jackknife's stretches of the path
 constexpr std::size_t kMinSamples = 20 * kBlocks;
 
-using Row = Eigen::Matrix<double, kColumns, 1>;
-using Normal = Eigen::Matrix<double, kColumns, kColumns>;
+// Rows of kFrictionColumns, or kColumns with the cogging.
+using Row = Eigen::Matrix<double, Eigen::Dynamic, 1, 0, kColumns, 1>;
+using Normal = Eigen::Matrix<double, Eigen::Dynamic, Eigen::Dynamic, 0, kColumns, kColumns>;
 
 // One sample's two rows of the balance: coefficients of (F, b) and the right-hand side, per axis.
 struct SampleRows {
@@ -35,8 +38,9 @@ bool sample_rows(const Geometry& g, const BalanceSamples& s, const TransmissionL
   const Eigen::Vector3d theta_a = active_from_readings(g, s.theta_m[j]);
   const std::optional<ForwardResult> fk = forward_kinematics(g, theta_a);
   if (!fk) return false;
+  const bool cogging = s.cogging_per_rad > 0.0;
   for (int k = 0; k < 2; ++k) {
-    out.coef[k].setZero();
+    out.coef[k].setZero(cogging ? kColumns : kFrictionColumns);
     out.rhs[k] = -hub_mass_kg * s.hub_accel_m_s2[j][k];
   }
   for (int i = 0; i < 3; ++i) {
@@ -53,18 +57,27 @@ bool sample_rows(const Geometry& g, const BalanceSamples& s, const TransmissionL
       out.coef[k][3 + i] = u[k] * omega / la_S;
       out.rhs[k] += u[k] * tau_net / la_S;
     }
+    if (!cogging) continue;
+    const double a = s.cogging_per_rad * s.theta_m[j][i];
+    for (int k = 0; k < 2; ++k) {
+      out.coef[k][6 + i] = -u[k] * std::sin(a) / la_S;
+      out.coef[k][9 + i] = -u[k] * std::cos(a) / la_S;
+    }
   }
   return true;
 }
 
 // The weighted normal equations M'WM x = M'W y of the rows [first, last).
 struct NormalEquations {
-  Normal N = Normal::Zero();
-  Row b = Row::Zero();
+  Normal N;
+  Row b;
 };
 NormalEquations normal_equations(const std::vector<SampleRows>& rows, const std::vector<double>& w, std::size_t first,
                                  std::size_t last) {
   NormalEquations ne;
+  const Eigen::Index columns = rows.front().coef[0].size();
+  ne.N.setZero(columns, columns);
+  ne.b.setZero(columns);
   for (std::size_t q = first; q < last; ++q)
     for (int k = 0; k < 2; ++k) {
       const double wk = w[2 * q + static_cast<std::size_t>(k)];
@@ -96,18 +109,24 @@ void reweight(const std::vector<SampleRows>& rows, const Row& x, std::vector<dou
 // take them as independent), all the normal equations of every row.
 Row jackknife_variance(const std::vector<SampleRows>& rows, const std::vector<double>& w, const NormalEquations& all) {
   std::array<Row, kBlocks> x_without;
-  Row mean = Row::Zero();
+  Row mean = Row::Zero(all.b.size());
   for (std::size_t k = 0; k < kBlocks; ++k) {
     const NormalEquations part = normal_equations(rows, w, k * rows.size() / kBlocks, (k + 1) * rows.size() / kBlocks);
     x_without[k] = (all.N - part.N).ldlt().solve(all.b - part.b);
     mean += x_without[k] / static_cast<double>(kBlocks);
   }
-  Row var = Row::Zero();
+  Row var = Row::Zero(all.b.size());
   for (const Row& xk : x_without) var += (xk - mean).cwiseAbs2();
   return var * (static_cast<double>(kBlocks - 1) / static_cast<double>(kBlocks));
 }
 
 }  // namespace
+
+double cogging_torque(const BalanceFriction& f, int i, double theta_m, double cogging_per_rad) {
+  const auto k = static_cast<std::size_t>(i);
+  const double a = cogging_per_rad * theta_m;
+  return f.cogging_Nm[k] * std::sin(a) + f.cogging_Nm[k + 3] * std::cos(a);
+}
 
 std::vector<Eigen::Vector2d> hub_accelerations(const Geometry& g, const std::vector<double>& t_s,
                                                const std::vector<Eigen::Vector3d>& theta_m, int alpha_span) {
@@ -142,7 +161,7 @@ BalanceFriction friction_from_force_balance(const Geometry& g, const BalanceSamp
                                  "the singularities)", rows.size(), kMinSamples));
   // Iteratively reweighted least squares: Huber weights at a scale from the residuals' MAD.
   std::vector<double> w(2 * rows.size(), 1.0);
-  Row x = Row::Zero();
+  Row x;
   for (int pass = 0; pass <= kReweightings; ++pass) {
     const NormalEquations ne = normal_equations(rows, w, 0, rows.size());
     x = ne.N.ldlt().solve(ne.b);
@@ -160,6 +179,12 @@ BalanceFriction friction_from_force_balance(const Geometry& g, const BalanceSamp
     out.viscous_Nm_s[i] = std::max(0.0, x[c + 3]);
     out.coulomb_sigma_Nm[i] = std::sqrt(var[c]);
     out.viscous_sigma_Nm_s[i] = std::sqrt(var[c + 3]);
+  }
+  out.cogging_sigma_Nm.fill(std::numeric_limits<double>::quiet_NaN());
+  for (std::size_t k = 0; x.size() == kColumns && k < 6; ++k) {
+    const auto c = static_cast<Eigen::Index>(kFrictionColumns + k);
+    out.cogging_Nm[k] = x[c];
+    out.cogging_sigma_Nm[k] = std::sqrt(var[c]);
   }
   out.residual_rms_N = std::sqrt(sum_sq / static_cast<double>(2 * rows.size()));
   out.tension_sigma_N = out.residual_rms_N * std::sqrt(2.0 / 3.0);

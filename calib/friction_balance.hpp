@@ -7,9 +7,12 @@
 // and each active link's moment balance gives its tension from the torque
 // the transmission passes on,
 //   T_i = -tau_t_i / (la_i S_i),   S_i = sin(theta_b_i - theta_a_i),
-//   tau_t_i = tau_i - F_i s_i - b_i omega_i - I_i alpha_i,   s_i = tanh(omega_i / v_F).
-// Put together, two equations per sample, linear in the six frictions:
-//   sum_i u_i (F_i s_i + b_i omega_i) / (la_i S_i)
+//   tau_t_i = tau_i + q_i - F_i s_i - b_i omega_i - I_i alpha_i,   s_i = tanh(omega_i / v_F),
+// q_i = A_i sin(P N theta_m_i) + B_i cos(P N theta_m_i) the motor's cogging
+// (P periods per motor revolution, N the gear ratio; where P is given).
+// Put together, two equations per sample, linear in the six frictions (and
+// the six cogging coefficients):
+//   sum_i u_i (F_i s_i + b_i omega_i - q_i) / (la_i S_i)
 //       = sum_i u_i (tau_i - I_i alpha_i) / (la_i S_i) - m_C a_C.
 // A torque-off drive (tau_i = 0) still has its friction seen: it is what
 // moves its link against the other two chains. The drives' torques are the
@@ -41,6 +44,10 @@ struct BalanceFriction {
   std::array<double, 3> viscous_Nm_s{};      // b_i (>= 0, likewise)
   std::array<double, 3> coulomb_sigma_Nm{};  // their 1-sigma, from the rows' scatter
   std::array<double, 3> viscous_sigma_Nm_s{};
+  // The cogging torque A_i sin(P N theta_m) + B_i cos(P N theta_m) (N m), A1 A2 A3 B1 B2 B3, and their
+  // 1-sigma; 0 and NaN where the periods were not given.
+  std::array<double, 6> cogging_Nm{};
+  std::array<double, 6> cogging_sigma_Nm{};
   double residual_rms_N = 0.0;  // RMS of the balance's residual force (N) over the rows used
   double tension_sigma_N = 0.0; // 1-sigma of one passive link's force as the balance sees it (N):
                                 // residual_rms_N sqrt(2/3) (below)
@@ -56,7 +63,11 @@ struct BalanceSamples {
   const std::vector<Eigen::Vector3d>& alpha;
   const std::vector<Eigen::Vector3d>& tau;
   const std::vector<Eigen::Vector2d>& hub_accel_m_s2;
+  double cogging_per_rad = 0.0;  // P N: the cogging's periods per joint radian (0: no cogging estimated)
 };
+
+// The cogging torque (N m) of joint i (0..2) that f estimated at reading theta_m (rad), with P N cogging_per_rad.
+double cogging_torque(const BalanceFriction& f, int i, double theta_m, double cogging_per_rad);
 
 // The hub's acceleration a_C (m/s^2) at each sample: forward kinematics of
 // geometry g from the readings theta_m taken at times t_s, differenced as the

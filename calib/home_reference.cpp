@@ -33,9 +33,9 @@ ReducerErrors reducer_errors(const MotionFit& fit, const MotionModel& model) {
 double reducer_error(const ReducerErrors& e, int i, double theta_m, double gear_ratio) {
   const auto k = static_cast<std::size_t>(i);
   double sum = 0.0;
-  for (int o = 0; o < kHarmonicOrders; ++o) {
+  for (const int o : {kJointHarmonic, kReducerHarmonic}) {  // the reducer's orders (ReducerErrors)
     const auto& h = e.h[static_cast<std::size_t>(o)];
-    const double a = harmonic_angle(o, theta_m, gear_ratio);
+    const double a = harmonic_angle(o, theta_m, gear_ratio, 0.0);
     sum += h[k] * std::sin(a) + h[k + 3] * std::cos(a);
   }
   return sum;
@@ -48,10 +48,10 @@ namespace {
 double reducer_error_variance(const ReducerErrors& e, int i, double theta_m, double gear_ratio) {
   const auto k = static_cast<std::size_t>(i);
   double var = 0.0;
-  for (int o = 0; o < kHarmonicOrders; ++o) {
+  for (const int o : {kJointHarmonic, kReducerHarmonic}) {  // the reducer's orders (ReducerErrors)
     const auto& s = e.sigma[static_cast<std::size_t>(o)];
     if (!(std::isfinite(s[k]) && std::isfinite(s[k + 3]))) continue;
-    const double a = harmonic_angle(o, theta_m, gear_ratio);
+    const double a = harmonic_angle(o, theta_m, gear_ratio, 0.0);
     var += std::pow(s[k] * std::sin(a), 2) + std::pow(s[k + 3] * std::cos(a), 2);
   }
   return var;

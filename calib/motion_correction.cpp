@@ -42,9 +42,9 @@ constexpr int kClearance = 8;     // d1 d2 d3
 constexpr int kBefore = 11;       // h1 h2 h3
 constexpr int kFirstCyclic = 14;  // a1 a2 a3 b1 b2 b3 under the data sheet's prior
 constexpr int kBacklash = 20;     // beta1 beta2 beta3
-constexpr int kHarmonic = 23;     // three orders (joint, motor, 2 x motor), each a1 a2 a3 b1 b2 b3
-constexpr int kHysteresis = 41;   // eta1 eta2 eta3
-constexpr std::size_t kNuisance = 44;
+constexpr int kHarmonic = 23;     // the orders (joint, motor, 2 x motor, cogging), each a1 a2 a3 b1 b2 b3
+constexpr int kHysteresis = kHarmonic + 6 * kHarmonicOrders;  // eta1 eta2 eta3
+constexpr std::size_t kNuisance = kHysteresis + 3;
 // Relative cost decrease at which the passes' LM fits stop (the last fit of
 // fit_in_motion polishes to LmOptions::function_tolerance).
 constexpr double kPassFunctionTolerance = 1e-10;
@@ -85,8 +85,9 @@ std::vector<int> nuisance_columns(const MotionModel& m) {
   if (m.cyclic_prior_rad > 0.0 && m.estimate_cyclic) add(kFirstCyclic, 6);
   for (int i = 0; i < 3; ++i)
     if (m.backlash[static_cast<std::size_t>(i)]) cols.push_back(kBacklash + i);
-  const std::array<const std::array<bool, 3>*, 3> orders{&m.joint_harmonic, &m.motor_harmonic1, &m.motor_harmonic2};
-  for (int o = 0; o < 3; ++o)
+  const std::array<const std::array<bool, 3>*, kHarmonicOrders> orders{&m.joint_harmonic, &m.motor_harmonic1,
+                                                                       &m.motor_harmonic2, &m.cogging};
+  for (int o = 0; o < kHarmonicOrders; ++o)
     for (int i = 0; i < 3; ++i)
       if ((*orders[static_cast<std::size_t>(o)])[static_cast<std::size_t>(i)])
         cols.push_back(kHarmonic + 6 * o + i), cols.push_back(kHarmonic + 6 * o + 3 + i);
@@ -207,20 +208,20 @@ Eigen::Vector3d reading_sensitivity(const Eigen::MatrixXd& J_all, std::size_t j)
 // sensitivities: speed, torque, friction and clearance regressors, the change
 // of torque from the sample before (nb), the raw readings (for the cyclic
 // errors) and the sign of each mesh's torque (0 uncertain; calib/motion_correction.hpp).
-// sin and cos of one raw reading and of its three harmonic angles
-// (harmonic_angle, orders 0..2): sin r, cos r, then sin a_o, cos a_o.
-using Wave = std::array<double, 8>;
+// sin and cos of one raw reading and of its harmonic angles
+// (harmonic_angle, orders 0..3): sin r, cos r, then sin a_o, cos a_o.
+using Wave = std::array<double, 2 + 2 * kHarmonicOrders>;
 using SampleWaves = std::array<Wave, 3>;  // per joint
 
 // The waves of the three raw readings of a sample (constant through a fit:
 // computed once, not in every pass).
-SampleWaves reading_waves(const Eigen::Vector3d& raw, double gear_ratio) {
+SampleWaves reading_waves(const Eigen::Vector3d& raw, const MotionModel& model) {
   SampleWaves w{};
   for (int k = 0; k < 3; ++k) {
     Wave& v = w[static_cast<std::size_t>(k)];
     v[0] = std::sin(raw[k]), v[1] = std::cos(raw[k]);
-    for (std::size_t o = 0; o < 3; ++o) {
-      const double a = harmonic_angle(static_cast<int>(o), raw[k], gear_ratio);
+    for (std::size_t o = 0; o < kHarmonicOrders; ++o) {
+      const double a = harmonic_angle(static_cast<int>(o), raw[k], model.gear_ratio, model.cogging_periods);
       v[2 + 2 * o] = std::sin(a), v[3 + 2 * o] = std::cos(a);
     }
   }
@@ -250,7 +251,7 @@ std::array<double, kNuisance> nuisance_row(const Eigen::Vector3d& u, const Sampl
     row[kFirstCyclic + k] = -u[i] * w[0];
     row[kFirstCyclic + 3 + k] = -u[i] * w[1];
     row[kBacklash + k] = -u[i] * x.flank[i];
-    for (std::size_t o = 0; o < 3; ++o) {
+    for (std::size_t o = 0; o < kHarmonicOrders; ++o) {
       row[kHarmonic + 6 * o + k] = -u[i] * w[2 + 2 * o];
       row[kHarmonic + 6 * o + 3 + k] = -u[i] * w[3 + 2 * o];
     }
@@ -665,7 +666,8 @@ void unpack_nuisance(const std::array<double, kNuisance>& nu_all, MotionFit& fit
   std::copy_n(at(kFirstCyclic), 6, fit.cyclic.begin());
   std::copy_n(at(kBacklash), 3, fit.backlash.begin());
   std::copy_n(at(kHysteresis), 3, fit.hysteresis.begin());
-  for (std::size_t o = 0; o < 3; ++o) std::copy_n(at(kHarmonic + 6 * static_cast<int>(o)), 6, fit.harmonic[o].begin());
+  for (std::size_t o = 0; o < kHarmonicOrders; ++o)
+    std::copy_n(at(kHarmonic + 6 * static_cast<int>(o)), 6, fit.harmonic[o].begin());
 }
 
 // The readings of s corrected with fit's nuisance values for the twist, skew,
@@ -681,7 +683,8 @@ std::vector<Eigen::Vector3d> twist_corrected(const MotionFit& fit, const MotionS
       out[j][k] -= fit.cyclic[i] * w[0] + fit.cyclic[i + 3] * w[1];
       out[j][k] -= fit.backlash[i] * e.flank[j][k];
       out[j][k] += fit.hysteresis[i] * e.hyst.g[j][k];
-      for (std::size_t o = 0; o < 3; ++o) out[j][k] -= fit.harmonic[o][i] * w[2 + 2 * o] + fit.harmonic[o][i + 3] * w[3 + 2 * o];
+      for (std::size_t o = 0; o < kHarmonicOrders; ++o)
+        out[j][k] -= fit.harmonic[o][i] * w[2 + 2 * o] + fit.harmonic[o][i + 3] * w[3 + 2 * o];
     }
   return out;
 }
@@ -1018,7 +1021,7 @@ MotionFit fit_in_motion(const Problem& problem, const MotionSamples& s, const Lm
   std::vector<std::size_t> kept = kept_samples(model, e.clr, e.flank);
   if (kept.size() < s.theta_m.size()) return fit_on_kept(problem, s, options, model, e, kept);
   e.wave.reserve(s.theta_m.size());
-  for (const Eigen::Vector3d& raw : s.theta_m) e.wave.push_back(reading_waves(raw, model.gear_ratio));
+  for (const Eigen::Vector3d& raw : s.theta_m) e.wave.push_back(reading_waves(raw, model));
   // A nuisance value no sample excites is not estimated: a latch skew without
   // joint speed, or a compliance whose torque never varies (a torque-off joint
   // transmits none; a joint held at a constant torque twists by a constant
@@ -1138,7 +1141,7 @@ Eigen::Matrix<double, kNumParams, kNumParams> motion_crb_covariance(
     const auto row = static_cast<Eigen::Index>(j);
     for (std::size_t k = 0; k < free_index.size(); ++k) J(row, static_cast<Eigen::Index>(k)) = J_all(row, free_index[k]);
     const SampleRegressors reg{w[j], t[j], fric[j], c[j], nb.empty() ? Eigen::Vector3d::Zero() : nb[j],
-                               reading_waves(th[j], model.gear_ratio), flank[j], hyst[j], hyst_slope[j],
+                               reading_waves(th[j], model), flank[j], hyst[j], hyst_slope[j],
                                hyst_all.threshold};
     fill_nuisance_row(reading_sensitivity(J_all, j), reg, cols, row, J, Jc, static_cast<Eigen::Index>(free_index.size()));
   }
@@ -1230,6 +1233,8 @@ std::vector<Candidate> left_out_candidates(const MotionModel& model) {
       c.push_back({fmt::format("an error once per motor revolution of joint {}", i + 1), {kHarmonic + 6 + i, kHarmonic + 9 + i}});
     if (!model.motor_harmonic2[k])
       c.push_back({fmt::format("an error twice per motor revolution of joint {}", i + 1), {kHarmonic + 12 + i, kHarmonic + 15 + i}});
+    if (model.cogging_periods > 0.0 && !model.cogging[k])
+      c.push_back({fmt::format("the cogging of motor {}", i + 1), {kHarmonic + 18 + i, kHarmonic + 21 + i}});
   }
   return c;
 }
@@ -1241,6 +1246,7 @@ MotionModel with_every_candidate(MotionModel all) {
   all.estimate_cyclic = true;
   if (!(all.cyclic_prior_rad > 0.0)) all.cyclic_prior_rad = 1.0;  // the columns only: no prior rows are used
   all.backlash = all.motor_harmonic1 = all.motor_harmonic2 = {true, true, true};
+  if (all.cogging_periods > 0.0) all.cogging = {true, true, true};
   all.drop_uncertain = false;
   return all;
 }
@@ -1299,7 +1305,7 @@ std::vector<LeftOutEffect> left_out_effects(const Problem& problem, const std::v
   for (std::size_t j : fit.kept) {
     th.push_back(problem.theta_m[j]), w.push_back(omega[j]), t.push_back(tau[j]);
     if (!nb_all.empty()) nb.push_back(nb_all[j]);
-    e.wave.push_back(reading_waves(problem.theta_m[j], model.gear_ratio));
+    e.wave.push_back(reading_waves(problem.theta_m[j], model));
   }
   const MotionSamples s{th, w, t, nb, no_alpha};
   const std::vector<int> own = excited_columns(model, s.omega, s.tau, e.fric, e.clr, s.nb, e.flank, e.hyst.g);

@@ -58,7 +58,9 @@ struct MotionModel {
                                           // estimated without a prior (the reducer's transmission error)
   std::array<bool, 3> motor_harmonic1{};  // once per motor revolution: a sin(N theta_m) + b cos(N theta_m)
   std::array<bool, 3> motor_harmonic2{};  // twice per motor revolution: a sin(2 N theta_m) + b cos(2 N theta_m)
+  std::array<bool, 3> cogging{};          // the motor's cogging, P per motor revolution: a sin(P N theta_m) + b cos(..)
   double gear_ratio = 1.0;                // N: motor revolutions per joint revolution (the data sheet's)
+  double cogging_periods = 0.0;           // P: the motor's cogging periods per revolution (the data sheet's)
   bool encoder_on_motor = true;  // the encoders read the motors: the reducers' backlash and errors per motor
                                  // revolution lie between reading and link (left_out_effects names them);
                                  // false where the encoders turn with the joints, after the reducers
@@ -110,9 +112,9 @@ struct MotionFit {
   std::array<double, 3> backlash{};         // beta_i (rad); 0 where not estimated
   std::array<double, 3> backlash_sigma{};   // their 1-sigma (NaN where not estimated)
   // Harmonics a1 a2 a3 b1 b2 b3 (rad) of each order: once per joint revolution, once and twice per motor
-  // revolution; 0 where not estimated, sigma NaN.
-  std::array<std::array<double, 6>, 3> harmonic{};
-  std::array<std::array<double, 6>, 3> harmonic_sigma{};
+  // revolution, the cogging; 0 where not estimated, sigma NaN.
+  std::array<std::array<double, 6>, kHarmonicOrders> harmonic{};
+  std::array<std::array<double, 6>, kHarmonicOrders> harmonic_sigma{};
   std::array<double, 3> hysteresis{};        // eta_i (rad): half the hysteresis loss; 0 where not estimated
   std::array<double, 3> hysteresis_sigma{};  // their 1-sigma (NaN where not estimated)
   // The 1-sigma of the noise model alone (sigma^2 (J'J)^-1: neither the
@@ -120,7 +122,7 @@ struct MotionFit {
   // effect there" weigh the estimates by (NaN where not estimated).
   struct NoiseSigma {
     std::array<double, 3> clearance{}, torque_before{}, backlash{}, hysteresis{};
-    std::array<std::array<double, 6>, 3> harmonic{};
+    std::array<std::array<double, 6>, kHarmonicOrders> harmonic{};
   } noise_sigma;
   double chi2 = 0.0;                        // r'r / sigma^2 of the fit, its residuals weighted (0 without sigma)
   double chi2_per_dof = 0.0;                // chi2 / (n - columns)

@@ -1,6 +1,7 @@
 // The reading model (calib/reading_model.hpp).
 #include "calib/reading_model.hpp"
 
+#include <algorithm>
 #include <cmath>
 #include <numbers>
 
@@ -51,6 +52,10 @@ void check_reading_model(const ReadingModel& m, const std::string& where) {
   for (const double r : m.reducer_home_rad)
     require(std::isnan(r) || std::isfinite(r), where, "reducer_home_rad must be finite (rad) where given");
   require(m.gear_ratio >= 1.0 && std::isfinite(m.gear_ratio), where, "gear_ratio must be finite and >= 1");
+  require(m.cogging_periods >= 0.0 && m.cogging_periods <= 1000.0, where, "cogging_periods must be in 0..1000");
+  const auto& cogging = m.harmonic[kCoggingHarmonic];
+  require(m.cogging_periods > 0.0 || std::ranges::all_of(cogging, [](double v) { return v == 0.0; }), where,
+          "the cogging harmonic (the fourth list of harmonic_rad) needs cogging_periods > 0");
 }
 
 std::array<double, 3> pin_clearance_mm(const ReadingModel& m) {
@@ -65,7 +70,8 @@ double reading_sigma(double step_rad, double noise_rad, double n_avg) {
 
 double reading_sigma(const ReadingModel& m) { return reading_sigma(encoder_step_rad(m.encoder_bits), m.noise_rad); }
 
-double harmonic_angle(int o, double theta_m, double gear_ratio) {
+double harmonic_angle(int o, double theta_m, double gear_ratio, double cogging_periods) {
+  if (o == kCoggingHarmonic) return cogging_periods * gear_ratio * theta_m;
   return o == 0 ? theta_m : o * gear_ratio * theta_m;
 }
 
@@ -76,10 +82,10 @@ double link_angle(const ReadingModel& m, int i, double theta_m, double omega, do
   for (int o = 0; o < kHarmonicOrders; ++o) {
     const auto& h = m.harmonic[static_cast<std::size_t>(o)];
     if (h[k] == 0.0 && h[k + 3] == 0.0) continue;
-    const double a = harmonic_angle(o, theta_m, m.gear_ratio);
+    const double a = harmonic_angle(o, theta_m, m.gear_ratio, m.cogging_periods);
     theta -= h[k] * std::sin(a) + h[k + 3] * std::cos(a);
     if (referenced_at_home(o) && std::isfinite(m.reducer_home_rad[k])) {  // referenced to 0 at home
-      const double a_home = harmonic_angle(o, m.reducer_home_rad[k], m.gear_ratio);
+      const double a_home = harmonic_angle(o, m.reducer_home_rad[k], m.gear_ratio, m.cogging_periods);
       theta += h[k] * std::sin(a_home) + h[k + 3] * std::cos(a_home);
     }
   }

@@ -23,8 +23,13 @@
 namespace gpm::calib {
 
 // Orders of the drive-train harmonics: once per joint revolution, once and
-// twice per motor revolution.
-inline constexpr int kHarmonicOrders = 3;
+// twice per motor revolution, and the motor's cogging (P per motor revolution).
+inline constexpr int kHarmonicOrders = 4;
+
+// The order that is the motor's cogging: its torque ripple, P periods per
+// motor revolution (the data sheet's), twists the transmission by
+// c A sin(P N theta_m + phi).
+inline constexpr int kCoggingHarmonic = 3;
 
 // The order that is the reducer's error (a harmonic drive's wave generator
 // flexes the spline twice a motor turn): twice per motor revolution.
@@ -58,6 +63,7 @@ struct ReadingModel {
   // a_o1 a_o2 a_o3 b_o1 b_o2 b_o3 (rad) of each harmonic order o.
   std::array<std::array<double, 6>, kHarmonicOrders> harmonic{};
   double gear_ratio = 1.0;  // N: motor revolutions per joint revolution
+  double cogging_periods = 0.0;  // P: the motor's cogging periods per revolution (0: none; kCoggingHarmonic)
   // The readings at home (rad) where the reducer's errors, the harmonics once
   // per joint and twice per motor revolution (referenced_at_home), are 0 (the
   // offsets are the links' at home: calib/home_reference.hpp): each such term
@@ -82,8 +88,9 @@ double reading_sigma(double step_rad, double noise_rad, double n_avg = 1.0);
 // reading_sigma of one reading of model m's encoder.
 double reading_sigma(const ReadingModel& m);
 
-// The angle of harmonic order o (0..2) of reading theta_m (rad): theta_m, N theta_m, 2 N theta_m.
-double harmonic_angle(int o, double theta_m, double gear_ratio);
+// The angle of harmonic order o (0..3) of reading theta_m (rad): theta_m, N theta_m, 2 N theta_m, P N theta_m
+// (gear ratio N, cogging periods P).
+double harmonic_angle(int o, double theta_m, double gear_ratio, double cogging_periods);
 
 // The link angle reading theta_m of joint i (0..2) stands for under m, at joint
 // speed omega (rad/s), transmitted torque tau_t (N m) and the sign of the

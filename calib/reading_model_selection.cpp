@@ -144,11 +144,14 @@ MotionModel with_candidates(MotionModel model, const MotionModel& candidates) {
 
 }  // namespace
 
+double pair_sigma_level(double k) { return std::sqrt(-2.0 * std::log(std::erfc(k / std::sqrt(2.0)))); }
+
 MotionModel with_harmonic_candidates(MotionModel model, const MotionModel& candidates) {
   for (std::size_t i = 0; i < 3; ++i) {
     model.joint_harmonic[i] = model.joint_harmonic[i] || candidates.joint_harmonic[i];
     model.motor_harmonic1[i] = model.motor_harmonic1[i] || candidates.motor_harmonic1[i];
     model.motor_harmonic2[i] = model.motor_harmonic2[i] || candidates.motor_harmonic2[i];
+    model.cogging[i] = model.cogging[i] || candidates.cogging[i];
   }
   return model;
 }
@@ -189,10 +192,12 @@ DriveEffectSelection select_drive_effects(const Problem& problem, const std::vec
   }
   const MotionFit& all = *fitted;
   // A pair (a, b) at the two-sided k-sigma level: chi-square(2) > -2 ln(erfc(k / sqrt 2)).
-  const double pair_level = std::sqrt(-2.0 * std::log(std::erfc(k / std::sqrt(2.0))));
-  const char* order_name[3] = {"once per joint revolution", "once per motor revolution", "twice per motor revolution"};
-  std::array<std::array<bool, 3>*, 3> orders{&out.model.joint_harmonic, &out.model.motor_harmonic1,
-                                             &out.model.motor_harmonic2};
+  const double pair_level = pair_sigma_level(k);
+  const std::array<std::string, kHarmonicOrders> order_name{
+      "harmonic error once per joint revolution", "harmonic error once per motor revolution",
+      "harmonic error twice per motor revolution", fmt::format("cogging ({:g} per motor revolution)", model.cogging_periods)};
+  std::array<std::array<bool, 3>*, kHarmonicOrders> orders{&out.model.joint_harmonic, &out.model.motor_harmonic1,
+                                                           &out.model.motor_harmonic2, &out.model.cogging};
   bool changed = false;
   for (std::size_t i = 0; i < 3; ++i) {
     if (out.model.backlash[i]) {
@@ -201,21 +206,23 @@ DriveEffectSelection select_drive_effects(const Problem& problem, const std::vec
       (keep ? out.kept : out.dropped).push_back(fmt::format("backlash of joint {} ({:.1f} sigma)", i + 1, z));
       if (!keep) out.model.backlash[i] = false, changed = true;
     }
-    for (std::size_t o = 0; o < 3; ++o) {
+    for (std::size_t o = 0; o < kHarmonicOrders; ++o) {
       if (!(*orders[o])[i]) continue;
       const auto& h = all.harmonic[o];
       const auto& hs = all.noise_sigma.harmonic[o];
       const double z = std::hypot(sigmas(h[i], hs[i]), sigmas(h[i + 3], hs[i + 3]));
       const bool keep = z >= pair_level;
-      (keep ? out.kept : out.dropped)
-          .push_back(fmt::format("harmonic error {} of joint {} ({:.1f} sigma)", order_name[o], i + 1, z));
+      // No 1-sigma: the fit could not tell the pair from the model's other effects (a torque-off joint's
+      // cogging is its compliance times the cogging torque).
+      const std::string level = std::isfinite(z) ? fmt::format("{:.1f} sigma", z) : "not told from the other effects";
+      (keep ? out.kept : out.dropped).push_back(fmt::format("{} of joint {} ({})", order_name[o], i + 1, level));
       if (!keep) (*orders[o])[i] = false, changed = true;
     }
   }
   // Every candidate dropped: out.model is model again (only these flags differ).
   const bool back_to_model = out.model.backlash == model.backlash && out.model.joint_harmonic == model.joint_harmonic &&
                              out.model.motor_harmonic1 == model.motor_harmonic1 &&
-                             out.model.motor_harmonic2 == model.motor_harmonic2;
+                             out.model.motor_harmonic2 == model.motor_harmonic2 && out.model.cogging == model.cogging;
   if (!changed) out.fit = all;
   else if (back_to_model && fit_of_model) out.fit = *fit_of_model;
   else out.fit = calibrate_in_motion(problem, omega, tau, options, out.model, alpha);

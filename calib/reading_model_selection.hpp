@@ -35,6 +35,11 @@ struct DriveEffectSelection {
 // errors once per joint revolution, once and twice per motor revolution).
 MotionModel with_harmonic_candidates(MotionModel model, const MotionModel& candidates);
 
+// The level a pair (a, b) of estimates must reach, sqrt(a^2/sa^2 + b^2/sb^2),
+// to lie k sigma from 0 as one value two-sided would: chi-square(2) above
+// -2 ln(erfc(k / sqrt 2)).
+double pair_sigma_level(double k);
+
 // Fits problem with model plus every candidate in candidates (the effects
 // switched on there), then again with those the Wald test at k sigma keeps
 // (calibrate_in_motion: omega, tau, alpha as there); when it keeps none and

@@ -91,7 +91,7 @@ DataSheet data_sheet_from_yaml(const YAML::Node& node, const std::string& file, 
     throw InputError(yaml_where(file, node, keypath) +
                      "expected a map of the robot's stated values (gear_ratio, encoder_bits, coulomb_Nm, ...; docs/FORMATS.md)");
   yaml_check_keys(node, file, keypath,
-                  {"gear_ratio", "encoder_bits", "encoder_accuracy_rad", "transmission_error_rad", "rotor_inertia_kg_m2", "active_link_mass_kg",
+                  {"gear_ratio", "encoder_bits", "cogging_periods", "encoder_accuracy_rad", "transmission_error_rad", "rotor_inertia_kg_m2", "active_link_mass_kg",
                    "passive_link_mass_kg", "end_effector_mass_kg", "coulomb_Nm", "viscous_Nm_s", "stiffness_Nm_per_rad",
                    "clearance_mm", "latch_skew_s", "warm_up_time_constant_s"});
   DataSheet d;
@@ -99,6 +99,8 @@ DataSheet data_sheet_from_yaml(const YAML::Node& node, const std::string& file, 
     d.gear_ratio = ranged(g, file, join(keypath, "gear_ratio"), 1.0, 200.0, false, "motor revolutions per joint revolution");
   if (const YAML::Node b = node["encoder_bits"])
     d.encoder_bits = static_cast<int>(yaml_integer(b, file, join(keypath, "encoder_bits"), 8, 32));
+  if (const YAML::Node p = node["cogging_periods"])
+    d.cogging_periods = static_cast<int>(yaml_integer(p, file, join(keypath, "cogging_periods"), 0, 1000));
   for (const Item& item : kItems)
     if (const YAML::Node n = node[item.key]) d.*item.member = read_stated(n, file, join(keypath, item.key), item);
   return d;
@@ -106,7 +108,8 @@ DataSheet data_sheet_from_yaml(const YAML::Node& node, const std::string& file, 
 
 std::string data_sheet_to_yaml(const DataSheet& d) {
   std::string out = "data_sheet:          # stated by the robot's documents: nominal, factor range of the real value\n";
-  out += fmt::format("  gear_ratio: {}\n  encoder_bits: {}\n", format_exact(d.gear_ratio), d.encoder_bits);
+  out += fmt::format("  gear_ratio: {}\n  encoder_bits: {}\n  cogging_periods: {}\n", format_exact(d.gear_ratio),
+                     d.encoder_bits, d.cogging_periods);
   for (const Item& item : kItems) {
     const Stated& s = d.*item.member;
     out += fmt::format("  {}: {{nominal: {}, factor: [{}, {}]}}\n", item.key, format_exact(s.nominal),

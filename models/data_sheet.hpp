@@ -36,6 +36,9 @@ struct Stated {
 struct DataSheet {
   double gear_ratio = 10.0;  // N: motor revolutions per joint revolution (exact)
   int encoder_bits = 17;     // 2^bits counts per motor revolution (exact)
+  // P: the motor's cogging periods per revolution, the least common multiple of its slots and poles (12 and 8;
+  // exact); 0: not stated
+  int cogging_periods = 24;
   // Once-per-revolution error amplitude of each encoder (rad): +-4 arcsec accuracy class, up to.
   Stated encoder_accuracy_rad{2e-5, 0.0, 1.0};
   // The reducer's kinematic (transmission) error once per output revolution, amplitude (rad): up to

@@ -73,14 +73,17 @@ CalibrationInputs calibration_inputs(const CalibrationSpec& c, const Robot& robo
   motion.clearance = c.estimate_clearance.value_or(in_motion);
   motion.load = transmission_load(c.drive_friction, robot.data_sheet, robot.geometry);
   motion.gear_ratio = robot.data_sheet.gear_ratio;
+  motion.cogging_periods = robot.data_sheet.cogging_periods;
   motion.hysteresis_compliance_rad_per_Nm = robot.data_sheet.compliance_rad_per_Nm();
   // On the fly the data choose, per joint, a backlash, the errors once and
-  // twice per motor revolution and a hysteresis (calib/reading_model_selection.hpp).
+  // twice per motor revolution, the motor's cogging (where the data sheet
+  // states its periods) and a hysteresis (calib/reading_model_selection.hpp).
   if (in_motion && motion.compliance) {
     in.drive_candidates.backlash = {true, true, true};
     in.drive_candidates.hysteresis = {true, true, true};
     in.drive_candidates.motor_harmonic1 = {true, true, true};
     in.drive_candidates.motor_harmonic2 = {true, true, true};
+    if (motion.cogging_periods > 0.0) in.drive_candidates.cogging = {true, true, true};
   }
   in.drive_friction = c.drive_friction;
   in.tension_min_stated = c.tension_min_N.has_value();
@@ -108,6 +111,7 @@ std::optional<std::string> encoder_turns_with_joint(CalibrationInputs& in, doubl
   in.motion.encoder_on_motor = false;
   in.drive_candidates.backlash = in.drive_candidates.hysteresis = {false, false, false};
   in.drive_candidates.motor_harmonic1 = in.drive_candidates.motor_harmonic2 = {false, false, false};
+  in.drive_candidates.cogging = {false, false, false};
   return fmt::format(
       "the encoders turn once per joint revolution ({:.0f} counts per joint revolution, their 2^{}; behind the data "
       "sheet's {:g}:1 reducer they would read {:g} times finer): the error once per joint revolution is theirs "

@@ -86,7 +86,7 @@ struct MotionStage {
   calib::MotionModel motion;
   calib::MotionFit fit;
   double sigma = 0.0;
-  std::string balance_note, speed_note, friction_note, clearance_dropped, before_dropped;
+  std::string balance_note, cogging_note, speed_note, friction_note, clearance_dropped, before_dropped;
   std::optional<calib::BalanceFriction> balance;  // each drive's friction by the hub's force balance
   int balance_taken = 0;  // of its six values, those that replaced the stated (calib::TransmissionLoad)
   std::vector<std::string> drive_notes;  // the drive train's effects kept and dropped, the sandwich
@@ -262,6 +262,31 @@ std::vector<int> take_measured(std::array<double, 3>& stated, const std::array<d
 // "joints 1, 3" or "none".
 std::string joints(const std::vector<int>& j) { return j.empty() ? "none" : fmt::format("joints {}", fmt::join(j, ", ")); }
 
+// The motors' cogging the force balance found (f; cogging_per_rad = P N)
+// added to the drive torques of m where its pair lies kDriveEffectSigmas
+// from 0: the torque the transmissions carry is the drive's and the
+// cogging's (the clearance's force signs, the backlash's flanks and the
+// twist follow it); the note says which.
+void add_cogging_torque(MotionStage& m, const calib::BalanceFriction& f, double cogging_per_rad) {
+  std::vector<std::string> found;
+  for (int i = 0; i < 3; ++i) {
+    const auto k = static_cast<std::size_t>(i);
+    const double z = std::hypot(f.cogging_Nm[k] / f.cogging_sigma_Nm[k], f.cogging_Nm[k + 3] / f.cogging_sigma_Nm[k + 3]);
+    const double amplitude = std::hypot(f.cogging_Nm[k], f.cogging_Nm[k + 3]);
+    found.push_back(fmt::format("joint {} {:.2g} N m ({:.1f} sigma)", i + 1, amplitude, z));
+    if (!(z >= calib::pair_sigma_level(kDriveEffectSigmas))) continue;
+    found.back() += ", added";
+    for (std::size_t j = 0; j < m.tau.size(); ++j) {
+      const double q = calib::cogging_torque(f, i, m.problem.theta_m[j][i], cogging_per_rad);
+      m.tau[j][i] += q;
+      if (!m.motion.torque_between.empty()) m.motion.torque_between[j][i] += q;
+    }
+  }
+  m.cogging_note = fmt::format("the motors' cogging ({:g} per motor revolution) from the hub's force balance: {}; "
+                               "added to the drive torques where 3 sigma from 0 (the torque the transmissions carry)",
+                               m.motion.cogging_periods, fmt::join(found, ", "));
+}
+
 // Each drive's friction from the hub's force balance on the drives' torques
 // (calib/friction_balance.hpp), taken in place of a stated value where the
 // two differ by more than 3 of the balance's 1-sigma; all stated where the
@@ -273,8 +298,12 @@ void friction_from_balance(MotionStage& m, const CalibrationInputs& in) {
   try {
     const Geometry& g = m.problem.start;
     const std::vector<Eigen::Vector2d> hub_accel = calib::hub_accelerations(g, m.t_s, m.problem.theta_m, m.alpha_span);
+    const bool cogging = std::ranges::any_of(in.drive_candidates.cogging, std::identity{});
+    const double cogging_per_rad = cogging ? m.motion.cogging_periods * m.motion.gear_ratio : 0.0;
     const calib::BalanceFriction f = calib::friction_from_force_balance(
-        g, {m.problem.theta_m, m.omega, m.alpha, m.tau, hub_accel}, m.motion.load, in.hub_mass_kg, m.motion.skip_first);
+        g, {m.problem.theta_m, m.omega, m.alpha, m.tau, hub_accel, cogging_per_rad}, m.motion.load, in.hub_mass_kg,
+        m.motion.skip_first);
+    if (cogging) add_cogging_torque(m, f, cogging_per_rad);
     const std::vector<int> coulomb = take_measured(m.motion.load.coulomb_Nm, f.coulomb_Nm, f.coulomb_sigma_Nm);
     const std::vector<int> viscous = take_measured(m.motion.load.viscous_Nm_s, f.viscous_Nm_s, f.viscous_sigma_Nm_s);
     m.balance = f;
@@ -616,6 +645,7 @@ CalibrationOutcome motion_outcome(MotionStage&& m, const calib::ReadingModel& st
   out.used = m.fit.corrected;
   std::vector<std::string>& notes = out.result.notes;
   if (!m.balance_note.empty()) notes.push_back(m.balance_note);
+  if (!m.cogging_note.empty()) notes.push_back(m.cogging_note);
   if (!m.speed_note.empty()) notes.push_back(m.speed_note);
   if (!m.friction_note.empty() && m.motion.clearance) notes.push_back(m.friction_note);
   // For the monitor of the operation (run/monitor_run.hpp reading_model_after_calibration).
@@ -778,6 +808,7 @@ calib::ReadingModel estimated_reading_model(calib::ReadingModel r, const calib::
   const std::array<double, 6> joint_error = calib::reducer_errors(f, motion).h[calib::kJointHarmonic];
   for (std::size_t k = 0; k < 6; ++k) r.harmonic[calib::kJointHarmonic][k] += joint_error[k];
   r.gear_ratio = motion.gear_ratio;
+  r.cogging_periods = motion.cogging_periods;
   return r;
 }
 

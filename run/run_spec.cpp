@@ -72,15 +72,18 @@ std::array<double, 3> skew_list(const YAML::Node& n, const std::string& file, co
       [](double s) { return std::array<double, 3>{0.0, s, s}; });
 }
 
-// monitor.harmonic_rad: three lists of six (a1 a2 a3 b1 b2 b3, rad), one per
-// order: once per joint revolution, once and twice per motor revolution.
+// monitor.harmonic_rad: four lists of six (a1 a2 a3 b1 b2 b3, rad), one per
+// order: once per joint revolution, once and twice per motor revolution, the
+// motor's cogging (the data sheet's cogging_periods per motor revolution);
+// three lists (no cogging) are read as well.
 std::array<std::array<double, 6>, calib::kHarmonicOrders> harmonic_orders(const YAML::Node& n, const std::string& file,
                                                                           const std::string& key) {
-  const std::string expected = "expected three lists of six numbers (a1 a2 a3 b1 b2 b3 in rad of each order: joint, "
-                               "motor, twice motor revolution), each within +-0.01 rad";
-  if (!n.IsSequence() || n.size() != 3) throw InputError(yaml_where(file, n, key) + expected);
+  const std::string expected = "expected four lists of six numbers (a1 a2 a3 b1 b2 b3 in rad of each order: joint, "
+                               "motor, twice motor revolution, cogging; the last may be left out), each within +-0.01 rad";
+  if (!n.IsSequence() || (n.size() != 3 && n.size() != calib::kHarmonicOrders))
+    throw InputError(yaml_where(file, n, key) + expected);
   std::array<std::array<double, 6>, calib::kHarmonicOrders> out{};
-  for (std::size_t o = 0; o < 3; ++o) {
+  for (std::size_t o = 0; o < n.size(); ++o) {
     const YAML::Node row = n[o];
     const std::string k = fmt::format("{}[{}]", key, o);
     if (!row.IsSequence() || row.size() != 6) throw InputError(yaml_where(file, row, k) + expected);
@@ -356,6 +359,7 @@ MonitorReadingModel data_sheet_reading_model(const DataSheet& sheet) {
   for (std::size_t i = 0; i < 3; ++i) r.skew_s[i] = static_cast<double>(i) * sheet.latch_skew_s.nominal;
   r.compliance_rad_per_Nm.fill(sheet.compliance_rad_per_Nm());
   r.gear_ratio = sheet.gear_ratio;
+  r.cogging_periods = sheet.cogging_periods;
   m.thermal_time_constant_s = sheet.warm_up_time_constant_s.nominal;
   return m;
 }

@@ -41,11 +41,12 @@ study_setup() {
 
 # The kinds of robot the before/after studies compare on: the basic set
 # (every effect above off), every effect drawn, the realistic preset's, and
-# the basic set with the backlash or the reducer's error once per joint
-# revolution drawn.
+# the basic set with the backlash, the reducer's error once per joint
+# revolution or the motors' cogging drawn.
 declare -A kind_effects=([basic]="{preset: randomized, $(all_off_but none)}" [randomized]="randomized" [preset]="realistic"
                         [backlash]="{preset: randomized, $(all_off_but backlash)}"
-                        [te_joint]="{preset: randomized, $(all_off_but te_joint)}")
+                        [te_joint]="{preset: randomized, $(all_off_but te_joint)}"
+                        [cogging]="{preset: randomized, $(all_off_but cogging)}")
 
 # The robots of kind $2 (kind_effects) calibrated by scenarios/main.yaml with
 # ", ..." $4 appended to its calibration map (and $5, when given, to its

@@ -13,7 +13,8 @@ import statistics
 # The table's names of the kinds of robot (kind_effects in scripts/effects_beyond_basic.sh).
 KIND_LABEL = {'basic': 'the basic set', 'randomized': 'every effect drawn', 'preset': 'the `realistic` preset',
               'backlash': 'the basic set and backlash',
-              'te_joint': "the basic set and the reducer's error once per joint revolution"}
+              'te_joint': "the basic set and the reducer's error once per joint revolution",
+              'cogging': "the basic set and the motors' cogging"}
 
 
 def load_pair(out, kind, before, after):

@@ -2,7 +2,9 @@
 // against the centripetal a = -w^2 r; each drive's friction recovered from
 // torques made by the hub's force balance itself (a torque-off drive and two
 // that hold the path, every friction different), to rounding without noise
-// and within its jackknife 1-sigma with noisy torques; a link's force error
+// and within its jackknife 1-sigma with noisy torques; the motors' cogging
+// recovered with the frictions where its periods are given (and what it
+// leaves in the residual where they are not); a link's force error
 // recovered from the residual (sqrt 1.5 of it); a negative friction
 // clipped to 0; short or mismatched series refused.
 #include "calib/friction_balance.hpp"
@@ -50,13 +52,24 @@ Path lissajous() {
 // The samples' rates and the drive torques (N m) a robot of frictions F, b
 // needs along p with drive 1 torque-off, by the balance's own equations
 // (calib/friction_balance.hpp): T_1 from drive 1's moment balance at tau_1 = 0,
-// T_2 and T_3 from the hub's, then tau_2 and tau_3 from theirs.
+// T_2 and T_3 from the hub's, then tau_2 and tau_3 from theirs. A motor's
+// cogging q_i = A_i sin(a) + B_i cos(a), a = per_rad theta_m_i (cogging:
+// A1 A2 A3 B1 B2 B3, N m), acts besides the drive's torque, which is then
+// that much less (drive 1's link carries it).
+struct Cogging {
+  std::array<double, 6> coef{};
+  double per_rad = 0.0;
+  double at(int i, double theta_m) const {
+    const auto k = static_cast<std::size_t>(i);
+    return coef[k] * std::sin(per_rad * theta_m) + coef[k + 3] * std::cos(per_rad * theta_m);
+  }
+};
 struct Record {
   std::vector<Eigen::Vector3d> omega, alpha, tau;
   std::vector<Eigen::Vector2d> hub_accel;
   std::vector<Eigen::Vector3d> lever;  // la_i S_i (m): a link force T_i takes -T_i la_i S_i off drive i's torque
 };
-Record drive_torques(const Path& p, const TransmissionLoad& load, double hub_mass_kg) {
+Record drive_torques(const Path& p, const TransmissionLoad& load, double hub_mass_kg, const Cogging& cogging = {}) {
   RateOptions ro;
   ro.alpha_span = kAlphaSpan;
   const ReadingRates rates = reading_rates(p.t, p.theta_m, ro);
@@ -71,7 +84,8 @@ Record drive_torques(const Path& p, const TransmissionLoad& load, double hub_mas
       lever[i] = 1e-3 * p.g.la_(i) * std::sin(tb[i] - ta[i]);
       u[k] = Eigen::Vector2d(std::cos(tb[i]), std::sin(tb[i]));
       load_torque[i] = load.coulomb_Nm[k] * std::tanh(r.omega[j][i] / load.friction_speed_rad_s) +
-                       load.viscous_Nm_s[k] * r.omega[j][i] + load.inertia_kg_m2[k] * r.alpha[j][i];
+                       load.viscous_Nm_s[k] * r.omega[j][i] + load.inertia_kg_m2[k] * r.alpha[j][i] -
+                       cogging.at(i, p.theta_m[j][i]);
     }
     const double T1 = load_torque[0] / lever[0];  // tau_t_1 = -load_torque_1, T = -tau_t / lever
     Eigen::Matrix2d U;
@@ -116,6 +130,27 @@ TEST(FrictionBalance, RecoversEachDrivesFrictionFromTheBalancesOwnTorques) {
   }
   EXPECT_LT(f.residual_rms_N, 1e-9);
   EXPECT_GT(f.samples, p.t.size() - 40);  // the skipped 20 and the rate stencils' ends at most
+}
+
+TEST(FrictionBalance, RecoversTheMotorsCoggingWithTheFriction) {
+  const Path p = lissajous();
+  const TransmissionLoad truth = drawn_load();
+  const Cogging cogging{{0.12, -0.05, 0.08, 0.03, 0.18, -0.1}, 24.0 * 10.0};  // 24 per motor revolution, 10:1
+  const Record r = drive_torques(p, truth, 0.475, cogging);
+  const BalanceFriction f =
+      friction_from_force_balance(p.g, {p.theta_m, r.omega, r.alpha, r.tau, r.hub_accel, cogging.per_rad}, truth, 0.475, 20);
+  for (std::size_t i = 0; i < 3; ++i) {
+    EXPECT_NEAR(f.coulomb_Nm[i], truth.coulomb_Nm[i], 1e-9) << "joint " << i + 1;
+    EXPECT_NEAR(f.viscous_Nm_s[i], truth.viscous_Nm_s[i], 1e-9) << "joint " << i + 1;
+    EXPECT_NEAR(cogging_torque(f, static_cast<int>(i), 0.7, cogging.per_rad), cogging.at(static_cast<int>(i), 0.7), 1e-9);
+  }
+  for (std::size_t k = 0; k < 6; ++k) EXPECT_NEAR(f.cogging_Nm[k], cogging.coef[k], 1e-9) << "coefficient " << k;
+  EXPECT_LT(f.residual_rms_N, 1e-9);
+  // Without the periods the ripple is the balance's residual, its frictions off, no cogging stated.
+  const BalanceFriction blind = friction_from_force_balance(p.g, {p.theta_m, r.omega, r.alpha, r.tau, r.hub_accel}, truth, 0.475, 20);
+  EXPECT_GT(blind.residual_rms_N, 0.1);
+  EXPECT_EQ(blind.cogging_Nm, (std::array<double, 6>{}));
+  EXPECT_TRUE(std::isnan(blind.cogging_sigma_Nm[0]));
 }
 
 TEST(FrictionBalance, NoisyTorquesLandWithinTheJackknifeSigma) {

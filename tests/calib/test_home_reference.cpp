@@ -137,7 +137,7 @@ TEST(HomeReference, OffsetsAtHomeKeepEveryLinkAngleAndResidual) {
     EXPECT_NEAR(r0, r1, 1e-12);
   }
   // dth_1 is as uncertain as before and the errors at home: sigma^2 + sum of (sa sin)^2 + (sb cos)^2.
-  const double a = harmonic_angle(kReducerHarmonic, r_home[0], kGear), aj = r_home[0];
+  const double a = harmonic_angle(kReducerHarmonic, r_home[0], kGear, 0.0), aj = r_home[0];
   const double var = std::pow(2e-6 * std::sin(a), 2) + std::pow(2e-6 * std::cos(a), 2) +
                      std::pow(3e-6 * std::sin(aj), 2) + std::pow(4e-6 * std::cos(aj), 2);
   EXPECT_NEAR(c.result.sigma[dth(0)], std::sqrt(1e-10 + var), 1e-15);

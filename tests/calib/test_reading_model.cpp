@@ -45,9 +45,28 @@ TEST(ReadingModel, LinkAngleByHand) {
   // The other joints carry none of it; the flank unknown (0) takes no backlash.
   EXPECT_EQ(link_angle(m, 1, 1.0, 2.0, 3.0, 1.0), 1.0);
   EXPECT_NEAR(link_angle(m, 0, 1.0, 2.0, 3.0, 0.0) - link_angle(m, 0, 1.0, 2.0, 3.0, 1.0), 3e-4, 1e-15);
-  EXPECT_EQ(harmonic_angle(0, 0.5, 10.0), 0.5);
-  EXPECT_EQ(harmonic_angle(1, 0.5, 10.0), 5.0);
-  EXPECT_EQ(harmonic_angle(2, 0.5, 10.0), 10.0);
+  EXPECT_EQ(harmonic_angle(0, 0.5, 10.0, 24.0), 0.5);
+  EXPECT_EQ(harmonic_angle(1, 0.5, 10.0, 24.0), 5.0);
+  EXPECT_EQ(harmonic_angle(2, 0.5, 10.0, 24.0), 10.0);
+  EXPECT_EQ(harmonic_angle(kCoggingHarmonic, 0.5, 10.0, 24.0), 120.0);  // P N theta_m
+}
+
+// The motor's cogging twists the transmission by a sin(P N theta_m) + b
+// cos(P N theta_m), worked by hand at P = 24, N = 10; it is no reducer error,
+// so nothing references it at home.
+TEST(ReadingModel, CoggingIsAHarmonicOfTheMotorAngle) {
+  ReadingModel m;
+  m.gear_ratio = 10.0;
+  m.cogging_periods = 24.0;
+  m.harmonic[kCoggingHarmonic] = {0, 3e-6, 0, 0, -5e-6, 0};  // joint 2: a = 3e-6, b = -5e-6
+  m.reducer_home_rad = {0.3, 0.3, 0.3};
+  const double theta_m = 0.7, a = 24.0 * 10.0 * 0.7;
+  EXPECT_NEAR(link_angle(m, 1, theta_m, 0.0, 0.0, 0.0), theta_m - (3e-6 * std::sin(a) - 5e-6 * std::cos(a)), 1e-15);
+  EXPECT_EQ(link_angle(m, 0, theta_m, 0.0, 0.0, 0.0), theta_m);
+  EXPECT_NEAR(link_angle(m, 1, reading_at(m, 1, theta_m), 0.0, 0.0, 0.0), theta_m, 1e-12);
+  // Without its periods the cogging's coefficients are no reading model.
+  m.cogging_periods = 0.0;
+  EXPECT_THROW(check_reading_model(m, "monitor: "), InputError);
 }
 
 // reading_at inverts link_angle's harmonics (at rest: no speed, torque or

@@ -12,7 +12,9 @@
 // are both estimated; a candidates' fit that diverges leaves them out;
 // readings with a reducer hysteresis on two joints along a path give back
 // its loss and the geometry, a joint whose mesh torque is too small to slide
-// the element is no candidate, and a robot without it keeps none.
+// the element is no candidate, and a robot without it keeps none; a motor's
+// cogging (24 periods per motor revolution) is kept on the joint that has it
+// and on no other.
 #include "calib/reading_model_selection.hpp"
 
 #include <array>
@@ -33,6 +35,8 @@ constexpr double kSigma = 2e-6;
 constexpr double kGear = 10.0;
 const Eigen::Vector3d kBeta(0.0, 4e-4, 2.5e-4);             // half lost motion per joint (rad)
 const Eigen::Vector3d kMotorSin(3e-5, 0.0, 0.0), kMotorCos(-2e-5, 0.0, 0.0);  // once per motor revolution
+constexpr double kCoggingPeriods = 24.0;
+const Eigen::Vector3d kCogging(0.0, 0.0, 1.5e-5);  // a sin(P N theta_m): the cogging's twist on joint 3
 
 struct DriveData {
   Problem problem;
@@ -44,7 +48,7 @@ struct DriveData {
 // carry the drive train: theta_m = theta + beta sgn(tau) + a sin(N theta_m) + b cos(N theta_m)
 // (the correction of calib/motion_correction.hpp inverted, by fixed point);
 // with_drive false: the readings theta alone.
-DriveData make_data(int n, std::uint64_t seed, bool with_drive = true, bool along_path = false) {
+DriveData make_data(int n, std::uint64_t seed, bool with_drive = true, bool along_path = false, bool cogging = false) {
   Robot a;
   a.geometry = table5_actual();
   std::vector<Eigen::Vector2d> poses = disc_poses(a, n, a.home, 100.0, seed);
@@ -64,7 +68,8 @@ DriveData make_data(int n, std::uint64_t seed, bool with_drive = true, bool alon
     for (int it = 0; it < 20 && with_drive; ++it)
       for (int i = 0; i < 3; ++i)
         m[i] = smp.theta_m[j][i] + kBeta[i] * (d.tau.back()[i] > 0 ? 1.0 : -1.0) + kMotorSin[i] * std::sin(kGear * m[i]) +
-               kMotorCos[i] * std::cos(kGear * m[i]);
+               kMotorCos[i] * std::cos(kGear * m[i]) +
+               (cogging ? kCogging[i] * std::sin(kCoggingPeriods * kGear * m[i]) : 0.0);
     d.problem.theta_m.push_back(m);
   }
   d.problem.start = Robot{}.geometry;
@@ -239,6 +244,25 @@ TEST(ReadingModelSelection, TheSandwichCoversWhatTheModelLeavesOutAlongAPath) {
   // the left-out effect the geometry absorbed leaves no residual to show it).
   EXPECT_GT(worst_in_sigmas(d, naive.result), 50.0);
   EXPECT_LT(worst_in_sigmas(d, fit.result), 5.0);
+}
+
+TEST(ReadingModelSelection, KeepsTheCoggingOfTheMotorThatCogs) {
+  const DriveData d = make_data(800, 7, true, false, true);
+  LmOptions o;
+  o.encoder_sigma = kSigma;
+  MotionModel model = rigid_geared(), candidates = every_candidate();
+  model.cogging_periods = kCoggingPeriods;
+  candidates.cogging = {true, true, true};
+  const DriveEffectSelection s = select_drive_effects(d.problem, d.omega, d.tau, o, model, {}, candidates);
+  EXPECT_EQ(s.model.cogging, (std::array<bool, 3>{false, false, true}));
+  EXPECT_LT(std::abs(s.fit.harmonic[kCoggingHarmonic][2] - kCogging[2]), 4.0 * s.fit.harmonic_sigma[kCoggingHarmonic][2]);
+  EXPECT_LT(std::abs(s.fit.harmonic[kCoggingHarmonic][5]), 4.0 * s.fit.harmonic_sigma[kCoggingHarmonic][5]);
+  EXPECT_TRUE(s.model.backlash[1]);  // the rest of the drive train as without the cogging
+  EXPECT_TRUE(s.model.motor_harmonic1[0]);
+  EXPECT_LT(worst_in_sigmas(d, s.fit.result), 4.0);
+  // Left out, the cogging costs the geometry.
+  const DriveEffectSelection blind = select_drive_effects(d.problem, d.omega, d.tau, o, rigid_geared(), {}, every_candidate());
+  EXPECT_GT(worst_in_sigmas(d, blind.fit.result), worst_in_sigmas(d, s.fit.result));
 }
 
 // The harmonic candidates join what the model has, and only those: the

@@ -37,6 +37,7 @@ TEST(DataSheet, Gpm2002FileStatesItsClass) {
   const DataSheet d = load_robot(gpm::models_dir() + "/gpm2002.yaml").data_sheet;
   EXPECT_EQ(d.gear_ratio, 10.0);
   EXPECT_EQ(d.encoder_bits, 17);
+  EXPECT_EQ(d.cogging_periods, 24);  // 12 slots, 8 poles
   EXPECT_EQ(d.rotor_inertia_kg_m2, (Stated{2.6e-5, 0.9, 1.1}));
   EXPECT_EQ(d.coulomb_Nm, (Stated{0.3, 0.5, 2.0}));
   EXPECT_EQ(d.viscous_Nm_s, (Stated{0.15, 0.5, 2.0}));
@@ -72,6 +73,7 @@ TEST(DataSheet, RoundTripIsBitExact) {
   DataSheet d;
   d.gear_ratio = 7.3;
   d.encoder_bits = 20;
+  d.cogging_periods = 0;
   d.coulomb_Nm = {0.1 + 0.2, 1.0 / 3.0, 2.5};
   d.latch_skew_s = {1.0 / 7.0 * 1e-4, 0.0, 2.0};
   const std::string text = data_sheet_to_yaml(d);
@@ -97,6 +99,8 @@ TEST(DataSheet, BadKeysGiveOneClearLine) {
   EXPECT_NE(error_of("{coulomb: 0.3}").find("data_sheet"), std::string::npos);  // unknown key, nearest named
   EXPECT_NE(error_of("{encoder_bits: 17.5}").find("data_sheet.encoder_bits"), std::string::npos);
   EXPECT_NE(error_of("{gear_ratio: 0.5}").find("data_sheet.gear_ratio: 0.5 is out of range"), std::string::npos);
+  EXPECT_NE(error_of("{cogging_periods: -1}").find("data_sheet.cogging_periods"), std::string::npos);
+  EXPECT_NE(error_of("{cogging_periods: 2.5}").find("data_sheet.cogging_periods"), std::string::npos);
   EXPECT_NE(error_of("[1, 2]").find("data_sheet: expected a map"), std::string::npos);
   // Inside a robot file the key path is the robot's.
   try {

@@ -188,6 +188,11 @@ TEST(CalibrationInputs, TheRobotsDataSheetReachesThem) {
   for (std::size_t i = 0; i < 3; ++i) EXPECT_NEAR(o.motion.load.inertia_kg_m2[i] - in.motion.load.inertia_kg_m2[i], 0.0026, 1e-12);
   EXPECT_DOUBLE_EQ(o.motion.cyclic_prior_rad, 2.0 * in.motion.cyclic_prior_rad);
   EXPECT_EQ(o.drive_friction.coulomb_Nm, in.drive_friction.coulomb_Nm);
+  // The motor's cogging periods (12 slots, 8 poles): a candidate of every joint; none where not stated.
+  EXPECT_EQ(in.motion.cogging_periods, 24.0);
+  EXPECT_EQ(in.drive_candidates.cogging, (std::array<bool, 3>{true, true, true}));
+  other.data_sheet.cogging_periods = 0;
+  EXPECT_EQ(calibration_inputs(spec, other).drive_candidates.cogging, (std::array<bool, 3>{}));
 }
 
 // Readings whose step is one of the encoder's 2^17 counts per joint
@@ -230,6 +235,7 @@ TEST(CalibrationInputs, ReadingsOfTheEncodersOwnStepMeanTheyTurnWithTheJoints) {
   EXPECT_EQ(direct.drive_candidates.hysteresis, none);
   EXPECT_EQ(direct.drive_candidates.motor_harmonic1, none);
   EXPECT_EQ(direct.drive_candidates.motor_harmonic2, none);
+  EXPECT_EQ(direct.drive_candidates.cogging, none);  // it twists the transmission, not what such an encoder reads
   for (const double step : {turn / 1310720.0, turn / (131072.0 * 1.05)}) {
     CalibrationInputs geared = stated;
     EXPECT_FALSE(encoder_turns_with_joint(geared, step)) << step;

@@ -202,6 +202,7 @@ TEST(RunSpec, MonitorReadingModelYamlRoundTripsBitExact) {
   m.thermal_time_constant_s = 612.5;
   m.reading.backlash_rad = {0.0, 2.9088820866572158e-4, 1e-5};
   m.reading.harmonic[1] = {1.0 / 3.0 * 1e-5, 0.0, -2e-6, 0.0, 7e-7, 0.0};
+  m.reading.harmonic[calib::kCoggingHarmonic] = {0.0, 1.1e-5, 0.0, -3e-6, 0.0, 0.0};  // the data sheet's 24 periods
   MonitorReadingModel at_home = m;  // the reducer's error referenced to 0 at these readings
   at_home.reading.reducer_home_rad = {1.0968648692113863, 3.0941265050681466, 4.825986318579954};
   for (const MonitorReadingModel& want : {m, at_home, ideal_reading_model(), data_sheet_reading_model(DataSheet{})}) {
@@ -296,8 +297,14 @@ TEST(RunSpec, MonitorReadingModelIsStatedNotTakenFromTheTwin) {
   EXPECT_NE(error_of(kHead + "monitor: {skew_s: [0, 0.001]}\n").find("monitor.skew_s: expected a number (encoders 2 and 3) or a list of three"),
             std::string::npos);
   EXPECT_EQ(error_of(kHead + "monitor: {harmonic_rad: [[0, 0, 0, 0, 0, 0]]}\n"),
-            "s.yaml:3: monitor.harmonic_rad: expected three lists of six numbers (a1 a2 a3 b1 b2 b3 in rad of each "
-            "order: joint, motor, twice motor revolution), each within +-0.01 rad");
+            "s.yaml:3: monitor.harmonic_rad: expected four lists of six numbers (a1 a2 a3 b1 b2 b3 in rad of each "
+            "order: joint, motor, twice motor revolution, cogging; the last may be left out), each within +-0.01 rad");
+  // Three lists (a file written before the cogging) are read, the cogging 0.
+  const RunSpec three = parse_run_spec(kHead + "monitor: {harmonic_rad: [[0, 0, 0, 0, 0, 0], [1e-5, 0, 0, 0, 0, 0], "
+                                                "[0, 0, 0, 0, 0, 0]]}\n", "s.yaml", kBase);
+  EXPECT_EQ(three.monitor.reading.harmonic[1][0], 1e-5);
+  EXPECT_EQ(three.monitor.reading.harmonic[calib::kCoggingHarmonic], (std::array<double, 6>{}));
+  EXPECT_EQ(three.monitor.reading.cogging_periods, 24.0);  // the data sheet's
   EXPECT_EQ(error_of(kHead + "monitor: {reducer_home_rad: [1, 2, 7]}\n"),
             "s.yaml:3: monitor.reducer_home_rad[2]: 7 is out of range (valid: 0 to 6.283185307179586 rad)");
   EXPECT_EQ(error_of(kHead + "monitor: {backlash_rad: 0.5}\n"),
