@@ -87,6 +87,7 @@ struct MotionStage {
   calib::MotionFit fit;
   double sigma = 0.0;
   std::string balance_note, cogging_note, speed_note, friction_note, clearance_dropped, before_dropped;
+  calib::MotionModel candidates;  // the drive train's candidates (measure_load)
   std::optional<calib::BalanceFriction> balance;  // each drive's friction by the hub's force balance
   int balance_taken = 0;  // of its six values, those that replaced the stated (calib::TransmissionLoad)
   std::vector<std::string> drive_notes;  // the drive train's effects kept and dropped, the sandwich
@@ -266,9 +267,12 @@ std::string joints(const std::vector<int>& j) { return j.empty() ? "none" : fmt:
 // added to the drive torques of m where its pair lies kDriveEffectSigmas
 // from 0: the torque the transmissions carry is the drive's and the
 // cogging's (the clearance's force signs, the backlash's flanks and the
-// twist follow it); the note says which.
-void add_cogging_torque(MotionStage& m, const calib::BalanceFriction& f, double cogging_per_rad) {
+// twist follow it), and on those of a driven joint the twist's harmonic a
+// candidate of the reading model; the note says which. True where some
+// joint's was added.
+bool add_cogging_torque(MotionStage& m, const calib::BalanceFriction& f, double cogging_per_rad) {
   std::vector<std::string> found;
+  bool added = false;
   for (int i = 0; i < 3; ++i) {
     const auto k = static_cast<std::size_t>(i);
     const double z = std::hypot(f.cogging_Nm[k] / f.cogging_sigma_Nm[k], f.cogging_Nm[k + 3] / f.cogging_sigma_Nm[k + 3]);
@@ -276,6 +280,10 @@ void add_cogging_torque(MotionStage& m, const calib::BalanceFriction& f, double 
     found.push_back(fmt::format("joint {} {:.2g} N m ({:.1f} sigma)", i + 1, amplitude, z));
     if (!(z >= calib::pair_sigma_level(kDriveEffectSigmas))) continue;
     found.back() += ", added";
+    added = true;
+    // A torque-off drive's twist is its compliance times this torque alone: that column is the harmonic.
+    const bool torque_off = std::ranges::all_of(m.tau, [i](const Eigen::Vector3d& t) { return t[i] == 0.0; });
+    m.candidates.cogging[k] = !torque_off;
     for (std::size_t j = 0; j < m.tau.size(); ++j) {
       const double q = calib::cogging_torque(f, i, m.problem.theta_m[j][i], cogging_per_rad);
       m.tau[j][i] += q;
@@ -283,8 +291,29 @@ void add_cogging_torque(MotionStage& m, const calib::BalanceFriction& f, double 
     }
   }
   m.cogging_note = fmt::format("the motors' cogging ({:g} per motor revolution) from the hub's force balance: {}; "
-                               "added to the drive torques where 3 sigma from 0 (the torque the transmissions carry)",
+                               "added to the drive torques where 3 sigma from 0 (the torque the transmissions carry), "
+                               "and there on a driven joint a candidate of the reading model",
                                m.motion.cogging_periods, fmt::join(found, ", "));
+  return added;
+}
+
+// The hub's force balance on m's samples (hub accelerations hub_accel): with
+// the motors' cogging where the data sheet states its periods and the
+// balance finds it on some joint (add_cogging_torque), else the balance of
+// the frictions alone (a model the data do not call for is not taken: its
+// columns would move the frictions by their noise).
+calib::BalanceFriction balance_with_cogging(MotionStage& m, const CalibrationInputs& in,
+                                            const std::vector<Eigen::Vector2d>& hub_accel) {
+  const auto balance = [&](double per_rad) {
+    return calib::friction_from_force_balance(m.problem.start,
+                                              {m.problem.theta_m, m.omega, m.alpha, m.tau, hub_accel, per_rad},
+                                              m.motion.load, in.hub_mass_kg, m.motion.skip_first);
+  };
+  const calib::BalanceFriction plain = balance(0.0);
+  if (!std::ranges::any_of(in.drive_candidates.cogging, std::identity{})) return plain;
+  const double per_rad = m.motion.cogging_periods * m.motion.gear_ratio;
+  const calib::BalanceFriction with = balance(per_rad);
+  return add_cogging_torque(m, with, per_rad) ? with : plain;
 }
 
 // Each drive's friction from the hub's force balance on the drives' torques
@@ -296,14 +325,9 @@ void add_cogging_torque(MotionStage& m, const calib::BalanceFriction& f, double 
 // acceleration is differenced over the readings as the joints' accelerations are.
 void friction_from_balance(MotionStage& m, const CalibrationInputs& in) {
   try {
-    const Geometry& g = m.problem.start;
-    const std::vector<Eigen::Vector2d> hub_accel = calib::hub_accelerations(g, m.t_s, m.problem.theta_m, m.alpha_span);
-    const bool cogging = std::ranges::any_of(in.drive_candidates.cogging, std::identity{});
-    const double cogging_per_rad = cogging ? m.motion.cogging_periods * m.motion.gear_ratio : 0.0;
-    const calib::BalanceFriction f = calib::friction_from_force_balance(
-        g, {m.problem.theta_m, m.omega, m.alpha, m.tau, hub_accel, cogging_per_rad}, m.motion.load, in.hub_mass_kg,
-        m.motion.skip_first);
-    if (cogging) add_cogging_torque(m, f, cogging_per_rad);
+    const std::vector<Eigen::Vector2d> hub_accel =
+        calib::hub_accelerations(m.problem.start, m.t_s, m.problem.theta_m, m.alpha_span);
+    const calib::BalanceFriction f = balance_with_cogging(m, in, hub_accel);
     const std::vector<int> coulomb = take_measured(m.motion.load.coulomb_Nm, f.coulomb_Nm, f.coulomb_sigma_Nm);
     const std::vector<int> viscous = take_measured(m.motion.load.viscous_Nm_s, f.viscous_Nm_s, f.viscous_sigma_Nm_s);
     m.balance = f;
@@ -326,13 +350,10 @@ void friction_from_balance(MotionStage& m, const CalibrationInputs& in) {
   }
 }
 
-// The first fit of the motion model: each drive's friction from the force
-// balance where it matters (the clearance's force signs, the backlash's
-// flanks) and the samples allow it; the friction's speed and scale chosen by
-// the model test where it can judge them, else one fit.
+// The first fit of the motion model (each drive's friction measured before:
+// measure_load): the friction's speed and scale chosen by the model test
+// where it can judge them, else one fit.
 void fit_motion(MotionStage& m, const CalibrationInputs& in, bool in_motion) {
-  const bool load_matters = m.motion.clearance || std::ranges::any_of(in.drive_candidates.backlash, std::identity{});
-  if (in_motion && in.drive_friction.from_balance && load_matters) friction_from_balance(m, in);
   const bool fit_speed = in_motion && m.motion.friction && m.sigma > 0.0;
   if (fit_speed) choose_speed(m, m.balance_taken > 0 ? "the friction measured" : "the stated friction", nullptr);
   if (m.motion.clearance && in.drive_friction.fit_scale && m.sigma > 0.0) {
@@ -346,13 +367,26 @@ void fit_motion(MotionStage& m, const CalibrationInputs& in, bool in_motion) {
   }
 }
 
+// Each drive's friction from the force balance where it matters (the
+// clearance's force signs, the backlash's flanks) and the samples allow it,
+// and the motors' cogging it finds; the drive train's candidates are
+// in.drive_candidates, a motor's cogging only where the balance found it
+// (a harmonic the torques do not show would take up the readings' misfit).
+void measure_load(MotionStage& m, const CalibrationInputs& in, bool in_motion) {
+  m.candidates = in.drive_candidates;
+  m.candidates.cogging = {};
+  const bool load_matters = m.motion.clearance || std::ranges::any_of(in.drive_candidates.backlash, std::identity{});
+  if (in_motion && in.drive_friction.from_balance && load_matters) friction_from_balance(m, in);
+}
+
 // fit_motion with the drive train's harmonic candidates in the model (no
 // selection without sigma: without them), or, where that fit diverges (a
 // larger effect the model lacks, which they chase), without them.
 void first_fit(MotionStage& m, const CalibrationInputs& in, bool in_motion) {
+  measure_load(m, in, in_motion);
   if (!(m.sigma > 0.0)) return fit_motion(m, in, in_motion);
   MotionStage without = m;
-  m.motion = calib::with_harmonic_candidates(m.motion, in.drive_candidates);
+  m.motion = calib::with_harmonic_candidates(m.motion, m.candidates);
   try {
     fit_motion(m, in, in_motion);
   } catch (const InputError& e) {
@@ -388,12 +422,13 @@ void drop_undetected(MotionStage& m, bool keep_clearance) {
   }
 }
 
-// The drive train's effects the data call for, per joint (backlash, errors
-// once and twice per motor revolution: calib/reading_model_selection.hpp).
-void select_drive_train(MotionStage& m, const CalibrationInputs& in) {
+// The drive train's effects the data call for, per joint, of m's candidates
+// (backlash, errors once and twice per motor revolution, cogging:
+// calib/reading_model_selection.hpp).
+void select_drive_train(MotionStage& m) {
   if (m.sigma > 0.0) {
     calib::DriveEffectSelection chosen =
-        calib::select_drive_effects(m.problem, m.omega, m.tau, m.lo, m.motion, m.alpha, in.drive_candidates,
+        calib::select_drive_effects(m.problem, m.omega, m.tau, m.lo, m.motion, m.alpha, m.candidates,
                                     kDriveEffectSigmas, &m.fit);  // m.fit: the fit of m.motion
     m.fit = std::move(chosen.fit);
     m.motion = chosen.model;
@@ -488,7 +523,7 @@ MotionStage motion_fits(const SampleSeries& samples, const CalibrationInputs& in
   // depends on the friction being chosen. No selection without sigma.
   first_fit(m, inputs, options.in_motion);
   drop_undetected(m, options.keep_clearance);
-  select_drive_train(m, inputs);
+  select_drive_train(m);
   // What looked like a play before the drive train was in the model may be
   // the drive train's (a geared robot with no clearance showed a play at
   // 3 sigma that its harmonics then took): the clearance is judged again.
