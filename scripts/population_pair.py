@@ -2,7 +2,7 @@
 same robots (their population.json), for the studies that compare two
 versions of the procedure (scripts/study_force_sign.sh, scripts/study_alternating_preload.sh,
 scripts/study_friction_balance.sh, scripts/study_sample_weights.sh,
-scripts/study_positioning_design.sh) or of the twin
+scripts/study_positioning_design.sh, scripts/study_cogging.sh) or of the twin
 (scripts/study_friction_timeconst.sh),
 and the table written into a document between its markers (those and
 scripts/study_effect_budget.sh)."""

@@ -25,16 +25,7 @@ for kind in "${kinds[@]}"; do
   robot=$unstated study_main_variant cogging "$kind" unstated ""
   robot=$stated study_main_variant cogging "$kind" stated ""
 done
-/usr/bin/python3 - "$out" "$count" "$first" "${kinds[@]}" <<'PY'
-import sys
-sys.path.insert(0, "scripts")
-from population_pair import BOUND_COLUMN, MISFIT_COLUMN, before_after_table, write_between_markers
-out, count, first, kinds = sys.argv[1], int(sys.argv[2]), int(sys.argv[3]), sys.argv[4:]
-lead = (f"{count} robots of `scenarios/main.yaml` each (seeds {first}..{first + count - 1}); `bash scripts/study_cogging.sh`. "
-        "Before -> after: the data sheet states no cogging periods -> the GPM2002's 24 per motor revolution "
-        "(`data_sheet.cogging_periods`).")
-table = "\n".join(before_after_table(out, kinds, "unstated", "stated", lead, [BOUND_COLUMN, MISFIT_COLUMN])) + "\n"
-open(f"{out}/cogging.md", "w").write(table)
-write_between_markers("docs/PROCEDURES.md", "cogging", table)
-print(table)
-PY
+lead="$count robots of \`scenarios/main.yaml\` each (seeds $first..$((first + count - 1))); \`bash scripts/study_cogging.sh\`. \
+Before -> after: the data sheet states no cogging periods -> the GPM2002's 24 per motor revolution \
+(\`data_sheet.cogging_periods\`)."
+/usr/bin/python3 scripts/population_pair.py "$out" unstated stated cogging "$lead" "${kinds[@]}"
