@@ -57,13 +57,14 @@ py::array_t<double> rows_array(size_t n, py::ssize_t cols, const Row& row) {
 
 }  // namespace
 
-// The robot's data sheet as a dict: gear_ratio, encoder_bits, and each stated
-// value as {nominal, min, max} (units in its key).
+// The robot's data sheet as a dict: gear_ratio, encoder_bits, cogging_periods,
+// and each stated value as {nominal, min, max} (units in its key).
 py::dict data_sheet_dict(const Robot& r) {
   const DataSheet& d = r.data_sheet;
   py::dict out;
   out["gear_ratio"] = d.gear_ratio;
   out["encoder_bits"] = d.encoder_bits;
+  out["cogging_periods"] = d.cogging_periods;
   const std::pair<const char*, const Stated*> items[] = {
       {"encoder_accuracy_rad", &d.encoder_accuracy_rad}, {"rotor_inertia_kg_m2", &d.rotor_inertia_kg_m2},
       {"active_link_mass_kg", &d.active_link_mass_kg},   {"passive_link_mass_kg", &d.passive_link_mass_kg},

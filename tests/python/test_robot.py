@@ -95,6 +95,7 @@ def test_robot_file_round_trip(scratch):
 def test_data_sheet_is_the_robot_files(scratch):
     sheet = gpm.load_robot().data_sheet  # models/gpm2002.yaml: a 400 W servo behind a 10:1 planetary
     assert sheet["gear_ratio"] == 10 and sheet["encoder_bits"] == 17
+    assert sheet["cogging_periods"] == 24  # the motor's 12 slots and 8 poles
     assert sheet["coulomb_Nm"] == dict(nominal=0.3, min=0.15, max=0.6)
     assert sheet["rotor_inertia_kg_m2"]["nominal"] == 2.6e-5
     assert math.isclose(sheet["rotor_inertia_kg_m2"]["max"], 2.86e-5)  # +-10 %
