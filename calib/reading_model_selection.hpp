@@ -1,7 +1,7 @@
 // Which of a geared drive's reading effects a robot's data need, per joint
 // (calib/motion_correction.hpp MotionModel: backlash, the harmonic errors
-// once per joint revolution and once and twice per motor revolution,
-// hysteresis): a
+// once per joint revolution and once and twice per motor revolution, the
+// motor's cogging, hysteresis): a
 // backward selection by Wald tests. The calibration in motion is fitted with
 // every candidate the data excite; a backlash is kept where its estimate lies
 // k 1-sigma of the noise model (MotionFit::noise_sigma) from 0, a harmonic where its pair (a, b) does at the same level
