@@ -33,7 +33,8 @@ ReducerErrors reducer_errors(const MotionFit& fit, const MotionModel& model) {
 double reducer_error(const ReducerErrors& e, int i, double theta_m, double gear_ratio) {
   const auto k = static_cast<std::size_t>(i);
   double sum = 0.0;
-  for (const int o : {kJointHarmonic, kReducerHarmonic}) {  // the reducer's orders (ReducerErrors)
+  for (int o = 0; o < kHarmonicOrders; ++o) {
+    if (!referenced_at_home(o)) continue;  // not the reducer's (ReducerErrors holds none of it)
     const auto& h = e.h[static_cast<std::size_t>(o)];
     const double a = harmonic_angle(o, theta_m, gear_ratio, 0.0);
     sum += h[k] * std::sin(a) + h[k + 3] * std::cos(a);
@@ -48,7 +49,8 @@ namespace {
 double reducer_error_variance(const ReducerErrors& e, int i, double theta_m, double gear_ratio) {
   const auto k = static_cast<std::size_t>(i);
   double var = 0.0;
-  for (const int o : {kJointHarmonic, kReducerHarmonic}) {  // the reducer's orders (ReducerErrors)
+  for (int o = 0; o < kHarmonicOrders; ++o) {
+    if (!referenced_at_home(o)) continue;  // not the reducer's (ReducerErrors holds none of it)
     const auto& s = e.sigma[static_cast<std::size_t>(o)];
     if (!(std::isfinite(s[k]) && std::isfinite(s[k + 3]))) continue;
     const double a = harmonic_angle(o, theta_m, gear_ratio, 0.0);

@@ -191,7 +191,6 @@ DriveEffectSelection select_drive_effects(const Problem& problem, const std::vec
     return out;
   }
   const MotionFit& all = *fitted;
-  // A pair (a, b) at the two-sided k-sigma level: chi-square(2) > -2 ln(erfc(k / sqrt 2)).
   const double pair_level = pair_sigma_level(k);
   const std::array<std::string, kHarmonicOrders> order_name{
       "harmonic error once per joint revolution", "harmonic error once per motor revolution",

@@ -309,11 +309,12 @@ calib::BalanceFriction balance_with_cogging(MotionStage& m, const CalibrationInp
                                               {m.problem.theta_m, m.omega, m.alpha, m.tau, hub_accel, per_rad},
                                               m.motion.load, in.hub_mass_kg, m.motion.skip_first);
   };
-  const calib::BalanceFriction plain = balance(0.0);
-  if (!std::ranges::any_of(in.drive_candidates.cogging, std::identity{})) return plain;
-  const double per_rad = m.motion.cogging_periods * m.motion.gear_ratio;
-  const calib::BalanceFriction with = balance(per_rad);
-  return add_cogging_torque(m, with, per_rad) ? with : plain;
+  if (std::ranges::any_of(in.drive_candidates.cogging, std::identity{})) {
+    const double per_rad = m.motion.cogging_periods * m.motion.gear_ratio;
+    calib::BalanceFriction with = balance(per_rad);
+    if (add_cogging_torque(m, with, per_rad)) return with;  // else m's torques are as they were
+  }
+  return balance(0.0);
 }
 
 // Each drive's friction from the hub's force balance on the drives' torques
@@ -441,14 +442,13 @@ void select_drive_train(MotionStage& m) {
 
 // True where some joint's error once per joint revolution in fit lies
 // kDriveEffectSigmas from 0, as the drive train's other effects are kept:
-// (a/sa)^2 + (b/sb)^2 above the chi-square of 2 degrees of freedom at that
-// level, -2 ln erfc(k / sqrt 2) (the 1-sigma the misfit's sandwich where the
+// sqrt((a/sa)^2 + (b/sb)^2) above calib::pair_sigma_level (the 1-sigma the misfit's sandwich where the
 // residuals exceed the noise; a and b taken as independent).
 bool joint_error_detected(const calib::MotionFit& fit) {
-  const double bound = -2.0 * std::log(std::erfc(kDriveEffectSigmas / std::sqrt(2.0)));
+  const double level = calib::pair_sigma_level(kDriveEffectSigmas);
   for (std::size_t i = 0; i < 3; ++i) {
     const double za = fit.cyclic[i] / fit.cyclic_sigma[i], zb = fit.cyclic[i + 3] / fit.cyclic_sigma[i + 3];
-    if (za * za + zb * zb > bound) return true;  // NaN (not estimated) compares false
+    if (std::hypot(za, zb) > level) return true;  // NaN (not estimated) compares false
   }
   return false;
 }
