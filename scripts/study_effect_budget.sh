@@ -11,8 +11,9 @@
 # 1-sigma, worst parameter in its 1-sigma) goes to DIR/effect_budget.md and
 # into docs/PROCEDURES.md between its effect-budget markers.
 #   bash scripts/study_effect_budget.sh [DIR] [COUNT] [FIRST_SEED]
-#   (default out/effect_budget, 10 robots a row from seed 2026: 22 rows,
-#   about 6 minutes on 2 idle cores)
+#   (default out/effect_budget, 10 robots a row from seed 2026: 22 rows;
+#   20 robots a row took 52 minutes on 2 cores shared with other runs).
+# The last column compares each robot with itself in the row it changes.
 set -euo pipefail
 cd "$(dirname "$0")/.."
 source scripts/effects_beyond_basic.sh
@@ -35,26 +36,40 @@ row basic "$(all_off_but none)"
 for n in "${names[@]}"; do row "only_$n" "$(all_off_but "$n")"; done
 
 python3 - "$out" "$count" "$first" "${names[@]}" <<'EOF'
-import json, sys
+import json, math, sys
 sys.path.insert(0, 'scripts')
 from population_pair import write_between_markers
 out, count, first, names = sys.argv[1], int(sys.argv[2]), int(sys.argv[3]), sys.argv[4:]
 label = {'backlash': 'backlash', 'hysteresis': 'drive hysteresis', 'te_joint': 'transmission error per joint revolution',
          'te_motor': 'transmission error per motor revolution', 'stiction': 'stiction', 'load_friction': 'load friction',
          'torque_constant': 'torque constant', 'cogging': 'cogging', 'hub_pins': 'hub pin offsets', 'jitter': 'latch jitter'}
-def cells(row):
+def positioning(row):
+    robots = json.load(open(f'{out}/{row}/population.json'))['robots']
+    return {r['seed']: r['positioning_um']['rms'] for r in robots if r.get('positioning_um')}
+# Robot by robot against the row `against` (the same seeds): the geometric
+# mean of this row's positioning RMS over that row's, and its range (a
+# median over 20 robots moves by 10 um from one draw to another; the same
+# robot's ratio shows what the effect does to it).
+def ratio(row, against):
+    a, b = positioning(row), positioning(against)
+    r = [a[s] / b[s] for s in a if s in b and b[s] > 0]
+    if not r: return "-"
+    return f"{math.exp(sum(map(math.log, r)) / len(r)):.2f} ({min(r):.2f}-{max(r):.2f})"
+def cells(row, against=None):
     s = json.load(open(f'{out}/{row}/population.json'))['summary']
     ok = s['robots'] - s['failed']
     return (f"{s['positioning_median_um']:.1f} | {s['positioning_max_um']:.0f} | "
-            f"{s['normalised_positioning_median']:.2f} | {s['worst_sigma_ratio']:.1f} | {ok}")
+            f"{s['normalised_positioning_median']:.2f} | {s['worst_sigma_ratio']:.1f} | {ok} | "
+            f"{ratio(row, against) if against else '-'}")
 lines = [f"{count} robots of `scenarios/main.yaml` (seeds {first}..{first + count - 1}), each row the same robots; "
          "`bash scripts/study_effect_budget.sh`.", "",
-         "| robots | positioning RMS, median (um) | worst robot (um) | error / stated 1-sigma (median) | worst parameter (sigma) | calibrated |",
-         "| --- | ---: | ---: | ---: | ---: | ---: |",
+         "| robots | positioning RMS, median (um) | worst robot (um) | error / stated 1-sigma (median) | worst parameter (sigma) | calibrated "
+         "| per robot against the row it changes: geometric mean of the ratio (range) |",
+         "| --- | ---: | ---: | ---: | ---: | ---: | ---: |",
          f"| every effect drawn | {cells('all')} |"]
-lines += [f"| every effect but {label[n]} | {cells('without_' + n)} |" for n in names]
+lines += [f"| every effect but {label[n]} | {cells('without_' + n, 'all')} |" for n in names]
 lines += [f"| the basic set only (none of the above) | {cells('basic')} |"]
-lines += [f"| the basic set and {label[n]} | {cells('only_' + n)} |" for n in names]
+lines += [f"| the basic set and {label[n]} | {cells('only_' + n, 'basic')} |" for n in names]
 table = "\n".join(lines) + "\n"
 open(f'{out}/effect_budget.md', 'w').write(table)
 write_between_markers('docs/PROCEDURES.md', 'effect-budget', table)
