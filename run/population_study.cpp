@@ -90,6 +90,7 @@ PopulationRobot robot_of(const RunOutcome& o, PopulationRobot r) {
   r.plan_deviation_mm = o.plan_deviation_mm;
   r.friction_balance = o.friction_balance;
   if (!o.calibration) return failed_robot(r, o.refused.value_or("no calibration"));
+  r.notes = o.calibration->notes;
   if (!o.calibration->converged) return failed_robot(r, "calibration did not converge");
   r.calibrated_static_um = o.after ? o.after->static_rms_um : NAN;
   r.floor_um = o.floor ? o.floor->static_rms_um : NAN;
@@ -320,6 +321,7 @@ nlohmann::json robot_json(const PopulationRobot& r) {
   j["parameters"] = params;
   j["within_3_sigma"] = r.within_3_sigma;
   j["estimated"] = r.estimated;
+  j["calibration_notes"] = r.notes;
   if (r.friction_balance)  // beside the twin's truth in effects (the viscous friction there is the model's 0.05 less)
     j["friction_balance"] = {{"coulomb_Nm", r.friction_balance->coulomb_Nm},
                              {"viscous_Nm_s", r.friction_balance->viscous_Nm_s},

@@ -44,6 +44,8 @@ struct PopulationRobot {
   std::optional<bool> model_test_passed;
   double chi2_per_dof = 0.0;
   std::vector<std::string> calls_for;   // failed on the fly: the effects left out the residuals call for
+  std::vector<std::string> notes;       // the calibration's notes, as gpm run reports them (what it estimated,
+                                        // chose and left out, and why)
   std::array<double, kNumParams> error{};  // estimated - actual (mm, rad; NaN where not estimated)
   std::array<double, kNumParams> sigma{};  // the stated 1-sigma (NaN where not estimated)
   std::string worst_param;                 // largest |error| / sigma

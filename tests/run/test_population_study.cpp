@@ -58,6 +58,9 @@ TEST(PopulationStudy, ARobotReRunAloneGivesItsNumbersAndTheSummaryIsTheRobots) {
   const PopulationStudy alone = run_population_study(kSmall, o);
   ASSERT_EQ(alone.robots.size(), 1u);
   EXPECT_EQ(alone.robots[0].positioning.rms_um, study.robots[1].positioning.rms_um);
+  // The calibration's notes come with each robot, the same as it re-run alone.
+  ASSERT_FALSE(study.robots[1].notes.empty());
+  EXPECT_EQ(alone.robots[0].notes, study.robots[1].notes);
   for (size_t k = 0; k < kNumParams; ++k) {
     if (!std::isfinite(study.robots[1].error[k])) continue;
     EXPECT_EQ(alone.robots[0].error[k], study.robots[1].error[k]);
@@ -80,6 +83,7 @@ TEST(PopulationStudy, ARobotReRunAloneGivesItsNumbersAndTheSummaryIsTheRobots) {
   EXPECT_EQ(j["robots"].size(), 2u);
   EXPECT_EQ(j["robots"][1]["seed"], 501);
   EXPECT_EQ(j["robots"][1]["plan_deviation_mm"], study.robots[1].plan_deviation_mm);
+  EXPECT_EQ(j["robots"][1]["calibration_notes"].get<std::vector<std::string>>(), study.robots[1].notes);
   EXPECT_EQ(j["summary"]["plan_deviation_max_mm"], s.plan_deviation_max_mm);
 }
 
