@@ -27,6 +27,34 @@ std::vector<double> default_friction_speeds() {
 
 namespace {
 
+// Pearson's correlation of x and y (0 where either does not vary).
+double correlation(const Eigen::VectorXd& x, const Eigen::VectorXd& y) {
+  const Eigen::VectorXd dx = x.array() - x.mean(), dy = y.array() - y.mean();
+  const double d = dx.norm() * dy.norm();
+  return d > 0.0 ? dx.dot(dy) / d : 0.0;
+}
+
+}  // namespace
+
+std::vector<double> speeds_told_from_skew(const std::vector<double>& speeds, const std::vector<Eigen::Vector3d>& omega,
+                                          const std::array<bool, 3>& skewed, double max_correlation) {
+  std::vector<double> told;
+  for (double v : speeds) {
+    bool ok = true;
+    for (int i = 0; i < 3 && ok; ++i) {
+      if (!skewed[static_cast<std::size_t>(i)] || omega.empty()) continue;
+      Eigen::VectorXd w(static_cast<Eigen::Index>(omega.size()));
+      for (std::size_t j = 0; j < omega.size(); ++j) w[static_cast<Eigen::Index>(j)] = omega[j][i];
+      ok = std::abs(correlation((w / v).array().tanh().matrix(), w)) <= max_correlation;
+    }
+    if (ok) told.push_back(v);
+  }
+  if (told.empty() && !speeds.empty()) told.push_back(*std::ranges::min_element(speeds));
+  return told;
+}
+
+namespace {
+
 // The fits of a profile as they are made: chi2/dof per grid value (NaN:
 // not tried), the best so far and the last error.
 template <class Variant>

@@ -16,6 +16,7 @@
 // along the grid to the first local minimum instead of fitting every value.
 #pragma once
 
+#include <array>
 #include <limits>
 #include <optional>
 #include <vector>
@@ -80,5 +81,22 @@ FrictionProfile friction_speed_profile(const Problem& problem, const std::vector
 
 // The speeds 0.01 * 10^(m/2) rad/s, m = 0..4 (0.01 to 1 rad/s).
 std::vector<double> default_friction_speeds();
+
+// The largest correlation between the friction twist's column and the latch
+// skew's at which a friction speed is tried: a variance inflation 1 / (1 -
+// rho^2) of at most 10 for the pair.
+inline constexpr double kMaxSkewCorrelation = 0.949;
+
+// The speeds v of `speeds` whose friction twist the samples tell from the
+// latch skew: on every joint i of `skewed` (those with a skew estimated) the
+// correlation of tanh(omega_i / v) with omega_i over the samples (joint
+// speeds omega, rad/s) is at most max_correlation. Where v is large against
+// the joints' speeds the twist is linear in the speed, the skew's own column,
+// and the fit trades the two (skews of milliseconds). The smallest speed
+// stays where none qualifies; all stay where no joint is skewed or no joint
+// moves.
+std::vector<double> speeds_told_from_skew(const std::vector<double>& speeds, const std::vector<Eigen::Vector3d>& omega,
+                                          const std::array<bool, 3>& skewed,
+                                          double max_correlation = kMaxSkewCorrelation);
 
 }  // namespace gpm::calib

@@ -36,6 +36,9 @@ inline constexpr Bound kEncoderBits{0, 40, true, "bits"};
 inline constexpr Bound kNoiseSigma{0.0, 1.0, false, "rad"};
 // Time a passive link may take to cross its play after its force changes sign (calibration.crossing_s).
 inline constexpr Bound kCrossingTime{0.0, 1.0, false, "s"};
+// Largest correlation of the friction twist's column with the latch skew's
+// at which a friction speed is tried (calibration.drive_friction.max_skew_correlation; 1: every speed).
+inline constexpr Bound kSkewCorrelation{0.0, 1.0, false, "(a correlation)"};
 // Scale of a robust loss (--loss cauchy:SCALE, calibration.loss), residual units.
 inline constexpr Bound kLossScale{1e-12, 1e6, false, "(residual units: rad for ml)"};
 // Samples (poses) generated in one data set (study --n, compare --samples).

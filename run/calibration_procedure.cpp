@@ -199,13 +199,17 @@ MotionStage motion_stage(const SampleSeries& s, const CalibrationInputs& in, con
 
 // The speed over which the drives' friction builds up, chosen by the model
 // test (calib/friction_profile.hpp) at the friction of motion.load; at: the
-// friction's name in the note. The profile walks from the speed of known
+// friction's name in the note. The speeds tried are those whose friction
+// twist the joints' speeds tell from the latch skew (calib::
+// speeds_told_from_skew). The profile walks from the speed of known
 // (m.fit, made already with m.motion) or from the middle speed; where the
 // minimum it finds has chi2/dof above kWalkTrust every speed is fitted (on
 // the population's robots whose readings the model misses, chi2/dof has
 // more than one minimum over the speeds).
-void choose_speed(MotionStage& m, const char* at, const calib::MotionFit* known) {
-  const std::vector<double> grid = calib::default_friction_speeds();
+void choose_speed(MotionStage& m, const char* at, const calib::MotionFit* known, double max_skew_correlation) {
+  const std::vector<double> all = calib::default_friction_speeds();
+  const bool skew = m.motion.skew;
+  const std::vector<double> grid = calib::speeds_told_from_skew(all, m.omega, {false, skew, skew}, max_skew_correlation);
   calib::ProfileStart from;
   from.value = known ? m.motion.load.friction_speed_rad_s : grid[grid.size() / 2];
   from.known = known;
@@ -217,9 +221,13 @@ void choose_speed(MotionStage& m, const char* at, const calib::MotionFit* known)
   m.fit = speeds.fit;
   m.speed_note = fmt::format(
       "drive friction builds up over {:.3g} rad/s (F tanh(omega / v)), the smallest chi2/dof of the speeds "
-      "tried in rad/s at {}{} ({})",
+      "tried in rad/s at {}{} ({}){}",
       speeds.scale, at, speeds.scales.size() < grid.size() ? fmt::format(", walking down from {:.3g}", *from.value) : "",
-      profile_tried(speeds, "{:.3g}"));
+      profile_tried(speeds, "{:.3g}"),
+      grid.size() < all.size() ? fmt::format("; {} of the {} speeds not tried: over these joint speeds their twist is "
+                                             "the latch skew's column (correlation above {:g})",
+                                             all.size() - grid.size(), all.size(), max_skew_correlation)
+                               : "");
 }
 
 // What the friction scale multiplies: the stated values, or where the force balance contradicted them its.
@@ -356,13 +364,14 @@ void friction_from_balance(MotionStage& m, const CalibrationInputs& in) {
 // where it can judge them, else one fit.
 void fit_motion(MotionStage& m, const CalibrationInputs& in, bool in_motion) {
   const bool fit_speed = in_motion && m.motion.friction && m.sigma > 0.0;
-  if (fit_speed) choose_speed(m, m.balance_taken > 0 ? "the friction measured" : "the stated friction", nullptr);
+  const double rho = in.drive_friction.max_skew_correlation;
+  if (fit_speed) choose_speed(m, m.balance_taken > 0 ? "the friction measured" : "the stated friction", nullptr, rho);
   if (m.motion.clearance && in.drive_friction.fit_scale && m.sigma > 0.0) {
     // The factor 1 is the stated friction: the speed profile's fit when it was made.
     choose_friction_scale(m, fit_speed ? &m.fit : nullptr);
     // A speed chosen at a wrong friction stands in for it: chosen again at the
     // factor's (the factor's fit is the one at the speed it was made with).
-    if (fit_speed && m.friction_scale != 1.0) choose_speed(m, "that friction", &m.fit);
+    if (fit_speed && m.friction_scale != 1.0) choose_speed(m, "that friction", &m.fit, rho);
   } else if (!fit_speed) {
     m.fit = calib::calibrate_in_motion(m.problem, m.omega, m.tau, m.lo, m.motion, m.alpha);
   }

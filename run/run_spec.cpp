@@ -43,10 +43,11 @@ DriveFriction parse_drive_friction(const YAML::Node& n, const std::string& file,
                                    DriveFriction f, bool with_scale) {
   if (!n.IsMap())
     throw InputError(yaml_where(file, n, key) +
-                     (with_scale ? "expected {coulomb_Nm: N m, viscous_Nm_s: N m s/rad, fit_scale: bool, from_balance: bool, weigh_rest: bool, weigh_signs: bool} (each friction a number or a list of three)"
+                     (with_scale ? "expected {coulomb_Nm: N m, viscous_Nm_s: N m s/rad, fit_scale: bool, from_balance: bool, weigh_rest: bool, weigh_signs: bool, max_skew_correlation: 0 to 1} (each friction a number or a list of three)"
                                  : "expected {coulomb_Nm: N m, viscous_Nm_s: N m s/rad} (each a number or a list of three)"));
   if (with_scale)
-    yaml_check_keys(n, file, key, {"coulomb_Nm", "viscous_Nm_s", "fit_scale", "from_balance", "weigh_rest", "weigh_signs"});
+    yaml_check_keys(n, file, key, {"coulomb_Nm", "viscous_Nm_s", "fit_scale", "from_balance", "weigh_rest", "weigh_signs",
+                                   "max_skew_correlation"});
   else
     yaml_check_keys(n, file, key, {"coulomb_Nm", "viscous_Nm_s"});
   if (n["coulomb_Nm"]) f.coulomb_Nm = per_joint(n["coulomb_Nm"], file, key + ".coulomb_Nm", 20.0, "N m");
@@ -54,6 +55,9 @@ DriveFriction parse_drive_friction(const YAML::Node& n, const std::string& file,
   if (with_scale && n["from_balance"]) f.from_balance = yaml_bool(n["from_balance"], file, key + ".from_balance");
   if (with_scale && n["weigh_rest"]) f.weigh_rest = yaml_bool(n["weigh_rest"], file, key + ".weigh_rest");
   if (with_scale && n["weigh_signs"]) f.weigh_signs = yaml_bool(n["weigh_signs"], file, key + ".weigh_signs");
+  if (with_scale && n["max_skew_correlation"])
+    f.max_skew_correlation =
+        yaml_within(n["max_skew_correlation"], file, key + ".max_skew_correlation", limits::kSkewCorrelation);
   if (n["viscous_Nm_s"]) f.viscous_Nm_s = per_joint(n["viscous_Nm_s"], file, key + ".viscous_Nm_s", 100.0, "N m s/rad");
   return f;
 }

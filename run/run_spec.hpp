@@ -10,6 +10,7 @@
 
 #include <Eigen/Core>
 
+#include "calib/friction_profile.hpp"
 #include "calib/monitor/monitor.hpp"
 #include "calib/problem.hpp"
 #include "calib/robust_loss.hpp"
@@ -52,6 +53,11 @@ struct DriveFriction {
   // "Samples the friction leaves uncertain").
   bool weigh_rest = true;
   bool weigh_signs = false;
+  // On the fly, the speeds over which the friction may build up that are
+  // tried: those whose twist tanh(omega / v) correlates with the joint speed
+  // (the latch skew's column) at most this much over the samples
+  // (calib::speeds_told_from_skew); 1: every speed of the grid.
+  double max_skew_correlation = calib::kMaxSkewCorrelation;
 };
 
 // The drives' friction a data sheet states (the default of

@@ -6,7 +6,9 @@
 // 4 sigma; a friction that builds up over 0.3 rad/s is found by the speed
 // profile; a walk from a start chooses what fitting every value chooses, in
 // fewer fits (every value where its minimum is above the trust), and takes a
-// known fit as it is; bad arguments are refused.
+// known fit as it is; bad arguments are refused; a speed whose twist is the
+// latch skew's column over the joints' speeds is not tried (a hand-worked
+// correlation).
 #include "calib/friction_profile.hpp"
 
 #include <algorithm>
@@ -213,6 +215,32 @@ TEST(FrictionProfile, RefusesBadArguments) {
   EXPECT_DOUBLE_EQ(g[5], 1.0);
   EXPECT_DOUBLE_EQ(g.back(), 4.0);
   EXPECT_DOUBLE_EQ(g[6] / g[5], std::sqrt(2.0));
+}
+
+// Joint speeds spread evenly over [-1, 1] rad/s on joints 2 and 3 (joint 1 at rest).
+std::vector<Eigen::Vector3d> even_speeds() {
+  std::vector<Eigen::Vector3d> w;
+  for (int j = 0; j <= 2000; ++j) w.emplace_back(0.0, -1.0 + 1e-3 * j, 1.0 - 1e-3 * j);
+  return w;
+}
+
+TEST(FrictionProfile, SpeedsTheSkewCannotTellFromTheTwistAreNotTried) {
+  const std::vector<Eigen::Vector3d> w = even_speeds();
+  const std::array<bool, 3> skewed{false, true, true};
+  // Far above the joints' speeds the twist tanh(omega / v) is linear in omega,
+  // the skew's column (correlation 1 - 1e-5 at v = 10); far below them it is
+  // sign(omega), whose correlation with omega uniform on [-a, a] is
+  // E|omega| / sqrt(E omega^2) = (a / 2) / (a / sqrt 3) = sqrt(3) / 2 = 0.866.
+  EXPECT_EQ(speeds_told_from_skew({1e-4, 10.0}, w, skewed), (std::vector<double>{1e-4}));
+  EXPECT_EQ(speeds_told_from_skew({1e-4, 10.0}, w, skewed, 0.87), (std::vector<double>{1e-4}));
+  // Below sqrt(3) / 2 no speed qualifies: the smallest stays.
+  EXPECT_EQ(speeds_told_from_skew({10.0, 1e-4, 1.0}, w, skewed, 0.86), (std::vector<double>{1e-4}));
+  // Without a skew, or without motion, every speed is tried.
+  EXPECT_EQ(speeds_told_from_skew({1e-4, 10.0}, w, {true, false, false}), (std::vector<double>{1e-4, 10.0}));
+  const std::vector<Eigen::Vector3d> rest(10, Eigen::Vector3d::Zero());
+  EXPECT_EQ(speeds_told_from_skew({1e-4, 10.0}, rest, skewed), (std::vector<double>{1e-4, 10.0}));
+  // The default grid on these speeds (up to 1 rad/s): 0.316 and 1 rad/s are the skew's column.
+  EXPECT_EQ(speeds_told_from_skew(default_friction_speeds(), w, skewed).size(), 3u);
 }
 
 }  // namespace

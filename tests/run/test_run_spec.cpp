@@ -174,6 +174,14 @@ TEST(RunSpec, DriveFrictionStatedByTheCalibration) {
   EXPECT_TRUE(swapped.weigh_signs);
   EXPECT_NE(error_of(kHead + "calibration: {drive_friction: {weigh_rest: 2}}\n").find("calibration.drive_friction.weigh_rest"),
             std::string::npos);
+  // The friction speeds tried: those the latch skew's column cannot take up (default), or every one (1).
+  EXPECT_EQ(d.calibration.drive_friction.max_skew_correlation, calib::kMaxSkewCorrelation);
+  EXPECT_EQ(parse_run_spec(kHead + "calibration: {drive_friction: {max_skew_correlation: 1}}\n", "s.yaml", kBase)
+                .calibration.drive_friction.max_skew_correlation,
+            1.0);
+  EXPECT_NE(error_of(kHead + "calibration: {drive_friction: {max_skew_correlation: 1.5}}\n")
+                .find("calibration.drive_friction.max_skew_correlation: must be a number from 0 to 1 (a correlation), got 1.5"),
+            std::string::npos);
   EXPECT_EQ(error_of(kHead + "calibration: {drive_friction: {coulomb_Nm: -0.3}}\n"),
             "s.yaml:3: calibration.drive_friction.coulomb_Nm: -0.3 is out of range (valid: 0 to 20 N m)");
   EXPECT_NE(error_of(kHead + "calibration: {drive_friction: {viscous_Nm_s: [0.1, 0.2]}}\n")
