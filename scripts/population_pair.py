@@ -22,13 +22,17 @@ def load_pair(out, kind, before, after):
     return tuple(json.load(open(f"{out}/{kind}_{x}/population.json")) for x in (before, after))
 
 
+def positioning_by_seed(p):
+    """Each calibrated robot's positioning RMS (um) of population p, by seed."""
+    return {r["seed"]: r["positioning_um"]["rms"] for r in p["robots"] if r["failure"] is None}
+
+
 def before_after(a, b):
     """Cells of summaries a -> b: positioning median and worst (um), share within 3
     sigma, worst parameter (sigma), error / stated 1-sigma, model test passes,
     and the robots whose positioning got better / worse."""
     sa, sb = a["summary"], b["summary"]
-    ra = {r["seed"]: r["positioning_um"]["rms"] for r in a["robots"] if r["failure"] is None}
-    rb = {r["seed"]: r["positioning_um"]["rms"] for r in b["robots"] if r["failure"] is None}
+    ra, rb = positioning_by_seed(a), positioning_by_seed(b)
     better = sum(1 for s in ra if s in rb and rb[s] < ra[s])
     worse = sum(1 for s in ra if s in rb and rb[s] > ra[s])
     return {

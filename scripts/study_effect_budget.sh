@@ -38,14 +38,13 @@ for n in "${names[@]}"; do row "only_$n" "$(all_off_but "$n")"; done
 python3 - "$out" "$count" "$first" "${names[@]}" <<'EOF'
 import json, math, sys
 sys.path.insert(0, 'scripts')
-from population_pair import write_between_markers
+from population_pair import positioning_by_seed, write_between_markers
 out, count, first, names = sys.argv[1], int(sys.argv[2]), int(sys.argv[3]), sys.argv[4:]
 label = {'backlash': 'backlash', 'hysteresis': 'drive hysteresis', 'te_joint': 'transmission error per joint revolution',
          'te_motor': 'transmission error per motor revolution', 'stiction': 'stiction', 'load_friction': 'load friction',
          'torque_constant': 'torque constant', 'cogging': 'cogging', 'hub_pins': 'hub pin offsets', 'jitter': 'latch jitter'}
 def positioning(row):
-    robots = json.load(open(f'{out}/{row}/population.json'))['robots']
-    return {r['seed']: r['positioning_um']['rms'] for r in robots if r.get('positioning_um')}
+    return positioning_by_seed(json.load(open(f'{out}/{row}/population.json')))
 # Robot by robot against the row `against` (the same seeds): the geometric
 # mean of this row's positioning RMS over that row's, and its range (a
 # median over 20 robots moves by 10 um from one draw to another; the same
