@@ -58,10 +58,10 @@ void check_fit(std::vector<Check>& out, const Expectations& e, const calib::Resu
           r.kmrmse_mm ? fmt::format("kmrmse = {:.4g} mm (limit {:.3g})", *r.kmrmse_mm, *e.kmrmse_mm_max)
                       : "no kmrmse (samples without x,y)");
   }
-  if (e.note_contains) {
+  for (const std::string& text : e.note_contains) {
     bool ok = false;
-    for (const auto& n : r.notes) ok = ok || n.find(*e.note_contains) != std::string::npos;
-    check(out, "note_contains", ok, ok ? "found" : fmt::format("no note contains '{}'", *e.note_contains));
+    for (const auto& n : r.notes) ok = ok || n.find(text) != std::string::npos;
+    check(out, "note_contains", ok, ok ? "found" : fmt::format("no note contains '{}'", text));
   }
 }
 

@@ -273,6 +273,18 @@ void opt_number(const YAML::Node& n, const char* key, const std::string& file, s
   if (n[key]) out = yaml_positive(n[key], file, std::string("expect.") + key);
 }
 
+// expect.note_contains: a text or a list of texts (each a string).
+std::vector<std::string> note_texts(const YAML::Node& v, const std::string& file) {
+  if (v.IsScalar()) return {yaml_string(v, file, "expect.note_contains")};
+  if (!v.IsSequence() || v.size() == 0)
+    throw InputError(yaml_where(file, v, "expect.note_contains") +
+                     "expected a text or a list of texts, each a note must contain");
+  std::vector<std::string> out;
+  for (std::size_t i = 0; i < v.size(); ++i)
+    out.push_back(yaml_string(v[i], file, fmt::format("expect.note_contains[{}]", i)));
+  return out;
+}
+
 Expectations parse_expect(const YAML::Node& n, const std::string& file) {
   Expectations e;
   if (!n) return e;
@@ -310,7 +322,7 @@ Expectations parse_expect(const YAML::Node& n, const std::string& file) {
   opt_number(n, "positioning_rms_um_max", file, e.positioning_rms_um_max);
   if (n["model_test_passes"]) e.model_test_passes = yaml_bool(n["model_test_passes"], file, "expect.model_test_passes");
   if (n["refused_contains"]) e.refused_contains = yaml_string(n["refused_contains"], file, "expect.refused_contains");
-  if (n["note_contains"]) e.note_contains = yaml_string(n["note_contains"], file, "expect.note_contains");
+  if (const YAML::Node v = n["note_contains"]) e.note_contains = note_texts(v, file);
   return e;
 }
 

@@ -141,9 +141,8 @@ struct CalibrationSpec {
   std::optional<bool> estimate_encoder_error;
   // The reducer's error once per joint revolution on motor encoders, under
   // the data sheet's prior, where the fit with it explains the readings and
-  // they show it (else carried in the 1-sigma); unset = carried (not yet
-  // on by default: docs/MOTION_MODEL.md "The reducer's error once per joint
-  // revolution").
+  // they show it (else carried in the 1-sigma); unset = on the fly
+  // (docs/MOTION_MODEL.md "The reducer's error once per joint revolution").
   std::optional<bool> estimate_joint_error;
   // The drives' friction the procedure assumes (for the force signs);
   // default: the robot's data sheet (stated_drive_friction).
@@ -171,7 +170,7 @@ struct Expectations {
   std::optional<double> path_rms_um_max;
   std::optional<double> improvement_min;                  // static RMS nominal / calibrated
   std::optional<std::string> refused_contains;            // calibration refused with this diagnosis
-  std::optional<std::string> note_contains;               // a warning/diagnosis note
+  std::vector<std::string> note_contains;                // each in some warning/diagnosis note
   std::optional<double> floor_ratio_max;                  // static RMS calibrated / with the actual parameters
   std::optional<double> robot_time_s_max;                 // robot time of the sampling
   std::optional<bool> model_test_passes;                  // the chi-square model test passes (true) or fails (false)

@@ -1,6 +1,7 @@
 // Tests of run/expectations.cpp: a parameter's error judged against the
 // Cramer-Rao bound and against the 1-sigma the calibration states, each on a
-// hand-made outcome whose error is a known multiple of both.
+// hand-made outcome whose error is a known multiple of both; each text of
+// note_contains looked for in the calibration's notes.
 #include "run/expectations.hpp"
 
 #include <gtest/gtest.h>
@@ -69,6 +70,21 @@ TEST(Expectations, NoCalibrationFailsTheStatedSigmaCheck) {
   ASSERT_EQ(checks.size(), 1u);
   EXPECT_EQ(checks[0].name, "calibration");
   EXPECT_FALSE(checks[0].passed);
+}
+
+TEST(Expectations, EachNoteTextIsLookedForInTheNotes) {
+  RunOutcome o = la1_off_by_4_bounds_and_2_sigma();
+  o.calibration->notes = {"the reducer's error carried: it explains 3 % of the misfit", "backlash of joint 2"};
+  o.spec.expect.note_contains = {"explains 3 %", "backlash of joint"};
+  std::vector<Check> checks = evaluate_expectations(o);
+  ASSERT_EQ(checks.size(), 2u);
+  EXPECT_TRUE(checks[0].passed && checks[1].passed);
+  o.spec.expect.note_contains = {"explains 3 %", "cogging"};
+  checks = evaluate_expectations(o);
+  ASSERT_EQ(checks.size(), 2u);
+  EXPECT_TRUE(checks[0].passed);
+  EXPECT_FALSE(checks[1].passed);
+  EXPECT_EQ(checks[1].detail, "no note contains 'cogging'");
 }
 
 }  // namespace

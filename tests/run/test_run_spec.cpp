@@ -50,6 +50,17 @@ TEST(RunSpec, PositioningExpectationIsAPositiveNumberInMicrons) {
             std::string::npos);
 }
 
+TEST(RunSpec, NoteExpectationIsATextOrAListOfTexts) {
+  EXPECT_EQ(parse_run_spec(kHead + "expect: {note_contains: a b}\n", "s.yaml", kBase).expect.note_contains,
+            (std::vector<std::string>{"a b"}));
+  EXPECT_EQ(parse_run_spec(kHead + "expect: {note_contains: [a, 'b: c']}\n", "s.yaml", kBase).expect.note_contains,
+            (std::vector<std::string>{"a", "b: c"}));
+  EXPECT_TRUE(parse_run_spec(kHead, "s.yaml", kBase).expect.note_contains.empty());
+  EXPECT_EQ(error_of(kHead + "expect: {note_contains: []}\n"),
+            "s.yaml:3: expect.note_contains: expected a text or a list of texts, each a note must contain");
+  EXPECT_NE(error_of(kHead + "expect: {note_contains: [a, [b]]}\n").find("expect.note_contains[1]"), std::string::npos);
+}
+
 TEST(RunSpec, FixListUnknownNameNamesKeyPathAndSuggestion) {
   EXPECT_EQ(error_of(kHead + "calibration:\n  fix: [xa1, ya1, xb1]\n"),
             "s.yaml:4: calibration.fix[2]: unknown parameter 'xb1' (did you mean xa1?)");
@@ -117,7 +128,7 @@ TEST(RunSpec, LossAndEstimatedEffects) {
                 .calibration.estimate_encoder_error,
             true);
   EXPECT_EQ(s.calibration.estimate_joint_error, false);
-  EXPECT_FALSE(parse_run_spec(kHead, "s.yaml", kBase).calibration.estimate_joint_error);  // unset: carried
+  EXPECT_FALSE(parse_run_spec(kHead, "s.yaml", kBase).calibration.estimate_joint_error);  // unset: on the fly
   const RunSpec j = parse_run_spec(kHead + "calibration: {estimate: [joint_error]}\n", "s.yaml", kBase);
   EXPECT_EQ(j.calibration.estimate_joint_error, true);
   EXPECT_EQ(j.calibration.estimate_encoder_error, false);
