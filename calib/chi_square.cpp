@@ -20,4 +20,9 @@ double chi2_upper_quantile(double dof, double p) {
   return 2.0 * boost::math::gamma_q_inv(0.5 * dof, p);
 }
 
+double misfit_share(double chi2_before, double dof_before, double chi2_after) {
+  const double excess = chi2_before - dof_before;
+  return excess > 0.0 ? (chi2_before - chi2_after) / excess : 0.0;
+}
+
 }  // namespace gpm::calib

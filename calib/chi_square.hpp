@@ -13,4 +13,10 @@ double chi2_survival(double dof, double x);
 // of a test whose false-alarm probability is p.
 double chi2_upper_quantile(double dof, double p);
 
+// The share of a fit's misfit above the noise (its chi-square chi2_before
+// less its degrees of freedom dof_before) that a larger model, fitted to the
+// same residuals, takes away: (chi2_before - chi2_after) / (chi2_before -
+// dof_before); 0 where the fit before has none (chi2_before <= dof_before).
+double misfit_share(double chi2_before, double dof_before, double chi2_after);
+
 }  // namespace gpm::calib

@@ -66,7 +66,7 @@ CalibrationInputs calibration_inputs(const CalibrationSpec& c, const Robot& robo
   }
   in.encoder_bits = encoder_bits;
   in.estimate_encoder_error = c.estimate_encoder_error.value_or(in_motion);
-  in.estimate_joint_error = in_motion && c.estimate_joint_error.value_or(false);
+  in.estimate_joint_error = in_motion && c.estimate_joint_error.value_or(true);
   if (c.tension_min_N) motion.tension_min_N = *c.tension_min_N;
   // On the fly the joint clearance is estimated (a play whose force sign
   // never changes is left to lb_i).

@@ -1,7 +1,7 @@
 // Tests of calib/chi_square.cpp against closed forms: for even k the
 // chi-square survival is the Poisson sum e^{-x/2} sum_{j<k/2} (x/2)^j / j!,
 // for k = 1 it is erfc(sqrt(x/2)), for k = 2 the quantile is -2 ln p; and two
-// table values.
+// table values; the misfit share by hand.
 #include "calib/chi_square.hpp"
 
 #include <cmath>
@@ -49,6 +49,17 @@ TEST(ChiSquare, RejectsArgumentsOutsideTheDomain) {
   EXPECT_THROW(chi2_upper_quantile(0, 0.1), std::invalid_argument);
   EXPECT_THROW(chi2_upper_quantile(3, 1.0), std::invalid_argument);
   EXPECT_THROW(chi2_survival(-1.0, 1.0), std::invalid_argument);
+}
+
+TEST(ChiSquare, MisfitShareIsTheExcessALargerModelTakesAway) {
+  // chi2 200 for 100 degrees of freedom: 100 above the noise.
+  EXPECT_DOUBLE_EQ(misfit_share(200.0, 100.0, 150.0), 0.5);
+  EXPECT_DOUBLE_EQ(misfit_share(200.0, 100.0, 100.0), 1.0) << "down to the noise: all of it";
+  EXPECT_DOUBLE_EQ(misfit_share(200.0, 100.0, 200.0), 0.0) << "nothing taken";
+  EXPECT_LT(misfit_share(200.0, 100.0, 210.0), 0.0) << "a worse fit takes a negative share";
+  // A fit at or below the noise has no misfit to share.
+  EXPECT_EQ(misfit_share(90.0, 100.0, 80.0), 0.0);
+  EXPECT_EQ(misfit_share(100.0, 100.0, 50.0), 0.0);
 }
 
 }  // namespace

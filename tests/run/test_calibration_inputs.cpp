@@ -2,7 +2,8 @@
 // the calibration or the monitor (every field of sim::Effects and of
 // MjcfOptions changed, the inputs bit-identical), and the robot's data sheet
 // does (its values, by independent arithmetic); readings of the encoders'
-// own step tell that they turn with the joints.
+// own step tell that they turn with the joints; the reducer's error once per
+// joint revolution is estimated on the fly by default.
 #include "run/calibration_inputs.hpp"
 
 #include <bit>
@@ -249,6 +250,20 @@ TEST(CalibrationInputs, ReadingsOfTheEncodersOwnStepMeanTheyTurnWithTheJoints) {
   ideal.encoder_bits = 0;
   EXPECT_FALSE(encoder_turns_with_joint(ideal, turn / 131072.0));
   EXPECT_EQ(ideal.motion.gear_ratio, 10.0);
+}
+
+// On the fly the reducer's error once per joint revolution is estimated where
+// the readings hold it unless calibration.estimate lists the effects without
+// it; static samples carry it (no motion model to estimate it in).
+TEST(CalibrationInputs, TheReducersErrorOncePerJointRevolutionIsEstimatedOnTheFly) {
+  const RunSpec spec = load_run_spec(kMain);
+  EXPECT_TRUE(calibration_inputs(spec, spec.sim.controller).estimate_joint_error);
+  RunSpec listed = spec;
+  listed.calibration.estimate_joint_error = false;
+  EXPECT_FALSE(calibration_inputs(listed, listed.sim.controller).estimate_joint_error);
+  RunSpec still = spec;
+  still.sim.sampling->pattern = sim::PosePattern::kDesigned;
+  EXPECT_FALSE(calibration_inputs(still, still.sim.controller).estimate_joint_error);
 }
 
 // A robot file's data sheet sets the scenario's defaults (calibration.drive_friction,
