@@ -94,8 +94,9 @@ TEST(CalibrationProcedure, EstimatedReadingModelTakesTheEstimatesWhereMade) {
 // crossing_s: calibration.crossing_s (the default 0.02 s).
 CalibrationOutcome calibrate_file(const Samples& s, bool static_model = false, bool friction_from_balance = true,
                                   std::optional<double> tension_min_N = std::nullopt, bool ratio_from_step = true,
-                                  double crossing_s = 0.02) {
+                                  double crossing_s = 0.02, bool joint_error = true) {
   FileProcedure p = gpm2002_file_procedure(s, static_model);
+  p.inputs.estimate_joint_error = p.inputs.estimate_joint_error && joint_error;
   p.inputs.drive_friction.from_balance = friction_from_balance;
   p.inputs.crossing_s = crossing_s;
   if (!ratio_from_step) p.inputs.encoder_bits = 0;  // the encoders' counts unknown: the data sheet's gear ratio stands
@@ -360,14 +361,16 @@ TEST(CalibrationProcedure, ReadingsPolledInTurnAreCarriedToJointOnesInstant) {
   // tips the choice of the friction's speed and of a drive-train harmonic,
   // and those move the skew; this test is about the read times.
   // Nor do they tell that the encoders turn with the joints: each fit
-  // carries the reducer's error once per joint revolution. And the samples
-  // of the passive links' crossings are kept: whether they are left out is
-  // decided by the fit's chi2/dof, which the interpolation moves too.
-  const CalibrationOutcome base = calibrate_file(s, false, false, std::nullopt, false, 0.0),
-                           carried = calibrate_file(polled, false, false, std::nullopt, false, 0.0);
+  // carries the reducer's error once per joint revolution (the default
+  // estimates it where a fit's chi2/dof and misfit allow, which the
+  // interpolation moves too). And the samples of the passive links'
+  // crossings are kept: whether they are left out is decided by the fit's
+  // chi2/dof likewise.
+  const CalibrationOutcome base = calibrate_file(s, false, false, std::nullopt, false, 0.0, false),
+                           carried = calibrate_file(polled, false, false, std::nullopt, false, 0.0, false);
   Samples unlabelled = polled;
   unlabelled.t_read.clear();
-  const CalibrationOutcome skewed = calibrate_file(unlabelled, false, false, std::nullopt, false, 0.0);
+  const CalibrationOutcome skewed = calibrate_file(unlabelled, false, false, std::nullopt, false, 0.0, false);
   ASSERT_TRUE(base.with_effects && carried.with_effects && skewed.with_effects);
   // The readings interpolated between samples carry the error of a straight
   // line through the path's curvature: the skews carried back land within
