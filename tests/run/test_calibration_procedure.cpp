@@ -91,7 +91,8 @@ TEST(CalibrationProcedure, EstimatedReadingModelTakesTheEstimatesWhereMade) {
 // friction_from_balance false: the data sheet's friction, not the force balance's;
 // tension_min_N: the force signs' threshold stated (calibration.tension_min_N); ratio_from_step false:
 // the encoders' counts unstated, so the reducer's error once per joint revolution is carried whatever the readings' step;
-// crossing_s: calibration.crossing_s (the default 0.02 s).
+// crossing_s: calibration.crossing_s (the default 0.02 s); joint_error false: the reducer's error once per joint
+// revolution carried, never estimated (calibration.estimate listing the effects without joint_error).
 CalibrationOutcome calibrate_file(const Samples& s, bool static_model = false, bool friction_from_balance = true,
                                   std::optional<double> tension_min_N = std::nullopt, bool ratio_from_step = true,
                                   double crossing_s = 0.02, bool joint_error = true) {
